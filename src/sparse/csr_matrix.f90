@@ -1,0 +1,206 @@
+! SPDX-License-Identifier: MIT
+!> Square sparse matrix in compressed sparse row form. The pattern is built once from the
+!> element connectivity (sorted columns, no duplicates); assembly then only adds into slots.
+module csr_matrix
+    use kinds, only: wp, i8
+    use status, only: status_t, STATUS_INTERNAL
+    implicit none
+    private
+    public :: csr_from_element_dofs
+
+    type, public :: csr_matrix_t
+        integer, allocatable :: row_start(:)   !! (n + 1), 1-based
+        integer, allocatable :: col(:)         !! column of each stored entry, sorted in a row
+        real(wp), allocatable :: val(:)
+    contains
+        procedure :: n => csr_matrix_n
+        procedure :: nnz => csr_matrix_nnz
+        procedure :: slot => csr_matrix_slot
+        procedure :: add_to => csr_matrix_add_to
+        procedure :: add_block => csr_matrix_add_block
+        procedure :: matvec => csr_matrix_matvec
+        procedure :: norm_inf => csr_matrix_norm_inf
+    end type csr_matrix_t
+
+contains
+
+    !> Pattern of the matrix coupling every pair of dofs that share an element. `element_dofs`
+    !> holds the dofs of each element in a column; zero entries (eliminated dofs) are skipped.
+    !> Values start at zero.
+    subroutine csr_from_element_dofs(n, element_dofs, a)
+        integer, intent(in) :: n
+        integer, intent(in) :: element_dofs(:, :)   !! (dofs_per_element, n_elements)
+        type(csr_matrix_t), intent(out) :: a
+        integer, allocatable :: elem_start(:), elem_of_dof(:), marker(:), row_len(:)
+        integer :: e, i, j, k, row, column, pos
+
+        ! Incidence dof -> elements, in CSR form.
+        allocate (elem_start(n + 1), source=0)
+        do e = 1, size(element_dofs, 2)
+            do i = 1, size(element_dofs, 1)
+                row = element_dofs(i, e)
+                if (row > 0) elem_start(row + 1) = elem_start(row + 1) + 1
+            end do
+        end do
+        elem_start(1) = 1
+        do row = 1, n
+            elem_start(row + 1) = elem_start(row + 1) + elem_start(row)
+        end do
+        allocate (elem_of_dof(elem_start(n + 1) - 1))
+        allocate (row_len(n), source=0)
+        do e = 1, size(element_dofs, 2)
+            do i = 1, size(element_dofs, 1)
+                row = element_dofs(i, e)
+                if (row > 0) then
+                    elem_of_dof(elem_start(row) + row_len(row)) = e
+                    row_len(row) = row_len(row) + 1
+                end if
+            end do
+        end do
+
+        ! Two passes over the rows: count distinct columns, then fill them.
+        allocate (marker(n), source=0)
+        allocate (a%row_start(n + 1))
+        a%row_start(1) = 1
+        do row = 1, n
+            row_len(row) = 0
+            do k = elem_start(row), elem_start(row + 1) - 1
+                e = elem_of_dof(k)
+                do j = 1, size(element_dofs, 1)
+                    column = element_dofs(j, e)
+                    if (column > 0) then
+                        if (marker(column) /= row) then
+                            marker(column) = row
+                            row_len(row) = row_len(row) + 1
+                        end if
+                    end if
+                end do
+            end do
+            a%row_start(row + 1) = a%row_start(row) + row_len(row)
+        end do
+        allocate (a%col(a%row_start(n + 1) - 1))
+        marker = 0
+        do row = 1, n
+            pos = a%row_start(row)
+            do k = elem_start(row), elem_start(row + 1) - 1
+                e = elem_of_dof(k)
+                do j = 1, size(element_dofs, 1)
+                    column = element_dofs(j, e)
+                    if (column > 0) then
+                        if (marker(column) /= row) then
+                            marker(column) = row
+                            a%col(pos) = column
+                            pos = pos + 1
+                        end if
+                    end if
+                end do
+            end do
+            call sort_integers(a%col(a%row_start(row):a%row_start(row + 1) - 1))
+        end do
+        allocate (a%val(size(a%col)), source=0.0_wp)
+    end subroutine csr_from_element_dofs
+
+    pure integer function csr_matrix_n(this)
+        class(csr_matrix_t), intent(in) :: this
+        csr_matrix_n = size(this%row_start) - 1
+    end function csr_matrix_n
+
+    pure integer(i8) function csr_matrix_nnz(this)
+        class(csr_matrix_t), intent(in) :: this
+        csr_matrix_nnz = size(this%col, kind=i8)
+    end function csr_matrix_nnz
+
+    !> Position of entry (i, j) in `col`/`val`, or 0 when it is outside the pattern.
+    pure integer function csr_matrix_slot(this, i, j)
+        class(csr_matrix_t), intent(in) :: this
+        integer, intent(in) :: i, j
+        integer :: low, high, middle
+        low = this%row_start(i)
+        high = this%row_start(i + 1) - 1
+        csr_matrix_slot = 0
+        do while (low <= high)
+            middle = (low + high)/2
+            if (this%col(middle) == j) then
+                csr_matrix_slot = middle
+                return
+            else if (this%col(middle) < j) then
+                low = middle + 1
+            else
+                high = middle - 1
+            end if
+        end do
+    end function csr_matrix_slot
+
+    !> a(i, j) += value; (i, j) must be in the pattern.
+    subroutine csr_matrix_add_to(this, i, j, value, stat)
+        class(csr_matrix_t), intent(inout) :: this
+        integer, intent(in) :: i, j
+        real(wp), intent(in) :: value
+        type(status_t), intent(inout) :: stat
+        integer :: k
+        k = this%slot(i, j)
+        if (k == 0) then
+            call stat%fail(STATUS_INTERNAL, 'csr_matrix: entry outside the sparsity pattern')
+            return
+        end if
+        this%val(k) = this%val(k) + value
+    end subroutine csr_matrix_add_to
+
+    !> Scatter an element matrix: a(dofs(i), dofs(j)) += block(i, j), skipping zero dofs.
+    subroutine csr_matrix_add_block(this, dofs, block, stat)
+        class(csr_matrix_t), intent(inout) :: this
+        integer, intent(in) :: dofs(:)
+        real(wp), intent(in) :: block(:, :)
+        type(status_t), intent(inout) :: stat
+        integer :: i, j
+        do j = 1, size(dofs)
+            if (dofs(j) == 0) cycle
+            do i = 1, size(dofs)
+                if (dofs(i) == 0) cycle
+                call this%add_to(dofs(i), dofs(j), block(i, j), stat)
+                if (.not. stat%ok()) return
+            end do
+        end do
+    end subroutine csr_matrix_add_block
+
+    !> y = A x
+    pure subroutine csr_matrix_matvec(this, x, y)
+        class(csr_matrix_t), intent(in) :: this
+        real(wp), intent(in) :: x(:)
+        real(wp), intent(out) :: y(:)
+        integer :: i, k
+        do i = 1, size(this%row_start) - 1
+            y(i) = 0.0_wp
+            do k = this%row_start(i), this%row_start(i + 1) - 1
+                y(i) = y(i) + this%val(k)*x(this%col(k))
+            end do
+        end do
+    end subroutine csr_matrix_matvec
+
+    !> Largest absolute row sum.
+    pure real(wp) function csr_matrix_norm_inf(this)
+        class(csr_matrix_t), intent(in) :: this
+        integer :: i
+        csr_matrix_norm_inf = 0.0_wp
+        do i = 1, size(this%row_start) - 1
+            csr_matrix_norm_inf = max(csr_matrix_norm_inf, &
+                sum(abs(this%val(this%row_start(i):this%row_start(i + 1) - 1))))
+        end do
+    end function csr_matrix_norm_inf
+
+    !> Insertion sort: rows hold a few dozen columns at most.
+    pure subroutine sort_integers(values)
+        integer, intent(inout) :: values(:)
+        integer :: i, j, key
+        do i = 2, size(values)
+            key = values(i)
+            j = i - 1
+            do while (j >= 1)
+                if (values(j) <= key) exit
+                values(j + 1) = values(j)
+                j = j - 1
+            end do
+            values(j + 1) = key
+        end do
+    end subroutine sort_integers
+end module csr_matrix
