@@ -1,0 +1,259 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * A flat C API over CHOLMOD for the Fortran module sparse_cholesky: Fortran never sees
+ * cholmod_common or cholmod_factor, only an opaque handle owning both.
+ *
+ * The matrix comes as a full symmetric matrix in 0-based CSR, which is also its CSC.
+ * CHOLMOD reads it in place (no copy) as a symmetric matrix through its upper triangle
+ * (stype = 1); entries below the diagonal are ignored, so the caller guarantees symmetry.
+ *
+ * The factor is supernodal LL' with A = P' L L' P, so that the forward solve with L alone
+ * is meaningful: W = L^{-1} P B gives B1' A^{-1} B2 = W1' W2.
+ */
+#include <stddef.h>
+#include <stdlib.h>
+#include <float.h>
+#include <cholmod.h>
+
+/* Return codes, mirrored by the constants of sparse_cholesky.f90. */
+enum {
+    NCEIG_CHOLMOD_OK = 0,
+    NCEIG_CHOLMOD_NOT_POSDEF = 1,     /* a pivot was <= 0; info[3] holds the column */
+    NCEIG_CHOLMOD_SINGULAR = 2,       /* pivots all > 0 but rcond below the threshold */
+    NCEIG_CHOLMOD_OUT_OF_MEMORY = 3,
+    NCEIG_CHOLMOD_TOO_LARGE = 4,      /* nnz(L) overflows CHOLMOD's int indices */
+    NCEIG_CHOLMOD_INVALID = 5,        /* bad argument: n, ordering or permutation */
+    NCEIG_CHOLMOD_NOT_FACTORED = 6,   /* solve on a null handle */
+    NCEIG_CHOLMOD_FAILED = 7          /* any other CHOLMOD failure */
+};
+
+/* Orderings requested by the caller (argument `ordering`). */
+enum {
+    NCEIG_ORDER_DEFAULT = 0,
+    NCEIG_ORDER_AMD = 1,
+    NCEIG_ORDER_METIS = 2,
+    NCEIG_ORDER_NATURAL = 3,
+    NCEIG_ORDER_GIVEN = 4
+};
+
+/*
+ * A singular positive semi-definite matrix (a stiffness matrix without Dirichlet boundary)
+ * often does not break down in floating point: its last pivot is rounding noise of either
+ * sign. Its size relative to the largest pivot is then a modest multiple of machine epsilon,
+ * so a pivot ratio (CHOLMOD's rcond estimate, (min L_jj / max L_jj)^2) below this threshold
+ * is reported as singular. A legitimate K with such a pivot ratio would have lost about 12
+ * of its 16 digits anyway.
+ */
+#define NCEIG_RCOND_SINGULAR (1.0e3 * DBL_EPSILON)
+
+typedef struct {
+    cholmod_common common;
+    cholmod_factor *factor;
+    int n;
+} nceig_cholmod_t;
+
+static int code_from_common(const cholmod_common *common)
+{
+    switch (common->status) {
+    case CHOLMOD_OK:
+        return NCEIG_CHOLMOD_OK;
+    case CHOLMOD_NOT_POSDEF:
+        return NCEIG_CHOLMOD_NOT_POSDEF;
+    case CHOLMOD_OUT_OF_MEMORY:
+        return NCEIG_CHOLMOD_OUT_OF_MEMORY;
+    case CHOLMOD_TOO_LARGE:
+        return NCEIG_CHOLMOD_TOO_LARGE;
+    case CHOLMOD_INVALID:
+        return NCEIG_CHOLMOD_INVALID;
+    default:
+        /* CHOLMOD_DSMALL is only a warning that some diagonal is tiny: the factor exists. */
+        return common->status > 0 ? NCEIG_CHOLMOD_OK : NCEIG_CHOLMOD_FAILED;
+    }
+}
+
+/* 1 if perm0 holds each of 0..n-1 exactly once. */
+static int is_permutation(int n, const int *perm0)
+{
+    char *seen = calloc((size_t)n + 1, 1);
+    int ok = seen != NULL;
+    for (int k = 0; ok && k < n; k++) {
+        ok = perm0[k] >= 0 && perm0[k] < n && !seen[perm0[k]];
+        if (ok) seen[perm0[k]] = 1;
+    }
+    free(seen);
+    return ok;
+}
+
+static void destroy(nceig_cholmod_t *h)
+{
+    cholmod_free_factor(&h->factor, &h->common);
+    cholmod_finish(&h->common);
+    free(h);
+}
+
+/* Release everything the handle owns; a null handle is left alone, so freeing twice is safe. */
+void nceig_cholmod_free(void **handle)
+{
+    if (handle == NULL || *handle == NULL) return;
+    destroy(*handle);
+    *handle = NULL;
+}
+
+/*
+ * Analyse and factorize. On success *handle owns the factor; on failure *handle is NULL.
+ * info[0] = nnz(L) (fundamental, without supernodal padding), info[1] = flop count,
+ * info[2] = ordering used (CHOLMOD_NATURAL, _GIVEN, _AMD, _METIS, ...),
+ * info[3] = 0-based row/column of A where the factorization broke down (-1 if it did not),
+ * info[4] = rcond estimate (min L_jj / max L_jj)^2, 0 if not available.
+ */
+int nceig_cholmod_factor(int n, const int *row_start0, const int *col0, const double *val,
+                         int ordering, const int *perm0, void **handle, double *info)
+{
+    for (int k = 0; k < 5; k++) info[k] = 0.0;
+    info[3] = -1.0;
+    *handle = NULL;
+    if (n < 1 || ordering < NCEIG_ORDER_DEFAULT || ordering > NCEIG_ORDER_GIVEN)
+        return NCEIG_CHOLMOD_INVALID;
+    if (ordering == NCEIG_ORDER_GIVEN && (perm0 == NULL || !is_permutation(n, perm0)))
+        return NCEIG_CHOLMOD_INVALID;
+
+    nceig_cholmod_t *h = calloc(1, sizeof *h);
+    if (h == NULL) return NCEIG_CHOLMOD_OUT_OF_MEMORY;
+    h->n = n;
+    cholmod_common *c = &h->common;
+    if (!cholmod_start(c)) {
+        free(h);
+        return NCEIG_CHOLMOD_FAILED;
+    }
+    c->print = 0;                       /* library code does not print: codes travel up */
+    c->supernodal = CHOLMOD_SUPERNODAL; /* LL' by construction: forward solves need L */
+    c->final_ll = 1;
+    c->quick_return_if_not_posdef = 1; /* a failed factor is discarded anyway */
+    switch (ordering) {
+    case NCEIG_ORDER_AMD:
+        c->nmethods = 1;
+        c->method[0].ordering = CHOLMOD_AMD;
+        break;
+    case NCEIG_ORDER_METIS:
+        c->nmethods = 1;
+        c->method[0].ordering = CHOLMOD_METIS;
+        break;
+    case NCEIG_ORDER_NATURAL:
+        c->nmethods = 1;
+        c->method[0].ordering = CHOLMOD_NATURAL;
+        break;
+    case NCEIG_ORDER_GIVEN:
+        c->nmethods = 1;
+        c->method[0].ordering = CHOLMOD_GIVEN;
+        break;
+    default:
+        break; /* nmethods = 0: AMD, then METIS if AMD's fill-in is high */
+    }
+
+    /* A view of the caller's arrays: CHOLMOD reads A but never writes it. */
+    cholmod_sparse a = {0};
+    a.nrow = (size_t)n;
+    a.ncol = (size_t)n;
+    a.nzmax = (size_t)row_start0[n];
+    a.p = (void *)row_start0;
+    a.i = (void *)col0;
+    a.x = (void *)val;
+    a.stype = 1;
+    a.itype = CHOLMOD_INT;
+    a.xtype = CHOLMOD_REAL;
+    a.dtype = CHOLMOD_DOUBLE;
+    a.sorted = 1;
+    a.packed = 1;
+
+    int *perm = ordering == NCEIG_ORDER_GIVEN ? (int *)perm0 : NULL;
+    h->factor = cholmod_analyze_p(&a, perm, NULL, 0, c);
+    if (h->factor == NULL) {
+        int code = code_from_common(c);
+        destroy(h);
+        return code == NCEIG_CHOLMOD_OK ? NCEIG_CHOLMOD_FAILED : code;
+    }
+    info[0] = c->lnz;
+    info[1] = c->fl;
+    info[2] = (double)h->factor->ordering;
+
+    int ok = cholmod_factorize(&a, h->factor, c);
+    int code = ok ? code_from_common(c) : NCEIG_CHOLMOD_FAILED;
+    if (code == NCEIG_CHOLMOD_OK && h->factor->minor < (size_t)n)
+        code = NCEIG_CHOLMOD_NOT_POSDEF;
+    if (code == NCEIG_CHOLMOD_NOT_POSDEF) {
+        /* minor is a column of L, i.e. of P A P'; Perm maps it back to A. */
+        size_t minor = h->factor->minor < (size_t)n ? h->factor->minor : (size_t)n - 1;
+        info[3] = (double)((const int *)h->factor->Perm)[minor];
+    }
+    if (code == NCEIG_CHOLMOD_OK) {
+        info[4] = cholmod_rcond(h->factor, c);
+        if (info[4] < NCEIG_RCOND_SINGULAR) code = NCEIG_CHOLMOD_SINGULAR;
+    }
+    if (code != NCEIG_CHOLMOD_OK) {
+        destroy(h);
+        return code;
+    }
+    *handle = h;
+    return NCEIG_CHOLMOD_OK;
+}
+
+/* Dense column-major n x nrhs view of caller memory, which CHOLMOD only reads. */
+static cholmod_dense dense_view(int n, int nrhs, const double *b)
+{
+    cholmod_dense d = {0};
+    d.nrow = (size_t)n;
+    d.ncol = (size_t)nrhs;
+    d.nzmax = (size_t)n * (size_t)nrhs;
+    d.d = (size_t)n;
+    d.x = (void *)b;
+    d.xtype = CHOLMOD_REAL;
+    d.dtype = CHOLMOD_DOUBLE;
+    return d;
+}
+
+/* Copy a CHOLMOD result into caller memory and free it. */
+static void copy_and_free(cholmod_dense **x, double *out, cholmod_common *c)
+{
+    const double *values = (*x)->x;
+    size_t count = (*x)->nrow * (*x)->ncol;
+    for (size_t k = 0; k < count; k++) out[k] = values[k];
+    cholmod_free_dense(x, c);
+}
+
+/* X = A^{-1} B for dense column-major n x nrhs B and X. */
+int nceig_cholmod_solve(void *handle, int nrhs, const double *b, double *x)
+{
+    nceig_cholmod_t *h = handle;
+    if (h == NULL) return NCEIG_CHOLMOD_NOT_FACTORED;
+    if (nrhs < 1) return nrhs == 0 ? NCEIG_CHOLMOD_OK : NCEIG_CHOLMOD_INVALID;
+    cholmod_dense bview = dense_view(h->n, nrhs, b);
+    cholmod_dense *result = cholmod_solve(CHOLMOD_A, h->factor, &bview, &h->common);
+    if (result == NULL) {
+        int code = code_from_common(&h->common);
+        return code == NCEIG_CHOLMOD_OK ? NCEIG_CHOLMOD_FAILED : code;
+    }
+    copy_and_free(&result, x, &h->common);
+    return NCEIG_CHOLMOD_OK;
+}
+
+/* W = L^{-1} P B, so that B1' A^{-1} B2 = W1' W2. */
+int nceig_cholmod_forward(void *handle, int nrhs, const double *b, double *w)
+{
+    nceig_cholmod_t *h = handle;
+    if (h == NULL) return NCEIG_CHOLMOD_NOT_FACTORED;
+    if (nrhs < 1) return nrhs == 0 ? NCEIG_CHOLMOD_OK : NCEIG_CHOLMOD_INVALID;
+    cholmod_dense bview = dense_view(h->n, nrhs, b);
+    cholmod_dense *permuted = cholmod_solve(CHOLMOD_P, h->factor, &bview, &h->common);
+    if (permuted == NULL) {
+        int code = code_from_common(&h->common);
+        return code == NCEIG_CHOLMOD_OK ? NCEIG_CHOLMOD_FAILED : code;
+    }
+    cholmod_dense *result = cholmod_solve(CHOLMOD_L, h->factor, permuted, &h->common);
+    cholmod_free_dense(&permuted, &h->common);
+    if (result == NULL) {
+        int code = code_from_common(&h->common);
+        return code == NCEIG_CHOLMOD_OK ? NCEIG_CHOLMOD_FAILED : code;
+    }
+    copy_and_free(&result, w, &h->common);
+    return NCEIG_CHOLMOD_OK;
+}

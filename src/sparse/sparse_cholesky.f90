@@ -1,0 +1,331 @@
+! SPDX-License-Identifier: MIT
+!> Sparse Cholesky factorization A = P' L L' P of a symmetric positive definite CSR matrix,
+!> through CHOLMOD behind the flat C shim `cholmod_shim.c`.
+!>
+!> A `cholesky_t` owns a C handle. It frees itself when it goes out of scope (final) and
+!> `free` may be called any number of times, but it must not be copied: an assigned copy
+!> would share the handle. Pass it by reference or keep it in one place.
+module sparse_cholesky
+    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_null_ptr, c_loc, &
+                                           c_associated
+    use kinds, only: wp, i8
+    use status, only: status_t, STATUS_BAD_INPUT, STATUS_SINGULAR, STATUS_SOLVER
+    use csr_matrix, only: csr_matrix_t
+    implicit none
+    private
+    public :: cholmod_status_message
+    public :: ORDERING_DEFAULT, ORDERING_AMD, ORDERING_METIS, ORDERING_NATURAL, ORDERING_GIVEN
+
+    !> Fill-reducing orderings; the values are those of the shim's `ordering` argument.
+    integer, parameter :: ORDERING_DEFAULT = 0   !! CHOLMOD's choice: AMD, METIS if fill is high
+    integer, parameter :: ORDERING_AMD = 1
+    integer, parameter :: ORDERING_METIS = 2
+    integer, parameter :: ORDERING_NATURAL = 3
+    integer, parameter :: ORDERING_GIVEN = 4     !! the caller's `permutation`
+
+    ! Return codes of the shim (see cholmod_shim.c).
+    integer, parameter :: SHIM_OK = 0
+    integer, parameter :: SHIM_NOT_POSDEF = 1
+    integer, parameter :: SHIM_SINGULAR = 2
+    integer, parameter :: SHIM_OUT_OF_MEMORY = 3
+    integer, parameter :: SHIM_TOO_LARGE = 4
+    integer, parameter :: SHIM_INVALID = 5
+    integer, parameter :: SHIM_NOT_FACTORED = 6
+    integer, parameter :: SHIM_FAILED = 7
+
+    ! CHOLMOD's names for the ordering it used (cholmod_core.h).
+    integer, parameter :: CHOLMOD_NATURAL = 0, CHOLMOD_GIVEN = 1, CHOLMOD_AMD = 2, &
+                          CHOLMOD_METIS = 3, CHOLMOD_POSTORDERED = 6
+
+    integer, parameter :: INFO_SIZE = 5   !! nnz(L), flops, ordering, failed column, rcond
+
+    !> Cholesky factor of a symmetric positive definite matrix, owned through a C handle.
+    type, public :: cholesky_t
+        private
+        type(c_ptr) :: handle = c_null_ptr
+        integer :: n = 0
+        real(c_double) :: info(INFO_SIZE) = 0.0_c_double
+    contains
+        procedure :: factor => cholesky_factor
+        procedure :: solve => cholesky_solve
+        procedure :: forward => cholesky_forward
+        procedure :: free => cholesky_free
+        procedure :: factor_nnz => cholesky_factor_nnz
+        procedure :: flops => cholesky_flops
+        procedure :: ordering_used => cholesky_ordering_used
+        procedure :: rcond => cholesky_rcond
+        procedure :: is_factored => cholesky_is_factored
+        final :: cholesky_finalize
+    end type cholesky_t
+
+    interface
+        function nceig_cholmod_factor(n, row_start0, col0, val, ordering, perm0, handle, info) &
+                bind(C, name='nceig_cholmod_factor') result(code)
+            import :: c_int, c_double, c_ptr
+            integer(c_int), value :: n
+            integer(c_int), intent(in) :: row_start0(*), col0(*)   ! 0-based copies
+            real(c_double), intent(in) :: val(*)
+            integer(c_int), value :: ordering
+            type(c_ptr), value :: perm0                            ! const int *, may be NULL
+            type(c_ptr), intent(out) :: handle                     ! void **
+            real(c_double), intent(out) :: info(*)
+            integer(c_int) :: code
+        end function nceig_cholmod_factor
+
+        function nceig_cholmod_solve(handle, nrhs, b, x) &
+                bind(C, name='nceig_cholmod_solve') result(code)
+            import :: c_int, c_double, c_ptr
+            type(c_ptr), value :: handle
+            integer(c_int), value :: nrhs
+            real(c_double), intent(in) :: b(*)
+            real(c_double), intent(out) :: x(*)
+            integer(c_int) :: code
+        end function nceig_cholmod_solve
+
+        function nceig_cholmod_forward(handle, nrhs, b, w) &
+                bind(C, name='nceig_cholmod_forward') result(code)
+            import :: c_int, c_double, c_ptr
+            type(c_ptr), value :: handle
+            integer(c_int), value :: nrhs
+            real(c_double), intent(in) :: b(*)
+            real(c_double), intent(out) :: w(*)
+            integer(c_int) :: code
+        end function nceig_cholmod_forward
+
+        subroutine nceig_cholmod_free(handle) bind(C, name='nceig_cholmod_free')
+            import :: c_ptr
+            type(c_ptr), intent(inout) :: handle                   ! void **
+        end subroutine nceig_cholmod_free
+    end interface
+
+contains
+
+    !> Analyse and factorize the symmetric positive definite matrix `a` (full pattern, only
+    !> its upper triangle is read). A previous factor is freed first. `ordering` is one of
+    !> the ORDERING_* constants (default ORDERING_DEFAULT); ORDERING_GIVEN needs
+    !> `permutation`, 1-based: row/column permutation(k) of A becomes the k-th pivot.
+    subroutine cholesky_factor(this, a, stat, ordering, permutation)
+        class(cholesky_t), intent(inout) :: this
+        type(csr_matrix_t), intent(in) :: a
+        type(status_t), intent(out) :: stat
+        integer, intent(in), optional :: ordering
+        integer, intent(in), optional :: permutation(:)
+        integer(c_int), allocatable :: row_start0(:), col0(:)
+        integer(c_int), allocatable, target :: perm0(:)
+        type(c_ptr) :: perm_address
+        integer :: chosen, code, n
+        character(len=32) :: text
+
+        call this%free()
+        n = a%n()
+        chosen = ORDERING_DEFAULT
+        if (present(ordering)) chosen = ordering
+        if (n < 1) then
+            call stat%fail(STATUS_BAD_INPUT, 'sparse_cholesky: the matrix is empty')
+            return
+        end if
+        if (chosen < ORDERING_DEFAULT .or. chosen > ORDERING_GIVEN) then
+            write (text, '(i0)') chosen
+            call stat%fail(STATUS_BAD_INPUT, 'sparse_cholesky: unknown ordering '//trim(text))
+            return
+        end if
+        perm_address = c_null_ptr
+        if (chosen == ORDERING_GIVEN) then
+            if (.not. present(permutation)) then
+                call stat%fail(STATUS_BAD_INPUT, &
+                    'sparse_cholesky: ORDERING_GIVEN requires a permutation')
+                return
+            end if
+            if (size(permutation) /= n) then
+                write (text, '(i0, a, i0)') size(permutation), ' for n = ', n
+                call stat%fail(STATUS_BAD_INPUT, &
+                    'sparse_cholesky: permutation has length '//trim(text))
+                return
+            end if
+            perm0 = int(permutation - 1, c_int)
+            perm_address = c_loc(perm0)
+        end if
+
+        ! CHOLMOD wants 0-based indices; the caller's CSR stays as it is.
+        row_start0 = int(a%row_start - 1, c_int)
+        col0 = int(a%col - 1, c_int)
+        code = nceig_cholmod_factor(int(n, c_int), row_start0, col0, a%val, &
+                                    int(chosen, c_int), perm_address, this%handle, this%info)
+        if (code /= SHIM_OK) then
+            this%handle = c_null_ptr
+            call stat%fail(status_code(code), cholmod_status_message(code, &
+                column=nint(this%info(4)) + 1, rcond=real(this%info(5), wp)))
+            return
+        end if
+        this%n = n
+    end subroutine cholesky_factor
+
+    !> Solve A X = B for the n x nrhs right-hand sides in the columns of `b`.
+    subroutine cholesky_solve(this, b, x, stat)
+        class(cholesky_t), intent(in) :: this
+        real(wp), intent(in) :: b(:, :)
+        real(wp), intent(out) :: x(:, :)
+        type(status_t), intent(out) :: stat
+        integer :: code
+        if (.not. shapes_fit(this, b, x, 'solve', stat)) return
+        code = nceig_cholmod_solve(this%handle, int(size(b, 2), c_int), b, x)
+        if (code /= SHIM_OK) call stat%fail(status_code(code), cholmod_status_message(code))
+    end subroutine cholesky_solve
+
+    !> W = L^{-1} P B, so that B1' A^{-1} B2 = W1' W2: small dense blocks N K^{-1} T' then
+    !> cost one forward substitution per column instead of a full solve.
+    subroutine cholesky_forward(this, b, w, stat)
+        class(cholesky_t), intent(in) :: this
+        real(wp), intent(in) :: b(:, :)
+        real(wp), intent(out) :: w(:, :)
+        type(status_t), intent(out) :: stat
+        integer :: code
+        if (.not. shapes_fit(this, b, w, 'forward', stat)) return
+        code = nceig_cholmod_forward(this%handle, int(size(b, 2), c_int), b, w)
+        if (code /= SHIM_OK) call stat%fail(status_code(code), cholmod_status_message(code))
+    end subroutine cholesky_forward
+
+    !> Release the factor. Safe to call on an object never factored or already freed.
+    subroutine cholesky_free(this)
+        class(cholesky_t), intent(inout) :: this
+        call nceig_cholmod_free(this%handle)
+        this%handle = c_null_ptr
+        this%n = 0
+        this%info = 0.0_c_double
+    end subroutine cholesky_free
+
+    subroutine cholesky_finalize(this)
+        type(cholesky_t), intent(inout) :: this
+        call this%free()
+    end subroutine cholesky_finalize
+
+    !> Nonzeros of L (without supernodal padding), 0 before a successful factorization.
+    pure integer(i8) function cholesky_factor_nnz(this)
+        class(cholesky_t), intent(in) :: this
+        cholesky_factor_nnz = nint(this%info(1), i8)
+    end function cholesky_factor_nnz
+
+    !> Floating-point operations of the numeric factorization, as counted by CHOLMOD.
+    pure real(wp) function cholesky_flops(this)
+        class(cholesky_t), intent(in) :: this
+        cholesky_flops = real(this%info(2), wp)
+    end function cholesky_flops
+
+    !> The ordering CHOLMOD actually used, as an ORDERING_* constant (never ORDERING_DEFAULT;
+    !> a postordered natural ordering counts as natural), or -1 when not factored.
+    pure integer function cholesky_ordering_used(this)
+        class(cholesky_t), intent(in) :: this
+        if (.not. c_associated(this%handle)) then
+            cholesky_ordering_used = -1
+            return
+        end if
+        select case (nint(this%info(3)))
+        case (CHOLMOD_NATURAL, CHOLMOD_POSTORDERED)
+            cholesky_ordering_used = ORDERING_NATURAL
+        case (CHOLMOD_GIVEN)
+            cholesky_ordering_used = ORDERING_GIVEN
+        case (CHOLMOD_AMD)
+            cholesky_ordering_used = ORDERING_AMD
+        case (CHOLMOD_METIS)
+            cholesky_ordering_used = ORDERING_METIS
+        case default
+            cholesky_ordering_used = -1
+        end select
+    end function cholesky_ordering_used
+
+    !> CHOLMOD's cheap condition estimate (min L_jj / max L_jj)^2: an upper bound on
+    !> 1/cond_2(A), often far above it. Useful only to spot near-singularity.
+    pure real(wp) function cholesky_rcond(this)
+        class(cholesky_t), intent(in) :: this
+        cholesky_rcond = real(this%info(5), wp)
+    end function cholesky_rcond
+
+    pure logical function cholesky_is_factored(this)
+        class(cholesky_t), intent(in) :: this
+        cholesky_is_factored = c_associated(this%handle)
+    end function cholesky_is_factored
+
+    !> A sentence for each code of the shim. `column` (1-based, of A) names where a not
+    !> positive definite matrix broke down; `rcond` is the pivot ratio of a singular one.
+    pure function cholmod_status_message(code, column, rcond) result(message)
+        integer, intent(in) :: code
+        integer, intent(in), optional :: column
+        real(wp), intent(in), optional :: rcond
+        character(len=:), allocatable :: message
+        character(len=32) :: value
+        select case (code)
+        case (SHIM_OK)
+            message = 'CHOLMOD: success'
+        case (SHIM_NOT_POSDEF)
+            message = 'CHOLMOD: the matrix is not positive definite'
+            if (present(column)) then
+                write (value, '(i0)') column
+                message = message//': a pivot <= 0 at row/column '//trim(value)
+            end if
+        case (SHIM_SINGULAR)
+            message = 'CHOLMOD: the matrix is numerically singular'
+            if (present(rcond)) then
+                write (value, '(es9.2)') rcond
+                message = message//': pivot ratio (rcond estimate) '//trim(adjustl(value))// &
+                          ' < 1e3 eps'
+            end if
+        case (SHIM_OUT_OF_MEMORY)
+            message = 'CHOLMOD: out of memory'
+        case (SHIM_TOO_LARGE)
+            message = 'CHOLMOD: the factor is too large for 32-bit integer indices'
+        case (SHIM_INVALID)
+            message = 'CHOLMOD: invalid input (size, ordering or permutation)'
+        case (SHIM_NOT_FACTORED)
+            message = 'CHOLMOD: solve requested before a successful factorization'
+        case (SHIM_FAILED)
+            message = 'CHOLMOD: the factorization or solve failed'
+        case default
+            write (value, '(i0)') code
+            message = 'CHOLMOD: unknown shim code '//trim(value)
+        end select
+    end function cholmod_status_message
+
+    !> The status code a shim code maps to.
+    pure integer function status_code(code)
+        integer, intent(in) :: code
+        select case (code)
+        case (SHIM_NOT_POSDEF, SHIM_SINGULAR)
+            status_code = STATUS_SINGULAR
+        case (SHIM_INVALID, SHIM_NOT_FACTORED)
+            status_code = STATUS_BAD_INPUT
+        case default
+            status_code = STATUS_SOLVER
+        end select
+    end function status_code
+
+    !> Check that b and its result are n x nrhs before handing raw memory to C.
+    logical function shapes_fit(this, b, x, what, stat)
+        class(cholesky_t), intent(in) :: this
+        real(wp), intent(in) :: b(:, :), x(:, :)
+        character(len=*), intent(in) :: what
+        type(status_t), intent(inout) :: stat
+        character(len=80) :: text
+        shapes_fit = .false.
+        if (.not. c_associated(this%handle)) then
+            call stat%fail(STATUS_BAD_INPUT, 'sparse_cholesky: '//what// &
+                           ' called before a successful factorization')
+            return
+        end if
+        if (size(b, 1) /= this%n .or. any(shape(x) /= shape(b))) then
+            write (text, '(4(a, i0))') 'b is ', size(b, 1), ' x ', size(b, 2), &
+                ', result is ', size(x, 1), ' x ', size(x, 2)
+            call stat%fail(STATUS_BAD_INPUT, 'sparse_cholesky: '//what//': '//trim(text)// &
+                           ' for n = '//trim(int_text(this%n)))
+            return
+        end if
+        shapes_fit = .true.
+    end function shapes_fit
+
+    pure function int_text(value) result(text)
+        integer, intent(in) :: value
+        character(len=:), allocatable :: text
+        character(len=16) :: buffer
+        write (buffer, '(i0)') value
+        text = trim(buffer)
+    end function int_text
+end module sparse_cholesky
