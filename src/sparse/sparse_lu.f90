@@ -1,0 +1,238 @@
+! SPDX-License-Identifier: MIT
+!> Sparse LU factorization of a general square CSR matrix with UMFPACK, for the shifted,
+!> non-symmetric operators K - sigma B.
+!>
+!> An `lu_t` owns the UMFPACK Numeric object and 0-based copies of the matrix (UMFPACK's
+!> iterative refinement in the solve reads A again). It frees itself when it goes out of
+!> scope (final) and `free` may be called repeatedly, but it must not be copied: an
+!> assigned copy would share the Numeric handle.
+module sparse_lu
+    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_null_ptr, c_associated
+    use kinds, only: wp
+    use status, only: status_t, STATUS_BAD_INPUT, STATUS_SINGULAR, STATUS_SOLVER
+    use csr_matrix, only: csr_matrix_t
+    use umfpack_c, only: umfpack_di_symbolic, umfpack_di_numeric, umfpack_di_solve, &
+                         umfpack_di_free_symbolic, umfpack_di_free_numeric, umfpack_di_defaults, &
+                         UMFPACK_CONTROL, UMFPACK_INFO, UMFPACK_At, UMFPACK_PRL, &
+                         UMFPACK_ORDERING, UMFPACK_LNZ, UMFPACK_UNZ, UMFPACK_FLOPS, &
+                         UMFPACK_RCOND, UMFPACK_ORDERING_AMD, UMFPACK_ORDERING_METIS, &
+                         UMFPACK_ORDERING_CHOLMOD, UMFPACK_ORDERING_NONE, &
+                         UMFPACK_OK, UMFPACK_WARNING_singular_matrix, &
+                         UMFPACK_WARNING_determinant_underflow, &
+                         UMFPACK_WARNING_determinant_overflow, &
+                         UMFPACK_ERROR_out_of_memory, UMFPACK_ERROR_invalid_Numeric_object, &
+                         UMFPACK_ERROR_invalid_Symbolic_object, UMFPACK_ERROR_argument_missing, &
+                         UMFPACK_ERROR_n_nonpositive, UMFPACK_ERROR_invalid_matrix, &
+                         UMFPACK_ERROR_different_pattern, UMFPACK_ERROR_invalid_system, &
+                         UMFPACK_ERROR_invalid_permutation, UMFPACK_ERROR_internal_error, &
+                         UMFPACK_ERROR_file_IO, UMFPACK_ERROR_ordering_failed
+    implicit none
+    private
+    public :: umfpack_status_message
+    public :: LU_ORDERING_DEFAULT, LU_ORDERING_METIS, LU_ORDERING_NATURAL, LU_ORDERING_CHOLMOD
+
+    !> Fill-reducing orderings for `factor`; the values are UMFPACK's.
+    integer, parameter :: LU_ORDERING_DEFAULT = UMFPACK_ORDERING_AMD   !! AMD or COLAMD
+    integer, parameter :: LU_ORDERING_METIS = UMFPACK_ORDERING_METIS
+    integer, parameter :: LU_ORDERING_NATURAL = UMFPACK_ORDERING_NONE
+    integer, parameter :: LU_ORDERING_CHOLMOD = UMFPACK_ORDERING_CHOLMOD !! AMD, then METIS
+
+    !> LU factors of a square sparse matrix, owned through UMFPACK's Numeric handle.
+    type, public :: lu_t
+        private
+        type(c_ptr) :: numeric = c_null_ptr
+        integer(c_int), allocatable :: ap(:)   !! (n + 1), 0-based row starts of our CSR
+        integer(c_int), allocatable :: ai(:)   !! 0-based columns of our CSR
+        real(c_double), allocatable :: ax(:)   !! values, copied so the caller may change a
+        real(c_double) :: control(UMFPACK_CONTROL) = 0.0_c_double
+        real(c_double) :: info(UMFPACK_INFO) = 0.0_c_double
+    contains
+        procedure :: factor => lu_factor
+        procedure :: solve => lu_solve
+        procedure :: free => lu_free
+        procedure :: rcond => lu_rcond
+        procedure :: factor_nnz => lu_factor_nnz
+        procedure :: is_factored => lu_is_factored
+        final :: lu_finalize
+    end type lu_t
+
+contains
+
+    !> Factorize the square matrix `a`; a previous factorization is freed first. A matrix
+    !> UMFPACK finds singular (an exactly zero pivot) is a failure with STATUS_SINGULAR.
+    !> `ordering` is one of the LU_ORDERING_* constants (default LU_ORDERING_DEFAULT).
+    subroutine lu_factor(this, a, stat, ordering)
+        class(lu_t), intent(inout) :: this
+        type(csr_matrix_t), intent(in) :: a
+        type(status_t), intent(out) :: stat
+        integer, intent(in), optional :: ordering
+        type(c_ptr) :: symbolic
+        integer(c_int) :: code, n
+        character(len=32) :: text
+
+        call this%free()
+        n = int(a%n(), c_int)
+        if (n < 1) then
+            call stat%fail(STATUS_BAD_INPUT, 'sparse_lu: the matrix is empty')
+            return
+        end if
+        this%ap = int(a%row_start - 1, c_int)
+        this%ai = int(a%col - 1, c_int)
+        this%ax = real(a%val, c_double)
+
+        call umfpack_di_defaults(this%control)
+        this%control(UMFPACK_PRL + 1) = 0.0_c_double   ! silent: statuses travel up instead
+        if (present(ordering)) then
+            select case (ordering)
+            case (LU_ORDERING_DEFAULT, LU_ORDERING_METIS, LU_ORDERING_NATURAL, &
+                  LU_ORDERING_CHOLMOD)
+                this%control(UMFPACK_ORDERING + 1) = real(ordering, c_double)
+            case default
+                write (text, '(i0)') ordering
+                call stat%fail(STATUS_BAD_INPUT, 'sparse_lu: unknown ordering '//trim(text))
+                call this%free()
+                return
+            end select
+        end if
+
+        ! Our CSR arrays are the CSC arrays of the transpose, so UMFPACK factorizes A'.
+        symbolic = c_null_ptr
+        code = umfpack_di_symbolic(n, n, this%ap, this%ai, this%ax, symbolic, &
+                                     this%control, this%info)
+        if (code /= UMFPACK_OK) then
+            call stat%fail(STATUS_SOLVER, 'sparse_lu: symbolic analysis: '// &
+                           umfpack_status_message(code))
+            call umfpack_di_free_symbolic(symbolic)
+            call this%free()
+            return
+        end if
+        code = umfpack_di_numeric(this%ap, this%ai, this%ax, symbolic, this%numeric, &
+                                    this%control, this%info)
+        call umfpack_di_free_symbolic(symbolic)
+        if (code /= UMFPACK_OK) then
+            ! A singular matrix still yields a Numeric object, but its solves divide by zero.
+            if (code == UMFPACK_WARNING_singular_matrix) then
+                call stat%fail(STATUS_SINGULAR, 'sparse_lu: numeric factorization: '// &
+                               umfpack_status_message(code))
+            else
+                call stat%fail(STATUS_SOLVER, 'sparse_lu: numeric factorization: '// &
+                               umfpack_status_message(code))
+            end if
+            call this%free()
+            return
+        end if
+    end subroutine lu_factor
+
+    !> Solve A x = b for one right-hand side.
+    subroutine lu_solve(this, b, x, stat)
+        class(lu_t), intent(inout) :: this
+        real(wp), intent(in) :: b(:)
+        real(wp), intent(out) :: x(:)
+        type(status_t), intent(out) :: stat
+        integer(c_int) :: code
+        character(len=80) :: text
+        if (.not. c_associated(this%numeric)) then
+            call stat%fail(STATUS_BAD_INPUT, &
+                           'sparse_lu: solve called before a successful factorization')
+            return
+        end if
+        if (size(b) /= size(this%ap) - 1 .or. size(x) /= size(b)) then
+            write (text, '(3(a, i0))') 'size(b) = ', size(b), ', size(x) = ', size(x), &
+                ' for n = ', size(this%ap) - 1
+            call stat%fail(STATUS_BAD_INPUT, 'sparse_lu: solve: '//trim(text))
+            return
+        end if
+        ! UMFPACK holds the factors of our transpose (CSR read as CSC): A x = b is its
+        ! transposed system, UMFPACK_At.
+        code = umfpack_di_solve(UMFPACK_At, this%ap, this%ai, this%ax, x, b, this%numeric, &
+                                  this%control, this%info)
+        if (code /= UMFPACK_OK) then
+            if (code == UMFPACK_WARNING_singular_matrix) then
+                call stat%fail(STATUS_SINGULAR, 'sparse_lu: solve: '// &
+                               umfpack_status_message(code))
+            else
+                call stat%fail(STATUS_SOLVER, 'sparse_lu: solve: '// &
+                               umfpack_status_message(code))
+            end if
+        end if
+    end subroutine lu_solve
+
+    !> Release the Numeric object and the copies. Safe on an unfactored or freed object.
+    subroutine lu_free(this)
+        class(lu_t), intent(inout) :: this
+        if (c_associated(this%numeric)) call umfpack_di_free_numeric(this%numeric)
+        this%numeric = c_null_ptr
+        if (allocated(this%ap)) deallocate (this%ap)
+        if (allocated(this%ai)) deallocate (this%ai)
+        if (allocated(this%ax)) deallocate (this%ax)
+    end subroutine lu_free
+
+    subroutine lu_finalize(this)
+        type(lu_t), intent(inout) :: this
+        call this%free()
+    end subroutine lu_finalize
+
+    !> UMFPACK's estimate min |U_ii| / max |U_ii| after scaling: tiny values flag a nearly
+    !> singular matrix, which shift-invert may use on purpose, so it is not an error here.
+    pure real(wp) function lu_rcond(this)
+        class(lu_t), intent(in) :: this
+        lu_rcond = real(this%info(UMFPACK_RCOND + 1), wp)
+    end function lu_rcond
+
+    !> nnz(L) + nnz(U), the diagonal counted once; 0 before a factorization.
+    pure real(wp) function lu_factor_nnz(this)
+        class(lu_t), intent(in) :: this
+        lu_factor_nnz = 0.0_wp
+        if (c_associated(this%numeric)) lu_factor_nnz = real(this%info(UMFPACK_LNZ + 1) &
+            + this%info(UMFPACK_UNZ + 1) - (size(this%ap) - 1), wp)
+    end function lu_factor_nnz
+
+    pure logical function lu_is_factored(this)
+        class(lu_t), intent(in) :: this
+        lu_is_factored = c_associated(this%numeric)
+    end function lu_is_factored
+
+    !> A sentence for each status documented in umfpack.h.
+    pure function umfpack_status_message(code) result(message)
+        integer, intent(in) :: code
+        character(len=:), allocatable :: message
+        character(len=16) :: value
+        select case (code)
+        case (UMFPACK_OK)
+            message = 'UMFPACK: success'
+        case (UMFPACK_WARNING_singular_matrix)
+            message = 'UMFPACK: the matrix is singular (an exactly zero pivot)'
+        case (UMFPACK_WARNING_determinant_underflow)
+            message = 'UMFPACK: the determinant underflows'
+        case (UMFPACK_WARNING_determinant_overflow)
+            message = 'UMFPACK: the determinant overflows'
+        case (UMFPACK_ERROR_out_of_memory)
+            message = 'UMFPACK: out of memory'
+        case (UMFPACK_ERROR_invalid_Numeric_object)
+            message = 'UMFPACK: invalid Numeric object'
+        case (UMFPACK_ERROR_invalid_Symbolic_object)
+            message = 'UMFPACK: invalid Symbolic object'
+        case (UMFPACK_ERROR_argument_missing)
+            message = 'UMFPACK: a required argument is missing'
+        case (UMFPACK_ERROR_n_nonpositive)
+            message = 'UMFPACK: the matrix dimension is not positive'
+        case (UMFPACK_ERROR_invalid_matrix)
+            message = 'UMFPACK: invalid matrix (unsorted, duplicate or out-of-range indices)'
+        case (UMFPACK_ERROR_different_pattern)
+            message = 'UMFPACK: the pattern changed since the symbolic analysis'
+        case (UMFPACK_ERROR_invalid_system)
+            message = 'UMFPACK: invalid system requested (or A is not square)'
+        case (UMFPACK_ERROR_invalid_permutation)
+            message = 'UMFPACK: invalid permutation'
+        case (UMFPACK_ERROR_internal_error)
+            message = 'UMFPACK: internal error'
+        case (UMFPACK_ERROR_file_IO)
+            message = 'UMFPACK: file input/output error'
+        case (UMFPACK_ERROR_ordering_failed)
+            message = 'UMFPACK: the fill-reducing ordering failed'
+        case default
+            write (value, '(i0)') code
+            message = 'UMFPACK: unknown status '//trim(value)
+        end select
+    end function umfpack_status_message
+end module sparse_lu
