@@ -149,11 +149,25 @@ contains
     pure subroutine mirror(rows, cols, values)
         integer, allocatable, intent(inout) :: rows(:), cols(:)
         real(wp), allocatable, intent(inout) :: values(:)
-        logical, allocatable :: off_diagonal(:)
-        off_diagonal = rows /= cols
-        rows = [rows, pack(cols, off_diagonal)]
-        cols = [cols, pack(rows(1:size(off_diagonal)), off_diagonal)]
-        values = [values, pack(values, off_diagonal)]
+        integer, allocatable :: all_rows(:), all_cols(:)
+        real(wp), allocatable :: all_values(:)
+        integer :: k, pos
+        pos = size(rows)
+        allocate (all_rows(pos + count(rows /= cols)), all_cols(pos + count(rows /= cols)), &
+                  all_values(pos + count(rows /= cols)))
+        all_rows(1:pos) = rows
+        all_cols(1:pos) = cols
+        all_values(1:pos) = values
+        do k = 1, size(rows)
+            if (rows(k) == cols(k)) cycle
+            pos = pos + 1
+            all_rows(pos) = cols(k)
+            all_cols(pos) = rows(k)
+            all_values(pos) = values(k)
+        end do
+        call move_alloc(all_rows, rows)
+        call move_alloc(all_cols, cols)
+        call move_alloc(all_values, values)
     end subroutine mirror
 
     !> CSR from coordinate triplets in any order: counting sort by row, then sort and merge
