@@ -48,99 +48,106 @@ program test_sparse_lu
     character(len=*), parameter :: NAMES(4) = [character(len=7) :: 'default', 'METIS', &
                                                'natural', 'CHOLMOD']
 
-    type(test_suite_t) :: t
-    type(csr_matrix_t) :: small, a, singular
-    type(lu_t) :: lu
-    type(status_t) :: stat
-    real(wp), allocatable :: b(:), x(:), x_lapack(:), dense(:, :), work(:)
-    integer, allocatable :: pivots(:), iwork(:)
-    real(wp) :: rcond_1, forward_tol
-    integer :: i, k, info
-
-    t%name = 'test_sparse_lu'
-
-    ! [2 1 0; 0 3 1; 1 0 4] x = [4 9 13] has x = [1 2 3]; the transposed system has not.
-    small%row_start = [1, 3, 5, 7]
-    small%col = [1, 2, 2, 3, 1, 3]
-    small%val = [2.0_wp, 1.0_wp, 3.0_wp, 1.0_wp, 1.0_wp, 4.0_wp]
-    call lu%factor(small, stat)
-    call t%check('factor a 3 x 3 non-symmetric matrix', stat%ok())
-    allocate (x(3))
-    call lu%solve([4.0_wp, 9.0_wp, 13.0_wp], x, stat)
-    call t%check('solve it', stat%ok())
-    ! cond_inf of this matrix is below 10, so x is exact to a few ulps of 3.
-    call t%check('A x = b, not A''x = b: x = (1, 2, 3)', &
-                 maxval(abs(x - [1.0_wp, 2.0_wp, 3.0_wp])) <= 30.0_wp*EPS)
-    deallocate (x)
-
-    ! Convection-diffusion, central differences: 4 on the diagonal, -1 -+ 0.3 west/east,
-    ! -1 -+ 0.2 south/north. Non-symmetric, diagonally dominant, so non-singular.
-    call convection_diffusion(M, 0.3_wp, 0.2_wp, a)
-    allocate (b(N), x(N))
-    b = [(sin(0.1_wp*i) + 1.0_wp, i = 1, N)]
-    dense = to_dense(a)
-    allocate (pivots(N), work(4*N), iwork(N))
-    call dgetrf(N, N, dense, N, pivots, info)
-    call t%check('dgetrf succeeds', info == 0)
-    call dgecon('1', N, dense, N, maxval(column_sums(a)), rcond_1, work, iwork, info)
-    x_lapack = b
-    call dgetrs('N', N, 1, dense, N, pivots, x_lapack, N, info)
-    ! Two backward stable solves differ by at most 2 cond_1 * backward error (1-norm).
-    forward_tol = 2.0_wp*BACKWARD_TOL/rcond_1
-    write (output_unit, '(a, es10.3)') '      cond_1 estimate ', 1.0_wp/rcond_1
-    do k = 1, size(ORDERINGS)
-        call lu%factor(a, stat, ordering=ORDERINGS(k))
-        call t%check('factor convection-diffusion, ordering '//trim(NAMES(k)), stat%ok())
-        call lu%solve(b, x, stat)
-        call t%check('solve, ordering '//trim(NAMES(k)), stat%ok())
-        call t%check('backward error <= 1e3 eps, ordering '//trim(NAMES(k)), &
-                     backward_error(a, x, b) <= BACKWARD_TOL)
-        call t%check('agrees with dgesv within 2 cond_1 1e3 eps, ordering '//trim(NAMES(k)), &
-                     sum(abs(x - x_lapack)) <= forward_tol*sum(abs(x_lapack)))
-    end do
-    call t%check('factor nnz is reported', lu%factor_nnz() >= N)
-    call t%check('rcond estimate lies in (0, 1]', lu%rcond() > 0 .and. lu%rcond() <= 1)
-
-    ! --- failures are statuses ---
-    call lu%factor(a, stat, ordering=99)
-    call t%check('an unknown ordering is bad input', stat%code == STATUS_BAD_INPUT)
-    call lu%solve(b, x, stat)
-    call t%check('solve before factor is bad input', stat%code == STATUS_BAD_INPUT)
-    call lu%factor(a, stat)
-    call lu%solve(b(1:N - 1), x(1:N - 1), stat)
-    call t%check('a right-hand side of the wrong size is bad input', &
-                 stat%code == STATUS_BAD_INPUT)
-
-    ! Structurally singular: row 2 of [1 1 0; 0 0 0; 0 1 1] stores no entry at all.
-    singular%row_start = [1, 3, 3, 5]
-    singular%col = [1, 2, 2, 3]
-    singular%val = [1.0_wp, 1.0_wp, 1.0_wp, 1.0_wp]
-    call lu%factor(singular, stat)
-    call t%check('an empty row is reported as STATUS_SINGULAR', stat%code == STATUS_SINGULAR)
-    if (allocated(stat%message)) write (output_unit, '(a)') '      message: '//stat%message
-    call t%check('a singular factor is not kept', .not. lu%is_factored())
-
-    ! Numerically singular: row 2 of [1 2; 2 4] is twice row 1. After UMFPACK's row scaling
-    ! by the row sums both rows are [1/3 2/3] exactly, so elimination leaves an exact 0.
-    singular%row_start = [1, 3, 5]
-    singular%col = [1, 2, 1, 2]
-    singular%val = [1.0_wp, 2.0_wp, 2.0_wp, 4.0_wp]
-    call lu%factor(singular, stat)
-    call t%check('dependent rows are reported as STATUS_SINGULAR', &
-                 stat%code == STATUS_SINGULAR)
-    if (allocated(stat%message)) write (output_unit, '(a)') '      message: '//stat%message
-
-    call lu%free()
-    call lu%free()
-    call t%check('free twice is harmless', .not. lu%is_factored())
-    call t%check('every documented status has its own sentence', &
-                 all([(index(umfpack_status_message(DOCUMENTED(k)), 'unknown') == 0, &
-                       k = 1, size(DOCUMENTED))]))
-    call t%check('an undocumented status says unknown', &
-                 index(umfpack_status_message(-2), 'unknown status -2') > 0)
-    call t%report()
+    call run()
 
 contains
+
+    !> All checks, in a procedure so that its allocatables are freed on return and a
+    !> sanitizer build reports only real leaks.
+    subroutine run()
+        type(test_suite_t) :: t
+        type(csr_matrix_t) :: small, a, singular
+        type(lu_t) :: lu
+        type(status_t) :: stat
+        real(wp), allocatable :: b(:), x(:), x_lapack(:), dense(:, :), work(:)
+        integer, allocatable :: pivots(:), iwork(:)
+        real(wp) :: rcond_1, forward_tol
+        integer :: i, k, info
+
+        t%name = 'test_sparse_lu'
+
+        ! [2 1 0; 0 3 1; 1 0 4] x = [4 9 13] has x = [1 2 3]; the transposed system has not.
+        small%row_start = [1, 3, 5, 7]
+        small%col = [1, 2, 2, 3, 1, 3]
+        small%val = [2.0_wp, 1.0_wp, 3.0_wp, 1.0_wp, 1.0_wp, 4.0_wp]
+        call lu%factor(small, stat)
+        call t%check('factor a 3 x 3 non-symmetric matrix', stat%ok())
+        allocate (x(3))
+        call lu%solve([4.0_wp, 9.0_wp, 13.0_wp], x, stat)
+        call t%check('solve it', stat%ok())
+        ! cond_inf of this matrix is below 10, so x is exact to a few ulps of 3.
+        call t%check('A x = b, not A''x = b: x = (1, 2, 3)', &
+                     maxval(abs(x - [1.0_wp, 2.0_wp, 3.0_wp])) <= 30.0_wp*EPS)
+        deallocate (x)
+
+        ! Convection-diffusion, central differences: 4 on the diagonal, -1 -+ 0.3 west/east,
+        ! -1 -+ 0.2 south/north. Non-symmetric, diagonally dominant, so non-singular.
+        call convection_diffusion(M, 0.3_wp, 0.2_wp, a)
+        allocate (b(N), x(N))
+        b = [(sin(0.1_wp*i) + 1.0_wp, i = 1, N)]
+        dense = to_dense(a)
+        allocate (pivots(N), work(4*N), iwork(N))
+        call dgetrf(N, N, dense, N, pivots, info)
+        call t%check('dgetrf succeeds', info == 0)
+        call dgecon('1', N, dense, N, maxval(column_sums(a)), rcond_1, work, iwork, info)
+        x_lapack = b
+        call dgetrs('N', N, 1, dense, N, pivots, x_lapack, N, info)
+        ! Two backward stable solves differ by at most 2 cond_1 * backward error (1-norm).
+        forward_tol = 2.0_wp*BACKWARD_TOL/rcond_1
+        write (output_unit, '(a, es10.3)') '      cond_1 estimate ', 1.0_wp/rcond_1
+        do k = 1, size(ORDERINGS)
+            call lu%factor(a, stat, ordering=ORDERINGS(k))
+            call t%check('factor convection-diffusion, ordering '//trim(NAMES(k)), stat%ok())
+            call lu%solve(b, x, stat)
+            call t%check('solve, ordering '//trim(NAMES(k)), stat%ok())
+            call t%check('backward error <= 1e3 eps, ordering '//trim(NAMES(k)), &
+                         backward_error(a, x, b) <= BACKWARD_TOL)
+            call t%check('agrees with dgesv within 2 cond_1 1e3 eps, ordering '//trim(NAMES(k)), &
+                         sum(abs(x - x_lapack)) <= forward_tol*sum(abs(x_lapack)))
+        end do
+        call t%check('factor nnz is reported', lu%factor_nnz() >= N)
+        call t%check('rcond estimate lies in (0, 1]', lu%rcond() > 0 .and. lu%rcond() <= 1)
+
+        ! --- failures are statuses ---
+        call lu%factor(a, stat, ordering=99)
+        call t%check('an unknown ordering is bad input', stat%code == STATUS_BAD_INPUT)
+        call lu%solve(b, x, stat)
+        call t%check('solve before factor is bad input', stat%code == STATUS_BAD_INPUT)
+        call lu%factor(a, stat)
+        call lu%solve(b(1:N - 1), x(1:N - 1), stat)
+        call t%check('a right-hand side of the wrong size is bad input', &
+                     stat%code == STATUS_BAD_INPUT)
+
+        ! Structurally singular: row 2 of [1 1 0; 0 0 0; 0 1 1] stores no entry at all.
+        singular%row_start = [1, 3, 3, 5]
+        singular%col = [1, 2, 2, 3]
+        singular%val = [1.0_wp, 1.0_wp, 1.0_wp, 1.0_wp]
+        call lu%factor(singular, stat)
+        call t%check('an empty row is reported as STATUS_SINGULAR', stat%code == STATUS_SINGULAR)
+        if (allocated(stat%message)) write (output_unit, '(a)') '      message: '//stat%message
+        call t%check('a singular factor is not kept', .not. lu%is_factored())
+
+        ! Numerically singular: row 2 of [1 2; 2 4] is twice row 1. After UMFPACK's row scaling
+        ! by the row sums both rows are [1/3 2/3] exactly, so elimination leaves an exact 0.
+        singular%row_start = [1, 3, 5]
+        singular%col = [1, 2, 1, 2]
+        singular%val = [1.0_wp, 2.0_wp, 2.0_wp, 4.0_wp]
+        call lu%factor(singular, stat)
+        call t%check('dependent rows are reported as STATUS_SINGULAR', &
+                     stat%code == STATUS_SINGULAR)
+        if (allocated(stat%message)) write (output_unit, '(a)') '      message: '//stat%message
+
+        call lu%free()
+        call lu%free()
+        call t%check('free twice is harmless', .not. lu%is_factored())
+        call t%check('every documented status has its own sentence', &
+                     all([(index(umfpack_status_message(DOCUMENTED(k)), 'unknown') == 0, &
+                           k = 1, size(DOCUMENTED))]))
+        call t%check('an undocumented status says unknown', &
+                     index(umfpack_status_message(-2), 'unknown status -2') > 0)
+        call t%report()
+
+    end subroutine run
 
     subroutine convection_diffusion(m, east_west, north_south, a)
         integer, intent(in) :: m
