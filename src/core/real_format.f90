@@ -40,12 +40,17 @@ contains
             return
         end if
 
-        ! Fewest significant digits that survive the round trip through text.
-        do n_digits = 1, MAX_DIGITS
+        ! Fewest significant digits that survive the round trip through text. Near huge()
+        ! a short candidate can round up past it, and reading that back overflows (a trap
+        ! in debug builds): there, take all digits at once.
+        n_digits = 1
+        if (abs(x) > 1.0e308_wp) n_digits = MAX_DIGITS + 1
+        do while (n_digits <= MAX_DIGITS)
             write (edit, '(a, i0, a)') '(es48.', n_digits - 1, 'e3)'
             write (buffer, edit) x
             read (buffer, *, iostat=ios) back
             if (ios == 0 .and. same_bits(back, x)) exit
+            n_digits = n_digits + 1
         end do
         if (n_digits > MAX_DIGITS) then
             write (edit, '(a, i0, a)') '(es48.', MAX_DIGITS - 1, 'e3)'
