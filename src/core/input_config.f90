@@ -555,7 +555,7 @@ contains
 
         lists = [c%dirichlet, c%neumann, c%contact]
         do k = 1, 3
-            names = tokens(lists(k))
+            call split_words(lists(k), names)
             do i = 1, size(names)
                 if (len_trim(names(i)) > NAME_LEN) then
                     call reject(trim(LIST_VARIABLES(k)), quoted(lists(k)), 'names of at most ' &
@@ -569,13 +569,13 @@ contains
                 if (.not. stat%ok()) return
             end do
         end do
-        if (size(tokens(c%dirichlet)) == 0) then
+        if (count_names(c%dirichlet) == 0) then
             call reject('dirichlet', quoted(c%dirichlet), &
                         'at least one side or group name (without a Dirichlet boundary K would ' &
                         //'be singular)')
             return
         end if
-        if (size(tokens(c%contact)) /= 1) then
+        if (count_names(c%contact) /= 1) then
             call reject('contact', quoted(c%contact), 'exactly one side or group name ' &
                         //'(the contact boundary is one straight segment)')
             return
@@ -583,7 +583,7 @@ contains
 
         allocate (seen(0), seen_in(0))
         do k = 1, 3
-            names = tokens(lists(k))
+            call split_words(lists(k), names)
             do i = 1, size(names)
                 do j = 1, size(seen)
                     if (seen(j) /= names(i)) cycle
@@ -704,24 +704,27 @@ contains
     ! ------------------------------------------------------------------- name lists
 
     !> The blank-separated names of `list`, in order, each at most NAME_LEN characters
-    !> (longer ones are cut; read_input rejects them).
+    !> (longer ones are cut; read_input rejects them). gfortran 12 -O3 falsely warns of an
+    !> uninitialised descriptor when the result is the first value of an allocatable:
+    !> allocate that empty beforehand.
     pure function split_names(list) result(names)
         character(len=*), intent(in) :: list
         character(len=NAME_LEN), allocatable :: names(:)
-        character(len=LIST_LEN), allocatable :: long_names(:)
+        character(len=LIST_LEN), allocatable :: words(:)
         integer :: i
-        long_names = tokens(list)
-        allocate (names(size(long_names)))
-        do i = 1, size(long_names)
-            names(i) = long_names(i)(:NAME_LEN)
+        call split_words(list, words)
+        allocate (names(size(words)))
+        do i = 1, size(words)
+            names(i) = words(i)(:NAME_LEN)
         end do
     end function split_names
 
     !> The blank-separated words of `list`, uncut (lists are at most LIST_LEN long).
-    !> The result has a fixed length: one of length len(list) crashes gfortran 12.
-    pure function tokens(list) result(words)
+    !> A subroutine with a fixed length: a function result of length len(list) crashes
+    !> gfortran 12, and assigning a function result draws false -Wuninitialized at -O3.
+    pure subroutine split_words(list, words)
         character(len=*), intent(in) :: list
-        character(len=LIST_LEN), allocatable :: words(:)
+        character(len=LIST_LEN), allocatable, intent(out) :: words(:)
         integer :: i, n_words
         logical :: in_word
 
@@ -749,7 +752,15 @@ contains
             end if
             words(n_words) = trim(words(n_words))//list(i:i)
         end do
-    end function tokens
+    end subroutine split_words
+
+    !> Number of blank-separated names in `list`.
+    pure integer function count_names(list)
+        character(len=*), intent(in) :: list
+        character(len=LIST_LEN), allocatable :: words(:)
+        call split_words(list, words)
+        count_names = size(words)
+    end function count_names
 
     !> `list` lowercased, its names separated by single blanks.
     pure function normalized_list(list) result(normal)
@@ -757,7 +768,7 @@ contains
         character(len=len(list)) :: normal
         character(len=LIST_LEN), allocatable :: words(:)
         integer :: i
-        words = tokens(lowercase(list))
+        call split_words(lowercase(list), words)
         normal = ''
         do i = 1, size(words)
             if (i == 1) then
