@@ -159,10 +159,24 @@ program test_input_config
     call t%check('help: file relative to the input folder', &
                  index(help, 'input file''s folder') > 0)
     call t%check('help: default directory', index(help, 'output/<input file stem>') > 0)
+    call t%check('help: lines under 100 characters', longest_line(help) < 100)
 
     call t%report()
 
 contains
+
+    pure integer function longest_line(text)
+        character(len=*), intent(in) :: text
+        integer :: start, length
+        longest_line = 0
+        start = 1
+        do while (start <= len(text))
+            length = index(text(start:), new_line('a')) - 1
+            if (length < 0) length = len(text) - start + 1
+            longest_line = max(longest_line, length)
+            start = start + length + 1
+        end do
+    end function longest_line
 
     subroutine write_file(name, lines)
         character(len=*), intent(in) :: name

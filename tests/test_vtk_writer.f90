@@ -17,8 +17,8 @@ program test_vtk_writer
 
     t%name = 'test_vtk_writer'
 
-    ! Unit square split along its 'right' diagonal (1,0)-(0,1)... here from node 1 to 3:
-    ! nodes 1 (0,0), 2 (1,0), 3 (1,1), 4 (0,1); cells anticlockwise.
+    ! Unit square cut by the diagonal from node 1 (0,0) to node 3 (1,1); nodes 2 (1,0) and
+    ! 4 (0,1); both cells anticlockwise. VTK wants nodes 1..4 as 0..3.
     m%element = ELEMENT_P1
     m%coords = reshape([0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 1.0_wp, 1.0_wp, 0.0_wp, 1.0_wp], [2, 4])
     m%cells = reshape([1, 2, 3, 1, 3, 4], [3, 2])

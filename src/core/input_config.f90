@@ -829,7 +829,7 @@ contains
 
     !> The --help text: usage, then every group and variable with its default, taken from
     !> a default `config_t` so that the documentation cannot drift from the code. Lines
-    !> are separated by new_line('a'); the text ends with one.
+    !> are separated by new_line('a'); the text ends with one. Lines stay under 100.
     function help_text() result(text)
         character(len=:), allocatable :: text
         type(config_t) :: d
@@ -842,9 +842,9 @@ contains
                //NL//'defaults are shown. Names are case-insensitive. Results go to the' &
                //NL//'output directory: summary.json, eigenvalues.csv, mode_NNN.vtu.'//NL//NL
         text = text//'&mesh'//NL &
-               //entry('source', quoted(d%mesh%source), one_of(MESH_SOURCES)) &
-               //entry('file', quoted(d%mesh%file), "Gmsh .msh file for source = 'gmsh'," &
-                       //' relative to the input file''s folder') &
+               //entry('source', quoted(d%mesh%source), 'one of '//one_of(MESH_SOURCES)) &
+               //entry('file', quoted(d%mesh%file), "Gmsh .msh (source = 'gmsh'), relative" &
+                       //' to the input file''s folder') &
                //entry('width', real_to_text(d%mesh%width), 'rectangle size along x') &
                //entry('height', real_to_text(d%mesh%height), 'rectangle size along y') &
                //entry('nx', int_text(d%mesh%nx), 'cells along x (1 to ' &
@@ -855,7 +855,7 @@ contains
                //entry('diagonal', quoted(d%mesh%diagonal), one_of(DIAGONALS) &
                        //': triangle diagonals rise to the right or left') &
                //entry('dirichlet', quoted(d%mesh%dirichlet), 'fixed sides (' &
-                       //one_of(RECTANGLE_SIDES)//') or Gmsh physical groups') &
+                       //one_of(RECTANGLE_SIDES)//') or Gmsh groups') &
                //entry('neumann', quoted(d%mesh%neumann), 'traction-free sides; sides named' &
                        //' nowhere are traction-free too') &
                //entry('contact', quoted(d%mesh%contact), 'the one side or group in contact')
@@ -864,12 +864,12 @@ contains
                //entry('poisson', real_to_text(d%material%poisson), &
                        'Poisson''s ratio, -1 < poisson < 0.5')
         text = text//'&analysis'//NL &
-               //entry('kind', quoted(d%analysis%kind), one_of(ACCEPTED_ANALYSES)) &
+               //entry('kind', quoted(d%analysis%kind), 'one of '//one_of(ACCEPTED_ANALYSES)) &
                //entry('lambda', real_to_text(d%analysis%lambda), &
                        'ratio in b_lambda(phi, v) = lambda int phi_n v_t - int phi_n v_n')
         text = text//'&eigen'//NL &
-               //entry('solver', quoted(d%eigen%solver), one_of(ACCEPTED_SOLVERS) &
-                       //" ('auto': dense up to dense_max_contact contact nodes)") &
+               //entry('solver', quoted(d%eigen%solver), 'one of '//one_of(ACCEPTED_SOLVERS) &
+                       //" (auto: dense up to dense_max_contact)") &
                //entry('nev', int_text(d%eigen%nev), 'eigenvalues wanted from the sparse solver') &
                //entry('target', real_to_text(d%eigen%target), 'shift sigma: eigenvalues' &
                        //' nearest to it are found first') &
@@ -882,7 +882,7 @@ contains
                        "largest contact node count for which 'auto' picks 'dense'")
         text = text//'&output'//NL &
                //entry('directory', quoted(d%output%directory), "'' means output/<input" &
-                       //' file stem>, relative to the working directory') &
+                       //' file stem> (from the working directory)') &
                //entry('vtk', logical_text(d%output%vtk), 'write mode_NNN.vtu for ParaView') &
                //entry('modes', int_text(d%output%modes), 'how many modes to write as .vtu') &
                //entry('matrices', logical_text(d%output%matrices), &
