@@ -1,0 +1,947 @@
+! SPDX-License-Identifier: MIT
+!> Reads the namelist input file into a validated `config_t`, and documents it (`help_text`).
+!> Every default lives in `run_config`; this module only reads, checks and describes.
+module input_config
+    use kinds, only: wp
+    use status, only: status_t, STATUS_BAD_INPUT
+    use run_config, only: config_t, mesh_config_t, material_config_t, analysis_config_t, &
+                          eigen_config_t, output_config_t, NAME_LEN, LIST_LEN, PATH_LEN
+    use real_format, only: real_to_text
+    use ieee_arithmetic, only: ieee_is_finite
+    use iso_fortran_env, only: iostat_end, iostat_eor
+    implicit none
+    private
+    public :: read_input, split_names, lowercase, help_text, default_output_directory, &
+              resolve_relative
+    public :: KNOWN_GROUPS, MESH_SOURCES, ELEMENT_NAMES, DIAGONALS, RECTANGLE_SIDES, &
+              ACCEPTED_ANALYSES, ACCEPTED_SOLVERS, MAX_CELLS_PER_SIDE
+
+    !> Namelist groups, in the order they are read and documented.
+    character(len=*), parameter :: KNOWN_GROUPS(*) = [character(len=8) :: &
+                                   'mesh', 'material', 'analysis', 'eigen', 'output']
+    character(len=*), parameter :: MESH_SOURCES(*) = [character(len=9) :: 'rectangle', 'gmsh']
+    character(len=*), parameter :: ELEMENT_NAMES(*) = [character(len=2) :: &
+                                   'p1', 'q1', 'p2', 'q2']
+    character(len=*), parameter :: DIAGONALS(*) = [character(len=5) :: 'right', 'left']
+    character(len=*), parameter :: RECTANGLE_SIDES(*) = [character(len=6) :: &
+                                   'top', 'bottom', 'left', 'right']
+    !> Analyses this build can run; each new analysis adds its name here.
+    character(len=*), parameter :: ACCEPTED_ANALYSES(*) = [character(len=9) :: 'eigen']
+    !> Eigensolvers this build offers; 'arpack' joins when its driver exists.
+    character(len=*), parameter :: ACCEPTED_SOLVERS(*) = [character(len=6) :: 'dense', 'auto']
+    integer, parameter :: MAX_CELLS_PER_SIDE = 1000000
+
+    integer, parameter :: MSG_LEN = 1024     !! iomsg buffers
+    integer, parameter :: CHUNK_LEN = 256    !! pieces of an input line of any length
+    integer, parameter :: HELP_COLUMN = 28   !! where descriptions start in the help text
+    character(len=*), parameter :: NAME_CHARS = &
+        'abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_'
+    character(len=*), parameter :: BLANKS = ' '//achar(9)   !! separators in name lists
+
+    !> One namelist group as found in the file: lines joined by blanks, comments removed.
+    type :: group_text_t
+        character(len=:), allocatable :: name   !! lowercased, without the '&'
+        character(len=:), allocatable :: body   !! text between '&name' and the closing '/'
+        integer :: line = 0                     !! line of the '&name'
+    end type group_text_t
+
+    !> A piece of text, for arrays of strings of different lengths.
+    type :: text_t
+        character(len=:), allocatable :: text
+    end type text_t
+
+contains
+
+    !> Read and validate the namelist file `path`. Groups are read in the order of
+    !> KNOWN_GROUPS; an absent group keeps its defaults. Names (source, element, side
+    !> lists, kind, solver) are stored trimmed and lowercased. The mesh `file` is resolved
+    !> relative to the input file's folder, and an empty output `directory` becomes
+    !> default_output_directory(path). Any problem gives STATUS_BAD_INPUT with a one-line
+    !> message naming the file, the group and the variable.
+    subroutine read_input(path, config, stat)
+        character(len=*), intent(in) :: path
+        type(config_t), intent(out) :: config
+        type(status_t), intent(out) :: stat
+        type(group_text_t), allocatable :: groups(:)
+        character(len=:), allocatable :: input
+        character(len=MSG_LEN) :: msg
+        integer :: unit, ios
+
+        input = trim(path)
+        config%input_file = input
+        open (newunit=unit, file=input, status='old', action='read', iostat=ios, iomsg=msg)
+        if (ios /= 0) then
+            call stat%fail(STATUS_BAD_INPUT, input//': cannot open input file: '//trim(msg))
+            return
+        end if
+        call scan_groups(unit, input, groups, stat)
+        if (stat%ok()) call read_mesh(unit, input, groups, config, stat)
+        if (stat%ok()) call read_material(unit, input, groups, config, stat)
+        if (stat%ok()) call read_analysis(unit, input, groups, config, stat)
+        if (stat%ok()) call read_eigen(unit, input, groups, config, stat)
+        if (stat%ok()) call read_output(unit, input, groups, config, stat)
+        close (unit)
+        if (.not. stat%ok()) return
+
+        call validate_mesh(config%mesh, input, stat)
+        if (stat%ok()) call validate_material(config%material, input, stat)
+        if (stat%ok()) call validate_analysis(config%analysis, input, stat)
+        if (stat%ok()) call validate_eigen(config%eigen, input, stat)
+        if (stat%ok()) call validate_output(config%output, input, stat)
+        if (.not. stat%ok()) return
+
+        if (len_trim(config%mesh%file) > 0) then
+            config%mesh%file = resolve_relative(input, config%mesh%file)
+        end if
+        if (len_trim(config%output%directory) == 0) then
+            config%output%directory = default_output_directory(input)
+        end if
+    end subroutine read_input
+
+    ! ---------------------------------------------------------------- finding the groups
+
+    !> List the groups of the file before reading them, so that an absent group is told
+    !> apart from a broken one (both end a namelist read at end of file), and a misspelt
+    !> group name, which the runtime would silently skip, is an error.
+    subroutine scan_groups(unit, path, groups, stat)
+        integer, intent(in) :: unit
+        character(len=*), intent(in) :: path
+        type(group_text_t), allocatable, intent(out) :: groups(:)
+        type(status_t), intent(out) :: stat
+        character(len=:), allocatable :: line, name, body
+        character(len=MSG_LEN) :: msg
+        character(len=1) :: c, quote
+        integer :: ios, line_number, group_line, i, j
+        logical :: inside
+
+        allocate (groups(0))
+        inside = .false.
+        quote = ' '
+        line_number = 0
+        group_line = 0
+        body = ''
+        rewind (unit)
+        do
+            call read_line(unit, line, ios, msg)
+            if (ios == iostat_end) exit
+            if (ios /= 0) then
+                call stat%fail(STATUS_BAD_INPUT, path//': cannot read input file: '//trim(msg))
+                return
+            end if
+            line_number = line_number + 1
+            i = 1
+            do while (i <= len(line))
+                c = line(i:i)
+                if (quote /= ' ') then
+                    ! Inside a quoted value: '&', '/' and '!' are text ('' toggles twice).
+                    if (c == quote) quote = ' '
+                    body = body//c
+                else if (c == '!') then
+                    exit
+                else if (inside .and. (c == '"' .or. c == "'")) then
+                    quote = c
+                    body = body//c
+                else if (c == '&' .or. c == '$') then
+                    j = i + 1
+                    do while (j <= len(line))
+                        if (index(NAME_CHARS, line(j:j)) == 0) exit
+                        j = j + 1
+                    end do
+                    name = lowercase(line(i + 1:j - 1))
+                    ! '&end' closes a group; a new '&name' inside one leaves the first
+                    ! without its '/', which its read then reports.
+                    if (inside) call close_group()
+                    if (name /= 'end' .and. len(name) > 0) then
+                        inside = .true.
+                        group_line = line_number
+                        body = ''
+                        groups = [groups, group_text_t(name, '', group_line)]
+                    end if
+                    i = j
+                    cycle
+                else if (inside .and. c == '/') then
+                    call close_group()
+                else if (inside) then
+                    body = body//c
+                end if
+                i = i + 1
+            end do
+            if (inside) body = body//' '
+        end do
+        if (inside) call close_group()
+
+        do i = 1, size(groups)
+            if (.not. any(KNOWN_GROUPS == groups(i)%name)) then
+                call stat%fail(STATUS_BAD_INPUT, path//': line '//int_text(groups(i)%line) &
+                               //': unknown namelist group &'//groups(i)%name &
+                               //' (known groups: '//group_list()//')')
+                return
+            end if
+            do j = 1, i - 1
+                if (groups(j)%name == groups(i)%name) then
+                    call stat%fail(STATUS_BAD_INPUT, path//': line ' &
+                                   //int_text(groups(i)%line)//': namelist group &' &
+                                   //groups(i)%name//' appears twice (first on line ' &
+                                   //int_text(groups(j)%line)//'); merge them')
+                    return
+                end if
+            end do
+        end do
+
+    contains
+
+        subroutine close_group()
+            groups(size(groups))%body = body
+            inside = .false.
+            quote = ' '
+        end subroutine close_group
+    end subroutine scan_groups
+
+    !> One line of any length; the last line needs no line feed.
+    subroutine read_line(unit, line, ios, msg)
+        integer, intent(in) :: unit
+        character(len=:), allocatable, intent(out) :: line
+        integer, intent(out) :: ios
+        character(len=*), intent(inout) :: msg
+        character(len=CHUNK_LEN) :: chunk
+        integer :: n_read
+
+        line = ''
+        do
+            read (unit, '(a)', advance='no', size=n_read, iostat=ios, iomsg=msg) chunk
+            line = line//chunk(:n_read)
+            if (ios == iostat_eor) then
+                ios = 0
+                return
+            end if
+            if (ios == iostat_end .and. len(line) > 0) ios = 0
+            if (ios /= 0 .or. n_read < CHUNK_LEN) return
+        end do
+    end subroutine read_line
+
+    !> Text of group `name` as scanned, or '' when the file lacks it.
+    function group_body(groups, name) result(body)
+        type(group_text_t), intent(in) :: groups(:)
+        character(len=*), intent(in) :: name
+        character(len=:), allocatable :: body
+        integer :: i
+        body = ''
+        do i = 1, size(groups)
+            if (groups(i)%name == name) then
+                body = groups(i)%body
+                return
+            end if
+        end do
+    end function group_body
+
+    pure logical function has_group(groups, name)
+        type(group_text_t), intent(in) :: groups(:)
+        character(len=*), intent(in) :: name
+        integer :: i
+        has_group = .false.
+        do i = 1, size(groups)
+            if (groups(i)%name == name) has_group = .true.
+        end do
+    end function has_group
+
+    !> The assignments 'name = value' of a group body, to find the one a failed read
+    !> choked on: the runtime's message alone does not always name the variable.
+    function split_assignments(body) result(pieces)
+        character(len=*), intent(in) :: body
+        type(text_t), allocatable :: pieces(:)
+        integer, allocatable :: starts(:)
+        character(len=1) :: quote
+        integer :: i, j, last
+
+        allocate (starts(0))
+        quote = ' '
+        do i = 1, len(body)
+            if (quote /= ' ') then
+                if (body(i:i) == quote) quote = ' '
+            else if (body(i:i) == '"' .or. body(i:i) == "'") then
+                quote = body(i:i)
+            else if (body(i:i) == '=') then
+                j = len_trim(body(:i - 1))
+                do while (j >= 1)
+                    if (index(NAME_CHARS//'%()', body(j:j)) == 0) exit
+                    j = j - 1
+                end do
+                if (j + 1 <= len_trim(body(:i - 1))) starts = [starts, j + 1]
+            end if
+        end do
+        allocate (pieces(size(starts)))
+        do i = 1, size(starts)
+            last = len(body)
+            if (i < size(starts)) last = starts(i + 1) - 1
+            pieces(i)%text = trim(body(starts(i):last))
+            ! Drop the value separator that ends all but the last assignment.
+            j = len(pieces(i)%text)
+            if (j > 0) then
+                if (pieces(i)%text(j:j) == ',') pieces(i)%text = trim(pieces(i)%text(:j - 1))
+            end if
+        end do
+    end function split_assignments
+
+    !> Message for a failed read of group `group` when no single assignment was to blame.
+    function read_failure(path, group, ios, msg) result(text)
+        character(len=*), intent(in) :: path, group, msg
+        integer, intent(in) :: ios
+        character(len=:), allocatable :: text
+        text = path//': &'//group//': '//trim(msg)
+        if (ios == iostat_end) text = text//" (is the closing '/' of the group missing?)"
+    end function read_failure
+
+    ! ------------------------------------------------------------- reading each group
+    ! Each reader copies the defaults into locals named like the namelist variables, reads
+    ! the group after a rewind, and on failure re-reads the assignments one at a time from
+    ! an internal file to name the culprit.
+
+    subroutine read_mesh(unit, path, groups, config, stat)
+        integer, intent(in) :: unit
+        character(len=*), intent(in) :: path
+        type(group_text_t), intent(in) :: groups(:)
+        type(config_t), intent(inout) :: config
+        type(status_t), intent(out) :: stat
+        character(len=NAME_LEN) :: source, element, diagonal
+        character(len=PATH_LEN) :: file
+        character(len=LIST_LEN) :: dirichlet, neumann, contact
+        real(wp) :: width, height
+        integer :: nx, ny
+        namelist /mesh/ source, file, width, height, nx, ny, element, diagonal, dirichlet, &
+            neumann, contact
+        type(text_t), allocatable :: pieces(:)
+        character(len=:), allocatable :: record
+        character(len=MSG_LEN) :: msg
+        integer :: ios, i
+
+        if (.not. has_group(groups, 'mesh')) return
+        source = config%mesh%source
+        file = config%mesh%file
+        width = config%mesh%width
+        height = config%mesh%height
+        nx = config%mesh%nx
+        ny = config%mesh%ny
+        element = config%mesh%element
+        diagonal = config%mesh%diagonal
+        dirichlet = config%mesh%dirichlet
+        neumann = config%mesh%neumann
+        contact = config%mesh%contact
+        rewind (unit)
+        read (unit, nml=mesh, iostat=ios, iomsg=msg)
+        if (ios /= 0) then
+            call stat%fail(STATUS_BAD_INPUT, read_failure(path, 'mesh', ios, msg))
+            pieces = split_assignments(group_body(groups, 'mesh'))
+            do i = 1, size(pieces)
+                record = '&mesh '//pieces(i)%text//' /'
+                read (record, nml=mesh, iostat=ios, iomsg=msg)
+                if (ios /= 0) then
+                    call stat%fail(STATUS_BAD_INPUT, path//': &mesh: '//pieces(i)%text &
+                                   //': '//trim(msg))
+                    exit
+                end if
+            end do
+            return
+        end if
+        config%mesh%source = lowercase(adjustl(source))
+        config%mesh%file = adjustl(file)
+        config%mesh%width = width
+        config%mesh%height = height
+        config%mesh%nx = nx
+        config%mesh%ny = ny
+        config%mesh%element = lowercase(adjustl(element))
+        config%mesh%diagonal = lowercase(adjustl(diagonal))
+        config%mesh%dirichlet = normalized_list(dirichlet)
+        config%mesh%neumann = normalized_list(neumann)
+        config%mesh%contact = normalized_list(contact)
+    end subroutine read_mesh
+
+    subroutine read_material(unit, path, groups, config, stat)
+        integer, intent(in) :: unit
+        character(len=*), intent(in) :: path
+        type(group_text_t), intent(in) :: groups(:)
+        type(config_t), intent(inout) :: config
+        type(status_t), intent(out) :: stat
+        real(wp) :: young, poisson
+        namelist /material/ young, poisson
+        type(text_t), allocatable :: pieces(:)
+        character(len=:), allocatable :: record
+        character(len=MSG_LEN) :: msg
+        integer :: ios, i
+
+        if (.not. has_group(groups, 'material')) return
+        young = config%material%young
+        poisson = config%material%poisson
+        rewind (unit)
+        read (unit, nml=material, iostat=ios, iomsg=msg)
+        if (ios /= 0) then
+            call stat%fail(STATUS_BAD_INPUT, read_failure(path, 'material', ios, msg))
+            pieces = split_assignments(group_body(groups, 'material'))
+            do i = 1, size(pieces)
+                record = '&material '//pieces(i)%text//' /'
+                read (record, nml=material, iostat=ios, iomsg=msg)
+                if (ios /= 0) then
+                    call stat%fail(STATUS_BAD_INPUT, path//': &material: '//pieces(i)%text &
+                                   //': '//trim(msg))
+                    exit
+                end if
+            end do
+            return
+        end if
+        config%material%young = young
+        config%material%poisson = poisson
+    end subroutine read_material
+
+    subroutine read_analysis(unit, path, groups, config, stat)
+        integer, intent(in) :: unit
+        character(len=*), intent(in) :: path
+        type(group_text_t), intent(in) :: groups(:)
+        type(config_t), intent(inout) :: config
+        type(status_t), intent(out) :: stat
+        character(len=NAME_LEN) :: kind     ! shadows the intrinsic here, as the file names it
+        real(wp) :: lambda
+        namelist /analysis/ kind, lambda
+        type(text_t), allocatable :: pieces(:)
+        character(len=:), allocatable :: record
+        character(len=MSG_LEN) :: msg
+        integer :: ios, i
+
+        if (.not. has_group(groups, 'analysis')) return
+        kind = config%analysis%kind
+        lambda = config%analysis%lambda
+        rewind (unit)
+        read (unit, nml=analysis, iostat=ios, iomsg=msg)
+        if (ios /= 0) then
+            call stat%fail(STATUS_BAD_INPUT, read_failure(path, 'analysis', ios, msg))
+            pieces = split_assignments(group_body(groups, 'analysis'))
+            do i = 1, size(pieces)
+                record = '&analysis '//pieces(i)%text//' /'
+                read (record, nml=analysis, iostat=ios, iomsg=msg)
+                if (ios /= 0) then
+                    call stat%fail(STATUS_BAD_INPUT, path//': &analysis: '//pieces(i)%text &
+                                   //': '//trim(msg))
+                    exit
+                end if
+            end do
+            return
+        end if
+        config%analysis%kind = lowercase(adjustl(kind))
+        config%analysis%lambda = lambda
+    end subroutine read_analysis
+
+    subroutine read_eigen(unit, path, groups, config, stat)
+        integer, intent(in) :: unit
+        character(len=*), intent(in) :: path
+        type(group_text_t), intent(in) :: groups(:)
+        type(config_t), intent(inout) :: config
+        type(status_t), intent(out) :: stat
+        character(len=NAME_LEN) :: solver
+        integer :: nev, maxit, ncv, dense_max_contact
+        real(wp) :: target, tol
+        namelist /eigen/ solver, nev, target, tol, maxit, ncv, dense_max_contact
+        type(text_t), allocatable :: pieces(:)
+        character(len=:), allocatable :: record
+        character(len=MSG_LEN) :: msg
+        integer :: ios, i
+
+        if (.not. has_group(groups, 'eigen')) return
+        solver = config%eigen%solver
+        nev = config%eigen%nev
+        target = config%eigen%target
+        tol = config%eigen%tol
+        maxit = config%eigen%maxit
+        ncv = config%eigen%ncv
+        dense_max_contact = config%eigen%dense_max_contact
+        rewind (unit)
+        read (unit, nml=eigen, iostat=ios, iomsg=msg)
+        if (ios /= 0) then
+            call stat%fail(STATUS_BAD_INPUT, read_failure(path, 'eigen', ios, msg))
+            pieces = split_assignments(group_body(groups, 'eigen'))
+            do i = 1, size(pieces)
+                record = '&eigen '//pieces(i)%text//' /'
+                read (record, nml=eigen, iostat=ios, iomsg=msg)
+                if (ios /= 0) then
+                    call stat%fail(STATUS_BAD_INPUT, path//': &eigen: '//pieces(i)%text &
+                                   //': '//trim(msg))
+                    exit
+                end if
+            end do
+            return
+        end if
+        config%eigen%solver = lowercase(adjustl(solver))
+        config%eigen%nev = nev
+        config%eigen%target = target
+        config%eigen%tol = tol
+        config%eigen%maxit = maxit
+        config%eigen%ncv = ncv
+        config%eigen%dense_max_contact = dense_max_contact
+    end subroutine read_eigen
+
+    subroutine read_output(unit, path, groups, config, stat)
+        integer, intent(in) :: unit
+        character(len=*), intent(in) :: path
+        type(group_text_t), intent(in) :: groups(:)
+        type(config_t), intent(inout) :: config
+        type(status_t), intent(out) :: stat
+        character(len=PATH_LEN) :: directory
+        logical :: vtk, matrices
+        integer :: modes
+        namelist /output/ directory, vtk, modes, matrices
+        type(text_t), allocatable :: pieces(:)
+        character(len=:), allocatable :: record
+        character(len=MSG_LEN) :: msg
+        integer :: ios, i
+
+        if (.not. has_group(groups, 'output')) return
+        directory = config%output%directory
+        vtk = config%output%vtk
+        modes = config%output%modes
+        matrices = config%output%matrices
+        rewind (unit)
+        read (unit, nml=output, iostat=ios, iomsg=msg)
+        if (ios /= 0) then
+            call stat%fail(STATUS_BAD_INPUT, read_failure(path, 'output', ios, msg))
+            pieces = split_assignments(group_body(groups, 'output'))
+            do i = 1, size(pieces)
+                record = '&output '//pieces(i)%text//' /'
+                read (record, nml=output, iostat=ios, iomsg=msg)
+                if (ios /= 0) then
+                    call stat%fail(STATUS_BAD_INPUT, path//': &output: '//pieces(i)%text &
+                                   //': '//trim(msg))
+                    exit
+                end if
+            end do
+            return
+        end if
+        config%output%directory = adjustl(directory)
+        config%output%vtk = vtk
+        config%output%modes = modes
+        config%output%matrices = matrices
+    end subroutine read_output
+
+    ! ---------------------------------------------------------------------- validation
+
+    subroutine validate_mesh(c, path, stat)
+        type(mesh_config_t), intent(in) :: c
+        character(len=*), intent(in) :: path
+        type(status_t), intent(inout) :: stat
+        character(len=*), parameter :: LIST_VARIABLES(3) = [character(len=9) :: &
+                                       'dirichlet', 'neumann', 'contact']
+        character(len=LIST_LEN) :: lists(3)
+        character(len=LIST_LEN), allocatable :: names(:), seen(:)
+        integer, allocatable :: seen_in(:)
+        integer :: k, i, j
+
+        if (.not. any(MESH_SOURCES == c%source)) then
+            call reject('source', quoted(c%source), 'one of '//one_of(MESH_SOURCES))
+        else if (c%source == 'gmsh' .and. len_trim(c%file) == 0) then
+            call reject('file', quoted(c%file), &
+                        "the path of a Gmsh .msh file when source = 'gmsh'")
+        else if (.not. positive_finite(c%width)) then
+            call reject('width', real_to_text(c%width), 'a finite number > 0')
+        else if (.not. positive_finite(c%height)) then
+            call reject('height', real_to_text(c%height), 'a finite number > 0')
+        else if (c%nx < 1 .or. c%nx > MAX_CELLS_PER_SIDE) then
+            call reject('nx', int_text(c%nx), &
+                        'an integer from 1 to '//int_text(MAX_CELLS_PER_SIDE))
+        else if (c%ny < 1 .or. c%ny > MAX_CELLS_PER_SIDE) then
+            call reject('ny', int_text(c%ny), &
+                        'an integer from 1 to '//int_text(MAX_CELLS_PER_SIDE))
+        else if (.not. any(ELEMENT_NAMES == c%element)) then
+            call reject('element', quoted(c%element), 'one of '//one_of(ELEMENT_NAMES))
+        else if (.not. any(DIAGONALS == c%diagonal)) then
+            call reject('diagonal', quoted(c%diagonal), 'one of '//one_of(DIAGONALS))
+        end if
+        if (.not. stat%ok()) return
+
+        lists = [c%dirichlet, c%neumann, c%contact]
+        do k = 1, 3
+            call split_words(lists(k), names)
+            do i = 1, size(names)
+                if (len_trim(names(i)) > NAME_LEN) then
+                    call reject(trim(LIST_VARIABLES(k)), quoted(lists(k)), 'names of at most ' &
+                                //int_text(NAME_LEN)//' characters')
+                else if (c%source == 'rectangle' .and. &
+                         .not. any(RECTANGLE_SIDES == names(i))) then
+                    call reject(trim(LIST_VARIABLES(k)), quoted(lists(k)), 'sides among ' &
+                                //one_of(RECTANGLE_SIDES)//" ('"//trim(names(i)) &
+                                //"' is not a side of the rectangle)")
+                end if
+                if (.not. stat%ok()) return
+            end do
+        end do
+        if (count_names(c%dirichlet) == 0) then
+            call reject('dirichlet', quoted(c%dirichlet), &
+                        'at least one side or group name (without a Dirichlet boundary K would ' &
+                        //'be singular)')
+            return
+        end if
+        if (count_names(c%contact) /= 1) then
+            call reject('contact', quoted(c%contact), 'exactly one side or group name ' &
+                        //'(the contact boundary is one straight segment)')
+            return
+        end if
+
+        allocate (seen(0), seen_in(0))
+        do k = 1, 3
+            call split_words(lists(k), names)
+            do i = 1, size(names)
+                do j = 1, size(seen)
+                    if (seen(j) /= names(i)) cycle
+                    if (seen_in(j) == k) then
+                        call reject(trim(LIST_VARIABLES(k)), quoted(lists(k)), &
+                                    "each name once ('"//trim(names(i))//"' is named twice)")
+                    else
+                        call reject(trim(LIST_VARIABLES(k)), quoted(lists(k)), &
+                                    'each name in only one of dirichlet, neumann, contact (' &
+                                    //quoted(names(i))//' is also in ' &
+                                    //trim(LIST_VARIABLES(seen_in(j)))//')')
+                    end if
+                    return
+                end do
+                seen = [character(len=LIST_LEN) :: seen, names(i)]
+                seen_in = [seen_in, k]
+            end do
+        end do
+
+    contains
+
+        subroutine reject(variable, value, expected)
+            character(len=*), intent(in) :: variable, value, expected
+            call fail_value(stat, path, 'mesh', variable, value, expected)
+        end subroutine reject
+    end subroutine validate_mesh
+
+    subroutine validate_material(c, path, stat)
+        type(material_config_t), intent(in) :: c
+        character(len=*), intent(in) :: path
+        type(status_t), intent(inout) :: stat
+        logical :: poisson_ok
+
+        poisson_ok = ieee_is_finite(c%poisson)
+        if (poisson_ok) poisson_ok = c%poisson > -1.0_wp .and. c%poisson < 0.5_wp
+        if (.not. positive_finite(c%young)) then
+            call fail_value(stat, path, 'material', 'young', real_to_text(c%young), &
+                            'a finite number > 0')
+        else if (.not. poisson_ok) then
+            call fail_value(stat, path, 'material', 'poisson', real_to_text(c%poisson), &
+                            '-1 < poisson < 0.5 (0.5 is incompressible, which this ' &
+                            //'displacement formulation cannot represent)')
+        end if
+    end subroutine validate_material
+
+    subroutine validate_analysis(c, path, stat)
+        type(analysis_config_t), intent(in) :: c
+        character(len=*), intent(in) :: path
+        type(status_t), intent(inout) :: stat
+
+        if (.not. any(ACCEPTED_ANALYSES == c%kind)) then
+            call fail_value(stat, path, 'analysis', 'kind', quoted(c%kind), &
+                            'one of '//one_of(ACCEPTED_ANALYSES))
+        else if (.not. ieee_is_finite(c%lambda)) then
+            call fail_value(stat, path, 'analysis', 'lambda', real_to_text(c%lambda), &
+                            'a finite number')
+        end if
+    end subroutine validate_analysis
+
+    subroutine validate_eigen(c, path, stat)
+        type(eigen_config_t), intent(in) :: c
+        character(len=*), intent(in) :: path
+        type(status_t), intent(inout) :: stat
+        logical :: tol_ok
+
+        tol_ok = ieee_is_finite(c%tol)
+        if (tol_ok) tol_ok = c%tol >= 0.0_wp
+        if (.not. any(ACCEPTED_SOLVERS == c%solver)) then
+            call reject('solver', quoted(c%solver), 'one of '//one_of(ACCEPTED_SOLVERS))
+        else if (c%nev < 1) then
+            call reject('nev', int_text(c%nev), 'an integer >= 1')
+        else if (.not. ieee_is_finite(c%target)) then
+            call reject('target', real_to_text(c%target), 'a finite number')
+        else if (.not. tol_ok) then
+            call reject('tol', real_to_text(c%tol), 'a finite number >= 0 (0: machine precision)')
+        else if (c%maxit < 1) then
+            call reject('maxit', int_text(c%maxit), 'an integer >= 1')
+        else if (c%ncv /= 0 .and. c%ncv < c%nev + 2) then
+            call reject('ncv', int_text(c%ncv), '0 (automatic) or at least nev + 2 = ' &
+                        //int_text(c%nev + 2))
+        else if (c%dense_max_contact < 1) then
+            call reject('dense_max_contact', int_text(c%dense_max_contact), 'an integer >= 1')
+        end if
+
+    contains
+
+        subroutine reject(variable, value, expected)
+            character(len=*), intent(in) :: variable, value, expected
+            call fail_value(stat, path, 'eigen', variable, value, expected)
+        end subroutine reject
+    end subroutine validate_eigen
+
+    subroutine validate_output(c, path, stat)
+        type(output_config_t), intent(in) :: c
+        character(len=*), intent(in) :: path
+        type(status_t), intent(inout) :: stat
+
+        if (c%modes < 0) then
+            call fail_value(stat, path, 'output', 'modes', int_text(c%modes), 'an integer >= 0')
+        end if
+    end subroutine validate_output
+
+    !> The one message format of a rejected value.
+    subroutine fail_value(stat, path, group, variable, value, expected)
+        type(status_t), intent(inout) :: stat
+        character(len=*), intent(in) :: path, group, variable, value, expected
+        call stat%fail(STATUS_BAD_INPUT, path//': &'//group//': '//variable//' = '//value &
+                       //': expected '//expected)
+    end subroutine fail_value
+
+    !> Tested before any comparison: an ordered comparison with NaN traps in debug builds.
+    elemental logical function positive_finite(x)
+        real(wp), intent(in) :: x
+        positive_finite = ieee_is_finite(x)
+        if (positive_finite) positive_finite = x > 0.0_wp
+    end function positive_finite
+
+    ! ------------------------------------------------------------------- name lists
+
+    !> The blank-separated names of `list`, in order, each at most NAME_LEN characters
+    !> (longer ones are cut; read_input rejects them). gfortran 12 -O3 falsely warns of an
+    !> uninitialised descriptor when the result is the first value of an allocatable:
+    !> allocate that empty beforehand.
+    pure function split_names(list) result(names)
+        character(len=*), intent(in) :: list
+        character(len=NAME_LEN), allocatable :: names(:)
+        character(len=LIST_LEN), allocatable :: words(:)
+        integer :: i
+        call split_words(list, words)
+        allocate (names(size(words)))
+        do i = 1, size(words)
+            names(i) = words(i)(:NAME_LEN)
+        end do
+    end function split_names
+
+    !> The blank-separated words of `list`, uncut (lists are at most LIST_LEN long).
+    !> A subroutine with a fixed length: a function result of length len(list) crashes
+    !> gfortran 12, and assigning a function result draws false -Wuninitialized at -O3.
+    pure subroutine split_words(list, words)
+        character(len=*), intent(in) :: list
+        character(len=LIST_LEN), allocatable, intent(out) :: words(:)
+        integer :: i, n_words
+        logical :: in_word
+
+        n_words = 0
+        in_word = .false.
+        do i = 1, len(list)
+            if (index(BLANKS, list(i:i)) > 0) then
+                in_word = .false.
+            else if (.not. in_word) then
+                in_word = .true.
+                n_words = n_words + 1
+            end if
+        end do
+        allocate (words(n_words))
+        words = ''
+        n_words = 0
+        in_word = .false.
+        do i = 1, len(list)
+            if (index(BLANKS, list(i:i)) > 0) then
+                in_word = .false.
+                cycle
+            else if (.not. in_word) then
+                in_word = .true.
+                n_words = n_words + 1
+            end if
+            words(n_words) = trim(words(n_words))//list(i:i)
+        end do
+    end subroutine split_words
+
+    !> Number of blank-separated names in `list`.
+    pure integer function count_names(list)
+        character(len=*), intent(in) :: list
+        character(len=LIST_LEN), allocatable :: words(:)
+        call split_words(list, words)
+        count_names = size(words)
+    end function count_names
+
+    !> `list` lowercased, its names separated by single blanks.
+    pure function normalized_list(list) result(normal)
+        character(len=*), intent(in) :: list
+        character(len=len(list)) :: normal
+        character(len=LIST_LEN), allocatable :: words(:)
+        integer :: i
+        call split_words(lowercase(list), words)
+        normal = ''
+        do i = 1, size(words)
+            if (i == 1) then
+                normal = words(i)
+            else
+                normal = trim(normal)//' '//words(i)
+            end if
+        end do
+    end function normalized_list
+
+    !> `text` with ASCII capitals turned to small letters.
+    elemental function lowercase(text) result(lower)
+        character(len=*), intent(in) :: text
+        character(len=len(text)) :: lower
+        integer :: i, code
+        lower = text
+        do i = 1, len(text)
+            code = iachar(text(i:i))
+            if (code >= iachar('A') .and. code <= iachar('Z')) then
+                lower(i:i) = achar(code - iachar('A') + iachar('a'))
+            end if
+        end do
+    end function lowercase
+
+    ! -------------------------------------------------------------------------- paths
+
+    !> Default output directory of a run: output/<input file name without extension>,
+    !> relative to the working directory.
+    function default_output_directory(input_path) result(directory)
+        character(len=*), intent(in) :: input_path
+        character(len=:), allocatable :: directory
+        character(len=:), allocatable :: base
+        integer :: dot
+
+        base = trim(input_path)
+        base = base(index(base, '/', back=.true.) + 1:)
+        dot = index(base, '.', back=.true.)
+        if (dot > 1) base = base(:dot - 1)   ! a leading dot starts a hidden name, not a suffix
+        if (len(base) == 0) base = 'nceig'
+        directory = 'output/'//base
+    end function default_output_directory
+
+    !> `path` as seen from the working directory when written relative to the folder of
+    !> `base_file`; absolute and empty paths are returned unchanged.
+    function resolve_relative(base_file, path) result(resolved)
+        character(len=*), intent(in) :: base_file, path
+        character(len=:), allocatable :: resolved
+        integer :: slash
+
+        resolved = trim(adjustl(path))
+        if (len(resolved) == 0) return
+        if (resolved(1:1) == '/') return
+        slash = index(trim(base_file), '/', back=.true.)
+        if (slash > 0) resolved = base_file(:slash)//resolved
+    end function resolve_relative
+
+    ! ---------------------------------------------------------------------- help text
+
+    !> The --help text: usage, then every group and variable with its default, taken from
+    !> a default `config_t` so that the documentation cannot drift from the code. Lines
+    !> are separated by new_line('a'); the text ends with one. Lines stay under 100.
+    function help_text() result(text)
+        character(len=:), allocatable :: text
+        type(config_t) :: d
+        character(len=*), parameter :: NL = new_line('a')
+
+        text = 'Usage: nceig INPUT.nml | --help | --version'//NL//NL &
+               //'Finds the critical interface parameters of the normal compliance friction' &
+               //NL//'model: the eigenvalues mu of K phi = mu B phi for the plane-strain body' &
+               //NL//'described by the namelist file INPUT.nml. Every variable is optional;' &
+               //NL//'defaults are shown. Names are case-insensitive. Results go to the' &
+               //NL//'output directory: summary.json, eigenvalues.csv, mode_NNN.vtu.'//NL//NL
+        text = text//'&mesh'//NL &
+               //entry('source', quoted(d%mesh%source), 'one of '//one_of(MESH_SOURCES)) &
+               //entry('file', quoted(d%mesh%file), "Gmsh .msh (source = 'gmsh'), relative" &
+                       //' to the input file''s folder') &
+               //entry('width', real_to_text(d%mesh%width), 'rectangle size along x') &
+               //entry('height', real_to_text(d%mesh%height), 'rectangle size along y') &
+               //entry('nx', int_text(d%mesh%nx), 'cells along x (1 to ' &
+                       //int_text(MAX_CELLS_PER_SIDE)//')') &
+               //entry('ny', int_text(d%mesh%ny), 'cells along y') &
+               //entry('element', quoted(d%mesh%element), one_of(ELEMENT_NAMES) &
+                       //' (triangles: p, quadrilaterals: q)') &
+               //entry('diagonal', quoted(d%mesh%diagonal), one_of(DIAGONALS) &
+                       //': triangle diagonals rise to the right or left') &
+               //entry('dirichlet', quoted(d%mesh%dirichlet), 'fixed sides (' &
+                       //one_of(RECTANGLE_SIDES)//') or Gmsh groups') &
+               //entry('neumann', quoted(d%mesh%neumann), 'traction-free sides; sides named' &
+                       //' nowhere are traction-free too') &
+               //entry('contact', quoted(d%mesh%contact), 'the one side or group in contact')
+        text = text//'&material'//NL &
+               //entry('young', real_to_text(d%material%young), 'Young''s modulus E > 0') &
+               //entry('poisson', real_to_text(d%material%poisson), &
+                       'Poisson''s ratio, -1 < poisson < 0.5')
+        text = text//'&analysis'//NL &
+               //entry('kind', quoted(d%analysis%kind), 'one of '//one_of(ACCEPTED_ANALYSES)) &
+               //entry('lambda', real_to_text(d%analysis%lambda), &
+                       'ratio in b_lambda(phi, v) = lambda int phi_n v_t - int phi_n v_n')
+        text = text//'&eigen'//NL &
+               //entry('solver', quoted(d%eigen%solver), 'one of '//one_of(ACCEPTED_SOLVERS) &
+                       //" (auto: dense up to dense_max_contact)") &
+               //entry('nev', int_text(d%eigen%nev), 'eigenvalues wanted from the sparse solver') &
+               //entry('target', real_to_text(d%eigen%target), 'shift sigma: eigenvalues' &
+                       //' nearest to it are found first') &
+               //entry('tol', real_to_text(d%eigen%tol), 'sparse solver tolerance' &
+                       //' (0: machine precision)') &
+               //entry('maxit', int_text(d%eigen%maxit), 'sparse solver restarts') &
+               //entry('ncv', int_text(d%eigen%ncv), 'Krylov dimension, 0 or >= nev + 2' &
+                       //' (0: chosen from nev)') &
+               //entry('dense_max_contact', int_text(d%eigen%dense_max_contact), &
+                       "largest contact node count for which 'auto' picks 'dense'")
+        text = text//'&output'//NL &
+               //entry('directory', quoted(d%output%directory), "'' means output/<input" &
+                       //' file stem> (from the working directory)') &
+               //entry('vtk', logical_text(d%output%vtk), 'write mode_NNN.vtu for ParaView') &
+               //entry('modes', int_text(d%output%modes), 'how many modes to write as .vtu') &
+               //entry('matrices', logical_text(d%output%matrices), &
+                       'write K.mtx and B.mtx (Matrix Market)')
+
+    contains
+
+        function entry(name, value, description) result(line)
+            character(len=*), intent(in) :: name, value, description
+            character(len=:), allocatable :: line
+            line = '    '//name//' = '//value
+            if (len(line) < HELP_COLUMN) line = line//repeat(' ', HELP_COLUMN - len(line))
+            line = line//'  '//description//NL
+        end function entry
+    end function help_text
+
+    ! ------------------------------------------------------------------ small helpers
+
+    pure function quoted(text) result(q)
+        character(len=*), intent(in) :: text
+        character(len=:), allocatable :: q
+        q = "'"//trim(text)//"'"
+    end function quoted
+
+    pure function int_text(n) result(text)
+        integer, intent(in) :: n
+        character(len=:), allocatable :: text
+        character(len=16) :: buffer
+        write (buffer, '(i0)') n
+        text = trim(buffer)
+    end function int_text
+
+    pure function logical_text(flag) result(text)
+        logical, intent(in) :: flag
+        character(len=:), allocatable :: text
+        text = '.false.'
+        if (flag) text = '.true.'
+    end function logical_text
+
+    !> "'a', 'b', 'c'": the accepted values of a choice, for messages and help.
+    pure function one_of(choices) result(text)
+        character(len=*), intent(in) :: choices(:)
+        character(len=:), allocatable :: text
+        integer :: i
+        text = ''
+        do i = 1, size(choices)
+            if (i > 1) text = text//', '
+            text = text//quoted(choices(i))
+        end do
+    end function one_of
+
+    !> "&mesh, &material, ...": the known groups, for messages.
+    pure function group_list() result(text)
+        character(len=:), allocatable :: text
+        integer :: i
+        text = ''
+        do i = 1, size(KNOWN_GROUPS)
+            if (i > 1) text = text//', '
+            text = text//'&'//trim(KNOWN_GROUPS(i))
+        end do
+    end function group_list
+end module input_config

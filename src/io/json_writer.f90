@@ -1,0 +1,192 @@
+! SPDX-License-Identifier: MIT
+!> A flat JSON object (string, number, logical and null members), kept in insertion
+!> order and written in one go: enough for summary.json, with no JSON library to depend on.
+module json_writer
+    use kinds, only: wp, i8
+    use status, only: status_t, STATUS_IO
+    use real_format, only: real_to_text
+    use ieee_arithmetic, only: ieee_is_finite
+    implicit none
+    private
+
+    !> One member: its key and its value already rendered as JSON text.
+    type :: json_member_t
+        character(len=:), allocatable :: key
+        character(len=:), allocatable :: value
+    end type json_member_t
+
+    !> Members keep the order of their first addition; adding a key again replaces its value.
+    type, public :: json_object_t
+        type(json_member_t), allocatable :: members(:)
+    contains
+        procedure :: add_string => json_object_add_string
+        procedure, private :: json_object_add_integer
+        procedure, private :: json_object_add_integer_i8
+        generic :: add_integer => json_object_add_integer, json_object_add_integer_i8
+        procedure :: add_real => json_object_add_real
+        procedure :: add_real_or_null => json_object_add_real_or_null
+        procedure :: add_logical => json_object_add_logical
+        procedure :: add_null => json_object_add_null
+        procedure :: to_text => json_object_to_text
+        procedure :: write => json_object_write
+    end type json_object_t
+
+contains
+
+    subroutine json_object_add_string(this, key, value)
+        class(json_object_t), intent(inout) :: this
+        character(len=*), intent(in) :: key, value
+        call add_member(this, key, '"'//escaped(value)//'"')
+    end subroutine json_object_add_string
+
+    subroutine json_object_add_integer(this, key, value)
+        class(json_object_t), intent(inout) :: this
+        character(len=*), intent(in) :: key
+        integer, intent(in) :: value
+        call this%add_integer(key, int(value, i8))
+    end subroutine json_object_add_integer
+
+    subroutine json_object_add_integer_i8(this, key, value)
+        class(json_object_t), intent(inout) :: this
+        character(len=*), intent(in) :: key
+        integer(i8), intent(in) :: value
+        character(len=24) :: buffer
+        write (buffer, '(i0)') value
+        call add_member(this, key, trim(buffer))
+    end subroutine json_object_add_integer_i8
+
+    !> A real as the shortest decimal that reads back exactly; NaN and infinities, which
+    !> JSON cannot represent, become null.
+    subroutine json_object_add_real(this, key, value)
+        class(json_object_t), intent(inout) :: this
+        character(len=*), intent(in) :: key
+        real(wp), intent(in) :: value
+        if (ieee_is_finite(value)) then
+            call add_member(this, key, real_to_text(value))
+        else
+            call add_member(this, key, 'null')
+        end if
+    end subroutine json_object_add_real
+
+    !> `value` when `present_flag` is true (e.g. "a positive eigenvalue was found"), else null.
+    subroutine json_object_add_real_or_null(this, key, value, present_flag)
+        class(json_object_t), intent(inout) :: this
+        character(len=*), intent(in) :: key
+        real(wp), intent(in) :: value
+        logical, intent(in) :: present_flag
+        if (present_flag) then
+            call this%add_real(key, value)
+        else
+            call this%add_null(key)
+        end if
+    end subroutine json_object_add_real_or_null
+
+    subroutine json_object_add_logical(this, key, value)
+        class(json_object_t), intent(inout) :: this
+        character(len=*), intent(in) :: key
+        logical, intent(in) :: value
+        if (value) then
+            call add_member(this, key, 'true')
+        else
+            call add_member(this, key, 'false')
+        end if
+    end subroutine json_object_add_logical
+
+    subroutine json_object_add_null(this, key)
+        class(json_object_t), intent(inout) :: this
+        character(len=*), intent(in) :: key
+        call add_member(this, key, 'null')
+    end subroutine json_object_add_null
+
+    !> The object as text: one member per line, two-space indent, no final line feed;
+    !> an empty object is '{}'.
+    function json_object_to_text(this) result(text)
+        class(json_object_t), intent(in) :: this
+        character(len=:), allocatable :: text
+        character(len=*), parameter :: NL = new_line('a')
+        integer :: i
+
+        if (.not. allocated(this%members)) then
+            text = '{}'
+            return
+        else if (size(this%members) == 0) then
+            text = '{}'
+            return
+        end if
+        text = '{'
+        do i = 1, size(this%members)
+            if (i > 1) text = text//','
+            text = text//NL//'  "'//escaped(this%members(i)%key)//'": '//this%members(i)%value
+        end do
+        text = text//NL//'}'
+    end function json_object_to_text
+
+    !> Write the object to file `path` (replacing it), ending with a line feed.
+    subroutine json_object_write(this, path, stat)
+        class(json_object_t), intent(in) :: this
+        character(len=*), intent(in) :: path
+        type(status_t), intent(out) :: stat
+        character(len=1024) :: msg
+        integer :: unit, ios
+
+        ! Formatted stream access turns each new_line('a') in the text into a line end.
+        open (newunit=unit, file=path, status='replace', action='write', access='stream', &
+              form='formatted', iostat=ios, iomsg=msg)
+        if (ios == 0) write (unit, '(a)', iostat=ios, iomsg=msg) this%to_text()
+        if (ios /= 0) then
+            call stat%fail(STATUS_IO, trim(path)//': cannot write JSON: '//trim(msg))
+            close (unit, iostat=ios)
+            return
+        end if
+        close (unit, iostat=ios, iomsg=msg)
+        if (ios /= 0) call stat%fail(STATUS_IO, trim(path)//': cannot close: '//trim(msg))
+    end subroutine json_object_write
+
+    subroutine add_member(object, key, value)
+        type(json_object_t), intent(inout) :: object
+        character(len=*), intent(in) :: key, value
+        integer :: i
+        if (.not. allocated(object%members)) allocate (object%members(0))
+        do i = 1, size(object%members)
+            if (object%members(i)%key == key) then
+                object%members(i)%value = value
+                return
+            end if
+        end do
+        object%members = [object%members, json_member_t(key, value)]
+    end subroutine add_member
+
+    !> `text` with quotes, backslashes and control characters escaped as JSON requires.
+    pure function escaped(text) result(json)
+        character(len=*), intent(in) :: text
+        character(len=:), allocatable :: json
+        character(len=*), parameter :: HEX = '0123456789abcdef'
+        integer :: i, code
+
+        json = ''
+        do i = 1, len(text)
+            code = iachar(text(i:i))
+            select case (code)
+            case (iachar('"'))
+                json = json//'\"'
+            case (iachar('\'))
+                json = json//'\\'
+            case (8)
+                json = json//'\b'
+            case (9)
+                json = json//'\t'
+            case (10)
+                json = json//'\n'
+            case (12)
+                json = json//'\f'
+            case (13)
+                json = json//'\r'
+            case (0:7, 11, 14:31)
+                json = json//'\u00'//HEX(code/16 + 1:code/16 + 1) &
+                       //HEX(mod(code, 16) + 1:mod(code, 16) + 1)
+            case default
+                json = json//text(i:i)
+            end select
+        end do
+    end function escaped
+end module json_writer

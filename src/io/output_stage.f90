@@ -1,0 +1,123 @@
+! SPDX-License-Identifier: MIT
+!> Outputs appear whole or not at all: files are written into a private staging folder
+!> inside the output directory and renamed into place only once all of them are complete.
+!> Staging inside the target keeps every rename on one file system, hence atomic per file.
+module output_stage
+    use status, only: status_t, STATUS_IO
+    use filesystem, only: make_directories, rename_file, remove_file, remove_directory, &
+                          process_id
+    implicit none
+    private
+
+    character(len=*), parameter :: STAGING_PREFIX = '.nceig-partial-'
+
+    !> A file name registered through `path`.
+    type :: staged_name_t
+        character(len=:), allocatable :: name
+    end type staged_name_t
+
+    !> One staging area. Use: begin, write each file to path(name), then commit, or abort
+    !> on any failure. A run that dies in between leaves only the hidden staging folder.
+    type, public :: output_stage_t
+        character(len=:), allocatable :: directory   !! final output directory
+        character(len=:), allocatable :: staging     !! <directory>/.nceig-partial-<pid>
+        type(staged_name_t), allocatable :: names(:) !! files registered through path()
+        logical :: active = .false.                  !! between begin and commit/abort
+    contains
+        procedure :: begin => output_stage_begin
+        procedure :: path => output_stage_path
+        procedure :: commit => output_stage_commit
+        procedure :: abort => output_stage_abort
+    end type output_stage_t
+
+contains
+
+    !> Create `directory` (and its parents) and an empty staging folder inside it. Fails
+    !> with STATUS_IO naming the directory when it cannot be created or written.
+    subroutine output_stage_begin(this, directory, stat)
+        class(output_stage_t), intent(inout) :: this
+        character(len=*), intent(in) :: directory
+        type(status_t), intent(out) :: stat
+        character(len=32) :: pid_text
+
+        if (this%active) call this%abort()
+        this%directory = trim(directory)
+        if (allocated(this%names)) deallocate (this%names)
+        allocate (this%names(0))
+        call make_directories(this%directory, stat)
+        if (.not. stat%ok()) then
+            call stat%fail(STATUS_IO, 'output directory '//this%directory//': ' &
+                           //stat%message)
+            return
+        end if
+        write (pid_text, '(i0)') process_id()
+        this%staging = this%directory//'/'//STAGING_PREFIX//trim(pid_text)
+        ! A folder of this name can only be left over from a dead run that had our pid;
+        ! reusing it is harmless, as only the files registered through path() move.
+        call make_directories(this%staging, stat)
+        if (.not. stat%ok()) then
+            call stat%fail(STATUS_IO, 'output directory '//this%directory// &
+                           ' is not writable: '//stat%message)
+            return
+        end if
+        this%active = .true.
+    end subroutine output_stage_begin
+
+    !> Where to write the output file `name` while staging, registering it for commit.
+    !> Before begin (or after commit/abort) this is simply <directory>/<name> or <name>.
+    function output_stage_path(this, name) result(file_path)
+        class(output_stage_t), intent(inout) :: this
+        character(len=*), intent(in) :: name
+        character(len=:), allocatable :: file_path
+        integer :: i
+
+        if (.not. this%active) then
+            file_path = trim(name)
+            if (allocated(this%directory)) file_path = this%directory//'/'//trim(name)
+            return
+        end if
+        file_path = this%staging//'/'//trim(name)
+        do i = 1, size(this%names)
+            if (this%names(i)%name == trim(name)) return
+        end do
+        this%names = [this%names, staged_name_t(trim(name))]
+    end function output_stage_path
+
+    !> Move every staged file into the output directory, replacing older files of the same
+    !> name, and remove the staging folder. On failure the remaining staged files are
+    !> deleted and STATUS_IO names the file.
+    subroutine output_stage_commit(this, stat)
+        class(output_stage_t), intent(inout) :: this
+        type(status_t), intent(out) :: stat
+        integer :: i
+
+        if (.not. this%active) then
+            call stat%fail(STATUS_IO, 'output stage: commit without begin')
+            return
+        end if
+        do i = 1, size(this%names)
+            call rename_file(this%staging//'/'//this%names(i)%name, &
+                             this%directory//'/'//this%names(i)%name, stat)
+            if (.not. stat%ok()) then
+                call this%abort()
+                return
+            end if
+        end do
+        call remove_directory(this%staging)
+        this%active = .false.
+    end subroutine output_stage_commit
+
+    !> Delete the staged files and the staging folder; files already in the output
+    !> directory are left alone. Safe to call twice and after a failed begin.
+    subroutine output_stage_abort(this)
+        class(output_stage_t), intent(inout) :: this
+        integer :: i
+
+        if (.not. this%active) return
+        do i = 1, size(this%names)
+            call remove_file(this%staging//'/'//this%names(i)%name)
+        end do
+        call remove_directory(this%staging)
+        this%active = .false.
+    end subroutine output_stage_abort
+end module output_stage
