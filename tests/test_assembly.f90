@@ -181,10 +181,28 @@ contains
         call t%check('Poisson ratio 1/2: STATUS_BAD_INPUT', stat%code == STATUS_BAD_INPUT)
         call assemble_stiffness(m, dofs, -1.0_wp, POISSON, k, stat)
         call t%check('negative Young modulus: STATUS_BAD_INPUT', stat%code == STATUS_BAD_INPUT)
+        call check_general_numbering()
         call build_dof_map(m, [7], dofs, stat)
         call t%check('unknown Dirichlet part index: STATUS_BAD_INPUT', &
                      stat%code == STATUS_BAD_INPUT)
     end subroutine check_errors
+
+    !> A numbering that is not node-major (here: reversed) takes the general pattern path.
+    subroutine check_general_numbering()
+        type(mesh_t) :: m
+        type(dof_map_t) :: dofs
+        type(csr_matrix_t) :: k
+        type(status_t) :: stat
+        real(wp), allocatable :: dense(:, :)
+        call structured_rectangle(WIDTH, HEIGHT, NX, NY, ELEMENT_P2, 'left', m, stat)
+        call build_dof_map(m, [m%part_index('left')], dofs, stat)
+        where (dofs%free_dof > 0) dofs%free_dof = dofs%n_free + 1 - dofs%free_dof
+        call assemble_stiffness(m, dofs, YOUNG, POISSON, k, stat)
+        call csr_to_dense(k, dense)
+        call t%check('reversed dof numbering: K equals the dense assembly', stat%ok() .and. &
+                     maxval(abs(dense - dense_assembly(m, dofs))) <= &
+                     1.0e-14_wp*maxval(abs(dense)))
+    end subroutine check_general_numbering
 
     !> Dense K summed directly from element_stiffness, independent of the CSR code.
     function dense_assembly(m, dofs) result(a)
