@@ -1,0 +1,165 @@
+! SPDX-License-Identifier: MIT
+!> Isotropic plane-strain elasticity: Hooke's law and element stiffness matrices of the
+!> bilinear form a(u, v) = int sigma(u) : eps(v).
+module elasticity
+    use kinds, only: wp, N_DIM
+    use mesh, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, element_nodes_per_cell
+    use quadrature, only: quadrature_rule_t, triangle_rule, quad_rule
+    use shape_functions, only: evaluate_shape, reference_nodes, MAX_NODES
+    implicit none
+    private
+    public :: plane_strain_matrix, lame_coefficients, element_stiffness, stiffness_rule, &
+              jacobian_at
+    public :: ELEMENT_OK, ELEMENT_INVERTED, ELEMENT_BAD_ARGUMENT
+
+    ! Outcomes of element_stiffness; the caller, which knows the cell number, words them.
+    integer, parameter :: ELEMENT_OK = 0
+    integer, parameter :: ELEMENT_INVERTED = 1       !! det J <= 0 (or negligible): see below
+    integer, parameter :: ELEMENT_BAD_ARGUMENT = 2   !! unknown element or wrong array shapes
+
+    ! det J is called degenerate below this fraction of (cell diameter)^2: a sliver so thin
+    ! that its stiffness is dominated by round-off is as unusable as an inverted cell.
+    real(wp), parameter :: DEGENERATE_FRACTION = 64.0_wp*epsilon(1.0_wp)
+
+contains
+
+    !> Plane-strain constitutive matrix, Voigt order (xx, yy, xy), engineering shear strain.
+    pure function plane_strain_matrix(young, poisson) result(d)
+        real(wp), intent(in) :: young, poisson   !! Pa, dimensionless (-1 < nu < 1/2)
+        real(wp) :: d(3, 3), lame_l, shear_g
+        call lame_coefficients(young, poisson, lame_l, shear_g)
+        d = reshape([lame_l + 2.0_wp*shear_g, lame_l, 0.0_wp, &
+                     lame_l, lame_l + 2.0_wp*shear_g, 0.0_wp, &
+                     0.0_wp, 0.0_wp, shear_g], [3, 3])
+    end function plane_strain_matrix
+
+    !> Lame coefficients L = E nu / ((1 + nu)(1 - 2 nu)) and G = E / (2 (1 + nu)).
+    pure subroutine lame_coefficients(young, poisson, lame_l, shear_g)
+        real(wp), intent(in) :: young, poisson   !! Pa, dimensionless (-1 < nu < 1/2)
+        real(wp), intent(out) :: lame_l, shear_g   !! Pa
+        lame_l = young*poisson/((1.0_wp + poisson)*(1.0_wp - 2.0_wp*poisson))
+        shear_g = 0.5_wp*young/(1.0_wp + poisson)
+    end subroutine lame_coefficients
+
+    !> The quadrature rule element_stiffness uses: exact for affine cells (straight-sided
+    !> triangles, parallelograms), where the integrand is a polynomial. P1: 1 point (degree
+    !> 0), P2: degree 2, Q1: 2 x 2 Gauss, Q2: 3 x 3 Gauss. Empty for an unknown element.
+    pure function stiffness_rule(element) result(rule)
+        integer, intent(in) :: element
+        type(quadrature_rule_t) :: rule
+        select case (element)
+        case (ELEMENT_P1); rule = triangle_rule(1)
+        case (ELEMENT_P2); rule = triangle_rule(2)
+        case (ELEMENT_Q1); rule = quad_rule(2)
+        case (ELEMENT_Q2); rule = quad_rule(3)
+        end select
+    end function stiffness_rule
+
+    !> Jacobian matrix J(i, j) = d x_i / d xi_j of the map from the reference element and
+    !> its determinant, at reference point `xi`, for the cell with node coordinates `xy`.
+    pure subroutine jacobian_at(element, xy, xi, jacobian, det)
+        integer, intent(in) :: element
+        real(wp), intent(in) :: xy(:, :)   !! (2, nodes per cell)
+        real(wp), intent(in) :: xi(2)
+        real(wp), intent(out) :: jacobian(2, 2), det
+        real(wp) :: values(MAX_NODES), gradients(2, MAX_NODES)
+        integer :: n
+        n = size(xy, 2)
+        call evaluate_shape(element, xi, values, gradients)
+        jacobian = matmul(xy, transpose(gradients(:, 1:n)))
+        det = jacobian(1, 1)*jacobian(2, 2) - jacobian(1, 2)*jacobian(2, 1)
+    end subroutine jacobian_at
+
+    !> Element stiffness matrix in dof order (u_x1, u_y1, u_x2, u_y2, ...), integrated with
+    !> stiffness_rule(element). `info` is ELEMENT_OK, or ELEMENT_INVERTED when det J is
+    !> non-positive or negligible at a node or quadrature point (an inverted or degenerate
+    !> cell), or ELEMENT_BAD_ARGUMENT; `ke` is then zero. `min_det` is the smallest det J
+    !> met, for the caller's message.
+    pure subroutine element_stiffness(element, xy, young, poisson, ke, info, min_det)
+        integer, intent(in) :: element
+        real(wp), intent(in) :: xy(:, :)            !! (2, nodes per cell), metres
+        real(wp), intent(in) :: young, poisson      !! Pa, dimensionless
+        real(wp), intent(out) :: ke(:, :)           !! (2 nodes, 2 nodes)
+        integer, intent(out) :: info
+        real(wp), intent(out), optional :: min_det
+        type(quadrature_rule_t) :: rule
+        real(wp) :: values(MAX_NODES), ref_gradients(2, MAX_NODES), grad(2, MAX_NODES)
+        real(wp) :: ref_nodes(2, MAX_NODES), jacobian(2, 2), inverse_t(2, 2), det
+        real(wp) :: smallest, diameter2, lame_l, shear_g, c_normal, c_lame, c_shear
+        real(wp) :: ax, ay, bx, by
+        integer :: n, a, b, q
+
+        ke = 0.0_wp
+        if (present(min_det)) min_det = 0.0_wp
+        n = element_nodes_per_cell(element)
+        if (n == 0 .or. size(xy, 1) /= N_DIM .or. size(xy, 2) /= n .or. &
+            any(shape(ke) /= [N_DIM*n, N_DIM*n])) then
+            info = ELEMENT_BAD_ARGUMENT
+            return
+        end if
+        rule = stiffness_rule(element)
+
+        ! det J at the quadrature points and, unless J is constant (P1), at the nodes too: a
+        ! bilinear quadrilateral with a re-entrant corner can have det J > 0 at every Gauss
+        ! point, and for Q1 det J is linear in (xi, eta), so its minimum is at a corner.
+        smallest = huge(1.0_wp)
+        if (element /= ELEMENT_P1) then
+            call reference_nodes(element, ref_nodes)
+            do a = 1, n
+                call jacobian_at(element, xy, ref_nodes(:, a), jacobian, det)
+                smallest = min(smallest, det)
+            end do
+        end if
+        do q = 1, rule%n_points
+            call jacobian_at(element, xy, rule%points(:, q), jacobian, det)
+            smallest = min(smallest, det)
+        end do
+        diameter2 = 0.0_wp
+        do a = 1, n
+            do b = a + 1, n
+                diameter2 = max(diameter2, sum((xy(:, a) - xy(:, b))**2))
+            end do
+        end do
+        if (present(min_det)) min_det = smallest
+        if (.not. smallest > DEGENERATE_FRACTION*diameter2) then
+            info = ELEMENT_INVERTED
+            return
+        end if
+        info = ELEMENT_OK
+
+        call lame_coefficients(young, poisson, lame_l, shear_g)
+        do q = 1, rule%n_points
+            call evaluate_shape(element, rule%points(:, q), values, ref_gradients)
+            jacobian = matmul(xy, transpose(ref_gradients(:, 1:n)))
+            det = jacobian(1, 1)*jacobian(2, 2) - jacobian(1, 2)*jacobian(2, 1)
+            ! grad_x N = J^{-T} grad_xi N
+            inverse_t = reshape([jacobian(2, 2), -jacobian(1, 2), &
+                                 -jacobian(2, 1), jacobian(1, 1)], [2, 2])/det
+            grad(:, 1:n) = matmul(inverse_t, ref_gradients(:, 1:n))
+            c_normal = (lame_l + 2.0_wp*shear_g)*rule%weights(q)*det
+            c_lame = lame_l*rule%weights(q)*det
+            c_shear = shear_g*rule%weights(q)*det
+            ! Node block (a, b) of B^T D B, with B_a = [ax 0; 0 ay; ay ax] the strain of
+            ! N_a e_x, N_a e_y and D = plane_strain_matrix written out: the products with
+            ! the zeros of B and D cost more than the rest of the assembly together.
+            ! Only blocks a <= b are integrated; the copy below makes ke exactly symmetric.
+            do b = 1, n
+                bx = grad(1, b)
+                by = grad(2, b)
+                do a = 1, b
+                    ax = grad(1, a)
+                    ay = grad(2, a)
+                    ke(2*a - 1, 2*b - 1) = ke(2*a - 1, 2*b - 1) + c_normal*ax*bx + c_shear*ay*by
+                    ke(2*a - 1, 2*b) = ke(2*a - 1, 2*b) + c_lame*ax*by + c_shear*ay*bx
+                    ke(2*a, 2*b - 1) = ke(2*a, 2*b - 1) + c_lame*ay*bx + c_shear*ax*by
+                    ke(2*a, 2*b) = ke(2*a, 2*b) + c_normal*ay*by + c_shear*ax*bx
+                end do
+            end do
+        end do
+        do b = 1, N_DIM*n
+            do a = b + 1, N_DIM*n
+                ke(a, b) = ke(b, a)
+            end do
+        end do
+    end subroutine element_stiffness
+end module elasticity

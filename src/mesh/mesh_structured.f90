@@ -1,0 +1,194 @@
+! SPDX-License-Identifier: MIT
+!> Structured meshes of the rectangle [0, width] x [0, height]: nx x ny squares, each a
+!> quadrilateral or split into two triangles along one diagonal.
+module mesh_structured
+    use kinds, only: wp, i8
+    use status, only: status_t, STATUS_BAD_INPUT
+    use mesh, only: mesh_t, ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, &
+                    element_nodes_per_cell, element_nodes_per_edge
+    implicit none
+    private
+    public :: structured_rectangle
+    public :: PART_BOTTOM, PART_RIGHT, PART_TOP, PART_LEFT
+
+    !> Index of each side in `part_names` of a structured mesh.
+    integer, parameter :: PART_BOTTOM = 1, PART_RIGHT = 2, PART_TOP = 3, PART_LEFT = 4
+    character(len=*), parameter :: SIDE_NAMES(4) = ['bottom', 'right ', 'top   ', 'left  ']
+
+contains
+
+    !> Mesh of [0, width] x [0, height] with nx x ny cells of type `element` (ELEMENT_*).
+    !> `diagonal` is 'right' (squares split from lower-left to upper-right) or 'left' (from
+    !> lower-right to upper-left); quadrilateral meshes ignore it. Nodes lie on a grid of
+    !> (s nx + 1) x (s ny + 1) points, s = 1 for linear and 2 for quadratic elements, numbered
+    !> row by row from the bottom so that the bandwidth stays near 2 s nx. Boundary edges go
+    !> anticlockwise round the rectangle (body on their left) and belong to the parts
+    !> 'bottom', 'right', 'top', 'left' (PART_* indices).
+    subroutine structured_rectangle(width, height, nx, ny, element, diagonal, m, stat)
+        real(wp), intent(in) :: width, height   !! metres, > 0
+        integer, intent(in) :: nx, ny           !! cells along x and y, >= 1
+        integer, intent(in) :: element          !! ELEMENT_P1, _Q1, _P2 or _Q2
+        character(len=*), intent(in) :: diagonal
+        type(mesh_t), intent(out) :: m
+        type(status_t), intent(out) :: stat
+        integer :: step, n_grid_x, n_grid_y, i, j, e, cell
+        logical :: triangles, quadratic, right_diagonal
+        integer(i8) :: n_nodes_wide
+
+        if (.not. (width > 0.0_wp .and. width <= huge(width))) then
+            call stat%fail(STATUS_BAD_INPUT, 'structured mesh: width must be a positive '// &
+                           'finite number, got '//real_text(width))
+            return
+        end if
+        if (.not. (height > 0.0_wp .and. height <= huge(height))) then
+            call stat%fail(STATUS_BAD_INPUT, 'structured mesh: height must be a positive '// &
+                           'finite number, got '//real_text(height))
+            return
+        end if
+        if (nx < 1 .or. ny < 1) then
+            call stat%fail(STATUS_BAD_INPUT, 'structured mesh: nx and ny must be >= 1, got '// &
+                           int_text(nx)//' and '//int_text(ny))
+            return
+        end if
+        select case (element)
+        case (ELEMENT_P1, ELEMENT_P2); triangles = .true.
+        case (ELEMENT_Q1, ELEMENT_Q2); triangles = .false.
+        case default
+            call stat%fail(STATUS_BAD_INPUT, 'structured mesh: unknown element code '// &
+                           int_text(element))
+            return
+        end select
+        right_diagonal = .true.
+        if (triangles) then
+            select case (trim(diagonal))
+            case ('right'); right_diagonal = .true.
+            case ('left'); right_diagonal = .false.
+            case default
+                call stat%fail(STATUS_BAD_INPUT, "structured mesh: diagonal must be 'right' "// &
+                               "or 'left', got '"//trim(diagonal)//"'")
+                return
+            end select
+        end if
+        quadratic = element == ELEMENT_P2 .or. element == ELEMENT_Q2
+        step = merge(2, 1, quadratic)
+        ! Node numbers are default integers: refuse grids whose count would overflow them
+        ! (or whose dof count, twice as large, would) before any arithmetic wraps round.
+        n_nodes_wide = (step*int(nx, i8) + 1)*(step*int(ny, i8) + 1)
+        if (2*n_nodes_wide > int(huge(1), i8)) then
+            call stat%fail(STATUS_BAD_INPUT, 'structured mesh: '//int_text(nx)//' x '// &
+                           int_text(ny)//' cells give too many nodes for default integers')
+            return
+        end if
+        n_grid_x = step*nx + 1
+        n_grid_y = step*ny + 1
+
+        m%element = element
+        allocate (m%coords(2, n_grid_x*n_grid_y))
+        do j = 0, n_grid_y - 1
+            do i = 0, n_grid_x - 1
+                ! width*(i/n) is exactly width at i = n, so the sides are straight lines.
+                m%coords(1, node(i, j)) = width*(real(i, wp)/real(n_grid_x - 1, wp))
+                m%coords(2, node(i, j)) = height*(real(j, wp)/real(n_grid_y - 1, wp))
+            end do
+        end do
+
+        allocate (m%cells(element_nodes_per_cell(element), merge(2, 1, triangles)*nx*ny))
+        cell = 0
+        do j = 0, ny - 1
+            do i = 0, nx - 1
+                call fill_square(step*i, step*j)
+            end do
+        end do
+
+        allocate (m%edges(element_nodes_per_edge(element), 2*(nx + ny)))
+        allocate (m%edge_part(2*(nx + ny)))
+        allocate (m%part_names(size(SIDE_NAMES)))
+        m%part_names = SIDE_NAMES
+        e = 0
+        do i = 0, nx - 1
+            call add_edge(step*i, 0, step*(i + 1), 0, PART_BOTTOM)
+        end do
+        do j = 0, ny - 1
+            call add_edge(n_grid_x - 1, step*j, n_grid_x - 1, step*(j + 1), PART_RIGHT)
+        end do
+        do i = nx, 1, -1
+            call add_edge(step*i, n_grid_y - 1, step*(i - 1), n_grid_y - 1, PART_TOP)
+        end do
+        do j = ny, 1, -1
+            call add_edge(0, step*j, 0, step*(j - 1), PART_LEFT)
+        end do
+
+    contains
+
+        !> Node number of grid point (i, j), both counted from 0.
+        pure integer function node(i, j)
+            integer, intent(in) :: i, j
+            node = j*n_grid_x + i + 1
+        end function node
+
+        !> Cells of the square whose lower-left grid point is (i0, j0).
+        subroutine fill_square(i0, j0)
+            integer, intent(in) :: i0, j0
+            integer :: corner(2, 4)   ! grid points, anticlockwise from lower-left
+            corner(:, 1) = [i0, j0]
+            corner(:, 2) = [i0 + step, j0]
+            corner(:, 3) = [i0 + step, j0 + step]
+            corner(:, 4) = [i0, j0 + step]
+            if (.not. triangles) then
+                call add_cell(corner)
+            else if (right_diagonal) then
+                call add_cell(corner(:, [1, 2, 3]))
+                call add_cell(corner(:, [1, 3, 4]))
+            else
+                call add_cell(corner(:, [1, 2, 4]))
+                call add_cell(corner(:, [2, 3, 4]))
+            end if
+        end subroutine fill_square
+
+        !> Append a cell given its corner grid points; mid-edge and centre nodes of quadratic
+        !> elements are the grid points halfway between, in Gmsh order.
+        subroutine add_cell(corner)
+            integer, intent(in) :: corner(:, :)
+            integer :: k, n_corners, middle(2)
+            n_corners = size(corner, 2)
+            cell = cell + 1
+            do k = 1, n_corners
+                m%cells(k, cell) = node(corner(1, k), corner(2, k))
+            end do
+            if (.not. quadratic) return
+            do k = 1, n_corners
+                middle = (corner(:, k) + corner(:, modulo(k, n_corners) + 1))/2
+                m%cells(n_corners + k, cell) = node(middle(1), middle(2))
+            end do
+            if (element == ELEMENT_Q2) then
+                middle = (corner(:, 1) + corner(:, 3))/2
+                m%cells(2*n_corners + 1, cell) = node(middle(1), middle(2))
+            end if
+        end subroutine add_cell
+
+        subroutine add_edge(i1, j1, i2, j2, part)
+            integer, intent(in) :: i1, j1, i2, j2, part
+            e = e + 1
+            m%edges(1, e) = node(i1, j1)
+            m%edges(2, e) = node(i2, j2)
+            if (quadratic) m%edges(3, e) = node((i1 + i2)/2, (j1 + j2)/2)
+            m%edge_part(e) = part
+        end subroutine add_edge
+    end subroutine structured_rectangle
+
+    pure function int_text(value) result(text)
+        integer, intent(in) :: value
+        character(len=:), allocatable :: text
+        character(len=16) :: buffer
+        write (buffer, '(i0)') value
+        text = trim(buffer)
+    end function int_text
+
+    pure function real_text(value) result(text)
+        real(wp), intent(in) :: value
+        character(len=:), allocatable :: text
+        character(len=32) :: buffer
+        write (buffer, '(es12.5)') value
+        text = trim(adjustl(buffer))
+    end function real_text
+end module mesh_structured

@@ -1,0 +1,404 @@
+! SPDX-License-Identifier: MIT
+!> Global stiffness assembly on structured meshes of every element type: agreement with an
+!> independent dense assembly, symmetry, rigid-body modes, positive definiteness with the top
+!> side clamped, and patch tests (linear fields exactly; quadratic fields for P2/Q2).
+program test_assembly
+    use kinds, only: wp
+    use status, only: status_t, STATUS_MESH, STATUS_BAD_INPUT
+    use mesh, only: mesh_t, ELEMENT_P1, ELEMENT_P2, ELEMENT_Q2, element_name, &
+                    element_nodes_per_cell
+    use mesh_structured, only: structured_rectangle
+    use dof_map, only: dof_map_t, build_dof_map, cell_dofs
+    use assembly, only: assemble_stiffness
+    use csr_matrix, only: csr_matrix_t
+    use elasticity, only: element_stiffness, plane_strain_matrix, lame_coefficients, &
+                          stiffness_rule, jacobian_at
+    use quadrature, only: quadrature_rule_t, line_rule
+    use shape_functions, only: evaluate_shape, evaluate_line_shape, MAX_NODES
+    use testing, only: test_suite_t
+    implicit none
+
+    interface
+        subroutine dpotrf(uplo, n, a, lda, info)
+            import :: wp
+            character, intent(in) :: uplo
+            integer, intent(in) :: n, lda
+            real(wp), intent(inout) :: a(lda, *)
+            integer, intent(out) :: info
+        end subroutine dpotrf
+    end interface
+
+    real(wp), parameter :: YOUNG = 2.5_wp, POISSON = 0.3_wp
+    ! A non-square rectangle with non-square cells, so that no symmetry hides an error.
+    real(wp), parameter :: WIDTH = 2.0_wp, HEIGHT = 1.5_wp
+    integer, parameter :: NX = 3, NY = 2
+    ! Round-off bound for residuals of K u: each entry sums ~ (row length) products of size
+    ! |K| |u| and cancels them; a few hundred ulps of |K|_inf |u|_inf is generous but still
+    ! many orders below any modelling error (a wrong entry gives O(1) relative residuals).
+    real(wp), parameter :: RESIDUAL_TOL = 1.0e-12_wp
+    ! Linear field u = (a + b x + c y, d + e x + f y): eps = (b, f, c + e) in Voigt order.
+    real(wp), parameter :: LIN(6) = [0.3_wp, 0.7_wp, -0.4_wp, -0.2_wp, 0.25_wp, 0.5_wp]
+
+    ! Quadratic field u_x = al x^2 + be x y + ga y^2, u_y = de x^2 + ep x y + ze y^2.
+    real(wp), parameter :: QUAD(6) = [0.4_wp, -0.3_wp, 0.2_wp, 0.15_wp, 0.35_wp, -0.25_wp]
+    type(test_suite_t) :: t
+    integer :: element
+
+    t%name = 'test_assembly'
+    do element = ELEMENT_P1, ELEMENT_Q2
+        call check_free(element, 'right')
+        if (element == ELEMENT_P1 .or. element == ELEMENT_P2) call check_free(element, 'left')
+        call check_clamped(element)
+    end do
+    call check_errors()
+    call t%report()
+
+contains
+
+    !> All dofs free: K against a dense assembly, symmetry, rigid modes, patch tests.
+    subroutine check_free(element, diagonal)
+        integer, intent(in) :: element
+        character(len=*), intent(in) :: diagonal
+        type(mesh_t) :: m
+        type(dof_map_t) :: dofs
+        type(csr_matrix_t) :: k
+        type(status_t) :: stat
+        real(wp), allocatable :: dense(:, :), reference(:, :), u(:), ku(:), load(:)
+        real(wp) :: norm_k
+        logical, allocatable :: on_boundary(:), interior_dof(:)
+        character(len=:), allocatable :: label
+        integer :: i, node
+
+        label = ' ('//element_name(element)//', '//diagonal//')'
+        call structured_rectangle(WIDTH, HEIGHT, NX, NY, element, diagonal, m, stat)
+        call build_dof_map(m, [integer ::], dofs, stat)
+        call t%check('no Dirichlet part: every dof free'//label, stat%ok() .and. &
+                     dofs%n_free == 2*m%n_nodes())
+        call assemble_stiffness(m, dofs, YOUNG, POISSON, k, stat)
+        call t%check('assembly succeeds'//label, stat%ok())
+        if (.not. stat%ok()) return
+
+        call csr_to_dense(k, dense)
+        reference = dense_assembly(m, dofs)
+        ! Same element matrices added in the same cell order: equal to round-off (the bound
+        ! allows a different summation order).
+        call t%check('CSR K equals the dense assembly'//label, &
+                     maxval(abs(dense - reference)) <= 1.0e-14_wp*maxval(abs(reference)))
+        call t%check('pattern symmetric'//label, pattern_symmetric(k))
+        call t%check('K symmetric'//label, &
+                     maxval(abs(dense - transpose(dense))) <= 1.0e-14_wp*maxval(abs(dense)))
+        norm_k = k%norm_inf()
+
+        allocate (u(dofs%n_free), ku(dofs%n_free))
+        do i = 1, 3
+            u = rigid_mode(m, i)
+            call k%matvec(u, ku)
+            call t%check('K kills rigid mode '//achar(48 + i)//label, &
+                         maxval(abs(ku)) <= RESIDUAL_TOL*norm_k*maxval(abs(u)))
+        end do
+
+        ! Linear field: div sigma = 0, so K u is the consistent load of the constant
+        ! traction sigma n: zero at interior nodes, closed-form weights on the boundary.
+        allocate (on_boundary(m%n_nodes()), source=.false.)
+        do i = 1, size(m%edges, 2)
+            on_boundary(m%edges(:, i)) = .true.
+        end do
+        allocate (interior_dof(dofs%n_free))
+        do node = 1, m%n_nodes()
+            interior_dof(dofs%free_dof(:, node)) = .not. on_boundary(node)
+        end do
+        u = linear_field(m)
+        call k%matvec(u, ku)
+        load = linear_traction_load(m)
+        call t%check('linear patch: K u = 0 at interior nodes'//label, &
+                     maxval(abs(ku), mask=interior_dof) <= RESIDUAL_TOL*norm_k*maxval(abs(u)))
+        call t%check('linear patch: K u = traction load sigma n at boundary nodes'//label, &
+                     maxval(abs(ku - load)) <= RESIDUAL_TOL*norm_k*maxval(abs(u)))
+
+        if (element == ELEMENT_P2 .or. element == ELEMENT_Q2) then
+            ! Quadratic field, in the P2/Q2 space: K u = int f.v + int (sigma n).v with
+            ! f = -div sigma constant; the integrals are exact with the rules used.
+            u = quadratic_field(m)
+            call k%matvec(u, ku)
+            load = quadratic_body_load(m)
+            call t%check_close('quadratic patch: body load sums to f_x area'//label, &
+                               sum(load(1::2)), body_force(1)*WIDTH*HEIGHT, 1.0e-13_wp)
+            call t%check('quadratic patch: K u = body load at interior nodes'//label, &
+                         maxval(abs(ku - load), mask=interior_dof) <= &
+                         RESIDUAL_TOL*norm_k*maxval(abs(u)))
+            load = load + quadratic_traction_load(m)
+            call t%check('quadratic patch: K u = body + traction load everywhere'//label, &
+                         maxval(abs(ku - load)) <= RESIDUAL_TOL*norm_k*maxval(abs(u)))
+        end if
+    end subroutine check_free
+
+    !> Top side clamped: the rigid modes are gone and K is positive definite.
+    subroutine check_clamped(element)
+        integer, intent(in) :: element
+        type(mesh_t) :: m
+        type(dof_map_t) :: dofs
+        type(csr_matrix_t) :: k
+        type(status_t) :: stat
+        real(wp), allocatable :: dense(:, :)
+        integer :: info, step
+        character(len=:), allocatable :: label
+
+        label = ' ('//element_name(element)//')'
+        step = merge(2, 1, element == ELEMENT_P2 .or. element == ELEMENT_Q2)
+        call structured_rectangle(WIDTH, HEIGHT, NX, NY, element, 'right', m, stat)
+        call build_dof_map(m, [m%part_index('top')], dofs, stat)
+        call t%check('top clamped: 2 (nodes - top row) free dofs'//label, &
+                     dofs%n_free == 2*(m%n_nodes() - (step*NX + 1)))
+        call assemble_stiffness(m, dofs, YOUNG, POISSON, k, stat)
+        call csr_to_dense(k, dense)
+        call t%check('top clamped: K equals the dense assembly'//label, &
+                     maxval(abs(dense - dense_assembly(m, dofs))) <= &
+                     1.0e-14_wp*maxval(abs(dense)))
+        call dpotrf('L', size(dense, 1), dense, size(dense, 1), info)
+        call t%check('top clamped: K is SPD (Cholesky succeeds)'//label, info == 0)
+    end subroutine check_clamped
+
+    subroutine check_errors()
+        type(mesh_t) :: m
+        type(dof_map_t) :: dofs
+        type(csr_matrix_t) :: k
+        type(status_t) :: stat
+        integer :: swap
+        call structured_rectangle(1.0_wp, 1.0_wp, 2, 2, ELEMENT_P1, 'right', m, stat)
+        call build_dof_map(m, [integer ::], dofs, stat)
+        ! Swapping two nodes of cell 5 turns it clockwise: det J = -2 area = -1/4.
+        swap = m%cells(2, 5)
+        m%cells(2, 5) = m%cells(3, 5)
+        m%cells(3, 5) = swap
+        call assemble_stiffness(m, dofs, YOUNG, POISSON, k, stat)
+        call t%check('inverted cell: STATUS_MESH', stat%code == STATUS_MESH)
+        if (allocated(stat%message)) then
+            call t%check('inverted cell: message names cell 5 and det J = -2.5E-01', &
+                         index(stat%message, 'mesh: cell 5 is inverted or degenerate '// &
+                               '(Jacobian determinant -2.50000E-01)') == 1)
+        end if
+        call assemble_stiffness(m, dofs, YOUNG, 0.5_wp, k, stat)
+        call t%check('Poisson ratio 1/2: STATUS_BAD_INPUT', stat%code == STATUS_BAD_INPUT)
+        call assemble_stiffness(m, dofs, -1.0_wp, POISSON, k, stat)
+        call t%check('negative Young modulus: STATUS_BAD_INPUT', stat%code == STATUS_BAD_INPUT)
+        call check_general_numbering()
+        call build_dof_map(m, [7], dofs, stat)
+        call t%check('unknown Dirichlet part index: STATUS_BAD_INPUT', &
+                     stat%code == STATUS_BAD_INPUT)
+    end subroutine check_errors
+
+    !> A numbering that is not node-major (here: reversed) takes the general pattern path.
+    subroutine check_general_numbering()
+        type(mesh_t) :: m
+        type(dof_map_t) :: dofs
+        type(csr_matrix_t) :: k
+        type(status_t) :: stat
+        real(wp), allocatable :: dense(:, :)
+        call structured_rectangle(WIDTH, HEIGHT, NX, NY, ELEMENT_P2, 'left', m, stat)
+        call build_dof_map(m, [m%part_index('left')], dofs, stat)
+        where (dofs%free_dof > 0) dofs%free_dof = dofs%n_free + 1 - dofs%free_dof
+        call assemble_stiffness(m, dofs, YOUNG, POISSON, k, stat)
+        call csr_to_dense(k, dense)
+        call t%check('reversed dof numbering: K equals the dense assembly', stat%ok() .and. &
+                     maxval(abs(dense - dense_assembly(m, dofs))) <= &
+                     1.0e-14_wp*maxval(abs(dense)))
+    end subroutine check_general_numbering
+
+    !> Dense K summed directly from element_stiffness, independent of the CSR code.
+    function dense_assembly(m, dofs) result(a)
+        type(mesh_t), intent(in) :: m
+        type(dof_map_t), intent(in) :: dofs
+        real(wp), allocatable :: a(:, :)
+        real(wp), allocatable :: ke(:, :)
+        integer, allocatable :: d(:)
+        integer :: cell, i, j, info
+        allocate (a(dofs%n_free, dofs%n_free), source=0.0_wp)
+        allocate (ke(2*size(m%cells, 1), 2*size(m%cells, 1)))
+        do cell = 1, m%n_cells()
+            call element_stiffness(m%element, m%coords(:, m%cells(:, cell)), YOUNG, POISSON, &
+                                   ke, info)
+            d = cell_dofs(dofs, m, cell)
+            do j = 1, size(d)
+                do i = 1, size(d)
+                    if (d(i) > 0 .and. d(j) > 0) a(d(i), d(j)) = a(d(i), d(j)) + ke(i, j)
+                end do
+            end do
+        end do
+    end function dense_assembly
+
+    subroutine csr_to_dense(k, a)
+        type(csr_matrix_t), intent(in) :: k
+        real(wp), allocatable, intent(out) :: a(:, :)
+        integer :: i, s
+        allocate (a(k%n(), k%n()), source=0.0_wp)
+        do i = 1, k%n()
+            do s = k%row_start(i), k%row_start(i + 1) - 1
+                a(i, k%col(s)) = k%val(s)
+            end do
+        end do
+    end subroutine csr_to_dense
+
+    logical function pattern_symmetric(k)
+        type(csr_matrix_t), intent(in) :: k
+        integer :: i, s
+        pattern_symmetric = .true.
+        do i = 1, k%n()
+            do s = k%row_start(i), k%row_start(i + 1) - 1
+                if (k%slot(k%col(s), i) == 0) pattern_symmetric = .false.
+            end do
+        end do
+    end function pattern_symmetric
+
+    !> Translations along x (1) and y (2) and the infinitesimal rotation (-y, x) (3), as
+    !> vectors of the all-free system (dof 2 node - 1 is u_x, 2 node is u_y).
+    function rigid_mode(m, which) result(u)
+        type(mesh_t), intent(in) :: m
+        integer, intent(in) :: which
+        real(wp), allocatable :: u(:)
+        allocate (u(2*m%n_nodes()), source=0.0_wp)
+        select case (which)
+        case (1); u(1::2) = 1.0_wp
+        case (2); u(2::2) = 1.0_wp
+        case (3)
+            u(1::2) = -m%coords(2, :)
+            u(2::2) = m%coords(1, :)
+        end select
+    end function rigid_mode
+
+    function linear_field(m) result(u)
+        type(mesh_t), intent(in) :: m
+        real(wp), allocatable :: u(:)
+        allocate (u(2*m%n_nodes()))
+        u(1::2) = LIN(1) + LIN(2)*m%coords(1, :) + LIN(3)*m%coords(2, :)
+        u(2::2) = LIN(4) + LIN(5)*m%coords(1, :) + LIN(6)*m%coords(2, :)
+    end function linear_field
+
+    !> Outward unit normal of a side of the rectangle, from its part name.
+    function side_normal(name) result(n)
+        character(len=*), intent(in) :: name
+        real(wp) :: n(2)
+        select case (trim(name))
+        case ('bottom'); n = [0.0_wp, -1.0_wp]
+        case ('right'); n = [1.0_wp, 0.0_wp]
+        case ('top'); n = [0.0_wp, 1.0_wp]
+        case default; n = [-1.0_wp, 0.0_wp]
+        end select
+    end function side_normal
+
+    !> Consistent nodal forces of the constant traction sigma(u) n of the linear field:
+    !> int N_a ds over a straight edge of length h is h/2 for each end of a 2-node edge,
+    !> and h/6, h/6, 2h/3 (Simpson) for the ends and mid node of a 3-node edge.
+    function linear_traction_load(m) result(load)
+        type(mesh_t), intent(in) :: m
+        real(wp), allocatable :: load(:)
+        real(wp) :: stress(3), traction(2), n(2), h, weights(3)
+        integer :: e, a, node
+        allocate (load(2*m%n_nodes()), source=0.0_wp)
+        stress = matmul(plane_strain_matrix(YOUNG, POISSON), [LIN(2), LIN(6), LIN(3) + LIN(5)])
+        do e = 1, size(m%edges, 2)
+            n = side_normal(m%part_names(m%edge_part(e)))
+            traction = [stress(1)*n(1) + stress(3)*n(2), stress(3)*n(1) + stress(2)*n(2)]
+            h = norm2(m%coords(:, m%edges(2, e)) - m%coords(:, m%edges(1, e)))
+            if (size(m%edges, 1) == 2) then
+                weights(1:2) = [0.5_wp, 0.5_wp]
+            else
+                weights = [1.0_wp, 1.0_wp, 4.0_wp]/6.0_wp
+            end if
+            do a = 1, size(m%edges, 1)
+                node = m%edges(a, e)
+                load(2*node - 1:2*node) = load(2*node - 1:2*node) + weights(a)*h*traction
+            end do
+        end do
+    end function linear_traction_load
+
+    function quadratic_field(m) result(u)
+        type(mesh_t), intent(in) :: m
+        real(wp), allocatable :: u(:)
+        allocate (u(2*m%n_nodes()))
+        associate (x => m%coords(1, :), y => m%coords(2, :))
+            u(1::2) = QUAD(1)*x**2 + QUAD(2)*x*y + QUAD(3)*y**2
+            u(2::2) = QUAD(4)*x**2 + QUAD(5)*x*y + QUAD(6)*y**2
+        end associate
+    end function quadratic_field
+
+    !> Voigt stress of the quadratic field at x: eps_xx = 2 al x + be y, eps_yy = ep x +
+    !> 2 ze y, gamma_xy = (be + 2 de) x + (2 ga + ep) y.
+    function quadratic_stress(x) result(stress)
+        real(wp), intent(in) :: x(2)
+        real(wp) :: stress(3), d(3, 3), strain(3)
+        d = plane_strain_matrix(YOUNG, POISSON)
+        strain = [2*QUAD(1)*x(1) + QUAD(2)*x(2), QUAD(5)*x(1) + 2*QUAD(6)*x(2), &
+                  (QUAD(2) + 2*QUAD(4))*x(1) + (2*QUAD(3) + QUAD(5))*x(2)]
+        stress = matmul(d, strain)
+    end function quadratic_stress
+
+    !> f = -div sigma of the quadratic field, constant:
+    !> (div sigma)_x = 2 al (L + 2G) + ep L + G (2 ga + ep),
+    !> (div sigma)_y = G (be + 2 de) + be L + 2 ze (L + 2G).
+    function body_force(component) result(f)
+        integer, intent(in) :: component
+        real(wp) :: f, lame_l, shear_g
+        call lame_coefficients(YOUNG, POISSON, lame_l, shear_g)
+        if (component == 1) then
+            f = -(2*QUAD(1)*(lame_l + 2*shear_g) + QUAD(5)*lame_l + &
+                  shear_g*(2*QUAD(3) + QUAD(5)))
+        else
+            f = -(shear_g*(QUAD(2) + 2*QUAD(4)) + QUAD(2)*lame_l + &
+                  2*QUAD(6)*(lame_l + 2*shear_g))
+        end if
+    end function body_force
+
+    !> int f N_a over the mesh with the shape functions and the stiffness rule (degree 2 on
+    !> P2 triangles, 3 x 3 Gauss on Q2 rectangles: exact for these affine cells).
+    function quadratic_body_load(m) result(load)
+        type(mesh_t), intent(in) :: m
+        real(wp), allocatable :: load(:)
+        type(quadrature_rule_t) :: rule
+        real(wp) :: values(MAX_NODES), gradients(2, MAX_NODES), jacobian(2, 2), det, f(2)
+        integer :: cell, q, a, node, n
+        allocate (load(2*m%n_nodes()), source=0.0_wp)
+        f = [body_force(1), body_force(2)]
+        rule = stiffness_rule(m%element)
+        n = element_nodes_per_cell(m%element)
+        do cell = 1, m%n_cells()
+            do q = 1, rule%n_points
+                call evaluate_shape(m%element, rule%points(:, q), values, gradients)
+                call jacobian_at(m%element, m%coords(:, m%cells(:, cell)), rule%points(:, q), &
+                                 jacobian, det)
+                do a = 1, n
+                    node = m%cells(a, cell)
+                    load(2*node - 1:2*node) = load(2*node - 1:2*node) + &
+                                              rule%weights(q)*det*values(a)*f
+                end do
+            end do
+        end do
+    end function quadratic_body_load
+
+    !> int (sigma n) N_a ds over the boundary edges, 3-point Gauss (exact: sigma is linear
+    !> and N_a quadratic along a straight edge).
+    function quadratic_traction_load(m) result(load)
+        type(mesh_t), intent(in) :: m
+        real(wp), allocatable :: load(:)
+        type(quadrature_rule_t) :: rule
+        real(wp) :: values(3), derivatives(3), x(2), n(2), stress(3), traction(2), h
+        integer :: e, q, a, node
+        allocate (load(2*m%n_nodes()), source=0.0_wp)
+        rule = line_rule(3)
+        do e = 1, size(m%edges, 2)
+            n = side_normal(m%part_names(m%edge_part(e)))
+            h = norm2(m%coords(:, m%edges(2, e)) - m%coords(:, m%edges(1, e)))
+            do q = 1, rule%n_points
+                call evaluate_line_shape(3, rule%points(1, q), values, derivatives)
+                x = matmul(m%coords(:, m%edges(:, e)), values)
+                stress = quadratic_stress(x)
+                traction = [stress(1)*n(1) + stress(3)*n(2), stress(3)*n(1) + stress(2)*n(2)]
+                do a = 1, 3
+                    node = m%edges(a, e)
+                    ! ds = (h/2) ds_ref on [-1, 1].
+                    load(2*node - 1:2*node) = load(2*node - 1:2*node) + &
+                                              rule%weights(q)*0.5_wp*h*values(a)*traction
+                end do
+            end do
+        end do
+    end function quadratic_traction_load
+end program test_assembly
