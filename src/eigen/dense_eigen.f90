@@ -1,0 +1,182 @@
+! SPDX-License-Identifier: MIT
+!> The dense solver: all p nonzero eigenvalues of K phi = mu B phi through the reduced p x p
+!> problem (lambda Kt_nt - Kt_nn) M y = (1/mu) y of SPEC section 3, with LAPACK dgeevx for
+!> eigenvalues, eigenvectors and condition numbers, then the full eigenvectors
+!> phi = mu K^-1 B phi and their backward errors on the sparse pencil.
+module dense_eigen
+    use kinds, only: wp
+    use timer, only: wall_time
+    use status, only: status_t, STATUS_SOLVER
+    use csr_matrix, only: csr_matrix_t
+    use sparse_cholesky, only: cholesky_t
+    use contact_boundary, only: contact_t
+    use spectrum, only: spectrum_t, order_eigenvalues, backward_error, normalise_mode
+    use lapack_interfaces, only: dgeevx, dgemm, dsyrk, lapack_info_message
+    implicit none
+    private
+    public :: contact_flexibility, dense_spectrum
+
+    !> Right-hand sides per forward solve: enough for BLAS-3 speed inside CHOLMOD, small
+    !> enough that the block costs little memory next to the n x p result.
+    integer, parameter :: RHS_BLOCK = 64
+
+contains
+
+    !> Kt_nn = N K^-1 N^T and Kt_nt = N K^-1 T^T (p x p). With K = P^T L L^T P,
+    !> X^T K^-1 Y = (L^-1 P X)^T (L^-1 P Y), so forward solves and one product suffice.
+    subroutine contact_flexibility(chol, contact, n_free, kt_nn, kt_nt, stat)
+        type(cholesky_t), intent(inout) :: chol
+        type(contact_t), intent(in) :: contact
+        integer, intent(in) :: n_free
+        real(wp), allocatable, intent(out) :: kt_nn(:, :), kt_nt(:, :)
+        type(status_t), intent(out) :: stat
+        real(wp), allocatable :: wn(:, :), w_block(:, :)
+        integer :: p, first, last, i, j
+
+        p = contact%p()
+        allocate (wn(n_free, p), kt_nn(p, p), kt_nt(p, p))
+        do first = 1, p, RHS_BLOCK
+            last = min(p, first + RHS_BLOCK - 1)
+            call forward_block(contact%normal, first, last, w_block, stat)
+            if (.not. stat%ok()) return
+            wn(:, first:last) = w_block
+        end do
+        call dsyrk('U', 'T', p, n_free, 1.0_wp, wn, n_free, 0.0_wp, kt_nn, p)
+        do j = 1, p
+            do i = j + 1, p
+                kt_nn(i, j) = kt_nn(j, i)
+            end do
+        end do
+        do first = 1, p, RHS_BLOCK
+            last = min(p, first + RHS_BLOCK - 1)
+            call forward_block(contact%tangent, first, last, w_block, stat)
+            if (.not. stat%ok()) return
+            call dgemm('T', 'N', p, last - first + 1, n_free, 1.0_wp, wn, n_free, w_block, &
+                       n_free, 0.0_wp, kt_nt(1, first), p)
+        end do
+
+    contains
+
+        !> L^-1 P applied to the columns first..last of X^T (X = N or T).
+        subroutine forward_block(direction, first, last, w, stat)
+            real(wp), intent(in) :: direction(2)
+            integer, intent(in) :: first, last
+            real(wp), allocatable, intent(out) :: w(:, :)
+            type(status_t), intent(out) :: stat
+            real(wp), allocatable :: rhs(:, :)
+            integer :: a
+            allocate (rhs(n_free, last - first + 1), source=0.0_wp)
+            allocate (w(n_free, last - first + 1))
+            do a = first, last
+                rhs(contact%dofs(:, a), a - first + 1) = direction
+            end do
+            call chol%forward(rhs, w, stat)
+        end subroutine forward_block
+    end subroutine contact_flexibility
+
+    !> All nonzero eigenvalues of K phi = mu B phi (B for `lambda`), in output order; the full
+    !> eigenvectors of the first `n_keep` are kept. `chol` holds the factor of K.
+    subroutine dense_spectrum(k, b, chol, contact, lambda, n_keep, spec, stat, reduction_seconds)
+        type(csr_matrix_t), intent(in) :: k, b
+        type(cholesky_t), intent(inout) :: chol
+        type(contact_t), intent(in) :: contact
+        real(wp), intent(in) :: lambda
+        integer, intent(in) :: n_keep
+        type(spectrum_t), intent(out) :: spec
+        type(status_t), intent(out) :: stat
+        real(wp), intent(out), optional :: reduction_seconds   !! time to form the p x p matrix
+        real(wp), allocatable :: kt_nn(:, :), kt_nt(:, :), a(:, :), wr(:), wi(:), vl(:, :), &
+                                 vr(:, :), scale(:), rconde(:), rcondv(:), work(:), rhs(:, :), &
+                                 g(:, :), mass_vr(:, :), condition(:)
+        integer, allocatable :: iwork(:), order(:), kinds(:), keep(:)
+        complex(wp), allocatable :: theta(:), mu(:), phi(:)
+        real(wp) :: abnrm, query(1), start
+        integer :: p, n_free, ilo, ihi, info, j, i, n_ev
+
+        p = contact%p()
+        n_free = k%n()
+        start = wall_time()
+        call contact_flexibility(chol, contact, n_free, kt_nn, kt_nt, stat)
+        if (.not. stat%ok()) return
+        a = matmul(lambda*kt_nt - kt_nn, contact%mass_dense())
+        deallocate (kt_nn, kt_nt)
+        if (present(reduction_seconds)) reduction_seconds = wall_time() - start
+
+        allocate (wr(p), wi(p), vl(p, p), vr(p, p), scale(p), rconde(p), rcondv(p))
+        allocate (iwork(max(1, 2*p - 2)))
+        call dgeevx('B', 'V', 'V', 'E', p, a, p, wr, wi, vl, p, vr, p, ilo, ihi, scale, abnrm, &
+                    rconde, rcondv, query, -1, iwork, info)
+        allocate (work(max(1, int(query(1)))))
+        call dgeevx('B', 'V', 'V', 'E', p, a, p, wr, wi, vl, p, vr, p, ilo, ihi, scale, abnrm, &
+                    rconde, rcondv, work, size(work), iwork, info)
+        if (info /= 0) then
+            call stat%fail(STATUS_SOLVER, lapack_info_message('dgeevx', info))
+            return
+        end if
+        deallocate (a, vl, work)
+
+        ! theta = 1/mu. theta = 0 (mu infinite) happens only exactly at a critical lambda.
+        theta = cmplx(wr, wi, wp)
+        keep = pack([(j, j=1, p)], abs(theta) > 0.0_wp)
+        n_ev = size(keep)
+        allocate (mu(p), source=(0.0_wp, 0.0_wp))
+        allocate (condition(p), source=-1.0_wp)
+        do j = 1, p
+            if (abs(theta(j)) > 0.0_wp) then
+                mu(j) = 1.0_wp/theta(j)
+                if (.not. (abs(wi(j)) > 0.0_wp)) mu(j) = cmplx(1.0_wp/wr(j), 0.0_wp, wp)
+                ! relative condition of theta (hence of mu = 1/theta) on the balanced matrix
+                condition(j) = abnrm/(rconde(j)*abs(theta(j)))
+            end if
+        end do
+
+        ! phi = mu K^-1 (lambda T^T - N^T) M y for every eigenvector y: one multi-RHS solve
+        ! on the real and imaginary parts as LAPACK stores them (consecutive columns).
+        allocate (mass_vr(p, p), rhs(n_free, p), g(n_free, p))
+        do j = 1, p
+            call contact%mass%matvec(vr(:, j), mass_vr(:, j))
+        end do
+        rhs = 0.0_wp
+        do j = 1, p
+            call contact%scatter(lambda*contact%tangent - contact%normal, mass_vr(:, j), &
+                                 rhs(:, j))
+        end do
+        call chol%solve(rhs, g, stat)
+        if (.not. stat%ok()) return
+        deallocate (rhs, mass_vr)
+
+        allocate (order(n_ev), kinds(n_ev))
+        call order_eigenvalues(mu(keep), .not. (abs(wi(keep)) > 0.0_wp), order, kinds)
+        spec%mu = mu(keep(order))
+        spec%kind = kinds
+        spec%condition = condition(keep(order))
+        allocate (spec%residual(n_ev), spec%vectors(n_free, min(n_keep, n_ev)))
+        allocate (phi(n_free))
+        do i = 1, n_ev
+            j = keep(order(i))
+            phi = eigenvector(j)
+            spec%residual(i) = backward_error(k, b, mu(j), phi)
+            if (i <= size(spec%vectors, 2)) then
+                call normalise_mode(phi)
+                spec%vectors(:, i) = phi
+            end if
+        end do
+
+    contains
+
+        !> Full eigenvector j from the solved columns: a complex pair (j, j+1) with wi(j) > 0
+        !> is stored as real part in column j and imaginary part in column j + 1.
+        function eigenvector(j) result(v)
+            integer, intent(in) :: j
+            complex(wp) :: v(n_free)
+            ! LAPACK returns an exactly zero imaginary part for a real eigenvalue
+            if (.not. (abs(wi(j)) > 0.0_wp)) then
+                v = mu(j)*g(:, j)
+            else if (wi(j) > 0.0_wp) then
+                v = mu(j)*cmplx(g(:, j), g(:, j + 1), wp)
+            else
+                v = mu(j)*cmplx(g(:, j - 1), -g(:, j), wp)
+            end if
+        end function eigenvector
+    end subroutine dense_spectrum
+end module dense_eigen

@@ -1,0 +1,65 @@
+! SPDX-License-Identifier: MIT
+!> Explicit interfaces of the LAPACK and BLAS routines nceig calls, so that argument
+!> mistakes are compile-time errors, and a pure function that explains LAPACK's info codes.
+module lapack_interfaces
+    use kinds, only: wp
+    use strings, only: to_string
+    implicit none
+    private
+    public :: dgeevx, dggev, dgemm, dsyrk, lapack_info_message
+
+    interface
+        subroutine dgeevx(balanc, jobvl, jobvr, sense, n, a, lda, wr, wi, vl, ldvl, vr, ldvr, &
+                          ilo, ihi, scale, abnrm, rconde, rcondv, work, lwork, iwork, info)
+            import :: wp
+            character(len=1), intent(in) :: balanc, jobvl, jobvr, sense
+            integer, intent(in) :: n, lda, ldvl, ldvr, lwork
+            real(wp), intent(inout) :: a(lda, *)
+            real(wp), intent(out) :: wr(*), wi(*), vl(ldvl, *), vr(ldvr, *), scale(*)
+            real(wp), intent(out) :: abnrm, rconde(*), rcondv(*), work(*)
+            integer, intent(out) :: ilo, ihi, iwork(*), info
+        end subroutine dgeevx
+
+        subroutine dggev(jobvl, jobvr, n, a, lda, b, ldb, alphar, alphai, beta, vl, ldvl, &
+                         vr, ldvr, work, lwork, info)
+            import :: wp
+            character(len=1), intent(in) :: jobvl, jobvr
+            integer, intent(in) :: n, lda, ldb, ldvl, ldvr, lwork
+            real(wp), intent(inout) :: a(lda, *), b(ldb, *)
+            real(wp), intent(out) :: alphar(*), alphai(*), beta(*), vl(ldvl, *), vr(ldvr, *)
+            real(wp), intent(out) :: work(*)
+            integer, intent(out) :: info
+        end subroutine dggev
+
+        subroutine dgemm(transa, transb, m, n, k, alpha, a, lda, b, ldb, beta, c, ldc)
+            import :: wp
+            character(len=1), intent(in) :: transa, transb
+            integer, intent(in) :: m, n, k, lda, ldb, ldc
+            real(wp), intent(in) :: alpha, beta, a(lda, *), b(ldb, *)
+            real(wp), intent(inout) :: c(ldc, *)
+        end subroutine dgemm
+
+        subroutine dsyrk(uplo, trans, n, k, alpha, a, lda, beta, c, ldc)
+            import :: wp
+            character(len=1), intent(in) :: uplo, trans
+            integer, intent(in) :: n, k, lda, ldc
+            real(wp), intent(in) :: alpha, beta, a(lda, *)
+            real(wp), intent(inout) :: c(ldc, *)
+        end subroutine dsyrk
+    end interface
+
+contains
+
+    !> A sentence for a nonzero LAPACK info from routine `routine`.
+    pure function lapack_info_message(routine, info) result(text)
+        character(len=*), intent(in) :: routine
+        integer, intent(in) :: info
+        character(len=:), allocatable :: text
+        if (info < 0) then
+            text = routine//': argument '//to_string(-info)//' had an illegal value (a bug)'
+        else
+            text = routine//': the QR/QZ iteration failed to converge (info = '// &
+                   to_string(info)//'); no eigenvalues are reliable'
+        end if
+    end function lapack_info_message
+end module lapack_interfaces

@@ -1,0 +1,123 @@
+! SPDX-License-Identifier: MIT
+!> The computed eigenvalues mu of K phi = mu B phi, whatever solver found them: their kind,
+!> backward errors and condition numbers, in the output order of SPEC section 7 (positive
+!> real ascending, negative real by modulus, complex by modulus), and the full eigenvectors
+!> of the first few.
+module spectrum
+    use kinds, only: wp
+    use csr_matrix, only: csr_matrix_t
+    implicit none
+    private
+    public :: spectrum_t, kind_name, order_eigenvalues, backward_error, normalise_mode
+    public :: KIND_POSITIVE, KIND_NEGATIVE, KIND_COMPLEX
+
+    integer, parameter :: KIND_POSITIVE = 1
+    integer, parameter :: KIND_NEGATIVE = 2
+    integer, parameter :: KIND_COMPLEX = 3
+
+    type, public :: spectrum_t
+        complex(wp), allocatable :: mu(:)          !! (n_ev) in output order
+        integer, allocatable :: kind(:)            !! KIND_* of each
+        real(wp), allocatable :: residual(:)       !! relative backward error on (K, B)
+        real(wp), allocatable :: condition(:)      !! relative condition number; < 0: unknown
+        complex(wp), allocatable :: vectors(:, :)  !! (n_free, n_kept) modes of the first n_kept
+        integer :: n_operator = 0                  !! operator applications (iterative solvers)
+    contains
+        procedure :: n => spectrum_n
+        procedure :: lowest_positive => spectrum_lowest_positive
+        procedure :: max_residual => spectrum_max_residual
+    end type spectrum_t
+
+contains
+
+    pure integer function spectrum_n(this)
+        class(spectrum_t), intent(in) :: this
+        spectrum_n = 0
+        if (allocated(this%mu)) spectrum_n = size(this%mu)
+    end function spectrum_n
+
+    !> Index of the lowest positive real eigenvalue (the output order puts it first), or 0.
+    pure integer function spectrum_lowest_positive(this)
+        class(spectrum_t), intent(in) :: this
+        spectrum_lowest_positive = 0
+        if (this%n() == 0) return
+        if (this%kind(1) == KIND_POSITIVE) spectrum_lowest_positive = 1
+    end function spectrum_lowest_positive
+
+    pure real(wp) function spectrum_max_residual(this)
+        class(spectrum_t), intent(in) :: this
+        spectrum_max_residual = 0.0_wp
+        if (this%n() > 0) spectrum_max_residual = maxval(this%residual)
+    end function spectrum_max_residual
+
+    pure function kind_name(kind) result(name)
+        integer, intent(in) :: kind
+        character(len=:), allocatable :: name
+        select case (kind)
+        case (KIND_POSITIVE); name = 'positive'
+        case (KIND_NEGATIVE); name = 'negative'
+        case default; name = 'complex'
+        end select
+    end function kind_name
+
+    !> Permutation putting eigenvalues in output order; `is_real` says which are real (the
+    !> solver decides: LAPACK returns exact zero imaginary parts for real eigenvalues).
+    !> A conjugate pair stays together, positive imaginary part first.
+    pure subroutine order_eigenvalues(mu, is_real, order, kinds)
+        complex(wp), intent(in) :: mu(:)
+        logical, intent(in) :: is_real(:)
+        integer, intent(out) :: order(:), kinds(:)
+        real(wp) :: key(size(mu))
+        integer :: i, j, pick, k(size(mu))
+        do i = 1, size(mu)
+            if (.not. is_real(i)) then
+                k(i) = KIND_COMPLEX
+                ! modulus, then the member with positive imaginary part first
+                key(i) = abs(mu(i)) + merge(0.0_wp, spacing(abs(mu(i))), aimag(mu(i)) > 0.0_wp)
+            else if (real(mu(i), wp) > 0.0_wp) then
+                k(i) = KIND_POSITIVE
+                key(i) = real(mu(i), wp)
+            else
+                k(i) = KIND_NEGATIVE
+                key(i) = abs(real(mu(i), wp))
+            end if
+        end do
+        order = [(i, i=1, size(mu))]
+        ! selection sort on (kind, key): n_ev is at most a few thousand, done once
+        do i = 1, size(mu)
+            pick = i
+            do j = i + 1, size(mu)
+                if (k(order(j)) < k(order(pick)) .or. (k(order(j)) == k(order(pick)) .and. &
+                    key(order(j)) < key(order(pick)))) pick = j
+            end do
+            if (pick /= i) order([i, pick]) = order([pick, i])
+        end do
+        kinds = k(order)
+    end subroutine order_eigenvalues
+
+    !> Relative backward error ||K phi - mu B phi|| / ((||K|| + |mu| ||B||) ||phi||) in the
+    !> infinity norm (a subordinate norm, so the formula is exact for that norm).
+    function backward_error(k, b, mu, phi) result(eta)
+        type(csr_matrix_t), intent(in) :: k, b
+        complex(wp), intent(in) :: mu, phi(:)
+        real(wp) :: eta
+        real(wp), allocatable :: k_re(:), k_im(:), b_re(:), b_im(:)
+        real(wp) :: r_norm
+        allocate (k_re(size(phi)), k_im(size(phi)), b_re(size(phi)), b_im(size(phi)))
+        call k%matvec(real(phi, wp), k_re)
+        call k%matvec(aimag(phi), k_im)
+        call b%matvec(real(phi, wp), b_re)
+        call b%matvec(aimag(phi), b_im)
+        r_norm = maxval(abs(cmplx(k_re, k_im, wp) - mu*cmplx(b_re, b_im, wp)))
+        eta = r_norm/((k%norm_inf() + abs(mu)*b%norm_inf())*maxval(abs(phi)))
+    end function backward_error
+
+    !> Scale a mode so that its largest entry is 1 (real): the real part then carries the
+    !> shape a user expects to see in ParaView, and runs are comparable.
+    pure subroutine normalise_mode(phi)
+        complex(wp), intent(inout) :: phi(:)
+        integer :: i
+        i = maxloc(abs(phi), dim=1)
+        if (abs(phi(i)) > 0.0_wp) phi = phi/phi(i)
+    end subroutine normalise_mode
+end module spectrum
