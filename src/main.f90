@@ -1,6 +1,71 @@
 ! SPDX-License-Identifier: MIT
+!> nceig INPUT.nml: read input -> build the problem -> solve -> write outputs -> summary.
+!> The only place that prints, and the only place that ends the process on an error.
 program nceig
+    use iso_fortran_env, only: error_unit, output_unit
+    use kinds, only: wp
+    use status, only: status_t, STATUS_BAD_INPUT
     use version, only: NCEIG_VERSION
+    use process_exit, only: exit_with
+    use timer, only: wall_time, timings_t
+    use run_config, only: config_t
+    use input_config, only: read_input, help_text
+    use problem, only: problem_t, build_problem
+    use eigen_analysis, only: eigen_result_t, solve_eigen
+    use results_output, only: write_eigen_outputs, summary_lines
     implicit none
-    print '(a)', 'nceig '//NCEIG_VERSION
+
+    type(config_t) :: config
+    type(problem_t) :: prob
+    type(eigen_result_t) :: res
+    type(timings_t) :: timings
+    type(status_t) :: stat
+    character(len=:), allocatable :: argument
+    real(wp) :: start, phase
+    integer :: length
+
+    if (command_argument_count() /= 1) then
+        write (error_unit, '(a)') 'nceig: expected one argument: nceig INPUT.nml | --help | '// &
+            '--version'
+        call exit_with(STATUS_BAD_INPUT)
+    end if
+    call get_command_argument(1, length=length)
+    allocate (character(len=length) :: argument)
+    call get_command_argument(1, argument)
+    select case (argument)
+    case ('--help', '-h')
+        write (output_unit, '(a)') help_text()
+        call exit_with(0)
+    case ('--version', '-V')
+        write (output_unit, '(a)') 'nceig '//NCEIG_VERSION
+        call exit_with(0)
+    end select
+
+    start = wall_time()
+    call read_input(argument, config, stat)
+    call stop_on_failure(stat)
+
+    phase = wall_time()
+    call build_problem(config, prob, stat)
+    call stop_on_failure(stat)
+    timings%assembly = wall_time() - phase
+
+    select case (config%analysis%kind)
+    case default
+        call solve_eigen(config, prob, config%analysis%lambda, res, timings, stat)
+        call stop_on_failure(stat)
+        call write_eigen_outputs(config, prob, res, start, timings, stat)
+        call stop_on_failure(stat)
+        write (output_unit, '(a)') summary_lines(config, prob, res, timings)
+    end select
+
+contains
+
+    !> One line on standard error and a non-zero exit: 2 for bad input, the status code else.
+    subroutine stop_on_failure(stat)
+        type(status_t), intent(in) :: stat
+        if (stat%ok()) return
+        write (error_unit, '(a)') 'nceig: '//stat%message
+        call exit_with(stat%code)
+    end subroutine stop_on_failure
 end program nceig

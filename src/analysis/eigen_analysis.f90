@@ -1,0 +1,77 @@
+! SPDX-License-Identifier: MIT
+!> analysis = 'eigen': the boundary eigenproblem K phi = mu B phi for one lambda, solved by
+!> the solver the input asks for, with the phase timings of SPEC section 7.
+module eigen_analysis
+    use kinds, only: wp
+    use status, only: status_t
+    use timer, only: wall_time, timings_t
+    use run_config, only: config_t
+    use problem, only: problem_t
+    use csr_matrix, only: csr_matrix_t
+    use sparse_cholesky, only: cholesky_t
+    use contact_boundary, only: assemble_b
+    use spectrum, only: spectrum_t
+    use dense_eigen, only: dense_spectrum
+    implicit none
+    private
+    public :: eigen_result_t, solve_eigen, choose_solver
+
+    type, public :: eigen_result_t
+        real(wp) :: lambda = 0.0_wp
+        character(len=:), allocatable :: solver   !! the solver actually used
+        type(csr_matrix_t) :: b                   !! B for this lambda
+        type(spectrum_t) :: spec
+    end type eigen_result_t
+
+contains
+
+    !> 'auto' means dense while the p x p dense problem is cheap.
+    pure function choose_solver(requested, p, dense_max_contact) result(solver)
+        character(len=*), intent(in) :: requested
+        integer, intent(in) :: p, dense_max_contact
+        character(len=:), allocatable :: solver
+        solver = trim(requested)
+        if (solver == 'auto') then
+            solver = 'dense'
+            if (p > dense_max_contact) solver = 'arpack'
+        end if
+    end function choose_solver
+
+    !> Assemble B for `lambda`, factor K, and compute the spectrum.
+    subroutine solve_eigen(config, prob, lambda, res, timings, stat)
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(in) :: prob
+        real(wp), intent(in) :: lambda
+        type(eigen_result_t), intent(out) :: res
+        type(timings_t), intent(inout) :: timings
+        type(status_t), intent(out) :: stat
+        type(cholesky_t) :: chol
+        real(wp) :: start, reduction_seconds
+        integer :: n_keep
+
+        res%lambda = lambda
+        start = wall_time()
+        call assemble_b(prob%contact, prob%dofs%n_free, lambda, res%b, stat)
+        if (.not. stat%ok()) return
+        timings%assembly = timings%assembly + (wall_time() - start)
+
+        res%solver = choose_solver(config%eigen%solver, prob%contact%p(), &
+                                   config%eigen%dense_max_contact)
+        start = wall_time()
+        call chol%factor(prob%k, stat)
+        if (.not. stat%ok()) then
+            stat%message = 'stiffness matrix K: '//stat%message
+            return
+        end if
+        timings%factor = timings%factor + (wall_time() - start)
+
+        n_keep = max(1, config%output%modes)
+        start = wall_time()
+        call dense_spectrum(prob%k, res%b, chol, prob%contact, lambda, n_keep, res%spec, stat, &
+                            reduction_seconds)
+        call chol%free()
+        if (.not. stat%ok()) return
+        timings%reduction = timings%reduction + reduction_seconds
+        timings%eigen = timings%eigen + (wall_time() - start - reduction_seconds)
+    end subroutine solve_eigen
+end module eigen_analysis

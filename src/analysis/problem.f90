@@ -1,0 +1,106 @@
+! SPDX-License-Identifier: MIT
+!> The discrete problem every analysis starts from: mesh, boundary parts, free dofs, the
+!> contact boundary and the stiffness matrix K on the free dofs.
+module problem
+    use kinds, only: wp
+    use status, only: status_t, STATUS_BAD_INPUT
+    use run_config, only: config_t, NAME_LEN
+    use input_config, only: split_names
+    use mesh, only: mesh_t, element_from_name
+    use mesh_structured, only: structured_rectangle
+    use dof_map, only: dof_map_t, build_dof_map
+    use assembly, only: assemble_stiffness
+    use contact_boundary, only: contact_t, build_contact
+    use csr_matrix, only: csr_matrix_t
+    implicit none
+    private
+    public :: problem_t, build_problem
+
+    type, public :: problem_t
+        type(mesh_t) :: mesh
+        type(dof_map_t) :: dofs
+        type(contact_t) :: contact
+        type(csr_matrix_t) :: k                  !! stiffness on the free dofs
+        integer, allocatable :: dirichlet_parts(:), neumann_parts(:)
+        integer :: contact_part = 0
+        real(wp) :: young = 0.0_wp
+        real(wp) :: poisson = 0.0_wp
+    end type problem_t
+
+contains
+
+    !> Mesh the domain, resolve the boundary part names, number the free dofs, collect the
+    !> contact boundary and assemble K.
+    subroutine build_problem(config, prob, stat)
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(out) :: prob
+        type(status_t), intent(out) :: stat
+        integer, allocatable :: contact_parts(:)
+
+        select case (config%mesh%source)
+        case ('rectangle')
+            call structured_rectangle(config%mesh%width, config%mesh%height, config%mesh%nx, &
+                config%mesh%ny, element_from_name(config%mesh%element), config%mesh%diagonal, &
+                prob%mesh, stat)
+        case default
+            call stat%fail(STATUS_BAD_INPUT, config%input_file//': &mesh: source = '''// &
+                trim(config%mesh%source)//''': expected ''rectangle''')
+        end select
+        if (.not. stat%ok()) return
+
+        call resolve_parts('dirichlet', config%mesh%dirichlet, prob%dirichlet_parts, stat)
+        if (.not. stat%ok()) return
+        call resolve_parts('neumann', config%mesh%neumann, prob%neumann_parts, stat)
+        if (.not. stat%ok()) return
+        call resolve_parts('contact', config%mesh%contact, contact_parts, stat)
+        if (.not. stat%ok()) return
+        prob%contact_part = contact_parts(1)
+
+        prob%young = config%material%young
+        prob%poisson = config%material%poisson
+        call build_dof_map(prob%mesh, prob%dirichlet_parts, prob%dofs, stat)
+        if (.not. stat%ok()) return
+        call build_contact(prob%mesh, prob%contact_part, prob%dofs, prob%contact, stat)
+        if (.not. stat%ok()) then
+            stat%message = config%input_file//': &mesh: contact: '//stat%message
+            return
+        end if
+        call assemble_stiffness(prob%mesh, prob%dofs, prob%young, prob%poisson, prob%k, stat)
+
+    contains
+
+        !> Indices of the mesh's boundary parts named in `list`.
+        subroutine resolve_parts(variable, list, parts, stat)
+            character(len=*), intent(in) :: variable, list
+            integer, allocatable, intent(out) :: parts(:)
+            type(status_t), intent(out) :: stat
+            character(len=NAME_LEN), allocatable :: names(:)
+            character(len=:), allocatable :: known
+            integer :: i
+            allocate (names(0))   ! see split_names: avoids a false -Wuninitialized at -O3
+            names = split_names(list)
+            allocate (parts(size(names)))
+            do i = 1, size(names)
+                parts(i) = prob%mesh%part_index(trim(names(i)))
+                if (parts(i) == 0) then
+                    known = join(prob%mesh%part_names)
+                    call stat%fail(STATUS_BAD_INPUT, config%input_file//': &mesh: '//variable// &
+                        ' = '''//trim(list)//''': the mesh has no boundary part '''// &
+                        trim(names(i))//''' (it has: '//known//')')
+                    return
+                end if
+            end do
+        end subroutine resolve_parts
+
+        pure function join(words) result(text)
+            character(len=*), intent(in) :: words(:)
+            character(len=:), allocatable :: text
+            integer :: i
+            text = ''
+            do i = 1, size(words)
+                text = text//trim(words(i))
+                if (i < size(words)) text = text//', '
+            end do
+        end function join
+    end subroutine build_problem
+end module problem
