@@ -1,0 +1,9 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# Quick start 1: install what is missing, build (Release) and run the reference scene.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+bash "$root/scripts/install_deps.sh"
+bash "$root/scripts/build.sh" Release
+cd "$root"
+build/nceig input/square.nml

@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# The command-line contract of SPEC section 7 on a small reference scene: --help, --version,
+# the output files and their headers, and bad input giving one stderr line, a non-zero exit
+# and no output. Usage: cli_contract.sh NCEIG SOURCE_DIR
+set -u
+nceig=$1
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+passed=0 failed=0
+check() { if eval "$2"; then passed=$((passed + 1)); echo "PASS  $1"; else failed=$((failed + 1)); echo "FAIL  $1"; fi; }
+
+"$nceig" --version >"$work/version" 2>&1
+check '--version prints the version' 'grep -q "^nceig [0-9]" "$work/version"'
+"$nceig" --help >"$work/help" 2>&1
+check '--help lists every group' 'for g in mesh material analysis eigen output; do grep -q "&$g" "$work/help" || exit 1; done'
+"$nceig" >/dev/null 2>"$work/err"; rc=$?
+check 'no argument: non-zero exit and one stderr line' '[[ $rc -ne 0 && $(wc -l <"$work/err") -eq 1 ]]'
+
+cat >"$work/small.nml" <<NML
+&mesh nx = 6, ny = 6 /
+&output directory = '$work/out', modes = 2, matrices = .true. /
+NML
+"$nceig" "$work/small.nml" >"$work/stdout" 2>"$work/stderr"; rc=$?
+check 'small scene runs' '[[ $rc -eq 0 && ! -s "$work/stderr" ]]'
+for f in summary.json eigenvalues.csv mode_001.vtu mode_002.vtu K.mtx B.mtx; do
+    check "writes $f" '[[ -s "$work/out/$f" ]]'
+done
+check 'no staging folder left' '[[ -z $(ls -A "$work/out" | grep nceig-partial) ]]'
+check 'eigenvalues.csv header' '[[ $(head -1 "$work/out/eigenvalues.csv") == "index,re,im,kind,residual,condition" ]]'
+check 'summary.json has the contract keys' 'for k in analysis lambda element n_nodes n_dofs n_contact solver lowest_positive_mu critical_c_n critical_c_t slip_sign n_eigenvalues max_residual time_assembly_s time_factor_s time_eigen_s time_total_s; do grep -q "\"$k\":" "$work/out/summary.json" || exit 1; done'
+check 'stdout names the critical c_n' 'grep -q "critical c_n" "$work/stdout"'
+check 'K.mtx is Matrix Market' 'head -1 "$work/out/K.mtx" | grep -q "^%%MatrixMarket matrix coordinate real general"'
+
+bad() {  # name, namelist text, expected words in the message
+    local want=$3
+    printf '%s\n' "$2" >"$work/bad.nml"
+    rm -rf "$work/badout"
+    "$nceig" "$work/bad.nml" >/dev/null 2>"$work/err"; local rc=$?
+    check "bad input ($1): non-zero exit" '[[ $rc -ne 0 ]]'
+    check "bad input ($1): one stderr line naming $3" '[[ $(wc -l <"$work/err") -eq 1 ]] && grep -q "bad.nml" "$work/err" && grep -q -- "$want" "$work/err"'
+    check "bad input ($1): no output left" '[[ ! -e "$work/badout" ]]'
+}
+bad 'out of range' "&mesh nx = 0 / &output directory = '$work/badout' /" 'nx'
+bad 'unknown variable' "&mesh nxx = 3 / &output directory = '$work/badout' /" '&mesh'
+bad 'unknown element' "&mesh element = 'p7' / &output directory = '$work/badout' /" 'element'
+"$nceig" "$work/missing.nml" >/dev/null 2>"$work/err"; rc=$?
+check 'missing input file: non-zero exit, one line naming it' '[[ $rc -ne 0 && $(wc -l <"$work/err") -eq 1 ]] && grep -q missing.nml "$work/err"'
+
+echo "cli_contract: $passed passed, $failed failed"
+[[ $failed -eq 0 ]]

@@ -1,0 +1,251 @@
+! SPDX-License-Identifier: MIT
+!> The dense reduced solver against mathematics: the single element of SPEC section 4 in
+!> closed form, an independent dense QZ solve of the full pencil, scaling laws and residuals.
+program test_dense_eigen
+    use kinds, only: wp
+    use status, only: status_t
+    use testing, only: test_suite_t
+    use mesh, only: mesh_t, ELEMENT_P1, ELEMENT_Q1
+    use mesh_structured, only: structured_rectangle
+    use dof_map, only: dof_map_t, build_dof_map
+    use assembly, only: assemble_stiffness
+    use contact_boundary, only: contact_t, build_contact, assemble_b
+    use csr_matrix, only: csr_matrix_t
+    use sparse_cholesky, only: cholesky_t
+    use spectrum, only: spectrum_t, KIND_POSITIVE, KIND_NEGATIVE, KIND_COMPLEX
+    use dense_eigen, only: dense_spectrum
+    use lapack_interfaces, only: dggev
+    implicit none
+
+    type(test_suite_t) :: t
+    t%name = 'test_dense_eigen'
+    call single_element_closed_form(t)
+    call reduced_problem_matches_full_pencil(t)
+    call eigenvalues_scale_with_young_modulus(t)
+    call eigenvalues_scale_with_inverse_size(t)
+    call output_order_and_residuals(t)
+    call t%report()
+
+contains
+
+    !> SPEC section 4: mu = -6 G (L + 2G) / ((L (lambda + 1) + G (lambda + 3)) l) for the one
+    !> triangle A, B, C with B, C fixed and Gamma_C = [A, B]. The reduction is exact algebra on
+    !> a 2 x 2 system, so round-off is the only error: 1e-12 relative.
+    subroutine single_element_closed_form(t)
+        type(test_suite_t), intent(inout) :: t
+        real(wp), parameter :: LAMBDAS(6) = [-100.0_wp, -10.0_wp, -3.0_wp, -2.5_wp, 0.0_wp, &
+                                             5.0_wp]
+        real(wp), parameter :: SIZES(3) = [1.0_wp, 0.01_wp, 100.0_wp]
+        real(wp), parameter :: YOUNG = 1.0_wp, POISSON = 0.3_wp
+        real(wp) :: lame_l, shear_g, expected, l
+        type(spectrum_t) :: spec
+        type(mesh_t) :: m
+        character(len=80) :: what
+        integer :: i, s
+
+        lame_l = YOUNG*POISSON/((1.0_wp + POISSON)*(1.0_wp - 2.0_wp*POISSON))
+        shear_g = YOUNG/(2.0_wp*(1.0_wp + POISSON))
+        do s = 1, size(SIZES)
+            l = SIZES(s)
+            call single_triangle(l, m)
+            do i = 1, size(LAMBDAS)
+                call solve_scene(m, [2], 1, YOUNG, POISSON, LAMBDAS(i), spec)
+                expected = -6.0_wp*shear_g*(lame_l + 2.0_wp*shear_g)/ &
+                           ((lame_l*(LAMBDAS(i) + 1.0_wp) + shear_g*(LAMBDAS(i) + 3.0_wp))*l)
+                write (what, '(a, f7.1, a, es8.1)') 'single element mu, lambda =', LAMBDAS(i), &
+                    ', l =', l
+                call t%check(trim(what)//': one eigenvalue', spec%n() == 1)
+                if (spec%n() /= 1) cycle
+                call t%check_close(trim(what), real(spec%mu(1), wp), expected, 1.0e-12_wp)
+                call t%check(trim(what)//': sign decides the kind', &
+                    (expected > 0.0_wp .eqv. spec%kind(1) == KIND_POSITIVE))
+            end do
+        end do
+    end subroutine single_element_closed_form
+
+    !> The p nonzero theta = 1/mu of the reduced problem are the nonzero eigenvalues of the
+    !> full pencil (B, K), computed independently by LAPACK's QZ on dense n x n copies. The
+    !> other n - p are zero (B has rank p). Both computations are backward stable, so each mu
+    !> must agree within its reported relative condition number times eps, up to a factor
+    !> 1e3 for the dimension and the reference's own error: this also checks the condition
+    !> numbers themselves.
+    subroutine reduced_problem_matches_full_pencil(t)
+        type(test_suite_t), intent(inout) :: t
+        integer, parameter :: ELEMENTS(3) = [ELEMENT_P1, ELEMENT_P1, ELEMENT_Q1]
+        character(len=5), parameter :: DIAGONALS(3) = ['right', 'left ', 'right']
+        real(wp), parameter :: LAMBDAS(3) = [5.0_wp, -7.0_wp, 0.5_wp]
+        type(mesh_t) :: m
+        type(dof_map_t) :: dofs
+        type(contact_t) :: contact
+        type(csr_matrix_t) :: k, b
+        type(spectrum_t) :: spec
+        type(status_t) :: stat
+        real(wp), allocatable :: kd(:, :), bd(:, :), alphar(:), alphai(:), beta(:), work(:), &
+                                 vl(:, :), vr(:, :)
+        complex(wp), allocatable :: theta(:), reference(:)
+        real(wp) :: query(1), worst
+        integer :: c, j, n, p, info, order(1), i
+        logical, allocatable :: used(:)
+        character(len=60) :: what
+
+        do c = 1, size(ELEMENTS)
+            call structured_rectangle(1.0_wp, 1.0_wp, 4, 4, ELEMENTS(c), trim(DIAGONALS(c)), &
+                                      m, stat)
+            call build_dof_map(m, [m%part_index('top')], dofs, stat)
+            call build_contact(m, m%part_index('bottom'), dofs, contact, stat)
+            call assemble_stiffness(m, dofs, 1.0_wp, 0.3_wp, k, stat)
+            call assemble_b(contact, dofs%n_free, LAMBDAS(c), b, stat)
+            call solve_scene(m, [m%part_index('top')], m%part_index('bottom'), 1.0_wp, 0.3_wp, &
+                             LAMBDAS(c), spec)
+            n = dofs%n_free
+            p = contact%p()
+            kd = dense(k, n)
+            bd = dense(b, n)
+            allocate (alphar(n), alphai(n), beta(n), vl(1, 1), vr(1, 1))
+            call dggev('N', 'N', n, bd, n, kd, n, alphar, alphai, beta, vl, 1, vr, 1, query, &
+                       -1, info)
+            allocate (work(int(query(1))))
+            call dggev('N', 'N', n, bd, n, kd, n, alphar, alphai, beta, vl, 1, vr, 1, work, &
+                       size(work), info)
+            theta = cmplx(alphar, alphai, wp)/beta
+            ! the p largest |theta| are the nonzero ones; match each computed mu to one
+            allocate (used(n), source=.false.)
+            allocate (reference(p))
+            do j = 1, p
+                order = maxloc(abs(theta), mask=.not. used)
+                used(order(1)) = .true.
+                reference(j) = 1.0_wp/theta(order(1))
+            end do
+            write (what, '(a, i0, a, f5.1)') 'reduced = full pencil, case ', c, ', lambda ', &
+                LAMBDAS(c)
+            call t%check(trim(what)//': p eigenvalues', spec%n() == p)
+            worst = 0.0_wp
+            do i = 1, spec%n()
+                worst = max(worst, minval(abs(reference - spec%mu(i)))/abs(spec%mu(i))/ &
+                            (spec%condition(i)*epsilon(1.0_wp)))
+            end do
+            call t%check(trim(what)//': every mu matches to 1e3 eps condition', worst <= 1.0e3_wp)
+            call t%check(trim(what)//': the rest of the full spectrum is zero', &
+                maxval(abs(theta), mask=.not. used) <= 1.0e-10_wp*maxval(abs(theta)))
+            deallocate (alphar, alphai, beta, vl, vr, work, used, reference)
+        end do
+    end subroutine reduced_problem_matches_full_pencil
+
+    !> K is proportional to E and B does not depend on it, so mu is exactly proportional to E.
+    subroutine eigenvalues_scale_with_young_modulus(t)
+        type(test_suite_t), intent(inout) :: t
+        type(mesh_t) :: m
+        type(spectrum_t) :: base, scaled
+        type(status_t) :: stat
+        call structured_rectangle(1.0_wp, 1.0_wp, 6, 6, ELEMENT_P1, 'right', m, stat)
+        call solve_scene(m, [m%part_index('top')], m%part_index('bottom'), 1.0_wp, 0.3_wp, &
+                         5.0_wp, base)
+        call solve_scene(m, [m%part_index('top')], m%part_index('bottom'), 1.0e3_wp, 0.3_wp, &
+                         5.0_wp, scaled)
+        call t%check('scaling with E: same count', base%n() == scaled%n())
+        call t%check_close('scaling with E: lowest positive mu x 1000', &
+                           real(scaled%mu(1), wp), 1.0e3_wp*real(base%mu(1), wp), 1.0e-11_wp)
+        ! the largest |mu| is the worst conditioned: allow 1e2 eps times its condition
+        call t%check_close('scaling with E: largest |mu| x 1000', maxval(abs(scaled%mu)), &
+            1.0e3_wp*maxval(abs(base%mu)), 1.0e2_wp*epsilon(1.0_wp)*maxval(base%condition))
+    end subroutine eigenvalues_scale_with_young_modulus
+
+    !> In 2D, K is invariant under x -> s x while M (a length) scales with s: mu -> mu / s.
+    subroutine eigenvalues_scale_with_inverse_size(t)
+        type(test_suite_t), intent(inout) :: t
+        type(mesh_t) :: m
+        type(spectrum_t) :: base, scaled
+        type(status_t) :: stat
+        call structured_rectangle(1.0_wp, 1.0_wp, 6, 6, ELEMENT_Q1, 'right', m, stat)
+        call solve_scene(m, [m%part_index('top')], m%part_index('bottom'), 1.0_wp, 0.3_wp, &
+                         5.0_wp, base)
+        call structured_rectangle(25.0_wp, 25.0_wp, 6, 6, ELEMENT_Q1, 'right', m, stat)
+        call solve_scene(m, [m%part_index('top')], m%part_index('bottom'), 1.0_wp, 0.3_wp, &
+                         5.0_wp, scaled)
+        call t%check_close('scaling with size: lowest positive mu / 25', &
+                           real(scaled%mu(1), wp), real(base%mu(1), wp)/25.0_wp, 1.0e-11_wp)
+    end subroutine eigenvalues_scale_with_inverse_size
+
+    !> Output order of SPEC section 7, and backward errors at round-off level: the chain
+    !> (Cholesky, dgeevx, one more solve) is backward stable, so eta ~ n eps; 1e-12 allows it.
+    subroutine output_order_and_residuals(t)
+        type(test_suite_t), intent(inout) :: t
+        type(mesh_t) :: m
+        type(spectrum_t) :: spec
+        type(status_t) :: stat
+        integer :: i
+        logical :: ordered
+        call structured_rectangle(1.0_wp, 1.0_wp, 8, 8, ELEMENT_P1, 'right', m, stat)
+        call solve_scene(m, [m%part_index('top')], m%part_index('bottom'), 1.0_wp, 0.3_wp, &
+                         5.0_wp, spec)
+        call t%check('reference scene N=8 has a positive eigenvalue', &
+                     spec%lowest_positive() == 1)
+        ordered = .true.
+        do i = 2, spec%n()
+            if (spec%kind(i) < spec%kind(i - 1)) ordered = .false.
+            if (spec%kind(i) == spec%kind(i - 1) .and. spec%kind(i) /= KIND_COMPLEX) then
+                if (abs(spec%mu(i)) < abs(spec%mu(i - 1))) ordered = .false.
+            end if
+            if (spec%kind(i) == KIND_COMPLEX .and. spec%kind(i - 1) == KIND_COMPLEX) then
+                if (abs(spec%mu(i)) < abs(spec%mu(i - 1))*(1.0_wp - 1.0e-12_wp)) &
+                    ordered = .false.
+            end if
+        end do
+        call t%check('output order: positive ascending, negative, complex by modulus', ordered)
+        call t%check('real kinds have zero imaginary part', &
+            all(.not. (abs(aimag(spec%mu)) > 0.0_wp) .or. spec%kind == KIND_COMPLEX))
+        call t%check('negative kinds are negative', all(real(spec%mu, wp) < 0.0_wp .or. &
+                     spec%kind /= KIND_NEGATIVE))
+        call t%check('every backward error below 1e-12', spec%max_residual() < 1.0e-12_wp)
+    end subroutine output_order_and_residuals
+
+    !> Assemble and solve one scene with the dense solver.
+    subroutine solve_scene(m, dirichlet_parts, contact_part, young, poisson, lambda, spec)
+        type(mesh_t), intent(in) :: m
+        integer, intent(in) :: dirichlet_parts(:), contact_part
+        real(wp), intent(in) :: young, poisson, lambda
+        type(spectrum_t), intent(out) :: spec
+        type(dof_map_t) :: dofs
+        type(contact_t) :: contact
+        type(csr_matrix_t) :: k, b
+        type(cholesky_t) :: chol
+        type(status_t) :: stat
+        call build_dof_map(m, dirichlet_parts, dofs, stat)
+        if (stat%ok()) call build_contact(m, contact_part, dofs, contact, stat)
+        if (stat%ok()) call assemble_stiffness(m, dofs, young, poisson, k, stat)
+        if (stat%ok()) call assemble_b(contact, dofs%n_free, lambda, b, stat)
+        if (stat%ok()) call chol%factor(k, stat)
+        if (stat%ok()) call dense_spectrum(k, b, chol, contact, lambda, 1, spec, stat)
+        call chol%free()
+        if (.not. stat%ok()) then
+            call t%check('solve_scene: '//stat%message, .false.)
+            allocate (spec%mu(0), spec%kind(0), spec%residual(0), spec%condition(0))
+        end if
+    end subroutine solve_scene
+
+    !> The triangle A = (0,0), B = (l,0), C = (0,l): part 1 = [A,B] (contact), part 2 = [B,C]
+    !> (fixed), part 3 = [C,A] (Neumann).
+    subroutine single_triangle(l, m)
+        real(wp), intent(in) :: l
+        type(mesh_t), intent(out) :: m
+        m%element = ELEMENT_P1
+        m%coords = reshape([0.0_wp, 0.0_wp, l, 0.0_wp, 0.0_wp, l], [2, 3])
+        m%cells = reshape([1, 2, 3], [3, 1])
+        m%edges = reshape([1, 2, 2, 3, 3, 1], [2, 3])
+        m%edge_part = [1, 2, 3]
+        m%part_names = [character(len=64) :: 'contact', 'fixed', 'side']
+    end subroutine single_triangle
+
+    function dense(a, n) result(d)
+        type(csr_matrix_t), intent(in) :: a
+        integer, intent(in) :: n
+        real(wp) :: d(n, n)
+        integer :: i, j
+        d = 0.0_wp
+        do i = 1, n
+            do j = a%row_start(i), a%row_start(i + 1) - 1
+                d(i, a%col(j)) = a%val(j)
+            end do
+        end do
+    end function dense
+end program test_dense_eigen
