@@ -15,6 +15,7 @@ module input_config
               resolve_relative
     public :: KNOWN_GROUPS, MESH_SOURCES, ELEMENT_NAMES, DIAGONALS, RECTANGLE_SIDES, &
               ACCEPTED_ANALYSES, ACCEPTED_SOLVERS, MAX_CELLS_PER_SIDE
+    public :: read_line   !! also reads the results table of nceig-extrapolate
 
     !> Namelist groups, in the order they are read and documented.
     character(len=*), parameter :: KNOWN_GROUPS(*) = [character(len=8) :: &
