@@ -1,0 +1,545 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# Mesh refinement sweep: the lowest positive eigenvalue of TEMPLATE.nml on meshes of growing
+# fineness, for several element and mesh types, its Richardson-extrapolated limits and the
+# measured accuracy/time trade. See README.md, section "Mesh refinement sweeps".
+#
+#   scripts/sweep_mesh.sh [-e FAMILIES] [-n SIZES] [-j JOBS] [-o OUTDIR] [-s] TEMPLATE.nml
+#   scripts/sweep_mesh.sh --run OUTDIR FAMILY N      (one run; what a SLURM array task does)
+#   scripts/sweep_mesh.sh --collect OUTDIR           (tables and plots from the runs present)
+set -uo pipefail
+
+root=$(cd "$(dirname "$0")/.." && pwd)
+self="$root/scripts/sweep_mesh.sh"
+DEFAULT_FAMILIES=p1:right,p1:left,q1,p2,q2,delaunay
+DEFAULT_SIZES=4,8,16,32,64
+
+usage() {
+    cat <<EOF
+usage: scripts/sweep_mesh.sh [-e FAMILIES] [-n SIZES] [-j JOBS] [-o OUTDIR] [-s] TEMPLATE.nml
+  -e FAMILIES  comma list of element[:mesh]: element p1, q1, p2, q2; mesh 'right' or 'left'
+               (structured triangles, default: the template's diagonal) or 'delaunay'
+               (a Gmsh mesh, triangles only); 'delaunay' alone means p1:delaunay.
+               Default: $DEFAULT_FAMILIES
+  -n SIZES     comma list of N, the mesh size being h = 1/N. Default: $DEFAULT_SIZES
+  -j JOBS      runs at a time (default 1; use 1 for timings you want to quote)
+  -o OUTDIR    default: output/sweep_<template stem>
+  -s           write a SLURM job-array script and its collection step instead of running
+Each (family, N) is one nceig process in OUTDIR/runs/<family>_n<N>/; a run whose
+summary.json exists is not redone. Outputs: OUTDIR/results.csv, extrapolation.csv,
+tradeoff.csv, convergence.png, tradeoff.png. nceig is \$NCEIG, else on PATH, else build/.
+EOF
+}
+
+die() { echo "sweep_mesh: $*" >&2; exit 2; }
+
+# ------------------------------------------------------------------------- programs
+
+find_nceig() {
+    local exe
+    if [[ -n ${NCEIG:-} ]]; then exe=$NCEIG
+    elif command -v nceig >/dev/null 2>&1; then exe=$(command -v nceig)
+    elif [[ -x $root/build/nceig ]]; then exe=$root/build/nceig
+    else die "nceig not found: not on PATH nor in $root/build (run scripts/build.sh Release, or set NCEIG)"
+    fi
+    [[ -x $exe ]] || die "NCEIG=$exe is not an executable"
+    echo "$(cd "$(dirname "$exe")" && pwd)/$(basename "$exe")"
+}
+
+# nceig-extrapolate is built next to nceig; a wrapped NCEIG (tests) falls back on PATH, build/.
+find_extrapolate() {
+    local nceig=$1 candidate
+    for candidate in "$(dirname "$nceig")/nceig-extrapolate" "$(command -v nceig-extrapolate)" \
+                     "$root/build/nceig-extrapolate"; do
+        [[ -n $candidate && -x $candidate ]] && { echo "$candidate"; return 0; }
+    done
+    die "nceig-extrapolate not found next to $nceig, on PATH or in $root/build"
+}
+
+# ------------------------------------------------------------------------- families
+
+# "p1:right" -> "p1 right"; "q1" -> "q1 quad"; "delaunay" -> "p1 delaunay"; "p2" -> "p2 " (the
+# template's diagonal). Prints nothing for a malformed family.
+parse_family() {
+    local family=$1 element mesh
+    [[ $family == delaunay ]] && family=p1:delaunay
+    element=${family%%:*}
+    mesh=
+    [[ $family == *:* ]] && mesh=${family#*:}
+    case $element in
+        p1 | p2) [[ -z $mesh || $mesh =~ ^(right|left|delaunay)$ ]] || return 0 ;;
+        q1 | q2) [[ -z $mesh ]] || return 0; mesh=quad ;;
+        *) return 0 ;;
+    esac
+    echo "$element $mesh"
+}
+
+run_name() { local family=${1//:/-}; printf '%s_n%04d' "$family" "$2"; }
+
+# ------------------------------------------------------------------------- namelist editing
+
+# Rewrite one namelist group of a file: drop the assignments to the (lowercase) names in DROP
+# and insert INSERT before the group's closing '/' (or append the group when absent). Quotes
+# and '!' comments are respected, so values like 'a/b.msh' or '/' in comments are safe.
+edit_group() {  # file group "name name ..." "insert text"
+    awk -v group="$2" -v drop=" $3 " -v insert="$4" '
+        { text = text $0 "\n" }
+        END {
+            n = length(text); out = ""; inside = 0; found = 0; dropping = 0; i = 1
+            while (i <= n) {
+                c = substr(text, i, 1)
+                if (c == "\047" || c == "\"") {            # a quoted string, kept whole
+                    j = i + 1
+                    while (j <= n && substr(text, j, 1) != c) j++
+                    piece = substr(text, i, j - i + 1); i = j + 1
+                    if (!(inside && dropping)) out = out piece
+                    continue
+                }
+                if (c == "!") {                             # comment to the end of the line
+                    j = i
+                    while (j <= n && substr(text, j, 1) != "\n") j++
+                    out = out substr(text, i, j - i); i = j
+                    continue
+                }
+                if (c == "\n") { out = out c; i++; continue }
+                if (!inside && c == "&") {
+                    j = i + 1
+                    while (j <= n && substr(text, j, 1) ~ /[A-Za-z0-9_]/) j++
+                    name = tolower(substr(text, i + 1, j - i - 1))
+                    out = out substr(text, i, j - i); i = j
+                    if (name == group) { inside = 1; found = 1; dropping = 0 }
+                    continue
+                }
+                if (inside && (c == "/" || (c == "&" && tolower(substr(text, i, 4)) == "&end"))) {
+                    out = out " " insert " "
+                    inside = 0; dropping = 0
+                    out = out c; i++
+                    continue
+                }
+                if (inside && c ~ /[A-Za-z_]/) {            # a name, if "=" follows
+                    j = i
+                    while (j <= n && substr(text, j, 1) ~ /[A-Za-z0-9_%]/) j++
+                    name = tolower(substr(text, i, j - i))
+                    k = j
+                    while (k <= n && substr(text, k, 1) ~ /[ \t]/) k++
+                    if (substr(text, k, 1) == "=") dropping = index(drop, " " name " ") > 0
+                    if (!dropping) out = out substr(text, i, j - i)
+                    i = j
+                    continue
+                }
+                if (!(inside && dropping)) out = out c
+                i++
+            }
+            if (!found) out = out "&" group " " insert " /\n"
+            printf "%s", out
+        }' "$1" >"$1.edit" && mv "$1.edit" "$1"
+}
+
+# ------------------------------------------------------------------------- one run
+
+# --run OUTDIR FAMILY N: make the input from OUTDIR/template.nml, run nceig under
+# /usr/bin/time, record the outcome in runs/<name>/status. Exit 0 when done or reused.
+run_one() {
+    local outdir=$1 family=$2 n=$3 parsed element mesh dir input nceig rc line status
+    local mesh_s=0 t0 t1
+    parsed=$(parse_family "$family")
+    [[ -n $parsed ]] || die "malformed family '$family'"
+    read -r element mesh <<<"$parsed"
+    dir="$outdir/runs/$(run_name "$family" "$n")"
+    if [[ -s $dir/output/summary.json ]]; then
+        echo "reused  $family N=$n"
+        return 0
+    fi
+    nceig=$(find_nceig) || exit 2
+    rm -rf "$dir"
+    mkdir -p "$dir" || die "cannot create $dir"
+    printf 'family=%s\nelement=%s\nmesh=%s\nn=%s\n' "$family" "$element" "$mesh" "$n" \
+        >"$dir/run.info"
+    input="$dir/input.nml"
+    cp "$outdir/template.nml" "$input"
+
+    local mesh_vars
+    if [[ $mesh == delaunay ]]; then
+        local order=1
+        [[ $element == p2 ]] && order=2
+        if [[ ! -f $root/scripts/make_mesh.sh ]]; then
+            echo "failed: scripts/make_mesh.sh is missing (Gmsh meshes)" >"$dir/status"
+        else
+            t0=$(date +%s.%N)
+            if ! bash "$root/scripts/make_mesh.sh" "$n" "$order" "$dir/mesh.msh" \
+                    >"$dir/mesh.log" 2>&1; then
+                echo "failed: mesh generation: $(tail -n 1 "$dir/mesh.log")" >"$dir/status"
+            fi
+            t1=$(date +%s.%N)
+            mesh_s=$(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.3f", b - a }')
+        fi
+        mesh_vars="source = 'gmsh', file = '$(cd "$dir" && pwd)/mesh.msh', element = '$element'"
+    else
+        mesh_vars="source = 'rectangle', nx = $n, ny = $n, element = '$element'"
+        [[ -n $mesh && $mesh != quad ]] && mesh_vars+=", diagonal = '$mesh'"
+    fi
+    echo "$mesh_s" >"$dir/mesh_time"
+    if [[ -f $dir/status ]]; then
+        echo "FAILED  $family N=$n: $(cut -d' ' -f2- "$dir/status")"
+        return 1
+    fi
+    local drop="source file nx ny element"
+    [[ -n $mesh && $mesh != quad && $mesh != delaunay ]] && drop+=" diagonal"
+    edit_group "$input" mesh "$drop" "$mesh_vars"
+    edit_group "$input" output "directory" "directory = '$(cd "$dir" && pwd)/output'"
+
+    if [[ -x /usr/bin/time ]]; then
+        /usr/bin/time -f '%e %M' -o "$dir/time.txt" "$nceig" "$input" \
+            >"$dir/stdout.log" 2>"$dir/stderr.log"
+        rc=$?
+    else  # no peak memory without GNU time (Debian package 'time')
+        t0=$(date +%s.%N)
+        "$nceig" "$input" >"$dir/stdout.log" 2>"$dir/stderr.log"
+        rc=$?
+        t1=$(date +%s.%N)
+        awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.2f\n", b - a }' >"$dir/time.txt"
+    fi
+    if [[ $rc -eq 0 && -s $dir/output/summary.json ]]; then
+        echo ok >"$dir/status"
+        echo "done    $family N=$n: mu = $(json_value "$dir/output/summary.json" \
+            lowest_positive_mu), $(awk '{ print $1 }' "$dir/time.txt" | tail -n 1) s"
+        return 0
+    fi
+    line=$(tail -n 1 "$dir/stderr.log" 2>/dev/null)
+    status=$(grep -m 1 -E 'Command (exited|terminated)' "$dir/time.txt" 2>/dev/null)
+    [[ $status == *signal\ 9* ]] && status+=" (out of memory?)"
+    echo "failed: exit $rc: ${line:-$status}" >"$dir/status"
+    echo "FAILED  $family N=$n: exit $rc: ${line:-$status}"
+    return 1
+}
+
+# Value of "key" in our flat, one-member-per-line summary.json ('' for null or absent).
+json_value() {
+    sed -n "s/^ *\"$2\": *\\(.*\\)\$/\\1/p" "$1" | head -n 1 | sed 's/,$//; s/^"//; s/"$//; s/^null$//'
+}
+
+# ------------------------------------------------------------------------- collection
+
+collect() {
+    local outdir=$1 nceig extrapolate dir tmp
+    [[ -d $outdir/runs ]] || die "$outdir/runs: no runs to collect"
+    tmp=$(mktemp -d) || exit 1
+    {
+        echo "family,element,mesh,n,h,n_dofs,n_contact,solver,lowest_positive_mu,time_total_s,time_output_s,time_mesh_s,wall_s,peak_rss_mb,status,message"
+        for dir in "$outdir"/runs/*/; do
+            [[ -f $dir/run.info ]] || continue
+            collect_row "$dir"
+        done | sort -t, -k1,1 -k4,4n
+    } >"$tmp/results.csv"
+    mv "$tmp/results.csv" "$outdir/results.csv"
+
+    nceig=$(find_nceig) || exit 2
+    extrapolate=$(find_extrapolate "$nceig") || exit 2
+    local ok=1
+    if "$extrapolate" "$outdir/results.csv" >"$tmp/extrapolation.csv"; then
+        mv "$tmp/extrapolation.csv" "$outdir/extrapolation.csv"
+    else
+        ok=0
+    fi
+    if "$extrapolate" --tradeoff "$outdir/results.csv" >"$tmp/tradeoff.csv"; then
+        mv "$tmp/tradeoff.csv" "$outdir/tradeoff.csv"
+    else
+        rm -f "$outdir/tradeoff.csv"
+        ok=0
+    fi
+    if [[ $ok -eq 1 ]]; then
+        plot "$outdir" "$tmp"
+    fi
+    rm -rf "$tmp"
+    print_tables "$outdir"
+    [[ $ok -eq 1 ]]
+}
+
+collect_row() {
+    local dir=$1 family element mesh n summary status message wall rss mesh_s
+    family=$(sed -n 's/^family=//p' "$dir/run.info")
+    element=$(sed -n 's/^element=//p' "$dir/run.info")
+    mesh=$(sed -n 's/^mesh=//p' "$dir/run.info")
+    n=$(sed -n 's/^n=//p' "$dir/run.info")
+    summary="$dir/output/summary.json"
+    mesh_s=$(cat "$dir/mesh_time" 2>/dev/null || echo 0)
+    local h
+    h=$(awk -v n="$n" 'BEGIN { printf "%.17g", 1 / n }')
+    if [[ -s $summary ]]; then
+        [[ -z $mesh ]] && mesh=$(json_value "$summary" diagonal)
+        # The last line of time.txt is "wall_s peak_rss_kb" (GNU time) or "wall_s".
+        read -r wall rss < <(tail -n 1 "$dir/time.txt" 2>/dev/null)
+        [[ -n ${rss:-} ]] && rss=$(awk -v k="$rss" 'BEGIN { printf "%.1f", k / 1024 }')
+        echo "$family,$element,$mesh,$n,$h,$(json_value "$summary" n_dofs),$(json_value "$summary" n_contact),$(json_value "$summary" solver),$(json_value "$summary" lowest_positive_mu),$(json_value "$summary" time_total_s),$(json_value "$summary" time_output_s),$mesh_s,${wall:-},${rss:-},ok,"
+    else
+        status=$(cat "$dir/status" 2>/dev/null || echo "failed: not finished")
+        [[ $status == ok ]] && status="failed: summary.json missing"
+        message=$(echo "${status#failed: }" | tr ',' ';')
+        echo "$family,$element,$mesh,$n,$h,,,,,,,$mesh_s,,,failed,$message"
+    fi
+}
+
+# 1-based index of the column called NAME in the header of a CSV file.
+csv_column() {
+    awk -F, -v name="$2" 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == name) print i; exit }' "$1"
+}
+
+print_tables() {
+    local outdir=$1
+    echo
+    echo "results ($outdir/results.csv):"
+    awk -F, 'NR == 1 { next }
+        { printf "  %-12s N = %-5s mu = %-20s time %9.3g s  peak %8.1f MB  %s\n", $1, $4, \
+              ($15 == "ok" ? $9 : "-"), $10, $14, ($15 == "ok" ? "" : "FAILED: " $16) }' \
+        "$outdir/results.csv"
+    if [[ -s $outdir/extrapolation.csv ]]; then
+        echo "extrapolation ($outdir/extrapolation.csv):"
+        awk -F, 'NR == 1 { next }
+            { printf "  %-12s N = %s,%s,%s  limit %-20s order %-8.5s error %-9s %s\n", \
+                  $1, $5, $6, $7, ($9 == "" ? "-" : $9), ($10 == "" ? "-" : $10), \
+                  ($12 == "" ? "-" : sprintf("%.3g", $12)), \
+                  ($16 == "yes" ? "(reference) " : "") $17 }' \
+            "$outdir/extrapolation.csv"
+    fi
+}
+
+# ------------------------------------------------------------------------- plots
+
+plot() {
+    local outdir=$1 tmp=$2 terminal families n_families
+    command -v gnuplot >/dev/null 2>&1 || { echo "sweep_mesh: gnuplot not found: no plots" >&2; return 0; }
+    terminal="pngcairo size 1400,560 font 'Sans,11'"
+    gnuplot -e 'set terminal pngcairo' >/dev/null 2>&1 || terminal="png size 1400,560"
+
+    # One data block per family (gnuplot 'index'), in the order of extrapolation.csv.
+    families=$(awk -F, 'NR > 1 { print $1 }' "$outdir/extrapolation.csv")
+    n_families=$(echo "$families" | grep -c .)
+    local col_h col_mu col_status col_n col_time col_err family reference
+    col_h=$(csv_column "$outdir/results.csv" h)
+    col_mu=$(csv_column "$outdir/results.csv" lowest_positive_mu)
+    col_status=$(csv_column "$outdir/results.csv" status)
+    : >"$tmp/mu.dat"; : >"$tmp/limits.dat"; : >"$tmp/tradeoff.dat"
+    for family in $families; do
+        awk -F, -v f="$family" -v ch="$col_h" -v cm="$col_mu" -v cs="$col_status" \
+            'NR > 1 && $1 == f && $cs == "ok" && $cm != "" { print $ch, $cm }' \
+            "$outdir/results.csv" | sort -g -r >>"$tmp/mu.dat"
+        printf '\n\n' >>"$tmp/mu.dat"
+        # The limit as a dashed level over the family's range of h (nothing without a limit).
+        awk -F, -v f="$family" -v ch="$col_h" -v cm="$col_mu" -v cs="$col_status" \
+            'NR > 1 && $1 == f && $cs == "ok" && $cm != "" { print $ch }' \
+            "$outdir/results.csv" | sort -g >"$tmp/h.txt"
+        local limit
+        limit=$(awk -F, -v f="$family" 'NR > 1 && $1 == f { print $9 }' "$outdir/extrapolation.csv")
+        if [[ -n $limit && -s $tmp/h.txt ]]; then
+            printf '%s %s\n%s %s\n' "$(head -n 1 "$tmp/h.txt")" "$limit" \
+                "$(tail -n 1 "$tmp/h.txt")" "$limit" >>"$tmp/limits.dat"
+        else
+            echo "NaN NaN" >>"$tmp/limits.dat"
+        fi
+        printf '\n\n' >>"$tmp/limits.dat"
+        col_n=$(csv_column "$outdir/tradeoff.csv" n)
+        col_time=$(csv_column "$outdir/tradeoff.csv" time_s)
+        col_err=$(csv_column "$outdir/tradeoff.csv" relative_error)
+        awk -F, -v f="$family" -v cn="$col_n" -v ct="$col_time" -v ce="$col_err" \
+            'NR > 1 && $1 == f && $ce > 0 { print $cn, $ct, $ce, 1 / $cn }' \
+            "$outdir/tradeoff.csv" | sort -g >>"$tmp/tradeoff.dat"
+        printf '\n\n' >>"$tmp/tradeoff.dat"
+    done
+    reference=$(awk -F, 'NR == 2 { print $12 }' "$outdir/tradeoff.csv")
+    # Tics at h = 1/N labelled '1/N': every N of the sweep, or only powers of two when many.
+    local xtics
+    xtics=$(awk -F, -v cn="$(csv_column "$outdir/results.csv" n)" -v cs="$col_status" \
+        'NR > 1 && $cs == "ok" { seen[$cn] = 1 }
+         END { m = 0; for (n in seen) m++
+               for (n in seen) if (m <= 8 || and_pow2(n)) printf "%s\"1/%d\" %.17g", \
+                   (k++ ? ", " : ""), n, 1 / n }
+         function and_pow2(n) { while (n > 1 && n % 2 == 0) n /= 2; return n == 1 }' \
+        "$outdir/results.csv")
+    local ref_limit
+    ref_limit=$(awk -F, 'NR == 2 { print $11 }' "$outdir/tradeoff.csv")
+
+    cat >"$tmp/plot.gp" <<EOF
+set terminal $terminal
+set datafile missing 'NaN'
+names = "$(echo $families)"
+set key outside right top box opaque
+set grid
+set style line 100 lc rgb '#888888' dt 3
+set output '$tmp/convergence.png'
+set multiplot layout 1,2
+set logscale x
+set autoscale xfix
+set offsets graph 0.04, graph 0.04, 0, 0
+set xtics ($xtics)
+set xlabel 'mesh size h'
+set title 'lowest positive mu; dashed: Richardson limits'
+set ylabel 'lowest positive mu'
+set format y '%.4f'
+unset key
+plot for [i=1:$n_families] '$tmp/mu.dat' index (i-1) using 1:2 with linespoints lw 2 pt 7 lc i title word(names, i), \
+     for [i=1:$n_families] '$tmp/limits.dat' index (i-1) using 1:2 with lines dt 2 lw 1.5 lc i notitle
+set key outside right top box opaque
+set logscale y
+set format y '10^{%L}'
+set title "relative error against the reference limit $ref_limit ($reference)"
+set ylabel 'relative error'
+plot for [i=1:$n_families] '$tmp/tradeoff.dat' index (i-1) using 4:3 with linespoints lw 2 pt 7 lc i title word(names, i)
+unset multiplot
+
+set output '$tmp/tradeoff.png'
+set terminal $terminal
+set size 1,1
+set title "accuracy against compute time (labels: N); reference limit $ref_limit ($reference)"
+set logscale xy
+set format x '10^{%L}'
+set format y '10^{%L}'
+set xlabel 'time [s] (assembly + factorization + eigensolver, one core)'
+set ylabel 'relative error of the lowest positive mu'
+set arrow from graph 0, first 1e-2 to graph 1, first 1e-2 nohead ls 100
+set arrow from graph 0, first 1e-3 to graph 1, first 1e-3 nohead ls 100
+set arrow from graph 0, first 1e-4 to graph 1, first 1e-4 nohead ls 100
+plot for [i=1:$n_families] '$tmp/tradeoff.dat' index (i-1) using 2:3 with linespoints lw 2 pt 7 lc i title word(names, i), \
+     for [i=1:$n_families] '$tmp/tradeoff.dat' index (i-1) using 2:3:(sprintf('%d', \$1)) with labels offset 0,0.8 font ',8' tc lt i notitle
+EOF
+    if gnuplot "$tmp/plot.gp" 2>"$tmp/gnuplot.log"; then
+        mv "$tmp/convergence.png" "$tmp/tradeoff.png" "$outdir/"
+    else
+        echo "sweep_mesh: gnuplot failed: $(head -n 3 "$tmp/gnuplot.log")" >&2
+    fi
+}
+
+# ------------------------------------------------------------------------- SLURM
+
+write_slurm() {
+    local outdir=$1 jobs=$2 nceig=$3
+    shift 3
+    local runs=("$@") script="$outdir/slurm_sweep.sh" collect="$outdir/slurm_collect.sh"
+    mkdir -p "$outdir/slurm"
+    {
+        echo '#!/bin/bash'
+        echo '# One nceig run per array task; generated by scripts/sweep_mesh.sh -s.'
+        echo '# Add --time, --mem, --partition or --account on the sbatch command line as your'
+        echo '# cluster needs (memory grows like N^2 log N; see README, Mesh refinement sweeps).'
+        echo '#SBATCH --job-name=nceig-sweep'
+        echo "#SBATCH --array=1-${#runs[@]}%$jobs"
+        echo '#SBATCH --ntasks=1'
+        echo '#SBATCH --cpus-per-task=1'
+        echo "#SBATCH --output=$outdir/slurm/run_%a.log"
+        echo 'set -euo pipefail'
+        echo "export NCEIG='$nceig'"
+        echo 'runs=('
+        printf "    '%s'\n" "${runs[@]}"
+        echo ')'
+        echo 'set -- ${runs[$((SLURM_ARRAY_TASK_ID - 1))]}'
+        echo "exec bash '$self' --run '$outdir' \"\$1\" \"\$2\""
+    } >"$script"
+    {
+        echo '#!/bin/bash'
+        echo '# Collect the runs of slurm_sweep.sh: results.csv, extrapolation.csv, tradeoff.csv, plots.'
+        echo '#SBATCH --job-name=nceig-sweep-collect'
+        echo '#SBATCH --ntasks=1'
+        echo "#SBATCH --output=$outdir/slurm/collect.log"
+        echo "export NCEIG='$nceig'"
+        echo "exec bash '$self' --collect '$outdir'"
+    } >"$collect"
+    {
+        echo '#!/bin/bash'
+        echo '# Submit the array, then the collection once every task has ended (ok or not).'
+        echo 'set -euo pipefail'
+        echo "array=\$(sbatch --parsable \"\$@\" '$script')"
+        echo "sbatch --dependency=afterany:\${array%%;*} '$collect'"
+    } >"$outdir/slurm_submit.sh"
+    chmod +x "$script" "$collect" "$outdir/slurm_submit.sh"
+    echo "sweep_mesh: wrote $script (${#runs[@]} array tasks, at most $jobs at a time),"
+    echo "  $collect and $outdir/slurm_submit.sh; on the cluster run:"
+    echo "  bash $outdir/slurm_submit.sh [--time=... --mem=... further sbatch options]"
+}
+
+# ------------------------------------------------------------------------- main
+
+case ${1:-} in
+    --run) [[ $# -eq 4 ]] || die "usage: sweep_mesh.sh --run OUTDIR FAMILY N"
+           run_one "$2" "$3" "$4"; exit $? ;;
+    --collect) [[ $# -eq 2 ]] || die "usage: sweep_mesh.sh --collect OUTDIR"
+               collect "$2"; exit $? ;;
+    --help | -h) usage; exit 0 ;;
+esac
+
+families=$DEFAULT_FAMILIES sizes=$DEFAULT_SIZES jobs=1 outdir= slurm=0
+while getopts ':e:n:j:o:sh' option; do
+    case $option in
+        e) families=$OPTARG ;;
+        n) sizes=$OPTARG ;;
+        j) jobs=$OPTARG ;;
+        o) outdir=$OPTARG ;;
+        s) slurm=1 ;;
+        h) usage; exit 0 ;;
+        :) die "option -$OPTARG needs a value" ;;
+        *) die "unknown option -$OPTARG (see --help)" ;;
+    esac
+done
+shift $((OPTIND - 1))
+[[ $# -eq 1 ]] || { usage >&2; exit 2; }
+template=$1
+[[ -f $template ]] || die "$template: no such template file"
+[[ $jobs =~ ^[1-9][0-9]*$ ]] || die "-j $jobs: expected a positive integer"
+IFS=, read -r -a family_list <<<"$families"
+IFS=, read -r -a size_list <<<"$sizes"
+((${#family_list[@]} > 0)) || die "-e: no family given"
+((${#size_list[@]} > 0)) || die "-n: no size given"
+for family in "${family_list[@]}"; do
+    [[ -n $(parse_family "$family") ]] || die "-e: malformed family '$family': expected element[:mesh] with element p1, q1, p2 or q2 and mesh right, left or delaunay (triangles only), or 'delaunay'"
+done
+for n in "${size_list[@]}"; do
+    [[ $n =~ ^[1-9][0-9]*$ ]] || die "-n: '$n' is not a positive integer"
+done
+[[ -n $outdir ]] || outdir="output/sweep_$(basename "${template%.*}")"
+[[ $outdir != *"'"* ]] || die "-o $outdir: quotes are not allowed in the output folder"
+mkdir -p "$outdir/runs" || die "cannot create $outdir"
+outdir=$(cd "$outdir" && pwd)
+# Resuming reuses runs: only with the same template, else results of two scenes would mix.
+if [[ -f $outdir/template.nml ]] && ! cmp -s "$template" "$outdir/template.nml"; then
+    die "$outdir holds a sweep of another template (template.nml differs from $template): choose another -o or remove it"
+fi
+cp "$template" "$outdir/template.nml"
+nceig=$(find_nceig) || exit 2
+
+runs=()
+for family in "${family_list[@]}"; do
+    for n in "${size_list[@]}"; do
+        runs+=("$family $n")
+    done
+done
+
+if [[ $slurm -eq 1 ]]; then
+    write_slurm "$outdir" "$jobs" "$nceig" "${runs[@]}"
+    exit 0
+fi
+
+echo "sweep_mesh: ${#runs[@]} runs of $template in $outdir, $jobs at a time, with $nceig"
+export NCEIG=$nceig
+mkdir -p "$outdir/log"
+log=$(mktemp "$outdir/log/sweep_$(date +%Y%m%d_%H%M%S)_XXXX.log") || exit 1
+running=0
+for run in "${runs[@]}"; do
+    if ((running >= jobs)); then
+        wait -n
+        running=$((running - 1))
+    fi
+    # shellcheck disable=SC2086
+    bash "$self" --run "$outdir" $run 2>&1 | tee -a "$log" &
+    running=$((running + 1))
+done
+wait
+n_reused=$(grep -c '^reused' "$log")
+n_done=$(grep -c '^done' "$log")
+n_failed=$(grep -c '^FAILED' "$log")
+echo "sweep_mesh: ${#runs[@]} runs: $n_done done, $n_reused reused, $n_failed failed"
+collect "$outdir"
+collected=$?
+if ((n_failed > 0)); then
+    echo "sweep_mesh: failed runs (see runs/*/stderr.log; run again to retry them):" >&2
+    grep '^FAILED' "$log" | sed 's/^FAILED  /  /' >&2
+    exit 1
+fi
+exit $collected

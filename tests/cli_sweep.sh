@@ -1,0 +1,127 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# scripts/sweep_mesh.sh on tiny meshes: the tables and plots of a sweep, the per-run inputs
+# (template kept, &mesh and &output edited), resuming without redoing, a failing family
+# reported while the others are kept, and the SLURM scripts of -s.
+# Usage: cli_sweep.sh NCEIG SOURCE_DIR
+set -u
+nceig=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
+source_dir=$2
+sweep="$source_dir/scripts/sweep_mesh.sh"
+work=$(mktemp -d)
+trap '[[ -n ${KEEP:-} ]] || rm -rf "$work"' EXIT; [[ -n ${KEEP:-} ]] && echo "work: $work"
+passed=0 failed=0
+check() { if eval "$2"; then passed=$((passed + 1)); echo "PASS  $1"; else failed=$((failed + 1)); echo "FAIL  $1"; fi; }
+column_of() { awk -F, -v name="$2" 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == name) print i }' "$1"; }
+export NCEIG=$nceig
+
+# A template with traps for the namelist editing: a '/' inside a quoted value and in
+# comments, a group on one line, and a variable (poisson) the sweep must keep.
+cat >"$work/template.nml" <<'NML'
+! reference-like scene / small
+&mesh nx = 3, ny = 3, element = 'q2', file = 'not/used.msh' ! a / in a comment
+      dirichlet = 'top', neumann = 'left right', contact = 'bottom' /
+&material young = 1.0, poisson = 0.25 /
+&analysis lambda = 5.0 /
+&output directory = 'elsewhere/out', vtk = .false. /
+NML
+
+out="$work/sweep"
+bash "$sweep" -e p1:right,q1 -n 2,4,8 -j 2 -o "$out" "$work/template.nml" >"$work/first.log" 2>&1
+rc=$?
+check 'sweep of two families on N = 2,4,8 succeeds' '[[ $rc -eq 0 ]]'
+check 'results.csv: header then 6 rows' '[[ $(wc -l <"$out/results.csv") -eq 7 ]]'
+for key in element mesh n h n_dofs n_contact lowest_positive_mu time_total_s peak_rss_mb; do
+    check "results.csv has column $key" '[[ -n $(column_of "$out/results.csv" $key) ]]'
+done
+check 'every run ok with a positive mu' \
+    '[[ $(awk -F, -v s="$(column_of "$out/results.csv" status)" -v m="$(column_of "$out/results.csv" lowest_positive_mu)" "NR > 1 && \$s == \"ok\" && \$m > 0" "$out/results.csv" | wc -l) -eq 6 ]]'
+# The mesh counts follow from N: P1 on N x N has 2 (N + 1) N free dofs (top row fixed) and
+# N + 1 contact nodes; Q1 the same nodes.
+check 'n_dofs and n_contact match the structured N x N meshes' \
+    '[[ $(awk -F, -v n="$(column_of "$out/results.csv" n)" -v d="$(column_of "$out/results.csv" n_dofs)" -v c="$(column_of "$out/results.csv" n_contact)" "NR > 1 && (\$d != 2 * (\$n + 1) * \$n || \$c != \$n + 1)" "$out/results.csv" | wc -l) -eq 0 ]]'
+check 'peak RSS measured' \
+    '[[ $(awk -F, -v r="$(column_of "$out/results.csv" peak_rss_mb)" "NR > 1 && \$r > 0" "$out/results.csv" | wc -l) -eq 6 ]]'
+run="$out/runs/p1-right_n0004"
+check 'run input: &mesh edited (nx, ny, element, diagonal)' \
+    'grep -q "nx = 4, ny = 4, element = '"'"'p1'"'"', diagonal = '"'"'right'"'"'" "$run/input.nml"'
+check 'run input: template values kept (poisson, contact, comment)' \
+    'grep -q "poisson = 0.25" "$run/input.nml" && grep -q "contact = '"'"'bottom'"'"'" "$run/input.nml" && grep -q "a / in a comment" "$run/input.nml"'
+check 'run input: old nx and element dropped' '! grep -q "nx = 3" "$run/input.nml" && ! grep -q "q2" "$run/input.nml"'
+check 'run output directory set per run' '[[ -s $run/output/summary.json && ! -e $work/elsewhere ]]'
+check 'summary.json says p1 on 4 x 4' 'grep -q "\"nx\": 4," "$run/output/summary.json" && grep -q "\"element\": \"p1\"" "$run/output/summary.json"'
+check 'q1 run is a quad mesh' 'grep -q "\"element\": \"q1\"" "$out/runs/q1_n0008/output/summary.json"'
+check 'extrapolation.csv: a row per family' '[[ $(wc -l <"$out/extrapolation.csv") -eq 3 ]]'
+for key in limit order error_estimate; do
+    check "extrapolation.csv has column $key" '[[ -n $(column_of "$out/extrapolation.csv" $key) ]]'
+done
+check 'tradeoff.csv: a row per run with a value' '[[ $(wc -l <"$out/tradeoff.csv") -eq 7 ]]'
+check 'tradeoff.csv has relative_error and time_s' \
+    '[[ -n $(column_of "$out/tradeoff.csv" relative_error) && -n $(column_of "$out/tradeoff.csv" time_s) ]]'
+if command -v gnuplot >/dev/null 2>&1; then
+    for png in convergence.png tradeoff.png; do
+        check "$png is a PNG" '[[ $(head -c 4 "$out/$png" | tail -c 3) == PNG ]]'
+    done
+fi
+
+# Resuming: nothing is redone, the summaries stay as they were.
+stamp=$(stat -c %Y.%s "$out"/runs/*/output/summary.json | md5sum)
+bash "$sweep" -e p1:right,q1 -n 2,4,8 -j 2 -o "$out" "$work/template.nml" >"$work/second.log" 2>&1
+rc=$?
+check 'second call succeeds' '[[ $rc -eq 0 ]]'
+check 'second call redoes nothing (6 reused, 0 done)' 'grep -q "6 runs: 0 done, 6 reused, 0 failed" "$work/second.log"'
+check 'second call leaves the summaries untouched' '[[ $(stat -c %Y.%s "$out"/runs/*/output/summary.json | md5sum) == "$stamp" ]]'
+check 'another template is refused in the same folder' \
+    '! bash "$sweep" -e q1 -n 2 -o "$out" "$source_dir/input/square.nml" >/dev/null 2>&1'
+
+# A failing family: this nceig fails on every Q2 input; P1 runs go on and are kept.
+cat >"$work/flaky_nceig" <<WRAPPER
+#!/usr/bin/env bash
+if grep -q "element = 'q2'" "\$1"; then echo "flaky: no Q2 today" >&2; exit 5; fi
+exec "$nceig" "\$@"
+WRAPPER
+chmod +x "$work/flaky_nceig"
+# The sweep looks for nceig-extrapolate next to nceig: put the one under test there.
+cp "$(dirname "$nceig")/nceig-extrapolate" "$work/"
+out2="$work/failing"
+NCEIG="$work/flaky_nceig" bash "$sweep" -e q2,p1:left -n 2,4,8 -j 2 -o "$out2" "$work/template.nml" \
+    >"$work/third.log" 2>&1
+rc=$?
+check 'a failing family makes the sweep exit non-zero' '[[ $rc -ne 0 ]]'
+check 'the failures are reported with their message' '[[ $(grep -c "q2 N=.*no Q2 today" "$work/third.log") -ge 3 ]]'
+check 'results.csv keeps the good runs and lists the failed ones' \
+    '[[ $(grep -c ",ok," "$out2/results.csv") -eq 3 && $(grep -c ",failed," "$out2/results.csv") -eq 3 ]]'
+check 'the good family is extrapolated all the same' 'grep -q "^p1:left," "$out2/extrapolation.csv"'
+NCEIG="$nceig" bash "$sweep" -e q2,p1:left -n 2,4,8 -o "$out2" "$work/template.nml" >"$work/fourth.log" 2>&1
+check 'running again retries only the failed runs' 'grep -q "6 runs: 3 done, 3 reused, 0 failed" "$work/fourth.log"'
+
+# Bad arguments: one line naming the problem, exit 2.
+bash "$sweep" -e p1:diagonal -n 2 -o "$work/bad" "$work/template.nml" >/dev/null 2>"$work/err"
+rc=$?
+check 'malformed family: exit 2, message names it' '[[ $rc -eq 2 ]] && grep -q "p1:diagonal" "$work/err"'
+bash "$sweep" -e q1 -n 0 -o "$work/bad" "$work/template.nml" >/dev/null 2>"$work/err"
+rc=$?
+check 'N = 0 refused' '[[ $rc -eq 2 ]] && grep -q -- "-n" "$work/err"'
+
+# SLURM: scripts written, nothing run.
+out3="$work/slurm"
+bash "$sweep" -s -e p1:right,q1,delaunay -n 4,8 -j 3 -o "$out3" "$work/template.nml" >"$work/slurm.log" 2>&1
+rc=$?
+array="$out3/slurm_sweep.sh"
+check '-s succeeds and writes the array script' '[[ $rc -eq 0 && -x $array ]]'
+check '-s runs nothing' '[[ -z $(ls -A "$out3/runs") ]]'
+check 'array of 6 tasks, at most 3 at a time' 'grep -q "^#SBATCH --array=1-6%3$" "$array"'
+check 'one task per (family, N), in order' \
+    '[[ $(sed -n "/^runs=(/,/^)/p" "$array" | sed "1d;\$d" | tr -d "'"'"' " | paste -sd,) == "p1:right4,p1:right8,q14,q18,delaunay4,delaunay8" ]]'
+check 'a task runs one case with --run' 'grep -q -- "--run .*\$1.*\$2" "$array"'
+check 'the array finds nceig' 'grep -q "^export NCEIG=.*$(basename "$nceig")" "$array"'
+check 'the collection step calls --collect' 'grep -q -- "--collect" "$out3/slurm_collect.sh"'
+check 'submission chains the collection after the array' \
+    'grep -q "sbatch --parsable" "$out3/slurm_submit.sh" && grep -q "dependency=afterany" "$out3/slurm_submit.sh"'
+check 'the scripts are valid bash' 'bash -n "$array" && bash -n "$out3/slurm_collect.sh" && bash -n "$out3/slurm_submit.sh"'
+# A task as SLURM would start it (no sbatch here): task 3 is q1 on N = 4.
+SLURM_ARRAY_TASK_ID=3 bash "$array" >"$work/task.log" 2>&1
+check 'array task 3 runs q1 N=4 alone' '[[ -s $out3/runs/q1_n0004/output/summary.json && $(ls "$out3/runs" | wc -l) -eq 1 ]]'
+
+echo "cli_sweep: $passed passed, $failed failed"
+[[ $failed -eq 0 ]]
