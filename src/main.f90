@@ -13,11 +13,16 @@ program nceig
     use problem, only: problem_t, build_problem
     use eigen_analysis, only: eigen_result_t, solve_eigen
     use results_output, only: write_eigen_outputs, summary_lines
+    use threshold_analysis, only: threshold_result_t, solve_thresholds
+    use threshold_output, only: write_threshold_outputs, threshold_summary_lines
+    use sweep_plot, only: plot_lambda_sweep
     implicit none
 
     type(config_t) :: config
     type(problem_t) :: prob
     type(eigen_result_t) :: res
+    type(threshold_result_t) :: thresholds
+    character(len=:), allocatable :: plot_note
     type(timings_t) :: timings
     type(status_t) :: stat
     character(len=:), allocatable :: argument
@@ -51,6 +56,22 @@ program nceig
     timings%assembly = wall_time() - phase
 
     select case (config%analysis%kind)
+    case ('threshold')
+        call solve_thresholds(config, prob, .false., thresholds, timings, stat)
+        call stop_on_failure(stat)
+        call write_threshold_outputs(config, prob, thresholds, start, timings, stat)
+        call stop_on_failure(stat)
+        write (output_unit, '(a)') threshold_summary_lines(config, prob, thresholds, timings)
+    case ('lambda_sweep')
+        call solve_thresholds(config, prob, .true., thresholds, timings, stat)
+        call stop_on_failure(stat)
+        call write_threshold_outputs(config, prob, thresholds, start, timings, stat)
+        call stop_on_failure(stat)
+        write (output_unit, '(a)') threshold_summary_lines(config, prob, thresholds, timings)
+        if (config%sweep%plot) then
+            call plot_lambda_sweep(trim(config%output%directory), plot_note)
+            write (output_unit, '(a)') '  plot        '//plot_note
+        end if
     case default
         call solve_eigen(config, prob, config%analysis%lambda, res, timings, stat)
         call stop_on_failure(stat)

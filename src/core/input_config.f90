@@ -5,7 +5,8 @@ module input_config
     use kinds, only: wp
     use status, only: status_t, STATUS_BAD_INPUT
     use run_config, only: config_t, mesh_config_t, material_config_t, analysis_config_t, &
-                          eigen_config_t, output_config_t, NAME_LEN, LIST_LEN, PATH_LEN
+                          eigen_config_t, output_config_t, NAME_LEN, LIST_LEN, PATH_LEN, &
+                          sweep_config_t, MAX_SWEEP_LAMBDAS
     use real_format, only: real_to_text
     use ieee_arithmetic, only: ieee_is_finite
     use iso_fortran_env, only: iostat_end, iostat_eor
@@ -15,11 +16,12 @@ module input_config
               resolve_relative
     public :: KNOWN_GROUPS, MESH_SOURCES, ELEMENT_NAMES, DIAGONALS, RECTANGLE_SIDES, &
               ACCEPTED_ANALYSES, ACCEPTED_SOLVERS, MAX_CELLS_PER_SIDE
+    public :: SWEEP_SPACINGS, sweep_lambdas
     public :: read_line   !! also reads the results table of nceig-extrapolate
 
     !> Namelist groups, in the order they are read and documented.
     character(len=*), parameter :: KNOWN_GROUPS(*) = [character(len=8) :: &
-                                   'mesh', 'material', 'analysis', 'eigen', 'output']
+                                   'mesh', 'material', 'analysis', 'eigen', 'output', 'sweep']
     character(len=*), parameter :: MESH_SOURCES(*) = [character(len=9) :: 'rectangle', 'gmsh']
     character(len=*), parameter :: ELEMENT_NAMES(*) = [character(len=2) :: &
                                    'p1', 'q1', 'p2', 'q2']
@@ -27,10 +29,13 @@ module input_config
     character(len=*), parameter :: RECTANGLE_SIDES(*) = [character(len=6) :: &
                                    'top', 'bottom', 'left', 'right']
     !> Analyses this build can run; each new analysis adds its name here.
-    character(len=*), parameter :: ACCEPTED_ANALYSES(*) = [character(len=9) :: 'eigen']
+    character(len=*), parameter :: ACCEPTED_ANALYSES(*) = [character(len=12) :: 'eigen', &
+                                   'threshold', 'lambda_sweep']
     !> Eigensolvers this build offers; 'arpack' joins when its driver exists.
     character(len=*), parameter :: ACCEPTED_SOLVERS(*) = [character(len=6) :: 'dense', 'auto']
     integer, parameter :: MAX_CELLS_PER_SIDE = 1000000
+    character(len=*), parameter :: SWEEP_SPACINGS(*) = [character(len=6) :: 'linear', 'log']
+    integer, parameter :: MAX_SWEEP_POINTS = 100000   !! n_lambda of a &sweep range
 
     integer, parameter :: MSG_LEN = 1024     !! iomsg buffers
     integer, parameter :: CHUNK_LEN = 256    !! pieces of an input line of any length
@@ -81,6 +86,7 @@ contains
         if (stat%ok()) call read_analysis(unit, input, groups, config, stat)
         if (stat%ok()) call read_eigen(unit, input, groups, config, stat)
         if (stat%ok()) call read_output(unit, input, groups, config, stat)
+        if (stat%ok()) call read_sweep(unit, input, groups, config, stat)
         close (unit)
         if (.not. stat%ok()) return
 
@@ -89,6 +95,7 @@ contains
         if (stat%ok()) call validate_analysis(config%analysis, input, stat)
         if (stat%ok()) call validate_eigen(config%eigen, input, stat)
         if (stat%ok()) call validate_output(config%output, input, stat)
+        if (stat%ok()) call validate_sweep(config%sweep, input, stat)
         if (.not. stat%ok()) return
 
         if (len_trim(config%mesh%file) > 0) then
@@ -702,6 +709,155 @@ contains
         if (positive_finite) positive_finite = x > 0.0_wp
     end function positive_finite
 
+    ! -------------------------------------------------------------- &sweep (lambda_sweep)
+
+    subroutine read_sweep(unit, path, groups, config, stat)
+        integer, intent(in) :: unit
+        character(len=*), intent(in) :: path
+        type(group_text_t), intent(in) :: groups(:)
+        type(config_t), intent(inout) :: config
+        type(status_t), intent(out) :: stat
+        real(wp) :: lambda_min, lambda_max, lambdas(MAX_SWEEP_LAMBDAS)
+        integer :: n_lambda
+        character(len=NAME_LEN) :: spacing
+        logical :: plot
+        namelist /sweep/ lambda_min, lambda_max, n_lambda, spacing, lambdas, plot
+        type(text_t), allocatable :: pieces(:)
+        character(len=:), allocatable :: record
+        character(len=MSG_LEN) :: msg
+        integer :: ios, i
+
+        if (.not. has_group(groups, 'sweep')) return
+        lambda_min = config%sweep%lambda_min
+        lambda_max = config%sweep%lambda_max
+        n_lambda = config%sweep%n_lambda
+        spacing = config%sweep%spacing
+        lambdas = config%sweep%lambdas
+        plot = config%sweep%plot
+        rewind (unit)
+        read (unit, nml=sweep, iostat=ios, iomsg=msg)
+        if (ios /= 0) then
+            call stat%fail(STATUS_BAD_INPUT, read_failure(path, 'sweep', ios, msg))
+            pieces = split_assignments(group_body(groups, 'sweep'))
+            do i = 1, size(pieces)
+                record = '&sweep '//pieces(i)%text//' /'
+                read (record, nml=sweep, iostat=ios, iomsg=msg)
+                if (ios /= 0) then
+                    call stat%fail(STATUS_BAD_INPUT, path//': &sweep: '//pieces(i)%text &
+                                   //': '//trim(msg))
+                    exit
+                end if
+            end do
+            return
+        end if
+        config%sweep%lambda_min = lambda_min
+        config%sweep%lambda_max = lambda_max
+        config%sweep%n_lambda = n_lambda
+        config%sweep%spacing = lowercase(adjustl(spacing))
+        config%sweep%lambdas = lambdas
+        config%sweep%plot = plot
+    end subroutine read_sweep
+
+    !> The list, when given, must be a prefix of finite values (unset entries are huge()).
+    !> A range needs lambda_min < lambda_max, and for 'log' one sign and no zero.
+    subroutine validate_sweep(c, path, stat)
+        type(sweep_config_t), intent(in) :: c
+        character(len=*), intent(in) :: path
+        type(status_t), intent(inout) :: stat
+        integer :: n_list, i
+
+        n_list = count_set_lambdas(c)
+        do i = 1, size(c%lambdas)
+            if (i <= n_list) then
+                if (.not. ieee_is_finite(c%lambdas(i))) then
+                    call reject('lambdas('//int_text(i)//')', real_to_text(c%lambdas(i)), &
+                                'a finite number')
+                    return
+                end if
+            else if (lambda_is_set(c%lambdas(i))) then
+                call reject('lambdas('//int_text(i)//')', real_to_text(c%lambdas(i)), &
+                            'consecutive entries from lambdas(1) (lambdas('//int_text(i - 1) &
+                            //') is unset)')
+                return
+            end if
+        end do
+        if (n_list > 0) return
+
+        if (.not. ieee_is_finite(c%lambda_min)) then
+            call reject('lambda_min', real_to_text(c%lambda_min), 'a finite number')
+        else if (.not. ieee_is_finite(c%lambda_max)) then
+            call reject('lambda_max', real_to_text(c%lambda_max), 'a finite number')
+        else if (.not. c%lambda_max > c%lambda_min) then
+            call reject('lambda_max', real_to_text(c%lambda_max), 'a number > lambda_min = ' &
+                        //real_to_text(c%lambda_min))
+        else if (c%n_lambda < 2 .or. c%n_lambda > MAX_SWEEP_POINTS) then
+            call reject('n_lambda', int_text(c%n_lambda), 'an integer from 2 to ' &
+                        //int_text(MAX_SWEEP_POINTS))
+        else if (.not. any(SWEEP_SPACINGS == c%spacing)) then
+            call reject('spacing', quoted(c%spacing), 'one of '//one_of(SWEEP_SPACINGS))
+        else if (c%spacing == 'log' .and. .not. (c%lambda_min > 0.0_wp .or. &
+                                                 c%lambda_max < 0.0_wp)) then
+            call reject('lambda_min', real_to_text(c%lambda_min), "lambda_min and lambda_max" &
+                        //" of one sign, both nonzero, with spacing = 'log' (lambda_max = " &
+                        //real_to_text(c%lambda_max)//')')
+        end if
+
+    contains
+
+        subroutine reject(variable, value, expected)
+            character(len=*), intent(in) :: variable, value, expected
+            call fail_value(stat, path, 'sweep', variable, value, expected)
+        end subroutine reject
+    end subroutine validate_sweep
+
+    !> Number of leading entries of &sweep lambdas that were set.
+    pure integer function count_set_lambdas(c)
+        type(sweep_config_t), intent(in) :: c
+        count_set_lambdas = 0
+        do while (count_set_lambdas < size(c%lambdas))
+            if (.not. lambda_is_set(c%lambdas(count_set_lambdas + 1))) exit
+            count_set_lambdas = count_set_lambdas + 1
+        end do
+    end function count_set_lambdas
+
+    !> An entry of &sweep lambdas differs from the unset mark huge(); NaN and infinities
+    !> count as set so that validation rejects them (and no ordered comparison sees a NaN).
+    elemental logical function lambda_is_set(x)
+        real(wp), intent(in) :: x
+        lambda_is_set = .not. ieee_is_finite(x)
+        if (.not. lambda_is_set) lambda_is_set = x < huge(1.0_wp)
+    end function lambda_is_set
+
+    !> The lambdas of a validated &sweep: the explicit list if any, else the range, evenly
+    !> spaced ('linear') or in geometric progression ('log', one sign), ends included exactly.
+    pure function sweep_lambdas(c) result(lambdas)
+        type(sweep_config_t), intent(in) :: c
+        real(wp), allocatable :: lambdas(:)
+        real(wp) :: ratio
+        integer :: n, i
+
+        n = count_set_lambdas(c)
+        if (n > 0) then
+            lambdas = c%lambdas(1:n)
+            return
+        end if
+        n = c%n_lambda
+        allocate (lambdas(n))
+        if (c%spacing == 'log') then
+            ratio = c%lambda_max/c%lambda_min   ! > 0: one sign
+            do i = 1, n
+                lambdas(i) = c%lambda_min*ratio**(real(i - 1, wp)/real(n - 1, wp))
+            end do
+        else
+            do i = 1, n
+                lambdas(i) = c%lambda_min + (c%lambda_max - c%lambda_min)* &
+                             (real(i - 1, wp)/real(n - 1, wp))
+            end do
+        end if
+        lambdas(1) = c%lambda_min
+        lambdas(n) = c%lambda_max
+    end function sweep_lambdas
+
     ! ------------------------------------------------------------------- name lists
 
     !> The blank-separated names of `list`, in order, each at most NAME_LEN characters
@@ -888,6 +1044,19 @@ contains
                //entry('modes', int_text(d%output%modes), 'how many modes to write as .vtu') &
                //entry('matrices', logical_text(d%output%matrices), &
                        'write K.mtx and B.mtx (Matrix Market)')
+        text = text//"&sweep  (kind = 'lambda_sweep': lowest positive mu against lambda)"//NL &
+               //entry('lambda_min', real_to_text(d%sweep%lambda_min), 'first lambda of the' &
+                       //' range (either sign)') &
+               //entry('lambda_max', real_to_text(d%sweep%lambda_max), 'last lambda, >' &
+                       //' lambda_min') &
+               //entry('n_lambda', int_text(d%sweep%n_lambda), 'points in the range (2 to ' &
+                       //int_text(MAX_SWEEP_POINTS)//')') &
+               //entry('spacing', quoted(d%sweep%spacing), one_of(SWEEP_SPACINGS) &
+                       //" ('log': one sign, geometric in |lambda|)") &
+               //entry('lambdas', 'unset', 'explicit list (up to '// &
+                       int_text(MAX_SWEEP_LAMBDAS)//'), replaces the range') &
+               //entry('plot', logical_text(d%sweep%plot), 'draw lambda_sweep.png with' &
+                       //' gnuplot when it is installed')
 
     contains
 

@@ -51,6 +51,20 @@ module run_config
         logical :: matrices = .false.               !! write K.mtx and B.mtx
     end type output_config_t
 
+    integer, parameter, public :: MAX_SWEEP_LAMBDAS = 1000   !! length of &sweep lambdas
+
+    !> &sweep (analysis = 'lambda_sweep'): the lambdas at which the lowest positive mu is
+    !> computed, a range or an explicit list (the list wins when it has any entry).
+    type, public :: sweep_config_t
+        real(wp) :: lambda_min = -20.0_wp
+        real(wp) :: lambda_max = 20.0_wp
+        integer :: n_lambda = 401
+        character(len=NAME_LEN) :: spacing = 'linear'   !! 'linear' | 'log' (one sign)
+        !> explicit list; entries equal to huge() are unset (the namelist fills a prefix)
+        real(wp) :: lambdas(MAX_SWEEP_LAMBDAS) = huge(1.0_wp)
+        logical :: plot = .true.                        !! run scripts/plot_lambda_sweep.sh
+    end type sweep_config_t
+
     type, public :: config_t
         character(len=:), allocatable :: input_file   !! path as given on the command line
         type(mesh_config_t) :: mesh
@@ -58,5 +72,6 @@ module run_config
         type(analysis_config_t) :: analysis
         type(eigen_config_t) :: eigen
         type(output_config_t) :: output
+        type(sweep_config_t) :: sweep
     end type config_t
 end module run_config

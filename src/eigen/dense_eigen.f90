@@ -75,8 +75,10 @@ contains
     end subroutine contact_flexibility
 
     !> All nonzero eigenvalues of K phi = mu B phi (B for `lambda`), in output order; the full
-    !> eigenvectors of the first `n_keep` are kept. `chol` holds the factor of K.
-    subroutine dense_spectrum(k, b, chol, contact, lambda, n_keep, spec, stat, reduction_seconds)
+    !> eigenvectors of the first `n_keep` are kept. `chol` holds the factor of K. A caller that
+    !> already has Kt_nn and Kt_nt (from contact_flexibility) passes them to skip forming them.
+    subroutine dense_spectrum(k, b, chol, contact, lambda, n_keep, spec, stat, reduction_seconds, &
+                              kt_nn_given, kt_nt_given)
         type(csr_matrix_t), intent(in) :: k, b
         type(cholesky_t), intent(inout) :: chol
         type(contact_t), intent(in) :: contact
@@ -85,6 +87,7 @@ contains
         type(spectrum_t), intent(out) :: spec
         type(status_t), intent(out) :: stat
         real(wp), intent(out), optional :: reduction_seconds   !! time to form the p x p matrix
+        real(wp), intent(in), optional :: kt_nn_given(:, :), kt_nt_given(:, :)   !! (p, p) both
         real(wp), allocatable :: kt_nn(:, :), kt_nt(:, :), a(:, :), wr(:), wi(:), vl(:, :), &
                                  vr(:, :), scale(:), rconde(:), rcondv(:), work(:), rhs(:, :), &
                                  g(:, :), mass_vr(:, :), condition(:)
@@ -96,10 +99,14 @@ contains
         p = contact%p()
         n_free = k%n()
         start = wall_time()
-        call contact_flexibility(chol, contact, n_free, kt_nn, kt_nt, stat)
-        if (.not. stat%ok()) return
-        a = matmul(lambda*kt_nt - kt_nn, contact%mass_dense())
-        deallocate (kt_nn, kt_nt)
+        if (present(kt_nn_given) .and. present(kt_nt_given)) then
+            a = matmul(lambda*kt_nt_given - kt_nn_given, contact%mass_dense())
+        else
+            call contact_flexibility(chol, contact, n_free, kt_nn, kt_nt, stat)
+            if (.not. stat%ok()) return
+            a = matmul(lambda*kt_nt - kt_nn, contact%mass_dense())
+            deallocate (kt_nn, kt_nt)
+        end if
         if (present(reduction_seconds)) reduction_seconds = wall_time() - start
 
         allocate (wr(p), wi(p), vl(p, p), vr(p, p), scale(p), rconde(p), rcondv(p))

@@ -7,6 +7,7 @@ module lapack_interfaces
     implicit none
     private
     public :: dgeevx, dggev, dgemm, dsyrk, lapack_info_message
+    public :: dgeev
 
     interface
         subroutine dgeevx(balanc, jobvl, jobvr, sense, n, a, lda, wr, wi, vl, ldvl, vr, ldvr, &
@@ -19,6 +20,15 @@ module lapack_interfaces
             real(wp), intent(out) :: abnrm, rconde(*), rcondv(*), work(*)
             integer, intent(out) :: ilo, ihi, iwork(*), info
         end subroutine dgeevx
+
+        subroutine dgeev(jobvl, jobvr, n, a, lda, wr, wi, vl, ldvl, vr, ldvr, work, lwork, info)
+            import :: wp
+            character(len=1), intent(in) :: jobvl, jobvr
+            integer, intent(in) :: n, lda, ldvl, ldvr, lwork
+            real(wp), intent(inout) :: a(lda, *)
+            real(wp), intent(out) :: wr(*), wi(*), vl(ldvl, *), vr(ldvr, *), work(*)
+            integer, intent(out) :: info
+        end subroutine dgeev
 
         subroutine dggev(jobvl, jobvr, n, a, lda, b, ldb, alphar, alphai, beta, vl, ldvl, &
                          vr, ldvr, work, lwork, info)

@@ -21,6 +21,7 @@ module results_output
     implicit none
     private
     public :: write_eigen_outputs, summary_lines, nodal_field, eigen_summary_json
+    public :: write_eigenvalues_csv, write_modes, slip_sign
 
 contains
 

@@ -1,0 +1,79 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# Draw OUTDIR/lambda_sweep.png from OUTDIR/lambda_sweep.csv and OUTDIR/summary.json of an
+# nceig run with kind = 'lambda_sweep': critical c_n and c_t against lambda on log y axes,
+# the thresholds lambda+ and lambda- as dashed vertical lines. A 'log' sweep (one sign) is
+# drawn against |lambda| on a log axis. Needs gnuplot (Debian gnuplot-nox: pngcairo).
+# Usage: plot_lambda_sweep.sh OUTDIR
+set -euo pipefail
+if [[ $# -ne 1 ]]; then
+    echo "usage: $0 OUTDIR  (an nceig lambda_sweep output folder)" >&2
+    exit 2
+fi
+dir=$1
+csv="$dir/lambda_sweep.csv"
+summary="$dir/summary.json"
+for f in "$csv" "$summary"; do
+    [[ -r $f ]] || { echo "$0: $f: not found (run nceig with kind = 'lambda_sweep')" >&2; exit 2; }
+done
+command -v gnuplot >/dev/null || { echo "$0: gnuplot is not installed" >&2; exit 3; }
+
+# "key": value, on its own line in the summary (nceig writes one member per line)
+value() { sed -n "s/^ *\"$1\": *\"\{0,1\}\([^\",]*\)\"\{0,1\},\{0,1\}$/\1/p" "$summary"; }
+plus=$(value lambda_critical_plus)
+minus=$(value lambda_critical_minus)
+spacing=$(value sweep_spacing)
+title="$(value element) $(value mesh_source)"
+if [[ $(value mesh_source) == rectangle ]]; then
+    title="$title $(value nx)x$(value ny)"
+    [[ $(value element) != p* ]] || title="$title $(value diagonal)"   # triangles only
+fi
+title="${title}, $(value n_contact) contact nodes"
+
+# A log x axis needs one sign: |lambda| then.
+xcol='($1)' xlabel='{/Symbol l}' xlog=''
+if [[ $spacing == log ]]; then
+    xcol='(abs($1))' xlabel='|{/Symbol l}|' xlog='set logscale x'
+fi
+terminal='pngcairo size 1000,800 enhanced font "sans,11"'
+gnuplot -e 'set terminal' 2>&1 | grep -q pngcairo || terminal='png size 1000,800'
+
+marks=''
+mark() {  # threshold value, label, side of the line for the label (left|right)
+    [[ $1 != null && -n $1 ]] || return 0
+    local x=$1 offset='0.6' align=left
+    [[ $spacing != log ]] || x=${x#-}
+    [[ $3 == right ]] || { offset='-0.6'; align=right; }
+    marks+="set arrow from $x, graph 0 to $x, graph 1 nohead dashtype 2 linewidth 1.5 lc rgb '#c0392b' front; "
+    marks+="set label sprintf('$2 = %.6g', $1) at $x, graph 0.93 $align offset $offset, 0 textcolor rgb '#c0392b' front; "
+}
+if [[ $spacing != log ]]; then
+    mark "$plus" '{/Symbol l}_+' right
+    mark "$minus" '{/Symbol l}_-' left
+elif [[ $(value sweep_lambda_min) == -* ]]; then   # a log sweep has one sign: its threshold
+    mark "$minus" '{/Symbol l}_-' right
+else
+    mark "$plus" '{/Symbol l}_+' right
+fi
+
+tmp="$dir/.lambda_sweep.png.partial"
+gnuplot <<GNUPLOT
+set terminal $terminal
+set output '$tmp'
+set datafile separator ','
+# c_n and c_t are empty where no positive mu exists: NaN there breaks the line
+cell(c) = strcol(c) eq '' ? NaN : column(c)
+set multiplot layout 2, 1 title "nceig lambda sweep: $title" font ',13'
+set grid xtics ytics mytics lc rgb '#dddddd'
+set logscale y
+$xlog
+set key top right
+set xlabel "$xlabel"
+$marks
+set ylabel 'critical c_n = lowest positive {/Symbol m}'
+plot '$csv' using $xcol:(cell(2)) skip 1 with linespoints pt 7 ps 0.4 lw 1.5 lc rgb '#1f77b4' title 'c_n'
+set ylabel 'critical c_t = {/Symbol m} |{/Symbol l}|'
+plot '$csv' using $xcol:(cell(3)) skip 1 with linespoints pt 7 ps 0.4 lw 1.5 lc rgb '#2ca02c' title 'c_t'
+unset multiplot
+GNUPLOT
+mv -f "$tmp" "$dir/lambda_sweep.png"

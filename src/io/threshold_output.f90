@@ -1,0 +1,207 @@
+! SPDX-License-Identifier: MIT
+!> The files of a 'threshold' or 'lambda_sweep' run: those of an eigen run at &analysis lambda,
+!> lambda_sweep.csv for a sweep, and summary.json with the threshold and sweep keys, all staged
+!> and moved into place together; and the lines they add to the stdout summary.
+module threshold_output
+    use kinds, only: wp
+    use status, only: status_t, STATUS_IO
+    use strings, only: to_string
+    use real_format, only: real_to_text
+    use timer, only: wall_time, timings_t
+    use run_config, only: config_t
+    use problem, only: problem_t
+    use threshold_analysis, only: threshold_result_t, sweep_curve_t
+    use critical_lambda, only: thresholds_t, SIDE_PLUS, SIDE_MINUS, CONFIRM_OFFSET
+    use output_stage, only: output_stage_t
+    use json_writer, only: json_object_t
+    use matrix_market, only: write_matrix_market
+    use results_output, only: eigen_summary_json, summary_lines, write_eigenvalues_csv, &
+                              write_modes, slip_sign
+    implicit none
+    private
+    public :: write_threshold_outputs, threshold_summary_lines, add_threshold_keys, &
+              write_sweep_csv
+
+    character(len=*), parameter :: SWEEP_FILE = 'lambda_sweep.csv'
+    character(len=*), parameter :: SWEEP_HEADER = &
+        'lambda,critical_c_n,critical_c_t,slip_sign,n_positive'
+    character(len=*), parameter :: SIDE_NAMES(2) = [character(len=5) :: 'plus', 'minus']
+
+contains
+
+    !> Write every output of the run to the output directory, or none of them.
+    subroutine write_threshold_outputs(config, prob, res, run_start, timings, stat)
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(in) :: prob
+        type(threshold_result_t), intent(in) :: res
+        real(wp), intent(in) :: run_start          !! wall_time() at the start of the run
+        type(timings_t), intent(inout) :: timings
+        type(status_t), intent(out) :: stat
+        type(output_stage_t) :: stage
+        type(json_object_t) :: summary
+        real(wp) :: start
+
+        start = wall_time()
+        call stage%begin(trim(config%output%directory), stat)
+        if (.not. stat%ok()) return
+        call write_eigenvalues_csv(stage%path('eigenvalues.csv'), res%eigen%spec, stat)
+        if (stat%ok() .and. config%output%vtk) call write_modes(stage, prob, res%eigen%spec, &
+                                                               config%output%modes, stat)
+        if (stat%ok() .and. config%output%matrices) then
+            call write_matrix_market(stage%path('K.mtx'), prob%k, stat)
+            if (stat%ok()) call write_matrix_market(stage%path('B.mtx'), res%eigen%b, stat)
+        end if
+        if (stat%ok() .and. allocated(res%sweep%lambda)) then
+            call write_sweep_csv(stage%path(SWEEP_FILE), res%sweep, stat)
+        end if
+        if (stat%ok()) then
+            timings%output = wall_time() - start
+            timings%total = wall_time() - run_start
+            summary = eigen_summary_json(config, prob, res%eigen, timings)
+            call add_threshold_keys(summary, res)
+            if (allocated(res%sweep%lambda)) call add_sweep_keys(summary, config, res)
+            call summary%write(stage%path('summary.json'), stat)
+        end if
+        if (stat%ok()) call stage%commit(stat)
+        if (.not. stat%ok()) call stage%abort()
+    end subroutine write_threshold_outputs
+
+    !> lambda_critical_plus/minus (null where none), the backward error of each on the pencil,
+    !> the pencil's eigenvalue counts, and the confirming solves on each side.
+    subroutine add_threshold_keys(summary, res)
+        type(json_object_t), intent(inout) :: summary
+        type(threshold_result_t), intent(in) :: res
+        integer :: side
+        character(len=:), allocatable :: s
+
+        associate (thr => res%thresholds)
+            do side = SIDE_PLUS, SIDE_MINUS
+                s = trim(SIDE_NAMES(side))
+                call summary%add_real_or_null('lambda_critical_'//s, thr%lambda(side), &
+                                              thr%found(side))
+            end do
+            do side = SIDE_PLUS, SIDE_MINUS
+                s = trim(SIDE_NAMES(side))
+                call summary%add_real_or_null('lambda_critical_'//s//'_residual', &
+                                              thr%residual(side), thr%found(side))
+                call summary%add_logical('lambda_critical_'//s//'_confirmed', &
+                                         thr%confirmed(side))
+                call summary%add_real_or_null('lambda_'//s//'_outside', &
+                                              thr%lambda_outside(side), thr%found(side))
+                call summary%add_real_or_null('mu_'//s//'_outside', thr%mu_outside(side), &
+                                              thr%has_mu_outside(side))
+                call summary%add_real_or_null('lambda_'//s//'_inside', &
+                                              thr%lambda_inside(side), thr%found(side))
+                call summary%add_real_or_null('mu_'//s//'_inside', thr%mu_inside(side), &
+                                              thr%has_mu_inside(side))
+            end do
+            call summary%add_real('confirm_offset', CONFIRM_OFFSET)
+            call summary%add_integer('pencil_n_real', thr%n_real)
+            call summary%add_integer('pencil_n_complex', thr%n_complex)
+            call summary%add_integer('pencil_n_infinite', thr%n_infinite)
+        end associate
+        call summary%add_real('time_threshold_s', res%time_threshold)
+    end subroutine add_threshold_keys
+
+    !> What a sweep ran: its file, size, range and spacing, and how many points had a mu.
+    subroutine add_sweep_keys(summary, config, res)
+        type(json_object_t), intent(inout) :: summary
+        type(config_t), intent(in) :: config
+        type(threshold_result_t), intent(in) :: res
+        character(len=:), allocatable :: spacing
+
+        spacing = 'list'
+        if (.not. config%sweep%lambdas(1) < huge(1.0_wp)) spacing = trim(config%sweep%spacing)
+        call summary%add_string('sweep_file', SWEEP_FILE)
+        call summary%add_string('sweep_spacing', spacing)
+        call summary%add_integer('sweep_n_lambda', size(res%sweep%lambda))
+        call summary%add_real('sweep_lambda_min', minval(res%sweep%lambda))
+        call summary%add_real('sweep_lambda_max', maxval(res%sweep%lambda))
+        call summary%add_integer('sweep_n_with_positive_mu', count(res%sweep%found))
+        call summary%add_real('time_sweep_s', res%time_sweep)
+    end subroutine add_sweep_keys
+
+    !> lambda,critical_c_n,critical_c_t,slip_sign,n_positive: one row per lambda in input
+    !> order; c_n and c_t are empty where no positive real mu exists.
+    subroutine write_sweep_csv(path, curve, stat)
+        character(len=*), intent(in) :: path
+        type(sweep_curve_t), intent(in) :: curve
+        type(status_t), intent(out) :: stat
+        character(len=512) :: msg
+        character(len=:), allocatable :: values
+        integer :: unit, ios, i
+
+        open (newunit=unit, file=path, status='replace', action='write', iostat=ios, iomsg=msg)
+        if (ios == 0) write (unit, '(a)', iostat=ios, iomsg=msg) SWEEP_HEADER
+        do i = 1, size(curve%lambda)
+            if (ios /= 0) exit
+            values = ','
+            if (curve%found(i)) values = real_to_text(curve%mu(i))//','// &
+                real_to_text(curve%mu(i)*abs(curve%lambda(i)))
+            write (unit, '(a)', iostat=ios, iomsg=msg) real_to_text(curve%lambda(i))//','// &
+                values//','//to_string(slip_sign(curve%lambda(i)))//','// &
+                to_string(curve%n_positive(i))
+        end do
+        if (ios == 0) close (unit, iostat=ios, iomsg=msg)
+        if (ios /= 0) call stat%fail(STATUS_IO, path//': cannot write: '//trim(msg))
+    end subroutine write_sweep_csv
+
+    !> The eigen summary, then the thresholds with their confirmations and the sweep.
+    function threshold_summary_lines(config, prob, res, timings) result(text)
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(in) :: prob
+        type(threshold_result_t), intent(in) :: res
+        type(timings_t), intent(in) :: timings
+        character(len=:), allocatable :: text
+        character(len=*), parameter :: NL = new_line('a')
+        character(len=*), parameter :: LABELS(2) = [character(len=7) :: 'lambda+', 'lambda-']
+        integer :: side
+
+        text = summary_lines(config, prob, res%eigen, timings)
+        associate (thr => res%thresholds)
+            do side = SIDE_PLUS, SIDE_MINUS
+                text = text//NL//'  '//LABELS(side)//'     '
+                if (.not. thr%found(side)) then
+                    text = text//'none (no real eigenvalue of Kt_nn x = lambda Kt_nt x ' &
+                        //merge('> 0', '< 0', side == SIDE_PLUS)//')'
+                    cycle
+                end if
+                text = text//real_to_text(thr%lambda(side))//' (pencil backward error '// &
+                    short(thr%residual(side))//'), '// &
+                    trim(merge('confirmed    ', 'NOT confirmed', thr%confirmed(side)))//NL// &
+                    '              just outside, lambda = '// &
+                    real_to_text(thr%lambda_outside(side))//': lowest positive mu = '// &
+                    mu_text(thr%has_mu_outside(side), thr%mu_outside(side))//NL// &
+                    '              just inside,  lambda = '// &
+                    real_to_text(thr%lambda_inside(side))//': lowest positive mu = '// &
+                    mu_text(thr%has_mu_inside(side), thr%mu_inside(side))
+            end do
+        end associate
+        text = text//NL//'  time [s]    thresholds '//short(res%time_threshold)
+        if (allocated(res%sweep%lambda)) then
+            text = text//', sweep '//short(res%time_sweep)//NL//'  sweep       '// &
+                to_string(size(res%sweep%lambda))//' lambdas from '// &
+                real_to_text(minval(res%sweep%lambda))//' to '// &
+                real_to_text(maxval(res%sweep%lambda))//', a positive mu at '// &
+                to_string(count(res%sweep%found))//' of them: '//SWEEP_FILE
+        end if
+
+    contains
+
+        function mu_text(found, mu) result(s)
+            logical, intent(in) :: found
+            real(wp), intent(in) :: mu
+            character(len=:), allocatable :: s
+            s = 'none'
+            if (found) s = real_to_text(mu)
+        end function mu_text
+
+        function short(x) result(s)
+            real(wp), intent(in) :: x
+            character(len=:), allocatable :: s
+            character(len=16) :: b
+            write (b, '(es9.2)') x
+            s = trim(adjustl(b))
+        end function short
+    end function threshold_summary_lines
+end module threshold_output

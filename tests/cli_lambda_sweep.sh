@@ -1,0 +1,88 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# kind = 'threshold' and 'lambda_sweep' from the command line: summary keys, confirmations,
+# lambda_sweep.csv (header, rows, empty cells inside the thresholds, c_t = c_n |lambda|, the
+# same mu as the eigen solver at lambda), the optional plot, and &sweep input errors.
+# Usage: cli_lambda_sweep.sh NCEIG SOURCE_DIR
+set -u
+nceig=$1
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+passed=0 failed=0
+check() { if eval "$2"; then passed=$((passed + 1)); echo "PASS  $1"; else failed=$((failed + 1)); echo "FAIL  $1"; fi; }
+key() { sed -n "s/^ *\"$2\": *\"\{0,1\}\([^\",]*\)\"\{0,1\},\{0,1\}$/\1/p" "$1/summary.json"; }
+
+cat >"$work/thr.nml" <<NML
+&mesh nx = 8, ny = 8 /
+&analysis kind = 'threshold' /
+&output directory = '$work/thr', vtk = .false. /
+NML
+"$nceig" "$work/thr.nml" >"$work/stdout" 2>"$work/stderr"; rc=$?
+check 'threshold runs' '[[ $rc -eq 0 && ! -s "$work/stderr" ]]'
+check 'threshold: summary has the contract keys' 'for k in analysis lambda n_contact lowest_positive_mu time_total_s lambda_critical_plus lambda_critical_minus; do grep -q "\"$k\":" "$work/thr/summary.json" || exit 1; done'
+plus=$(key "$work/thr" lambda_critical_plus)
+minus=$(key "$work/thr" lambda_critical_minus)
+check "threshold: lambda+ = $plus > 0 > lambda- = $minus" 'awk -v p="$plus" -v m="$minus" "BEGIN { exit !(p > 0 && m < 0) }"'
+check 'threshold: both confirmed' '[[ $(key "$work/thr" lambda_critical_plus_confirmed) == true && $(key "$work/thr" lambda_critical_minus_confirmed) == true ]]'
+check 'threshold: no positive mu just inside' '[[ $(key "$work/thr" mu_plus_inside) == null && $(key "$work/thr" mu_minus_inside) == null ]]'
+check 'threshold: a large positive mu just outside' 'awk -v a="$(key "$work/thr" mu_plus_outside)" -v b="$(key "$work/thr" mu_minus_outside)" "BEGIN { exit !(a > 1e4 && b > 1e4) }"'
+check 'threshold: stdout shows lambda+ and lambda- confirmed' '[[ $(grep -c "lambda[+-] .*confirmed" "$work/stdout") -eq 2 ]]'
+check 'threshold: no sweep file' '[[ ! -e "$work/thr/lambda_sweep.csv" ]]'
+
+cat >"$work/list.nml" <<NML
+&mesh nx = 8, ny = 8 /
+&analysis kind = 'lambda_sweep', lambda = 5.0 /
+&sweep lambdas = 5.0, -5.0, 0.5, -30.0, plot = .false. /
+&output directory = '$work/list', vtk = .false. /
+NML
+"$nceig" "$work/list.nml" >"$work/stdout" 2>"$work/stderr"; rc=$?
+csv="$work/list/lambda_sweep.csv"
+check 'list sweep runs' '[[ $rc -eq 0 && ! -s "$work/stderr" ]]'
+check 'sweep csv header' '[[ $(head -1 "$csv") == "lambda,critical_c_n,critical_c_t,slip_sign,n_positive" ]]'
+check 'sweep csv: one row per lambda, in the given order' '[[ $(tail -n +2 "$csv" | cut -d, -f1 | tr "\n" " ") == "5.0 -5.0 0.5 -30.0 " ]]'
+check 'sweep csv: empty c_n and c_t and no positive mu inside the thresholds' '[[ $(sed -n 4p "$csv") == "0.5,,,-1,0" ]]'
+check 'sweep csv: c_t = c_n |lambda|' 'tail -n +2 "$csv" | awk -F, "\$2 != \"\" { l = \$1 < 0 ? -\$1 : \$1; d = \$3 - \$2 * l; if (d < 0) d = -d; if (d > 1e-14 * \$3) exit 1 }"'
+check 'sweep csv: slip sign -sgn(lambda)' '[[ $(tail -n +2 "$csv" | cut -d, -f4 | tr "\n" " ") == "-1 1 -1 1 " ]]'
+# The sweep (dgeev on the reduced matrix) and the eigen solve at lambda (dgeevx) are two
+# backward-stable paths to the same mu (condition ~ 10): agreement to 1e-12 relative.
+check 'sweep mu at lambda = 5 equals the eigen solver'"'"'s lowest positive mu' 'awk -v a="$(sed -n 2p "$csv" | cut -d, -f2)" -v b="$(key "$work/list" lowest_positive_mu)" "BEGIN { d = a - b; if (d < 0) d = -d; exit !(d <= 1e-12 * b) }"'
+check 'sweep summary has the thresholds and sweep keys' 'for k in lambda_critical_plus lambda_critical_minus sweep_file sweep_n_lambda sweep_spacing time_sweep_s; do grep -q "\"$k\":" "$work/list/summary.json" || exit 1; done'
+check 'sweep summary: spacing list, 4 lambdas, 3 with a mu' '[[ $(key "$work/list" sweep_spacing) == list && $(key "$work/list" sweep_n_lambda) == 4 && $(key "$work/list" sweep_n_with_positive_mu) == 3 ]]'
+check 'plot = .false.: no png, no note' '[[ ! -e "$work/list/lambda_sweep.png" ]] && ! grep -q "plot " "$work/stdout"'
+
+cat >"$work/range.nml" <<NML
+&mesh nx = 4, ny = 4, element = 'q1' /
+&analysis kind = 'lambda_sweep' /
+&sweep lambda_min = -1000.0, lambda_max = -1.0, n_lambda = 7, spacing = 'log' /
+&output directory = '$work/range', vtk = .false. /
+NML
+"$nceig" "$work/range.nml" >"$work/stdout" 2>"$work/stderr"; rc=$?
+check 'log range sweep runs' '[[ $rc -eq 0 && ! -s "$work/stderr" ]]'
+check 'log range: 7 rows from -1000 to -1' '[[ $(tail -n +2 "$work/range/lambda_sweep.csv" | wc -l) -eq 7 && $(sed -n 2p "$work/range/lambda_sweep.csv" | cut -d, -f1) == -1000.0 && $(tail -1 "$work/range/lambda_sweep.csv" | cut -d, -f1) == -1.0 ]]'
+if command -v gnuplot >/dev/null; then
+    check 'gnuplot installed: lambda_sweep.png is a PNG' '[[ $(head -c 4 "$work/range/lambda_sweep.png" | tail -c 3) == PNG ]]'
+    check 'gnuplot installed: stdout names the plot' 'grep -q "plot .*lambda_sweep.png" "$work/stdout"'
+else
+    check 'no gnuplot: a note, no png, success' 'grep -q "plot .*not drawn" "$work/stdout" && [[ ! -e "$work/range/lambda_sweep.png" ]]'
+fi
+check 'no staging folder left' '[[ -z $(ls -A "$work/range" | grep nceig-partial) ]]'
+
+bad() {  # name, &sweep body, expected words in the message
+    local want=$3
+    printf "&analysis kind = 'lambda_sweep' /\n&sweep %s /\n&output directory = '%s' /\n" \
+        "$2" "$work/badout" >"$work/bad.nml"
+    rm -rf "$work/badout"
+    "$nceig" "$work/bad.nml" >/dev/null 2>"$work/err"; local rc=$?
+    check "bad &sweep ($1): exit 2" '[[ $rc -eq 2 ]]'
+    check "bad &sweep ($1): one stderr line naming the file, &sweep and $3" '[[ $(wc -l <"$work/err") -eq 1 ]] && grep -q "bad.nml: &sweep" "$work/err" && grep -q -- "$want" "$work/err"'
+    check "bad &sweep ($1): no output left" '[[ ! -e "$work/badout" ]]'
+}
+bad 'log across zero' "lambda_min = -1.0, lambda_max = 2.0, spacing = 'log'" 'lambda_min'
+bad 'empty range' 'lambda_min = 3.0, lambda_max = 3.0' 'lambda_max'
+bad 'one point' 'n_lambda = 1' 'n_lambda'
+bad 'unknown spacing' "spacing = 'cubic'" 'spacing'
+bad 'unknown variable' 'lambda_mni = 1.0' 'lambda_mni'
+bad 'gap in the list' 'lambdas(1) = 1.0, lambdas(3) = 2.0' 'lambdas(3)'
+
+echo "cli_lambda_sweep: $passed passed, $failed failed"
+[[ $failed -eq 0 ]]

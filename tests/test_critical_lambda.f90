@@ -1,0 +1,307 @@
+! SPDX-License-Identifier: MIT
+!> The critical lambdas against mathematics: the single element's closed form, the mirror
+!> symmetry of the structured meshes, the singular reduced matrix at a threshold, and the
+!> pole of mu there; and the lambdas of a &sweep range.
+program test_critical_lambda
+    use kinds, only: wp
+    use status, only: status_t
+    use testing, only: test_suite_t
+    use mesh, only: mesh_t, ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2
+    use mesh_structured, only: structured_rectangle
+    use dof_map, only: dof_map_t, build_dof_map
+    use assembly, only: assemble_stiffness
+    use contact_boundary, only: contact_t, build_contact
+    use csr_matrix, only: csr_matrix_t
+    use sparse_cholesky, only: cholesky_t
+    use dense_eigen, only: contact_flexibility
+    use lapack_interfaces, only: dgeev
+    use critical_lambda, only: thresholds_t, pencil_thresholds, lowest_positive_mu, &
+                               confirm_thresholds, SIDE_PLUS, SIDE_MINUS
+    use run_config, only: sweep_config_t
+    use input_config, only: sweep_lambdas
+    implicit none
+
+    !> The p x p data of one scene: Kt_nn, Kt_nt, and both times M.
+    type :: scene_t
+        real(wp), allocatable :: kt_nn(:, :), kt_nt(:, :), nn_m(:, :), nt_m(:, :)
+    end type scene_t
+
+    type(test_suite_t) :: t
+    t%name = 'test_critical_lambda'
+    call single_element_threshold(t)
+    call mirror_symmetry_of_diagonals(t)
+    call quadrilaterals_are_symmetric(t)
+    call reduced_matrix_singular_at_thresholds(t)
+    call mu_has_a_pole_at_the_threshold(t)
+    call thresholds_are_confirmed(t)
+    call sweep_lambda_lists(t)
+    call t%report()
+
+contains
+
+    !> SPEC section 4: mu = -6 G (L + 2G) / ((L (lambda + 1) + G (lambda + 3)) l) has its pole
+    !> at lambda = -(L + 3G)/(L + G), and is positive only beyond it: one negative threshold,
+    !> no positive one. With p = 1 the pencil is 1 x 1 (lambda = Kt_nn / Kt_nt), so round-off
+    !> alone separates the result from the closed form: 1e-13 relative.
+    subroutine single_element_threshold(t)
+        type(test_suite_t), intent(inout) :: t
+        real(wp), parameter :: SIZES(2) = [1.0_wp, 0.01_wp]
+        real(wp), parameter :: POISSONS(3) = [0.0_wp, 0.3_wp, 0.45_wp]
+        real(wp) :: lame_l, shear_g, expected
+        type(mesh_t) :: m
+        type(scene_t) :: s
+        type(thresholds_t) :: thr
+        type(status_t) :: stat
+        character(len=60) :: what
+        integer :: i, j
+
+        do i = 1, size(SIZES)
+            do j = 1, size(POISSONS)
+                lame_l = POISSONS(j)/((1.0_wp + POISSONS(j))*(1.0_wp - 2.0_wp*POISSONS(j)))
+                shear_g = 1.0_wp/(2.0_wp*(1.0_wp + POISSONS(j)))
+                expected = -(lame_l + 3.0_wp*shear_g)/(lame_l + shear_g)
+                call single_triangle(SIZES(i), m)
+                call build_scene(m, [2], 1, POISSONS(j), s)
+                call pencil_thresholds(s%kt_nn, s%kt_nt, thr, stat)
+                write (what, '(a, es8.1, a, f5.2)') 'single element, l =', SIZES(i), ', nu =', &
+                    POISSONS(j)
+                call t%check(trim(what)//': no positive threshold', &
+                             stat%ok() .and. .not. thr%found(SIDE_PLUS))
+                call t%check(trim(what)//': a negative threshold', thr%found(SIDE_MINUS))
+                call t%check_close(trim(what)//': lambda- = -(L+3G)/(L+G)', &
+                                   thr%lambda(SIDE_MINUS), expected, 1.0e-13_wp)
+            end do
+        end do
+    end subroutine single_element_threshold
+
+    !> Mirroring x -> 1 - x maps the 'right' mesh onto the 'left' one and flips t, so Kt_nt
+    !> changes sign (up to the node order) and Kt_nn does not: the left mesh at lambda is the
+    !> right mesh at -lambda. Both sides are computed from different (permuted) matrices, so
+    !> they agree to round-off times the eigenvalue condition: 1e-10 relative.
+    subroutine mirror_symmetry_of_diagonals(t)
+        type(test_suite_t), intent(inout) :: t
+        real(wp), parameter :: LAMBDAS(4) = [5.0_wp, -5.0_wp, 2.5_wp, -40.0_wp]
+        integer, parameter :: ELEMENTS(2) = [ELEMENT_P1, ELEMENT_P2]
+        type(mesh_t) :: m
+        type(scene_t) :: right, left
+        type(thresholds_t) :: thr_right, thr_left
+        type(status_t) :: stat
+        real(wp) :: mu_right, mu_left
+        logical :: found_right, found_left
+        integer :: n_right, n_left, i, e
+        character(len=60) :: what
+
+        do e = 1, size(ELEMENTS)
+            call structured_rectangle(1.0_wp, 1.0_wp, 6, 6, ELEMENTS(e), 'right', m, stat)
+            call build_scene(m, [m%part_index('top')], m%part_index('bottom'), 0.3_wp, right)
+            call structured_rectangle(1.0_wp, 1.0_wp, 6, 6, ELEMENTS(e), 'left', m, stat)
+            call build_scene(m, [m%part_index('top')], m%part_index('bottom'), 0.3_wp, left)
+            call pencil_thresholds(right%kt_nn, right%kt_nt, thr_right, stat)
+            call pencil_thresholds(left%kt_nn, left%kt_nt, thr_left, stat)
+            write (what, '(a, i0)') 'mirror, element ', e
+            call t%check(trim(what)//': both meshes have both thresholds', &
+                         all(thr_right%found) .and. all(thr_left%found))
+            call t%check_close(trim(what)//': lambda+(left) = -lambda-(right)', &
+                               thr_left%lambda(SIDE_PLUS), -thr_right%lambda(SIDE_MINUS), &
+                               1.0e-10_wp)
+            call t%check_close(trim(what)//': lambda-(left) = -lambda+(right)', &
+                               thr_left%lambda(SIDE_MINUS), -thr_right%lambda(SIDE_PLUS), &
+                               1.0e-10_wp)
+            call t%check(trim(what)//': the diagonal breaks the symmetry lambda+ = -lambda-', &
+                abs(thr_right%lambda(SIDE_PLUS) + thr_right%lambda(SIDE_MINUS)) > &
+                1.0e-6_wp*abs(thr_right%lambda(SIDE_PLUS)))
+            do i = 1, size(LAMBDAS)
+                call lowest_positive_mu(left%nn_m, left%nt_m, LAMBDAS(i), mu_left, found_left, &
+                                        n_left, stat)
+                call lowest_positive_mu(right%nn_m, right%nt_m, -LAMBDAS(i), mu_right, &
+                                        found_right, n_right, stat)
+                write (what, '(a, i0, a, f6.1)') 'mirror, element ', e, ': mu, lambda =', &
+                    LAMBDAS(i)
+                call t%check(trim(what)//': both found', found_left .and. found_right .and. &
+                             n_left == n_right)
+                call t%check_close(trim(what)//': left(lambda) = right(-lambda)', mu_left, &
+                                   mu_right, 1.0e-10_wp)
+            end do
+        end do
+    end subroutine mirror_symmetry_of_diagonals
+
+    !> A Q1 mesh of the square is its own mirror image: lambda+ = -lambda- (1e-10, as above).
+    subroutine quadrilaterals_are_symmetric(t)
+        type(test_suite_t), intent(inout) :: t
+        integer, parameter :: SIZES(3) = [2, 5, 12]
+        type(mesh_t) :: m
+        type(scene_t) :: s
+        type(thresholds_t) :: thr
+        type(status_t) :: stat
+        character(len=40) :: what
+        integer :: i
+
+        do i = 1, size(SIZES)
+            call structured_rectangle(1.0_wp, 1.0_wp, SIZES(i), SIZES(i), ELEMENT_Q1, 'right', &
+                                      m, stat)
+            call build_scene(m, [m%part_index('top')], m%part_index('bottom'), 0.3_wp, s)
+            call pencil_thresholds(s%kt_nn, s%kt_nt, thr, stat)
+            write (what, '(a, i0)') 'Q1 N = ', SIZES(i)
+            call t%check(trim(what)//': both thresholds', all(thr%found))
+            call t%check_close(trim(what)//': lambda+ = -lambda-', thr%lambda(SIDE_PLUS), &
+                               -thr%lambda(SIDE_MINUS), 1.0e-10_wp)
+        end do
+    end subroutine quadrilaterals_are_symmetric
+
+    !> Independent check with another LAPACK path: at lambda*, (lambda* Kt_nt - Kt_nn) M is
+    !> singular, so dgeev finds an eigenvalue of modulus ~ eps ||A|| times its condition;
+    !> 1e-11 ||A|| leaves room for a condition of 1e5. The pencil backward errors are at
+    !> round-off (QZ is backward stable): below 1e-14.
+    subroutine reduced_matrix_singular_at_thresholds(t)
+        type(test_suite_t), intent(inout) :: t
+        type(mesh_t) :: m
+        type(scene_t) :: s
+        type(thresholds_t) :: thr
+        type(status_t) :: stat
+        real(wp), allocatable :: a(:, :), wr(:), wi(:), work(:)
+        real(wp) :: vl(1, 1), vr(1, 1), query(1), norm_a
+        integer :: side, p, info
+
+        call structured_rectangle(1.0_wp, 1.0_wp, 10, 10, ELEMENT_P1, 'right', m, stat)
+        call build_scene(m, [m%part_index('top')], m%part_index('bottom'), 0.3_wp, s)
+        call pencil_thresholds(s%kt_nn, s%kt_nt, thr, stat)
+        p = size(s%kt_nn, 1)
+        allocate (a(p, p), wr(p), wi(p))
+        do side = SIDE_PLUS, SIDE_MINUS
+            a = thr%lambda(side)*s%nt_m - s%nn_m
+            norm_a = maxval(sum(abs(a), dim=2))
+            call dgeev('N', 'N', p, a, p, wr, wi, vl, 1, vr, 1, query, -1, info)
+            if (.not. allocated(work)) allocate (work(int(query(1))))
+            call dgeev('N', 'N', p, a, p, wr, wi, vl, 1, vr, 1, work, size(work), info)
+            call t%check('reduced matrix singular at threshold '//merge('+', '-', side == 1), &
+                info == 0 .and. minval(abs(cmplx(wr, wi, wp))) < 1.0e-11_wp*norm_a)
+            call t%check('pencil backward error below 1e-14 at threshold '// &
+                         merge('+', '-', side == 1), thr%residual(side) < 1.0e-14_wp)
+        end do
+    end subroutine reduced_matrix_singular_at_thresholds
+
+    !> theta(lambda) = 1/mu crosses zero linearly at lambda+, so mu (lambda - lambda+) tends
+    !> to the constant 1/theta'(lambda+) with an O(d) error at distance d, while mu grows
+    !> without bound. theta at d = 1e-7 lambda+ carries a relative round-off error of about
+    !> eps cond / 1e-7 ~ 1e-8, so successive products agree to 1e-4 at the smallest distances.
+    subroutine mu_has_a_pole_at_the_threshold(t)
+        type(test_suite_t), intent(inout) :: t
+        type(mesh_t) :: m
+        type(scene_t) :: s
+        type(thresholds_t) :: thr
+        type(status_t) :: stat
+        real(wp) :: mu(2:7), product(2:7), lambda
+        logical :: found, all_found, growing
+        integer :: k, n_positive
+
+        call structured_rectangle(1.0_wp, 1.0_wp, 10, 10, ELEMENT_P1, 'right', m, stat)
+        call build_scene(m, [m%part_index('top')], m%part_index('bottom'), 0.3_wp, s)
+        call pencil_thresholds(s%kt_nn, s%kt_nt, thr, stat)
+        all_found = .true.
+        do k = 2, 7
+            lambda = thr%lambda(SIDE_PLUS)*(1.0_wp + 10.0_wp**(-k))
+            call lowest_positive_mu(s%nn_m, s%nt_m, lambda, mu(k), found, n_positive, stat)
+            all_found = all_found .and. found
+            product(k) = mu(k)*(lambda - thr%lambda(SIDE_PLUS))
+        end do
+        call t%check('a positive mu at every distance outside lambda+', all_found)
+        growing = all(mu(3:7) > 5.0_wp*mu(2:6))
+        call t%check('mu grows about tenfold per decade towards lambda+', growing)
+        call t%check('mu exceeds 1e4 times its value at 1e-2 once 1e-7 away', &
+                     mu(7) > 1.0e4_wp*mu(2))
+        call t%check_close('mu (lambda - lambda+) tends to a constant', product(7), product(6), &
+                           1.0e-4_wp)
+        call t%check('the product converges linearly (error shrinks tenfold per decade)', &
+                     abs(product(4) - product(7)) < 0.2_wp*abs(product(3) - product(7)))
+    end subroutine mu_has_a_pole_at_the_threshold
+
+    !> On the reference scene both thresholds are confirmed: a large positive mu just outside,
+    !> none just inside.
+    subroutine thresholds_are_confirmed(t)
+        type(test_suite_t), intent(inout) :: t
+        type(mesh_t) :: m
+        type(scene_t) :: s
+        type(thresholds_t) :: thr
+        type(status_t) :: stat
+
+        call structured_rectangle(1.0_wp, 1.0_wp, 8, 8, ELEMENT_P1, 'right', m, stat)
+        call build_scene(m, [m%part_index('top')], m%part_index('bottom'), 0.3_wp, s)
+        call pencil_thresholds(s%kt_nn, s%kt_nt, thr, stat)
+        call confirm_thresholds(s%nn_m, s%nt_m, thr, stat)
+        call t%check('reference scene N=8: lambda+ > 0 > lambda-', all(thr%found) .and. &
+                     thr%lambda(SIDE_PLUS) > 0.0_wp .and. thr%lambda(SIDE_MINUS) < 0.0_wp)
+        call t%check('lambda+ confirmed', thr%confirmed(SIDE_PLUS))
+        call t%check('lambda- confirmed', thr%confirmed(SIDE_MINUS))
+        ! mu ~ C / (1e-6 lambda*): large compared with the O(1) mu at lambda = 5
+        call t%check('mu just outside is large', all(thr%mu_outside > 1.0e4_wp))
+    end subroutine thresholds_are_confirmed
+
+    !> Ends exact, even steps for 'linear', a constant ratio for 'log', the list verbatim.
+    subroutine sweep_lambda_lists(t)
+        type(test_suite_t), intent(inout) :: t
+        type(sweep_config_t) :: c
+        real(wp), allocatable :: lambdas(:)
+
+        allocate (lambdas(0))   ! gfortran -O3: false -Wuninitialized on a first assignment
+        c%lambda_min = -3.0_wp
+        c%lambda_max = 5.0_wp
+        c%n_lambda = 5
+        lambdas = sweep_lambdas(c)
+        call t%check('linear sweep: -3, -1, 1, 3, 5', size(lambdas) == 5 .and. &
+                     all(abs(lambdas - [-3.0_wp, -1.0_wp, 1.0_wp, 3.0_wp, 5.0_wp]) < 1.0e-15_wp))
+        c%spacing = 'log'
+        c%lambda_min = -1000.0_wp
+        c%lambda_max = -1.0_wp
+        c%n_lambda = 4
+        lambdas = sweep_lambdas(c)
+        call t%check('log sweep: -1000, -100, -10, -1', size(lambdas) == 4 .and. &
+            all(abs(lambdas - [-1000.0_wp, -100.0_wp, -10.0_wp, -1.0_wp]) <= &
+                4.0_wp*epsilon(1.0_wp)*abs(lambdas)))
+        c%lambdas(1:3) = [7.0_wp, -2.0_wp, 0.0_wp]
+        lambdas = sweep_lambdas(c)
+        call t%check('a list wins over the range, in its order', size(lambdas) == 3 .and. &
+                     all(abs(lambdas - [7.0_wp, -2.0_wp, 0.0_wp]) < tiny(1.0_wp)))
+    end subroutine sweep_lambda_lists
+
+    !> Kt_nn, Kt_nt from a Cholesky factor of K (E = 1), and both times M.
+    subroutine build_scene(m, dirichlet_parts, contact_part, poisson, s)
+        type(mesh_t), intent(in) :: m
+        integer, intent(in) :: dirichlet_parts(:), contact_part
+        real(wp), intent(in) :: poisson
+        type(scene_t), intent(out) :: s
+        type(dof_map_t) :: dofs
+        type(contact_t) :: contact
+        type(csr_matrix_t) :: k
+        type(cholesky_t) :: chol
+        type(status_t) :: stat
+        real(wp), allocatable :: mass(:, :)
+
+        call build_dof_map(m, dirichlet_parts, dofs, stat)
+        if (stat%ok()) call build_contact(m, contact_part, dofs, contact, stat)
+        if (stat%ok()) call assemble_stiffness(m, dofs, 1.0_wp, poisson, k, stat)
+        if (stat%ok()) call chol%factor(k, stat)
+        if (stat%ok()) call contact_flexibility(chol, contact, dofs%n_free, s%kt_nn, s%kt_nt, &
+                                                stat)
+        call chol%free()
+        if (.not. stat%ok()) then
+            call t%check('build_scene: '//stat%message, .false.)
+            error stop 1
+        end if
+        mass = contact%mass_dense()
+        s%nn_m = matmul(s%kt_nn, mass)
+        s%nt_m = matmul(s%kt_nt, mass)
+    end subroutine build_scene
+
+    !> The triangle A = (0,0), B = (l,0), C = (0,l): part 1 = [A,B] (contact), part 2 = [B,C]
+    !> (fixed), part 3 = [C,A] (Neumann).
+    subroutine single_triangle(l, m)
+        real(wp), intent(in) :: l
+        type(mesh_t), intent(out) :: m
+        m%element = ELEMENT_P1
+        m%coords = reshape([0.0_wp, 0.0_wp, l, 0.0_wp, 0.0_wp, l], [2, 3])
+        m%cells = reshape([1, 2, 3], [3, 1])
+        m%edges = reshape([1, 2, 2, 3, 3, 1], [2, 3])
+        m%edge_part = [1, 2, 3]
+        m%part_names = [character(len=64) :: 'contact', 'fixed', 'side']
+    end subroutine single_triangle
+end program test_critical_lambda
