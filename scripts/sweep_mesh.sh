@@ -361,6 +361,9 @@ plot() {
     cat >"$tmp/plot.gp" <<EOF
 set terminal $terminal
 set datafile missing 'NaN'
+# Distinct colours that read on white (gnuplot's 5th default is a pale yellow).
+palette = "#1f77b4 #d62728 #2ca02c #9467bd #ff7f0e #17becf #8c564b #e377c2 #7f7f7f #bcbd22"
+do for [i=1:10] { set linetype i lc rgb word(palette, i) }
 names = "$(echo $families)"
 set key outside right top box opaque
 set grid
@@ -389,11 +392,14 @@ unset multiplot
 set output '$tmp/tradeoff.png'
 set terminal $terminal
 set size 1,1
+set xtics autofreq
+unset offsets
+set autoscale x
 set title "accuracy against compute time (labels: N); reference limit $ref_limit ($reference)"
 set logscale xy
 set format x '10^{%L}'
 set format y '10^{%L}'
-set xlabel 'time [s] (assembly + factorization + eigensolver, one core)'
+set xlabel 'compute time [s] (time_total_s - time_output_s)' noenhanced
 set ylabel 'relative error of the lowest positive mu'
 set arrow from graph 0, first 1e-2 to graph 1, first 1e-2 nohead ls 100
 set arrow from graph 0, first 1e-3 to graph 1, first 1e-3 nohead ls 100
