@@ -20,7 +20,8 @@ module results_output
     use dof_map, only: dof_map_t
     implicit none
     private
-    public :: write_eigen_outputs, summary_lines, nodal_field, eigen_summary_json
+    public :: write_eigen_outputs, summary_lines, nodal_field, eigen_summary_json, &
+              write_eigenvalues_csv
 
 contains
 
