@@ -178,6 +178,7 @@ contains
         type(dof_map_t) :: dofs
         type(csr_matrix_t) :: k
         real(wp) :: load(6)
+        real(wp), parameter :: NO_STRESS(2, 2) = 0.0_wp, CLAMPED(6) = 0.0_wp
         m%element = ELEMENT_P1
         m%coords = reshape([0.0_wp, 0.0_wp, l, 0.0_wp, 0.0_wp, l], [2, 3])
         m%cells = reshape([1, 2, 3], [3, 1])
@@ -187,10 +188,10 @@ contains
         call build_dof_map(m, [2], dofs, stat)
         if (stat%ok()) call assemble_stiffness(m, dofs, YOUNG, POISSON, k, stat)
         load = 0.0_wp
-        if (stat%ok()) call edge_loads(m, [.false., .false., .true.], [f1, f2], &
-                                       reshape([0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], [2, 2]), load, stat)
+        if (stat%ok()) call edge_loads(m, [.false., .false., .true.], [f1, f2], NO_STRESS, &
+                                       load, stat)
         if (stat%ok()) call build_compliance(m, dofs, k, YOUNG, POISSON, 1, c_n, c_t, load, &
-                                             [0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], cp, stat)
+                                             CLAMPED, cp, stat)
     end subroutine single_element_problem
 
     !> SPEC section 5 data at the critical c_n: starting guesses U + delta_0 phi + noise that

@@ -15,7 +15,6 @@ module semismooth_newton
     use csr_matrix, only: csr_matrix_t
     use sparse_lu, only: lu_t
     use normal_compliance, only: compliance_t
-    use real_format, only: real_to_text
     use strings, only: to_string
     implicit none
     private

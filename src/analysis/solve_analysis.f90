@@ -15,7 +15,6 @@ module solve_analysis
     use semismooth_newton, only: newton_options_t, newton_report_t, newton_solve, &
                                  newton_history_text
     use branch_analysis, only: critical_data_t, critical_branch_data, branch_compliance
-    use strings, only: to_string
     implicit none
     private
     public :: solve_result_t, run_solve, solve_status, random_vector, branch_coordinates

@@ -16,7 +16,7 @@ module compliance_output
     use json_writer, only: json_object_t
     use vtk_writer, only: write_vtu
     use results_output, only: eigen_summary_json, write_eigenvalues_csv
-    use normal_compliance, only: compliance_t, state_name, STATE_SEPARATED, STATE_STICK, &
+    use normal_compliance, only: state_name, STATE_SEPARATED, STATE_STICK, &
                                  STATE_SLIP_PLUS, STATE_SLIP_MINUS
     use branch_analysis, only: branch_result_t
     use solve_analysis, only: solve_result_t
