@@ -100,7 +100,6 @@ contains
         call newton_solve(res%cp, res%x, options, res%report, stat)
         if (.not. stat%ok()) return
         res%time_newton = wall_time() - start
-        timings%eigen = timings%eigen + res%time_newton
 
         block
             real(wp), allocatable :: h(:)
