@@ -100,7 +100,7 @@ program test_input_config
     call expect_rejected('poisson = 0.5 explained', '&material poisson = 0.5 /', &
                          '&material', 'incompressible')
     call expect_rejected('poisson = -1', '&material poisson = -1.0 /', '&material', 'poisson')
-    call expect_rejected('analysis kind', "&analysis kind = 'branch' /", '&analysis', 'kind')
+    call expect_rejected('analysis kind', "&analysis kind = 'buckling' /", '&analysis', 'kind')
     call expect_rejected('lambda infinite', '&analysis lambda = Inf /', '&analysis', 'lambda')
     call expect_rejected('solver arpack not yet', "&eigen solver = 'arpack' /", '&eigen', &
                          'solver')

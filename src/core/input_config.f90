@@ -5,8 +5,8 @@ module input_config
     use kinds, only: wp
     use status, only: status_t, STATUS_BAD_INPUT
     use run_config, only: config_t, mesh_config_t, material_config_t, analysis_config_t, &
-                          eigen_config_t, output_config_t, NAME_LEN, LIST_LEN, PATH_LEN, &
-                          sweep_config_t, MAX_SWEEP_LAMBDAS
+                          eigen_config_t, output_config_t, branch_config_t, solve_config_t, &
+                          sweep_config_t, MAX_SWEEP_LAMBDAS, NAME_LEN, LIST_LEN, PATH_LEN
     use real_format, only: real_to_text
     use ieee_arithmetic, only: ieee_is_finite
     use iso_fortran_env, only: iostat_end, iostat_eor
@@ -15,12 +15,13 @@ module input_config
     public :: read_input, split_names, lowercase, help_text, default_output_directory, &
               resolve_relative
     public :: KNOWN_GROUPS, MESH_SOURCES, ELEMENT_NAMES, DIAGONALS, RECTANGLE_SIDES, &
-              ACCEPTED_ANALYSES, ACCEPTED_SOLVERS, MAX_CELLS_PER_SIDE
+              ACCEPTED_ANALYSES, ACCEPTED_SOLVERS, MAX_CELLS_PER_SIDE, SOLVE_DATA, SOLVE_STARTS
     public :: SWEEP_SPACINGS, sweep_lambdas
 
     !> Namelist groups, in the order they are read and documented.
     character(len=*), parameter :: KNOWN_GROUPS(*) = [character(len=8) :: &
-                                   'mesh', 'material', 'analysis', 'eigen', 'output', 'sweep']
+                                   'mesh', 'material', 'analysis', 'eigen', 'output', 'sweep', &
+                                   'branch', 'solve']
     character(len=*), parameter :: MESH_SOURCES(*) = [character(len=9) :: 'rectangle', 'gmsh']
     character(len=*), parameter :: ELEMENT_NAMES(*) = [character(len=2) :: &
                                    'p1', 'q1', 'p2', 'q2']
@@ -29,12 +30,17 @@ module input_config
                                    'top', 'bottom', 'left', 'right']
     !> Analyses this build can run; each new analysis adds its name here.
     character(len=*), parameter :: ACCEPTED_ANALYSES(*) = [character(len=12) :: 'eigen', &
-                                   'threshold', 'lambda_sweep']
+                                   'threshold', 'lambda_sweep', 'branch', 'solve']
     !> Eigensolvers this build offers; 'arpack' joins when its driver exists.
     character(len=*), parameter :: ACCEPTED_SOLVERS(*) = [character(len=6) :: 'dense', 'auto']
     integer, parameter :: MAX_CELLS_PER_SIDE = 1000000
     character(len=*), parameter :: SWEEP_SPACINGS(*) = [character(len=6) :: 'linear', 'log']
     integer, parameter :: MAX_SWEEP_POINTS = 100000   !! n_lambda of a &sweep range
+    !> &solve data: loads of the input, or the data of SPEC section 5 at the critical point.
+    character(len=*), parameter :: SOLVE_DATA(*) = [character(len=6) :: 'given', 'branch']
+    !> &solve start: the starting guesses of the Newton iteration.
+    character(len=*), parameter :: SOLVE_STARTS(*) = [character(len=6) :: &
+                                   'zero', 'branch', 'random', 'mode']
 
     integer, parameter :: MSG_LEN = 1024     !! iomsg buffers
     integer, parameter :: CHUNK_LEN = 256    !! pieces of an input line of any length
@@ -86,6 +92,8 @@ contains
         if (stat%ok()) call read_eigen(unit, input, groups, config, stat)
         if (stat%ok()) call read_output(unit, input, groups, config, stat)
         if (stat%ok()) call read_sweep(unit, input, groups, config, stat)
+        if (stat%ok()) call read_branch(unit, input, groups, config, stat)
+        if (stat%ok()) call read_solve(unit, input, groups, config, stat)
         close (unit)
         if (.not. stat%ok()) return
 
@@ -95,6 +103,8 @@ contains
         if (stat%ok()) call validate_eigen(config%eigen, input, stat)
         if (stat%ok()) call validate_output(config%output, input, stat)
         if (stat%ok()) call validate_sweep(config%sweep, input, stat)
+        if (stat%ok()) call validate_branch(config%branch, input, stat)
+        if (stat%ok()) call validate_solve(config%solve, input, stat)
         if (.not. stat%ok()) return
 
         if (len_trim(config%mesh%file) > 0) then
@@ -525,6 +535,117 @@ contains
         config%output%matrices = matrices
     end subroutine read_output
 
+    subroutine read_branch(unit, path, groups, config, stat)
+        integer, intent(in) :: unit
+        character(len=*), intent(in) :: path
+        type(group_text_t), intent(in) :: groups(:)
+        type(config_t), intent(inout) :: config
+        type(status_t), intent(out) :: stat
+        real(wp) :: alpha, beta
+        integer :: n_delta, write_members
+        namelist /branch/ alpha, beta, n_delta, write_members
+        type(text_t), allocatable :: pieces(:)
+        character(len=:), allocatable :: record
+        character(len=MSG_LEN) :: msg
+        integer :: ios, i
+
+        if (.not. has_group(groups, 'branch')) return
+        alpha = config%branch%alpha
+        beta = config%branch%beta
+        n_delta = config%branch%n_delta
+        write_members = config%branch%write_members
+        rewind (unit)
+        read (unit, nml=branch, iostat=ios, iomsg=msg)
+        if (ios /= 0) then
+            call stat%fail(STATUS_BAD_INPUT, read_failure(path, 'branch', ios, msg))
+            pieces = split_assignments(group_body(groups, 'branch'))
+            do i = 1, size(pieces)
+                record = '&branch '//pieces(i)%text//' /'
+                read (record, nml=branch, iostat=ios, iomsg=msg)
+                if (ios /= 0) then
+                    call stat%fail(STATUS_BAD_INPUT, path//': &branch: '//pieces(i)%text &
+                                   //': '//trim(msg))
+                    exit
+                end if
+            end do
+            return
+        end if
+        config%branch%alpha = alpha
+        config%branch%beta = beta
+        config%branch%n_delta = n_delta
+        config%branch%write_members = write_members
+    end subroutine read_branch
+
+    subroutine read_solve(unit, path, groups, config, stat)
+        integer, intent(in) :: unit
+        character(len=*), intent(in) :: path
+        type(group_text_t), intent(in) :: groups(:)
+        type(config_t), intent(inout) :: config
+        type(status_t), intent(out) :: stat
+        character(len=NAME_LEN) :: data, start
+        real(wp) :: c_n, c_t, critical_factor, f1, f2, t1, t2, u_d1, u_d2, start_delta, &
+                    start_scale, start_noise, tol
+        integer :: seed, max_iterations
+        namelist /solve/ data, c_n, c_t, critical_factor, f1, f2, t1, t2, u_d1, u_d2, start, &
+            start_delta, start_scale, start_noise, seed, tol, max_iterations
+        type(text_t), allocatable :: pieces(:)
+        character(len=:), allocatable :: record
+        character(len=MSG_LEN) :: msg
+        integer :: ios, i
+
+        if (.not. has_group(groups, 'solve')) return
+        data = config%solve%data
+        c_n = config%solve%c_n
+        c_t = config%solve%c_t
+        critical_factor = config%solve%critical_factor
+        f1 = config%solve%f1
+        f2 = config%solve%f2
+        t1 = config%solve%t1
+        t2 = config%solve%t2
+        u_d1 = config%solve%u_d1
+        u_d2 = config%solve%u_d2
+        start = config%solve%start
+        start_delta = config%solve%start_delta
+        start_scale = config%solve%start_scale
+        start_noise = config%solve%start_noise
+        seed = config%solve%seed
+        tol = config%solve%tol
+        max_iterations = config%solve%max_iterations
+        rewind (unit)
+        read (unit, nml=solve, iostat=ios, iomsg=msg)
+        if (ios /= 0) then
+            call stat%fail(STATUS_BAD_INPUT, read_failure(path, 'solve', ios, msg))
+            pieces = split_assignments(group_body(groups, 'solve'))
+            do i = 1, size(pieces)
+                record = '&solve '//pieces(i)%text//' /'
+                read (record, nml=solve, iostat=ios, iomsg=msg)
+                if (ios /= 0) then
+                    call stat%fail(STATUS_BAD_INPUT, path//': &solve: '//pieces(i)%text &
+                                   //': '//trim(msg))
+                    exit
+                end if
+            end do
+            return
+        end if
+        config%solve%data = lowercase(adjustl(data))
+        config%solve%c_n = c_n
+        config%solve%c_t = c_t
+        config%solve%critical_factor = critical_factor
+        config%solve%f1 = f1
+        config%solve%f2 = f2
+        config%solve%t1 = t1
+        config%solve%t2 = t2
+        config%solve%u_d1 = u_d1
+        config%solve%u_d2 = u_d2
+        config%solve%start = lowercase(adjustl(start))
+        config%solve%start_delta = start_delta
+        config%solve%start_scale = start_scale
+        config%solve%start_noise = start_noise
+        config%solve%seed = seed
+        config%solve%tol = tol
+        config%solve%max_iterations = max_iterations
+    end subroutine read_solve
+
     ! ---------------------------------------------------------------------- validation
 
     subroutine validate_mesh(c, path, stat)
@@ -692,6 +813,69 @@ contains
             call fail_value(stat, path, 'output', 'modes', int_text(c%modes), 'an integer >= 0')
         end if
     end subroutine validate_output
+
+    subroutine validate_branch(c, path, stat)
+        type(branch_config_t), intent(in) :: c
+        character(len=*), intent(in) :: path
+        type(status_t), intent(inout) :: stat
+
+        if (.not. positive_finite(c%alpha)) then
+            call fail_value(stat, path, 'branch', 'alpha', real_to_text(c%alpha), &
+                            'a finite number > 0 (u_n of U on the contact boundary)')
+        else if (.not. positive_finite(c%beta)) then
+            call fail_value(stat, path, 'branch', 'beta', real_to_text(c%beta), &
+                            'a finite number > 0 (|u_t| of U on the contact boundary)')
+        else if (c%n_delta < 1) then
+            call fail_value(stat, path, 'branch', 'n_delta', int_text(c%n_delta), &
+                            'an integer >= 1')
+        else if (c%write_members < 0) then
+            call fail_value(stat, path, 'branch', 'write_members', int_text(c%write_members), &
+                            'an integer >= 0')
+        end if
+    end subroutine validate_branch
+
+    subroutine validate_solve(c, path, stat)
+        type(solve_config_t), intent(in) :: c
+        character(len=*), intent(in) :: path
+        type(status_t), intent(inout) :: stat
+        logical :: tol_ok
+
+        tol_ok = ieee_is_finite(c%tol)
+        if (tol_ok) tol_ok = c%tol > 0.0_wp .and. c%tol < 1.0_wp
+        if (.not. any(SOLVE_DATA == c%data)) then
+            call reject('data', quoted(c%data), 'one of '//one_of(SOLVE_DATA))
+        else if (.not. positive_finite(c%c_n)) then
+            call reject('c_n', real_to_text(c%c_n), 'a finite number > 0')
+        else if (.not. positive_finite(c%c_t)) then
+            call reject('c_t', real_to_text(c%c_t), 'a finite number > 0')
+        else if (.not. positive_finite(c%critical_factor)) then
+            call reject('critical_factor', real_to_text(c%critical_factor), 'a finite number > 0')
+        else if (.not. all(ieee_is_finite([c%f1, c%f2, c%t1, c%t2, c%u_d1, c%u_d2]))) then
+            call reject('f1, f2, t1, t2, u_d1, u_d2', real_to_text(c%f1)//', ' &
+                        //real_to_text(c%f2)//', '//real_to_text(c%t1)//', ' &
+                        //real_to_text(c%t2)//', '//real_to_text(c%u_d1)//', ' &
+                        //real_to_text(c%u_d2), 'finite numbers')
+        else if (.not. any(SOLVE_STARTS == c%start)) then
+            call reject('start', quoted(c%start), 'one of '//one_of(SOLVE_STARTS))
+        else if (.not. ieee_is_finite(c%start_delta)) then
+            call reject('start_delta', real_to_text(c%start_delta), 'a finite number')
+        else if (.not. ieee_is_finite(c%start_scale)) then
+            call reject('start_scale', real_to_text(c%start_scale), 'a finite number')
+        else if (.not. ieee_is_finite(c%start_noise)) then
+            call reject('start_noise', real_to_text(c%start_noise), 'a finite number')
+        else if (.not. tol_ok) then
+            call reject('tol', real_to_text(c%tol), 'a number with 0 < tol < 1')
+        else if (c%max_iterations < 1) then
+            call reject('max_iterations', int_text(c%max_iterations), 'an integer >= 1')
+        end if
+
+    contains
+
+        subroutine reject(variable, value, expected)
+            character(len=*), intent(in) :: variable, value, expected
+            call fail_value(stat, path, 'solve', variable, value, expected)
+        end subroutine reject
+    end subroutine validate_solve
 
     !> The one message format of a rejected value.
     subroutine fail_value(stat, path, group, variable, value, expected)
@@ -1056,6 +1240,37 @@ contains
                        int_text(MAX_SWEEP_LAMBDAS)//'), replaces the range') &
                //entry('plot', logical_text(d%sweep%plot), 'draw lambda_sweep.png with' &
                        //' gnuplot when it is installed')
+        text = text//'&branch      (kind = ''branch'': U + delta phi, SPEC section 5)'//NL &
+               //entry('alpha', real_to_text(d%branch%alpha), 'u_n of U on Gamma_C, > 0') &
+               //entry('beta', real_to_text(d%branch%beta), '|u_t| of U on Gamma_C, > 0') &
+               //entry('n_delta', int_text(d%branch%n_delta), 'deltas evenly spaced in' &
+                       //' [-delta_max, delta_max]') &
+               //entry('write_members', int_text(d%branch%write_members), &
+                       'members written as branch_NNN.vtu')
+        text = text//'&solve       (kind = ''solve'': frictional normal compliance, Newton)'//NL &
+               //entry('data', quoted(d%solve%data), one_of(SOLVE_DATA)//': the loads below,' &
+                       //' or those of &branch') &
+               //entry('c_n', real_to_text(d%solve%c_n), 'normal compliance (data = ''given'')') &
+               //entry('c_t', real_to_text(d%solve%c_t), 'tangential compliance') &
+               //entry('critical_factor', real_to_text(d%solve%critical_factor), &
+                       'data = ''branch'': c_n, c_t = factor * critical') &
+               //entry('f1, f2', real_to_text(d%solve%f1)//', '//real_to_text(d%solve%f2), &
+                       'body force') &
+               //entry('t1, t2', real_to_text(d%solve%t1)//', '//real_to_text(d%solve%t2), &
+                       'traction on every Neumann part') &
+               //entry('u_d1, u_d2', real_to_text(d%solve%u_d1)//', ' &
+                       //real_to_text(d%solve%u_d2), 'displacement on Gamma_D') &
+               //entry('start', quoted(d%solve%start), one_of(SOLVE_STARTS)) &
+               //entry('start_delta', real_to_text(d%solve%start_delta), &
+                       'start = ''branch'': U + start_delta phi') &
+               //entry('start_scale', real_to_text(d%solve%start_scale), &
+                       'start = ''random'' or ''mode'': size of the guess') &
+               //entry('start_noise', real_to_text(d%solve%start_noise), &
+                       'uniform noise of this size added to any start') &
+               //entry('seed', int_text(d%solve%seed), 'of the random start and the noise') &
+               //entry('tol', real_to_text(d%solve%tol), '||residual|| / ||load||' &
+                       //' (infinity norms) to stop at') &
+               //entry('max_iterations', int_text(d%solve%max_iterations), 'Newton iterations')
 
     contains
 
