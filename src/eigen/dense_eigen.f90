@@ -10,7 +10,8 @@ module dense_eigen
     use csr_matrix, only: csr_matrix_t
     use sparse_cholesky, only: cholesky_t
     use contact_boundary, only: contact_t
-    use spectrum, only: spectrum_t, order_eigenvalues, backward_error, normalise_mode
+    use spectrum, only: spectrum_t, order_eigenvalues, backward_error, normalise_mode, &
+                        KIND_POSITIVE, KIND_COMPLEX
     use lapack_interfaces, only: dgeevx, dgemm, dsyrk, lapack_info_message
     implicit none
     private
@@ -99,7 +100,7 @@ contains
         call contact_flexibility(chol, contact, n_free, kt_nn, kt_nt, stat)
         if (.not. stat%ok()) return
         a = matmul(lambda*kt_nt - kt_nn, contact%mass_dense())
-        deallocate (kt_nn, kt_nt)
+        deallocate (kt_nn)
         if (present(reduction_seconds)) reduction_seconds = wall_time() - start
 
         allocate (wr(p), wi(p), vl(p, p), vr(p, p), scale(p), rconde(p), rcondv(p))
@@ -113,7 +114,7 @@ contains
             call stat%fail(STATUS_SOLVER, lapack_info_message('dgeevx', info))
             return
         end if
-        deallocate (a, vl, work)
+        deallocate (a, work)
 
         ! theta = 1/mu. theta = 0 (mu infinite) happens only exactly at a critical lambda.
         theta = cmplx(wr, wi, wp)
@@ -150,6 +151,24 @@ contains
         spec%mu = mu(keep(order))
         spec%kind = kinds
         spec%condition = condition(keep(order))
+        allocate (spec%lambda_sensitivity(n_ev), source=-1.0_wp)
+        if (n_ev > 0) then
+            ! the lowest positive mu (first in output order) and the real mu of largest
+            ! modulus: the one that comes in from infinity when lambda nears a threshold
+            if (kinds(1) == KIND_POSITIVE) spec%lambda_sensitivity(1) = &
+                lambda_sensitivity(keep(order(1)))
+            i = 0
+            do j = 1, n_ev
+                if (kinds(j) == KIND_COMPLEX) cycle
+                if (i == 0) then
+                    i = j
+                else if (abs(mu(keep(order(j)))) > abs(mu(keep(order(i))))) then
+                    i = j
+                end if
+            end do
+            if (i > 0) spec%lambda_sensitivity(i) = lambda_sensitivity(keep(order(i)))
+        end if
+        deallocate (vl, kt_nt)
         allocate (spec%residual(n_ev), spec%vectors(n_free, min(n_keep, n_ev)))
         allocate (phi(n_free))
         do i = 1, n_ev
@@ -163,6 +182,19 @@ contains
         end do
 
     contains
+
+        !> First-order perturbation of a simple real theta = 1/mu of A = (lambda Kt_nt -
+        !> Kt_nn) M: d theta / d lambda = y^T Kt_nt M x / (y^T x), x, y its right and left
+        !> eigenvectors. mu = 1/theta has the same relative sensitivity as theta.
+        real(wp) function lambda_sensitivity(j)
+            integer, intent(in) :: j
+            real(wp) :: mass_x(p), y_dot_x
+            call contact%mass%matvec(vr(:, j), mass_x)
+            y_dot_x = dot_product(vl(:, j), vr(:, j))
+            lambda_sensitivity = huge(1.0_wp)   ! a defective (double) eigenvalue
+            if (abs(y_dot_x) > 0.0_wp) lambda_sensitivity = abs(lambda)* &
+                abs(dot_product(vl(:, j), matmul(kt_nt, mass_x)))/(abs(y_dot_x)*abs(theta(j)))
+        end function lambda_sensitivity
 
         !> Full eigenvector j from the solved columns: a complex pair (j, j+1) with wi(j) > 0
         !> is stored as real part in column j and imaginary part in column j + 1.

@@ -27,6 +27,7 @@ module json_writer
         procedure :: add_real_or_null => json_object_add_real_or_null
         procedure :: add_logical => json_object_add_logical
         procedure :: add_null => json_object_add_null
+        procedure :: add_string_array => json_object_add_string_array
         procedure :: to_text => json_object_to_text
         procedure :: write => json_object_write
     end type json_object_t
@@ -97,6 +98,20 @@ contains
         character(len=*), intent(in) :: key
         call add_member(this, key, 'null')
     end subroutine json_object_add_null
+
+    !> An array of strings, each trimmed of trailing blanks; [] when `values` is empty.
+    subroutine json_object_add_string_array(this, key, values)
+        class(json_object_t), intent(inout) :: this
+        character(len=*), intent(in) :: key, values(:)
+        character(len=:), allocatable :: text
+        integer :: i
+        text = '['
+        do i = 1, size(values)
+            if (i > 1) text = text//', '
+            text = text//'"'//escaped(trim(values(i)))//'"'
+        end do
+        call add_member(this, key, text//']')
+    end subroutine json_object_add_string_array
 
     !> The object as text: one member per line, two-space indent, no final line feed;
     !> an empty object is '{}'.

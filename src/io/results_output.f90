@@ -110,6 +110,11 @@ contains
         call summary%add_real('time_eigen_s', timings%eigen)
         call summary%add_real('time_output_s', timings%output)
         call summary%add_real('time_total_s', timings%total)
+        if (allocated(res%warnings)) then
+            call summary%add_string_array('warnings', res%warnings)
+        else
+            call summary%add_string_array('warnings', [character(len=1) ::])
+        end if
     end function eigen_summary_json
 
     !> s = -sgn(lambda): the slip direction along t on the critical branch (0 for lambda = 0).
@@ -195,7 +200,7 @@ contains
         type(timings_t), intent(in) :: timings
         character(len=:), allocatable :: text
         character(len=*), parameter :: NL = new_line('a')
-        integer :: lowest
+        integer :: lowest, i
         real(wp) :: mu
 
         text = 'nceig '//NCEIG_VERSION//': '//config%input_file//NL// &
@@ -220,6 +225,11 @@ contains
             seconds(timings%factor)//', reduction '//seconds(timings%reduction)//', eigen '// &
             seconds(timings%eigen)//', output '//seconds(timings%output)//', total '// &
             seconds(timings%total)//NL//'  output      '//trim(config%output%directory)
+        if (allocated(res%warnings)) then
+            do i = 1, size(res%warnings)
+                text = text//NL//'warning: '//trim(res%warnings(i))
+            end do
+        end if
 
     contains
 
