@@ -9,6 +9,7 @@ module input_config
     use real_format, only: real_to_text
     use ieee_arithmetic, only: ieee_is_finite
     use iso_fortran_env, only: iostat_end, iostat_eor
+    use filesystem, only: is_directory
     implicit none
     private
     public :: read_input, split_names, lowercase, help_text, default_output_directory, &
@@ -30,6 +31,20 @@ module input_config
     !> Eigensolvers this build offers; 'arpack' joins when its driver exists.
     character(len=*), parameter :: ACCEPTED_SOLVERS(*) = [character(len=6) :: 'dense', 'auto']
     integer, parameter :: MAX_CELLS_PER_SIDE = 1000000
+    !> 'group variable:expected value' of every namelist variable, for messages about a
+    !> value the runtime could not read. New groups add their lines.
+    character(len=*), parameter :: VARIABLE_TYPES(*) = [character(len=64) :: &
+        'mesh source:a quoted name', 'mesh file:a quoted path', 'mesh width:a real number', &
+        'mesh height:a real number', 'mesh nx:an integer', 'mesh ny:an integer', &
+        'mesh element:a quoted name', 'mesh diagonal:a quoted name', &
+        'mesh dirichlet:a quoted list of names', 'mesh neumann:a quoted list of names', &
+        'mesh contact:a quoted name', 'material young:a real number', &
+        'material poisson:a real number', 'analysis kind:a quoted name', &
+        'analysis lambda:a real number', 'eigen solver:a quoted name', &
+        'eigen nev:an integer', 'eigen target:a real number', 'eigen tol:a real number', &
+        'eigen maxit:an integer', 'eigen ncv:an integer', 'eigen dense_max_contact:an integer', &
+        'output directory:a quoted path', 'output vtk:.true. or .false.', &
+        'output modes:an integer', 'output matrices:.true. or .false.']
 
     integer, parameter :: MSG_LEN = 1024     !! iomsg buffers
     integer, parameter :: CHUNK_LEN = 256    !! pieces of an input line of any length
@@ -69,6 +84,12 @@ contains
 
         input = trim(path)
         config%input_file = input
+        ! Opening a directory succeeds and reads as an empty file: all defaults, silently.
+        if (is_directory(input)) then
+            call stat%fail(STATUS_BAD_INPUT, input//': is a directory: expected a namelist ' &
+                           //'input file')
+            return
+        end if
         open (newunit=unit, file=input, status='old', action='read', iostat=ios, iomsg=msg)
         if (ios /= 0) then
             call stat%fail(STATUS_BAD_INPUT, input//': cannot open input file: '//trim(msg))
@@ -163,6 +184,12 @@ contains
                     call close_group()
                 else if (inside) then
                     body = body//c
+                else if (index(BLANKS//achar(13), c) == 0) then
+                    ! The runtime would skip it; it is garbage or a group without its '&'.
+                    call stat%fail(STATUS_BAD_INPUT, path//': line '//int_text(line_number) &
+                        //', column '//int_text(i)//': text outside any namelist group: ' &
+                        //"expected '&group name = value ... /' or a '!' comment")
+                    return
                 end if
                 i = i + 1
             end do
@@ -336,7 +363,7 @@ contains
                 read (record, nml=mesh, iostat=ios, iomsg=msg)
                 if (ios /= 0) then
                     call stat%fail(STATUS_BAD_INPUT, path//': &mesh: '//pieces(i)%text &
-                                   //': '//trim(msg))
+                                   //': '//trim(msg)//expectation('mesh', pieces(i)%text))
                     exit
                 end if
             end do
@@ -381,7 +408,7 @@ contains
                 read (record, nml=material, iostat=ios, iomsg=msg)
                 if (ios /= 0) then
                     call stat%fail(STATUS_BAD_INPUT, path//': &material: '//pieces(i)%text &
-                                   //': '//trim(msg))
+                                   //': '//trim(msg)//expectation('material', pieces(i)%text))
                     exit
                 end if
             end do
@@ -418,7 +445,7 @@ contains
                 read (record, nml=analysis, iostat=ios, iomsg=msg)
                 if (ios /= 0) then
                     call stat%fail(STATUS_BAD_INPUT, path//': &analysis: '//pieces(i)%text &
-                                   //': '//trim(msg))
+                                   //': '//trim(msg)//expectation('analysis', pieces(i)%text))
                     exit
                 end if
             end do
@@ -461,7 +488,7 @@ contains
                 read (record, nml=eigen, iostat=ios, iomsg=msg)
                 if (ios /= 0) then
                     call stat%fail(STATUS_BAD_INPUT, path//': &eigen: '//pieces(i)%text &
-                                   //': '//trim(msg))
+                                   //': '//trim(msg)//expectation('eigen', pieces(i)%text))
                     exit
                 end if
             end do
@@ -506,7 +533,7 @@ contains
                 read (record, nml=output, iostat=ios, iomsg=msg)
                 if (ios /= 0) then
                     call stat%fail(STATUS_BAD_INPUT, path//': &output: '//pieces(i)%text &
-                                   //': '//trim(msg))
+                                   //': '//trim(msg)//expectation('output', pieces(i)%text))
                     exit
                 end if
             end do
@@ -517,6 +544,32 @@ contains
         config%output%modes = modes
         config%output%matrices = matrices
     end subroutine read_output
+
+    !> What a failed assignment 'name = value' of `group` should have looked like: the
+    !> type of a known variable, or the variables the group knows. The runtime's own message
+    !> ('Cannot match namelist object name 5') says what went wrong, not what was expected.
+    pure function expectation(group, assignment) result(text)
+        character(len=*), intent(in) :: group, assignment
+        character(len=:), allocatable :: text
+        character(len=:), allocatable :: name
+        integer :: i, equals, space
+        equals = index(assignment, '=')
+        name = lowercase(trim(adjustl(assignment(:max(0, equals - 1)))))
+        text = ''
+        do i = 1, size(VARIABLE_TYPES)
+            space = index(VARIABLE_TYPES(i), ' ')
+            if (VARIABLE_TYPES(i)(:space - 1) /= group) cycle
+            if (len(text) > 0) text = text//', '
+            text = text//trim(VARIABLE_TYPES(i)(space + 1:index(VARIABLE_TYPES(i), ':') - 1))
+            if (trim(VARIABLE_TYPES(i)(space + 1:index(VARIABLE_TYPES(i), ':') - 1)) == name) &
+                then
+                text = ' (expected '//trim(VARIABLE_TYPES(i)(index(VARIABLE_TYPES(i), ':') + &
+                       1:))//')'
+                return
+            end if
+        end do
+        if (len(text) > 0) text = ' (&'//group//' knows: '//text//')'
+    end function expectation
 
     ! ---------------------------------------------------------------------- validation
 
