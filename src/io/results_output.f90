@@ -34,6 +34,7 @@ contains
         type(status_t), intent(out) :: stat
         type(output_stage_t) :: stage
         type(json_object_t) :: summary
+        character(len=:), allocatable :: summary_path
         real(wp) :: start
 
         start = wall_time()
@@ -50,7 +51,11 @@ contains
             timings%output = wall_time() - start
             timings%total = wall_time() - run_start
             summary = eigen_summary_json(config, prob, res, timings)
-            call summary%write(stage%path('summary.json'), stat)
+            ! summary.json is registered last: the commit's completion marker, so it lists
+            ! the files of its set (an older run may have left other mode_NNN.vtu).
+            summary_path = stage%path('summary.json')
+            call summary%add_string_array('files', stage%file_names(64))
+            call summary%write(summary_path, stat)
         end if
         if (stat%ok()) call stage%commit(stat)
         if (.not. stat%ok()) call stage%abort()
