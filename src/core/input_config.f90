@@ -176,7 +176,7 @@ contains
                         inside = .true.
                         group_line = line_number
                         body = ''
-                        groups = [groups, group_text_t(name, '', group_line)]
+                        call append_group(groups, name, group_line)
                     end if
                     i = j
                     cycle
@@ -223,6 +223,26 @@ contains
             quote = ' '
         end subroutine close_group
     end subroutine scan_groups
+
+    !> groups = [groups, group_text_t(name, '', line)] without the array constructor, whose
+    !> temporary copies of allocatable components gfortran 12 never frees (LeakSanitizer).
+    subroutine append_group(groups, name, line)
+        type(group_text_t), allocatable, intent(inout) :: groups(:)
+        character(len=*), intent(in) :: name
+        integer, intent(in) :: line
+        type(group_text_t), allocatable :: grown(:)
+        integer :: i
+        allocate (grown(size(groups) + 1))
+        do i = 1, size(groups)
+            call move_alloc(groups(i)%name, grown(i)%name)
+            call move_alloc(groups(i)%body, grown(i)%body)
+            grown(i)%line = groups(i)%line
+        end do
+        grown(size(grown))%name = name
+        grown(size(grown))%body = ''
+        grown(size(grown))%line = line
+        call move_alloc(grown, groups)
+    end subroutine append_group
 
     !> One line of any length; the last line needs no line feed.
     subroutine read_line(unit, line, ios, msg)

@@ -160,6 +160,7 @@ contains
     subroutine add_member(object, key, value)
         type(json_object_t), intent(inout) :: object
         character(len=*), intent(in) :: key, value
+        type(json_member_t), allocatable :: grown(:)
         integer :: i
         if (.not. allocated(object%members)) allocate (object%members(0))
         do i = 1, size(object%members)
@@ -168,7 +169,16 @@ contains
                 return
             end if
         end do
-        object%members = [object%members, json_member_t(key, value)]
+        ! Grown by hand: gfortran 12 leaks the allocatable components of the temporaries
+        ! of [object%members, json_member_t(key, value)] (LeakSanitizer).
+        allocate (grown(size(object%members) + 1))
+        do i = 1, size(object%members)
+            call move_alloc(object%members(i)%key, grown(i)%key)
+            call move_alloc(object%members(i)%value, grown(i)%value)
+        end do
+        grown(size(grown))%key = key
+        grown(size(grown))%value = value
+        call move_alloc(grown, object%members)
     end subroutine add_member
 
     !> `text` with quotes, backslashes and control characters escaped as JSON requires.

@@ -71,6 +71,7 @@ contains
         class(output_stage_t), intent(inout) :: this
         character(len=*), intent(in) :: name
         character(len=:), allocatable :: file_path
+        type(staged_name_t), allocatable :: grown(:)
         integer :: i
 
         if (.not. this%active) then
@@ -82,7 +83,14 @@ contains
         do i = 1, size(this%names)
             if (this%names(i)%name == trim(name)) return
         end do
-        this%names = [this%names, staged_name_t(trim(name))]
+        ! Grown by hand: gfortran 12 leaks the allocatable components of the temporaries
+        ! of [this%names, staged_name_t(name)] (LeakSanitizer).
+        allocate (grown(size(this%names) + 1))
+        do i = 1, size(this%names)
+            call move_alloc(this%names(i)%name, grown(i)%name)
+        end do
+        grown(size(grown))%name = trim(name)
+        call move_alloc(grown, this%names)
     end function output_stage_path
 
     !> Move every staged file into the output directory, replacing older files of the same
