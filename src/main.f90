@@ -100,6 +100,8 @@ program nceig
         call stop_on_failure(stat)
         write (output_unit, '(a)') summary_lines(config, prob, res, timings)
     end select
+    ! gfortran 12 keeps main-program allocatables in a frame gone before LeakSanitizer looks
+    deallocate (argument)
 
 contains
 

@@ -10,6 +10,7 @@ module input_config
     use real_format, only: real_to_text
     use ieee_arithmetic, only: ieee_is_finite
     use iso_fortran_env, only: iostat_end, iostat_eor
+    use filesystem, only: is_directory
     implicit none
     private
     public :: read_input, split_names, lowercase, help_text, default_output_directory, &
@@ -41,6 +42,32 @@ module input_config
     !> &solve start: the starting guesses of the Newton iteration.
     character(len=*), parameter :: SOLVE_STARTS(*) = [character(len=6) :: &
                                    'zero', 'branch', 'random', 'mode']
+    !> 'group variable:expected value' of every namelist variable, for messages about a
+    !> value the runtime could not read. New groups add their lines.
+    character(len=*), parameter :: VARIABLE_TYPES(*) = [character(len=64) :: &
+        'mesh source:a quoted name', 'mesh file:a quoted path', 'mesh width:a real number', &
+        'mesh height:a real number', 'mesh nx:an integer', 'mesh ny:an integer', &
+        'mesh element:a quoted name', 'mesh diagonal:a quoted name', &
+        'mesh dirichlet:a quoted list of names', 'mesh neumann:a quoted list of names', &
+        'mesh contact:a quoted name', 'material young:a real number', &
+        'material poisson:a real number', 'analysis kind:a quoted name', &
+        'analysis lambda:a real number', 'eigen solver:a quoted name', &
+        'eigen nev:an integer', 'eigen target:a real number', 'eigen tol:a real number', &
+        'eigen maxit:an integer', 'eigen ncv:an integer', 'eigen dense_max_contact:an integer', &
+        'output directory:a quoted path', 'output vtk:.true. or .false.', &
+        'output modes:an integer', 'output matrices:.true. or .false.', &
+        'sweep lambda_min:a real number', 'sweep lambda_max:a real number', &
+        'sweep n_lambda:an integer', 'sweep spacing:a quoted name', &
+        'sweep lambdas:a list of real numbers', 'sweep plot:.true. or .false.', &
+        'branch alpha:a real number', 'branch beta:a real number', &
+        'branch n_delta:an integer', 'branch write_members:an integer', &
+        'solve data:a quoted name', 'solve c_n:a real number', 'solve c_t:a real number', &
+        'solve critical_factor:a real number', 'solve f1:a real number', &
+        'solve f2:a real number', 'solve t1:a real number', 'solve t2:a real number', &
+        'solve u_d1:a real number', 'solve u_d2:a real number', 'solve start:a quoted name', &
+        'solve start_delta:a real number', 'solve start_scale:a real number', &
+        'solve start_noise:a real number', 'solve seed:an integer', 'solve tol:a real number', &
+        'solve max_iterations:an integer']
 
     integer, parameter :: MSG_LEN = 1024     !! iomsg buffers
     integer, parameter :: CHUNK_LEN = 256    !! pieces of an input line of any length
@@ -61,6 +88,17 @@ module input_config
         character(len=:), allocatable :: text
     end type text_t
 
+    !> Reads one '&group assignment /' record with the group's namelist.
+    abstract interface
+        subroutine record_reader(record, config, ios, msg)
+            import :: config_t
+            character(len=*), intent(in) :: record
+            type(config_t), intent(inout) :: config
+            integer, intent(out) :: ios
+            character(len=*), intent(inout) :: msg
+        end subroutine record_reader
+    end interface
+
 contains
 
     !> Read and validate the namelist file `path`. Groups are read in the order of
@@ -80,20 +118,28 @@ contains
 
         input = trim(path)
         config%input_file = input
+        ! Opening a directory succeeds and reads as an empty file: all defaults, silently.
+        if (is_directory(input)) then
+            call stat%fail(STATUS_BAD_INPUT, input//': is a directory: expected a namelist ' &
+                           //'input file')
+            return
+        end if
         open (newunit=unit, file=input, status='old', action='read', iostat=ios, iomsg=msg)
         if (ios /= 0) then
             call stat%fail(STATUS_BAD_INPUT, input//': cannot open input file: '//trim(msg))
             return
         end if
         call scan_groups(unit, input, groups, stat)
-        if (stat%ok()) call read_mesh(unit, input, groups, config, stat)
-        if (stat%ok()) call read_material(unit, input, groups, config, stat)
-        if (stat%ok()) call read_analysis(unit, input, groups, config, stat)
-        if (stat%ok()) call read_eigen(unit, input, groups, config, stat)
-        if (stat%ok()) call read_output(unit, input, groups, config, stat)
-        if (stat%ok()) call read_sweep(unit, input, groups, config, stat)
-        if (stat%ok()) call read_branch(unit, input, groups, config, stat)
-        if (stat%ok()) call read_solve(unit, input, groups, config, stat)
+        if (stat%ok()) call read_group(input, 'mesh', groups, mesh_record, config, stat)
+        if (stat%ok()) call read_group(input, 'material', groups, material_record, config, &
+                                       stat)
+        if (stat%ok()) call read_group(input, 'analysis', groups, analysis_record, config, &
+                                       stat)
+        if (stat%ok()) call read_group(input, 'eigen', groups, eigen_record, config, stat)
+        if (stat%ok()) call read_group(input, 'output', groups, output_record, config, stat)
+        if (stat%ok()) call read_group(input, 'sweep', groups, sweep_record, config, stat)
+        if (stat%ok()) call read_group(input, 'branch', groups, branch_record, config, stat)
+        if (stat%ok()) call read_group(input, 'solve', groups, solve_record, config, stat)
         close (unit)
         if (.not. stat%ok()) return
 
@@ -165,14 +211,18 @@ contains
                         j = j + 1
                     end do
                     name = lowercase(line(i + 1:j - 1))
-                    ! '&end' closes a group; a new '&name' inside one leaves the first
-                    ! without its '/', which its read then reports.
-                    if (inside) call close_group()
+                    ! '&end' closes a group; a new '&name' inside one means a missing '/'.
+                    if (inside .and. name == 'end') then
+                        call close_group()
+                    else if (inside) then
+                        call unclosed()
+                        return
+                    end if
                     if (name /= 'end' .and. len(name) > 0) then
                         inside = .true.
                         group_line = line_number
                         body = ''
-                        groups = [groups, group_text_t(name, '', group_line)]
+                        call append_group(groups, name, group_line)
                     end if
                     i = j
                     cycle
@@ -180,12 +230,21 @@ contains
                     call close_group()
                 else if (inside) then
                     body = body//c
+                else if (index(BLANKS//achar(13), c) == 0) then
+                    ! The runtime would skip it; it is garbage or a group without its '&'.
+                    call stat%fail(STATUS_BAD_INPUT, path//': line '//int_text(line_number) &
+                        //', column '//int_text(i)//': text outside any namelist group: ' &
+                        //"expected '&group name = value ... /' or a '!' comment")
+                    return
                 end if
                 i = i + 1
             end do
             if (inside) body = body//' '
         end do
-        if (inside) call close_group()
+        if (inside) then
+            call unclosed()
+            return
+        end if
 
         do i = 1, size(groups)
             if (.not. any(KNOWN_GROUPS == groups(i)%name)) then
@@ -212,7 +271,35 @@ contains
             inside = .false.
             quote = ' '
         end subroutine close_group
+
+        subroutine unclosed()
+            character(len=:), allocatable :: why
+            why = ''
+            if (quote /= ' ') why = ' (a quoted value is not closed)'
+            call stat%fail(STATUS_BAD_INPUT, path//': line '//int_text(group_line)//': &' &
+                           //groups(size(groups))%name//": the group has no closing '/'"//why)
+        end subroutine unclosed
     end subroutine scan_groups
+
+    !> groups = [groups, group_text_t(name, '', line)] without the array constructor, whose
+    !> temporary copies of allocatable components gfortran 12 never frees (LeakSanitizer).
+    subroutine append_group(groups, name, line)
+        type(group_text_t), allocatable, intent(inout) :: groups(:)
+        character(len=*), intent(in) :: name
+        integer, intent(in) :: line
+        type(group_text_t), allocatable :: grown(:)
+        integer :: i
+        allocate (grown(size(groups) + 1))
+        do i = 1, size(groups)
+            call move_alloc(groups(i)%name, grown(i)%name)
+            call move_alloc(groups(i)%body, grown(i)%body)
+            grown(i)%line = groups(i)%line
+        end do
+        grown(size(grown))%name = name
+        grown(size(grown))%body = ''
+        grown(size(grown))%line = line
+        call move_alloc(grown, groups)
+    end subroutine append_group
 
     !> One line of any length; the last line needs no line feed.
     subroutine read_line(unit, line, ios, msg)
@@ -308,17 +395,48 @@ contains
         if (ios == iostat_end) text = text//" (is the closing '/' of the group missing?)"
     end function read_failure
 
+    !> Read group `group` (when the file has it) through its `read_record`, from the text
+    !> scan_groups collected. On failure, re-read its assignments one at a time on a scratch
+    !> copy to name the culprit and what it expects.
+    subroutine read_group(path, group, groups, read_record, config, stat)
+        character(len=*), intent(in) :: path, group
+        type(group_text_t), intent(in) :: groups(:)
+        procedure(record_reader) :: read_record
+        type(config_t), intent(inout) :: config
+        type(status_t), intent(inout) :: stat
+        type(config_t) :: scratch
+        type(text_t), allocatable :: pieces(:)
+        character(len=MSG_LEN) :: msg
+        integer :: i, ios
+        if (.not. has_group(groups, group)) return
+        msg = ''
+        call read_record('&'//group//' '//group_body(groups, group)//' /', config, ios, msg)
+        if (ios == 0) return
+        call stat%fail(STATUS_BAD_INPUT, read_failure(path, group, ios, msg))
+        pieces = split_assignments(group_body(groups, group))
+        scratch = config
+        do i = 1, size(pieces)
+            msg = ''
+            call read_record('&'//group//' '//pieces(i)%text//' /', scratch, ios, msg)
+            if (ios /= 0) then
+                call stat%fail(STATUS_BAD_INPUT, path//': &'//group//': '//pieces(i)%text &
+                               //': '//trim(msg)//expectation(group, pieces(i)%text))
+                exit
+            end if
+        end do
+    end subroutine read_group
+
     ! ------------------------------------------------------------- reading each group
     ! Each reader copies the defaults into locals named like the namelist variables, reads
     ! the group after a rewind, and on failure re-reads the assignments one at a time from
     ! an internal file to name the culprit.
 
-    subroutine read_mesh(unit, path, groups, config, stat)
-        integer, intent(in) :: unit
-        character(len=*), intent(in) :: path
-        type(group_text_t), intent(in) :: groups(:)
+    !> One '&mesh ... /' record into config%mesh (unchanged if it fails).
+    subroutine mesh_record(record, config, ios, msg)
+        character(len=*), intent(in) :: record
         type(config_t), intent(inout) :: config
-        type(status_t), intent(out) :: stat
+        integer, intent(out) :: ios
+        character(len=*), intent(inout) :: msg
         character(len=NAME_LEN) :: source, element, diagonal
         character(len=PATH_LEN) :: file
         character(len=LIST_LEN) :: dirichlet, neumann, contact
@@ -326,12 +444,7 @@ contains
         integer :: nx, ny
         namelist /mesh/ source, file, width, height, nx, ny, element, diagonal, dirichlet, &
             neumann, contact
-        type(text_t), allocatable :: pieces(:)
-        character(len=:), allocatable :: record
-        character(len=MSG_LEN) :: msg
-        integer :: ios, i
 
-        if (.not. has_group(groups, 'mesh')) return
         source = config%mesh%source
         file = config%mesh%file
         width = config%mesh%width
@@ -343,22 +456,8 @@ contains
         dirichlet = config%mesh%dirichlet
         neumann = config%mesh%neumann
         contact = config%mesh%contact
-        rewind (unit)
-        read (unit, nml=mesh, iostat=ios, iomsg=msg)
-        if (ios /= 0) then
-            call stat%fail(STATUS_BAD_INPUT, read_failure(path, 'mesh', ios, msg))
-            pieces = split_assignments(group_body(groups, 'mesh'))
-            do i = 1, size(pieces)
-                record = '&mesh '//pieces(i)%text//' /'
-                read (record, nml=mesh, iostat=ios, iomsg=msg)
-                if (ios /= 0) then
-                    call stat%fail(STATUS_BAD_INPUT, path//': &mesh: '//pieces(i)%text &
-                                   //': '//trim(msg))
-                    exit
-                end if
-            end do
-            return
-        end if
+        read (record, nml=mesh, iostat=ios, iomsg=msg)
+        if (ios /= 0) return
         config%mesh%source = lowercase(adjustl(source))
         config%mesh%file = adjustl(file)
         config%mesh%width = width
@@ -370,97 +469,54 @@ contains
         config%mesh%dirichlet = normalized_list(dirichlet)
         config%mesh%neumann = normalized_list(neumann)
         config%mesh%contact = normalized_list(contact)
-    end subroutine read_mesh
+    end subroutine mesh_record
 
-    subroutine read_material(unit, path, groups, config, stat)
-        integer, intent(in) :: unit
-        character(len=*), intent(in) :: path
-        type(group_text_t), intent(in) :: groups(:)
+    !> One '&material ... /' record into config%material (unchanged if it fails).
+    subroutine material_record(record, config, ios, msg)
+        character(len=*), intent(in) :: record
         type(config_t), intent(inout) :: config
-        type(status_t), intent(out) :: stat
+        integer, intent(out) :: ios
+        character(len=*), intent(inout) :: msg
         real(wp) :: young, poisson
         namelist /material/ young, poisson
-        type(text_t), allocatable :: pieces(:)
-        character(len=:), allocatable :: record
-        character(len=MSG_LEN) :: msg
-        integer :: ios, i
 
-        if (.not. has_group(groups, 'material')) return
         young = config%material%young
         poisson = config%material%poisson
-        rewind (unit)
-        read (unit, nml=material, iostat=ios, iomsg=msg)
-        if (ios /= 0) then
-            call stat%fail(STATUS_BAD_INPUT, read_failure(path, 'material', ios, msg))
-            pieces = split_assignments(group_body(groups, 'material'))
-            do i = 1, size(pieces)
-                record = '&material '//pieces(i)%text//' /'
-                read (record, nml=material, iostat=ios, iomsg=msg)
-                if (ios /= 0) then
-                    call stat%fail(STATUS_BAD_INPUT, path//': &material: '//pieces(i)%text &
-                                   //': '//trim(msg))
-                    exit
-                end if
-            end do
-            return
-        end if
+        read (record, nml=material, iostat=ios, iomsg=msg)
+        if (ios /= 0) return
         config%material%young = young
         config%material%poisson = poisson
-    end subroutine read_material
+    end subroutine material_record
 
-    subroutine read_analysis(unit, path, groups, config, stat)
-        integer, intent(in) :: unit
-        character(len=*), intent(in) :: path
-        type(group_text_t), intent(in) :: groups(:)
+    !> One '&analysis ... /' record into config%analysis (unchanged if it fails).
+    subroutine analysis_record(record, config, ios, msg)
+        character(len=*), intent(in) :: record
         type(config_t), intent(inout) :: config
-        type(status_t), intent(out) :: stat
+        integer, intent(out) :: ios
+        character(len=*), intent(inout) :: msg
         character(len=NAME_LEN) :: kind     ! shadows the intrinsic here, as the file names it
         real(wp) :: lambda
         namelist /analysis/ kind, lambda
-        type(text_t), allocatable :: pieces(:)
-        character(len=:), allocatable :: record
-        character(len=MSG_LEN) :: msg
-        integer :: ios, i
 
-        if (.not. has_group(groups, 'analysis')) return
         kind = config%analysis%kind
         lambda = config%analysis%lambda
-        rewind (unit)
-        read (unit, nml=analysis, iostat=ios, iomsg=msg)
-        if (ios /= 0) then
-            call stat%fail(STATUS_BAD_INPUT, read_failure(path, 'analysis', ios, msg))
-            pieces = split_assignments(group_body(groups, 'analysis'))
-            do i = 1, size(pieces)
-                record = '&analysis '//pieces(i)%text//' /'
-                read (record, nml=analysis, iostat=ios, iomsg=msg)
-                if (ios /= 0) then
-                    call stat%fail(STATUS_BAD_INPUT, path//': &analysis: '//pieces(i)%text &
-                                   //': '//trim(msg))
-                    exit
-                end if
-            end do
-            return
-        end if
+        read (record, nml=analysis, iostat=ios, iomsg=msg)
+        if (ios /= 0) return
         config%analysis%kind = lowercase(adjustl(kind))
         config%analysis%lambda = lambda
-    end subroutine read_analysis
+    end subroutine analysis_record
 
-    subroutine read_eigen(unit, path, groups, config, stat)
-        integer, intent(in) :: unit
-        character(len=*), intent(in) :: path
-        type(group_text_t), intent(in) :: groups(:)
+    !> One '&eigen ... /' record into config%eigen (unchanged if it fails).
+    subroutine eigen_record(record, config, ios, msg)
+        character(len=*), intent(in) :: record
         type(config_t), intent(inout) :: config
-        type(status_t), intent(out) :: stat
+        integer, intent(out) :: ios
+        character(len=*), intent(inout) :: msg
         character(len=NAME_LEN) :: solver
         integer :: nev, maxit, ncv, dense_max_contact
         real(wp) :: target, tol
         namelist /eigen/ solver, nev, target, tol, maxit, ncv, dense_max_contact
-        type(text_t), allocatable :: pieces(:)
-        character(len=:), allocatable :: record
-        character(len=MSG_LEN) :: msg
-        integer :: ios, i
 
-        if (.not. has_group(groups, 'eigen')) return
         solver = config%eigen%solver
         nev = config%eigen%nev
         target = config%eigen%target
@@ -468,22 +524,8 @@ contains
         maxit = config%eigen%maxit
         ncv = config%eigen%ncv
         dense_max_contact = config%eigen%dense_max_contact
-        rewind (unit)
-        read (unit, nml=eigen, iostat=ios, iomsg=msg)
-        if (ios /= 0) then
-            call stat%fail(STATUS_BAD_INPUT, read_failure(path, 'eigen', ios, msg))
-            pieces = split_assignments(group_body(groups, 'eigen'))
-            do i = 1, size(pieces)
-                record = '&eigen '//pieces(i)%text//' /'
-                read (record, nml=eigen, iostat=ios, iomsg=msg)
-                if (ios /= 0) then
-                    call stat%fail(STATUS_BAD_INPUT, path//': &eigen: '//pieces(i)%text &
-                                   //': '//trim(msg))
-                    exit
-                end if
-            end do
-            return
-        end if
+        read (record, nml=eigen, iostat=ios, iomsg=msg)
+        if (ios /= 0) return
         config%eigen%solver = lowercase(adjustl(solver))
         config%eigen%nev = nev
         config%eigen%target = target
@@ -491,109 +533,66 @@ contains
         config%eigen%maxit = maxit
         config%eigen%ncv = ncv
         config%eigen%dense_max_contact = dense_max_contact
-    end subroutine read_eigen
+    end subroutine eigen_record
 
-    subroutine read_output(unit, path, groups, config, stat)
-        integer, intent(in) :: unit
-        character(len=*), intent(in) :: path
-        type(group_text_t), intent(in) :: groups(:)
+    !> One '&output ... /' record into config%output (unchanged if it fails).
+    subroutine output_record(record, config, ios, msg)
+        character(len=*), intent(in) :: record
         type(config_t), intent(inout) :: config
-        type(status_t), intent(out) :: stat
+        integer, intent(out) :: ios
+        character(len=*), intent(inout) :: msg
         character(len=PATH_LEN) :: directory
         logical :: vtk, matrices
         integer :: modes
         namelist /output/ directory, vtk, modes, matrices
-        type(text_t), allocatable :: pieces(:)
-        character(len=:), allocatable :: record
-        character(len=MSG_LEN) :: msg
-        integer :: ios, i
 
-        if (.not. has_group(groups, 'output')) return
         directory = config%output%directory
         vtk = config%output%vtk
         modes = config%output%modes
         matrices = config%output%matrices
-        rewind (unit)
-        read (unit, nml=output, iostat=ios, iomsg=msg)
-        if (ios /= 0) then
-            call stat%fail(STATUS_BAD_INPUT, read_failure(path, 'output', ios, msg))
-            pieces = split_assignments(group_body(groups, 'output'))
-            do i = 1, size(pieces)
-                record = '&output '//pieces(i)%text//' /'
-                read (record, nml=output, iostat=ios, iomsg=msg)
-                if (ios /= 0) then
-                    call stat%fail(STATUS_BAD_INPUT, path//': &output: '//pieces(i)%text &
-                                   //': '//trim(msg))
-                    exit
-                end if
-            end do
-            return
-        end if
+        read (record, nml=output, iostat=ios, iomsg=msg)
+        if (ios /= 0) return
         config%output%directory = adjustl(directory)
         config%output%vtk = vtk
         config%output%modes = modes
         config%output%matrices = matrices
-    end subroutine read_output
+    end subroutine output_record
 
-    subroutine read_branch(unit, path, groups, config, stat)
-        integer, intent(in) :: unit
-        character(len=*), intent(in) :: path
-        type(group_text_t), intent(in) :: groups(:)
+    !> One '&branch ... /' record into config%branch (unchanged if it fails).
+    subroutine branch_record(record, config, ios, msg)
+        character(len=*), intent(in) :: record
         type(config_t), intent(inout) :: config
-        type(status_t), intent(out) :: stat
+        integer, intent(out) :: ios
+        character(len=*), intent(inout) :: msg
         real(wp) :: alpha, beta
         integer :: n_delta, write_members
         namelist /branch/ alpha, beta, n_delta, write_members
-        type(text_t), allocatable :: pieces(:)
-        character(len=:), allocatable :: record
-        character(len=MSG_LEN) :: msg
-        integer :: ios, i
 
-        if (.not. has_group(groups, 'branch')) return
         alpha = config%branch%alpha
         beta = config%branch%beta
         n_delta = config%branch%n_delta
         write_members = config%branch%write_members
-        rewind (unit)
-        read (unit, nml=branch, iostat=ios, iomsg=msg)
-        if (ios /= 0) then
-            call stat%fail(STATUS_BAD_INPUT, read_failure(path, 'branch', ios, msg))
-            pieces = split_assignments(group_body(groups, 'branch'))
-            do i = 1, size(pieces)
-                record = '&branch '//pieces(i)%text//' /'
-                read (record, nml=branch, iostat=ios, iomsg=msg)
-                if (ios /= 0) then
-                    call stat%fail(STATUS_BAD_INPUT, path//': &branch: '//pieces(i)%text &
-                                   //': '//trim(msg))
-                    exit
-                end if
-            end do
-            return
-        end if
+        read (record, nml=branch, iostat=ios, iomsg=msg)
+        if (ios /= 0) return
         config%branch%alpha = alpha
         config%branch%beta = beta
         config%branch%n_delta = n_delta
         config%branch%write_members = write_members
-    end subroutine read_branch
+    end subroutine branch_record
 
-    subroutine read_solve(unit, path, groups, config, stat)
-        integer, intent(in) :: unit
-        character(len=*), intent(in) :: path
-        type(group_text_t), intent(in) :: groups(:)
+    !> One '&solve ... /' record into config%solve (unchanged if it fails).
+    subroutine solve_record(record, config, ios, msg)
+        character(len=*), intent(in) :: record
         type(config_t), intent(inout) :: config
-        type(status_t), intent(out) :: stat
+        integer, intent(out) :: ios
+        character(len=*), intent(inout) :: msg
         character(len=NAME_LEN) :: data, start
         real(wp) :: c_n, c_t, critical_factor, f1, f2, t1, t2, u_d1, u_d2, start_delta, &
                     start_scale, start_noise, tol
         integer :: seed, max_iterations
         namelist /solve/ data, c_n, c_t, critical_factor, f1, f2, t1, t2, u_d1, u_d2, start, &
             start_delta, start_scale, start_noise, seed, tol, max_iterations
-        type(text_t), allocatable :: pieces(:)
-        character(len=:), allocatable :: record
-        character(len=MSG_LEN) :: msg
-        integer :: ios, i
 
-        if (.not. has_group(groups, 'solve')) return
         data = config%solve%data
         c_n = config%solve%c_n
         c_t = config%solve%c_t
@@ -611,22 +610,8 @@ contains
         seed = config%solve%seed
         tol = config%solve%tol
         max_iterations = config%solve%max_iterations
-        rewind (unit)
-        read (unit, nml=solve, iostat=ios, iomsg=msg)
-        if (ios /= 0) then
-            call stat%fail(STATUS_BAD_INPUT, read_failure(path, 'solve', ios, msg))
-            pieces = split_assignments(group_body(groups, 'solve'))
-            do i = 1, size(pieces)
-                record = '&solve '//pieces(i)%text//' /'
-                read (record, nml=solve, iostat=ios, iomsg=msg)
-                if (ios /= 0) then
-                    call stat%fail(STATUS_BAD_INPUT, path//': &solve: '//pieces(i)%text &
-                                   //': '//trim(msg))
-                    exit
-                end if
-            end do
-            return
-        end if
+        read (record, nml=solve, iostat=ios, iomsg=msg)
+        if (ios /= 0) return
         config%solve%data = lowercase(adjustl(data))
         config%solve%c_n = c_n
         config%solve%c_t = c_t
@@ -644,7 +629,32 @@ contains
         config%solve%seed = seed
         config%solve%tol = tol
         config%solve%max_iterations = max_iterations
-    end subroutine read_solve
+    end subroutine solve_record
+    !> What a failed assignment 'name = value' of `group` should have looked like: the
+    !> type of a known variable, or the variables the group knows. The runtime's own message
+    !> ('Cannot match namelist object name 5') says what went wrong, not what was expected.
+    pure function expectation(group, assignment) result(text)
+        character(len=*), intent(in) :: group, assignment
+        character(len=:), allocatable :: text
+        character(len=:), allocatable :: name
+        integer :: i, equals, space
+        equals = index(assignment, '=')
+        name = lowercase(trim(adjustl(assignment(:max(0, equals - 1)))))
+        text = ''
+        do i = 1, size(VARIABLE_TYPES)
+            space = index(VARIABLE_TYPES(i), ' ')
+            if (VARIABLE_TYPES(i)(:space - 1) /= group) cycle
+            if (len(text) > 0) text = text//', '
+            text = text//trim(VARIABLE_TYPES(i)(space + 1:index(VARIABLE_TYPES(i), ':') - 1))
+            if (trim(VARIABLE_TYPES(i)(space + 1:index(VARIABLE_TYPES(i), ':') - 1)) == name) &
+                then
+                text = ' (expected '//trim(VARIABLE_TYPES(i)(index(VARIABLE_TYPES(i), ':') + &
+                       1:))//')'
+                return
+            end if
+        end do
+        if (len(text) > 0) text = ' (&'//group//' knows: '//text//')'
+    end function expectation
 
     ! ---------------------------------------------------------------------- validation
 
@@ -894,52 +904,33 @@ contains
 
     ! -------------------------------------------------------------- &sweep (lambda_sweep)
 
-    subroutine read_sweep(unit, path, groups, config, stat)
-        integer, intent(in) :: unit
-        character(len=*), intent(in) :: path
-        type(group_text_t), intent(in) :: groups(:)
+    !> One '&sweep ... /' record into config%sweep (unchanged if it fails).
+    subroutine sweep_record(record, config, ios, msg)
+        character(len=*), intent(in) :: record
         type(config_t), intent(inout) :: config
-        type(status_t), intent(out) :: stat
+        integer, intent(out) :: ios
+        character(len=*), intent(inout) :: msg
         real(wp) :: lambda_min, lambda_max, lambdas(MAX_SWEEP_LAMBDAS)
         integer :: n_lambda
         character(len=NAME_LEN) :: spacing
         logical :: plot
         namelist /sweep/ lambda_min, lambda_max, n_lambda, spacing, lambdas, plot
-        type(text_t), allocatable :: pieces(:)
-        character(len=:), allocatable :: record
-        character(len=MSG_LEN) :: msg
-        integer :: ios, i
 
-        if (.not. has_group(groups, 'sweep')) return
         lambda_min = config%sweep%lambda_min
         lambda_max = config%sweep%lambda_max
         n_lambda = config%sweep%n_lambda
         spacing = config%sweep%spacing
         lambdas = config%sweep%lambdas
         plot = config%sweep%plot
-        rewind (unit)
-        read (unit, nml=sweep, iostat=ios, iomsg=msg)
-        if (ios /= 0) then
-            call stat%fail(STATUS_BAD_INPUT, read_failure(path, 'sweep', ios, msg))
-            pieces = split_assignments(group_body(groups, 'sweep'))
-            do i = 1, size(pieces)
-                record = '&sweep '//pieces(i)%text//' /'
-                read (record, nml=sweep, iostat=ios, iomsg=msg)
-                if (ios /= 0) then
-                    call stat%fail(STATUS_BAD_INPUT, path//': &sweep: '//pieces(i)%text &
-                                   //': '//trim(msg))
-                    exit
-                end if
-            end do
-            return
-        end if
+        read (record, nml=sweep, iostat=ios, iomsg=msg)
+        if (ios /= 0) return
         config%sweep%lambda_min = lambda_min
         config%sweep%lambda_max = lambda_max
         config%sweep%n_lambda = n_lambda
         config%sweep%spacing = lowercase(adjustl(spacing))
         config%sweep%lambdas = lambdas
         config%sweep%plot = plot
-    end subroutine read_sweep
+    end subroutine sweep_record
 
     !> The list, when given, must be a prefix of finite values (unset entries are huge()).
     !> A range needs lambda_min < lambda_max, and for 'log' one sign and no zero.
