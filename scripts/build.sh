@@ -1,13 +1,18 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
-# Configure and build one configuration: scripts/build.sh [Release|Debug] [extra cmake args].
-# The build folder is build/ for Release and build-debug/ for Debug.
+# Configure and build one configuration: scripts/build.sh [Release|Debug|Asan] [cmake args].
+# The build folder is build/ for Release, build-debug/ for Debug and build-asan/ for Asan
+# (Debug flags plus -fsanitize=address,undefined: NCEIG_SANITIZE=ON).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 type=${1:-Release}
 shift || true
 folder="$root/build"
 [[ $type == Release ]] || folder="$root/build-$(echo "$type" | tr '[:upper:]' '[:lower:]')"
+if [[ $type == Asan ]]; then
+    type=Debug
+    set -- -DNCEIG_SANITIZE=ON "$@"
+fi
 cmake -S "$root" -B "$folder" -DCMAKE_BUILD_TYPE="$type" "$@" >/dev/null
 cmake --build "$folder" -j "$(nproc)" 2>&1 | { grep -E -i 'warning|error' || true; }
 test -x "$folder/nceig"

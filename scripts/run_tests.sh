@@ -1,16 +1,23 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 # Quick start 2: install what is missing, then build and run the whole test suite in Release
-# and in Debug (-fcheck=all, floating-point traps).
+# and in Debug (-fcheck=all, floating-point traps), and the fast tests (labels unit and cli)
+# with AddressSanitizer, LeakSanitizer and UndefinedBehaviorSanitizer (build-asan/), where
+# any report fails the test.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 bash "$root/scripts/install_deps.sh"
 status=0
-for type in Release Debug; do
+start=$SECONDS
+for type in Release Debug Asan; do
     bash "$root/scripts/build.sh" "$type"
-    folder="$root/build"
-    [[ $type == Release ]] || folder="$root/build-debug"
-    echo "== ctest ($type)"
-    ctest --test-dir "$folder" --output-on-failure -j "$(nproc)" || status=1
+    folder="$root/build-$(echo "$type" | tr '[:upper:]' '[:lower:]')"
+    [[ $type != Release ]] || folder="$root/build"
+    labels=()
+    [[ $type != Asan ]] || labels=(-L 'unit|cli')
+    echo "== ctest ($type${labels:+, labels unit and cli})"
+    ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 \
+        ctest --test-dir "$folder" --output-on-failure -j "$(nproc)" "${labels[@]}" || status=1
 done
+echo "== run_tests.sh: $((SECONDS - start)) s"
 exit $status

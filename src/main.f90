@@ -16,6 +16,10 @@ program nceig
     use threshold_analysis, only: threshold_result_t, solve_thresholds
     use threshold_output, only: write_threshold_outputs, threshold_summary_lines
     use sweep_plot, only: plot_lambda_sweep
+    use branch_analysis, only: branch_result_t, run_branch
+    use solve_analysis, only: solve_result_t, run_solve, solve_status
+    use compliance_output, only: write_branch_outputs, branch_summary_lines, &
+                                 write_solve_outputs, solve_summary_lines
     implicit none
 
     type(config_t) :: config
@@ -23,6 +27,8 @@ program nceig
     type(eigen_result_t) :: res
     type(threshold_result_t) :: thresholds
     character(len=:), allocatable :: plot_note
+    type(branch_result_t) :: branch_res
+    type(solve_result_t) :: solve_res
     type(timings_t) :: timings
     type(status_t) :: stat
     character(len=:), allocatable :: argument
@@ -72,6 +78,21 @@ program nceig
             call plot_lambda_sweep(trim(config%output%directory), plot_note)
             write (output_unit, '(a)') '  plot        '//plot_note
         end if
+    case ('branch')
+        call run_branch(config, prob, branch_res, timings, stat)
+        call stop_on_failure(stat)
+        call write_branch_outputs(config, prob, branch_res, start, timings, stat)
+        call stop_on_failure(stat)
+        write (output_unit, '(a)') branch_summary_lines(config, prob, branch_res)
+    case ('solve')
+        call run_solve(config, prob, solve_res, timings, stat)
+        call stop_on_failure(stat)
+        ! A failed Newton iteration still writes its history, then ends the run in error.
+        call write_solve_outputs(config, prob, solve_res, start, timings, stat)
+        call stop_on_failure(stat)
+        write (output_unit, '(a)') solve_summary_lines(config, prob, solve_res)
+        call solve_status(config, solve_res, stat)
+        call stop_on_failure(stat)
     case default
         call solve_eigen(config, prob, config%analysis%lambda, res, timings, stat)
         call stop_on_failure(stat)
@@ -79,6 +100,8 @@ program nceig
         call stop_on_failure(stat)
         write (output_unit, '(a)') summary_lines(config, prob, res, timings)
     end select
+    ! gfortran 12 keeps main-program allocatables in a frame gone before LeakSanitizer looks
+    deallocate (argument)
 
 contains
 

@@ -100,7 +100,7 @@ program test_input_config
     call expect_rejected('poisson = 0.5 explained', '&material poisson = 0.5 /', &
                          '&material', 'incompressible')
     call expect_rejected('poisson = -1', '&material poisson = -1.0 /', '&material', 'poisson')
-    call expect_rejected('analysis kind', "&analysis kind = 'branch' /", '&analysis', 'kind')
+    call expect_rejected('analysis kind', "&analysis kind = 'buckling' /", '&analysis', 'kind')
     call expect_rejected('lambda infinite', '&analysis lambda = Inf /', '&analysis', 'lambda')
     call expect_rejected('solver arpack not yet', "&eigen solver = 'arpack' /", '&eigen', &
                          'solver')
@@ -161,6 +161,9 @@ program test_input_config
     call t%check('help: default directory', index(help, 'output/<input file stem>') > 0)
     call t%check('help: lines under 100 characters', longest_line(help) < 100)
 
+    ! gfortran 12 keeps main-program allocatables in a frame gone before LeakSanitizer
+    ! looks: free them here so a sanitizer build reports only real leaks.
+    deallocate (names, help)
     call t%report()
 
 contains

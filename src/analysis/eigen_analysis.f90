@@ -3,7 +3,7 @@
 !> the solver the input asks for, with the phase timings of SPEC section 7.
 module eigen_analysis
     use kinds, only: wp
-    use status, only: status_t
+    use status, only: status_t, STATUS_SINGULAR
     use timer, only: wall_time, timings_t
     use run_config, only: config_t
     use problem, only: problem_t
@@ -12,6 +12,7 @@ module eigen_analysis
     use contact_boundary, only: assemble_b
     use spectrum, only: spectrum_t
     use dense_eigen, only: dense_spectrum
+    use accuracy, only: accuracy_warnings, WARNING_LEN
     implicit none
     private
     public :: eigen_result_t, solve_eigen, choose_solver
@@ -21,6 +22,7 @@ module eigen_analysis
         character(len=:), allocatable :: solver   !! the solver actually used
         type(csr_matrix_t) :: b                   !! B for this lambda
         type(spectrum_t) :: spec
+        character(len=WARNING_LEN), allocatable :: warnings(:)   !! accuracy lost, and why
     end type eigen_result_t
 
 contains
@@ -59,7 +61,11 @@ contains
                                    config%eigen%dense_max_contact)
         start = wall_time()
         call chol%factor(prob%k, stat)
-        if (.not. stat%ok()) then
+        if (stat%code == STATUS_SINGULAR) then
+            stat%message = 'the stiffness matrix K is singular: is there a Dirichlet boundary ' &
+                //'that stops every rigid motion? ('//stat%message//')'
+            return
+        else if (.not. stat%ok()) then
             stat%message = 'stiffness matrix K: '//stat%message
             return
         end if
@@ -73,5 +79,6 @@ contains
         if (.not. stat%ok()) return
         timings%reduction = timings%reduction + reduction_seconds
         timings%eigen = timings%eigen + (wall_time() - start - reduction_seconds)
+        res%warnings = accuracy_warnings(res%spec, trim(config%mesh%element), prob%poisson)
     end subroutine solve_eigen
 end module eigen_analysis

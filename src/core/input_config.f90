@@ -5,23 +5,25 @@ module input_config
     use kinds, only: wp
     use status, only: status_t, STATUS_BAD_INPUT
     use run_config, only: config_t, mesh_config_t, material_config_t, analysis_config_t, &
-                          eigen_config_t, output_config_t, NAME_LEN, LIST_LEN, PATH_LEN, &
-                          sweep_config_t, MAX_SWEEP_LAMBDAS
+                          eigen_config_t, output_config_t, branch_config_t, solve_config_t, &
+                          sweep_config_t, MAX_SWEEP_LAMBDAS, NAME_LEN, LIST_LEN, PATH_LEN
     use real_format, only: real_to_text
     use ieee_arithmetic, only: ieee_is_finite
     use iso_fortran_env, only: iostat_end, iostat_eor
+    use filesystem, only: is_directory
     implicit none
     private
     public :: read_input, split_names, lowercase, help_text, default_output_directory, &
               resolve_relative
     public :: KNOWN_GROUPS, MESH_SOURCES, ELEMENT_NAMES, DIAGONALS, RECTANGLE_SIDES, &
-              ACCEPTED_ANALYSES, ACCEPTED_SOLVERS, MAX_CELLS_PER_SIDE
+              ACCEPTED_ANALYSES, ACCEPTED_SOLVERS, MAX_CELLS_PER_SIDE, SOLVE_DATA, SOLVE_STARTS
     public :: SWEEP_SPACINGS, sweep_lambdas
     public :: read_line   !! also reads the results table of nceig-extrapolate
 
     !> Namelist groups, in the order they are read and documented.
     character(len=*), parameter :: KNOWN_GROUPS(*) = [character(len=8) :: &
-                                   'mesh', 'material', 'analysis', 'eigen', 'output', 'sweep']
+                                   'mesh', 'material', 'analysis', 'eigen', 'output', 'sweep', &
+                                   'branch', 'solve']
     character(len=*), parameter :: MESH_SOURCES(*) = [character(len=9) :: 'rectangle', 'gmsh']
     character(len=*), parameter :: ELEMENT_NAMES(*) = [character(len=2) :: &
                                    'p1', 'q1', 'p2', 'q2']
@@ -30,12 +32,43 @@ module input_config
                                    'top', 'bottom', 'left', 'right']
     !> Analyses this build can run; each new analysis adds its name here.
     character(len=*), parameter :: ACCEPTED_ANALYSES(*) = [character(len=12) :: 'eigen', &
-                                   'threshold', 'lambda_sweep']
+                                   'threshold', 'lambda_sweep', 'branch', 'solve']
     !> Eigensolvers this build offers; 'arpack' joins when its driver exists.
     character(len=*), parameter :: ACCEPTED_SOLVERS(*) = [character(len=6) :: 'dense', 'auto']
     integer, parameter :: MAX_CELLS_PER_SIDE = 1000000
     character(len=*), parameter :: SWEEP_SPACINGS(*) = [character(len=6) :: 'linear', 'log']
     integer, parameter :: MAX_SWEEP_POINTS = 100000   !! n_lambda of a &sweep range
+    !> &solve data: loads of the input, or the data of SPEC section 5 at the critical point.
+    character(len=*), parameter :: SOLVE_DATA(*) = [character(len=6) :: 'given', 'branch']
+    !> &solve start: the starting guesses of the Newton iteration.
+    character(len=*), parameter :: SOLVE_STARTS(*) = [character(len=6) :: &
+                                   'zero', 'branch', 'random', 'mode']
+    !> 'group variable:expected value' of every namelist variable, for messages about a
+    !> value the runtime could not read. New groups add their lines.
+    character(len=*), parameter :: VARIABLE_TYPES(*) = [character(len=64) :: &
+        'mesh source:a quoted name', 'mesh file:a quoted path', 'mesh width:a real number', &
+        'mesh height:a real number', 'mesh nx:an integer', 'mesh ny:an integer', &
+        'mesh element:a quoted name', 'mesh diagonal:a quoted name', &
+        'mesh dirichlet:a quoted list of names', 'mesh neumann:a quoted list of names', &
+        'mesh contact:a quoted name', 'material young:a real number', &
+        'material poisson:a real number', 'analysis kind:a quoted name', &
+        'analysis lambda:a real number', 'eigen solver:a quoted name', &
+        'eigen nev:an integer', 'eigen target:a real number', 'eigen tol:a real number', &
+        'eigen maxit:an integer', 'eigen ncv:an integer', 'eigen dense_max_contact:an integer', &
+        'output directory:a quoted path', 'output vtk:.true. or .false.', &
+        'output modes:an integer', 'output matrices:.true. or .false.', &
+        'sweep lambda_min:a real number', 'sweep lambda_max:a real number', &
+        'sweep n_lambda:an integer', 'sweep spacing:a quoted name', &
+        'sweep lambdas:a list of real numbers', 'sweep plot:.true. or .false.', &
+        'branch alpha:a real number', 'branch beta:a real number', &
+        'branch n_delta:an integer', 'branch write_members:an integer', &
+        'solve data:a quoted name', 'solve c_n:a real number', 'solve c_t:a real number', &
+        'solve critical_factor:a real number', 'solve f1:a real number', &
+        'solve f2:a real number', 'solve t1:a real number', 'solve t2:a real number', &
+        'solve u_d1:a real number', 'solve u_d2:a real number', 'solve start:a quoted name', &
+        'solve start_delta:a real number', 'solve start_scale:a real number', &
+        'solve start_noise:a real number', 'solve seed:an integer', 'solve tol:a real number', &
+        'solve max_iterations:an integer']
 
     integer, parameter :: MSG_LEN = 1024     !! iomsg buffers
     integer, parameter :: CHUNK_LEN = 256    !! pieces of an input line of any length
@@ -56,6 +89,17 @@ module input_config
         character(len=:), allocatable :: text
     end type text_t
 
+    !> Reads one '&group assignment /' record with the group's namelist.
+    abstract interface
+        subroutine record_reader(record, config, ios, msg)
+            import :: config_t
+            character(len=*), intent(in) :: record
+            type(config_t), intent(inout) :: config
+            integer, intent(out) :: ios
+            character(len=*), intent(inout) :: msg
+        end subroutine record_reader
+    end interface
+
 contains
 
     !> Read and validate the namelist file `path`. Groups are read in the order of
@@ -75,18 +119,28 @@ contains
 
         input = trim(path)
         config%input_file = input
+        ! Opening a directory succeeds and reads as an empty file: all defaults, silently.
+        if (is_directory(input)) then
+            call stat%fail(STATUS_BAD_INPUT, input//': is a directory: expected a namelist ' &
+                           //'input file')
+            return
+        end if
         open (newunit=unit, file=input, status='old', action='read', iostat=ios, iomsg=msg)
         if (ios /= 0) then
             call stat%fail(STATUS_BAD_INPUT, input//': cannot open input file: '//trim(msg))
             return
         end if
         call scan_groups(unit, input, groups, stat)
-        if (stat%ok()) call read_mesh(unit, input, groups, config, stat)
-        if (stat%ok()) call read_material(unit, input, groups, config, stat)
-        if (stat%ok()) call read_analysis(unit, input, groups, config, stat)
-        if (stat%ok()) call read_eigen(unit, input, groups, config, stat)
-        if (stat%ok()) call read_output(unit, input, groups, config, stat)
-        if (stat%ok()) call read_sweep(unit, input, groups, config, stat)
+        if (stat%ok()) call read_group(input, 'mesh', groups, mesh_record, config, stat)
+        if (stat%ok()) call read_group(input, 'material', groups, material_record, config, &
+                                       stat)
+        if (stat%ok()) call read_group(input, 'analysis', groups, analysis_record, config, &
+                                       stat)
+        if (stat%ok()) call read_group(input, 'eigen', groups, eigen_record, config, stat)
+        if (stat%ok()) call read_group(input, 'output', groups, output_record, config, stat)
+        if (stat%ok()) call read_group(input, 'sweep', groups, sweep_record, config, stat)
+        if (stat%ok()) call read_group(input, 'branch', groups, branch_record, config, stat)
+        if (stat%ok()) call read_group(input, 'solve', groups, solve_record, config, stat)
         close (unit)
         if (.not. stat%ok()) return
 
@@ -96,6 +150,8 @@ contains
         if (stat%ok()) call validate_eigen(config%eigen, input, stat)
         if (stat%ok()) call validate_output(config%output, input, stat)
         if (stat%ok()) call validate_sweep(config%sweep, input, stat)
+        if (stat%ok()) call validate_branch(config%branch, input, stat)
+        if (stat%ok()) call validate_solve(config%solve, input, stat)
         if (.not. stat%ok()) return
 
         if (len_trim(config%mesh%file) > 0) then
@@ -156,14 +212,18 @@ contains
                         j = j + 1
                     end do
                     name = lowercase(line(i + 1:j - 1))
-                    ! '&end' closes a group; a new '&name' inside one leaves the first
-                    ! without its '/', which its read then reports.
-                    if (inside) call close_group()
+                    ! '&end' closes a group; a new '&name' inside one means a missing '/'.
+                    if (inside .and. name == 'end') then
+                        call close_group()
+                    else if (inside) then
+                        call unclosed()
+                        return
+                    end if
                     if (name /= 'end' .and. len(name) > 0) then
                         inside = .true.
                         group_line = line_number
                         body = ''
-                        groups = [groups, group_text_t(name, '', group_line)]
+                        call append_group(groups, name, group_line)
                     end if
                     i = j
                     cycle
@@ -171,12 +231,21 @@ contains
                     call close_group()
                 else if (inside) then
                     body = body//c
+                else if (index(BLANKS//achar(13), c) == 0) then
+                    ! The runtime would skip it; it is garbage or a group without its '&'.
+                    call stat%fail(STATUS_BAD_INPUT, path//': line '//int_text(line_number) &
+                        //', column '//int_text(i)//': text outside any namelist group: ' &
+                        //"expected '&group name = value ... /' or a '!' comment")
+                    return
                 end if
                 i = i + 1
             end do
             if (inside) body = body//' '
         end do
-        if (inside) call close_group()
+        if (inside) then
+            call unclosed()
+            return
+        end if
 
         do i = 1, size(groups)
             if (.not. any(KNOWN_GROUPS == groups(i)%name)) then
@@ -203,7 +272,35 @@ contains
             inside = .false.
             quote = ' '
         end subroutine close_group
+
+        subroutine unclosed()
+            character(len=:), allocatable :: why
+            why = ''
+            if (quote /= ' ') why = ' (a quoted value is not closed)'
+            call stat%fail(STATUS_BAD_INPUT, path//': line '//int_text(group_line)//': &' &
+                           //groups(size(groups))%name//": the group has no closing '/'"//why)
+        end subroutine unclosed
     end subroutine scan_groups
+
+    !> groups = [groups, group_text_t(name, '', line)] without the array constructor, whose
+    !> temporary copies of allocatable components gfortran 12 never frees (LeakSanitizer).
+    subroutine append_group(groups, name, line)
+        type(group_text_t), allocatable, intent(inout) :: groups(:)
+        character(len=*), intent(in) :: name
+        integer, intent(in) :: line
+        type(group_text_t), allocatable :: grown(:)
+        integer :: i
+        allocate (grown(size(groups) + 1))
+        do i = 1, size(groups)
+            call move_alloc(groups(i)%name, grown(i)%name)
+            call move_alloc(groups(i)%body, grown(i)%body)
+            grown(i)%line = groups(i)%line
+        end do
+        grown(size(grown))%name = name
+        grown(size(grown))%body = ''
+        grown(size(grown))%line = line
+        call move_alloc(grown, groups)
+    end subroutine append_group
 
     !> One line of any length; the last line needs no line feed.
     subroutine read_line(unit, line, ios, msg)
@@ -299,17 +396,48 @@ contains
         if (ios == iostat_end) text = text//" (is the closing '/' of the group missing?)"
     end function read_failure
 
+    !> Read group `group` (when the file has it) through its `read_record`, from the text
+    !> scan_groups collected. On failure, re-read its assignments one at a time on a scratch
+    !> copy to name the culprit and what it expects.
+    subroutine read_group(path, group, groups, read_record, config, stat)
+        character(len=*), intent(in) :: path, group
+        type(group_text_t), intent(in) :: groups(:)
+        procedure(record_reader) :: read_record
+        type(config_t), intent(inout) :: config
+        type(status_t), intent(inout) :: stat
+        type(config_t) :: scratch
+        type(text_t), allocatable :: pieces(:)
+        character(len=MSG_LEN) :: msg
+        integer :: i, ios
+        if (.not. has_group(groups, group)) return
+        msg = ''
+        call read_record('&'//group//' '//group_body(groups, group)//' /', config, ios, msg)
+        if (ios == 0) return
+        call stat%fail(STATUS_BAD_INPUT, read_failure(path, group, ios, msg))
+        pieces = split_assignments(group_body(groups, group))
+        scratch = config
+        do i = 1, size(pieces)
+            msg = ''
+            call read_record('&'//group//' '//pieces(i)%text//' /', scratch, ios, msg)
+            if (ios /= 0) then
+                call stat%fail(STATUS_BAD_INPUT, path//': &'//group//': '//pieces(i)%text &
+                               //': '//trim(msg)//expectation(group, pieces(i)%text))
+                exit
+            end if
+        end do
+    end subroutine read_group
+
     ! ------------------------------------------------------------- reading each group
     ! Each reader copies the defaults into locals named like the namelist variables, reads
     ! the group after a rewind, and on failure re-reads the assignments one at a time from
     ! an internal file to name the culprit.
 
-    subroutine read_mesh(unit, path, groups, config, stat)
-        integer, intent(in) :: unit
-        character(len=*), intent(in) :: path
-        type(group_text_t), intent(in) :: groups(:)
+    !> One '&mesh ... /' record into config%mesh (unchanged if it fails).
+    subroutine mesh_record(record, config, ios, msg)
+        character(len=*), intent(in) :: record
         type(config_t), intent(inout) :: config
-        type(status_t), intent(out) :: stat
+        integer, intent(out) :: ios
+        character(len=*), intent(inout) :: msg
         character(len=NAME_LEN) :: source, element, diagonal
         character(len=PATH_LEN) :: file
         character(len=LIST_LEN) :: dirichlet, neumann, contact
@@ -317,12 +445,7 @@ contains
         integer :: nx, ny
         namelist /mesh/ source, file, width, height, nx, ny, element, diagonal, dirichlet, &
             neumann, contact
-        type(text_t), allocatable :: pieces(:)
-        character(len=:), allocatable :: record
-        character(len=MSG_LEN) :: msg
-        integer :: ios, i
 
-        if (.not. has_group(groups, 'mesh')) return
         source = config%mesh%source
         file = config%mesh%file
         width = config%mesh%width
@@ -334,22 +457,8 @@ contains
         dirichlet = config%mesh%dirichlet
         neumann = config%mesh%neumann
         contact = config%mesh%contact
-        rewind (unit)
-        read (unit, nml=mesh, iostat=ios, iomsg=msg)
-        if (ios /= 0) then
-            call stat%fail(STATUS_BAD_INPUT, read_failure(path, 'mesh', ios, msg))
-            pieces = split_assignments(group_body(groups, 'mesh'))
-            do i = 1, size(pieces)
-                record = '&mesh '//pieces(i)%text//' /'
-                read (record, nml=mesh, iostat=ios, iomsg=msg)
-                if (ios /= 0) then
-                    call stat%fail(STATUS_BAD_INPUT, path//': &mesh: '//pieces(i)%text &
-                                   //': '//trim(msg))
-                    exit
-                end if
-            end do
-            return
-        end if
+        read (record, nml=mesh, iostat=ios, iomsg=msg)
+        if (ios /= 0) return
         config%mesh%source = lowercase(adjustl(source))
         config%mesh%file = adjustl(file)
         config%mesh%width = width
@@ -361,97 +470,54 @@ contains
         config%mesh%dirichlet = normalized_list(dirichlet)
         config%mesh%neumann = normalized_list(neumann)
         config%mesh%contact = normalized_list(contact)
-    end subroutine read_mesh
+    end subroutine mesh_record
 
-    subroutine read_material(unit, path, groups, config, stat)
-        integer, intent(in) :: unit
-        character(len=*), intent(in) :: path
-        type(group_text_t), intent(in) :: groups(:)
+    !> One '&material ... /' record into config%material (unchanged if it fails).
+    subroutine material_record(record, config, ios, msg)
+        character(len=*), intent(in) :: record
         type(config_t), intent(inout) :: config
-        type(status_t), intent(out) :: stat
+        integer, intent(out) :: ios
+        character(len=*), intent(inout) :: msg
         real(wp) :: young, poisson
         namelist /material/ young, poisson
-        type(text_t), allocatable :: pieces(:)
-        character(len=:), allocatable :: record
-        character(len=MSG_LEN) :: msg
-        integer :: ios, i
 
-        if (.not. has_group(groups, 'material')) return
         young = config%material%young
         poisson = config%material%poisson
-        rewind (unit)
-        read (unit, nml=material, iostat=ios, iomsg=msg)
-        if (ios /= 0) then
-            call stat%fail(STATUS_BAD_INPUT, read_failure(path, 'material', ios, msg))
-            pieces = split_assignments(group_body(groups, 'material'))
-            do i = 1, size(pieces)
-                record = '&material '//pieces(i)%text//' /'
-                read (record, nml=material, iostat=ios, iomsg=msg)
-                if (ios /= 0) then
-                    call stat%fail(STATUS_BAD_INPUT, path//': &material: '//pieces(i)%text &
-                                   //': '//trim(msg))
-                    exit
-                end if
-            end do
-            return
-        end if
+        read (record, nml=material, iostat=ios, iomsg=msg)
+        if (ios /= 0) return
         config%material%young = young
         config%material%poisson = poisson
-    end subroutine read_material
+    end subroutine material_record
 
-    subroutine read_analysis(unit, path, groups, config, stat)
-        integer, intent(in) :: unit
-        character(len=*), intent(in) :: path
-        type(group_text_t), intent(in) :: groups(:)
+    !> One '&analysis ... /' record into config%analysis (unchanged if it fails).
+    subroutine analysis_record(record, config, ios, msg)
+        character(len=*), intent(in) :: record
         type(config_t), intent(inout) :: config
-        type(status_t), intent(out) :: stat
+        integer, intent(out) :: ios
+        character(len=*), intent(inout) :: msg
         character(len=NAME_LEN) :: kind     ! shadows the intrinsic here, as the file names it
         real(wp) :: lambda
         namelist /analysis/ kind, lambda
-        type(text_t), allocatable :: pieces(:)
-        character(len=:), allocatable :: record
-        character(len=MSG_LEN) :: msg
-        integer :: ios, i
 
-        if (.not. has_group(groups, 'analysis')) return
         kind = config%analysis%kind
         lambda = config%analysis%lambda
-        rewind (unit)
-        read (unit, nml=analysis, iostat=ios, iomsg=msg)
-        if (ios /= 0) then
-            call stat%fail(STATUS_BAD_INPUT, read_failure(path, 'analysis', ios, msg))
-            pieces = split_assignments(group_body(groups, 'analysis'))
-            do i = 1, size(pieces)
-                record = '&analysis '//pieces(i)%text//' /'
-                read (record, nml=analysis, iostat=ios, iomsg=msg)
-                if (ios /= 0) then
-                    call stat%fail(STATUS_BAD_INPUT, path//': &analysis: '//pieces(i)%text &
-                                   //': '//trim(msg))
-                    exit
-                end if
-            end do
-            return
-        end if
+        read (record, nml=analysis, iostat=ios, iomsg=msg)
+        if (ios /= 0) return
         config%analysis%kind = lowercase(adjustl(kind))
         config%analysis%lambda = lambda
-    end subroutine read_analysis
+    end subroutine analysis_record
 
-    subroutine read_eigen(unit, path, groups, config, stat)
-        integer, intent(in) :: unit
-        character(len=*), intent(in) :: path
-        type(group_text_t), intent(in) :: groups(:)
+    !> One '&eigen ... /' record into config%eigen (unchanged if it fails).
+    subroutine eigen_record(record, config, ios, msg)
+        character(len=*), intent(in) :: record
         type(config_t), intent(inout) :: config
-        type(status_t), intent(out) :: stat
+        integer, intent(out) :: ios
+        character(len=*), intent(inout) :: msg
         character(len=NAME_LEN) :: solver
         integer :: nev, maxit, ncv, dense_max_contact
         real(wp) :: target, tol
         namelist /eigen/ solver, nev, target, tol, maxit, ncv, dense_max_contact
-        type(text_t), allocatable :: pieces(:)
-        character(len=:), allocatable :: record
-        character(len=MSG_LEN) :: msg
-        integer :: ios, i
 
-        if (.not. has_group(groups, 'eigen')) return
         solver = config%eigen%solver
         nev = config%eigen%nev
         target = config%eigen%target
@@ -459,22 +525,8 @@ contains
         maxit = config%eigen%maxit
         ncv = config%eigen%ncv
         dense_max_contact = config%eigen%dense_max_contact
-        rewind (unit)
-        read (unit, nml=eigen, iostat=ios, iomsg=msg)
-        if (ios /= 0) then
-            call stat%fail(STATUS_BAD_INPUT, read_failure(path, 'eigen', ios, msg))
-            pieces = split_assignments(group_body(groups, 'eigen'))
-            do i = 1, size(pieces)
-                record = '&eigen '//pieces(i)%text//' /'
-                read (record, nml=eigen, iostat=ios, iomsg=msg)
-                if (ios /= 0) then
-                    call stat%fail(STATUS_BAD_INPUT, path//': &eigen: '//pieces(i)%text &
-                                   //': '//trim(msg))
-                    exit
-                end if
-            end do
-            return
-        end if
+        read (record, nml=eigen, iostat=ios, iomsg=msg)
+        if (ios /= 0) return
         config%eigen%solver = lowercase(adjustl(solver))
         config%eigen%nev = nev
         config%eigen%target = target
@@ -482,49 +534,128 @@ contains
         config%eigen%maxit = maxit
         config%eigen%ncv = ncv
         config%eigen%dense_max_contact = dense_max_contact
-    end subroutine read_eigen
+    end subroutine eigen_record
 
-    subroutine read_output(unit, path, groups, config, stat)
-        integer, intent(in) :: unit
-        character(len=*), intent(in) :: path
-        type(group_text_t), intent(in) :: groups(:)
+    !> One '&output ... /' record into config%output (unchanged if it fails).
+    subroutine output_record(record, config, ios, msg)
+        character(len=*), intent(in) :: record
         type(config_t), intent(inout) :: config
-        type(status_t), intent(out) :: stat
+        integer, intent(out) :: ios
+        character(len=*), intent(inout) :: msg
         character(len=PATH_LEN) :: directory
         logical :: vtk, matrices
         integer :: modes
         namelist /output/ directory, vtk, modes, matrices
-        type(text_t), allocatable :: pieces(:)
-        character(len=:), allocatable :: record
-        character(len=MSG_LEN) :: msg
-        integer :: ios, i
 
-        if (.not. has_group(groups, 'output')) return
         directory = config%output%directory
         vtk = config%output%vtk
         modes = config%output%modes
         matrices = config%output%matrices
-        rewind (unit)
-        read (unit, nml=output, iostat=ios, iomsg=msg)
-        if (ios /= 0) then
-            call stat%fail(STATUS_BAD_INPUT, read_failure(path, 'output', ios, msg))
-            pieces = split_assignments(group_body(groups, 'output'))
-            do i = 1, size(pieces)
-                record = '&output '//pieces(i)%text//' /'
-                read (record, nml=output, iostat=ios, iomsg=msg)
-                if (ios /= 0) then
-                    call stat%fail(STATUS_BAD_INPUT, path//': &output: '//pieces(i)%text &
-                                   //': '//trim(msg))
-                    exit
-                end if
-            end do
-            return
-        end if
+        read (record, nml=output, iostat=ios, iomsg=msg)
+        if (ios /= 0) return
         config%output%directory = adjustl(directory)
         config%output%vtk = vtk
         config%output%modes = modes
         config%output%matrices = matrices
-    end subroutine read_output
+    end subroutine output_record
+
+    !> One '&branch ... /' record into config%branch (unchanged if it fails).
+    subroutine branch_record(record, config, ios, msg)
+        character(len=*), intent(in) :: record
+        type(config_t), intent(inout) :: config
+        integer, intent(out) :: ios
+        character(len=*), intent(inout) :: msg
+        real(wp) :: alpha, beta
+        integer :: n_delta, write_members
+        namelist /branch/ alpha, beta, n_delta, write_members
+
+        alpha = config%branch%alpha
+        beta = config%branch%beta
+        n_delta = config%branch%n_delta
+        write_members = config%branch%write_members
+        read (record, nml=branch, iostat=ios, iomsg=msg)
+        if (ios /= 0) return
+        config%branch%alpha = alpha
+        config%branch%beta = beta
+        config%branch%n_delta = n_delta
+        config%branch%write_members = write_members
+    end subroutine branch_record
+
+    !> One '&solve ... /' record into config%solve (unchanged if it fails).
+    subroutine solve_record(record, config, ios, msg)
+        character(len=*), intent(in) :: record
+        type(config_t), intent(inout) :: config
+        integer, intent(out) :: ios
+        character(len=*), intent(inout) :: msg
+        character(len=NAME_LEN) :: data, start
+        real(wp) :: c_n, c_t, critical_factor, f1, f2, t1, t2, u_d1, u_d2, start_delta, &
+                    start_scale, start_noise, tol
+        integer :: seed, max_iterations
+        namelist /solve/ data, c_n, c_t, critical_factor, f1, f2, t1, t2, u_d1, u_d2, start, &
+            start_delta, start_scale, start_noise, seed, tol, max_iterations
+
+        data = config%solve%data
+        c_n = config%solve%c_n
+        c_t = config%solve%c_t
+        critical_factor = config%solve%critical_factor
+        f1 = config%solve%f1
+        f2 = config%solve%f2
+        t1 = config%solve%t1
+        t2 = config%solve%t2
+        u_d1 = config%solve%u_d1
+        u_d2 = config%solve%u_d2
+        start = config%solve%start
+        start_delta = config%solve%start_delta
+        start_scale = config%solve%start_scale
+        start_noise = config%solve%start_noise
+        seed = config%solve%seed
+        tol = config%solve%tol
+        max_iterations = config%solve%max_iterations
+        read (record, nml=solve, iostat=ios, iomsg=msg)
+        if (ios /= 0) return
+        config%solve%data = lowercase(adjustl(data))
+        config%solve%c_n = c_n
+        config%solve%c_t = c_t
+        config%solve%critical_factor = critical_factor
+        config%solve%f1 = f1
+        config%solve%f2 = f2
+        config%solve%t1 = t1
+        config%solve%t2 = t2
+        config%solve%u_d1 = u_d1
+        config%solve%u_d2 = u_d2
+        config%solve%start = lowercase(adjustl(start))
+        config%solve%start_delta = start_delta
+        config%solve%start_scale = start_scale
+        config%solve%start_noise = start_noise
+        config%solve%seed = seed
+        config%solve%tol = tol
+        config%solve%max_iterations = max_iterations
+    end subroutine solve_record
+    !> What a failed assignment 'name = value' of `group` should have looked like: the
+    !> type of a known variable, or the variables the group knows. The runtime's own message
+    !> ('Cannot match namelist object name 5') says what went wrong, not what was expected.
+    pure function expectation(group, assignment) result(text)
+        character(len=*), intent(in) :: group, assignment
+        character(len=:), allocatable :: text
+        character(len=:), allocatable :: name
+        integer :: i, equals, space
+        equals = index(assignment, '=')
+        name = lowercase(trim(adjustl(assignment(:max(0, equals - 1)))))
+        text = ''
+        do i = 1, size(VARIABLE_TYPES)
+            space = index(VARIABLE_TYPES(i), ' ')
+            if (VARIABLE_TYPES(i)(:space - 1) /= group) cycle
+            if (len(text) > 0) text = text//', '
+            text = text//trim(VARIABLE_TYPES(i)(space + 1:index(VARIABLE_TYPES(i), ':') - 1))
+            if (trim(VARIABLE_TYPES(i)(space + 1:index(VARIABLE_TYPES(i), ':') - 1)) == name) &
+                then
+                text = ' (expected '//trim(VARIABLE_TYPES(i)(index(VARIABLE_TYPES(i), ':') + &
+                       1:))//')'
+                return
+            end if
+        end do
+        if (len(text) > 0) text = ' (&'//group//' knows: '//text//')'
+    end function expectation
 
     ! ---------------------------------------------------------------------- validation
 
@@ -694,6 +825,69 @@ contains
         end if
     end subroutine validate_output
 
+    subroutine validate_branch(c, path, stat)
+        type(branch_config_t), intent(in) :: c
+        character(len=*), intent(in) :: path
+        type(status_t), intent(inout) :: stat
+
+        if (.not. positive_finite(c%alpha)) then
+            call fail_value(stat, path, 'branch', 'alpha', real_to_text(c%alpha), &
+                            'a finite number > 0 (u_n of U on the contact boundary)')
+        else if (.not. positive_finite(c%beta)) then
+            call fail_value(stat, path, 'branch', 'beta', real_to_text(c%beta), &
+                            'a finite number > 0 (|u_t| of U on the contact boundary)')
+        else if (c%n_delta < 1) then
+            call fail_value(stat, path, 'branch', 'n_delta', int_text(c%n_delta), &
+                            'an integer >= 1')
+        else if (c%write_members < 0) then
+            call fail_value(stat, path, 'branch', 'write_members', int_text(c%write_members), &
+                            'an integer >= 0')
+        end if
+    end subroutine validate_branch
+
+    subroutine validate_solve(c, path, stat)
+        type(solve_config_t), intent(in) :: c
+        character(len=*), intent(in) :: path
+        type(status_t), intent(inout) :: stat
+        logical :: tol_ok
+
+        tol_ok = ieee_is_finite(c%tol)
+        if (tol_ok) tol_ok = c%tol > 0.0_wp .and. c%tol < 1.0_wp
+        if (.not. any(SOLVE_DATA == c%data)) then
+            call reject('data', quoted(c%data), 'one of '//one_of(SOLVE_DATA))
+        else if (.not. positive_finite(c%c_n)) then
+            call reject('c_n', real_to_text(c%c_n), 'a finite number > 0')
+        else if (.not. positive_finite(c%c_t)) then
+            call reject('c_t', real_to_text(c%c_t), 'a finite number > 0')
+        else if (.not. positive_finite(c%critical_factor)) then
+            call reject('critical_factor', real_to_text(c%critical_factor), 'a finite number > 0')
+        else if (.not. all(ieee_is_finite([c%f1, c%f2, c%t1, c%t2, c%u_d1, c%u_d2]))) then
+            call reject('f1, f2, t1, t2, u_d1, u_d2', real_to_text(c%f1)//', ' &
+                        //real_to_text(c%f2)//', '//real_to_text(c%t1)//', ' &
+                        //real_to_text(c%t2)//', '//real_to_text(c%u_d1)//', ' &
+                        //real_to_text(c%u_d2), 'finite numbers')
+        else if (.not. any(SOLVE_STARTS == c%start)) then
+            call reject('start', quoted(c%start), 'one of '//one_of(SOLVE_STARTS))
+        else if (.not. ieee_is_finite(c%start_delta)) then
+            call reject('start_delta', real_to_text(c%start_delta), 'a finite number')
+        else if (.not. ieee_is_finite(c%start_scale)) then
+            call reject('start_scale', real_to_text(c%start_scale), 'a finite number')
+        else if (.not. ieee_is_finite(c%start_noise)) then
+            call reject('start_noise', real_to_text(c%start_noise), 'a finite number')
+        else if (.not. tol_ok) then
+            call reject('tol', real_to_text(c%tol), 'a number with 0 < tol < 1')
+        else if (c%max_iterations < 1) then
+            call reject('max_iterations', int_text(c%max_iterations), 'an integer >= 1')
+        end if
+
+    contains
+
+        subroutine reject(variable, value, expected)
+            character(len=*), intent(in) :: variable, value, expected
+            call fail_value(stat, path, 'solve', variable, value, expected)
+        end subroutine reject
+    end subroutine validate_solve
+
     !> The one message format of a rejected value.
     subroutine fail_value(stat, path, group, variable, value, expected)
         type(status_t), intent(inout) :: stat
@@ -711,52 +905,33 @@ contains
 
     ! -------------------------------------------------------------- &sweep (lambda_sweep)
 
-    subroutine read_sweep(unit, path, groups, config, stat)
-        integer, intent(in) :: unit
-        character(len=*), intent(in) :: path
-        type(group_text_t), intent(in) :: groups(:)
+    !> One '&sweep ... /' record into config%sweep (unchanged if it fails).
+    subroutine sweep_record(record, config, ios, msg)
+        character(len=*), intent(in) :: record
         type(config_t), intent(inout) :: config
-        type(status_t), intent(out) :: stat
+        integer, intent(out) :: ios
+        character(len=*), intent(inout) :: msg
         real(wp) :: lambda_min, lambda_max, lambdas(MAX_SWEEP_LAMBDAS)
         integer :: n_lambda
         character(len=NAME_LEN) :: spacing
         logical :: plot
         namelist /sweep/ lambda_min, lambda_max, n_lambda, spacing, lambdas, plot
-        type(text_t), allocatable :: pieces(:)
-        character(len=:), allocatable :: record
-        character(len=MSG_LEN) :: msg
-        integer :: ios, i
 
-        if (.not. has_group(groups, 'sweep')) return
         lambda_min = config%sweep%lambda_min
         lambda_max = config%sweep%lambda_max
         n_lambda = config%sweep%n_lambda
         spacing = config%sweep%spacing
         lambdas = config%sweep%lambdas
         plot = config%sweep%plot
-        rewind (unit)
-        read (unit, nml=sweep, iostat=ios, iomsg=msg)
-        if (ios /= 0) then
-            call stat%fail(STATUS_BAD_INPUT, read_failure(path, 'sweep', ios, msg))
-            pieces = split_assignments(group_body(groups, 'sweep'))
-            do i = 1, size(pieces)
-                record = '&sweep '//pieces(i)%text//' /'
-                read (record, nml=sweep, iostat=ios, iomsg=msg)
-                if (ios /= 0) then
-                    call stat%fail(STATUS_BAD_INPUT, path//': &sweep: '//pieces(i)%text &
-                                   //': '//trim(msg))
-                    exit
-                end if
-            end do
-            return
-        end if
+        read (record, nml=sweep, iostat=ios, iomsg=msg)
+        if (ios /= 0) return
         config%sweep%lambda_min = lambda_min
         config%sweep%lambda_max = lambda_max
         config%sweep%n_lambda = n_lambda
         config%sweep%spacing = lowercase(adjustl(spacing))
         config%sweep%lambdas = lambdas
         config%sweep%plot = plot
-    end subroutine read_sweep
+    end subroutine sweep_record
 
     !> The list, when given, must be a prefix of finite values (unset entries are huge()).
     !> A range needs lambda_min < lambda_max, and for 'log' one sign and no zero.
@@ -1057,6 +1232,37 @@ contains
                        int_text(MAX_SWEEP_LAMBDAS)//'), replaces the range') &
                //entry('plot', logical_text(d%sweep%plot), 'draw lambda_sweep.png with' &
                        //' gnuplot when it is installed')
+        text = text//'&branch      (kind = ''branch'': U + delta phi, SPEC section 5)'//NL &
+               //entry('alpha', real_to_text(d%branch%alpha), 'u_n of U on Gamma_C, > 0') &
+               //entry('beta', real_to_text(d%branch%beta), '|u_t| of U on Gamma_C, > 0') &
+               //entry('n_delta', int_text(d%branch%n_delta), 'deltas evenly spaced in' &
+                       //' [-delta_max, delta_max]') &
+               //entry('write_members', int_text(d%branch%write_members), &
+                       'members written as branch_NNN.vtu')
+        text = text//'&solve       (kind = ''solve'': frictional normal compliance, Newton)'//NL &
+               //entry('data', quoted(d%solve%data), one_of(SOLVE_DATA)//': the loads below,' &
+                       //' or those of &branch') &
+               //entry('c_n', real_to_text(d%solve%c_n), 'normal compliance (data = ''given'')') &
+               //entry('c_t', real_to_text(d%solve%c_t), 'tangential compliance') &
+               //entry('critical_factor', real_to_text(d%solve%critical_factor), &
+                       'data = ''branch'': c_n, c_t = factor * critical') &
+               //entry('f1, f2', real_to_text(d%solve%f1)//', '//real_to_text(d%solve%f2), &
+                       'body force') &
+               //entry('t1, t2', real_to_text(d%solve%t1)//', '//real_to_text(d%solve%t2), &
+                       'traction on every Neumann part') &
+               //entry('u_d1, u_d2', real_to_text(d%solve%u_d1)//', ' &
+                       //real_to_text(d%solve%u_d2), 'displacement on Gamma_D') &
+               //entry('start', quoted(d%solve%start), one_of(SOLVE_STARTS)) &
+               //entry('start_delta', real_to_text(d%solve%start_delta), &
+                       'start = ''branch'': U + start_delta phi') &
+               //entry('start_scale', real_to_text(d%solve%start_scale), &
+                       'start = ''random'' or ''mode'': size of the guess') &
+               //entry('start_noise', real_to_text(d%solve%start_noise), &
+                       'uniform noise of this size added to any start') &
+               //entry('seed', int_text(d%solve%seed), 'of the random start and the noise') &
+               //entry('tol', real_to_text(d%solve%tol), '||residual|| / ||load||' &
+                       //' (infinity norms) to stop at') &
+               //entry('max_iterations', int_text(d%solve%max_iterations), 'Newton iterations')
 
     contains
 

@@ -64,6 +64,31 @@ module run_config
         real(wp) :: lambdas(MAX_SWEEP_LAMBDAS) = huge(1.0_wp)
         logical :: plot = .true.                        !! run scripts/plot_lambda_sweep.sh
     end type sweep_config_t
+    !> analysis = 'branch' (SPEC section 5): the base solution U and the members U + delta phi.
+    type, public :: branch_config_t
+        real(wp) :: alpha = 0.1_wp        !! u_n of U on Gamma_C, > 0
+        real(wp) :: beta = 0.1_wp         !! |u_t| of U on Gamma_C, > 0
+        integer :: n_delta = 11           !! delta values, evenly spaced in [-delta_max, delta_max]
+        integer :: write_members = 3      !! members written as branch_NNN.vtu (spread evenly)
+    end type branch_config_t
+
+    !> analysis = 'solve': the frictional normal-compliance problem (m_n = m_t = 1).
+    type, public :: solve_config_t
+        character(len=NAME_LEN) :: data = 'given'   !! 'given' | 'branch' (SPEC section 5 data)
+        real(wp) :: c_n = 1.0_wp                    !! normal compliance ('given' data)
+        real(wp) :: c_t = 1.0_wp                    !! tangential compliance ('given' data)
+        real(wp) :: critical_factor = 1.0_wp        !! 'branch' data: c = factor * critical
+        real(wp) :: f1 = 0.0_wp, f2 = 0.0_wp        !! body force per unit volume
+        real(wp) :: t1 = 0.0_wp, t2 = 0.0_wp        !! traction on every Neumann part
+        real(wp) :: u_d1 = 0.0_wp, u_d2 = 0.0_wp    !! displacement on Gamma_D
+        character(len=NAME_LEN) :: start = 'zero'   !! 'zero' | 'branch' | 'random' | 'mode'
+        real(wp) :: start_delta = 0.0_wp            !! 'branch' start: U + start_delta phi
+        real(wp) :: start_scale = 1.0_wp            !! 'random', 'mode': size of the guess
+        real(wp) :: start_noise = 0.0_wp            !! uniform noise in [-noise, noise] added
+        integer :: seed = 1                         !! of the 'random' start and the noise
+        real(wp) :: tol = 1.0e-10_wp                !! on ||residual||_inf / ||load||_inf
+        integer :: max_iterations = 50
+    end type solve_config_t
 
     type, public :: config_t
         character(len=:), allocatable :: input_file   !! path as given on the command line
@@ -73,5 +98,7 @@ module run_config
         type(eigen_config_t) :: eigen
         type(output_config_t) :: output
         type(sweep_config_t) :: sweep
+        type(branch_config_t) :: branch
+        type(solve_config_t) :: solve
     end type config_t
 end module run_config

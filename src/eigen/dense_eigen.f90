@@ -10,7 +10,8 @@ module dense_eigen
     use csr_matrix, only: csr_matrix_t
     use sparse_cholesky, only: cholesky_t
     use contact_boundary, only: contact_t
-    use spectrum, only: spectrum_t, order_eigenvalues, backward_error, normalise_mode
+    use spectrum, only: spectrum_t, order_eigenvalues, backward_error, normalise_mode, &
+                        KIND_POSITIVE, KIND_COMPLEX
     use lapack_interfaces, only: dgeevx, dgemm, dsyrk, lapack_info_message
     implicit none
     private
@@ -100,12 +101,13 @@ contains
         n_free = k%n()
         start = wall_time()
         if (present(kt_nn_given) .and. present(kt_nt_given)) then
-            a = matmul(lambda*kt_nt_given - kt_nn_given, contact%mass_dense())
+            kt_nt = kt_nt_given   ! kept for the lambda sensitivity below
+            a = matmul(lambda*kt_nt - kt_nn_given, contact%mass_dense())
         else
             call contact_flexibility(chol, contact, n_free, kt_nn, kt_nt, stat)
             if (.not. stat%ok()) return
             a = matmul(lambda*kt_nt - kt_nn, contact%mass_dense())
-            deallocate (kt_nn, kt_nt)
+            deallocate (kt_nn)
         end if
         if (present(reduction_seconds)) reduction_seconds = wall_time() - start
 
@@ -120,7 +122,7 @@ contains
             call stat%fail(STATUS_SOLVER, lapack_info_message('dgeevx', info))
             return
         end if
-        deallocate (a, vl, work)
+        deallocate (a, work)
 
         ! theta = 1/mu. theta = 0 (mu infinite) happens only exactly at a critical lambda.
         theta = cmplx(wr, wi, wp)
@@ -157,6 +159,24 @@ contains
         spec%mu = mu(keep(order))
         spec%kind = kinds
         spec%condition = condition(keep(order))
+        allocate (spec%lambda_sensitivity(n_ev), source=-1.0_wp)
+        if (n_ev > 0) then
+            ! the lowest positive mu (first in output order) and the real mu of largest
+            ! modulus: the one that comes in from infinity when lambda nears a threshold
+            if (kinds(1) == KIND_POSITIVE) spec%lambda_sensitivity(1) = &
+                lambda_sensitivity(keep(order(1)))
+            i = 0
+            do j = 1, n_ev
+                if (kinds(j) == KIND_COMPLEX) cycle
+                if (i == 0) then
+                    i = j
+                else if (abs(mu(keep(order(j)))) > abs(mu(keep(order(i))))) then
+                    i = j
+                end if
+            end do
+            if (i > 0) spec%lambda_sensitivity(i) = lambda_sensitivity(keep(order(i)))
+        end if
+        deallocate (vl, kt_nt)
         allocate (spec%residual(n_ev), spec%vectors(n_free, min(n_keep, n_ev)))
         allocate (phi(n_free))
         do i = 1, n_ev
@@ -170,6 +190,19 @@ contains
         end do
 
     contains
+
+        !> First-order perturbation of a simple real theta = 1/mu of A = (lambda Kt_nt -
+        !> Kt_nn) M: d theta / d lambda = y^T Kt_nt M x / (y^T x), x, y its right and left
+        !> eigenvectors. mu = 1/theta has the same relative sensitivity as theta.
+        real(wp) function lambda_sensitivity(j)
+            integer, intent(in) :: j
+            real(wp) :: mass_x(p), y_dot_x
+            call contact%mass%matvec(vr(:, j), mass_x)
+            y_dot_x = dot_product(vl(:, j), vr(:, j))
+            lambda_sensitivity = huge(1.0_wp)   ! a defective (double) eigenvalue
+            if (abs(y_dot_x) > 0.0_wp) lambda_sensitivity = abs(lambda)* &
+                abs(dot_product(vl(:, j), matmul(kt_nt, mass_x)))/(abs(y_dot_x)*abs(theta(j)))
+        end function lambda_sensitivity
 
         !> Full eigenvector j from the solved columns: a complex pair (j, j+1) with wi(j) > 0
         !> is stored as real part in column j and imaginary part in column j + 1.

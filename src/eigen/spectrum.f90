@@ -20,6 +20,10 @@ module spectrum
         integer, allocatable :: kind(:)            !! KIND_* of each
         real(wp), allocatable :: residual(:)       !! relative backward error on (K, B)
         real(wp), allocatable :: condition(:)      !! relative condition number; < 0: unknown
+        !> |d mu/d lambda| |lambda| / |mu|: relative change of mu per relative change of
+        !> lambda; about |lambda / (lambda - lambda_c)| near a critical lambda_c. < 0: unknown
+        !> (the dense solver fills it for the lowest positive and the largest real |mu|).
+        real(wp), allocatable :: lambda_sensitivity(:)
         complex(wp), allocatable :: vectors(:, :)  !! (n_free, n_kept) modes of the first n_kept
         integer :: n_operator = 0                  !! operator applications (iterative solvers)
     contains

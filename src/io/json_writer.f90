@@ -27,6 +27,7 @@ module json_writer
         procedure :: add_real_or_null => json_object_add_real_or_null
         procedure :: add_logical => json_object_add_logical
         procedure :: add_null => json_object_add_null
+        procedure :: add_string_array => json_object_add_string_array
         procedure :: to_text => json_object_to_text
         procedure :: write => json_object_write
     end type json_object_t
@@ -98,6 +99,20 @@ contains
         call add_member(this, key, 'null')
     end subroutine json_object_add_null
 
+    !> An array of strings, each trimmed of trailing blanks; [] when `values` is empty.
+    subroutine json_object_add_string_array(this, key, values)
+        class(json_object_t), intent(inout) :: this
+        character(len=*), intent(in) :: key, values(:)
+        character(len=:), allocatable :: text
+        integer :: i
+        text = '['
+        do i = 1, size(values)
+            if (i > 1) text = text//', '
+            text = text//'"'//escaped(trim(values(i)))//'"'
+        end do
+        call add_member(this, key, text//']')
+    end subroutine json_object_add_string_array
+
     !> The object as text: one member per line, two-space indent, no final line feed;
     !> an empty object is '{}'.
     function json_object_to_text(this) result(text)
@@ -145,6 +160,7 @@ contains
     subroutine add_member(object, key, value)
         type(json_object_t), intent(inout) :: object
         character(len=*), intent(in) :: key, value
+        type(json_member_t), allocatable :: grown(:)
         integer :: i
         if (.not. allocated(object%members)) allocate (object%members(0))
         do i = 1, size(object%members)
@@ -153,7 +169,16 @@ contains
                 return
             end if
         end do
-        object%members = [object%members, json_member_t(key, value)]
+        ! Grown by hand: gfortran 12 leaks the allocatable components of the temporaries
+        ! of [object%members, json_member_t(key, value)] (LeakSanitizer).
+        allocate (grown(size(object%members) + 1))
+        do i = 1, size(object%members)
+            call move_alloc(object%members(i)%key, grown(i)%key)
+            call move_alloc(object%members(i)%value, grown(i)%value)
+        end do
+        grown(size(grown))%key = key
+        grown(size(grown))%value = value
+        call move_alloc(grown, object%members)
     end subroutine add_member
 
     !> `text` with quotes, backslashes and control characters escaped as JSON requires.

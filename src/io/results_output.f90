@@ -35,6 +35,7 @@ contains
         type(status_t), intent(out) :: stat
         type(output_stage_t) :: stage
         type(json_object_t) :: summary
+        character(len=:), allocatable :: summary_path
         real(wp) :: start
 
         start = wall_time()
@@ -51,7 +52,11 @@ contains
             timings%output = wall_time() - start
             timings%total = wall_time() - run_start
             summary = eigen_summary_json(config, prob, res, timings)
-            call summary%write(stage%path('summary.json'), stat)
+            ! summary.json is registered last: the commit's completion marker, so it lists
+            ! the files of its set (an older run may have left other mode_NNN.vtu).
+            summary_path = stage%path('summary.json')
+            call summary%add_string_array('files', stage%file_names(64))
+            call summary%write(summary_path, stat)
         end if
         if (stat%ok()) call stage%commit(stat)
         if (.not. stat%ok()) call stage%abort()
@@ -111,6 +116,11 @@ contains
         call summary%add_real('time_eigen_s', timings%eigen)
         call summary%add_real('time_output_s', timings%output)
         call summary%add_real('time_total_s', timings%total)
+        if (allocated(res%warnings)) then
+            call summary%add_string_array('warnings', res%warnings)
+        else
+            call summary%add_string_array('warnings', [character(len=1) ::])
+        end if
     end function eigen_summary_json
 
     !> s = -sgn(lambda): the slip direction along t on the critical branch (0 for lambda = 0).
@@ -196,7 +206,7 @@ contains
         type(timings_t), intent(in) :: timings
         character(len=:), allocatable :: text
         character(len=*), parameter :: NL = new_line('a')
-        integer :: lowest
+        integer :: lowest, i
         real(wp) :: mu
 
         text = 'nceig '//NCEIG_VERSION//': '//config%input_file//NL// &
@@ -221,6 +231,11 @@ contains
             seconds(timings%factor)//', reduction '//seconds(timings%reduction)//', eigen '// &
             seconds(timings%eigen)//', output '//seconds(timings%output)//', total '// &
             seconds(timings%total)//NL//'  output      '//trim(config%output%directory)
+        if (allocated(res%warnings)) then
+            do i = 1, size(res%warnings)
+                text = text//NL//'warning: '//trim(res%warnings(i))
+            end do
+        end if
 
     contains
 

@@ -22,7 +22,7 @@ module mesh
         integer, allocatable :: cells(:, :)      !! (nodes_per_cell, n_cells), 1-based, anticlockwise
         integer, allocatable :: edges(:, :)      !! (nodes_per_edge, n_edges): ends, then mid node
         integer, allocatable :: edge_part(:)     !! (n_edges) index into part_names
-        character(len=64), allocatable :: part_names(:)  !! boundary part names ('bottom', ...)
+        character(len=64), allocatable :: part_names(:)  !! boundary part names ('bottom'...)
     contains
         procedure :: n_nodes => mesh_n_nodes
         procedure :: n_cells => mesh_n_cells

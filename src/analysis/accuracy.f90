@@ -1,0 +1,121 @@
+! SPDX-License-Identifier: MIT
+!> Warnings for results that lost accuracy, each with its reason, for summary.json
+!> (`warnings`) and the stdout summary (`warning:` lines). The bounds and their
+!> justification are in the README section "Accuracy and warnings".
+module accuracy
+    use kinds, only: wp
+    use strings, only: to_string
+    use real_format, only: real_to_text
+    use spectrum, only: spectrum_t
+    implicit none
+    private
+    public :: accuracy_warnings, forward_error_estimate, lame_ratio
+    public :: WARNING_LEN, FORWARD_ERROR_BOUND, BACKWARD_ERROR_BOUND, LOCKING_RATIO_BOUND, &
+              LAMBDA_SENSITIVITY_BOUND
+
+    integer, parameter :: WARNING_LEN = 400
+
+    !> Relative error of the headline mu above which it is reported: six significant digits,
+    !> more than any convergence study of c_n needs, far fewer than the 15 of a well
+    !> conditioned solve.
+    real(wp), parameter :: FORWARD_ERROR_BOUND = 1.0e-6_wp
+    !> Backward error above which an eigenpair is reported: a backward stable chain
+    !> (Cholesky, dgeevx, one more solve) gives about n eps, below 1e-11 for the n <= 1e5
+    !> the dense solver meets; 1e-10 is well above that and well below where digits of mu go.
+    real(wp), parameter :: BACKWARD_ERROR_BOUND = 1.0e-10_wp
+    !> L/G = 2 nu/(1 - 2 nu) from which linear elements lock: 40 is nu = 0.488; at nu = 0.49
+    !> (L/G = 49) the lowest mu of Q1 on 8 x 8 cells is 20% off the converged value, at
+    !> nu = 0.45 (L/G = 9) 5%, as at nu = 0.3.
+    real(wp), parameter :: LOCKING_RATIO_BOUND = 40.0_wp
+    !> |lambda dmu/dlambda / mu| above which lambda counts as near a threshold: about
+    !> |lambda / (lambda - lambda_c)|, so 1e4 is lambda within 1e-4 relative of lambda_c, where
+    !> a change of lambda in its 6th digit moves mu by 1% or more.
+    real(wp), parameter :: LAMBDA_SENSITIVITY_BOUND = 1.0e4_wp
+
+contains
+
+    !> condition x max(backward error, eps): first-order bound of the relative error of mu.
+    elemental real(wp) function forward_error_estimate(condition, residual)
+        real(wp), intent(in) :: condition, residual
+        forward_error_estimate = condition*max(residual, epsilon(1.0_wp))
+    end function forward_error_estimate
+
+    !> L/G = 2 nu / (1 - 2 nu): how close to incompressible the material is.
+    elemental real(wp) function lame_ratio(poisson)
+        real(wp), intent(in) :: poisson
+        lame_ratio = 2.0_wp*poisson/(1.0_wp - 2.0_wp*poisson)
+    end function lame_ratio
+
+    !> Every reason to distrust the result of an eigen run, one sentence each; none for a
+    !> well-posed, well-resolved problem such as the reference scene.
+    function accuracy_warnings(spec, element, poisson) result(warnings)
+        type(spectrum_t), intent(in) :: spec
+        character(len=*), intent(in) :: element   !! 'p1', 'q1', 'p2', 'q2'
+        real(wp), intent(in) :: poisson
+        character(len=WARNING_LEN), allocatable :: warnings(:)
+        integer :: lowest, n_bad, i, worst
+
+        allocate (warnings(0))
+        lowest = spec%lowest_positive()
+        if (lowest > 0) then
+            if (spec%condition(lowest) >= 0.0_wp) then
+                if (forward_error_estimate(spec%condition(lowest), spec%residual(lowest)) > &
+                    FORWARD_ERROR_BOUND) call add('lowest positive mu may be inaccurate: ' &
+                    //'condition number '//short(spec%condition(lowest))//' x backward error ' &
+                    //short(max(spec%residual(lowest), epsilon(1.0_wp)))// &
+                    ' gives a relative error up to '//short(forward_error_estimate( &
+                    spec%condition(lowest), spec%residual(lowest)))//' (bound ' &
+                    //short(FORWARD_ERROR_BOUND)//')')
+            end if
+        end if
+
+        n_bad = 0
+        worst = 0
+        do i = 1, spec%n()
+            if (spec%residual(i) > BACKWARD_ERROR_BOUND) then
+                n_bad = n_bad + 1
+                if (worst == 0) worst = i
+                if (spec%residual(i) > spec%residual(worst)) worst = i
+            end if
+        end do
+        if (n_bad > 0) call add(to_string(n_bad)//' of '//to_string(spec%n())// &
+            ' eigenpairs have a backward error above '//short(BACKWARD_ERROR_BOUND)// &
+            ' (largest '//short(spec%residual(worst))//' at |mu| = '//short(abs(spec%mu(worst))) &
+            //'): the largest |mu| (short-wave contact modes) suffer first from a badly ' &
+            //'conditioned K, e.g. with elongated cells')
+
+        if ((element == 'p1' .or. element == 'q1') .and. &
+            lame_ratio(poisson) >= LOCKING_RATIO_BOUND) call add('nearly incompressible ' &
+            //'material (poisson = '//real_to_text(poisson)//', L/G = '// &
+            short(lame_ratio(poisson))//'): '//trim(element)//' elements lock, so mu is ' &
+            //'the accurate eigenvalue of a discrete problem that converges slowly to the ' &
+            //'continuous one; use p2 or q2 or refine much further')
+
+        if (allocated(spec%lambda_sensitivity)) then
+            do i = 1, spec%n()
+                if (spec%lambda_sensitivity(i) <= LAMBDA_SENSITIVITY_BOUND) cycle
+                call add('lambda is near a critical value: mu = '//short(real(spec%mu(i), wp)) &
+                    //' changes '//short(spec%lambda_sensitivity(i))//' times faster than ' &
+                    //'lambda (relative), i.e. lambda is within about '// &
+                    short(1.0_wp/spec%lambda_sensitivity(i))//' relative of a threshold, ' &
+                    //'where mu passes through infinity')
+                exit
+            end do
+        end if
+
+    contains
+
+        subroutine add(text)
+            character(len=*), intent(in) :: text
+            warnings = [character(len=WARNING_LEN) :: warnings, text]
+        end subroutine add
+
+        pure function short(x) result(s)
+            real(wp), intent(in) :: x
+            character(len=:), allocatable :: s
+            character(len=16) :: b
+            write (b, '(es9.2)') x
+            s = trim(adjustl(b))
+        end function short
+    end function accuracy_warnings
+end module accuracy

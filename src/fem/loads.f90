@@ -1,0 +1,157 @@
+! SPDX-License-Identifier: MIT
+!> Consistent nodal forces of the data of the static problem: tractions on boundary edges and
+!> a body force, as vectors on ALL dofs in the node-major numbering 2 (node - 1) + component
+!> (the numbering build_dof_map gives when no dof is prescribed).
+module loads
+    use kinds, only: wp, N_DIM
+    use status, only: status_t, STATUS_MESH
+    use mesh, only: mesh_t, element_nodes_per_edge, element_nodes_per_cell, ELEMENT_P1, &
+                    ELEMENT_P2
+    use quadrature, only: quadrature_rule_t, line_rule
+    use shape_functions, only: evaluate_shape, evaluate_line_shape, MAX_NODES
+    use elasticity, only: stiffness_rule, jacobian_at
+    use strings, only: to_string
+    implicit none
+    private
+    public :: all_dof, node_dofs, edge_loads, body_force_loads
+
+    !> Gauss points per edge: exact for the quadratic edge functions times the degree-1 length
+    !> element of a curved P2 edge, and for a traction linear in the outward normal.
+    integer, parameter :: EDGE_POINTS = 3
+
+contains
+
+    !> Number of dof (component, node) in the numbering of all dofs.
+    elemental integer function all_dof(component, node)
+        integer, intent(in) :: component, node
+        all_dof = N_DIM*(node - 1) + component
+    end function all_dof
+
+    !> The two dofs (x, y) of `node` in the numbering of all dofs.
+    pure function node_dofs(node) result(dofs)
+        integer, intent(in) :: node
+        integer :: dofs(N_DIM)
+        dofs = [N_DIM*(node - 1) + 1, N_DIM*(node - 1) + 2]
+    end function node_dofs
+
+    !> f += int_edge N_a (traction + stress n) ds over every boundary edge whose part is marked
+    !> in `in_part`, with n the outward unit normal: a constant traction vector plus the
+    !> traction of a constant stress tensor (sigma(U) n for a linear field U). Integrated with
+    !> the edge shape functions, so P1/Q1 (2 nodes per edge) and P2/Q2 (3) are all exact.
+    subroutine edge_loads(m, in_part, traction, stress, f, stat)
+        type(mesh_t), intent(in) :: m
+        logical, intent(in) :: in_part(:)          !! (n_parts) parts that carry the load
+        real(wp), intent(in) :: traction(N_DIM)    !! force per unit length
+        real(wp), intent(in) :: stress(N_DIM, N_DIM)
+        real(wp), intent(inout) :: f(:)            !! (2 n_nodes)
+        type(status_t), intent(out) :: stat
+        type(quadrature_rule_t) :: rule
+        real(wp) :: values(3), derivatives(3), xy(N_DIM, 3), dx(N_DIM), normal(N_DIM), &
+                    inner(N_DIM), chord_normal(N_DIM), orientation, length_element, load(N_DIM)
+        real(wp), allocatable :: inner_points(:, :)
+        integer :: e, q, a, per_edge
+
+        per_edge = element_nodes_per_edge(m%element)
+        rule = line_rule(EDGE_POINTS)
+        call edge_inner_points(m, inner_points, stat)
+        if (.not. stat%ok()) return
+        do e = 1, size(m%edge_part)
+            if (.not. in_part(m%edge_part(e))) cycle
+            xy(:, 1:per_edge) = m%coords(:, m%edges(1:per_edge, e))
+            ! Outward: away from the centroid of the cell that owns the edge.
+            inner = inner_points(:, e)
+            chord_normal = [xy(2, 2) - xy(2, 1), -(xy(1, 2) - xy(1, 1))]
+            orientation = 1.0_wp
+            if (dot_product(chord_normal, inner - xy(:, 1)) > 0.0_wp) orientation = -1.0_wp
+            do q = 1, rule%n_points
+                call evaluate_line_shape(per_edge, rule%points(1, q), values, derivatives)
+                dx = matmul(xy(:, 1:per_edge), derivatives(1:per_edge))
+                length_element = norm2(dx)
+                normal = orientation*[dx(2), -dx(1)]/length_element
+                load = traction + matmul(stress, normal)
+                do a = 1, per_edge
+                    f(node_dofs(m%edges(a, e))) = f(node_dofs(m%edges(a, e))) + &
+                        rule%weights(q)*length_element*values(a)*load
+                end do
+            end do
+        end do
+    end subroutine edge_loads
+
+    !> f += int_Omega N_a force dx for a constant body force, with the stiffness quadrature
+    !> (exact for the shape functions on affine cells).
+    subroutine body_force_loads(m, force, f)
+        type(mesh_t), intent(in) :: m
+        real(wp), intent(in) :: force(N_DIM)       !! force per unit area
+        real(wp), intent(inout) :: f(:)            !! (2 n_nodes)
+        type(quadrature_rule_t) :: rule
+        real(wp) :: values(MAX_NODES), gradients(N_DIM, MAX_NODES), jacobian(N_DIM, N_DIM), det
+        integer :: cell, q, a, n
+
+        if (.not. any(abs(force) > 0.0_wp)) return
+        n = element_nodes_per_cell(m%element)
+        rule = stiffness_rule(m%element)
+        do cell = 1, m%n_cells()
+            do q = 1, rule%n_points
+                call evaluate_shape(m%element, rule%points(:, q), values, gradients)
+                call jacobian_at(m%element, m%coords(:, m%cells(:, cell)), rule%points(:, q), &
+                                 jacobian, det)
+                do a = 1, n
+                    f(node_dofs(m%cells(a, cell))) = &
+                        f(node_dofs(m%cells(a, cell))) + rule%weights(q)*det*values(a)*force
+                end do
+            end do
+        end do
+    end subroutine body_force_loads
+
+    !> For every boundary edge, the centroid of a cell holding both its end nodes (a point on
+    !> the body's side of the edge), found through the node-to-cell incidence.
+    subroutine edge_inner_points(m, points, stat)
+        type(mesh_t), intent(in) :: m
+        real(wp), allocatable, intent(out) :: points(:, :)
+        type(status_t), intent(out) :: stat
+        integer, allocatable :: first(:), cells_of(:), filled(:)
+        integer :: corners, cell, k, node, e, slot, c
+        logical :: found
+
+        corners = 4
+        if (m%element == ELEMENT_P1 .or. m%element == ELEMENT_P2) corners = 3
+        allocate (first(m%n_nodes() + 1), source=0)
+        do cell = 1, m%n_cells()
+            do k = 1, corners
+                node = m%cells(k, cell)
+                first(node + 1) = first(node + 1) + 1
+            end do
+        end do
+        first(1) = 1
+        do node = 1, m%n_nodes()
+            first(node + 1) = first(node + 1) + first(node)
+        end do
+        allocate (cells_of(first(m%n_nodes() + 1) - 1), filled(m%n_nodes()), source=0)
+        do cell = 1, m%n_cells()
+            do k = 1, corners
+                node = m%cells(k, cell)
+                cells_of(first(node) + filled(node)) = cell
+                filled(node) = filled(node) + 1
+            end do
+        end do
+
+        allocate (points(N_DIM, size(m%edge_part)))
+        do e = 1, size(m%edge_part)
+            node = m%edges(1, e)
+            found = .false.
+            do slot = first(node), first(node + 1) - 1
+                c = cells_of(slot)
+                if (any(m%cells(1:corners, c) == m%edges(2, e))) then
+                    points(:, e) = sum(m%coords(:, m%cells(1:corners, c)), dim=2)/corners
+                    found = .true.
+                    exit
+                end if
+            end do
+            if (.not. found) then
+                call stat%fail(STATUS_MESH, 'boundary edge '//to_string(e)// &
+                               ' belongs to no cell')
+                return
+            end if
+        end do
+    end subroutine edge_inner_points
+end module loads

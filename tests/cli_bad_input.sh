@@ -1,0 +1,139 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# The bad-input catalogue of SPEC section 7: every namelist variable out of range, unknown
+# groups and variables, wrong types, unknown names, a side used twice, no Dirichlet boundary,
+# a missing, unreadable, truncated or garbage input file, an output directory that cannot be
+# written. Each must give exactly one line on stderr naming the place (file, group and
+# variable) and what was expected, a non-zero exit, and leave no output.
+# Usage: cli_bad_input.sh NCEIG SOURCE_DIR
+set -u
+nceig=$1
+work=$(mktemp -d)
+trap 'chmod -R u+rwx "$work" 2>/dev/null; rm -rf "$work"' EXIT
+passed=0 failed=0
+check() { if eval "$2"; then passed=$((passed + 1)); else failed=$((failed + 1)); echo "FAIL  $1"; fi; }
+out="$work/out"
+
+# run_bad NAME FILE WORD...: run on FILE; one stderr line containing every WORD (fixed
+# strings), exit status non-zero, nothing written under $out.
+run_bad() {
+    local name=$1 file=$2
+    shift 2
+    rm -rf "$out"
+    "$nceig" "$file" >"$work/stdout" 2>"$work/err"
+    local rc=$?
+    local ok=1
+    [[ $rc -ne 0 ]] || ok=0
+    [[ $(wc -l <"$work/err") -eq 1 ]] || ok=0
+    for word in "$@"; do grep -q -F -- "$word" "$work/err" || ok=0; done
+    [[ ! -e "$out" ]] || ok=0
+    check "$name" '[[ $ok -eq 1 ]]'
+    if [[ $ok -eq 1 ]]; then echo "PASS  $name: $(cat "$work/err")"; else
+        echo "      rc=$rc stderr: $(head -c 400 "$work/err")"; fi
+}
+
+# bad NAME 'namelist text' WORD...: the text plus an &output group pointing at $out.
+bad() {
+    local name=$1 text=$2
+    shift 2
+    printf '%s\n&output directory = '"'%s'"' /\n' "$text" "$out" >"$work/bad.nml"
+    run_bad "$name" "$work/bad.nml" bad.nml "$@"
+}
+
+# --- every variable out of range (the message names the group and the variable)
+bad 'mesh source' "&mesh source = 'disk' /" '&mesh' source 'rectangle'
+bad 'mesh gmsh without file' "&mesh source = 'gmsh' /" '&mesh' file
+bad 'mesh width 0' "&mesh width = 0 /" '&mesh' width '> 0'
+bad 'mesh width < 0' "&mesh width = -1 /" '&mesh' width
+bad 'mesh width NaN' "&mesh width = NaN /" '&mesh' width finite
+bad 'mesh height inf' "&mesh height = Inf /" '&mesh' height finite
+bad 'mesh nx 0' "&mesh nx = 0 /" '&mesh' nx
+bad 'mesh nx huge' "&mesh nx = 2000000 /" '&mesh' nx
+bad 'mesh ny < 0' "&mesh ny = -3 /" '&mesh' ny
+bad 'mesh element' "&mesh element = 'p7' /" '&mesh' element "'q2'"
+bad 'mesh diagonal' "&mesh diagonal = 'up' /" '&mesh' diagonal "'left'"
+bad 'mesh dirichlet unknown side' "&mesh dirichlet = 'front' /" '&mesh' dirichlet front
+bad 'mesh neumann unknown side' "&mesh neumann = 'left back' /" '&mesh' neumann back
+bad 'mesh contact unknown side' "&mesh contact = 'under' /" '&mesh' contact under
+bad 'mesh contact two sides' "&mesh contact = 'bottom left', neumann = 'right' /" '&mesh' contact 'exactly one'
+bad 'mesh contact empty' "&mesh contact = '' /" '&mesh' contact
+bad 'no Dirichlet boundary' "&mesh dirichlet = '', neumann = 'left right top' /" '&mesh' dirichlet Dirichlet
+bad 'side twice in one list' "&mesh dirichlet = 'top top' /" '&mesh' dirichlet twice
+bad 'side in two lists' "&mesh neumann = 'left right top' /" '&mesh' neumann top
+bad 'contact also fixed' "&mesh dirichlet = 'top bottom' /" '&mesh' contact bottom
+bad 'material young 0' "&material young = 0 /" '&material' young
+bad 'material young < 0' "&material young = -2e9 /" '&material' young
+bad 'material young NaN' "&material young = NaN /" '&material' young
+bad 'material poisson 0.5' "&material poisson = 0.5 /" '&material' poisson
+bad 'material poisson -1' "&material poisson = -1 /" '&material' poisson
+bad 'analysis kind' "&analysis kind = 'modal' /" '&analysis' kind "'eigen'"
+bad 'analysis lambda inf' "&analysis lambda = -Inf /" '&analysis' lambda finite
+bad 'eigen solver' "&eigen solver = 'qr' /" '&eigen' solver "'dense'"
+bad 'eigen nev 0' "&eigen nev = 0 /" '&eigen' nev
+bad 'eigen target NaN' "&eigen target = NaN /" '&eigen' target
+bad 'eigen tol < 0' "&eigen tol = -1e-3 /" '&eigen' tol
+bad 'eigen maxit 0' "&eigen maxit = 0 /" '&eigen' maxit
+bad 'eigen ncv too small' "&eigen nev = 6, ncv = 7 /" '&eigen' ncv
+bad 'eigen dense_max_contact 0' "&eigen dense_max_contact = 0 /" '&eigen' dense_max_contact
+# the &output groups carry the directory themselves
+bad_output() {
+    local name=$1 text=$2
+    shift 2
+    printf '&output directory = '"'%s'"', %s /\n' "$out" "$text" >"$work/bad.nml"
+    run_bad "$name" "$work/bad.nml" bad.nml "$@"
+}
+bad_output 'output modes < 0' "modes = -1" '&output' modes
+
+# --- unknown groups and variables
+bad 'unknown group' "&meshh nx = 3 /" meshh 'known groups'
+bad 'group twice' "&mesh nx = 3 /
+&mesh ny = 3 /" '&mesh' twice
+bad_output 'unknown variable in &output' "bogus = 1" '&output' bogus 'knows'
+for group in mesh material analysis eigen; do
+    bad "unknown variable in &$group" "&$group bogus = 1 /" "&$group" bogus 'knows'
+done
+
+# --- wrong types
+bad 'integer given a word' "&mesh nx = many /" '&mesh' nx 'expected an integer'
+bad 'integer given a real' "&mesh ny = 2.5 /" '&mesh' ny 'expected an integer'
+bad 'real given a word' "&material young = steel /" '&material' young 'expected a real'
+bad 'real given a logical' "&analysis lambda = .true. /" '&analysis' lambda 'expected a real'
+bad_output 'logical given a number' "vtk = 7" '&output' vtk 'expected .true.'
+bad 'integer given a string' "&eigen nev = 'six' /" '&eigen' nev 'expected an integer'
+
+# --- the input file itself
+run_bad 'missing input file' "$work/none.nml" none.nml
+mkdir -p "$work/folder.nml"
+run_bad 'a directory as input file' "$work/folder.nml" folder.nml directory
+printf "&mesh nx = 4, ny = 4\n&output directory = '%s'" "$out" >"$work/truncated.nml"
+run_bad 'truncated namelist (no closing /)' "$work/truncated.nml" truncated.nml '&mesh'
+printf "&mesh nx = 4, ny = 4, element = 'q" >"$work/cut.nml"
+run_bad 'truncated inside a string' "$work/cut.nml" cut.nml '&mesh'
+# 3000 pseudo-random bytes, the same every run, without '&', '$' and '/' so that no group
+# can appear in them by accident
+LC_ALL=C awk 'BEGIN { srand(8); for (i = 0; i < 3000; i++) printf "%c", 1 + int(rand() * 255) }' \
+    | LC_ALL=C tr -d '&$/' >"$work/garbage2.nml"
+run_bad 'garbage bytes' "$work/garbage2.nml" garbage2.nml 'outside any namelist group'
+printf 'nx = 4\n' >"$work/nogroup.nml"
+run_bad 'text outside any group' "$work/nogroup.nml" nogroup.nml 'line 1'
+if [[ $(id -u) -ne 0 ]]; then
+    printf '&mesh /\n' >"$work/locked.nml"
+    chmod 000 "$work/locked.nml"
+    run_bad 'unreadable input file' "$work/locked.nml" locked.nml
+else
+    echo "SKIP  unreadable input file: running as root, whom chmod 000 does not stop" \
+         "(the directory case above covers an open that fails)"
+fi
+
+# --- an output directory that cannot be written: a path under a regular file
+printf 'x\n' >"$work/plain"
+printf "&mesh nx = 2, ny = 2 /\n&output directory = '%s/sub' /\n" "$work/plain" >"$work/io.nml"
+rm -rf "$out"
+"$nceig" "$work/io.nml" >/dev/null 2>"$work/err"; rc=$?
+check 'output under a regular file: non-zero exit, one line naming it' \
+    '[[ $rc -ne 0 && $(wc -l <"$work/err") -eq 1 ]] && grep -q -F "$work/plain/sub" "$work/err"'
+echo "      $(cat "$work/err")"
+check 'output under a regular file: the file is untouched' '[[ $(cat "$work/plain") == x ]]'
+
+echo "cli_bad_input: $passed passed, $failed failed"
+[[ $failed -eq 0 ]]

@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# Nothing lost: a run killed (SIGKILL, no chance to clean up) at several moments, into a
+# directory holding a previous complete result, must leave that result as it was, or, if
+# the kill came after the commit, the new complete result; never a visible partial file
+# nor a summary.json next to files of another set.
+# Usage: cli_interrupted_run.sh NCEIG SOURCE_DIR
+set -u
+nceig=$1
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+passed=0 failed=0
+check() { if eval "$2"; then passed=$((passed + 1)); echo "PASS  $1"; else failed=$((failed + 1)); echo "FAIL  $1"; fi; }
+out="$work/out"
+
+# A small complete result first (lambda = 5, two modes) ...
+cat >"$work/first.nml" <<NML
+&mesh nx = 6, ny = 6 /
+&output directory = '$out', modes = 2 /
+NML
+"$nceig" "$work/first.nml" >/dev/null 2>&1
+check 'first run completes' '[[ -s "$out/summary.json" ]]'
+mkdir "$work/before"
+cp -p "$out"/* "$work/before/"
+
+# ... then a run of about 1.5 s (Release) with another lambda into the same directory.
+cat >"$work/big.nml" <<NML
+&mesh nx = 150, ny = 150 /
+&analysis lambda = 4 /
+&output directory = '$out', modes = 3 /
+NML
+n_killed=0
+for delay in 0.1 0.4 0.8 1.2; do
+    "$nceig" "$work/big.nml" >/dev/null 2>&1 &
+    pid=$!
+    sleep "$delay"
+    if kill -KILL "$pid" 2>/dev/null; then n_killed=$((n_killed + 1)); fi
+    wait "$pid" 2>/dev/null
+    visible=$(cd "$out" && ls)
+    if grep -q '"lambda": 4' "$out/summary.json" 2>/dev/null; then
+        # killed after the commit: the new set is complete and is what summary.json lists
+        check "kill after ${delay}s: new complete set" \
+            'for f in $(grep -o "\"files\": \[.*\]" "$out/summary.json" | grep -o "[a-z_0-9]*\.[a-z]*"); do [[ -s "$out/$f" ]] || exit 1; done'
+        cp -p "$work/before"/* "$out/"   # restore the first result for the next kill
+        rm -f "$out/mode_003.vtu"
+    else
+        check "kill after ${delay}s: summary.json unchanged" 'cmp -s "$out/summary.json" "$work/before/summary.json"'
+        check "kill after ${delay}s: every visible file is the first run's" \
+            'for f in $visible; do cmp -s "$out/$f" "$work/before/$f" || exit 1; done'
+        check "kill after ${delay}s: no other visible file" \
+            '[[ "$visible" == "$(cd "$work/before" && ls)" ]]'
+    fi
+done
+echo "      $n_killed of 4 runs were still running when killed"
+check 'at least one run was killed mid-way' '[[ $n_killed -ge 1 ]]'
+check 'the killed runs left only hidden staging folders' \
+    '[[ -z $(cd "$out" && ls -A | grep -v "^\.nceig-partial-" | grep -v -x -F "$(cd "$work/before" && ls)") ]]'
+
+echo "cli_interrupted_run: $passed passed, $failed failed"
+[[ $failed -eq 0 ]]
