@@ -104,6 +104,7 @@ contains
     subroutine group_rows(families, family_of_row)
         type(csv_field_t), allocatable, intent(out) :: families(:)
         integer, allocatable, intent(out) :: family_of_row(:)
+        type(csv_field_t), allocatable :: grown(:)
         integer :: row, f
         character(len=:), allocatable :: name
 
@@ -118,7 +119,14 @@ contains
             do f = 1, size(families)
                 if (families(f)%text == name) exit
             end do
-            if (f > size(families)) families = [families, csv_field_t(name)]
+            if (f > size(families)) then
+                ! Grown by hand: gfortran 12 leaks the components of an array constructor
+                ! of derived types with allocatable components.
+                allocate (grown(f))
+                grown(:f - 1) = families
+                grown(f)%text = name
+                call move_alloc(grown, families)
+            end if
             family_of_row(row) = f
         end do
     end subroutine group_rows
