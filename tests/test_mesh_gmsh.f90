@@ -360,8 +360,8 @@ contains
                     all(shape(a%edges) == shape(b%edges))
         if (.not. same_mesh) return
         same_mesh = maxval(abs(a%coords - b%coords)) <= 0.0_wp .and. &
-                    all(a%cells == b%cells) .and. all(a%edges == b%edges) .and. all(a%edge_part == b%edge_part) .and. &
-                    all(a%part_names == b%part_names)
+                    all(a%cells == b%cells) .and. all(a%edges == b%edges) .and. &
+                    all(a%edge_part == b%edge_part) .and. all(a%part_names == b%part_names)
     end function same_mesh
 
     elemental integer function node_tag(node)
