@@ -34,6 +34,7 @@ module mesh_gmsh
     real(wp), parameter :: DEGENERATE_FRACTION = 64.0_wp*epsilon(1.0_wp)
     ! z of a 2D mesh is written as 0 by Gmsh; allow round-off of a rotated plane geometry.
     real(wp), parameter :: PLANAR_TOL = 1.0e-10_wp
+    integer, parameter :: DEGENERATE = 0, FOLDED = 2   !! cell_orientation besides +-1
     character(len=*), parameter :: FORMAT_HINT = 'write ASCII with gmsh -format msh41 ' &
                                                  //'(or -format msh22)'
 
@@ -145,11 +146,16 @@ contains
         character(len=:), allocatable, intent(out) :: line
         character(len=*), intent(in) :: expected
         type(status_t), intent(inout) :: stat
-        if (.not. next_line(f, line)) then
-            call stat%fail(STATUS_MESH, f%path//':'//to_string(f%line)// &
-                ': unexpected end of file (truncated?); expected '//expected)
-        end if
+        if (.not. next_line(f, line)) call truncated(f, expected, stat)
     end subroutine require_line
+
+    subroutine truncated(f, expected, stat)
+        type(text_file_t), intent(in) :: f
+        character(len=*), intent(in) :: expected
+        type(status_t), intent(inout) :: stat
+        call stat%fail(STATUS_MESH, f%path//':'//to_string(f%line)// &
+            ': unexpected end of file (truncated?); expected '//expected)
+    end subroutine truncated
 
     !> Fail with 'path:line: message' at the line last read.
     subroutine fail_here(f, stat, message)
@@ -299,9 +305,12 @@ contains
         if (.not. stat%ok()) return
         n = values(1)
         do i = 1, n
-            call require_line(f, line, 'physical name '//to_string(i)//' of '// &
-                              to_string(n)//' (''dimension tag "name"'')', stat)
-            if (.not. stat%ok()) return
+            ! The message is built only on failure: this runs once per line of the file.
+            if (.not. next_line(f, line)) then
+                call truncated(f, 'physical name '//to_string(i)//' of '// &
+                    to_string(n)//' (''dimension tag "name"'')', stat)
+                return
+            end if
             if (.not. integers_at(line, values)) then
                 call fail_here(f, stat, 'expected ''dimension tag "name"'', found '''// &
                                shortened(line)//'''')
@@ -403,9 +412,12 @@ contains
                 return
             end if
             do i = 1, block(4)
-                call require_line(f, line, 'a node tag (node '//to_string(raw%n_nodes + i)// &
-                                  ' of '//to_string(n)//')', stat)
-                if (.not. stat%ok()) return
+                ! The message is built only on failure: this runs once per line of the file.
+                if (.not. next_line(f, line)) then
+                    call truncated(f, 'a node tag (node '//to_string(raw%n_nodes + i)// &
+                        ' of '//to_string(n)//')', stat)
+                    return
+                end if
                 pos = 1
                 call read_int(line, pos, raw%node_tag(raw%n_nodes + i), ok)
                 if (.not. ok) then
@@ -415,9 +427,12 @@ contains
                 end if
             end do
             do i = 1, block(4)
-                call require_line(f, line, 'coordinates x y z (node '// &
-                                  to_string(raw%n_nodes + i)//' of '//to_string(n)//')', stat)
-                if (.not. stat%ok()) return
+                ! The message is built only on failure: this runs once per line of the file.
+                if (.not. next_line(f, line)) then
+                    call truncated(f, 'coordinates x y z (node '// &
+                        to_string(raw%n_nodes + i)//' of '//to_string(n)//')', stat)
+                    return
+                end if
                 read (line, *, iostat=ios) raw%node_xyz(:, raw%n_nodes + i)
                 if (ios /= 0) then
                     call fail_here(f, stat, 'expected coordinates x y z, found '''// &
@@ -448,9 +463,12 @@ contains
         n = header(1)
         allocate (raw%node_tag(n), raw%node_xyz(3, n))
         do i = 1, n
-            call require_line(f, line, 'node '//to_string(i)//' of '//to_string(n)// &
-                              ' (''tag x y z'')', stat)
-            if (.not. stat%ok()) return
+            ! The message is built only on failure: this runs once per line of the file.
+            if (.not. next_line(f, line)) then
+                call truncated(f, 'node '//to_string(i)//' of '//to_string(n)// &
+                    ' (''tag x y z'')', stat)
+                return
+            end if
             read (line, *, iostat=ios) raw%node_tag(i), raw%node_xyz(:, i)
             if (ios /= 0) then
                 call fail_here(f, stat, 'expected ''tag x y z'', found '''// &
@@ -490,10 +508,13 @@ contains
                 return
             end if
             do i = 1, block(4)
-                call require_line(f, line, 'element '//to_string(n_done + i)//' of '// &
-                                  to_string(header(2))//' (''elementTag'' and '// &
-                                  to_string(k)//' node tags)', stat)
-                if (.not. stat%ok()) return
+                ! The message is built only on failure: this runs once per line of the file.
+                if (.not. next_line(f, line)) then
+                    call truncated(f, 'element '//to_string(n_done + i)//' of '// &
+                        to_string(header(2))//' (''elementTag'' and '// &
+                        to_string(k)//' node tags)', stat)
+                    return
+                end if
                 pos = 1
                 call read_int(line, pos, tag, ok)
                 if (ok) call read_ints(line, pos, nodes(:k), ok)
@@ -530,9 +551,12 @@ contains
         if (.not. stat%ok()) return
         call allocate_elements(raw, header(1))
         do i = 1, header(1)
-            call require_line(f, line, 'element '//to_string(i)//' of '// &
-                              to_string(header(1))//' (''tag type numTags tags nodes'')', stat)
-            if (.not. stat%ok()) return
+            ! The message is built only on failure: this runs once per line of the file.
+            if (.not. next_line(f, line)) then
+                call truncated(f, 'element '//to_string(i)//' of '// &
+                    to_string(header(1))//' (''tag type numTags tags nodes'')', stat)
+                return
+            end if
             pos = 1
             call read_ints(line, pos, first, ok)
             if (.not. ok) then
@@ -1035,8 +1059,15 @@ contains
         allocate (surfaces(0))
         s = 0
         do c = 1, m%n_cells()
-            orientation(c) = cell_orientation(m%element, m%coords(:, m%cells(:, c)), problem)
-            if (orientation(c) == 0) then
+            orientation(c) = cell_orientation(m%element, m%coords(:, m%cells(:, c)))
+            if (orientation(c) == DEGENERATE .or. orientation(c) == FOLDED) then
+                problem = 'degenerate: zero area (its corners are collinear or coincide)'
+                if (orientation(c) == FOLDED) then
+                    problem = 'inverted or degenerate: its Jacobian determinant vanishes or ' &
+                              //'changes sign at a node (a folded or flat cell'
+                    if (n > 4) problem = problem//', or misplaced mid-edge nodes'
+                    problem = problem//')'
+                end if
                 call stat%fail(STATUS_MESH, path//':'//to_string(m%cell_line(c))// &
                                ': this cell is '//problem)
                 return
@@ -1084,11 +1115,10 @@ contains
     end subroutine orient_cells
 
     !> +1 (anticlockwise) or -1 (clockwise) when det J has one sign, clear of zero, at every
-    !> node of the cell; else 0 and `problem` says why.
-    function cell_orientation(element, xy, problem) result(orientation)
+    !> node of the cell; else DEGENERATE (det J ~ 0 everywhere) or FOLDED.
+    pure function cell_orientation(element, xy) result(orientation)
         integer, intent(in) :: element
         real(wp), intent(in) :: xy(:, :)
-        character(len=:), allocatable, intent(out) :: problem
         integer :: orientation
         real(wp) :: ref_nodes(2, MAX_NODES), values(MAX_NODES), gradients(2, MAX_NODES)
         real(wp) :: jacobian(2, 2), det, det_min, det_max, diameter2, tol
@@ -1112,19 +1142,14 @@ contains
             end do
         end do
         tol = DEGENERATE_FRACTION*diameter2
-        orientation = 0
-        problem = ''
         if (det_min > tol) then
             orientation = 1
         else if (det_max < -tol) then
             orientation = -1
         else if (max(abs(det_min), abs(det_max)) <= tol) then
-            problem = 'degenerate: zero area (its corners are collinear or coincide)'
+            orientation = DEGENERATE
         else
-            problem = 'inverted or degenerate: its Jacobian determinant vanishes or changes ' &
-                      //'sign at a node (a folded or flat cell'
-            if (n > 4) problem = problem//', or misplaced mid-edge nodes'
-            problem = problem//')'
+            orientation = FOLDED
         end if
     end function cell_orientation
 
