@@ -8,6 +8,7 @@ module problem
     use input_config, only: split_names
     use mesh, only: mesh_t, element_from_name
     use mesh_structured, only: structured_rectangle
+    use mesh_gmsh, only: read_gmsh
     use dof_map, only: dof_map_t, build_dof_map
     use assembly, only: assemble_stiffness
     use contact_boundary, only: contact_t, build_contact
@@ -42,9 +43,12 @@ contains
             call structured_rectangle(config%mesh%width, config%mesh%height, config%mesh%nx, &
                 config%mesh%ny, element_from_name(config%mesh%element), config%mesh%diagonal, &
                 prob%mesh, stat)
+        case ('gmsh')
+            ! The element type comes from the file; &mesh element is not used.
+            call read_gmsh(trim(config%mesh%file), prob%mesh, stat)
         case default
             call stat%fail(STATUS_BAD_INPUT, config%input_file//': &mesh: source = '''// &
-                trim(config%mesh%source)//''': expected ''rectangle''')
+                trim(config%mesh%source)//''': expected ''rectangle'' or ''gmsh''')
         end select
         if (.not. stat%ok()) return
 
@@ -62,7 +66,9 @@ contains
         if (.not. stat%ok()) return
         call build_contact(prob%mesh, prob%contact_part, prob%dofs, prob%contact, stat)
         if (.not. stat%ok()) then
-            stat%message = config%input_file//': &mesh: contact: '//stat%message
+            ! A mesh-file message already names the file and line.
+            if (.not. allocated(prob%mesh%file)) &
+                stat%message = config%input_file//': &mesh: contact: '//stat%message
             return
         end if
         call assemble_stiffness(prob%mesh, prob%dofs, prob%young, prob%poisson, prob%k, stat)
@@ -84,6 +90,14 @@ contains
                 parts(i) = prob%mesh%part_index(trim(names(i)))
                 if (parts(i) == 0) then
                     known = join(prob%mesh%part_names)
+                    if (allocated(prob%mesh%file)) then
+                        ! A Gmsh file: the parts are its 1D physical groups.
+                        call stat%fail(STATUS_BAD_INPUT, config%input_file//': &mesh: '// &
+                            variable//' = '''//trim(list)//''': the mesh file '// &
+                            prob%mesh%file//' has no 1D physical group '''//trim(names(i))// &
+                            ''' (it has: '//known//')')
+                        return
+                    end if
                     call stat%fail(STATUS_BAD_INPUT, config%input_file//': &mesh: '//variable// &
                         ' = '''//trim(list)//''': the mesh has no boundary part '''// &
                         trim(names(i))//''' (it has: '//known//')')

@@ -118,11 +118,11 @@ contains
         direction = (finish - start)/norm2(finish - start)
         s_min = huge(1.0_wp)
         s_max = -huge(1.0_wp)
-        allocate (on_edge(m%n_nodes()), source=0)
+        allocate (on_edge(m%n_nodes()), source=0)   ! an edge of Gamma_C holding the node
         do i = 1, n_edges
             do a = 1, per_edge
                 node = m%edges(a, edge_list(i))
-                on_edge(node) = 1
+                on_edge(node) = edge_list(i)
                 s_min = min(s_min, dot_product(m%coords(:, node) - start, direction))
                 s_max = max(s_max, dot_product(m%coords(:, node) - start, direction))
             end do
@@ -132,15 +132,33 @@ contains
             if (on_edge(node) == 0) cycle
             offset = abs(cross(direction, m%coords(:, node) - start))
             if (offset > STRAIGHT_TOL*contact%length) then
-                call stat%fail(STATUS_MESH, 'contact boundary '''//name// &
-                    ''' is not one straight segment (node '//to_string(node)//' is off the line)')
+                call stat%fail(STATUS_MESH, place_of(on_edge(node))//'contact boundary '''// &
+                    name//''' is not one straight segment: the node at ('// &
+                    to_string(m%coords(1, node))//', '//to_string(m%coords(2, node))// &
+                    ') is off the line through its first edge; expected one straight segment')
                 return
             end if
         end do
+        ! The quadratic edge mass matrix is that of a straight edge with its mid node in the
+        ! middle (an affine map); Gmsh and the rectangle generator place it there.
+        if (per_edge == 3) then
+            do i = 1, n_edges
+                associate (ends => m%coords(:, m%edges(1:2, edge_list(i))), &
+                           middle => m%coords(:, m%edges(3, edge_list(i))))
+                    if (norm2(middle - 0.5_wp*(ends(:, 1) + ends(:, 2))) > &
+                        STRAIGHT_TOL*contact%length) then
+                        call stat%fail(STATUS_MESH, place_of(edge_list(i))// &
+                            'contact boundary '''//name//''': the mid node of this edge is ' &
+                            //'not at its middle; expected straight quadratic edges')
+                        return
+                    end if
+                end associate
+            end do
+        end if
         ! One segment, not several pieces of a line: the edge lengths must add up to its span.
         if (abs(sum([(edge_length(edge_list(i)), i=1, n_edges)]) - contact%length) > &
             STRAIGHT_TOL*n_edges*contact%length) then
-            call stat%fail(STATUS_MESH, 'contact boundary '''//name// &
+            call stat%fail(STATUS_MESH, place_of(edge_list(1))//'contact boundary '''//name// &
                 ''' is not one connected straight segment (its edges overlap or leave gaps)')
             return
         end if
@@ -193,6 +211,15 @@ contains
         end do
 
     contains
+
+        !> 'file:line: ' of a boundary edge for a mesh read from a file, else ''.
+        function place_of(edge) result(text)
+            integer, intent(in) :: edge
+            character(len=:), allocatable :: text
+            text = ''
+            if (allocated(m%file) .and. allocated(m%edge_line)) &
+                text = m%file//':'//to_string(m%edge_line(edge))//': '
+        end function place_of
 
         real(wp) function edge_length(edge)
             integer, intent(in) :: edge

@@ -1183,7 +1183,7 @@ contains
                        //int_text(MAX_CELLS_PER_SIDE)//')') &
                //entry('ny', int_text(d%mesh%ny), 'cells along y') &
                //entry('element', quoted(d%mesh%element), one_of(ELEMENT_NAMES) &
-                       //' (triangles: p, quadrilaterals: q)') &
+                       //' (rectangle; a Gmsh file sets its own)') &
                //entry('diagonal', quoted(d%mesh%diagonal), one_of(DIAGONALS) &
                        //': triangle diagonals rise to the right or left') &
                //entry('dirichlet', quoted(d%mesh%dirichlet), 'fixed sides (' &

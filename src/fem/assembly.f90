@@ -74,6 +74,11 @@ contains
                     call stat%fail(STATUS_MESH, 'mesh: cell '//trim(cell_text)// &
                                    ' is inverted or degenerate (Jacobian determinant '// &
                                    trim(adjustl(det_text))//')')
+                    ! A mesh read from a file: name the file and the line of the cell.
+                    if (allocated(m%file) .and. allocated(m%cell_line)) then
+                        write (cell_text, '(i0)') m%cell_line(cell)
+                        stat%message = m%file//':'//trim(cell_text)//': '//stat%message
+                    end if
                 else
                     call stat%fail(STATUS_INTERNAL, 'assembly: element_stiffness rejected '// &
                                    'the arguments for cell '//trim(cell_text))

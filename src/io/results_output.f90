@@ -18,6 +18,7 @@ module results_output
     use vtk_writer, only: write_vtu
     use matrix_market, only: write_matrix_market
     use dof_map, only: dof_map_t
+    use mesh, only: element_name
     implicit none
     private
     public :: write_eigen_outputs, summary_lines, nodal_field, eigen_summary_json
@@ -77,13 +78,16 @@ contains
         call summary%add_string('input', config%input_file)
         call summary%add_string('analysis', trim(config%analysis%kind))
         call summary%add_real('lambda', res%lambda)
-        call summary%add_string('element', trim(config%mesh%element))
+        ! From the mesh: a Gmsh file decides its element type, not &mesh element.
+        call summary%add_string('element', element_name(prob%mesh%element))
         call summary%add_string('mesh_source', trim(config%mesh%source))
         if (config%mesh%source == 'rectangle') then
             call summary%add_integer('nx', config%mesh%nx)
             call summary%add_integer('ny', config%mesh%ny)
             call summary%add_string('diagonal', trim(config%mesh%diagonal))
         end if
+        if (config%mesh%source == 'gmsh') call summary%add_string('mesh_file', &
+                                                                 trim(config%mesh%file))
         call summary%add_real('young', prob%young)
         call summary%add_real('poisson', prob%poisson)
         call summary%add_integer('n_nodes', prob%mesh%n_nodes())
@@ -210,7 +214,7 @@ contains
         real(wp) :: mu
 
         text = 'nceig '//NCEIG_VERSION//': '//config%input_file//NL// &
-            '  mesh        '//trim(config%mesh%source)//', '//trim(config%mesh%element)// &
+            '  mesh        '//trim(config%mesh%source)//', '//element_name(prob%mesh%element)// &
             ', '//to_string(prob%mesh%n_cells())//' cells, '//to_string(prob%mesh%n_nodes())// &
             ' nodes'//NL// &
             '  problem     '//to_string(prob%dofs%n_free)//' dofs, '// &

@@ -23,6 +23,11 @@ module mesh
         integer, allocatable :: edges(:, :)      !! (nodes_per_edge, n_edges): ends, then mid node
         integer, allocatable :: edge_part(:)     !! (n_edges) index into part_names
         character(len=64), allocatable :: part_names(:)  !! boundary part names ('bottom'...)
+        ! Where a mesh read from a file came from, so that later checks (contact segment,
+        ! inverted cells) can name the file and line; unallocated for generated meshes.
+        character(len=:), allocatable :: file        !! path of the mesh file
+        integer, allocatable :: cell_line(:)         !! (n_cells) line defining each cell
+        integer, allocatable :: edge_line(:)         !! (n_edges) line defining each edge
     contains
         procedure :: n_nodes => mesh_n_nodes
         procedure :: n_cells => mesh_n_cells

@@ -1,0 +1,1231 @@
+! SPDX-License-Identifier: MIT
+!> Gmsh meshes: MSH 4.1 and MSH 2.2 ASCII files into a `mesh_t`.
+!>
+!> Body cells are all 2D elements (3- and 6-node triangles, 4- and 9-node quadrangles, one
+!> type per mesh); boundary parts are the 1D physical groups, named by $PhysicalNames
+!> (lowercased, as the input file's names are) or, when unnamed, by their number; each 2- or
+!> 3-node line element of a group becomes a boundary edge of that part (an element in several
+!> groups is an edge of each). Points and lines outside physical groups are ignored; 3D
+!> elements are rejected. The reader checks what the assembly cannot report with a file
+!> line: undefined nodes, mixed element orders or shapes, inverted and degenerate cells. A
+!> surface whose cells are all clockwise (as Gmsh writes a surface whose normal points to
+!> -z) is reoriented; a clockwise cell among anticlockwise ones is an error. Nodes used by no
+!> cell are dropped, and the rest renumbered by reverse Cuthill-McKee for locality.
+module mesh_gmsh
+    use kinds, only: wp, i8
+    use status, only: status_t, STATUS_MESH
+    use mesh, only: mesh_t, ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, &
+                    element_nodes_per_cell
+    use mesh_renumber, only: renumber_nodes, RENUMBER_RCM
+    use shape_functions, only: evaluate_shape, reference_nodes, MAX_NODES
+    use strings, only: to_string
+    use input_config, only: lowercase
+    implicit none
+    private
+    public :: read_gmsh, gmsh_type_name
+
+    ! Gmsh element type numbers (MSH file format documentation, section "Node ordering").
+    integer, parameter :: GMSH_LINE2 = 1, GMSH_TRIANGLE3 = 2, GMSH_QUAD4 = 3, &
+                          GMSH_LINE3 = 8, GMSH_TRIANGLE6 = 9, GMSH_QUAD9 = 10, GMSH_POINT = 15
+    integer, parameter :: NAME_LEN = 64      !! as mesh_t%part_names
+    integer, parameter :: MAX_CELL_NODES = 9
+    ! det J at a node below this fraction of (cell diameter)^2 is "zero": the threshold the
+    ! assembly (elasticity.f90) uses, so that a cell accepted here is accepted there.
+    real(wp), parameter :: DEGENERATE_FRACTION = 64.0_wp*epsilon(1.0_wp)
+    ! z of a 2D mesh is written as 0 by Gmsh; allow round-off of a rotated plane geometry.
+    real(wp), parameter :: PLANAR_TOL = 1.0e-10_wp
+    integer, parameter :: DEGENERATE = 0, FOLDED = 2   !! cell_orientation besides +-1
+    character(len=*), parameter :: FORMAT_HINT = 'write ASCII with gmsh -format msh41 ' &
+                                                 //'(or -format msh22)'
+
+    !> The file in memory, read line by line; `line` counts the lines handed out.
+    type :: text_file_t
+        character(len=:), allocatable :: path
+        character(len=:), allocatable :: text
+        integer(i8) :: next = 1
+        integer :: line = 0
+    end type text_file_t
+
+    !> What the file says, before any check across sections.
+    type :: raw_mesh_t
+        integer :: version = 0                         !! 2 or 4
+        integer :: n_nodes = 0, n_cells = 0, n_edges = 0, n_pairs = 0, n_names = 0
+        integer, allocatable :: node_tag(:)
+        real(wp), allocatable :: node_xyz(:, :)        !! (3, n_nodes)
+        integer, allocatable :: cell_type(:), cell_nodes(:, :), cell_entity(:), cell_line(:)
+        integer, allocatable :: edge_type(:), edge_nodes(:, :), edge_line(:)
+        !> MSH 4: the curve (entity) tag; MSH 2: the physical tag (0: none).
+        integer, allocatable :: edge_group(:)
+        integer, allocatable :: pair_curve(:), pair_physical(:)   !! MSH 4 $Entities
+        integer, allocatable :: name_dim(:), name_tag(:), name_line(:)
+        character(len=:), allocatable :: name_text(:)
+    end type raw_mesh_t
+
+contains
+
+    !> Read the Gmsh ASCII mesh `path` (MSH 4.1 or 2.2) into `m`. Every failure is
+    !> STATUS_MESH with a message 'path:line: problem; expected ...'. `n_reoriented` is the
+    !> number of clockwise cells turned anticlockwise. `renumber` (RENUMBER_*, default
+    !> RENUMBER_RCM) is for benchmarks: RENUMBER_NONE keeps the file's node order.
+    subroutine read_gmsh(path, m, stat, n_reoriented, renumber)
+        character(len=*), intent(in) :: path
+        type(mesh_t), intent(out) :: m
+        type(status_t), intent(out) :: stat
+        integer, intent(out), optional :: n_reoriented
+        integer, intent(in), optional :: renumber
+        type(text_file_t) :: f
+        type(raw_mesh_t) :: raw
+        integer :: reoriented, method
+
+        if (present(n_reoriented)) n_reoriented = 0
+        call load_file(path, f, stat)
+        if (.not. stat%ok()) return
+        call parse_sections(f, raw, stat)
+        if (.not. stat%ok()) return
+        call build_mesh(f, raw, m, reoriented, stat)
+        if (.not. stat%ok()) return
+        if (present(n_reoriented)) n_reoriented = reoriented
+        ! RCM rather than METIS: see README (Gmsh meshes) for the measurements.
+        method = RENUMBER_RCM
+        if (present(renumber)) method = renumber
+        call renumber_nodes(m, method, stat)
+        if (.not. stat%ok()) stat%message = path//': '//stat%message
+    end subroutine read_gmsh
+
+    ! ------------------------------------------------------------------------ the file
+
+    subroutine load_file(path, f, stat)
+        character(len=*), intent(in) :: path
+        type(text_file_t), intent(out) :: f
+        type(status_t), intent(out) :: stat
+        character(len=512) :: msg
+        integer :: unit, ios
+        integer(i8) :: file_size
+
+        f%path = path
+        open (newunit=unit, file=path, access='stream', form='unformatted', status='old', &
+              action='read', iostat=ios, iomsg=msg)
+        if (ios /= 0) then
+            call stat%fail(STATUS_MESH, path//': cannot open mesh file: '//trim(msg))
+            return
+        end if
+        inquire (unit=unit, size=file_size)
+        allocate (character(len=max(file_size, 0_i8)) :: f%text)
+        if (file_size > 0) read (unit, iostat=ios, iomsg=msg) f%text
+        close (unit)
+        if (ios /= 0) call stat%fail(STATUS_MESH, path//': cannot read mesh file: '//trim(msg))
+    end subroutine load_file
+
+    !> The next line without its end-of-line characters; .false. at the end of the file.
+    logical function next_line(f, line)
+        type(text_file_t), intent(inout) :: f
+        character(len=:), allocatable, intent(out) :: line
+        integer(i8) :: finish
+        next_line = f%next <= len(f%text, kind=i8)
+        if (.not. next_line) then
+            line = ''
+            return
+        end if
+        finish = index(f%text(f%next:), new_line('a'), kind=i8)
+        if (finish == 0) then
+            finish = len(f%text, kind=i8)
+        else
+            finish = f%next + finish - 2
+        end if
+        line = f%text(f%next:finish)
+        f%next = finish + 2
+        f%line = f%line + 1
+        if (len(line) > 0) then
+            if (line(len(line):) == achar(13)) line = line(:len(line) - 1)   ! CRLF files
+        end if
+    end function next_line
+
+    !> The next line, or a failure 'unexpected end of file' saying what was expected.
+    subroutine require_line(f, line, expected, stat)
+        type(text_file_t), intent(inout) :: f
+        character(len=:), allocatable, intent(out) :: line
+        character(len=*), intent(in) :: expected
+        type(status_t), intent(inout) :: stat
+        if (.not. next_line(f, line)) call truncated(f, expected, stat)
+    end subroutine require_line
+
+    subroutine truncated(f, expected, stat)
+        type(text_file_t), intent(in) :: f
+        character(len=*), intent(in) :: expected
+        type(status_t), intent(inout) :: stat
+        call stat%fail(STATUS_MESH, f%path//':'//to_string(f%line)// &
+            ': unexpected end of file (truncated?); expected '//expected)
+    end subroutine truncated
+
+    !> Fail with 'path:line: message' at the line last read.
+    subroutine fail_here(f, stat, message)
+        type(text_file_t), intent(in) :: f
+        type(status_t), intent(inout) :: stat
+        character(len=*), intent(in) :: message
+        call stat%fail(STATUS_MESH, f%path//':'//to_string(f%line)//': '//message)
+    end subroutine fail_here
+
+    ! -------------------------------------------------------------------- the sections
+
+    subroutine parse_sections(f, raw, stat)
+        type(text_file_t), intent(inout) :: f
+        type(raw_mesh_t), intent(inout) :: raw
+        type(status_t), intent(inout) :: stat
+        character(len=:), allocatable :: line, header
+        logical :: have_nodes, have_elements
+
+        call parse_format(f, raw, stat)
+        if (.not. stat%ok()) return
+        have_nodes = .false.
+        have_elements = .false.
+        allocate (raw%pair_curve(0), raw%pair_physical(0))
+        allocate (raw%name_dim(0), raw%name_tag(0), raw%name_line(0))
+        allocate (character(len=NAME_LEN + 1) :: raw%name_text(0))
+        do while (next_line(f, line))
+            header = trim(adjustl(line))
+            select case (header)
+            case ('')
+                cycle
+            case ('$PhysicalNames')
+                call parse_physical_names(f, raw, stat)
+            case ('$Entities')
+                if (raw%version == 4) call parse_entities(f, raw, stat)
+                if (raw%version /= 4) call skip_section(f, header, stat)
+            case ('$PartitionedEntities')
+                call fail_here(f, stat, 'partitioned meshes are not supported; expected a ' &
+                               //'mesh saved without partitions')
+            case ('$Nodes')
+                if (raw%version == 4) call parse_nodes_4(f, raw, stat)
+                if (raw%version == 2) call parse_nodes_2(f, raw, stat)
+                have_nodes = .true.
+            case ('$Elements')
+                if (raw%version == 4) call parse_elements_4(f, raw, stat)
+                if (raw%version == 2) call parse_elements_2(f, raw, stat)
+                have_elements = .true.
+            case default
+                if (header(1:1) /= '$' .or. header(1:min(4, len(header))) == '$End') then
+                    call fail_here(f, stat, 'unexpected text '''//shortened(header)// &
+                                   '''; expected a section header such as $Nodes')
+                else
+                    call skip_section(f, header, stat)
+                end if
+            end select
+            if (.not. stat%ok()) return
+        end do
+        if (.not. have_nodes) then
+            call fail_here(f, stat, 'no $Nodes section (truncated file?)')
+        else if (.not. have_elements) then
+            call fail_here(f, stat, 'no $Elements section (truncated file?)')
+        end if
+    end subroutine parse_sections
+
+    !> $MeshFormat: version 4.1 or 2.x, ASCII.
+    subroutine parse_format(f, raw, stat)
+        type(text_file_t), intent(inout) :: f
+        type(raw_mesh_t), intent(inout) :: raw
+        type(status_t), intent(inout) :: stat
+        character(len=:), allocatable :: line
+        character(len=16) :: version
+        integer :: file_type, data_size, ios
+
+        do
+            call require_line(f, line, '$MeshFormat', stat)
+            if (.not. stat%ok()) return
+            if (len_trim(line) > 0) exit
+        end do
+        if (trim(adjustl(line)) /= '$MeshFormat') then
+            call fail_here(f, stat, 'not a Gmsh mesh file: expected $MeshFormat, found '''// &
+                           shortened(trim(adjustl(line)))//'''')
+            return
+        end if
+        call require_line(f, line, 'the version line ''4.1 0 8'' of $MeshFormat', stat)
+        if (.not. stat%ok()) return
+        read (line, *, iostat=ios) version, file_type, data_size
+        if (ios /= 0) then
+            call fail_here(f, stat, 'expected ''version file-type data-size'' (such as ' &
+                           //'''4.1 0 8''), found '''//shortened(line)//'''')
+            return
+        end if
+        if (file_type /= 0) then
+            call fail_here(f, stat, 'binary MSH files are not supported; '//FORMAT_HINT)
+            return
+        end if
+        if (trim(version) == '4.1') then
+            raw%version = 4
+        else if (version(1:2) == '2.') then
+            raw%version = 2
+        else
+            call fail_here(f, stat, 'MSH version '//trim(version)//' is not supported ' &
+                           //'(expected 4.1 or 2.2); '//FORMAT_HINT)
+            return
+        end if
+        call expect_end(f, '$EndMeshFormat', stat)
+    end subroutine parse_format
+
+    !> The next non-blank line must be `marker`.
+    subroutine expect_end(f, marker, stat)
+        type(text_file_t), intent(inout) :: f
+        character(len=*), intent(in) :: marker
+        type(status_t), intent(inout) :: stat
+        character(len=:), allocatable :: line
+        do
+            call require_line(f, line, marker, stat)
+            if (.not. stat%ok()) return
+            if (len_trim(line) > 0) exit
+        end do
+        if (trim(adjustl(line)) /= marker) then
+            call fail_here(f, stat, 'expected '//marker//', found '''// &
+                           shortened(trim(adjustl(line)))//''' (more entries than announced?)')
+        end if
+    end subroutine expect_end
+
+    !> Skip an unused section ($Periodic, $NodeData, $Comments, ...) up to its end marker.
+    subroutine skip_section(f, header, stat)
+        type(text_file_t), intent(inout) :: f
+        character(len=*), intent(in) :: header
+        type(status_t), intent(inout) :: stat
+        character(len=:), allocatable :: line
+        do
+            call require_line(f, line, '$End'//header(2:), stat)
+            if (.not. stat%ok()) return
+            if (trim(adjustl(line)) == '$End'//header(2:)) return
+        end do
+    end subroutine skip_section
+
+    !> $PhysicalNames: count, then 'dimension tag "name"' per line.
+    subroutine parse_physical_names(f, raw, stat)
+        type(text_file_t), intent(inout) :: f
+        type(raw_mesh_t), intent(inout) :: raw
+        type(status_t), intent(inout) :: stat
+        character(len=:), allocatable :: line
+        integer :: values(2), n, i, first, last
+        character(len=NAME_LEN + 1) :: name
+
+        call read_counts(f, 1, '$PhysicalNames', values, stat)
+        if (.not. stat%ok()) return
+        n = values(1)
+        do i = 1, n
+            ! The message is built only on failure: this runs once per line of the file.
+            if (.not. next_line(f, line)) then
+                call truncated(f, 'physical name '//to_string(i)//' of '// &
+                    to_string(n)//' (''dimension tag "name"'')', stat)
+                return
+            end if
+            if (.not. integers_at(line, values)) then
+                call fail_here(f, stat, 'expected ''dimension tag "name"'', found '''// &
+                               shortened(line)//'''')
+                return
+            end if
+            first = index(line, '"')
+            last = index(line, '"', back=.true.)
+            if (first == 0 .or. last <= first) then
+                call fail_here(f, stat, 'expected the name in double quotes, found '''// &
+                               shortened(line)//'''')
+                return
+            end if
+            if (last - first - 1 > NAME_LEN) then
+                call fail_here(f, stat, 'physical name longer than '//to_string(NAME_LEN)// &
+                               ' characters: '//shortened(line(first:last)))
+                return
+            end if
+            name = lowercase(line(first + 1:last - 1))
+            raw%name_dim = [raw%name_dim, values(1)]
+            raw%name_tag = [raw%name_tag, values(2)]
+            raw%name_line = [raw%name_line, f%line]
+            raw%name_text = [character(len=NAME_LEN + 1) :: raw%name_text, name]
+        end do
+        raw%n_names = n
+        call expect_end(f, '$EndPhysicalNames', stat)
+    end subroutine parse_physical_names
+
+    !> MSH 4.1 $Entities: the physical tags of each curve (points, surfaces and volumes are
+    !> only skipped: cells belong to the body whatever their surface).
+    subroutine parse_entities(f, raw, stat)
+        type(text_file_t), intent(inout) :: f
+        type(raw_mesh_t), intent(inout) :: raw
+        type(status_t), intent(inout) :: stat
+        character(len=:), allocatable :: line
+        integer :: counts(4), i, pos, tag, n_physical, physical, k
+        logical :: ok
+
+        n_physical = 0
+
+        call read_counts(f, 4, '$Entities (numPoints numCurves numSurfaces numVolumes)', &
+                         counts, stat)
+        if (.not. stat%ok()) return
+        do i = 1, counts(1)
+            call require_line(f, line, 'a point entity of $Entities', stat)
+            if (.not. stat%ok()) return
+        end do
+        do i = 1, counts(2)
+            call require_line(f, line, 'a curve entity of $Entities', stat)
+            if (.not. stat%ok()) return
+            ! curveTag minX minY minZ maxX maxY maxZ numPhysicalTags physicalTag ...
+            pos = 1
+            call read_int(line, pos, tag, ok)
+            if (ok) call skip_tokens(line, pos, 6, ok)
+            if (ok) call read_int(line, pos, n_physical, ok)
+            do k = 1, n_physical
+                if (.not. ok) exit
+                call read_int(line, pos, physical, ok)
+                if (ok) then
+                    raw%pair_curve = [raw%pair_curve, tag]
+                    raw%pair_physical = [raw%pair_physical, abs(physical)]
+                end if
+            end do
+            if (.not. ok) then
+                call fail_here(f, stat, 'expected ''curveTag minX minY minZ maxX maxY maxZ ' &
+                               //'numPhysicalTags physicalTag ...'', found '''// &
+                               shortened(line)//'''')
+                return
+            end if
+        end do
+        raw%n_pairs = size(raw%pair_curve)
+        do i = 1, counts(3) + counts(4)
+            call require_line(f, line, 'a surface or volume entity of $Entities', stat)
+            if (.not. stat%ok()) return
+        end do
+        call expect_end(f, '$EndEntities', stat)
+    end subroutine parse_entities
+
+    !> MSH 4.1 $Nodes: blocks of node tags, then their coordinates.
+    subroutine parse_nodes_4(f, raw, stat)
+        type(text_file_t), intent(inout) :: f
+        type(raw_mesh_t), intent(inout) :: raw
+        type(status_t), intent(inout) :: stat
+        character(len=:), allocatable :: line
+        integer :: header(4), block(4), b, i, n, pos, ios
+        logical :: ok
+
+        call read_counts(f, 4, '$Nodes header (numEntityBlocks numNodes minNodeTag ' &
+                         //'maxNodeTag)', header, stat)
+        if (.not. stat%ok()) return
+        n = header(2)
+        allocate (raw%node_tag(n), raw%node_xyz(3, n))
+        do b = 1, header(1)
+            call read_counts(f, 4, 'node block '//to_string(b)//' of '//to_string(header(1)) &
+                             //' (entityDim entityTag parametric numNodesInBlock)', block, stat)
+            if (.not. stat%ok()) return
+            if (raw%n_nodes + block(4) > n) then
+                call fail_here(f, stat, 'more nodes than the '//to_string(n)// &
+                               ' of the $Nodes header')
+                return
+            end if
+            do i = 1, block(4)
+                ! The message is built only on failure: this runs once per line of the file.
+                if (.not. next_line(f, line)) then
+                    call truncated(f, 'a node tag (node '//to_string(raw%n_nodes + i)// &
+                        ' of '//to_string(n)//')', stat)
+                    return
+                end if
+                pos = 1
+                call read_int(line, pos, raw%node_tag(raw%n_nodes + i), ok)
+                if (.not. ok) then
+                    call fail_here(f, stat, 'expected a node tag, found '''// &
+                                   shortened(line)//'''')
+                    return
+                end if
+            end do
+            do i = 1, block(4)
+                ! The message is built only on failure: this runs once per line of the file.
+                if (.not. next_line(f, line)) then
+                    call truncated(f, 'coordinates x y z (node '// &
+                        to_string(raw%n_nodes + i)//' of '//to_string(n)//')', stat)
+                    return
+                end if
+                read (line, *, iostat=ios) raw%node_xyz(:, raw%n_nodes + i)
+                if (ios /= 0) then
+                    call fail_here(f, stat, 'expected coordinates x y z, found '''// &
+                                   shortened(line)//'''')
+                    return
+                end if
+            end do
+            raw%n_nodes = raw%n_nodes + block(4)
+        end do
+        if (raw%n_nodes /= n) then
+            call fail_here(f, stat, 'the node blocks hold '//to_string(raw%n_nodes)// &
+                           ' nodes, the $Nodes header announced '//to_string(n))
+            return
+        end if
+        call expect_end(f, '$EndNodes', stat)
+    end subroutine parse_nodes_4
+
+    !> MSH 2.2 $Nodes: count, then 'tag x y z' per line.
+    subroutine parse_nodes_2(f, raw, stat)
+        type(text_file_t), intent(inout) :: f
+        type(raw_mesh_t), intent(inout) :: raw
+        type(status_t), intent(inout) :: stat
+        character(len=:), allocatable :: line
+        integer :: header(1), i, n, ios
+
+        call read_counts(f, 1, 'the number of nodes', header, stat)
+        if (.not. stat%ok()) return
+        n = header(1)
+        allocate (raw%node_tag(n), raw%node_xyz(3, n))
+        do i = 1, n
+            ! The message is built only on failure: this runs once per line of the file.
+            if (.not. next_line(f, line)) then
+                call truncated(f, 'node '//to_string(i)//' of '//to_string(n)// &
+                    ' (''tag x y z'')', stat)
+                return
+            end if
+            read (line, *, iostat=ios) raw%node_tag(i), raw%node_xyz(:, i)
+            if (ios /= 0) then
+                call fail_here(f, stat, 'expected ''tag x y z'', found '''// &
+                               shortened(line)//'''')
+                return
+            end if
+        end do
+        raw%n_nodes = n
+        call expect_end(f, '$EndNodes', stat)
+    end subroutine parse_nodes_2
+
+    !> MSH 4.1 $Elements: blocks 'entityDim entityTag elementType numElementsInBlock', then
+    !> 'elementTag nodeTag ...' per element.
+    subroutine parse_elements_4(f, raw, stat)
+        type(text_file_t), intent(inout) :: f
+        type(raw_mesh_t), intent(inout) :: raw
+        type(status_t), intent(inout) :: stat
+        character(len=:), allocatable :: line
+        integer :: header(4), block(4), b, i, k, pos, tag, nodes(MAX_CELL_NODES), dim, n_done
+        logical :: ok
+
+        call read_counts(f, 4, '$Elements header (numEntityBlocks numElements ' &
+                         //'minElementTag maxElementTag)', header, stat)
+        if (.not. stat%ok()) return
+        call allocate_elements(raw, header(2))
+        n_done = 0
+        do b = 1, header(1)
+            call read_counts(f, 4, 'element block '//to_string(b)//' of '// &
+                             to_string(header(1))//' (entityDim entityTag elementType ' &
+                             //'numElementsInBlock)', block, stat)
+            if (.not. stat%ok()) return
+            call check_type(f, block(3), dim, k, stat)
+            if (.not. stat%ok()) return
+            if (n_done + block(4) > header(2)) then
+                call fail_here(f, stat, 'more elements than the '//to_string(header(2))// &
+                               ' of the $Elements header')
+                return
+            end if
+            do i = 1, block(4)
+                ! The message is built only on failure: this runs once per line of the file.
+                if (.not. next_line(f, line)) then
+                    call truncated(f, 'element '//to_string(n_done + i)//' of '// &
+                        to_string(header(2))//' (''elementTag'' and '// &
+                        to_string(k)//' node tags)', stat)
+                    return
+                end if
+                pos = 1
+                call read_int(line, pos, tag, ok)
+                if (ok) call read_ints(line, pos, nodes(:k), ok)
+                if (.not. ok) then
+                    call fail_here(f, stat, 'expected an element tag and '//to_string(k)// &
+                                   ' node tags ('//gmsh_type_name(block(3))//'), found '''// &
+                                   shortened(line)//'''')
+                    return
+                end if
+                call add_element(raw, dim, block(3), nodes(:k), block(2), f%line)
+            end do
+            n_done = n_done + block(4)
+        end do
+        if (n_done /= header(2)) then
+            call fail_here(f, stat, 'the element blocks hold '//to_string(n_done)// &
+                           ' elements, the $Elements header announced '//to_string(header(2)))
+            return
+        end if
+        call expect_end(f, '$EndElements', stat)
+    end subroutine parse_elements_4
+
+    !> MSH 2.2 $Elements: count, then 'tag type numTags tag... node...' per line; the first
+    !> tag is the physical group, the second the elementary entity.
+    subroutine parse_elements_2(f, raw, stat)
+        type(text_file_t), intent(inout) :: f
+        type(raw_mesh_t), intent(inout) :: raw
+        type(status_t), intent(inout) :: stat
+        character(len=:), allocatable :: line
+        integer :: header(1), i, k, pos, first(3), n_tags, tags(2), nodes(MAX_CELL_NODES), dim
+        integer :: skipped
+        logical :: ok
+
+        call read_counts(f, 1, 'the number of elements', header, stat)
+        if (.not. stat%ok()) return
+        call allocate_elements(raw, header(1))
+        do i = 1, header(1)
+            ! The message is built only on failure: this runs once per line of the file.
+            if (.not. next_line(f, line)) then
+                call truncated(f, 'element '//to_string(i)//' of '// &
+                    to_string(header(1))//' (''tag type numTags tags nodes'')', stat)
+                return
+            end if
+            pos = 1
+            call read_ints(line, pos, first, ok)
+            if (.not. ok) then
+                call fail_here(f, stat, 'expected ''tag type numTags tags nodes'', found ''' &
+                               //shortened(line)//'''')
+                return
+            end if
+            call check_type(f, first(2), dim, k, stat)
+            if (.not. stat%ok()) return
+            n_tags = first(3)
+            tags = 0
+            call read_ints(line, pos, tags(:min(2, max(n_tags, 0))), ok)
+            skipped = max(n_tags - 2, 0)
+            if (ok) call skip_tokens(line, pos, skipped, ok)
+            if (ok) call read_ints(line, pos, nodes(:k), ok)
+            if (.not. ok .or. n_tags < 0) then
+                call fail_here(f, stat, 'expected '//to_string(max(n_tags, 0))//' tags and ' &
+                               //to_string(k)//' node tags ('//gmsh_type_name(first(2))// &
+                               '), found '''//shortened(line)//'''')
+                return
+            end if
+            if (dim == 1) then
+                call add_element(raw, dim, first(2), nodes(:k), tags(1), f%line)
+            else
+                call add_element(raw, dim, first(2), nodes(:k), tags(2), f%line)
+            end if
+        end do
+        call expect_end(f, '$EndElements', stat)
+    end subroutine parse_elements_2
+
+    !> Dimension and node count of a supported element type; anything else fails here.
+    subroutine check_type(f, type, dim, n_nodes, stat)
+        type(text_file_t), intent(in) :: f
+        integer, intent(in) :: type
+        integer, intent(out) :: dim, n_nodes
+        type(status_t), intent(inout) :: stat
+        dim = 0
+        n_nodes = 0
+        select case (type)
+        case (GMSH_POINT); dim = 0; n_nodes = 1
+        case (GMSH_LINE2); dim = 1; n_nodes = 2
+        case (GMSH_LINE3); dim = 1; n_nodes = 3
+        case (GMSH_TRIANGLE3); dim = 2; n_nodes = 3
+        case (GMSH_TRIANGLE6); dim = 2; n_nodes = 6
+        case (GMSH_QUAD4); dim = 2; n_nodes = 4
+        case (GMSH_QUAD9); dim = 2; n_nodes = 9
+        case default
+            call fail_here(f, stat, 'unsupported element type '//to_string(type)//' ('// &
+                gmsh_type_name(type)//'); expected 3- or 6-node triangles, 4- or 9-node ' &
+                //'quadrangles, 2- or 3-node lines, points')
+        end select
+    end subroutine check_type
+
+    !> Name of a Gmsh element type, for messages.
+    pure function gmsh_type_name(type) result(name)
+        integer, intent(in) :: type
+        character(len=:), allocatable :: name
+        select case (type)
+        case (GMSH_LINE2); name = '2-node line'
+        case (GMSH_TRIANGLE3); name = '3-node triangle'
+        case (GMSH_QUAD4); name = '4-node quadrangle'
+        case (4); name = '4-node tetrahedron: a 3D mesh'
+        case (5); name = '8-node hexahedron: a 3D mesh'
+        case (6); name = '6-node prism: a 3D mesh'
+        case (7); name = '5-node pyramid: a 3D mesh'
+        case (GMSH_LINE3); name = '3-node line'
+        case (GMSH_TRIANGLE6); name = '6-node triangle'
+        case (GMSH_QUAD9); name = '9-node quadrangle'
+        case (11); name = '10-node tetrahedron: a 3D mesh'
+        case (GMSH_POINT); name = 'point'
+        case (16); name = '8-node serendipity quadrangle: set Mesh.SecondOrderIncomplete = 0'
+        case (20, 21); name = 'cubic triangle: use -order 1 or 2'
+        case (26); name = '4-node line: use -order 1 or 2'
+        case (36); name = 'cubic quadrangle: use -order 1 or 2'
+        case default; name = 'not a 2D element of order 1 or 2'
+        end select
+    end function gmsh_type_name
+
+    subroutine allocate_elements(raw, n)
+        type(raw_mesh_t), intent(inout) :: raw
+        integer, intent(in) :: n
+        allocate (raw%cell_type(n), raw%cell_nodes(MAX_CELL_NODES, n), raw%cell_entity(n), &
+                  raw%cell_line(n))
+        allocate (raw%edge_type(n), raw%edge_nodes(3, n), raw%edge_group(n), raw%edge_line(n))
+        raw%cell_nodes = 0
+        raw%edge_nodes = 0
+    end subroutine allocate_elements
+
+    subroutine add_element(raw, dim, type, nodes, group, line)
+        type(raw_mesh_t), intent(inout) :: raw
+        integer, intent(in) :: dim, type, nodes(:), group, line
+        select case (dim)
+        case (1)
+            raw%n_edges = raw%n_edges + 1
+            raw%edge_type(raw%n_edges) = type
+            raw%edge_nodes(:size(nodes), raw%n_edges) = nodes
+            raw%edge_group(raw%n_edges) = group
+            raw%edge_line(raw%n_edges) = line
+        case (2)
+            raw%n_cells = raw%n_cells + 1
+            raw%cell_type(raw%n_cells) = type
+            raw%cell_nodes(:size(nodes), raw%n_cells) = nodes
+            raw%cell_entity(raw%n_cells) = group
+            raw%cell_line(raw%n_cells) = line
+        end select
+    end subroutine add_element
+
+    !> A line of `n` non-negative integers (counts of a section header).
+    subroutine read_counts(f, n, expected, values, stat)
+        type(text_file_t), intent(inout) :: f
+        integer, intent(in) :: n
+        character(len=*), intent(in) :: expected
+        integer, intent(out) :: values(n)
+        type(status_t), intent(inout) :: stat
+        character(len=:), allocatable :: line
+        values = 0
+        call require_line(f, line, expected, stat)
+        if (.not. stat%ok()) return
+        if (.not. integers_at(line, values)) then
+            call fail_here(f, stat, 'expected '//expected//', found '''//shortened(line)//'''')
+        else if (any(values < 0) .and. n > 1) then
+            call fail_here(f, stat, 'expected '//expected//', found negative counts in '''// &
+                           shortened(line)//'''')
+        else if (n == 1 .and. values(1) < 0) then
+            call fail_here(f, stat, 'expected '//expected//', found '''//shortened(line)//'''')
+        end if
+    end subroutine read_counts
+
+    !> True when `line` starts with size(values) integers, stored in `values`.
+    logical function integers_at(line, values)
+        character(len=*), intent(in) :: line
+        integer, intent(out) :: values(:)
+        integer :: pos
+        pos = 1
+        call read_ints(line, pos, values, integers_at)
+    end function integers_at
+
+    pure subroutine read_ints(line, pos, values, ok)
+        character(len=*), intent(in) :: line
+        integer, intent(inout) :: pos
+        integer, intent(out) :: values(:)
+        logical, intent(out) :: ok
+        integer :: i
+        ok = .true.
+        values = 0
+        do i = 1, size(values)
+            call read_int(line, pos, values(i), ok)
+            if (.not. ok) return
+        end do
+    end subroutine read_ints
+
+    !> The integer starting at or after `pos` (blanks skipped); `pos` moves past it. Not ok
+    !> when there is none, or it is followed by something other than a blank, or overflows.
+    !> Hand-written because list-directed reads dominated the reading time of large files.
+    pure subroutine read_int(line, pos, value, ok)
+        character(len=*), intent(in) :: line
+        integer, intent(inout) :: pos
+        integer, intent(out) :: value
+        logical, intent(out) :: ok
+        integer(i8) :: accumulated
+        integer :: digit, n_digits
+        logical :: negative
+        ok = .false.
+        value = 0
+        call skip_blanks(line, pos)
+        if (pos > len(line)) return
+        negative = line(pos:pos) == '-'
+        if (negative .or. line(pos:pos) == '+') pos = pos + 1
+        accumulated = 0
+        n_digits = 0
+        do while (pos <= len(line))
+            digit = iachar(line(pos:pos)) - iachar('0')
+            if (digit < 0 .or. digit > 9) exit
+            accumulated = 10*accumulated + digit
+            if (accumulated > huge(value)) return
+            n_digits = n_digits + 1
+            pos = pos + 1
+        end do
+        if (n_digits == 0) return
+        if (pos <= len(line)) then
+            if (.not. is_blank(line(pos:pos))) return
+        end if
+        value = int(accumulated)
+        if (negative) value = -value
+        ok = .true.
+    end subroutine read_int
+
+    !> Move `pos` past `n` blank-separated tokens of any kind.
+    pure subroutine skip_tokens(line, pos, n, ok)
+        character(len=*), intent(in) :: line
+        integer, intent(inout) :: pos
+        integer, intent(in) :: n
+        logical, intent(out) :: ok
+        integer :: i
+        ok = .true.
+        do i = 1, n
+            call skip_blanks(line, pos)
+            if (pos > len(line)) then
+                ok = .false.
+                return
+            end if
+            do while (pos <= len(line))
+                if (is_blank(line(pos:pos))) exit
+                pos = pos + 1
+            end do
+        end do
+    end subroutine skip_tokens
+
+    pure subroutine skip_blanks(line, pos)
+        character(len=*), intent(in) :: line
+        integer, intent(inout) :: pos
+        do while (pos <= len(line))
+            if (.not. is_blank(line(pos:pos))) exit
+            pos = pos + 1
+        end do
+    end subroutine skip_blanks
+
+    elemental logical function is_blank(c)
+        character, intent(in) :: c
+        is_blank = c == ' ' .or. c == achar(9) .or. c == achar(13)
+    end function is_blank
+
+    ! ------------------------------------------------------------------ checks and mesh
+
+    !> The checked mesh from what the file said.
+    subroutine build_mesh(f, raw, m, n_reoriented, stat)
+        type(text_file_t), intent(in) :: f
+        type(raw_mesh_t), intent(in) :: raw
+        type(mesh_t), intent(out) :: m
+        integer, intent(out) :: n_reoriented
+        type(status_t), intent(inout) :: stat
+        integer, allocatable :: sorted_tags(:), index_of_sorted(:), node_of(:), new_node(:)
+        integer, allocatable :: cells(:, :), edges(:, :), edge_part(:), edge_line(:)
+        integer, allocatable :: part_tag(:)
+        integer :: n_cell_nodes, n_edge_nodes, c, e, a, node, n_used, i, part, element, n_kept
+        integer :: line_nodes(3)
+        logical :: tags_are_positions
+        logical, allocatable :: in_part(:)
+        character(len=:), allocatable :: place
+
+        n_reoriented = 0
+        if (raw%n_cells == 0) then
+            call stat%fail(STATUS_MESH, f%path//': no triangles or quadrangles in $Elements; ' &
+                //'expected a 2D mesh (with physical groups, Gmsh saves only their elements: ' &
+                //'define a Physical Surface)')
+            return
+        end if
+
+        ! One cell type: the first cell's.
+        element = element_of_type(raw%cell_type(1))
+        n_cell_nodes = element_nodes_per_cell(element)
+        n_edge_nodes = merge(3, 2, element == ELEMENT_P2 .or. element == ELEMENT_Q2)
+        do c = 2, raw%n_cells
+            if (raw%cell_type(c) == raw%cell_type(1)) cycle
+            place = f%path//':'//to_string(raw%cell_line(c))//': '
+            if (order_of(raw%cell_type(c)) /= order_of(raw%cell_type(1))) then
+                call stat%fail(STATUS_MESH, place//'mixed element orders: a '// &
+                    gmsh_type_name(raw%cell_type(c))//' after '// &
+                    gmsh_type_name(raw%cell_type(1))//'s (line '// &
+                    to_string(raw%cell_line(1))//'); expected one order (gmsh -order 1 or 2)')
+            else
+                call stat%fail(STATUS_MESH, place//'mixed cell shapes: a '// &
+                    gmsh_type_name(raw%cell_type(c))//' after '// &
+                    gmsh_type_name(raw%cell_type(1))//'s (line '// &
+                    to_string(raw%cell_line(1))//'); expected only triangles or only ' &
+                    //'quadrangles')
+            end if
+            return
+        end do
+        do e = 1, raw%n_edges
+            if (order_of(raw%edge_type(e)) == order_of(raw%cell_type(1))) cycle
+            call stat%fail(STATUS_MESH, f%path//':'//to_string(raw%edge_line(e))// &
+                ': mixed element orders: a '//gmsh_type_name(raw%edge_type(e))//' with '// &
+                gmsh_type_name(raw%cell_type(1))//' cells (line '// &
+                to_string(raw%cell_line(1))//'); expected '//to_string(n_edge_nodes)// &
+                '-node lines')
+            return
+        end do
+
+        ! Node tags -> positions in the file, by binary search in the sorted tags (a direct
+        ! table when the tags are 1, 2, ..., n, as Gmsh writes them).
+        tags_are_positions = all(raw%node_tag(:raw%n_nodes) == [(i, i=1, raw%n_nodes)])
+        if (.not. tags_are_positions) then
+            index_of_sorted = sort_index(raw%node_tag(:raw%n_nodes))
+            sorted_tags = raw%node_tag(index_of_sorted)
+            do i = 2, size(sorted_tags)
+                if (sorted_tags(i) == sorted_tags(i - 1)) then
+                    call stat%fail(STATUS_MESH, f%path//': node tag '// &
+                        to_string(sorted_tags(i))//' is defined twice in $Nodes; expected ' &
+                        //'distinct tags')
+                    return
+                end if
+            end do
+        end if
+
+        allocate (cells(n_cell_nodes, raw%n_cells))
+        allocate (node_of(raw%n_nodes), source=0)   ! 1: used by a cell
+        do c = 1, raw%n_cells
+            do a = 1, n_cell_nodes
+                node = find_node(raw%cell_nodes(a, c))
+                if (node == 0) then
+                    call undefined(raw%cell_line(c), raw%cell_nodes(a, c))
+                    return
+                end if
+                cells(a, c) = node
+                node_of(node) = 1
+            end do
+        end do
+
+        ! Boundary parts: 1D physical groups, named or not; edges of each.
+        call collect_parts(part_tag, stat)
+        if (.not. stat%ok()) return
+        n_kept = 0
+        do e = 1, raw%n_edges
+            do a = 1, n_edge_nodes
+                node = find_node(raw%edge_nodes(a, e))
+                if (node == 0) then
+                    call undefined(raw%edge_line(e), raw%edge_nodes(a, e))
+                    return
+                end if
+            end do
+            n_kept = n_kept + count(edge_parts(e))
+        end do
+        allocate (edges(n_edge_nodes, n_kept), edge_part(n_kept), edge_line(n_kept))
+        n_kept = 0
+        do e = 1, raw%n_edges
+            in_part = edge_parts(e)
+            if (.not. any(in_part)) cycle
+            do a = 1, n_edge_nodes
+                node = find_node(raw%edge_nodes(a, e))
+                if (node_of(node) == 0) then
+                    call stat%fail(STATUS_MESH, f%path//':'//to_string(raw%edge_line(e))// &
+                        ': node '//to_string(raw%edge_nodes(a, e))//' of this line element ' &
+                        //'is on no triangle or quadrangle; expected boundary lines of the body')
+                    return
+                end if
+                line_nodes(a) = node
+            end do
+            do part = 1, size(part_tag)
+                if (.not. in_part(part)) cycle
+                n_kept = n_kept + 1
+                edges(:, n_kept) = line_nodes(:n_edge_nodes)
+                edge_part(n_kept) = part
+                edge_line(n_kept) = raw%edge_line(e)
+            end do
+        end do
+
+        ! Keep the nodes of cells only, in file order.
+        allocate (new_node(raw%n_nodes), source=0)
+        n_used = 0
+        do node = 1, raw%n_nodes
+            if (node_of(node) == 0) cycle
+            n_used = n_used + 1
+            new_node(node) = n_used
+        end do
+        m%element = element
+        allocate (m%coords(2, n_used))
+        do node = 1, raw%n_nodes
+            if (new_node(node) > 0) m%coords(:, new_node(node)) = raw%node_xyz(1:2, node)
+        end do
+        call check_planar(stat)
+        if (.not. stat%ok()) return
+        m%cells = reshape(new_node(reshape(cells, [size(cells)])), shape(cells))
+        m%edges = reshape(new_node(reshape(edges, [size(edges)])), shape(edges))
+        m%edge_part = edge_part
+        m%file = f%path
+        m%cell_line = raw%cell_line(:raw%n_cells)
+        m%edge_line = edge_line
+        call orient_cells(f%path, raw%cell_entity(:raw%n_cells), m, n_reoriented, stat)
+
+    contains
+
+        integer function find_node(tag)
+            integer, intent(in) :: tag
+            integer :: low, high, middle
+            find_node = 0
+            if (tags_are_positions) then
+                if (tag >= 1 .and. tag <= raw%n_nodes) find_node = tag
+                return
+            end if
+            low = 1
+            high = size(sorted_tags)
+            do while (low <= high)
+                middle = (low + high)/2
+                if (sorted_tags(middle) == tag) then
+                    find_node = index_of_sorted(middle)
+                    return
+                else if (sorted_tags(middle) < tag) then
+                    low = middle + 1
+                else
+                    high = middle - 1
+                end if
+            end do
+        end function find_node
+
+        subroutine undefined(line, tag)
+            integer, intent(in) :: line, tag
+            call stat%fail(STATUS_MESH, f%path//':'//to_string(line)//': this element ' &
+                //'refers to node '//to_string(tag)//', which $Nodes does not define; ' &
+                //'expected tags of defined nodes')
+        end subroutine undefined
+
+        !> Physical tags of the 1D groups (named in $PhysicalNames or used by a line
+        !> element) and m%part_names, lowercased; two names equal but for case are an error.
+        subroutine collect_parts(tags, stat)
+            integer, allocatable, intent(out) :: tags(:)
+            type(status_t), intent(inout) :: stat
+            integer :: k, j, group
+            allocate (tags(0))
+            do k = 1, raw%n_names
+                if (raw%name_dim(k) == 1 .and. .not. any(tags == raw%name_tag(k))) &
+                    tags = [tags, raw%name_tag(k)]
+            end do
+            do k = 1, raw%n_edges
+                if (raw%version == 2) then
+                    group = raw%edge_group(k)
+                    if (group /= 0 .and. .not. any(tags == group)) tags = [tags, group]
+                end if
+            end do
+            if (raw%version == 4) then
+                do k = 1, raw%n_pairs
+                    if (.not. any(tags == raw%pair_physical(k))) &
+                        tags = [tags, raw%pair_physical(k)]
+                end do
+            end if
+            allocate (m%part_names(size(tags)))
+            do k = 1, size(tags)
+                m%part_names(k) = to_string(tags(k))
+                do j = 1, raw%n_names
+                    if (raw%name_dim(j) == 1 .and. raw%name_tag(j) == tags(k)) &
+                        m%part_names(k) = raw%name_text(j)
+                end do
+            end do
+            do k = 2, size(tags)
+                do j = 1, k - 1
+                    if (m%part_names(k) /= m%part_names(j)) cycle
+                    call stat%fail(STATUS_MESH, f%path//': two 1D physical groups are ' &
+                        //'named '''//trim(m%part_names(k))//''' (names are compared ' &
+                        //'ignoring case); expected distinct names')
+                    return
+                end do
+            end do
+        end subroutine collect_parts
+
+        !> Which parts (entries of part_tag) raw line element `e` belongs to.
+        function edge_parts(e) result(member)
+            integer, intent(in) :: e
+            logical :: member(size(part_tag))
+            integer :: k
+            if (raw%version == 2) then
+                member = part_tag == raw%edge_group(e)
+                return
+            end if
+            member = .false.
+            do k = 1, raw%n_pairs
+                if (raw%pair_curve(k) == raw%edge_group(e)) &
+                    member = member .or. part_tag == raw%pair_physical(k)
+            end do
+        end function edge_parts
+
+        !> The mesh must lie in a plane z = constant.
+        subroutine check_planar(stat)
+            type(status_t), intent(inout) :: stat
+            real(wp) :: extent, z0
+            integer :: k
+            extent = max(maxval(m%coords(1, :)) - minval(m%coords(1, :)), &
+                         maxval(m%coords(2, :)) - minval(m%coords(2, :)))
+            z0 = raw%node_xyz(3, cells(1, 1))
+            do k = 1, raw%n_nodes
+                if (node_of(k) == 0) cycle
+                if (abs(raw%node_xyz(3, k) - z0) > PLANAR_TOL*extent) then
+                    call stat%fail(STATUS_MESH, f%path//': node '// &
+                        to_string(raw%node_tag(k))//' has z = '// &
+                        to_string(raw%node_xyz(3, k))//'; expected a plane 2D mesh (all z ' &
+                        //'equal)')
+                    return
+                end if
+            end do
+        end subroutine check_planar
+    end subroutine build_mesh
+
+    !> Check every cell's Jacobian at its nodes and orient the cells anticlockwise: a
+    !> surface (entity) whose cells are all clockwise is reoriented; a cell whose
+    !> orientation differs from the others of its surface is inverted, one with a vanishing
+    !> or sign-changing Jacobian degenerate or folded.
+    subroutine orient_cells(path, entity, m, n_reoriented, stat)
+        character(len=*), intent(in) :: path
+        integer, intent(in) :: entity(:)
+        type(mesh_t), intent(inout) :: m
+        integer, intent(out) :: n_reoriented
+        type(status_t), intent(inout) :: stat
+        integer, allocatable :: orientation(:), surfaces(:), surface_of(:), n_positive(:), &
+                                n_negative(:)
+        integer :: c, s, flip(MAX_CELL_NODES), n
+        character(len=:), allocatable :: problem
+
+        n_reoriented = 0
+        n = size(m%cells, 1)
+        allocate (orientation(m%n_cells()), surface_of(m%n_cells()))
+        allocate (surfaces(0))
+        s = 0
+        do c = 1, m%n_cells()
+            orientation(c) = cell_orientation(m%element, m%coords(:, m%cells(:, c)))
+            if (orientation(c) == DEGENERATE .or. orientation(c) == FOLDED) then
+                problem = 'degenerate: zero area (its corners are collinear or coincide)'
+                if (orientation(c) == FOLDED) then
+                    problem = 'inverted or degenerate: its Jacobian determinant vanishes or ' &
+                              //'changes sign at a node (a folded or flat cell'
+                    if (n > 4) problem = problem//', or misplaced mid-edge nodes'
+                    problem = problem//')'
+                end if
+                call stat%fail(STATUS_MESH, path//':'//to_string(m%cell_line(c))// &
+                               ': this cell is '//problem)
+                return
+            end if
+            ! Cells of a surface are consecutive in Gmsh files: look further only on change.
+            if (s > 0) then
+                if (surfaces(s) == entity(c)) then
+                    surface_of(c) = s
+                    cycle
+                end if
+            end if
+            s = findloc(surfaces, entity(c), dim=1)
+            if (s == 0) then
+                surfaces = [surfaces, entity(c)]
+                s = size(surfaces)
+            end if
+            surface_of(c) = s
+        end do
+        allocate (n_positive(size(surfaces)), n_negative(size(surfaces)), source=0)
+        do c = 1, m%n_cells()
+            if (orientation(c) > 0) n_positive(surface_of(c)) = n_positive(surface_of(c)) + 1
+            if (orientation(c) < 0) n_negative(surface_of(c)) = n_negative(surface_of(c)) + 1
+        end do
+        do c = 1, m%n_cells()
+            s = surface_of(c)
+            ! The minority orientation of a surface is the inverted one (ties: clockwise).
+            if (n_positive(s) > 0 .and. n_negative(s) > 0) then
+                if ((orientation(c) < 0) .eqv. (n_negative(s) <= n_positive(s))) then
+                    call stat%fail(STATUS_MESH, path//':'//to_string(m%cell_line(c))// &
+                        ': inverted cell: it is '//trim(merge('clockwise    ', &
+                        'anticlockwise', orientation(c) < 0))//' while '// &
+                        to_string(max(n_positive(s), n_negative(s)))//' other cells of ' &
+                        //'surface '//to_string(surfaces(s))//' are not; expected ' &
+                        //'consistently oriented cells')
+                    return
+                end if
+            end if
+        end do
+        flip(:n) = reoriented_order(m%element)
+        do c = 1, m%n_cells()
+            if (orientation(c) > 0) cycle
+            m%cells(:, c) = m%cells(flip(:n), c)
+            n_reoriented = n_reoriented + 1
+        end do
+    end subroutine orient_cells
+
+    !> +1 (anticlockwise) or -1 (clockwise) when det J has one sign, clear of zero, at every
+    !> node of the cell; else DEGENERATE (det J ~ 0 everywhere) or FOLDED.
+    pure function cell_orientation(element, xy) result(orientation)
+        integer, intent(in) :: element
+        real(wp), intent(in) :: xy(:, :)
+        integer :: orientation
+        real(wp) :: ref_nodes(2, MAX_NODES), values(MAX_NODES), gradients(2, MAX_NODES)
+        real(wp) :: jacobian(2, 2), det, det_min, det_max, diameter2, tol
+        integer :: a, b, n
+
+        n = size(xy, 2)
+        call reference_nodes(element, ref_nodes)
+        det_min = huge(1.0_wp)
+        det_max = -huge(1.0_wp)
+        do a = 1, n
+            call evaluate_shape(element, ref_nodes(:, a), values, gradients)
+            jacobian = matmul(xy, transpose(gradients(:, 1:n)))
+            det = jacobian(1, 1)*jacobian(2, 2) - jacobian(1, 2)*jacobian(2, 1)
+            det_min = min(det_min, det)
+            det_max = max(det_max, det)
+        end do
+        diameter2 = 0.0_wp
+        do a = 1, n
+            do b = a + 1, n
+                diameter2 = max(diameter2, sum((xy(:, a) - xy(:, b))**2))
+            end do
+        end do
+        tol = DEGENERATE_FRACTION*diameter2
+        if (det_min > tol) then
+            orientation = 1
+        else if (det_max < -tol) then
+            orientation = -1
+        else if (max(abs(det_min), abs(det_max)) <= tol) then
+            orientation = DEGENERATE
+        else
+            orientation = FOLDED
+        end if
+    end function cell_orientation
+
+    !> Node order that turns a clockwise cell anticlockwise: corners reversed after the
+    !> first, mid-edge nodes following their edges.
+    pure function reoriented_order(element) result(order)
+        integer, intent(in) :: element
+        integer :: order(element_nodes_per_cell(element))
+        select case (element)
+        case (ELEMENT_P1); order = [1, 3, 2]
+        case (ELEMENT_Q1); order = [1, 4, 3, 2]
+        case (ELEMENT_P2); order = [1, 3, 2, 6, 5, 4]
+        case (ELEMENT_Q2); order = [1, 4, 3, 2, 8, 7, 6, 5, 9]
+        end select
+    end function reoriented_order
+
+    pure integer function element_of_type(type)
+        integer, intent(in) :: type
+        select case (type)
+        case (GMSH_TRIANGLE3); element_of_type = ELEMENT_P1
+        case (GMSH_QUAD4); element_of_type = ELEMENT_Q1
+        case (GMSH_TRIANGLE6); element_of_type = ELEMENT_P2
+        case (GMSH_QUAD9); element_of_type = ELEMENT_Q2
+        case default; element_of_type = 0
+        end select
+    end function element_of_type
+
+    pure integer function order_of(type)
+        integer, intent(in) :: type
+        select case (type)
+        case (GMSH_LINE3, GMSH_TRIANGLE6, GMSH_QUAD9); order_of = 2
+        case default; order_of = 1
+        end select
+    end function order_of
+
+    !> Stable sort permutation of integer keys (merge sort: node counts reach millions).
+    pure function sort_index(keys) result(order)
+        integer, intent(in) :: keys(:)
+        integer, allocatable :: order(:), work(:)
+        integer :: width, low, middle, high, i, j, k, n
+        logical :: take_left
+        n = size(keys)
+        order = [(i, i=1, n)]
+        allocate (work(n))
+        width = 1
+        do while (width < n)
+            do low = 1, n, 2*width
+                middle = min(low + width, n + 1)
+                high = min(low + 2*width, n + 1)
+                i = low
+                j = middle
+                do k = low, high - 1
+                    take_left = i < middle
+                    if (take_left .and. j < high) take_left = keys(order(i)) <= keys(order(j))
+                    if (take_left) then
+                        work(k) = order(i)
+                        i = i + 1
+                    else
+                        work(k) = order(j)
+                        j = j + 1
+                    end if
+                end do
+            end do
+            order(:) = work
+            width = 2*width
+        end do
+    end function sort_index
+
+    !> At most 60 characters of a line, for messages.
+    pure function shortened(text) result(short)
+        character(len=*), intent(in) :: text
+        character(len=:), allocatable :: short
+        if (len(text) <= 60) then
+            short = text
+        else
+            short = text(:57)//'...'
+        end if
+    end function shortened
+end module mesh_gmsh
