@@ -8,10 +8,12 @@ module eigen_analysis
     use run_config, only: config_t
     use problem, only: problem_t
     use csr_matrix, only: csr_matrix_t
-    use sparse_cholesky, only: cholesky_t
+    use sparse_cholesky, only: cholesky_t, ORDERING_GIVEN
+    use node_ordering, only: nested_dissection_last
     use contact_boundary, only: assemble_b
     use spectrum, only: spectrum_t
     use dense_eigen, only: dense_spectrum
+    use arpack_eigen, only: arpack_spectrum, arpack_options_t
     implicit none
     private
     public :: eigen_result_t, solve_eigen, choose_solver
@@ -21,6 +23,7 @@ module eigen_analysis
         character(len=:), allocatable :: solver   !! the solver actually used
         type(csr_matrix_t) :: b                   !! B for this lambda
         type(spectrum_t) :: spec
+        character(len=:), allocatable :: warning  !! '' or why the result is not certified
     end type eigen_result_t
 
 contains
@@ -46,7 +49,9 @@ contains
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
         type(cholesky_t) :: chol
+        type(arpack_options_t) :: options
         real(wp) :: start, reduction_seconds
+        integer, allocatable :: permutation(:)
         integer :: n_keep
 
         res%lambda = lambda
@@ -57,16 +62,39 @@ contains
 
         res%solver = choose_solver(config%eigen%solver, prob%contact%p(), &
                                    config%eigen%dense_max_contact)
-        start = wall_time()
-        call chol%factor(prob%k, stat)
+        res%warning = ''
+        n_keep = max(1, config%output%modes)
+        if (res%solver == 'arpack') then
+            ! Contact dofs last, so that the trailing block of the factor is all ARPACK needs.
+            start = wall_time()
+            call nested_dissection_last(prob%mesh, prob%dofs, prob%contact%nodes, &
+                                        permutation, stat)
+            if (.not. stat%ok()) return
+            timings%ordering = timings%ordering + (wall_time() - start)
+            start = wall_time()
+            call chol%factor(prob%k, stat, ordering=ORDERING_GIVEN, permutation=permutation)
+            deallocate (permutation)
+        else
+            start = wall_time()
+            call chol%factor(prob%k, stat)
+        end if
         if (.not. stat%ok()) then
             stat%message = 'stiffness matrix K: '//stat%message
             return
         end if
         timings%factor = timings%factor + (wall_time() - start)
 
-        n_keep = max(1, config%output%modes)
         start = wall_time()
+        if (res%solver == 'arpack') then
+            options = arpack_options_t(nev=config%eigen%nev, ncv=config%eigen%ncv, &
+                maxit=config%eigen%maxit, tol=config%eigen%tol, target=config%eigen%target)
+            call arpack_spectrum(prob%k, res%b, chol, prob%contact, lambda, options, n_keep, &
+                                 res%spec, res%warning, stat)
+            call chol%free()
+            if (.not. stat%ok()) return
+            timings%eigen = timings%eigen + (wall_time() - start)
+            return
+        end if
         call dense_spectrum(prob%k, res%b, chol, prob%contact, lambda, n_keep, res%spec, stat, &
                             reduction_seconds)
         call chol%free()

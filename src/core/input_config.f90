@@ -27,8 +27,9 @@ module input_config
                                    'top', 'bottom', 'left', 'right']
     !> Analyses this build can run; each new analysis adds its name here.
     character(len=*), parameter :: ACCEPTED_ANALYSES(*) = [character(len=9) :: 'eigen']
-    !> Eigensolvers this build offers; 'arpack' joins when its driver exists.
-    character(len=*), parameter :: ACCEPTED_SOLVERS(*) = [character(len=6) :: 'dense', 'auto']
+    !> Eigensolvers this build offers.
+    character(len=*), parameter :: ACCEPTED_SOLVERS(*) = [character(len=6) :: 'dense', &
+                                                          'arpack', 'auto']
     integer, parameter :: MAX_CELLS_PER_SIDE = 1000000
 
     integer, parameter :: MSG_LEN = 1024     !! iomsg buffers
@@ -650,7 +651,7 @@ contains
         logical :: tol_ok
 
         tol_ok = ieee_is_finite(c%tol)
-        if (tol_ok) tol_ok = c%tol >= 0.0_wp
+        if (tol_ok) tol_ok = c%tol >= 0.0_wp .and. c%tol < 1.0_wp
         if (.not. any(ACCEPTED_SOLVERS == c%solver)) then
             call reject('solver', quoted(c%solver), 'one of '//one_of(ACCEPTED_SOLVERS))
         else if (c%nev < 1) then
@@ -658,7 +659,7 @@ contains
         else if (.not. ieee_is_finite(c%target)) then
             call reject('target', real_to_text(c%target), 'a finite number')
         else if (.not. tol_ok) then
-            call reject('tol', real_to_text(c%tol), 'a finite number >= 0 (0: machine precision)')
+            call reject('tol', real_to_text(c%tol), 'a number in [0, 1) (0: machine precision)')
         else if (c%maxit < 1) then
             call reject('maxit', int_text(c%maxit), 'an integer >= 1')
         else if (c%ncv /= 0 .and. c%ncv < c%nev + 2) then
@@ -870,7 +871,8 @@ contains
         text = text//'&eigen'//NL &
                //entry('solver', quoted(d%eigen%solver), 'one of '//one_of(ACCEPTED_SOLVERS) &
                        //" (auto: dense up to dense_max_contact)") &
-               //entry('nev', int_text(d%eigen%nev), 'eigenvalues wanted from the sparse solver') &
+               //entry('nev', int_text(d%eigen%nev), 'eigenvalues per ARPACK run at first' &
+                       //' (doubled until the lowest positive one is certified)') &
                //entry('target', real_to_text(d%eigen%target), 'shift sigma: eigenvalues' &
                        //' nearest to it are found first') &
                //entry('tol', real_to_text(d%eigen%tol), 'sparse solver tolerance' &

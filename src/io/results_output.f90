@@ -104,7 +104,17 @@ contains
         call summary%add_integer('n_eigenvalues', res%spec%n())
         call summary%add_real('max_residual', res%spec%max_residual())
         call summary%add_integer('operator_applications', res%spec%n_operator)
+        if (allocated(res%warning)) then
+            if (len(res%warning) > 0) then
+                call summary%add_string('warning', res%warning)
+            else
+                call summary%add_null('warning')
+            end if
+        else
+            call summary%add_null('warning')
+        end if
         call summary%add_real('time_assembly_s', timings%assembly)
+        call summary%add_real('time_ordering_s', timings%ordering)
         call summary%add_real('time_factor_s', timings%factor)
         call summary%add_real('time_reduction_s', timings%reduction)
         call summary%add_real('time_eigen_s', timings%eigen)
@@ -216,7 +226,11 @@ contains
         else
             text = text//'  no positive real eigenvalue for this lambda'//NL
         end if
-        text = text//'  time [s]    assembly '//seconds(timings%assembly)//', factor '// &
+        if (allocated(res%warning)) then
+            if (len(res%warning) > 0) text = text//'  WARNING     '//res%warning//NL
+        end if
+        text = text//'  time [s]    assembly '//seconds(timings%assembly)//', ordering '// &
+            seconds(timings%ordering)//', factor '// &
             seconds(timings%factor)//', reduction '//seconds(timings%reduction)//', eigen '// &
             seconds(timings%eigen)//', output '//seconds(timings%output)//', total '// &
             seconds(timings%total)//NL//'  output      '//trim(config%output%directory)
