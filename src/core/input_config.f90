@@ -869,10 +869,9 @@ contains
                //entry('lambda', real_to_text(d%analysis%lambda), &
                        'ratio in b_lambda(phi, v) = lambda int phi_n v_t - int phi_n v_n')
         text = text//'&eigen'//NL &
-               //entry('solver', quoted(d%eigen%solver), 'one of '//one_of(ACCEPTED_SOLVERS) &
-                       //" (auto: dense up to dense_max_contact)") &
-               //entry('nev', int_text(d%eigen%nev), 'eigenvalues per ARPACK run at first' &
-                       //' (doubled until the lowest positive one is certified)') &
+               //entry('solver', quoted(d%eigen%solver), 'one of '//one_of(ACCEPTED_SOLVERS)) &
+               //entry('nev', int_text(d%eigen%nev), 'ARPACK: eigenvalues nearest target' &
+                       //' per run (doubled while undecided)') &
                //entry('target', real_to_text(d%eigen%target), 'shift sigma: eigenvalues' &
                        //' nearest to it are found first') &
                //entry('tol', real_to_text(d%eigen%tol), 'sparse solver tolerance' &
@@ -881,7 +880,7 @@ contains
                //entry('ncv', int_text(d%eigen%ncv), 'Krylov dimension, 0 or >= nev + 2' &
                        //' (0: chosen from nev)') &
                //entry('dense_max_contact', int_text(d%eigen%dense_max_contact), &
-                       "largest contact node count for which 'auto' picks 'dense'")
+                       "'auto' picks 'dense' up to this many contact nodes, else 'arpack'")
         text = text//'&output'//NL &
                //entry('directory', quoted(d%output%directory), "'' means output/<input" &
                        //' file stem> (from the working directory)') &

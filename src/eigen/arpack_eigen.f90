@@ -39,6 +39,10 @@ module arpack_eigen
     !> ARPACK runs before the dense decision; the loop also stops once nev passes p/4.
     integer, parameter :: MAX_ATTEMPTS = 8
 
+    !> Past this nev an undecided search goes dense: ARPACK's own work grows like ncv^2 p
+    !> per restart, and the dense decision costs under 2 s for p up to about 1000.
+    integer, parameter :: NEV_SEARCH_MAX = 48
+
     !> Largest p for the dense decision on the reduced p x p matrix: LAPACK dgeev with
     !> vectors costs about 25 p^3 flops, a few seconds at p = 2000 on two cores, a minute
     !> at 4000 (measured: eigenvalues alone take 0.54 s at p = 1025).
@@ -317,7 +321,7 @@ contains
                 found_before = .false.
                 nev = min(2*nev, cap)
             end if
-            if (4*nev > p .and. .not. found_before) exit
+            if (.not. found_before .and. (4*nev > p .or. nev > NEV_SEARCH_MAX)) exit
         end do
 
         if (.not. confirmed) then
