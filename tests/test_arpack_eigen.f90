@@ -28,6 +28,7 @@ program test_arpack_eigen
     call agrees_with_dense_over_scenes(t)
     call agrees_near_the_threshold(t)
     call target_finds_the_same_lowest(t)
+    call too_few_contact_nodes(t)
     call t%report()
 
 contains
@@ -220,7 +221,7 @@ contains
         character(len=*), parameter :: ELEMENTS(3) = ['p1', 'p1', 'q1']
         character(len=*), parameter :: DIAGONALS(3) = [character(len=5) :: 'right', 'left', &
                                                                             'right']
-        integer, parameter :: SIZES(2) = [8, 20]
+        integer, parameter :: SIZES(3) = [4, 8, 20]   ! p = 5 is nearly the smallest ARPACK takes
         type(config_t) :: config
         real(wp) :: mu_dense, mu_arpack, r_dense, r_arpack
         character(len=:), allocatable :: warning
@@ -313,4 +314,22 @@ contains
         call t%check_close('target 0.5: same lowest positive mu', mu_shifted, mu_plain, 1.0e-9_wp)
         call t%check('target 0.5: residuals <= 1e-12', r <= 1.0e-12_wp)
     end subroutine target_finds_the_same_lowest
+
+    !> ARPACK needs nev + 2 <= ncv <= p: with p = 2 the message must say what to do.
+    subroutine too_few_contact_nodes(t)
+        type(test_suite_t), intent(inout) :: t
+        type(config_t) :: config
+        type(problem_t) :: prob
+        type(eigen_result_t) :: res
+        type(timings_t) :: timings
+        type(status_t) :: stat
+        call scene(1, 'p1', 'right', config)
+        config%eigen%solver = 'arpack'
+        call build_problem(config, prob, stat)
+        call solve_eigen(config, prob, 5.0_wp, res, timings, stat)
+        call t%check('p = 2 with arpack fails', .not. stat%ok())
+        if (stat%ok()) return
+        call t%check('p = 2: the message points to the dense solver', &
+                     index(stat%message, 'dense') > 0)
+    end subroutine too_few_contact_nodes
 end program test_arpack_eigen

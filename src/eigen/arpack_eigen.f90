@@ -418,19 +418,22 @@ contains
 
     !> One ARPACK run: standard mode on `op`, nev wanted ('LR' without shift, 'LM' with),
     !> from a deterministic start vector that differs between attempts.
-    subroutine run_arpack(op, nev, options, attempt, run, stat)
+    subroutine run_arpack(op, nev_wanted, options, attempt, run, stat)
         type(contact_operator_t), intent(in) :: op
-        integer, intent(in) :: nev, attempt
+        integer, intent(in) :: nev_wanted, attempt
         type(arpack_options_t), intent(in) :: options
         type(ritz_t), intent(out) :: run
         type(status_t), intent(out) :: stat
         real(wp), allocatable :: resid(:), v(:, :), workd(:), workl(:), dr(:), di(:), z(:, :), &
                                  workev(:)
         logical, allocatable :: select(:)
-        integer :: iparam(11), ipntr(14), ido, info, n, ncv, lworkl, nconv, j, i
+        integer :: iparam(11), ipntr(14), ido, info, n, ncv, lworkl, nconv, j, i, nev
         character(len=2) :: which
         real(wp) :: tol
 
+        ! ARPACK may adjust nev in place to keep a conjugate pair together (seen with arpack-ng
+        ! 3.8 on tiny n): give it a private copy.
+        nev = nev_wanted
         n = op%p
         ncv = options%ncv
         if (ncv == 0) ncv = max(2*nev + 1, 20)
