@@ -310,6 +310,9 @@ contains
             n_operator = n_operator + run%n_operator
             mu = options%target + 1.0_wp/run%nu
             call certify_lowest(mu, run%is_real, options%target, .false., outcome, lowest)
+            ! with info = 1 (maxit) only some wanted values converged: nearer ones may be
+            ! missing, so the disc argument does not hold
+            if (run%info /= 0) outcome = UNDECIDED
             if (outcome == CERTIFIED_FOUND) then
                 mu_now = real(mu(lowest), wp)
                 if (found_before) then
