@@ -102,8 +102,9 @@ program test_input_config
     call expect_rejected('poisson = -1', '&material poisson = -1.0 /', '&material', 'poisson')
     call expect_rejected('analysis kind', "&analysis kind = 'buckling' /", '&analysis', 'kind')
     call expect_rejected('lambda infinite', '&analysis lambda = Inf /', '&analysis', 'lambda')
-    call expect_rejected('solver arpack not yet', "&eigen solver = 'arpack' /", '&eigen', &
+    call expect_rejected('solver misspelt', "&eigen solver = 'arpak' /", '&eigen', &
                          'solver')
+    call expect_rejected('tol >= 1', '&eigen tol = 1.0 /', '&eigen', 'tol')
     call expect_rejected('nev = 0', '&eigen nev = 0 /', '&eigen', 'nev')
     call expect_rejected('tol < 0', '&eigen tol = -1.0e-3 /', '&eigen', 'tol')
     call expect_rejected('maxit = 0', '&eigen maxit = 0 /', '&eigen', 'maxit')

@@ -7,12 +7,15 @@ module eigen_analysis
     use timer, only: wall_time, timings_t
     use run_config, only: config_t
     use problem, only: problem_t
+    use mesh, only: element_name
     use csr_matrix, only: csr_matrix_t
-    use sparse_cholesky, only: cholesky_t
+    use sparse_cholesky, only: cholesky_t, ORDERING_GIVEN
+    use node_ordering, only: nested_dissection_last
     use contact_boundary, only: assemble_b
     use spectrum, only: spectrum_t
     use dense_eigen, only: dense_spectrum
     use accuracy, only: accuracy_warnings, WARNING_LEN
+    use arpack_eigen, only: arpack_spectrum, arpack_options_t
     implicit none
     private
     public :: eigen_result_t, solve_eigen, choose_solver
@@ -22,7 +25,8 @@ module eigen_analysis
         character(len=:), allocatable :: solver   !! the solver actually used
         type(csr_matrix_t) :: b                   !! B for this lambda
         type(spectrum_t) :: spec
-        character(len=WARNING_LEN), allocatable :: warnings(:)   !! accuracy lost, and why
+        !> accuracy lost or the result not certified, and why (empty when trustworthy)
+        character(len=WARNING_LEN), allocatable :: warnings(:)
     end type eigen_result_t
 
 contains
@@ -48,7 +52,10 @@ contains
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
         type(cholesky_t) :: chol
+        type(arpack_options_t) :: options
         real(wp) :: start, reduction_seconds
+        character(len=:), allocatable :: certificate   !! why ARPACK's answer is not certified
+        integer, allocatable :: permutation(:)
         integer :: n_keep
 
         res%lambda = lambda
@@ -59,8 +66,21 @@ contains
 
         res%solver = choose_solver(config%eigen%solver, prob%contact%p(), &
                                    config%eigen%dense_max_contact)
-        start = wall_time()
-        call chol%factor(prob%k, stat)
+        n_keep = max(1, config%output%modes)
+        if (res%solver == 'arpack') then
+            ! Contact dofs last, so that the trailing block of the factor is all ARPACK needs.
+            start = wall_time()
+            call nested_dissection_last(prob%mesh, prob%dofs, prob%contact%nodes, &
+                                        permutation, stat)
+            if (.not. stat%ok()) return
+            timings%ordering = timings%ordering + (wall_time() - start)
+            start = wall_time()
+            call chol%factor(prob%k, stat, ordering=ORDERING_GIVEN, permutation=permutation)
+            deallocate (permutation)
+        else
+            start = wall_time()
+            call chol%factor(prob%k, stat)
+        end if
         if (stat%code == STATUS_SINGULAR) then
             stat%message = 'the stiffness matrix K is singular: is there a Dirichlet boundary ' &
                 //'that stops every rigid motion? ('//stat%message//')'
@@ -71,14 +91,26 @@ contains
         end if
         timings%factor = timings%factor + (wall_time() - start)
 
-        n_keep = max(1, config%output%modes)
         start = wall_time()
-        call dense_spectrum(prob%k, res%b, chol, prob%contact, lambda, n_keep, res%spec, stat, &
-                            reduction_seconds)
-        call chol%free()
-        if (.not. stat%ok()) return
-        timings%reduction = timings%reduction + reduction_seconds
-        timings%eigen = timings%eigen + (wall_time() - start - reduction_seconds)
-        res%warnings = accuracy_warnings(res%spec, trim(config%mesh%element), prob%poisson)
+        certificate = ''
+        if (res%solver == 'arpack') then
+            options = arpack_options_t(nev=config%eigen%nev, ncv=config%eigen%ncv, &
+                maxit=config%eigen%maxit, tol=config%eigen%tol, target=config%eigen%target)
+            call arpack_spectrum(prob%k, res%b, chol, prob%contact, lambda, options, n_keep, &
+                                 res%spec, certificate, stat)
+            call chol%free()
+            if (.not. stat%ok()) return
+            timings%eigen = timings%eigen + (wall_time() - start)
+        else
+            call dense_spectrum(prob%k, res%b, chol, prob%contact, lambda, n_keep, res%spec, &
+                                stat, reduction_seconds)
+            call chol%free()
+            if (.not. stat%ok()) return
+            timings%reduction = timings%reduction + reduction_seconds
+            timings%eigen = timings%eigen + (wall_time() - start - reduction_seconds)
+        end if
+        res%warnings = accuracy_warnings(res%spec, element_name(prob%mesh%element), prob%poisson)
+        if (len(certificate) > 0) res%warnings = [character(len=WARNING_LEN) :: certificate, &
+                                                  res%warnings]
     end subroutine solve_eigen
 end module eigen_analysis

@@ -33,8 +33,9 @@ module input_config
     !> Analyses this build can run; each new analysis adds its name here.
     character(len=*), parameter :: ACCEPTED_ANALYSES(*) = [character(len=12) :: 'eigen', &
                                    'threshold', 'lambda_sweep', 'branch', 'solve']
-    !> Eigensolvers this build offers; 'arpack' joins when its driver exists.
-    character(len=*), parameter :: ACCEPTED_SOLVERS(*) = [character(len=6) :: 'dense', 'auto']
+    !> Eigensolvers this build offers.
+    character(len=*), parameter :: ACCEPTED_SOLVERS(*) = [character(len=6) :: 'dense', &
+                                                          'arpack', 'auto']
     integer, parameter :: MAX_CELLS_PER_SIDE = 1000000
     character(len=*), parameter :: SWEEP_SPACINGS(*) = [character(len=6) :: 'linear', 'log']
     integer, parameter :: MAX_SWEEP_POINTS = 100000   !! n_lambda of a &sweep range
@@ -789,7 +790,7 @@ contains
         logical :: tol_ok
 
         tol_ok = ieee_is_finite(c%tol)
-        if (tol_ok) tol_ok = c%tol >= 0.0_wp
+        if (tol_ok) tol_ok = c%tol >= 0.0_wp .and. c%tol < 1.0_wp
         if (.not. any(ACCEPTED_SOLVERS == c%solver)) then
             call reject('solver', quoted(c%solver), 'one of '//one_of(ACCEPTED_SOLVERS))
         else if (c%nev < 1) then
@@ -797,7 +798,7 @@ contains
         else if (.not. ieee_is_finite(c%target)) then
             call reject('target', real_to_text(c%target), 'a finite number')
         else if (.not. tol_ok) then
-            call reject('tol', real_to_text(c%tol), 'a finite number >= 0 (0: machine precision)')
+            call reject('tol', real_to_text(c%tol), 'a number in [0, 1) (0: machine precision)')
         else if (c%maxit < 1) then
             call reject('maxit', int_text(c%maxit), 'an integer >= 1')
         else if (c%ncv /= 0 .and. c%ncv < c%nev + 2) then
@@ -1200,9 +1201,9 @@ contains
                //entry('lambda', real_to_text(d%analysis%lambda), &
                        'ratio in b_lambda(phi, v) = lambda int phi_n v_t - int phi_n v_n')
         text = text//'&eigen'//NL &
-               //entry('solver', quoted(d%eigen%solver), 'one of '//one_of(ACCEPTED_SOLVERS) &
-                       //" (auto: dense up to dense_max_contact)") &
-               //entry('nev', int_text(d%eigen%nev), 'eigenvalues wanted from the sparse solver') &
+               //entry('solver', quoted(d%eigen%solver), 'one of '//one_of(ACCEPTED_SOLVERS)) &
+               //entry('nev', int_text(d%eigen%nev), 'ARPACK: eigenvalues nearest target' &
+                       //' per run (doubled while undecided)') &
                //entry('target', real_to_text(d%eigen%target), 'shift sigma: eigenvalues' &
                        //' nearest to it are found first') &
                //entry('tol', real_to_text(d%eigen%tol), 'sparse solver tolerance' &
@@ -1211,7 +1212,7 @@ contains
                //entry('ncv', int_text(d%eigen%ncv), 'Krylov dimension, 0 or >= nev + 2' &
                        //' (0: chosen from nev)') &
                //entry('dense_max_contact', int_text(d%eigen%dense_max_contact), &
-                       "largest contact node count for which 'auto' picks 'dense'")
+                       "'auto' picks 'dense' up to this many contact nodes, else 'arpack'")
         text = text//'&output'//NL &
                //entry('directory', quoted(d%output%directory), "'' means output/<input" &
                        //' file stem> (from the working directory)') &

@@ -41,7 +41,9 @@ module run_config
         real(wp) :: tol = 0.0_wp      !! ARPACK tolerance (0: machine precision)
         integer :: maxit = 1000       !! ARPACK restarts
         integer :: ncv = 0            !! Krylov dimension (0: chosen from nev)
-        integer :: dense_max_contact = 2000  !! 'auto' uses dense up to this many contact nodes
+        !> 'auto' uses dense up to this many contact nodes: the measured cross-over of total
+        !> run time (README, "Choosing the solver"); both take milliseconds there.
+        integer :: dense_max_contact = 16
     end type eigen_config_t
 
     type, public :: output_config_t

@@ -7,7 +7,7 @@ module lapack_interfaces
     implicit none
     private
     public :: dgeevx, dggev, dgemm, dsyrk, lapack_info_message
-    public :: dgeev
+    public :: dgeev, dtrsv, dtrsm, dgetrf, dgetrs, dpotri
 
     interface
         subroutine dgeevx(balanc, jobvl, jobvr, sense, n, a, lda, wr, wi, vl, ldvl, vr, ldvr, &
@@ -56,6 +56,46 @@ module lapack_interfaces
             real(wp), intent(in) :: alpha, beta, a(lda, *)
             real(wp), intent(inout) :: c(ldc, *)
         end subroutine dsyrk
+
+        subroutine dtrsv(uplo, trans, diag, n, a, lda, x, incx)
+            import :: wp
+            character(len=1), intent(in) :: uplo, trans, diag
+            integer, intent(in) :: n, lda, incx
+            real(wp), intent(in) :: a(lda, *)
+            real(wp), intent(inout) :: x(*)
+        end subroutine dtrsv
+
+        subroutine dtrsm(side, uplo, transa, diag, m, n, alpha, a, lda, b, ldb)
+            import :: wp
+            character(len=1), intent(in) :: side, uplo, transa, diag
+            integer, intent(in) :: m, n, lda, ldb
+            real(wp), intent(in) :: alpha, a(lda, *)
+            real(wp), intent(inout) :: b(ldb, *)
+        end subroutine dtrsm
+
+        subroutine dpotri(uplo, n, a, lda, info)
+            import :: wp
+            character(len=1), intent(in) :: uplo
+            integer, intent(in) :: n, lda
+            real(wp), intent(inout) :: a(lda, *)
+            integer, intent(out) :: info
+        end subroutine dpotri
+
+        subroutine dgetrf(m, n, a, lda, ipiv, info)
+            import :: wp
+            integer, intent(in) :: m, n, lda
+            real(wp), intent(inout) :: a(lda, *)
+            integer, intent(out) :: ipiv(*), info
+        end subroutine dgetrf
+
+        subroutine dgetrs(trans, n, nrhs, a, lda, ipiv, b, ldb, info)
+            import :: wp
+            character(len=1), intent(in) :: trans
+            integer, intent(in) :: n, nrhs, lda, ldb, ipiv(*)
+            real(wp), intent(in) :: a(lda, *)
+            real(wp), intent(inout) :: b(ldb, *)
+            integer, intent(out) :: info
+        end subroutine dgetrs
     end interface
 
 contains

@@ -115,6 +115,7 @@ contains
         call summary%add_real('max_residual', res%spec%max_residual())
         call summary%add_integer('operator_applications', res%spec%n_operator)
         call summary%add_real('time_assembly_s', timings%assembly)
+        call summary%add_real('time_ordering_s', timings%ordering)
         call summary%add_real('time_factor_s', timings%factor)
         call summary%add_real('time_reduction_s', timings%reduction)
         call summary%add_real('time_eigen_s', timings%eigen)
@@ -231,7 +232,8 @@ contains
         else
             text = text//'  no positive real eigenvalue for this lambda'//NL
         end if
-        text = text//'  time [s]    assembly '//seconds(timings%assembly)//', factor '// &
+        text = text//'  time [s]    assembly '//seconds(timings%assembly)//', ordering '// &
+            seconds(timings%ordering)//', factor '// &
             seconds(timings%factor)//', reduction '//seconds(timings%reduction)//', eigen '// &
             seconds(timings%eigen)//', output '//seconds(timings%output)//', total '// &
             seconds(timings%total)//NL//'  output      '//trim(config%output%directory)

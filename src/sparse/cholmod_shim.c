@@ -257,3 +257,37 @@ int nceig_cholmod_forward(void *handle, int nrhs, const double *b, double *w)
     copy_and_free(&result, w, &h->common);
     return NCEIG_CHOLMOD_OK;
 }
+
+/*
+ * The last m rows and columns of L (P A P' = L L'), as a dense column-major m x m lower
+ * triangle in out (upper part zeroed), and perm_tail[k] = the 0-based row of A that is pivot
+ * n - m + k. When the caller ordered a set of m unknowns last, L_tail L_tail' is the Schur
+ * complement of A onto them and (A^{-1}) on that set is L_tail^{-T} L_tail^{-1}: the whole
+ * inverse restricted to the set without touching the rest of L.
+ */
+int nceig_cholmod_trailing(void *handle, int m, double *out, int *perm_tail)
+{
+    nceig_cholmod_t *h = handle;
+    if (h == NULL) return NCEIG_CHOLMOD_NOT_FACTORED;
+    if (m < 1 || m > h->n) return NCEIG_CHOLMOD_INVALID;
+    const cholmod_factor *f = h->factor;
+    if (!f->is_super || !f->is_ll) return NCEIG_CHOLMOD_FAILED;
+    const int n = h->n, first = n - m;
+    const int *super = f->super, *pi = f->pi, *px = f->px, *s = f->s, *perm = f->Perm;
+    const double *x = f->x;
+    for (size_t k = 0; k < (size_t)m * (size_t)m; k++) out[k] = 0.0;
+    for (int k = 0; k < m; k++) perm_tail[k] = perm[first + k];
+    for (size_t sn = 0; sn < f->nsuper; sn++) {
+        int k1 = super[sn], k2 = super[sn + 1];
+        if (k2 <= first) continue;
+        int nsrow = pi[sn + 1] - pi[sn];
+        const int *rows = s + pi[sn];
+        for (int j = k1 > first ? k1 : first; j < k2; j++) {
+            const double *column = x + px[sn] + (size_t)(j - k1) * (size_t)nsrow;
+            /* rows of column j: the diagonal block rows k1..k2-1, then the pattern below */
+            for (int i = j - k1; i < nsrow; i++)
+                out[(size_t)(j - first) * (size_t)m + (size_t)(rows[i] - first)] = column[i];
+        }
+    }
+    return NCEIG_CHOLMOD_OK;
+}

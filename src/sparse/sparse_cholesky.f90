@@ -55,6 +55,7 @@ module sparse_cholesky
         procedure :: ordering_used => cholesky_ordering_used
         procedure :: rcond => cholesky_rcond
         procedure :: is_factored => cholesky_is_factored
+        procedure :: trailing_block => cholesky_trailing_block
         final :: cholesky_finalize
     end type cholesky_t
 
@@ -91,6 +92,16 @@ module sparse_cholesky
             real(c_double), intent(out) :: w(*)
             integer(c_int) :: code
         end function nceig_cholmod_forward
+
+        function nceig_cholmod_trailing(handle, m, out, perm_tail) &
+                bind(C, name='nceig_cholmod_trailing') result(code)
+            import :: c_int, c_double, c_ptr
+            type(c_ptr), value :: handle
+            integer(c_int), value :: m
+            real(c_double), intent(out) :: out(*)
+            integer(c_int), intent(out) :: perm_tail(*)            ! 0-based rows of A
+            integer(c_int) :: code
+        end function nceig_cholmod_trailing
 
         subroutine nceig_cholmod_free(handle) bind(C, name='nceig_cholmod_free')
             import :: c_ptr
@@ -244,6 +255,37 @@ contains
         class(cholesky_t), intent(in) :: this
         cholesky_is_factored = c_associated(this%handle)
     end function cholesky_is_factored
+
+    !> The last m rows and columns of L as a dense lower triangle `l_tail` (m x m), and the
+    !> rows of A pivoted there (`rows`, 1-based, in pivot order). If those m unknowns were
+    !> ordered last, L_tail L_tail' is the Schur complement of A onto them, so A^{-1}
+    !> restricted to them is L_tail^{-T} L_tail^{-1}, at a cost independent of n.
+    subroutine cholesky_trailing_block(this, m, l_tail, rows, stat)
+        class(cholesky_t), intent(in) :: this
+        integer, intent(in) :: m
+        real(wp), allocatable, intent(out) :: l_tail(:, :)
+        integer, allocatable, intent(out) :: rows(:)
+        type(status_t), intent(out) :: stat
+        integer(c_int), allocatable :: rows0(:)
+        integer :: code
+        if (.not. c_associated(this%handle)) then
+            call stat%fail(STATUS_BAD_INPUT, &
+                'sparse_cholesky: trailing_block called before a successful factorization')
+            return
+        end if
+        if (m < 1 .or. m > this%n) then
+            call stat%fail(STATUS_BAD_INPUT, 'sparse_cholesky: trailing_block: m = '// &
+                           int_text(m)//' for n = '//int_text(this%n))
+            return
+        end if
+        allocate (l_tail(m, m), rows0(m))
+        code = nceig_cholmod_trailing(this%handle, int(m, c_int), l_tail, rows0)
+        if (code /= SHIM_OK) then
+            call stat%fail(status_code(code), cholmod_status_message(code))
+            return
+        end if
+        rows = rows0 + 1
+    end subroutine cholesky_trailing_block
 
     !> A sentence for each code of the shim. `column` (1-based, of A) names where a not
     !> positive definite matrix broke down; `rcond` is the pivot ratio of a singular one.

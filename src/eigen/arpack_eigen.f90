@@ -1,0 +1,632 @@
+! SPDX-License-Identifier: MIT
+!> The sparse solver: a few eigenvalues of K phi = mu B phi with ARPACK (dnaupd/dneupd,
+!> reverse communication, standard mode bmat = 'I'), and the search for the lowest positive
+!> real one without knowing where it is.
+!>
+!> Operator. B = X' M N with X' = lambda T' - N' (SPEC section 3) has rank p, so the nonzero
+!> eigenvalues theta = 1/mu of OP = K^-1 B are those of the p x p operator
+!> A = N K^-1 X' M, with the same eigenvectors y = N phi and phi = K^-1 X' M y. With the
+!> contact dofs ordered last in the Cholesky factor P K P' = L L', the trailing 2p x 2p
+!> block L_c of L gives (K^-1) on the contact dofs as L_c^-T L_c^-1, so one application of
+!> A costs two dense triangular solves of order 2p, independent of n: ARPACK runs in
+!> dimension p, not n. With a shift sigma = target /= 0, ARPACK runs on the shift-inverted
+!> OP = (K - sigma B)^-1 B, whose reduced form (Sherman-Morrison-Woodbury) is
+!> (I - sigma A)^-1 A: a dense LU of order p replaces a sparse LU of K - sigma B, and
+!> mu = sigma + 1/nu as usual.
+!>
+!> ARPACK keeps `save`d state inside dnaupd/dneupd: one solve at a time per process.
+module arpack_eigen
+    use kinds, only: wp
+    use status, only: status_t, STATUS_SOLVER, STATUS_BAD_INPUT
+    use strings, only: to_string
+    use csr_matrix, only: csr_matrix_t
+    use sparse_cholesky, only: cholesky_t
+    use contact_boundary, only: contact_t
+    use spectrum, only: spectrum_t, order_eigenvalues, backward_error, normalise_mode, &
+                        KIND_COMPLEX
+    use lapack_interfaces, only: dtrsv, dgetrf, dgetrs, dpotri, dgeev, lapack_info_message
+    use arpack_interfaces, only: dnaupd, dneupd, arpack_info_message
+    implicit none
+    private
+    public :: arpack_options_t, contact_operator_t, arpack_spectrum, is_real_ritz
+    public :: certify_lowest, CERTIFIED_FOUND, CERTIFIED_NONE, UNDECIDED
+
+    !> Outcomes of the certificate on one ARPACK run (see certify_lowest).
+    integer, parameter :: CERTIFIED_FOUND = 1   !! the lowest positive mu is in the set
+    integer, parameter :: CERTIFIED_NONE = 2    !! no positive real mu exists
+    integer, parameter :: UNDECIDED = 3         !! more eigenvalues are needed to tell
+
+    !> ARPACK runs before the dense decision; the loop also stops once nev passes p/4.
+    integer, parameter :: MAX_ATTEMPTS = 8
+
+    !> Past this nev an undecided search goes dense: ARPACK's own work grows like ncv^2 p
+    !> per restart, and the dense decision costs under 2 s for p up to about 1000.
+    integer, parameter :: NEV_SEARCH_MAX = 48
+
+    !> Largest p for the dense decision on the reduced p x p matrix: LAPACK dgeev with
+    !> vectors costs about 25 p^3 flops, a few seconds at p = 2000 on two cores, a minute
+    !> at 4000 (measured: eigenvalues alone take 0.54 s at p = 1025).
+    integer, parameter :: DENSE_FALLBACK_MAX = 4000
+
+    !> Columns per multi-right-hand-side solve when forming full eigenvectors: each solve
+    !> streams the whole factor (1.9 GB at n = 2.1e6), so the default nev = 6 (at most 7
+    !> values, 2 columns per complex pair) should fit in one; the block costs 2 x 16
+    !> n-vectors, less than the factor's own working storage.
+    integer, parameter :: RHS_BLOCK = 16
+
+    !> Two runs agree on the lowest positive mu when they match to this relative accuracy:
+    !> both are converged to ~eps relative residual, and a simple eigenvalue with condition
+    !> below 1e6 is then accurate to 1e-10; 1e-8 leaves room and still tells eigenvalues
+    !> apart (neighbouring eigenvalues of the reference scene differ by more than 1e-3).
+    real(wp), parameter :: AGREE_TOL = 1.0e-8_wp
+
+    type, public :: arpack_options_t
+        integer :: nev = 6               !! eigenvalues per run (first attempt)
+        integer :: ncv = 0               !! Krylov dimension, 0: max(2 nev + 1, 20)
+        integer :: maxit = 1000          !! restarts per run
+        real(wp) :: tol = 0.0_wp         !! relative residual tolerance, 0: machine epsilon
+        real(wp) :: target = 0.0_wp      !! shift sigma; 0: no shift
+    end type arpack_options_t
+
+    !> The reduced operator on the contact nodes: theta-mode y -> A y (sigma = 0) or
+    !> shift-invert y -> (I - sigma A)^-1 A y.
+    type :: contact_operator_t
+        integer :: p = 0
+        real(wp) :: sigma = 0.0_wp
+        real(wp) :: lambda = 0.0_wp
+        real(wp) :: normal(2) = 0.0_wp, tangent(2) = 0.0_wp
+        real(wp), allocatable :: l_tail(:, :)   !! (2p, 2p) trailing block of the factor
+        integer, allocatable :: slot(:, :)      !! (2, p) row in l_tail of contact dof (c, a)
+        type(csr_matrix_t) :: mass              !! (p, p) boundary mass M
+        real(wp), allocatable :: a(:, :)        !! (p, p) A, then LU of I - sigma A (sigma /= 0)
+        integer, allocatable :: pivots(:)
+    contains
+        procedure :: setup => operator_setup
+        procedure :: apply_a => operator_apply_a
+        procedure :: apply => operator_apply
+        procedure :: dense_a => operator_dense_a
+    end type contact_operator_t
+
+    !> One ARPACK run's result: the converged Ritz values nu of the operator and their
+    !> vectors y (p), as complex numbers (conjugate pairs both present).
+    type :: ritz_t
+        complex(wp), allocatable :: nu(:)
+        complex(wp), allocatable :: y(:, :)
+        logical, allocatable :: is_real(:)
+        integer :: info = 0
+        integer :: n_operator = 0
+    end type ritz_t
+
+contains
+
+    !> Build the reduced operator from a factor of K whose last 2p pivots are the contact
+    !> dofs (see node_ordering), and factor I - sigma A when sigma /= 0.
+    subroutine operator_setup(this, chol, contact, n_free, lambda, sigma, stat)
+        class(contact_operator_t), intent(inout) :: this
+        type(cholesky_t), intent(in) :: chol
+        type(contact_t), intent(in) :: contact
+        integer, intent(in) :: n_free
+        real(wp), intent(in) :: lambda, sigma
+        type(status_t), intent(out) :: stat
+        integer, allocatable :: rows(:), position(:)
+        integer :: a, c, m, info
+
+        this%p = contact%p()
+        this%lambda = lambda
+        this%sigma = sigma
+        this%normal = contact%normal
+        this%tangent = contact%tangent
+        this%mass = contact%mass
+        m = 2*this%p
+        if (any(contact%dofs <= 0)) then
+            call stat%fail(STATUS_BAD_INPUT, 'arpack: a contact node has a fixed dof; '// &
+                           'the reduced operator needs both dofs of every contact node free')
+            return
+        end if
+        call chol%trailing_block(m, this%l_tail, rows, stat)
+        if (.not. stat%ok()) return
+        allocate (position(n_free), source=0)
+        position(rows) = [(c, c=1, m)]
+        allocate (this%slot(2, this%p))
+        do a = 1, this%p
+            this%slot(:, a) = position(contact%dofs(:, a))
+        end do
+        if (any(this%slot == 0)) then
+            call stat%fail(STATUS_SOLVER, 'arpack: the Cholesky factor of K does not end '// &
+                           'with the contact dofs (ordering not honoured)')
+            return
+        end if
+        if (.not. (abs(sigma) > 0.0_wp)) return
+
+        call this%dense_a(this%a, stat)
+        if (.not. stat%ok()) return
+        ! LU of I - sigma A, kept in place of A (A itself is applied through L_c)
+        this%a = -sigma*this%a
+        do a = 1, this%p
+            this%a(a, a) = this%a(a, a) + 1.0_wp
+        end do
+        allocate (this%pivots(this%p))
+        call dgetrf(this%p, this%p, this%a, this%p, this%pivots, info)
+        if (info /= 0) then
+            call stat%fail(STATUS_SOLVER, 'arpack: K - sigma B is singular for sigma = '// &
+                to_string(sigma)//' (an eigenvalue equals the target; move the target)')
+        end if
+    end subroutine operator_setup
+
+    !> A as a dense p x p matrix: (K^-1) on the contact dofs is S^-1 = L_c^-T L_c^-1, which
+    !> LAPACK dpotri forms from L_c in (2p)^3/3 flops; then A = N S^-1 (lambda T' - N') M.
+    subroutine operator_dense_a(this, a, stat)
+        class(contact_operator_t), intent(in) :: this
+        real(wp), allocatable, intent(out) :: a(:, :)
+        type(status_t), intent(out) :: stat
+        real(wp), allocatable :: s_inv(:, :), flex(:, :)
+        real(wp) :: direction(2)
+        integer :: m, i, j, info
+        m = 2*this%p
+        allocate (s_inv, source=this%l_tail)
+        call dpotri('L', m, s_inv, m, info)
+        if (info /= 0) then
+            call stat%fail(STATUS_SOLVER, 'arpack: dpotri on the contact block of the '// &
+                           'factor: info = '//to_string(info))
+            return
+        end if
+        do j = 1, m   ! dpotri fills the lower triangle only
+            s_inv(j, j + 1:m) = s_inv(j + 1:m, j)
+        end do
+        direction = this%lambda*this%tangent - this%normal
+        allocate (flex(this%p, this%p), a(this%p, this%p))
+        do j = 1, this%p
+            do i = 1, this%p
+                flex(i, j) = dot_product(this%normal, &
+                    matmul(s_inv(this%slot(:, i), this%slot(:, j)), direction))
+            end do
+        end do
+        do i = 1, this%p   ! A = flex M, row by row through the sparse symmetric M
+            call this%mass%matvec(flex(i, :), a(i, :))
+        end do
+    end subroutine operator_dense_a
+
+    !> out = A y = N K^-1 (lambda T' - N') M y, through two triangular solves with L_c.
+    subroutine operator_apply_a(this, y, out)
+        class(contact_operator_t), intent(in) :: this
+        real(wp), intent(in) :: y(:)
+        real(wp), intent(out) :: out(:)
+        real(wp) :: my(this%p), z(2*this%p)
+        integer :: a
+        call this%mass%matvec(y, my)
+        z = 0.0_wp
+        do a = 1, this%p
+            z(this%slot(:, a)) = (this%lambda*this%tangent - this%normal)*my(a)
+        end do
+        call dtrsv('L', 'N', 'N', 2*this%p, this%l_tail, 2*this%p, z, 1)
+        call dtrsv('L', 'T', 'N', 2*this%p, this%l_tail, 2*this%p, z, 1)
+        do a = 1, this%p
+            out(a) = dot_product(this%normal, z(this%slot(:, a)))
+        end do
+    end subroutine operator_apply_a
+
+    !> ARPACK's OP: A (sigma = 0) or (I - sigma A)^-1 A.
+    subroutine operator_apply(this, y, out)
+        class(contact_operator_t), intent(in) :: this
+        real(wp), intent(in) :: y(:)
+        real(wp), intent(out) :: out(:)
+        integer :: info
+        call this%apply_a(y, out)
+        if (.not. (abs(this%sigma) > 0.0_wp)) return
+        ! dgetrf succeeded in setup, so dgetrs cannot fail on these arguments
+        call dgetrs('N', this%p, 1, this%a, this%p, this%pivots, out, this%p, info)
+    end subroutine operator_apply
+
+    !> Is a Ritz value nu real? ARPACK reads eigenvalues off a real Schur form, where a real
+    !> eigenvalue normally has an exactly zero imaginary part. But two close real eigenvalues
+    !> (or a double one) perturbed by a backward error of relative size tol can split into a
+    !> complex pair with imaginary part up to about sqrt(tol) |nu|; below that the data
+    !> cannot tell a complex pair from two real eigenvalues, so they count as real (their
+    !> backward errors on the pencil are reported, so a wrong call would show).
+    elemental logical function is_real_ritz(nu, tol)
+        complex(wp), intent(in) :: nu
+        real(wp), intent(in) :: tol   !! ARPACK's relative tolerance (>= epsilon)
+        is_real_ritz = abs(aimag(nu)) <= sqrt(tol)*abs(nu)
+    end function is_real_ritz
+
+    !> Certificate of one set of eigenvalues mu, the ones nearest sigma (ARPACK's 'LM' on
+    !> nu = 1/(mu - sigma); sigma = 0 gives the smallest |mu|, theta = 1/mu of largest
+    !> modulus). Every mu outside the set is at distance >= r = max |mu - sigma| over the set
+    !> from sigma. The lowest positive real mu_+ in the set is then the lowest overall when
+    !> the disc |mu - sigma| <= r covers ]0, mu_+], i.e. sigma - r <= 0 (always so for
+    !> sigma = 0): any positive real mu below mu_+ would be nearer sigma than r. With
+    !> `complete` (the set is the whole spectrum) no positive real mu in it means none
+    !> exists. Returns CERTIFIED_FOUND (`lowest` its index), CERTIFIED_NONE or UNDECIDED.
+    pure subroutine certify_lowest(mu, is_real, sigma, complete, outcome, lowest)
+        complex(wp), intent(in) :: mu(:)
+        logical, intent(in) :: is_real(:)
+        real(wp), intent(in) :: sigma
+        logical, intent(in) :: complete
+        integer, intent(out) :: outcome, lowest
+        integer :: i
+        lowest = 0
+        do i = 1, size(mu)
+            if (.not. is_real(i) .or. .not. real(mu(i), wp) > 0.0_wp) cycle
+            if (lowest == 0) then
+                lowest = i
+            else if (real(mu(i), wp) < real(mu(lowest), wp)) then
+                lowest = i
+            end if
+        end do
+        outcome = UNDECIDED
+        if (complete) then
+            outcome = merge(CERTIFIED_FOUND, CERTIFIED_NONE, lowest > 0)
+        else if (size(mu) > 0 .and. lowest > 0) then
+            if (sigma - maxval(abs(mu - sigma)) <= 0.0_wp) outcome = CERTIFIED_FOUND
+        end if
+    end subroutine certify_lowest
+
+    !> Eigenvalues of K phi = mu B phi nearest the target (0: smallest in modulus), always
+    !> including the lowest positive real one when it is found, in output order, with full
+    !> eigenvectors of the first `n_keep` and the backward error of every pair on (K, B).
+    !> `chol` is the factor of K with the contact dofs last. `warning` is empty when the
+    !> lowest positive eigenvalue (or its absence) is certified, and says why not otherwise.
+    !> Strategy (README, "How it computes"): ARPACK on nev eigenvalues nearest the target;
+    !> a certified answer is confirmed by a second run from another start vector; nev
+    !> doubles while undecided; past p/4 (or if runs keep disagreeing) all p eigenvalues of
+    !> the reduced matrix are computed densely, which decides every case.
+    subroutine arpack_spectrum(k, b, chol, contact, lambda, options, n_keep, spec, warning, &
+                               stat)
+        type(csr_matrix_t), intent(in) :: k, b
+        type(cholesky_t), intent(in) :: chol
+        type(contact_t), intent(in) :: contact
+        real(wp), intent(in) :: lambda
+        type(arpack_options_t), intent(in) :: options
+        integer, intent(in) :: n_keep
+        type(spectrum_t), intent(out) :: spec
+        character(len=:), allocatable, intent(out) :: warning
+        type(status_t), intent(out) :: stat
+        type(contact_operator_t) :: op
+        type(ritz_t) :: run
+        complex(wp), allocatable :: mu(:)
+        real(wp) :: mu_now, mu_before, radius
+        integer :: p, nev, cap, attempt, outcome, lowest, n_operator
+        logical :: found_before, confirmed
+
+        warning = ''
+        p = contact%p()
+        cap = p - 2   ! ARPACK needs nev + 2 <= ncv <= n
+        if (cap < 1) then
+            call stat%fail(STATUS_BAD_INPUT, 'arpack: '//to_string(p)//' contact nodes: '// &
+                'ARPACK needs at least 3 (nev + 2 <= ncv <= p); use solver = ''dense''')
+            return
+        end if
+        call op%setup(chol, contact, k%n(), lambda, options%target, stat)
+        if (.not. stat%ok()) return
+
+        nev = min(options%nev, cap)
+        n_operator = 0
+        found_before = .false.
+        confirmed = .false.
+        mu_before = 0.0_wp
+        do attempt = 1, MAX_ATTEMPTS
+            call run_arpack(op, nev, options, attempt, run, stat)
+            if (.not. stat%ok()) return
+            n_operator = n_operator + run%n_operator
+            mu = options%target + 1.0_wp/run%nu
+            call certify_lowest(mu, run%is_real, options%target, .false., outcome, lowest)
+            ! with info = 1 (maxit) only some wanted values converged: nearer ones may be
+            ! missing, so the disc argument does not hold
+            if (run%info /= 0) outcome = UNDECIDED
+            if (outcome == CERTIFIED_FOUND) then
+                mu_now = real(mu(lowest), wp)
+                if (found_before) then
+                    confirmed = abs(mu_now - mu_before) <= AGREE_TOL*abs(mu_now)
+                    if (confirmed) exit
+                    nev = min(2*nev, cap)   ! two runs disagree: look wider
+                end if
+                found_before = .true.
+                mu_before = mu_now
+            else
+                found_before = .false.
+                nev = min(2*nev, cap)
+            end if
+            if (.not. found_before .and. (4*nev > p .or. nev > NEV_SEARCH_MAX)) exit
+        end do
+
+        if (.not. confirmed) then
+            ! Undecided: all p eigenvalues of the reduced p x p matrix decide (O(p^3)).
+            if (p <= DENSE_FALLBACK_MAX) then
+                call dense_ritz(op, options%nev, run, stat)
+                if (.not. stat%ok()) return
+                mu = options%target + 1.0_wp/run%nu
+            else
+                radius = 0.0_wp
+                if (size(mu) > 0) radius = maxval(abs(mu - options%target))
+                if (found_before) then
+                    warning = 'the lowest positive eigenvalue is not certified: ARPACK runs '// &
+                        'from different start vectors disagree on it'
+                else
+                    warning = 'the lowest positive eigenvalue is not certified: none found '// &
+                        'with |mu - target| <= '//to_string(radius)
+                end if
+                if (run%info /= 0) warning = warning//'; '//arpack_info_message('dnaupd', &
+                                                                                 run%info)
+            end if
+        end if
+        if (size(run%nu) == 0) then
+            call stat%fail(STATUS_SOLVER, 'arpack: no Ritz value converged ('// &
+                arpack_info_message('dnaupd', run%info)//'); raise maxit or ncv')
+            return
+        end if
+        call fill_spectrum(k, b, chol, contact, lambda, mu, run, n_keep, spec, stat)
+        spec%n_operator = n_operator
+    end subroutine arpack_spectrum
+
+    !> All p eigenvalues of the reduced operator by LAPACK dgeev, as a run would give them
+    !> (nu of the operator), keeping the `n_report` of largest |nu| (nearest the target) and
+    !> the lowest positive real mu; the rest are dropped before eigenvectors are formed.
+    subroutine dense_ritz(op, n_report, run, stat)
+        type(contact_operator_t), intent(in) :: op
+        integer, intent(in) :: n_report
+        type(ritz_t), intent(out) :: run
+        type(status_t), intent(out) :: stat
+        real(wp), allocatable :: a(:, :), wr(:), wi(:), vr(:, :), work(:), vl(:, :), size_nu(:)
+        complex(wp), allocatable :: nu(:), mu(:)
+        logical, allocatable :: keep(:), is_real(:), chosen(:)
+        real(wp) :: query(1)
+        integer :: p, info, j, i, outcome, lowest
+
+        p = op%p
+        call op%dense_a(a, stat)
+        if (.not. stat%ok()) return
+        allocate (wr(p), wi(p), vr(p, p), vl(1, 1))
+        call dgeev('N', 'V', p, a, p, wr, wi, vl, 1, vr, p, query, -1, info)
+        allocate (work(max(1, int(query(1)))))
+        call dgeev('N', 'V', p, a, p, wr, wi, vl, 1, vr, p, work, size(work), info)
+        if (info /= 0) then
+            call stat%fail(STATUS_SOLVER, lapack_info_message('dgeev', info))
+            return
+        end if
+        ! theta -> nu = theta/(1 - sigma theta) = 1/(mu - sigma); theta = 0 is mu = infinity
+        nu = cmplx(wr, wi, wp)
+        keep = abs(nu) > 0.0_wp
+        is_real = .not. (abs(wi) > 0.0_wp)
+        where (keep) nu = nu/(1.0_wp - op%sigma*nu)
+        allocate (mu(p), source=(0.0_wp, 0.0_wp))
+        where (keep) mu = op%sigma + 1.0_wp/nu
+        call certify_lowest(mu, is_real .and. keep, op%sigma, .true., outcome, lowest)
+        ! the n_report largest |nu|, the lowest positive mu, and the partners of pairs
+        allocate (chosen(p), source=.false.)
+        size_nu = merge(abs(nu), -1.0_wp, keep)
+        do i = 1, min(n_report, count(keep))
+            j = maxloc(size_nu, dim=1, mask=.not. chosen)
+            chosen(j) = .true.
+        end do
+        if (lowest > 0) chosen(lowest) = .true.
+        do j = 1, p
+            if (.not. chosen(j) .or. is_real(j)) cycle
+            if (wi(j) > 0.0_wp .and. j < p) chosen(j + 1) = .true.
+            if (wi(j) < 0.0_wp .and. j > 1) chosen(j - 1) = .true.
+        end do
+        allocate (run%nu(count(chosen)), run%y(p, count(chosen)), run%is_real(count(chosen)))
+        i = 0
+        do j = 1, p
+            if (.not. chosen(j)) cycle
+            i = i + 1
+            run%nu(i) = nu(j)
+            run%is_real(i) = is_real(j)
+            if (is_real(j)) then
+                run%y(:, i) = cmplx(vr(:, j), 0.0_wp, wp)
+            else if (wi(j) > 0.0_wp) then
+                run%y(:, i) = cmplx(vr(:, j), vr(:, j + 1), wp)
+            else
+                run%y(:, i) = cmplx(vr(:, j - 1), -vr(:, j), wp)
+            end if
+        end do
+    end subroutine dense_ritz
+
+    !> One ARPACK run: standard mode on `op`, nev wanted ('LR' without shift, 'LM' with),
+    !> from a deterministic start vector that differs between attempts.
+    subroutine run_arpack(op, nev_wanted, options, attempt, run, stat)
+        type(contact_operator_t), intent(in) :: op
+        integer, intent(in) :: nev_wanted, attempt
+        type(arpack_options_t), intent(in) :: options
+        type(ritz_t), intent(out) :: run
+        type(status_t), intent(out) :: stat
+        real(wp), allocatable :: resid(:), v(:, :), workd(:), workl(:), dr(:), di(:), z(:, :), &
+                                 workev(:)
+        logical, allocatable :: select(:)
+        integer :: iparam(11), ipntr(14), ido, info, n, ncv, lworkl, nconv, j, i, nev
+        character(len=2) :: which
+        real(wp) :: tol
+
+        ! ARPACK may adjust nev in place to keep a conjugate pair together (seen with arpack-ng
+        ! 3.8 on tiny n): give it a private copy.
+        nev = nev_wanted
+        n = op%p
+        ncv = options%ncv
+        if (ncv == 0) ncv = max(2*nev + 1, 20)
+        ncv = min(max(ncv, nev + 2), n)
+        which = 'LM'
+        tol = options%tol
+        lworkl = 3*ncv**2 + 6*ncv
+        allocate (resid(n), v(n, ncv), workd(3*n), workl(lworkl))
+        ! Start vector: smooth plus oscillating parts, nonzero in every component and in
+        ! every eigendirection generically; the phase changes with the attempt.
+        resid = [(1.0_wp + 0.5_wp*sin(real(i*attempt, wp)*0.7548776662466927_wp), i=1, n)]
+        iparam = 0
+        iparam(1) = 1               ! exact shifts
+        iparam(3) = options%maxit
+        iparam(7) = 1               ! mode 1: the operator is already shift-inverted
+        ipntr = 0
+        ido = 0
+        info = 1                    ! use resid as the start vector
+        do
+            call dnaupd(ido, 'I', n, which, nev, tol, resid, ncv, v, n, iparam, ipntr, &
+                        workd, workl, lworkl, info)
+            if (ido /= 1 .and. ido /= -1) exit   ! 99: done; no other request in mode 1
+            run%n_operator = run%n_operator + 1
+            call op%apply(workd(ipntr(1):ipntr(1) + n - 1), workd(ipntr(2):ipntr(2) + n - 1))
+        end do
+        run%info = info
+        if (info < 0) then
+            call stat%fail(STATUS_SOLVER, arpack_info_message('dnaupd', info))
+            return
+        end if
+        nconv = iparam(5)
+        allocate (run%nu(0), run%y(n, 0), run%is_real(0))
+        if (nconv == 0) return
+
+        allocate (select(ncv), dr(nev + 1), di(nev + 1), z(n, nev + 1), workev(3*ncv))
+        call dneupd(.true., 'A', select, dr, di, z, n, 0.0_wp, 0.0_wp, workev, 'I', n, which, &
+                    nev, tol, resid, ncv, v, n, iparam, ipntr, workd, workl, lworkl, info)
+        if (info /= 0) then
+            call stat%fail(STATUS_SOLVER, arpack_info_message('dneupd', info))
+            return
+        end if
+        nconv = min(iparam(5), nev + 1)
+        ! dneupd's layout: a complex pair is dr(j) +- i di(j) with di(j) > 0 first, its vector
+        ! in columns j (real part) and j + 1 (imaginary part). A pair cut by nconv is dropped,
+        ! and so is a zero Ritz value (mu infinite, only exactly at a critical lambda).
+        deallocate (run%nu, run%y, run%is_real)
+        allocate (run%nu(nconv), run%y(n, nconv))
+        i = 0
+        j = 1
+        do while (j <= nconv)
+            if (.not. (abs(di(j)) > 0.0_wp)) then
+                if (abs(dr(j)) > 0.0_wp) then
+                    i = i + 1
+                    run%nu(i) = cmplx(dr(j), 0.0_wp, wp)
+                    run%y(:, i) = cmplx(z(:, j), 0.0_wp, wp)
+                end if
+                j = j + 1
+            else if (j < nconv) then
+                run%nu(i + 1) = cmplx(dr(j), abs(di(j)), wp)
+                run%nu(i + 2) = conjg(run%nu(i + 1))
+                run%y(:, i + 1) = cmplx(z(:, j), sign(1.0_wp, di(j))*z(:, j + 1), wp)
+                run%y(:, i + 2) = conjg(run%y(:, i + 1))
+                i = i + 2
+                j = j + 2
+            else
+                j = j + 1
+            end if
+        end do
+        run%nu = run%nu(1:i)
+        run%y = run%y(:, 1:i)
+        nconv = i
+        run%is_real = is_real_ritz(run%nu, max(tol, epsilon(1.0_wp)))
+        ! a pair judged real: two real eigenvalues sharing a 2-d invariant subspace
+        do j = 1, nconv
+            if (run%is_real(j) .and. abs(aimag(run%nu(j))) > 0.0_wp) then
+                if (aimag(run%nu(j)) > 0.0_wp) then
+                    run%y(:, j) = real(run%y(:, j), wp)
+                else
+                    run%y(:, j) = cmplx(-aimag(run%y(:, j)), 0.0_wp, wp)
+                end if
+                run%nu(j) = real(run%nu(j), wp)
+            end if
+        end do
+    end subroutine run_arpack
+
+    !> The spectrum of the final run, in output order: full eigenvectors
+    !> phi = K^-1 (lambda T' - N') M y by multi-right-hand-side solves, backward errors on
+    !> (K, B) for every pair, modes of the first n_keep.
+    subroutine fill_spectrum(k, b, chol, contact, lambda, mu, run, n_keep, spec, stat)
+        type(csr_matrix_t), intent(in) :: k, b
+        type(cholesky_t), intent(in) :: chol
+        type(contact_t), intent(in) :: contact
+        real(wp), intent(in) :: lambda
+        complex(wp), intent(in) :: mu(:)
+        type(ritz_t), intent(in) :: run
+        integer, intent(in) :: n_keep
+        type(spectrum_t), intent(out) :: spec
+        type(status_t), intent(out) :: stat
+        integer, allocatable :: order(:), kinds(:), column(:), todo(:)
+        real(wp), allocatable :: rhs(:, :), g(:, :), my(:)
+        complex(wp), allocatable :: phi(:)
+        integer :: n_ev, n_free, i, j, first, last, c, n_cols, n_kept
+        logical, allocatable :: done(:)
+
+        n_ev = size(mu)
+        n_free = k%n()
+        allocate (order(n_ev), kinds(n_ev))
+        call order_eigenvalues(mu, run%is_real, order, kinds)
+        spec%mu = mu(order)
+        where (run%is_real(order)) spec%mu = real(spec%mu, wp)
+        spec%kind = kinds
+        allocate (spec%condition(n_ev), source=-1.0_wp)
+        allocate (spec%residual(n_ev))
+        n_kept = min(n_keep, n_ev)
+        allocate (spec%vectors(n_free, n_kept))
+        allocate (done(n_ev), source=.false.)
+        allocate (my(contact%p()), phi(n_free))
+        ! The conjugate of a pair has the conjugate vector and the same backward error
+        ! (K and B are real), so each pair costs one complex solve; real ones one real solve.
+        todo = [integer ::]
+        do i = 1, n_ev
+            if (kinds(i) == KIND_COMPLEX .and. aimag(spec%mu(i)) < 0.0_wp .and. i > 1) then
+                if (.not. (abs(spec%mu(i) - conjg(spec%mu(i - 1))) > 0.0_wp)) cycle
+            end if
+            todo = [todo, i]
+        end do
+        first = 1
+        do while (first <= size(todo))
+            ! gather up to RHS_BLOCK columns: one per real eigenvalue, two per complex one
+            n_cols = 0
+            last = first - 1
+            do while (last < size(todo))
+                c = merge(1, 2, run%is_real(order(todo(last + 1))))
+                if (n_cols + c > RHS_BLOCK .and. n_cols > 0) exit
+                n_cols = n_cols + c
+                last = last + 1
+            end do
+            allocate (rhs(n_free, n_cols), g(n_free, n_cols), source=0.0_wp)
+            allocate (column(last - first + 1))
+            c = 0
+            do i = first, last
+                j = order(todo(i))
+                column(i - first + 1) = c + 1
+                call contact%mass%matvec(real(run%y(:, j), wp), my)
+                call contact%scatter(lambda*contact%tangent - contact%normal, my, rhs(:, c + 1))
+                c = c + 1
+                if (.not. run%is_real(j)) then
+                    call contact%mass%matvec(aimag(run%y(:, j)), my)
+                    call contact%scatter(lambda*contact%tangent - contact%normal, my, &
+                                         rhs(:, c + 1))
+                    c = c + 1
+                end if
+            end do
+            call chol%solve(rhs, g, stat)
+            if (.not. stat%ok()) return
+            do i = first, last
+                j = order(todo(i))
+                c = column(i - first + 1)
+                if (run%is_real(j)) then
+                    phi = cmplx(g(:, c), 0.0_wp, wp)
+                else
+                    phi = cmplx(g(:, c), g(:, c + 1), wp)
+                end if
+                call record(todo(i), phi)
+                if (.not. run%is_real(j) .and. todo(i) < n_ev) then
+                    if (kinds(todo(i) + 1) == KIND_COMPLEX .and. .not. done(todo(i) + 1)) &
+                        call record(todo(i) + 1, conjg(phi))
+                end if
+            end do
+            deallocate (rhs, g, column)
+            first = last + 1
+        end do
+        if (.not. all(done)) call stat%fail(STATUS_SOLVER, 'arpack: internal error: '// &
+            'an eigenvalue was left without an eigenvector')
+
+    contains
+
+        subroutine record(i, vector)
+            integer, intent(in) :: i
+            complex(wp), intent(in) :: vector(:)
+            complex(wp), allocatable :: scaled(:)
+            spec%residual(i) = backward_error(k, b, spec%mu(i), vector)
+            done(i) = .true.
+            if (i <= n_kept) then
+                scaled = vector
+                call normalise_mode(scaled)
+                spec%vectors(:, i) = scaled
+            end if
+        end subroutine record
+    end subroutine fill_spectrum
+end module arpack_eigen

@@ -1,0 +1,187 @@
+! SPDX-License-Identifier: MIT
+!> Fill-reducing orderings of the free dofs computed on the node graph (two dofs per node
+!> share one vertex, so METIS sees a graph four times smaller than the dof graph), with a
+!> chosen set of nodes forced last: the contact nodes, so that the trailing block of the
+!> Cholesky factor of K is the Schur complement of K onto the contact dofs.
+module node_ordering
+    use, intrinsic :: iso_c_binding, only: c_int, c_ptr, c_null_ptr
+    use status, only: status_t, STATUS_SOLVER, STATUS_BAD_INPUT
+    use strings, only: to_string
+    use mesh, only: mesh_t
+    use dof_map, only: dof_map_t
+    implicit none
+    private
+    public :: nested_dissection_last, metis_status_message
+
+    ! Debian's metis.h: IDXTYPEWIDTH 32, so idx_t is a 32-bit int.
+    integer(c_int), parameter :: METIS_OK = 1
+    integer(c_int), parameter :: METIS_ERROR_INPUT = -2
+    integer(c_int), parameter :: METIS_ERROR_MEMORY = -3
+
+    interface
+        function metis_nodend(nvtxs, xadj, adjncy, vwgt, options, perm, iperm) &
+                bind(C, name='METIS_NodeND') result(code)
+            import :: c_int, c_ptr
+            integer(c_int), intent(in) :: nvtxs
+            integer(c_int), intent(in) :: xadj(*), adjncy(*)   ! 0-based CSR of the graph
+            type(c_ptr), value :: vwgt                         ! NULL: unit weights
+            type(c_ptr), value :: options                      ! NULL: METIS defaults
+            integer(c_int), intent(out) :: perm(*), iperm(*)   ! perm(k) = vertex at k
+            integer(c_int) :: code
+        end function metis_nodend
+    end interface
+
+contains
+
+    !> Dof permutation (1-based; permutation(k) = the dof pivoted k-th) for a Cholesky factor
+    !> of K: METIS nested dissection of the graph of the free nodes not in `last_nodes`
+    !> (two nodes adjacent when they share a cell), each node's free dofs together, then the
+    !> free dofs of `last_nodes` in their given order.
+    subroutine nested_dissection_last(m, dofs, last_nodes, permutation, stat)
+        type(mesh_t), intent(in) :: m
+        type(dof_map_t), intent(in) :: dofs
+        integer, intent(in) :: last_nodes(:)
+        integer, allocatable, intent(out) :: permutation(:)
+        type(status_t), intent(out) :: stat
+        integer, allocatable :: vertex(:), node_of(:), degree(:)
+        integer(c_int), allocatable :: xadj(:), adjncy(:), perm(:), iperm(:), fill(:)
+        integer :: n_nodes, n_vertices, e, a, b, na, nb, k, c, node
+        integer(c_int) :: code
+
+        n_nodes = m%n_nodes()
+        ! vertex(node) > 0 for a node with a free dof that is not forced last
+        allocate (vertex(n_nodes), source=0)
+        do node = 1, n_nodes
+            if (any(dofs%free_dof(:, node) > 0)) vertex(node) = -1
+        end do
+        vertex(last_nodes) = 0
+        n_vertices = 0
+        allocate (node_of(n_nodes))
+        do node = 1, n_nodes
+            if (vertex(node) /= -1) cycle
+            n_vertices = n_vertices + 1
+            vertex(node) = n_vertices
+            node_of(n_vertices) = node
+        end do
+
+        allocate (permutation(dofs%n_free))
+        k = 0
+        if (n_vertices > 0) then
+            ! Cell cliques give each edge several times; METIS accepts only simple graphs,
+            ! so build the adjacency with duplicates, then sort and compress each row.
+            allocate (degree(n_vertices), source=0)
+            do e = 1, size(m%cells, 2)
+                do a = 1, size(m%cells, 1)
+                    na = vertex(m%cells(a, e))
+                    if (na <= 0) cycle
+                    do b = 1, size(m%cells, 1)
+                        nb = vertex(m%cells(b, e))
+                        if (nb > 0 .and. nb /= na) degree(na) = degree(na) + 1
+                    end do
+                end do
+            end do
+            allocate (xadj(n_vertices + 1), adjncy(sum(degree)), fill(n_vertices))
+            xadj(1) = 0
+            do a = 1, n_vertices
+                xadj(a + 1) = xadj(a) + degree(a)
+            end do
+            fill = xadj(1:n_vertices)
+            do e = 1, size(m%cells, 2)
+                do a = 1, size(m%cells, 1)
+                    na = vertex(m%cells(a, e))
+                    if (na <= 0) cycle
+                    do b = 1, size(m%cells, 1)
+                        nb = vertex(m%cells(b, e))
+                        if (nb > 0 .and. nb /= na) then
+                            fill(na) = fill(na) + 1
+                            adjncy(fill(na)) = int(nb - 1, c_int)
+                        end if
+                    end do
+                end do
+            end do
+            call compress_rows(xadj, adjncy)
+
+            allocate (perm(n_vertices), iperm(n_vertices))
+            code = metis_nodend(int(n_vertices, c_int), xadj, adjncy, c_null_ptr, c_null_ptr, &
+                                perm, iperm)
+            if (code /= METIS_OK) then
+                call stat%fail(STATUS_SOLVER, 'METIS_NodeND on the node graph ('// &
+                    to_string(n_vertices)//' nodes): '//metis_status_message(int(code)))
+                return
+            end if
+            do a = 1, n_vertices
+                call append(node_of(perm(a) + 1))
+            end do
+        end if
+        do a = 1, size(last_nodes)
+            call append(last_nodes(a))
+        end do
+        if (k /= dofs%n_free) then
+            call stat%fail(STATUS_BAD_INPUT, 'node ordering: '//to_string(k)//' of '// &
+                to_string(dofs%n_free)//' free dofs ordered (a node listed twice as last?)')
+        end if
+
+    contains
+
+        subroutine append(node)
+            integer, intent(in) :: node
+            do c = 1, size(dofs%free_dof, 1)
+                if (dofs%free_dof(c, node) > 0 .and. k < size(permutation)) then
+                    k = k + 1
+                    permutation(k) = dofs%free_dof(c, node)
+                end if
+            end do
+        end subroutine append
+    end subroutine nested_dissection_last
+
+    !> Sort each row of a 0-based CSR graph and drop repeated neighbours, in place.
+    pure subroutine compress_rows(xadj, adjncy)
+        integer(c_int), intent(inout) :: xadj(:)
+        integer(c_int), allocatable, intent(inout) :: adjncy(:)
+        integer :: row, first, last, out, i, j
+        integer(c_int) :: key
+        out = 0
+        first = xadj(1) + 1
+        do row = 1, size(xadj) - 1
+            last = xadj(row + 1)
+            ! insertion sort: a row holds a few dozen entries at most (node cliques)
+            do i = first + 1, last
+                key = adjncy(i)
+                j = i - 1
+                do while (j >= first)
+                    if (adjncy(j) <= key) exit
+                    adjncy(j + 1) = adjncy(j)
+                    j = j - 1
+                end do
+                adjncy(j + 1) = key
+            end do
+            xadj(row) = out
+            do i = first, last
+                if (i > first) then
+                    if (adjncy(i) == adjncy(i - 1)) cycle
+                end if
+                out = out + 1
+                adjncy(out) = adjncy(i)
+            end do
+            first = last + 1
+        end do
+        xadj(size(xadj)) = out
+        adjncy = adjncy(1:out)
+    end subroutine compress_rows
+
+    !> A sentence for each METIS return code.
+    pure function metis_status_message(code) result(message)
+        integer, intent(in) :: code
+        character(len=:), allocatable :: message
+        select case (code)
+        case (METIS_OK)
+            message = 'success'
+        case (METIS_ERROR_INPUT)
+            message = 'METIS rejected its input graph (METIS_ERROR_INPUT)'
+        case (METIS_ERROR_MEMORY)
+            message = 'METIS ran out of memory (METIS_ERROR_MEMORY)'
+        case default
+            message = 'METIS failed (code '//to_string(code)//')'
+        end select
+    end function metis_status_message
+end module node_ordering
