@@ -119,8 +119,8 @@ contains
         call t%check('family: error from two fits', e%from_two_fits)
         call t%check('family: error estimate at round-off', e%error_estimate <= 1.0e-14_wp)
 
-        ! A second term: f = L + C h^p + D h^q, q > p. The estimate |L_fine - L_previous|
-        ! must bound the true error of L_fine (the previous triple is the worse one).
+        ! A second term: f = L + C h^p + D h^q, q > p, on ratios 2. The estimate must bound
+        ! the true error of the finer limit.
         h = [(1.0_wp/2**i, i=2, 7)]
         f = model(h, limit, -0.4_wp, 1.3_wp) + 0.3_wp*h**2.1_wp
         e = family_estimate(h, f)
@@ -129,6 +129,17 @@ contains
                      e%error_estimate >= abs(e%limit - limit))
         call t%check('two terms: extrapolating beats the finest mesh', &
                      abs(e%limit - limit) < abs(f(size(f)) - limit))
+
+        ! Close meshes (ratio 4/3): the limits of successive triples differ by less than the
+        ! error left in the finer one, so the plain change would claim too much; divided by
+        ! rho^p - 1 the estimate still bounds the true error.
+        h = [(0.75_wp**i/8, i=0, 7)]
+        f = model(h, limit, 0.4_wp, 1.4_wp) + 0.5_wp*h**1.9_wp
+        e = family_estimate(h, f)
+        call t%check('ratio 4/3: the plain change of limits underestimates', &
+                     abs(e%limit - e%previous_limit) < abs(e%limit - limit))
+        call t%check('ratio 4/3: error estimate bounds the true error', &
+                     e%error_estimate >= abs(e%limit - limit))
 
         ! Three meshes: the estimate falls back on the Richardson correction.
         e = family_estimate(h(4:6), f(4:6))
