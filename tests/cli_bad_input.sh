@@ -83,6 +83,7 @@ bad_output() {
     run_bad "$name" "$work/bad.nml" bad.nml "$@"
 }
 bad_output 'output modes < 0' "modes = -1" '&output' modes
+bad_output 'unknown vtk_format' "vtk_format = 'xml'" '&output' vtk_format "'binary'"
 
 # --- unknown groups and variables
 bad 'unknown group' "&meshh nx = 3 /" meshh 'known groups'

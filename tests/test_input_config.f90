@@ -29,6 +29,7 @@ program test_input_config
                        defaults%analysis%lambda, 0.0_wp)
     call t%check('empty file: default solver', config%eigen%solver == defaults%eigen%solver)
     call t%check('empty file: default vtk', config%output%vtk .eqv. defaults%output%vtk)
+    call t%check('empty file: vtk_format is binary', config%output%vtk_format == 'binary')
     call t%check('input_file is the path', config%input_file == 'empty.nml')
     call t%check('empty directory becomes output/<stem>', &
                  config%output%directory == 'output/empty')
@@ -65,7 +66,7 @@ program test_input_config
     call write_file('gmsh.nml', [character(len=100) :: &
                     "&mesh source = 'GMSH', file = 'plate.msh', dirichlet = 'clamp', " &
                     //"neumann = '', contact = 'Slide' /", &
-                    "&output directory = 'results/run1', modes = 0 /"])
+                    "&output directory = 'results/run1', modes = 0, vtk_format = ' ASCII' /"])
     call read_input('gmsh.nml', config, stat)
     call t%check('gmsh file is accepted', stat%ok())
     if (.not. stat%ok()) print '(a)', '      '//stat%message
@@ -74,6 +75,7 @@ program test_input_config
                  config%mesh%file == 'plate.msh')
     call t%check('output directory as given', config%output%directory == 'results/run1')
     call t%check('modes = 0 accepted', config%output%modes == 0)
+    call t%check('vtk_format lowercased and trimmed', config%output%vtk_format == 'ascii')
 
     ! Each rule: STATUS_BAD_INPUT, and the message names file, group and variable.
     call expect_rejected('nx = 0', '&mesh nx = 0 /', '&mesh', 'nx')
@@ -112,6 +114,8 @@ program test_input_config
     call expect_rejected('dense_max_contact', '&eigen dense_max_contact = 0 /', '&eigen', &
                          'dense_max_contact')
     call expect_rejected('modes < 0', '&output modes = -1 /', '&output', 'modes')
+    call expect_rejected('unknown vtk_format', "&output vtk_format = 'base64' /", '&output', &
+                         "vtk_format = 'base64'")
     call expect_rejected('unknown variable', '&mesh nxx = 3 /', '&mesh', 'nxx')
     call expect_rejected('wrong type', "&mesh ny = 2, nx = 'a' /", '&mesh', 'nx')
     call expect_rejected('wrong type in a later group', "&eigen nev = 2.5x /", '&eigen', 'nev')
@@ -160,6 +164,8 @@ program test_input_config
     call t%check('help: file relative to the input folder', &
                  index(help, 'input file''s folder') > 0)
     call t%check('help: default directory', index(help, 'output/<input file stem>') > 0)
+    call t%check('help: vtk_format and its choices', index(help, "vtk_format = 'binary'") > 0 &
+                 .and. index(help, "'ascii'") > 0)
     call t%check('help: lines under 100 characters', longest_line(help) < 100)
 
     ! gfortran 12 keeps main-program allocatables in a frame gone before LeakSanitizer

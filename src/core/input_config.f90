@@ -17,7 +17,7 @@ module input_config
               resolve_relative
     public :: KNOWN_GROUPS, MESH_SOURCES, ELEMENT_NAMES, DIAGONALS, RECTANGLE_SIDES, &
               ACCEPTED_ANALYSES, ACCEPTED_SOLVERS, MAX_CELLS_PER_SIDE, SOLVE_DATA, SOLVE_STARTS
-    public :: SWEEP_SPACINGS, sweep_lambdas
+    public :: SWEEP_SPACINGS, sweep_lambdas, VTK_FORMATS
     public :: read_line   !! also reads the results table of nceig-extrapolate
 
     !> Namelist groups, in the order they are read and documented.
@@ -39,6 +39,8 @@ module input_config
     integer, parameter :: MAX_CELLS_PER_SIDE = 1000000
     character(len=*), parameter :: SWEEP_SPACINGS(*) = [character(len=6) :: 'linear', 'log']
     integer, parameter :: MAX_SWEEP_POINTS = 100000   !! n_lambda of a &sweep range
+    !> &output vtk_format: the encodings of vtk_writer (VTK_BINARY, VTK_ASCII).
+    character(len=*), parameter :: VTK_FORMATS(*) = [character(len=6) :: 'binary', 'ascii']
     !> &solve data: loads of the input, or the data of SPEC section 5 at the critical point.
     character(len=*), parameter :: SOLVE_DATA(*) = [character(len=6) :: 'given', 'branch']
     !> &solve start: the starting guesses of the Newton iteration.
@@ -58,6 +60,7 @@ module input_config
         'eigen maxit:an integer', 'eigen ncv:an integer', 'eigen dense_max_contact:an integer', &
         'output directory:a quoted path', 'output vtk:.true. or .false.', &
         'output modes:an integer', 'output matrices:.true. or .false.', &
+        'output vtk_format:a quoted name', &
         'sweep lambda_min:a real number', 'sweep lambda_max:a real number', &
         'sweep n_lambda:an integer', 'sweep spacing:a quoted name', &
         'sweep lambdas:a list of real numbers', 'sweep plot:.true. or .false.', &
@@ -546,18 +549,21 @@ contains
         character(len=PATH_LEN) :: directory
         logical :: vtk, matrices
         integer :: modes
-        namelist /output/ directory, vtk, modes, matrices
+        character(len=len(config%output%vtk_format)) :: vtk_format
+        namelist /output/ directory, vtk, modes, matrices, vtk_format
 
         directory = config%output%directory
         vtk = config%output%vtk
         modes = config%output%modes
         matrices = config%output%matrices
+        vtk_format = config%output%vtk_format
         read (record, nml=output, iostat=ios, iomsg=msg)
         if (ios /= 0) return
         config%output%directory = adjustl(directory)
         config%output%vtk = vtk
         config%output%modes = modes
         config%output%matrices = matrices
+        config%output%vtk_format = lowercase(adjustl(vtk_format))
     end subroutine output_record
 
     !> One '&branch ... /' record into config%branch (unchanged if it fails).
@@ -823,6 +829,9 @@ contains
 
         if (c%modes < 0) then
             call fail_value(stat, path, 'output', 'modes', int_text(c%modes), 'an integer >= 0')
+        else if (.not. any(VTK_FORMATS == c%vtk_format)) then
+            call fail_value(stat, path, 'output', 'vtk_format', quoted(c%vtk_format), &
+                            'one of '//one_of(VTK_FORMATS))
         end if
     end subroutine validate_output
 
@@ -1219,7 +1228,9 @@ contains
                //entry('vtk', logical_text(d%output%vtk), 'write mode_NNN.vtu for ParaView') &
                //entry('modes', int_text(d%output%modes), 'how many modes to write as .vtu') &
                //entry('matrices', logical_text(d%output%matrices), &
-                       'write K.mtx and B.mtx (Matrix Market)')
+                       'write K.mtx and B.mtx (Matrix Market)') &
+               //entry('vtk_format', quoted(d%output%vtk_format), one_of(VTK_FORMATS) &
+                       //" ('binary': raw appended data; 'ascii': text)")
         text = text//"&sweep  (kind = 'lambda_sweep': lowest positive mu against lambda)"//NL &
                //entry('lambda_min', real_to_text(d%sweep%lambda_min), 'first lambda of the' &
                        //' range (either sign)') &

@@ -1,13 +1,13 @@
 ! SPDX-License-Identifier: MIT
 !> Number-to-text conversions for messages and file names.
 module strings
-    use kinds, only: wp
+    use kinds, only: wp, i8
     implicit none
     private
     public :: to_string, zero_padded
 
     interface to_string
-        module procedure integer_to_string, real_to_string
+        module procedure integer_to_string, long_integer_to_string, real_to_string
     end interface to_string
 
 contains
@@ -19,6 +19,15 @@ contains
         write (buffer, '(i0)') i
         text = trim(buffer)
     end function integer_to_string
+
+    !> Counts that can pass 2**31: byte offsets, nnz of factors.
+    pure function long_integer_to_string(i) result(text)
+        integer(i8), intent(in) :: i
+        character(len=:), allocatable :: text
+        character(len=24) :: buffer
+        write (buffer, '(i0)') i
+        text = trim(buffer)
+    end function long_integer_to_string
 
     !> Shortest readable form that still round-trips in messages: g0 with 17 digits is noisy,
     !> so use 10 significant digits, enough to name the offending value.

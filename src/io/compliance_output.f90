@@ -70,7 +70,8 @@ contains
                 i = members(j)
                 u = res%cp%expand(x_base + res%deltas(i)*res%critical%phi)
                 call write_vtu(stage%path('branch_'//zero_padded(i, 3)//'.vtu'), prob%mesh, &
-                    ['displacement'], reshape(u, [N_DIM, prob%mesh%n_nodes(), 1]), stat)
+                    ['displacement'], reshape(u, [N_DIM, prob%mesh%n_nodes(), 1]), &
+                    trim(config%output%vtk_format), stat)
                 if (.not. stat%ok()) exit
             end do
         end if
@@ -151,7 +152,8 @@ contains
         if (stat%ok()) call write_states_csv(stage%path('contact_states.csv'), prob, res, stat)
         if (stat%ok() .and. config%output%vtk .and. res%report%converged) then
             call write_vtu(stage%path('solution.vtu'), prob%mesh, ['displacement'], &
-                reshape(res%cp%expand(res%x), [N_DIM, prob%mesh%n_nodes(), 1]), stat)
+                reshape(res%cp%expand(res%x), [N_DIM, prob%mesh%n_nodes(), 1]), &
+                trim(config%output%vtk_format), stat)
         end if
         if (stat%ok()) then
             timings%output = wall_time() - start

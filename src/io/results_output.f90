@@ -44,7 +44,7 @@ contains
         if (.not. stat%ok()) return
         call write_eigenvalues_csv(stage%path('eigenvalues.csv'), res%spec, stat)
         if (stat%ok() .and. config%output%vtk) call write_modes(stage, prob, res%spec, &
-                                                               config%output%modes, stat)
+            config%output%modes, trim(config%output%vtk_format), stat)
         if (stat%ok() .and. config%output%matrices) then
             call write_matrix_market(stage%path('K.mtx'), prob%k, stat)
             if (stat%ok()) call write_matrix_market(stage%path('B.mtx'), res%b, stat)
@@ -162,11 +162,12 @@ contains
     end subroutine write_eigenvalues_csv
 
     !> mode_001.vtu ...: displacement (real part) and, for complex modes, displacement_imag.
-    subroutine write_modes(stage, prob, spec, n_modes, stat)
+    subroutine write_modes(stage, prob, spec, n_modes, vtk_format, stat)
         type(output_stage_t), intent(inout) :: stage
         type(problem_t), intent(in) :: prob
         type(spectrum_t), intent(in) :: spec
         integer, intent(in) :: n_modes
+        character(len=*), intent(in) :: vtk_format   !! VTK_BINARY or VTK_ASCII
         type(status_t), intent(out) :: stat
         character(len=*), parameter :: FIELD_NAMES(2) = [character(len=17) :: &
                                                           'displacement', 'displacement_imag']
@@ -183,7 +184,7 @@ contains
             end if
             fields(:, :, 1) = nodal_field(prob%dofs, real(spec%vectors(:, i), wp))
             call write_vtu(stage%path('mode_'//zero_padded(i, 3)//'.vtu'), prob%mesh, &
-                           FIELD_NAMES(1:size(fields, 3)), fields, stat)
+                           FIELD_NAMES(1:size(fields, 3)), fields, vtk_format, stat)
             deallocate (fields)
             if (.not. stat%ok()) return
         end do

@@ -46,7 +46,7 @@ contains
         if (.not. stat%ok()) return
         call write_eigenvalues_csv(stage%path('eigenvalues.csv'), res%eigen%spec, stat)
         if (stat%ok() .and. config%output%vtk) call write_modes(stage, prob, res%eigen%spec, &
-                                                               config%output%modes, stat)
+            config%output%modes, trim(config%output%vtk_format), stat)
         if (stat%ok() .and. config%output%matrices) then
             call write_matrix_market(stage%path('K.mtx'), prob%k, stat)
             if (stat%ok()) call write_matrix_market(stage%path('B.mtx'), res%eigen%b, stat)

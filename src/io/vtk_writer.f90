@@ -1,44 +1,78 @@
 ! SPDX-License-Identifier: MIT
-!> The mesh and nodal vector fields (mode shapes) as a VTK XML UnstructuredGrid (.vtu),
-!> ASCII and Float64, for ParaView ('Warp By Vector' needs 3 components: z is 0).
+!> The mesh and nodal vector fields (mode shapes) as a VTK XML UnstructuredGrid (.vtu) for
+!> ParaView ('Warp By Vector' needs 3 components: z is 0). Two encodings of the same grid:
+!> 'binary' (default) puts every array, raw, in one <AppendedData encoding="raw"> element
+!> written with Fortran stream access; 'ascii' writes every value as text (es24.16), for
+!> reading by eye or by scripts, at several times the size and the writing time.
 module vtk_writer
+    use iso_fortran_env, only: int8, int32, int64, file_storage_size, character_storage_size
+    use ieee_arithmetic, only: ieee_support_datatype
     use kinds, only: wp, i8, N_DIM
     use status, only: status_t, STATUS_IO, STATUS_INTERNAL
+    use strings, only: to_string
     use mesh, only: mesh_t, element_nodes_per_cell, ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, &
                     ELEMENT_Q2
     implicit none
     private
-    public :: write_vtu, vtk_cell_type, vtk_node_order
+    public :: write_vtu, vtk_cell_type, vtk_node_order, machine_byte_order
     public :: VTK_TRIANGLE, VTK_QUAD, VTK_QUADRATIC_TRIANGLE, VTK_BIQUADRATIC_QUAD
+    public :: VTK_BINARY, VTK_ASCII
 
     integer, parameter :: VTK_TRIANGLE = 5
     integer, parameter :: VTK_QUAD = 9
     integer, parameter :: VTK_QUADRATIC_TRIANGLE = 22
     integer, parameter :: VTK_BIQUADRATIC_QUAD = 28
+    character(len=*), parameter :: VTK_BINARY = 'binary'   !! raw appended data
+    character(len=*), parameter :: VTK_ASCII = 'ascii'     !! every value as text
     integer, parameter :: VALUES_PER_LINE = 16   !! offsets and types, to keep lines short
     character(len=*), parameter :: REAL_FORMAT = '(*(1x, es24.16e3))'   !! round-trips binary64
     character(len=*), parameter :: INT_FORMAT = '(*(1x, i0))'
+    character(len=*), parameter :: LF = achar(10)
+    !> Nodes or cells per write statement of the binary writer: enough that the cost of a
+    !> statement vanishes, few enough that the buffers stay small (96 kB of reals).
+    integer, parameter :: CHUNK = 4096
+    integer(i8), parameter :: HEADER_BYTES = 8   !! the UInt64 byte count before each array
+    integer(i8), parameter :: REAL_BYTES = 8     !! Float64
+    integer(i8), parameter :: INLINE = -1        !! data_array_tag: data follow in the text
 
 contains
 
     !> Write mesh `m` with the nodal vector fields `vectors(:, :, k)` called `names(k)` to
-    !> the .vtu file `path` (replaced). The first field is marked as the active vectors.
-    !> Inconsistent sizes give STATUS_INTERNAL, a failed write STATUS_IO naming the file.
-    subroutine write_vtu(path, m, names, vectors, stat)
+    !> the .vtu file `path` (replaced), encoded as `format` (VTK_BINARY or VTK_ASCII). The
+    !> first field is marked as the active vectors. Inconsistent sizes or an unknown format
+    !> give STATUS_INTERNAL, a failed write STATUS_IO naming the file.
+    subroutine write_vtu(path, m, names, vectors, format, stat)
         character(len=*), intent(in) :: path
         type(mesh_t), intent(in) :: m
         character(len=*), intent(in) :: names(:)          !! e.g. 'displacement'
         real(wp), intent(in) :: vectors(:, :, :)          !! (N_DIM, n_nodes, size(names))
+        character(len=*), intent(in) :: format            !! VTK_BINARY or VTK_ASCII
         type(status_t), intent(out) :: stat
         character(len=1024) :: msg
         integer :: unit, ios, ignored
 
         call check_arguments(m, names, vectors, stat)
         if (.not. stat%ok()) return
-        open (newunit=unit, file=path, status='replace', action='write', iostat=ios, &
-              iomsg=msg)
+        select case (format)
+        case (VTK_BINARY)
+            call check_binary_support(stat)
+            if (.not. stat%ok()) return
+            open (newunit=unit, file=path, status='replace', action='write', access='stream', &
+                  form='unformatted', iostat=ios, iomsg=msg)
+        case (VTK_ASCII)
+            open (newunit=unit, file=path, status='replace', action='write', iostat=ios, &
+                  iomsg=msg)
+        case default
+            call stat%fail(STATUS_INTERNAL, "write_vtu: unknown format '"//trim(format) &
+                           //"', expected '"//VTK_BINARY//"' or '"//VTK_ASCII//"'")
+            return
+        end select
         if (ios == 0) then
-            call write_grid(unit, m, names, vectors, ios, msg)
+            if (format == VTK_BINARY) then
+                call write_binary_grid(unit, m, names, vectors, ios, msg)
+            else
+                call write_ascii_grid(unit, m, names, vectors, ios, msg)
+            end if
             if (ios /= 0) then
                 close (unit, iostat=ignored)
             else
@@ -50,8 +84,233 @@ contains
                                      //trim(msg))
     end subroutine write_vtu
 
-    !> The XML itself; returns at the first failed write with its iostat and message.
-    subroutine write_grid(unit, m, names, vectors, ios, msg)
+    !> 'LittleEndian' or 'BigEndian': the order in which this machine stores the bytes of a
+    !> number, hence of everything the binary writer copies from memory to the file.
+    pure function machine_byte_order() result(order)
+        character(len=:), allocatable :: order
+        ! The first byte in memory of the integer 1 is 1 exactly when the least significant
+        ! byte comes first.
+        if (transfer(1_int32, 0_int8) == 1_int8) then
+            order = 'LittleEndian'
+        else
+            order = 'BigEndian'
+        end if
+    end function machine_byte_order
+
+    !> The binary writer copies memory as it is: that is VTK's Float64 only for IEEE binary64
+    !> reals, and the offsets count bytes only when a file storage unit is one 8-bit byte.
+    subroutine check_binary_support(stat)
+        type(status_t), intent(out) :: stat
+        if (file_storage_size /= 8 .or. character_storage_size /= 8) then
+            call stat%fail(STATUS_INTERNAL, 'write_vtu: binary VTK needs 8-bit file storage' &
+                           //" units; use &output vtk_format = 'ascii'")
+        else if (.not. ieee_support_datatype(1.0_wp) .or. storage_size(1.0_wp) /= 64) then
+            call stat%fail(STATUS_INTERNAL, 'write_vtu: binary VTK needs IEEE binary64 reals;' &
+                           //" use &output vtk_format = 'ascii'")
+        end if
+    end subroutine check_binary_support
+
+    !> First two lines of the file; the byte order is the machine's, found at run time.
+    pure function xml_prolog() result(xml)
+        character(len=:), allocatable :: xml
+        xml = '<?xml version="1.0"?>'//LF//'<VTKFile type="UnstructuredGrid" version="1.0" ' &
+              //'byte_order="'//machine_byte_order()//'" header_type="UInt64">'
+    end function xml_prolog
+
+    pure function piece_tag(m) result(tag)
+        type(mesh_t), intent(in) :: m
+        character(len=:), allocatable :: tag
+        tag = '    <Piece NumberOfPoints="'//to_string(m%n_nodes())//'" NumberOfCells="' &
+              //to_string(m%n_cells())//'">'
+    end function piece_tag
+
+    !> A DataArray start tag: its data follow in the text when `offset` is INLINE; otherwise
+    !> they start `offset` bytes after the '_' of the AppendedData, and the tag closes itself.
+    pure function data_array_tag(type, name, components, offset) result(tag)
+        character(len=*), intent(in) :: type, name   !! name '' for the Points array
+        integer, intent(in) :: components            !! 0: leave it out (VTK reads 1)
+        integer(i8), intent(in) :: offset
+        character(len=:), allocatable :: tag
+        tag = '        <DataArray type="'//type//'"'
+        if (len(name) > 0) tag = tag//' Name="'//xml_escaped(name)//'"'
+        if (components > 0) tag = tag//' NumberOfComponents="'//to_string(components)//'"'
+        if (offset == INLINE) then
+            tag = tag//' format="ascii">'
+        else
+            tag = tag//' format="appended" offset="'//to_string(offset)//'"/>'
+        end if
+    end function data_array_tag
+
+    !> The XML with every array in the appended section, laid out as
+    !> `_ n1 data1 n2 data2 ...`, each n a UInt64 byte count in the machine's byte order.
+    !> Returns at the first failed write with its iostat and message.
+    subroutine write_binary_grid(unit, m, names, vectors, ios, msg)
+        integer, intent(in) :: unit
+        type(mesh_t), intent(in) :: m
+        character(len=*), intent(in) :: names(:)
+        real(wp), intent(in) :: vectors(:, :, :)
+        integer, intent(out) :: ios
+        character(len=*), intent(inout) :: msg
+        integer(i8) :: bytes(size(names) + 4), offset(size(names) + 5)
+        integer(i8) :: n_nodes, n_cells, n_entries, index_bytes, data_start, position
+        character(len=:), allocatable :: xml, index_type
+        logical :: wide
+        integer :: k, n_fields
+
+        n_fields = size(names)
+        n_nodes = m%n_nodes()
+        n_cells = m%n_cells()
+        n_entries = int(size(m%cells, 1), i8)*n_cells
+        ! Int32 halves connectivity and offsets; Int64 only when the largest offset (the
+        ! length of connectivity) does not fit. Both arrays get one type, as VTK stores them.
+        wide = n_entries > huge(1_int32)
+        if (wide) then
+            index_type = 'Int64'
+            index_bytes = 8
+        else
+            index_type = 'Int32'
+            index_bytes = 4
+        end if
+        ! Arrays in file order: the fields, points, connectivity, offsets, types.
+        bytes(1:n_fields + 1) = 3*REAL_BYTES*n_nodes
+        bytes(n_fields + 2) = index_bytes*n_entries
+        bytes(n_fields + 3) = index_bytes*n_cells
+        bytes(n_fields + 4) = n_cells
+        offset(1) = 0
+        do k = 1, size(bytes)
+            offset(k + 1) = offset(k) + HEADER_BYTES + bytes(k)
+        end do
+
+        xml = xml_prolog()//LF//'  <UnstructuredGrid>'//LF//piece_tag(m)//LF
+        if (n_fields > 0) then
+            xml = xml//'      <PointData Vectors="'//xml_escaped(trim(names(1)))//'">'//LF
+            do k = 1, n_fields
+                xml = xml//data_array_tag('Float64', trim(names(k)), 3, offset(k))//LF
+            end do
+            xml = xml//'      </PointData>'//LF
+        end if
+        xml = xml//'      <Points>'//LF//data_array_tag('Float64', '', 3, offset(n_fields + 1)) &
+              //LF//'      </Points>'//LF//'      <Cells>'//LF &
+              //data_array_tag(index_type, 'connectivity', 0, offset(n_fields + 2))//LF &
+              //data_array_tag(index_type, 'offsets', 0, offset(n_fields + 3))//LF &
+              //data_array_tag('UInt8', 'types', 0, offset(n_fields + 4))//LF &
+              //'      </Cells>'//LF//'    </Piece>'//LF//'  </UnstructuredGrid>'//LF &
+              //'  <AppendedData encoding="raw">'//LF//'   _'
+        write (unit, iostat=ios, iomsg=msg) xml
+        if (ios /= 0) return
+        inquire (unit, pos=data_start, iostat=ios, iomsg=msg)
+        if (ios /= 0) return
+
+        do k = 1, size(bytes)
+            write (unit, iostat=ios, iomsg=msg) bytes(k)
+            if (ios /= 0) return
+            if (k <= n_fields) then
+                call write_vector_block(unit, vectors(:, :, k), ios, msg)
+            else if (k == n_fields + 1) then
+                call write_vector_block(unit, m%coords, ios, msg)
+            else if (k == n_fields + 2) then
+                call write_connectivity_block(unit, m, wide, ios, msg)
+            else if (k == n_fields + 3) then
+                call write_offsets_block(unit, size(m%cells, 1), m%n_cells(), wide, ios, msg)
+            else
+                call write_types_block(unit, vtk_cell_type(m%element), m%n_cells(), ios, msg)
+            end if
+            if (ios /= 0) return
+            ! The offsets in the XML are promises about these positions: keep each one.
+            inquire (unit, pos=position, iostat=ios, iomsg=msg)
+            if (ios /= 0) return
+            if (position /= data_start + offset(k + 1)) then
+                ios = -1
+                msg = 'internal error: array '//to_string(k)//' ends at byte ' &
+                      //to_string(position - data_start)//', not '//to_string(offset(k + 1))
+                return
+            end if
+        end do
+        write (unit, iostat=ios, iomsg=msg) LF//'  </AppendedData>'//LF//'</VTKFile>'//LF
+    end subroutine write_binary_grid
+
+    !> A (2, n) nodal array as n Float64 triples with z = 0, a chunk of nodes at a time.
+    subroutine write_vector_block(unit, xy, ios, msg)
+        integer, intent(in) :: unit
+        real(wp), intent(in) :: xy(:, :)
+        integer, intent(out) :: ios
+        character(len=*), intent(inout) :: msg
+        real(wp), allocatable :: buffer(:, :)
+        integer :: first, last
+
+        ios = 0
+        allocate (buffer(3, min(CHUNK, size(xy, 2))))
+        buffer(3, :) = 0.0_wp
+        do first = 1, size(xy, 2), CHUNK
+            last = min(first + CHUNK - 1, size(xy, 2))
+            buffer(1:N_DIM, 1:last - first + 1) = xy(:, first:last)
+            write (unit, iostat=ios, iomsg=msg) buffer(:, 1:last - first + 1)
+            if (ios /= 0) return
+        end do
+    end subroutine write_vector_block
+
+    !> Cell nodes in VTK order, counted from 0, as Int32 or (wide) Int64.
+    subroutine write_connectivity_block(unit, m, wide, ios, msg)
+        integer, intent(in) :: unit
+        type(mesh_t), intent(in) :: m
+        logical, intent(in) :: wide
+        integer, intent(out) :: ios
+        character(len=*), intent(inout) :: msg
+        integer :: order(size(m%cells, 1)), first, last
+
+        ios = 0
+        order = vtk_node_order(m%element)
+        do first = 1, m%n_cells(), CHUNK
+            last = min(first + CHUNK - 1, m%n_cells())
+            if (wide) then
+                write (unit, iostat=ios, iomsg=msg) int(m%cells(order, first:last) - 1, int64)
+            else
+                write (unit, iostat=ios, iomsg=msg) int(m%cells(order, first:last) - 1, int32)
+            end if
+            if (ios /= 0) return
+        end do
+    end subroutine write_connectivity_block
+
+    !> Where each cell ends in connectivity: the running node count.
+    subroutine write_offsets_block(unit, nodes_per_cell, n_cells, wide, ios, msg)
+        integer, intent(in) :: unit, nodes_per_cell, n_cells
+        logical, intent(in) :: wide
+        integer, intent(out) :: ios
+        character(len=*), intent(inout) :: msg
+        integer :: first, last, e
+
+        ios = 0
+        do first = 1, n_cells, CHUNK
+            last = min(first + CHUNK - 1, n_cells)
+            if (wide) then
+                write (unit, iostat=ios, iomsg=msg) &
+                    [(int(nodes_per_cell, int64)*e, e=first, last)]
+            else
+                write (unit, iostat=ios, iomsg=msg) &
+                    [(int(nodes_per_cell, int32)*int(e, int32), e=first, last)]
+            end if
+            if (ios /= 0) return
+        end do
+    end subroutine write_offsets_block
+
+    !> One UInt8 cell type per cell (every code used is below 128).
+    subroutine write_types_block(unit, cell_type, n_cells, ios, msg)
+        integer, intent(in) :: unit, cell_type, n_cells
+        integer, intent(out) :: ios
+        character(len=*), intent(inout) :: msg
+        integer :: first, last
+
+        ios = 0
+        do first = 1, n_cells, CHUNK
+            last = min(first + CHUNK - 1, n_cells)
+            write (unit, iostat=ios, iomsg=msg) spread(int(cell_type, int8), 1, last - first + 1)
+            if (ios /= 0) return
+        end do
+    end subroutine write_types_block
+
+    !> The XML with every value as text; returns at the first failed write with its iostat
+    !> and message.
+    subroutine write_ascii_grid(unit, m, names, vectors, ios, msg)
         integer, intent(in) :: unit
         type(mesh_t), intent(in) :: m
         character(len=*), intent(in) :: names(:)
@@ -62,11 +321,8 @@ contains
         integer(i8), allocatable :: offsets(:)
         integer :: e, i, k
 
-        write (unit, '(a)', iostat=ios, iomsg=msg) '<?xml version="1.0"?>', &
-            '<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian" ' &
-            //'header_type="UInt64">', '  <UnstructuredGrid>', &
-            '    <Piece NumberOfPoints="'//int_text(m%n_nodes())//'" NumberOfCells="' &
-            //int_text(m%n_cells())//'">'
+        write (unit, '(a)', iostat=ios, iomsg=msg) xml_prolog(), '  <UnstructuredGrid>', &
+            piece_tag(m)
         if (ios /= 0) return
 
         if (size(names) > 0) then
@@ -74,9 +330,8 @@ contains
                 '      <PointData Vectors="'//xml_escaped(trim(names(1)))//'">'
             if (ios /= 0) return
             do k = 1, size(names)
-                write (unit, '(a)', iostat=ios, iomsg=msg) '        <DataArray type="Float64" ' &
-                    //'Name="'//xml_escaped(trim(names(k)))//'" NumberOfComponents="3" ' &
-                    //'format="ascii">'
+                write (unit, '(a)', iostat=ios, iomsg=msg) &
+                    data_array_tag('Float64', trim(names(k)), 3, INLINE)
                 if (ios /= 0) return
                 do i = 1, m%n_nodes()
                     write (unit, REAL_FORMAT, iostat=ios, iomsg=msg) vectors(:, i, k), 0.0_wp
@@ -90,14 +345,14 @@ contains
         end if
 
         write (unit, '(a)', iostat=ios, iomsg=msg) '      <Points>', &
-            '        <DataArray type="Float64" NumberOfComponents="3" format="ascii">'
+            data_array_tag('Float64', '', 3, INLINE)
         if (ios /= 0) return
         do i = 1, m%n_nodes()
             write (unit, REAL_FORMAT, iostat=ios, iomsg=msg) m%coords(:, i), 0.0_wp
             if (ios /= 0) return
         end do
         write (unit, '(a)', iostat=ios, iomsg=msg) '        </DataArray>', '      </Points>', &
-            '      <Cells>', '        <DataArray type="Int64" Name="connectivity" format="ascii">'
+            '      <Cells>', data_array_tag('Int64', 'connectivity', 0, INLINE)
         if (ios /= 0) return
         order = vtk_node_order(m%element)
         do e = 1, m%n_cells()
@@ -106,21 +361,21 @@ contains
             if (ios /= 0) return
         end do
         write (unit, '(a)', iostat=ios, iomsg=msg) '        </DataArray>', &
-            '        <DataArray type="Int64" Name="offsets" format="ascii">'
+            data_array_tag('Int64', 'offsets', 0, INLINE)
         if (ios /= 0) return
         ! Offsets mark where each cell ends in connectivity: the running node count.
         offsets = [(int(size(m%cells, 1), i8)*e, e=1, m%n_cells())]
         call write_in_lines(unit, offsets, ios, msg)
         if (ios /= 0) return
         write (unit, '(a)', iostat=ios, iomsg=msg) '        </DataArray>', &
-            '        <DataArray type="UInt8" Name="types" format="ascii">'
+            data_array_tag('UInt8', 'types', 0, INLINE)
         if (ios /= 0) return
         call write_in_lines(unit, spread(int(vtk_cell_type(m%element), i8), 1, m%n_cells()), &
                             ios, msg)
         if (ios /= 0) return
         write (unit, '(a)', iostat=ios, iomsg=msg) '        </DataArray>', '      </Cells>', &
             '    </Piece>', '  </UnstructuredGrid>', '</VTKFile>'
-    end subroutine write_grid
+    end subroutine write_ascii_grid
 
     !> VTK cell type of an ELEMENT_* code; 0 for an unknown code.
     pure integer function vtk_cell_type(element)
@@ -154,11 +409,11 @@ contains
             call stat%fail(STATUS_INTERNAL, 'write_vtu: the mesh has no nodes or cells')
         else if (vtk_cell_type(m%element) == 0) then
             call stat%fail(STATUS_INTERNAL, 'write_vtu: unknown element code ' &
-                           //int_text(m%element))
+                           //to_string(m%element))
         else if (size(m%cells, 1) /= element_nodes_per_cell(m%element)) then
             call stat%fail(STATUS_INTERNAL, 'write_vtu: cells have ' &
-                           //int_text(size(m%cells, 1))//' nodes, the element needs ' &
-                           //int_text(element_nodes_per_cell(m%element)))
+                           //to_string(size(m%cells, 1))//' nodes, the element needs ' &
+                           //to_string(element_nodes_per_cell(m%element)))
         else if (size(m%coords, 1) /= N_DIM) then
             call stat%fail(STATUS_INTERNAL, 'write_vtu: coordinates must be (2, n_nodes)')
         else if (m%n_cells() > 0) then
@@ -186,14 +441,6 @@ contains
             if (ios /= 0) return
         end do
     end subroutine write_in_lines
-
-    pure function int_text(n) result(text)
-        integer, intent(in) :: n
-        character(len=:), allocatable :: text
-        character(len=16) :: buffer
-        write (buffer, '(i0)') n
-        text = trim(buffer)
-    end function int_text
 
     !> `text` safe inside an XML attribute.
     pure function xml_escaped(text) result(xml)
