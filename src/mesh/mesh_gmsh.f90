@@ -110,14 +110,16 @@ contains
         open (newunit=unit, file=path, access='stream', form='unformatted', status='old', &
               action='read', iostat=ios, iomsg=msg)
         if (ios /= 0) then
-            call stat%fail(STATUS_MESH, path//': cannot open mesh file: '//trim(msg))
+            call stat%fail(STATUS_MESH, path//': cannot open mesh file: '//trim(msg)// &
+                           '; expected a readable Gmsh .msh file')
             return
         end if
         inquire (unit=unit, size=file_size)
         allocate (character(len=max(file_size, 0_i8)) :: f%text)
         if (file_size > 0) read (unit, iostat=ios, iomsg=msg) f%text
         close (unit)
-        if (ios /= 0) call stat%fail(STATUS_MESH, path//': cannot read mesh file: '//trim(msg))
+        if (ios /= 0) call stat%fail(STATUS_MESH, path//': cannot read mesh file: '// &
+                                     trim(msg)//'; expected a readable Gmsh .msh file')
     end subroutine load_file
 
     !> The next line without its end-of-line characters; .false. at the end of the file.
@@ -1407,16 +1409,21 @@ contains
         end do
     end function sort_index
 
-    !> At most 60 characters of a line, for messages, printable (a stray carriage return
-    !> in a quoted line would break the one-line message).
+    !> At most 60 characters of a line, for messages, in printable ASCII: a stray carriage
+    !> return would break the one-line message, and bytes of a binary or garbage file
+    !> (C1 controls among them) could drive the terminal.
     pure function shortened(text) result(short)
         character(len=*), intent(in) :: text
         character(len=:), allocatable :: short
+        integer :: i
         if (len(text) <= 60) then
             short = printable(text)
         else
             short = printable(text(:57))//'...'
         end if
+        do i = 1, len(short)
+            if (iachar(short(i:i)) > 127) short(i:i) = '?'
+        end do
     end function shortened
 
     !> `text` with control characters (line breaks, NUL, escape, ...) replaced by '?'.
