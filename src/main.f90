@@ -103,6 +103,7 @@ program nceig
     end select
     ! gfortran 12 keeps main-program allocatables in a frame gone before LeakSanitizer looks
     deallocate (argument)
+    if (allocated(plot_note)) deallocate (plot_note)
 
 contains
 

@@ -2,12 +2,15 @@
 # SPDX-License-Identifier: MIT
 # The bad-input catalogue of SPEC section 7: every namelist variable out of range, unknown
 # groups and variables, wrong types, unknown names, a side used twice, no Dirichlet boundary,
-# a missing, unreadable, truncated or garbage input file, an output directory that cannot be
-# written. Each must give exactly one line on stderr naming the place (file, group and
-# variable) and what was expected, a non-zero exit, and leave no output.
+# a missing, unreadable, truncated or garbage input file; a missing, directory, truncated,
+# garbage or binary mesh file, unknown physical groups, a bent contact group; an output
+# directory that cannot be written. Each must give exactly one line on stderr naming the
+# place (file, group and variable, or file and line) and what was expected, a non-zero
+# exit, and leave no output.
 # Usage: cli_bad_input.sh NCEIG SOURCE_DIR
 set -u
 nceig=$1
+source_dir=$2
 work=$(mktemp -d)
 trap 'chmod -R u+rwx "$work" 2>/dev/null; rm -rf "$work"' EXIT
 passed=0 failed=0
@@ -125,6 +128,63 @@ else
     echo "SKIP  unreadable input file: running as root, whom chmod 000 does not stop" \
          "(the directory case above covers an open that fails)"
 fi
+
+# --- bad mesh files (source = 'gmsh'): the message names the mesh file, and its line where
+# one applies (gmsh_bad NAME MESH 'dirichlet neumann contact' WORD...)
+meshes="$source_dir/input/meshes"
+gmsh_bad() {
+    local name=$1 mesh=$2 groups=$3
+    shift 3
+    read -r dirichlet neumann contact <<<"$groups"
+    [[ $neumann != - ]] || neumann=''
+    printf "&mesh source = 'gmsh', file = '%s', dirichlet = '%s', neumann = '%s', " \
+        "$mesh" "$dirichlet" "$neumann" >"$work/mesh.nml"
+    printf "contact = '%s' /\n&output directory = '%s' /\n" "$contact" "$out" >>"$work/mesh.nml"
+    run_bad "$name" "$work/mesh.nml" "$@"
+    # Quoted file content must not reach the terminal raw (binary bytes, escapes).
+    check "$name: stderr is printable ASCII" '! LC_ALL=C grep -q "[^[:print:]]" "$work/err"'
+}
+groups='fixed traction contact'   # the groups of single_element.msh
+cp "$meshes/single_element.msh" "$work/good.msh"
+readable='expected a readable Gmsh .msh file'
+gmsh_bad 'mesh file missing' "$work/none.msh" "$groups" none.msh 'cannot open' "$readable"
+mkdir -p "$work/folder.msh"
+gmsh_bad 'mesh file is a directory' "$work/folder.msh" "$groups" folder.msh directory "$readable"
+# Cut in the middle of $Nodes: the header's count no longer fits (reported at its line).
+head -n 200 "$meshes/square_16.msh" >"$work/cut.msh"
+nodes_line=$(($(grep -n '^\$Nodes' "$work/cut.msh" | cut -d: -f1) + 1))
+gmsh_bad 'mesh file truncated in $Nodes' "$work/cut.msh" 'top left bottom' \
+    "cut.msh:$nodes_line: " truncated expected
+# Cut after the last element: the end marker is missing.
+grep -v '^\$EndElements' "$meshes/single_element.msh" >"$work/noend.msh"
+gmsh_bad 'mesh file truncated before $EndElements' "$work/noend.msh" "$groups" \
+    "noend.msh:$(wc -l <"$work/noend.msh"): unexpected end of file (truncated?)" \
+    'expected $EndElements'
+# 3000 pseudo-random bytes, the same every run
+LC_ALL=C awk 'BEGIN { srand(9); for (i = 0; i < 3000; i++) printf "%c", int(rand() * 256) }' \
+    >"$work/garbage.msh"
+gmsh_bad 'garbage mesh file' "$work/garbage.msh" "$groups" 'garbage.msh:' \
+    'not a Gmsh mesh file: expected $MeshFormat'
+sed 's/^4\.1 0 8$/4.1 1 8/' "$meshes/single_element.msh" >"$work/binary.msh"
+gmsh_bad 'binary MSH file' "$work/binary.msh" "$groups" \
+    'binary.msh:2: binary MSH files are not supported' '-format msh41'
+gmsh_bad 'unknown group in dirichlet' "$work/good.msh" 'fixd traction contact' \
+    mesh.nml '&mesh' dirichlet \
+    "good.msh has no 1D physical group 'fixd' (it has: contact, fixed, traction)"
+gmsh_bad 'unknown group in neumann' "$work/good.msh" 'fixed side contact' \
+    mesh.nml '&mesh' neumann \
+    "no 1D physical group 'side' (it has: contact, fixed, traction)"
+gmsh_bad 'unknown group in contact' "$work/good.msh" 'fixed traction gap' \
+    mesh.nml '&mesh' contact \
+    "no 1D physical group 'gap' (it has: contact, fixed, traction)"
+# Curve 2 ([B, C], line 38) moved from group 'fixed' (2) into group 'contact' (1): a bent
+# contact boundary, reported at the line of the edge that leaves the first edge's line.
+sed 's/^2 0 0 0 2 2 0 1 2 2 2 -3$/2 0 0 0 2 2 0 1 1 2 2 -3/' "$meshes/single_element.msh" \
+    >"$work/bent.msh"
+bent_line=$(grep -n '^2 2 3$' "$work/bent.msh" | cut -d: -f1)
+gmsh_bad 'contact group not straight' "$work/bent.msh" 'traction - contact' \
+    "bent.msh:$bent_line: contact boundary 'contact' is not one straight segment" \
+    'expected one straight segment'
 
 # --- an output directory that cannot be written: a path under a regular file
 printf 'x\n' >"$work/plain"

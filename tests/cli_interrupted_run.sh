@@ -56,5 +56,36 @@ check 'at least one run was killed mid-way' '[[ $n_killed -ge 1 ]]'
 check 'the killed runs left only hidden staging folders' \
     '[[ -z $(cd "$out" && ls -A | grep -v "^\.nceig-partial-" | grep -v -x -F "$(cd "$work/before" && ls)") ]]'
 
+
+# The next run into the directory removes the staging folders of killed runs (their
+# processes are gone), but not that of a live process (this shell, as if it were a run in
+# progress), nor what a stale-looking name links to (pid 999999999 exceeds any pid_max).
+# Each run's begin already removes the folders of the runs killed before it, and a kill
+# rarely falls into the short write phase, so one more killed process gets a staging
+# folder as a run's would look when killed while writing.
+sleep 30 &
+victim=$!
+mkdir "$out/.nceig-partial-$victim"
+echo 'partial' >"$out/.nceig-partial-$victim/mode_001.vtu"
+kill -KILL "$victim"
+wait "$victim" 2>/dev/null
+stale=$(cd "$out" && ls -A | grep '^\.nceig-partial-' | tr '\n' ' ')
+echo "      staging folders of killed processes: $stale"
+mkdir "$out/.nceig-partial-$$"
+echo 'being written' >"$out/.nceig-partial-$$/mode_001.vtu"
+mkdir "$work/elsewhere"
+echo 'not ours' >"$work/elsewhere/keep.txt"
+ln -s "$work/elsewhere" "$out/.nceig-partial-999999999"
+"$nceig" "$work/first.nml" >/dev/null 2>&1
+check 'the next run completes' '[[ -s "$out/summary.json" ]]'
+check 'the next run removed every staging folder of a killed run' \
+    'for f in $stale; do [[ ! -e "$out/$f" ]] || exit 1; done'
+check 'the next run kept the staging folder of a live process' \
+    '[[ $(cat "$out/.nceig-partial-$$/mode_001.vtu") == "being written" ]]'
+check 'the next run did not follow a link named like a staging folder' \
+    '[[ -L "$out/.nceig-partial-999999999" && $(cat "$work/elsewhere/keep.txt") == "not ours" ]]'
+check 'the next run left no staging folder of its own' \
+    '[[ $(cd "$out" && ls -A | grep -c "^\.nceig-partial-") -eq 2 ]]'
+
 echo "cli_interrupted_run: $passed passed, $failed failed"
 [[ $failed -eq 0 ]]

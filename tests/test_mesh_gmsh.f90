@@ -6,7 +6,7 @@
 program test_mesh_gmsh
     use kinds, only: wp
     use status, only: status_t, STATUS_MESH, STATUS_BAD_INPUT
-    use mesh, only: mesh_t, ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, element_name
+    use mesh, only: mesh_t, ELEMENT_P1, ELEMENT_Q2, element_name
     use mesh_structured, only: structured_rectangle
     use mesh_gmsh, only: read_gmsh
     use mesh_renumber, only: node_order, node_bandwidth, renumber_nodes, RENUMBER_NONE, &
@@ -19,14 +19,9 @@ program test_mesh_gmsh
     use timer, only: timings_t
     use strings, only: to_string
     use testing, only: test_suite_t
+    use msh_writer, only: write_msh41, write_msh22
     implicit none
 
-    ! Gmsh element type codes and the body's physical tag, as the files written here use.
-    integer, parameter :: GMSH_TYPES(4) = [2, 3, 9, 10]       !! P1, Q1, P2, Q2 cells
-    integer, parameter :: BODY_TAG = 5
-    ! Node tags in the written files: sparse and not in node order, so that the reader's
-    ! tag lookup (not a shortcut for 1..n) is exercised.
-    integer, parameter :: TAG_STRIDE = 7, TAG_OFFSET = 1000
     type(test_suite_t) :: t
     integer :: element
 
@@ -213,7 +208,10 @@ contains
         call t%check('physical names are lowercased', m%part_index('bottom') > 0)
 
         lines = base(:14)
-        call expect_error('truncated file', lines, 14, 'unexpected end of file')
+        call expect_error('truncated file', lines, 11, 'the file ends 3 lines later (truncated?)')
+        lines = base(:22)
+        call expect_error('no end marker', lines, 22, &
+                          'unexpected end of file (truncated?); expected $EndElements')
         lines = base
         lines(22) = '4 2 2 3 1 1 3 7'
         call expect_error('undefined node', lines, 22, 'node 7, which $Nodes does not define')
@@ -246,6 +244,7 @@ contains
         call expect_error('fewer elements than announced', lines, 23, 'found ''$EndElements''')
         lines = [base(:9), base(17:)]
         call expect_error('no $Nodes section', lines, 16, 'no $Nodes section')
+        call check_fuzz_regressions(base)
 
         ! Errors found while building the problem from a readable file.
         config%input_file = 'errors.nml'
@@ -274,6 +273,110 @@ contains
             index(stat%message, 'bent.msh:20: contact boundary ''bottom'' is not one ' &
             //'straight segment') == 1)
     end subroutine check_errors
+
+    !> The reader bugs test_fuzz_mesh_gmsh found, one file each (base: the MSH 2.2 file of
+    !> check_errors). Before the fixes these crashed (Debug FPE trap, allocation of an
+    !> allocated array, array bound, failed huge allocation), read unset or non-finite
+    !> coordinates, or printed control characters.
+    subroutine check_fuzz_regressions(base)
+        character(len=48), intent(in) :: base(:)
+        character(len=48), allocatable :: lines(:)
+        character(len=48) :: base41(36)
+        character(len=*), parameter :: XYZ = 'expected ''tag x y z'' (decimal numbers below 1e100'
+        type(mesh_t) :: m
+        type(status_t) :: stat
+        integer :: i
+
+        allocate (lines(0))   ! avoids a false -Wuninitialized at -O3 (see split_names)
+        ! Coordinates: overflow (trapped in the list-directed read), NaN and Infinity, and
+        ! list-directed syntax that left values unset (',' '/') or repeated them ('3*1').
+        lines = base
+        lines(13) = '2 1e999 0 0'
+        call expect_error('coordinate 1e999', lines, 13, XYZ)
+        lines(13) = '2 1e100 0 0'
+        call expect_error('coordinate 1e100', lines, 13, XYZ)
+        lines(13) = '2 NaN 0 0'
+        call expect_error('coordinate NaN', lines, 13, XYZ)
+        lines(13) = '2 1 -Infinity 0'
+        call expect_error('coordinate -Infinity', lines, 13, XYZ)
+        lines(13) = '2 1 /'
+        call expect_error('coordinates ended by a slash', lines, 13, XYZ)
+        lines(13) = '2 1 , 0'
+        call expect_error('coordinate left empty by a comma', lines, 13, XYZ)
+        lines(13) = '2 3*1'
+        call expect_error('coordinates as a repeat count', lines, 13, XYZ)
+        ! A fifth node, on no cell (so dropped), just inside the bound.
+        lines = [character(len=48) :: base(:10), '5', base(12:15), '5 9.99e99 -9.99e99 0', &
+                 base(16:)]
+        call write_lines('large_coordinate.msh', lines)
+        call read_gmsh('large_coordinate.msh', m, stat)
+        call t%check('coordinate 9.99e99 (below the bound) reads', stat%ok())
+        lines = base
+        lines(13) = '2 1.0E0 .0 0.'
+        call write_lines('coordinate_spellings.msh', lines)
+        call read_gmsh('coordinate_spellings.msh', m, stat)
+        call t%check('coordinates 1.0E0, .0 and 0. read', stat%ok())
+        ! The version line read token by token (',' left the file type unset).
+        lines = base
+        lines(2) = '2.2 , 8'
+        call expect_error('file type left empty', lines, 2, 'expected ''version file-type')
+        ! A second section of one kind (allocated twice).
+        lines = [base(:16), base(10:)]
+        call expect_error('a second $Nodes section', lines, 17, &
+                          'a second $Nodes section (the first began at line 10)')
+        ! A count beyond what the file holds (a 72 GB allocation).
+        lines = base
+        lines(18) = '2000000000'
+        call expect_error('huge element count', lines, 18, &
+                          'the header announces 2000000000 elements')
+        lines = base
+        lines(11) = '2147483647'
+        call expect_error('huge node count', lines, 11, 'the header announces 2147483647 nodes')
+        lines = base
+        lines(5) = '999999'
+        call expect_error('huge name count', lines, 5, 'the header announces 999999 names')
+        ! Control characters quoted from the file (an escape in a header, a carriage
+        ! return in a name): the message stays one printable line.
+        lines = base
+        lines(17) = '$Ele'//achar(27)//'ments'
+        call expect_error('escape character in a header', lines, 23, 'expected $End')
+        call read_gmsh('bad_escapecharacterinaheader.msh', m, stat)
+        if (allocated(stat%message)) call t%check('escape character in a header: message ' &
+            //'printable', all([(iachar(stat%message(i:i)) >= 32, i=1, len(stat%message))]))
+        lines = base
+        lines(6) = '1 1 "Bot'//achar(13)//'tom"'
+        call expect_error('carriage return in a name', lines, 6, 'control characters in ' &
+                          //'the physical name "Bot?tom"; expected printable text')
+
+        ! MSH 4.1: a block count whose sum with the elements before overflowed the check
+        ! (array bound), and entity counts beyond the file.
+        base41 = [character(len=48) :: '$MeshFormat', '4.1 0 8', '$EndMeshFormat', &
+                  '$PhysicalNames', '2', '1 1 "bottom"', '1 2 "top"', '$EndPhysicalNames', &
+                  '$Entities', '0 2 1 0', '1 0 0 0 1 0 0 1 1 0', '2 0 1 0 1 1 0 1 2 0', &
+                  '1 0 0 0 1 1 0 0 0', '$EndEntities', '$Nodes', '1 4 1 4', '2 1 0 4', '1', &
+                  '2', '3', '4', '0 0 0', '1 0 0', '1 1 0', '0 1 0', '$EndNodes', '$Elements', &
+                  '3 4 1 4', '1 1 1 1', '1 1 2', '1 2 1 1', '2 3 4', '2 1 2 2', '3 1 2 3', &
+                  '4 1 3 4', '$EndElements']
+        call write_lines('good41.msh', base41)
+        call read_gmsh('good41.msh', m, stat)
+        call t%check('the MSH 4.1 base file of the regressions reads', stat%ok() .and. &
+                     m%part_index('bottom') > 0 .and. m%part_index('top') > 0)
+        lines = base41
+        lines(31) = '1 2 1 2147483647'
+        call expect_error('MSH 4.1 block count overflowing the sum', lines, 31, &
+                          'more elements than the 4 of the $Elements header')
+        lines = base41
+        lines(17) = '2 1 0 2147483647'
+        call expect_error('MSH 4.1 node block count overflowing the sum', lines, 17, &
+                          'more nodes than the 4 of the $Nodes header')
+        lines = base41
+        lines(10) = '0 2 2147483647 2147483647'
+        call expect_error('MSH 4.1 huge entity counts', lines, 10, &
+                          'the header announces 2147483647 entities')
+        lines = base41
+        lines(23) = '1 1e999 0'
+        call expect_error('MSH 4.1 coordinate 1e999', lines, 23, 'expected coordinates x y z')
+    end subroutine check_fuzz_regressions
 
     !> Write `lines` to a file named after `what`, read it, and check the failure.
     subroutine expect_error(what, lines, line, words)
@@ -364,109 +467,4 @@ contains
                     all(a%edge_part == b%edge_part) .and. all(a%part_names == b%part_names)
     end function same_mesh
 
-    elemental integer function node_tag(node)
-        integer, intent(in) :: node
-        node_tag = TAG_OFFSET + TAG_STRIDE*node
-    end function node_tag
-
-    !> Node order of a cell written clockwise (the inverse of the reader's reorientation).
-    pure function clockwise_order(element) result(order)
-        integer, intent(in) :: element
-        integer, allocatable :: order(:)
-        select case (element)
-        case (ELEMENT_P1); order = [1, 3, 2]
-        case (ELEMENT_Q1); order = [1, 4, 3, 2]
-        case (ELEMENT_P2); order = [1, 3, 2, 6, 5, 4]
-        case (ELEMENT_Q2); order = [1, 4, 3, 2, 8, 7, 6, 5, 9]
-        end select
-    end function clockwise_order
-
-    !> MSH 4.1 of a structured mesh: nodes in reverse order in one surface block, the four
-    !> sides as curves 1-4 in physical groups 1-4, the body surface in group 5.
-    subroutine write_msh41(path, m, clockwise)
-        character(len=*), intent(in) :: path
-        type(mesh_t), intent(in) :: m
-        logical, intent(in) :: clockwise
-        integer :: unit, i, part, n_edges, line_type, tag
-        integer, allocatable :: order(:)
-        allocate (order(0))   ! avoids a false -Wuninitialized at -O3 (see split_names)
-        open (newunit=unit, file=path, status='replace', action='write')
-        write (unit, '(a)') '$MeshFormat', '4.1 0 8', '$EndMeshFormat', '$PhysicalNames', '5'
-        do part = 1, 4
-            write (unit, '(a)') '1 '//to_string(part)//' "'//trim(m%part_names(part))//'"'
-        end do
-        write (unit, '(a)') '2 5 "body"', '$EndPhysicalNames', '$Entities', '0 4 1 0'
-        do part = 1, 4
-            write (unit, '(a)') to_string(part)//' 0 0 0 1.5 1 0 1 '//to_string(part)//' 0'
-        end do
-        write (unit, '(a)') '1 0 0 0 1.5 1 0 1 '//to_string(BODY_TAG)//' 0', '$EndEntities'
-        write (unit, '(a)') '$Nodes', '1 '//to_string(m%n_nodes())//' '// &
-            to_string(node_tag(1))//' '//to_string(node_tag(m%n_nodes())), &
-            '2 1 0 '//to_string(m%n_nodes())
-        do i = m%n_nodes(), 1, -1
-            write (unit, '(i0)') node_tag(i)
-        end do
-        do i = m%n_nodes(), 1, -1
-            write (unit, '(2(es25.17, 1x), a)') m%coords(:, i), '0'
-        end do
-        write (unit, '(a)') '$EndNodes', '$Elements'
-        n_edges = size(m%edges, 2)
-        write (unit, '(a)') '5 '//to_string(n_edges + m%n_cells())//' 1 '// &
-            to_string(n_edges + m%n_cells())
-        line_type = merge(8, 1, size(m%edges, 1) == 3)
-        tag = 0
-        do part = 1, 4
-            write (unit, '(a)') '1 '//to_string(part)//' '//to_string(line_type)//' '// &
-                to_string(count(m%edge_part == part))
-            do i = 1, n_edges
-                if (m%edge_part(i) /= part) cycle
-                tag = tag + 1
-                write (unit, '(*(i0, 1x))') tag, node_tag(m%edges(:, i))
-            end do
-        end do
-        write (unit, '(a)') '2 1 '//to_string(GMSH_TYPES(m%element))//' '// &
-            to_string(m%n_cells())
-        order = [(i, i=1, size(m%cells, 1))]
-        if (clockwise) order = clockwise_order(m%element)
-        do i = 1, m%n_cells()
-            tag = tag + 1
-            write (unit, '(*(i0, 1x))') tag, node_tag(m%cells(order, i))
-        end do
-        write (unit, '(a)') '$EndElements'
-        close (unit)
-    end subroutine write_msh41
-
-    !> The same mesh as MSH 2.2 (elements: tag type 2 physical elementary nodes...).
-    subroutine write_msh22(path, m)
-        character(len=*), intent(in) :: path
-        type(mesh_t), intent(in) :: m
-        integer :: unit, i, part, n_edges, line_type, tag
-        open (newunit=unit, file=path, status='replace', action='write')
-        write (unit, '(a)') '$MeshFormat', '2.2 0 8', '$EndMeshFormat', '$PhysicalNames', '5'
-        do part = 1, 4
-            write (unit, '(a)') '1 '//to_string(part)//' "'//trim(m%part_names(part))//'"'
-        end do
-        write (unit, '(a)') '2 5 "body"', '$EndPhysicalNames', '$Nodes', to_string(m%n_nodes())
-        do i = m%n_nodes(), 1, -1
-            write (unit, '(i0, 1x, 2(es25.17, 1x), a)') node_tag(i), m%coords(:, i), '0'
-        end do
-        n_edges = size(m%edges, 2)
-        write (unit, '(a)') '$EndNodes', '$Elements', to_string(n_edges + m%n_cells())
-        line_type = merge(8, 1, size(m%edges, 1) == 3)
-        tag = 0
-        do part = 1, 4
-            do i = 1, n_edges
-                if (m%edge_part(i) /= part) cycle
-                tag = tag + 1
-                write (unit, '(*(i0, 1x))') tag, line_type, 2, part, part, node_tag(m%edges(:, i))
-            end do
-        end do
-        do i = 1, m%n_cells()
-            tag = tag + 1
-            write (unit, '(*(i0, 1x))') tag, GMSH_TYPES(m%element), 2, BODY_TAG, 1, &
-                node_tag(m%cells(:, i))
-        end do
-        write (unit, '(a)') '$EndElements'
-        close (unit)
-    end subroutine write_msh22
 end program test_mesh_gmsh

@@ -1,11 +1,13 @@
 ! SPDX-License-Identifier: MIT
-!> Staged output: files appear in the directory only at commit, abort leaves nothing, and
-!> a directory that cannot be created is reported as STATUS_IO.
+!> Staged output: files appear in the directory only at commit, abort leaves nothing, begin
+!> removes the staging folders of dead runs only, and a directory that cannot be created is
+!> reported as STATUS_IO.
 program test_output_stage
     use status, only: status_t, STATUS_IO
     use output_stage, only: output_stage_t
     use filesystem, only: file_exists, is_directory, process_id, make_directories, &
-                          remove_file, remove_directory
+                          remove_file, remove_directory, process_gone, list_directory, &
+                          MAX_NAME_LEN
     use testing, only: test_suite_t
     implicit none
     type(test_suite_t) :: t
@@ -60,6 +62,8 @@ program test_output_stage
     call stage%abort()
     call t%check('abort twice is harmless', .not. file_exists(staging))
 
+    call check_stale_staging()
+
     ! A regular file where a parent directory should be.
     call write_text('stage_out/plain', 'not a directory')
     call stage%begin('stage_out/plain/sub', stat)
@@ -100,6 +104,44 @@ contains
         read (unit, '(a)', iostat=ios) line
         close (unit)
     end function first_line
+
+    !> Staging folders left by killed runs: begin removes those of gone processes (pid
+    !> 999999999 exceeds any Linux pid_max, 4194304) and one of our own pid (a dead run's);
+    !> it keeps that of a live process (pid 1, init) and names that are not a pid.
+    subroutine check_stale_staging()
+        character(len=*), parameter :: PREFIX = '/.nceig-partial-'
+        character(len=MAX_NAME_LEN), allocatable :: names(:)
+        character(len=:), allocatable :: dead, live, odd
+        dead = dir//PREFIX//'999999999'
+        live = dir//PREFIX//'1'
+        odd = dir//PREFIX//'12ab'
+        call t%check('pid 999999999 is gone', process_gone(999999999))
+        call t%check('pid 1 (init) is not gone', .not. process_gone(1))
+        call t%check('our own pid is not gone', .not. process_gone(process_id()))
+        call make_directories(dead, stat)
+        call make_directories(live, stat)
+        call make_directories(odd, stat)
+        call make_directories(staging, stat)
+        call write_text(dead//'/mode_001.vtu', 'partial')
+        call write_text(dead//'/summary.json', 'partial')
+        call write_text(live//'/mode_001.vtu', 'being written')
+        call write_text(staging//'/old.txt', 'left by a dead run with our pid')
+        call list_directory(dead, names)
+        call t%check('list_directory lists the two files', size(names) == 2 .and. &
+                     any(names == 'mode_001.vtu') .and. any(names == 'summary.json'))
+        call stage%begin(dir, stat)
+        call t%check('begin after killed runs succeeds', stat%ok())
+        call t%check('staging folder of a gone process removed', .not. file_exists(dead))
+        call t%check('staging folder of a live process kept', &
+                     first_line(live//'/mode_001.vtu') == 'being written')
+        call t%check('folder not named after a pid kept', is_directory(odd))
+        call t%check('our pid''s leftover folder reused', is_directory(staging))
+        call t%check('our pid''s leftover emptied', .not. file_exists(staging//'/old.txt'))
+        call stage%abort()
+        call remove_file(live//'/mode_001.vtu')
+        call remove_directory(live)
+        call remove_directory(odd)
+    end subroutine check_stale_staging
 
     !> Leave the build folder as found (best effort; every name we might have made).
     subroutine clean()

@@ -1,7 +1,8 @@
 ! SPDX-License-Identifier: MIT
 !> Thin wrappers of the POSIX calls the output code needs (mkdir, rename, unlink, rmdir,
-!> access, getpid), which standard Fortran lacks. errno and stat() are reached through
-!> filesystem_c.c because neither can be bound portably from Fortran.
+!> access, getpid, kill(pid, 0), readdir), which standard Fortran lacks. errno, stat(),
+!> readdir() and ESRCH are reached through filesystem_c.c because none can be bound
+!> portably from Fortran.
 module filesystem
     use iso_c_binding, only: c_int, c_char, c_size_t, c_ptr, c_null_char, c_f_pointer, &
                              c_associated
@@ -9,7 +10,8 @@ module filesystem
     implicit none
     private
     public :: make_directories, rename_file, remove_file, remove_directory, file_exists, &
-              is_directory, process_id
+              is_directory, process_id, is_real_directory, process_gone, list_directory
+    integer, parameter, public :: MAX_NAME_LEN = 255   !! NAME_MAX of Linux file systems
 
     integer(c_int), parameter :: DIRECTORY_MODE = int(o'777', c_int)  !! the umask trims it
     integer(c_int), parameter :: ACCESS_EXISTS = 0_c_int              !! F_OK of <unistd.h>
@@ -74,6 +76,39 @@ module filesystem
             character(kind=c_char), intent(in) :: path(*)
             integer(c_int) :: answer
         end function c_is_directory
+
+        function c_is_real_directory(path) bind(C, name='nceig_is_real_directory') &
+                result(answer)
+            import :: c_int, c_char
+            character(kind=c_char), intent(in) :: path(*)
+            integer(c_int) :: answer
+        end function c_is_real_directory
+
+        function c_process_gone(pid) bind(C, name='nceig_process_gone') result(answer)
+            import :: c_int
+            integer(c_int), value :: pid
+            integer(c_int) :: answer
+        end function c_process_gone
+
+        function c_open_directory(path) bind(C, name='nceig_open_directory') result(handle)
+            import :: c_char, c_ptr
+            character(kind=c_char), intent(in) :: path(*)
+            type(c_ptr) :: handle              ! DIR *, NULL on failure
+        end function c_open_directory
+
+        subroutine c_close_directory(handle) bind(C, name='nceig_close_directory')
+            import :: c_ptr
+            type(c_ptr), value :: handle
+        end subroutine c_close_directory
+
+        function c_next_entry(handle, name, capacity) bind(C, name='nceig_next_entry') &
+                result(length)
+            import :: c_ptr, c_char, c_int
+            type(c_ptr), value :: handle
+            character(kind=c_char), intent(out) :: name(*)
+            integer(c_int), value :: capacity
+            integer(c_int) :: length           ! -1: no more entries, -2: name too long
+        end function c_next_entry
     end interface
 
 contains
@@ -157,6 +192,56 @@ contains
         character(len=*), intent(in) :: path
         is_directory = c_is_directory(c_path(path)) /= 0
     end function is_directory
+
+    !> True when `path` is a directory and not a symbolic link to one.
+    logical function is_real_directory(path)
+        character(len=*), intent(in) :: path
+        is_real_directory = c_is_real_directory(c_path(path)) /= 0
+    end function is_real_directory
+
+    !> True when no process of identifier `pid` exists (on this machine, in this PID
+    !> namespace); false when one does, even of another user, or when `pid` <= 0.
+    logical function process_gone(pid)
+        integer, intent(in) :: pid
+        process_gone = c_process_gone(int(pid, c_int)) /= 0
+    end function process_gone
+
+    !> Names of the entries of directory `path` but '.' and '..', in no particular order;
+    !> none when it cannot be read. Best effort, like remove_file: names longer than
+    !> MAX_NAME_LEN are left out.
+    subroutine list_directory(path, names)
+        character(len=*), intent(in) :: path
+        character(len=MAX_NAME_LEN), allocatable, intent(out) :: names(:)
+        character(len=MAX_NAME_LEN), allocatable :: grown(:)
+        character(kind=c_char) :: name(MAX_NAME_LEN)
+        type(c_ptr) :: handle
+        integer :: n, length, i
+
+        allocate (names(16))
+        n = 0
+        handle = c_open_directory(c_path(path))
+        if (.not. c_associated(handle)) then
+            names = names(:0)
+            return
+        end if
+        do
+            length = c_next_entry(handle, name, int(MAX_NAME_LEN, c_int))
+            if (length == -1) exit
+            if (length < 0) cycle
+            if (n == size(names)) then
+                allocate (grown(2*n))
+                grown(:n) = names
+                call move_alloc(grown, names)
+            end if
+            n = n + 1
+            names(n) = ''
+            do i = 1, length
+                names(n)(i:i) = name(i)
+            end do
+        end do
+        call c_close_directory(handle)
+        names = names(:n)
+    end subroutine list_directory
 
     !> Identifier of this process, to give temporary names no other run can share.
     integer function process_id()

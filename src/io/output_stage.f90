@@ -5,7 +5,8 @@
 module output_stage
     use status, only: status_t, STATUS_IO
     use filesystem, only: make_directories, rename_file, remove_file, remove_directory, &
-                          process_id
+                          process_id, process_gone, is_real_directory, list_directory, &
+                          MAX_NAME_LEN
     implicit none
     private
 
@@ -34,8 +35,10 @@ module output_stage
 
 contains
 
-    !> Create `directory` (and its parents) and an empty staging folder inside it. Fails
-    !> with STATUS_IO naming the directory when it cannot be created or written.
+    !> Create `directory` (and its parents) and an empty staging folder inside it, after
+    !> removing the staging folders that runs killed earlier left there (see
+    !> remove_stale_staging). Fails with STATUS_IO naming the directory when it cannot be
+    !> created or written.
     subroutine output_stage_begin(this, directory, stat)
         class(output_stage_t), intent(inout) :: this
         character(len=*), intent(in) :: directory
@@ -52,10 +55,9 @@ contains
                            //stat%message)
             return
         end if
+        call remove_stale_staging(this%directory)
         write (pid_text, '(i0)') process_id()
         this%staging = this%directory//'/'//STAGING_PREFIX//trim(pid_text)
-        ! A folder of this name can only be left over from a dead run that had our pid;
-        ! reusing it is harmless, as only the files registered through path() move.
         call make_directories(this%staging, stat)
         if (.not. stat%ok()) then
             call stat%fail(STATUS_IO, 'output directory '//this%directory// &
@@ -64,6 +66,38 @@ contains
         end if
         this%active = .true.
     end subroutine output_stage_begin
+
+    !> Remove the staging folders in `directory` whose process is gone: a run killed (e.g.
+    !> SIGKILL) between begin and commit leaves <directory>/.nceig-partial-<pid> behind.
+    !> A folder named after our own pid is also stale (we have not made ours yet); those of
+    !> live processes, other names, and links are left alone. Best effort: what cannot be
+    !> removed stays. Process identifiers are those of this machine: see README (Nothing
+    !> lost) about output directories shared between machines.
+    subroutine remove_stale_staging(directory)
+        character(len=*), intent(in) :: directory
+        character(len=MAX_NAME_LEN), allocatable :: names(:), files(:)
+        character(len=:), allocatable :: folder, digits
+        integer :: i, j, pid
+
+        call list_directory(directory, names)
+        do i = 1, size(names)
+            if (index(names(i), STAGING_PREFIX) /= 1) cycle
+            digits = trim(names(i)(len(STAGING_PREFIX) + 1:))
+            ! pids are below 2^22 on Linux: 9 digits cannot overflow an integer.
+            if (len(digits) == 0 .or. len(digits) > 9) cycle
+            if (verify(digits, '0123456789') /= 0) cycle
+            read (digits, '(i9)') pid
+            if (pid /= process_id() .and. .not. process_gone(pid)) cycle
+            folder = directory//'/'//trim(names(i))
+            ! Not through a link: its target is not ours to empty.
+            if (.not. is_real_directory(folder)) cycle
+            call list_directory(folder, files)
+            do j = 1, size(files)
+                call remove_file(folder//'/'//trim(files(j)))
+            end do
+            call remove_directory(folder)
+        end do
+    end subroutine remove_stale_staging
 
     !> Where to write the output file `name` while staging, registering it for commit.
     !> Before begin (or after commit/abort) this is simply <directory>/<name> or <name>.

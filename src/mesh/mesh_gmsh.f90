@@ -35,6 +35,10 @@ module mesh_gmsh
     ! z of a 2D mesh is written as 0 by Gmsh; allow round-off of a rotated plane geometry.
     real(wp), parameter :: PLANAR_TOL = 1.0e-10_wp
     integer, parameter :: DEGENERATE = 0, FOLDED = 2   !! cell_orientation besides +-1
+    ! Coordinates must be below 1e100 in magnitude: far beyond any length in metres, and the
+    ! reader's products of coordinate differences (Jacobians, squared diameters) stay finite.
+    integer, parameter :: MAX_DECIMAL_EXPONENT = 99
+    character(len=*), parameter :: REAL_HINT = '(decimal numbers below 1e100 in magnitude)'
     character(len=*), parameter :: FORMAT_HINT = 'write ASCII with gmsh -format msh41 ' &
                                                  //'(or -format msh22)'
 
@@ -106,14 +110,16 @@ contains
         open (newunit=unit, file=path, access='stream', form='unformatted', status='old', &
               action='read', iostat=ios, iomsg=msg)
         if (ios /= 0) then
-            call stat%fail(STATUS_MESH, path//': cannot open mesh file: '//trim(msg))
+            call stat%fail(STATUS_MESH, path//': cannot open mesh file: '//trim(msg)// &
+                           '; expected a readable Gmsh .msh file')
             return
         end if
         inquire (unit=unit, size=file_size)
         allocate (character(len=max(file_size, 0_i8)) :: f%text)
         if (file_size > 0) read (unit, iostat=ios, iomsg=msg) f%text
         close (unit)
-        if (ios /= 0) call stat%fail(STATUS_MESH, path//': cannot read mesh file: '//trim(msg))
+        if (ios /= 0) call stat%fail(STATUS_MESH, path//': cannot read mesh file: '// &
+                                     trim(msg)//'; expected a readable Gmsh .msh file')
     end subroutine load_file
 
     !> The next line without its end-of-line characters; .false. at the end of the file.
@@ -154,7 +160,7 @@ contains
         character(len=*), intent(in) :: expected
         type(status_t), intent(inout) :: stat
         call stat%fail(STATUS_MESH, f%path//':'//to_string(f%line)// &
-            ': unexpected end of file (truncated?); expected '//expected)
+            ': unexpected end of file (truncated?); expected '//printable(expected))
     end subroutine truncated
 
     !> Fail with 'path:line: message' at the line last read.
@@ -162,7 +168,7 @@ contains
         type(text_file_t), intent(in) :: f
         type(status_t), intent(inout) :: stat
         character(len=*), intent(in) :: message
-        call stat%fail(STATUS_MESH, f%path//':'//to_string(f%line)//': '//message)
+        call stat%fail(STATUS_MESH, f%path//':'//to_string(f%line)//': '//printable(message))
     end subroutine fail_here
 
     ! -------------------------------------------------------------------- the sections
@@ -172,12 +178,12 @@ contains
         type(raw_mesh_t), intent(inout) :: raw
         type(status_t), intent(inout) :: stat
         character(len=:), allocatable :: line, header
-        logical :: have_nodes, have_elements
+        integer, parameter :: NAMES = 1, ENTITIES = 2, NODES = 3, ELEMENTS = 4
+        integer :: first_line(4)   !! where each parsed section began; 0: not yet
 
         call parse_format(f, raw, stat)
         if (.not. stat%ok()) return
-        have_nodes = .false.
-        have_elements = .false.
+        first_line = 0
         allocate (raw%pair_curve(0), raw%pair_physical(0))
         allocate (raw%name_dim(0), raw%name_tag(0), raw%name_line(0))
         allocate (character(len=NAME_LEN + 1) :: raw%name_text(0))
@@ -187,21 +193,23 @@ contains
             case ('')
                 cycle
             case ('$PhysicalNames')
-                call parse_physical_names(f, raw, stat)
+                call first_time(NAMES)
+                if (stat%ok()) call parse_physical_names(f, raw, stat)
             case ('$Entities')
-                if (raw%version == 4) call parse_entities(f, raw, stat)
-                if (raw%version /= 4) call skip_section(f, header, stat)
+                call first_time(ENTITIES)
+                if (raw%version == 4 .and. stat%ok()) call parse_entities(f, raw, stat)
+                if (raw%version /= 4 .and. stat%ok()) call skip_section(f, header, stat)
             case ('$PartitionedEntities')
                 call fail_here(f, stat, 'partitioned meshes are not supported; expected a ' &
                                //'mesh saved without partitions')
             case ('$Nodes')
-                if (raw%version == 4) call parse_nodes_4(f, raw, stat)
-                if (raw%version == 2) call parse_nodes_2(f, raw, stat)
-                have_nodes = .true.
+                call first_time(NODES)
+                if (raw%version == 4 .and. stat%ok()) call parse_nodes_4(f, raw, stat)
+                if (raw%version == 2 .and. stat%ok()) call parse_nodes_2(f, raw, stat)
             case ('$Elements')
-                if (raw%version == 4) call parse_elements_4(f, raw, stat)
-                if (raw%version == 2) call parse_elements_2(f, raw, stat)
-                have_elements = .true.
+                call first_time(ELEMENTS)
+                if (raw%version == 4 .and. stat%ok()) call parse_elements_4(f, raw, stat)
+                if (raw%version == 2 .and. stat%ok()) call parse_elements_2(f, raw, stat)
             case default
                 if (header(1:1) /= '$' .or. header(1:min(4, len(header))) == '$End') then
                     call fail_here(f, stat, 'unexpected text '''//shortened(header)// &
@@ -212,11 +220,24 @@ contains
             end select
             if (.not. stat%ok()) return
         end do
-        if (.not. have_nodes) then
+        if (first_line(NODES) == 0) then
             call fail_here(f, stat, 'no $Nodes section (truncated file?)')
-        else if (.not. have_elements) then
+        else if (first_line(ELEMENTS) == 0) then
             call fail_here(f, stat, 'no $Elements section (truncated file?)')
         end if
+
+    contains
+
+        !> A section the reader parses may appear once (the MSH formats allow one).
+        subroutine first_time(section)
+            integer, intent(in) :: section
+            if (first_line(section) == 0) then
+                first_line(section) = f%line
+            else
+                call fail_here(f, stat, 'a second '//header//' section (the first began ' &
+                               //'at line '//to_string(first_line(section))//'); expected one')
+            end if
+        end subroutine first_time
     end subroutine parse_sections
 
     !> $MeshFormat: version 4.1 or 2.x, ASCII.
@@ -226,7 +247,8 @@ contains
         type(status_t), intent(inout) :: stat
         character(len=:), allocatable :: line
         character(len=16) :: version
-        integer :: file_type, data_size, ios
+        integer :: file_type, sizes(2), pos, first
+        logical :: ok
 
         do
             call require_line(f, line, '$MeshFormat', stat)
@@ -240,8 +262,15 @@ contains
         end if
         call require_line(f, line, 'the version line ''4.1 0 8'' of $MeshFormat', stat)
         if (.not. stat%ok()) return
-        read (line, *, iostat=ios) version, file_type, data_size
-        if (ios /= 0) then
+        ! Token by token: a list-directed read would leave file_type unset on '4.1 , 8'.
+        pos = 1
+        call skip_blanks(line, pos)
+        first = pos
+        call skip_tokens(line, pos, 1, ok)
+        version = line(first:pos - 1)
+        if (ok) call read_ints(line, pos, sizes, ok)
+        file_type = sizes(1)
+        if (.not. ok) then
             call fail_here(f, stat, 'expected ''version file-type data-size'' (such as ' &
                            //'''4.1 0 8''), found '''//shortened(line)//'''')
             return
@@ -255,8 +284,8 @@ contains
         else if (version(1:2) == '2.') then
             raw%version = 2
         else
-            call fail_here(f, stat, 'MSH version '//trim(version)//' is not supported ' &
-                           //'(expected 4.1 or 2.2); '//FORMAT_HINT)
+            call fail_here(f, stat, 'MSH version '//shortened(trim(version))// &
+                           ' is not supported (expected 4.1 or 2.2); '//FORMAT_HINT)
             return
         end if
         call expect_end(f, '$EndMeshFormat', stat)
@@ -301,7 +330,8 @@ contains
         integer :: values(2), n, i, first, last
         character(len=NAME_LEN + 1) :: name
 
-        call read_counts(f, 1, '$PhysicalNames', values, stat)
+        call read_counts(f, 1, 'the number of physical names', values, stat)
+        if (stat%ok()) call check_announced(f, values(1), 1, 'names (a line each)', stat)
         if (.not. stat%ok()) return
         n = values(1)
         do i = 1, n
@@ -321,6 +351,11 @@ contains
             if (first == 0 .or. last <= first) then
                 call fail_here(f, stat, 'expected the name in double quotes, found '''// &
                                shortened(line)//'''')
+                return
+            end if
+            if (printable(line(first:last)) /= line(first:last)) then
+                call fail_here(f, stat, 'control characters in the physical name '// &
+                               shortened(line(first:last))//'; expected printable text')
                 return
             end if
             if (last - first - 1 > NAME_LEN) then
@@ -353,6 +388,8 @@ contains
         call read_counts(f, 4, '$Entities (numPoints numCurves numSurfaces numVolumes)', &
                          counts, stat)
         if (.not. stat%ok()) return
+        call check_announced(f, maxval(counts), 1, 'entities of one kind (a line each)', stat)
+        if (.not. stat%ok()) return
         do i = 1, counts(1)
             call require_line(f, line, 'a point entity of $Entities', stat)
             if (.not. stat%ok()) return
@@ -381,8 +418,12 @@ contains
             end if
         end do
         raw%n_pairs = size(raw%pair_curve)
-        do i = 1, counts(3) + counts(4)
-            call require_line(f, line, 'a surface or volume entity of $Entities', stat)
+        do i = 1, counts(3)   ! two loops: counts(3) + counts(4) can overflow
+            call require_line(f, line, 'a surface entity of $Entities', stat)
+            if (.not. stat%ok()) return
+        end do
+        do i = 1, counts(4)
+            call require_line(f, line, 'a volume entity of $Entities', stat)
             if (.not. stat%ok()) return
         end do
         call expect_end(f, '$EndEntities', stat)
@@ -394,19 +435,22 @@ contains
         type(raw_mesh_t), intent(inout) :: raw
         type(status_t), intent(inout) :: stat
         character(len=:), allocatable :: line
-        integer :: header(4), block(4), b, i, n, pos, ios
+        integer :: header(4), block(4), b, i, n, pos
         logical :: ok
 
         call read_counts(f, 4, '$Nodes header (numEntityBlocks numNodes minNodeTag ' &
                          //'maxNodeTag)', header, stat)
         if (.not. stat%ok()) return
         n = header(2)
-        allocate (raw%node_tag(n), raw%node_xyz(3, n))
+        call check_announced(f, n, 2, 'nodes (a tag line and a coordinate line each)', stat)
+        if (stat%ok()) call allocate_nodes(f, raw, n, stat)
+        if (.not. stat%ok()) return
         do b = 1, header(1)
             call read_counts(f, 4, 'node block '//to_string(b)//' of '//to_string(header(1)) &
                              //' (entityDim entityTag parametric numNodesInBlock)', block, stat)
             if (.not. stat%ok()) return
-            if (raw%n_nodes + block(4) > n) then
+            ! Compared so, not as n_nodes + block(4) > n, which can overflow.
+            if (block(4) > n - raw%n_nodes) then
                 call fail_here(f, stat, 'more nodes than the '//to_string(n)// &
                                ' of the $Nodes header')
                 return
@@ -433,10 +477,11 @@ contains
                         to_string(raw%n_nodes + i)//' of '//to_string(n)//')', stat)
                     return
                 end if
-                read (line, *, iostat=ios) raw%node_xyz(:, raw%n_nodes + i)
-                if (ios /= 0) then
-                    call fail_here(f, stat, 'expected coordinates x y z, found '''// &
-                                   shortened(line)//'''')
+                pos = 1
+                call read_reals(line, pos, raw%node_xyz(:, raw%n_nodes + i), ok)
+                if (.not. ok) then
+                    call fail_here(f, stat, 'expected coordinates x y z '//REAL_HINT// &
+                                   ', found '''//shortened(line)//'''')
                     return
                 end if
             end do
@@ -456,12 +501,15 @@ contains
         type(raw_mesh_t), intent(inout) :: raw
         type(status_t), intent(inout) :: stat
         character(len=:), allocatable :: line
-        integer :: header(1), i, n, ios
+        integer :: header(1), i, n, pos
+        logical :: ok
 
         call read_counts(f, 1, 'the number of nodes', header, stat)
         if (.not. stat%ok()) return
         n = header(1)
-        allocate (raw%node_tag(n), raw%node_xyz(3, n))
+        call check_announced(f, n, 1, 'nodes (a line each)', stat)
+        if (stat%ok()) call allocate_nodes(f, raw, n, stat)
+        if (.not. stat%ok()) return
         do i = 1, n
             ! The message is built only on failure: this runs once per line of the file.
             if (.not. next_line(f, line)) then
@@ -469,10 +517,12 @@ contains
                     ' (''tag x y z'')', stat)
                 return
             end if
-            read (line, *, iostat=ios) raw%node_tag(i), raw%node_xyz(:, i)
-            if (ios /= 0) then
-                call fail_here(f, stat, 'expected ''tag x y z'', found '''// &
-                               shortened(line)//'''')
+            pos = 1
+            call read_int(line, pos, raw%node_tag(i), ok)
+            if (ok) call read_reals(line, pos, raw%node_xyz(:, i), ok)
+            if (.not. ok) then
+                call fail_here(f, stat, 'expected ''tag x y z'' '//REAL_HINT//', found ''' &
+                               //shortened(line)//'''')
                 return
             end if
         end do
@@ -493,7 +543,9 @@ contains
         call read_counts(f, 4, '$Elements header (numEntityBlocks numElements ' &
                          //'minElementTag maxElementTag)', header, stat)
         if (.not. stat%ok()) return
-        call allocate_elements(raw, header(2))
+        call check_announced(f, header(2), 1, 'elements (a line each)', stat)
+        if (stat%ok()) call allocate_elements(f, raw, header(2), stat)
+        if (.not. stat%ok()) return
         n_done = 0
         do b = 1, header(1)
             call read_counts(f, 4, 'element block '//to_string(b)//' of '// &
@@ -502,7 +554,8 @@ contains
             if (.not. stat%ok()) return
             call check_type(f, block(3), dim, k, stat)
             if (.not. stat%ok()) return
-            if (n_done + block(4) > header(2)) then
+            ! Compared so, not as n_done + block(4) > header(2), which can overflow.
+            if (block(4) > header(2) - n_done) then
                 call fail_here(f, stat, 'more elements than the '//to_string(header(2))// &
                                ' of the $Elements header')
                 return
@@ -549,7 +602,9 @@ contains
 
         call read_counts(f, 1, 'the number of elements', header, stat)
         if (.not. stat%ok()) return
-        call allocate_elements(raw, header(1))
+        call check_announced(f, header(1), 1, 'elements (a line each)', stat)
+        if (stat%ok()) call allocate_elements(f, raw, header(1), stat)
+        if (.not. stat%ok()) return
         do i = 1, header(1)
             ! The message is built only on failure: this runs once per line of the file.
             if (.not. next_line(f, line)) then
@@ -635,12 +690,53 @@ contains
         end select
     end function gmsh_type_name
 
-    subroutine allocate_elements(raw, n)
+    !> A section header's count `n` of entries taking `lines_each` lines must fit in the
+    !> rest of the file: a mangled count then fails here, not as a huge allocation.
+    subroutine check_announced(f, n, lines_each, what, stat)
+        type(text_file_t), intent(in) :: f
+        integer, intent(in) :: n, lines_each
+        character(len=*), intent(in) :: what
+        type(status_t), intent(inout) :: stat
+        integer(i8) :: n_lines, start, finish
+        n_lines = 0
+        start = f%next
+        do while (start <= len(f%text, kind=i8))
+            finish = index(f%text(start:), new_line('a'), kind=i8)
+            n_lines = n_lines + 1
+            if (finish == 0) exit
+            start = start + finish
+        end do
+        if (int(n, i8)*lines_each <= n_lines) return
+        call fail_here(f, stat, 'the header announces '//to_string(n)//' '//what// &
+                       ', but the file ends '//to_string(int(n_lines))//' lines later ' &
+                       //'(truncated?); expected a count that the section holds')
+    end subroutine check_announced
+
+    subroutine allocate_nodes(f, raw, n, stat)
+        type(text_file_t), intent(in) :: f
         type(raw_mesh_t), intent(inout) :: raw
         integer, intent(in) :: n
+        type(status_t), intent(inout) :: stat
+        integer :: alloc_status
+        allocate (raw%node_tag(n), raw%node_xyz(3, n), stat=alloc_status)
+        if (alloc_status /= 0) call fail_here(f, stat, 'out of memory for the '// &
+                                              to_string(n)//' nodes announced here')
+    end subroutine allocate_nodes
+
+    subroutine allocate_elements(f, raw, n, stat)
+        type(text_file_t), intent(in) :: f
+        type(raw_mesh_t), intent(inout) :: raw
+        integer, intent(in) :: n
+        type(status_t), intent(inout) :: stat
+        integer :: alloc_status
         allocate (raw%cell_type(n), raw%cell_nodes(MAX_CELL_NODES, n), raw%cell_entity(n), &
-                  raw%cell_line(n))
-        allocate (raw%edge_type(n), raw%edge_nodes(3, n), raw%edge_group(n), raw%edge_line(n))
+                  raw%cell_line(n), raw%edge_type(n), raw%edge_nodes(3, n), &
+                  raw%edge_group(n), raw%edge_line(n), stat=alloc_status)
+        if (alloc_status /= 0) then
+            call fail_here(f, stat, 'out of memory for the '//to_string(n)// &
+                           ' elements announced here')
+            return
+        end if
         raw%cell_nodes = 0
         raw%edge_nodes = 0
     end subroutine allocate_elements
@@ -743,6 +839,101 @@ contains
         if (negative) value = -value
         ok = .true.
     end subroutine read_int
+
+    !> size(values) reals from the blank-separated tokens at or after `pos` (moved past
+    !> them); what follows on the line is not read (the parametric coordinates of MSH 4.1).
+    !> Not ok unless each token is a decimal number ('-1.5', '2e-3') below 1e100 in
+    !> magnitude: a list-directed read alone would accept NaN and Infinity, leave values
+    !> unset on ',' and '/', repeat them on '3*1', and trap on an overflowing '1e999'.
+    subroutine read_reals(line, pos, values, ok)
+        character(len=*), intent(in) :: line
+        integer, intent(inout) :: pos
+        real(wp), intent(out) :: values(:)
+        logical, intent(out) :: ok
+        integer :: first, i, ios
+        values = 0.0_wp
+        call skip_blanks(line, pos)
+        first = pos
+        do i = 1, size(values)
+            call skip_decimal(line, pos, ok)
+            if (.not. ok) return
+        end do
+        ! The tokens are checked: one list-directed read of them all is safe, and fast.
+        read (line(first:pos - 1), *, iostat=ios) values
+        ok = ios == 0
+    end subroutine read_reals
+
+    !> Move `pos` past one token [+-]digits[.digits][(e|E|d|D)[+-]digits] (the mantissa may
+    !> also be '.digits' or 'digits.') whose value is below 10**(MAX_DECIMAL_EXPONENT + 1)
+    !> in magnitude; not ok otherwise.
+    pure subroutine skip_decimal(line, pos, ok)
+        character(len=*), intent(in) :: line
+        integer, intent(inout) :: pos
+        logical, intent(out) :: ok
+        integer, parameter :: NONE = huge(1), EXPONENT_CAP = 100000
+        integer :: n_digits, n_integer, leading, exponent, n_exponent_digits
+        logical :: negative_exponent
+
+        ok = .false.
+        call skip_blanks(line, pos)
+        if (pos > len(line)) return
+        if (line(pos:pos) == '-' .or. line(pos:pos) == '+') pos = pos + 1
+        ! leading: decimal exponent of the first non-zero digit, counted from the end of
+        ! the integer part while in it (NONE while only zeros were seen).
+        leading = NONE
+        n_digits = 0
+        do while (pos <= len(line))
+            if (.not. is_digit(line(pos:pos))) exit
+            n_digits = n_digits + 1
+            if (leading == NONE .and. line(pos:pos) /= '0') leading = -n_digits
+            pos = pos + 1
+        end do
+        n_integer = n_digits
+        if (leading /= NONE) leading = leading + n_integer   ! 0 for '5', 1 for '12'
+        if (pos <= len(line)) then
+            if (line(pos:pos) == '.') then
+                pos = pos + 1
+                do while (pos <= len(line))
+                    if (.not. is_digit(line(pos:pos))) exit
+                    n_digits = n_digits + 1
+                    if (leading == NONE .and. line(pos:pos) /= '0') &
+                        leading = n_integer - n_digits             ! -1 for '0.5'
+                    pos = pos + 1
+                end do
+            end if
+        end if
+        if (n_digits == 0) return
+        exponent = 0
+        if (pos <= len(line)) then
+            if (index('eEdD', line(pos:pos)) > 0) then
+                pos = pos + 1
+                if (pos > len(line)) return
+                negative_exponent = line(pos:pos) == '-'
+                if (negative_exponent .or. line(pos:pos) == '+') pos = pos + 1
+                n_exponent_digits = 0
+                do while (pos <= len(line))
+                    if (.not. is_digit(line(pos:pos))) exit
+                    ! Capped: only whether it passes the bound matters.
+                    exponent = min(10*exponent + iachar(line(pos:pos)) - iachar('0'), &
+                                   EXPONENT_CAP)
+                    n_exponent_digits = n_exponent_digits + 1
+                    pos = pos + 1
+                end do
+                if (n_exponent_digits == 0) return
+                if (negative_exponent) exponent = -exponent
+            end if
+        end if
+        if (pos <= len(line)) then
+            if (.not. is_blank(line(pos:pos))) return
+        end if
+        ok = leading == NONE
+        if (.not. ok) ok = leading + exponent <= MAX_DECIMAL_EXPONENT
+    end subroutine skip_decimal
+
+    elemental logical function is_digit(c)
+        character, intent(in) :: c
+        is_digit = c >= '0' .and. c <= '9'
+    end function is_digit
 
     !> Move `pos` past `n` blank-separated tokens of any kind.
     pure subroutine skip_tokens(line, pos, n, ok)
@@ -1218,14 +1409,31 @@ contains
         end do
     end function sort_index
 
-    !> At most 60 characters of a line, for messages.
+    !> At most 60 characters of a line, for messages, in printable ASCII: a stray carriage
+    !> return would break the one-line message, and bytes of a binary or garbage file
+    !> (C1 controls among them) could drive the terminal.
     pure function shortened(text) result(short)
         character(len=*), intent(in) :: text
         character(len=:), allocatable :: short
+        integer :: i
         if (len(text) <= 60) then
-            short = text
+            short = printable(text)
         else
-            short = text(:57)//'...'
+            short = printable(text(:57))//'...'
         end if
+        do i = 1, len(short)
+            if (iachar(short(i:i)) > 127) short(i:i) = '?'
+        end do
     end function shortened
+
+    !> `text` with control characters (line breaks, NUL, escape, ...) replaced by '?'.
+    pure function printable(text) result(clean)
+        character(len=*), intent(in) :: text
+        character(len=len(text)) :: clean
+        integer :: i
+        clean = text
+        do i = 1, len(clean)
+            if (iachar(clean(i:i)) < 32 .or. iachar(clean(i:i)) == 127) clean(i:i) = '?'
+        end do
+    end function printable
 end module mesh_gmsh
