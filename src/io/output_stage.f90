@@ -87,7 +87,10 @@ contains
             if (len(digits) == 0 .or. len(digits) > 9) cycle
             if (verify(digits, '0123456789') /= 0) cycle
             read (digits, '(i9)') pid
-            if (pid /= process_id() .and. .not. process_gone(pid)) cycle
+            ! our own pid's folder is stale by definition; another pid's only if it is gone
+            if (pid /= process_id()) then
+                if (.not. process_gone(pid)) cycle
+            end if
             folder = directory//'/'//trim(names(i))
             ! Not through a link: its target is not ours to empty.
             if (.not. is_real_directory(folder)) cycle
