@@ -4,7 +4,7 @@
 !> justification are in the README section "Accuracy and warnings".
 module accuracy
     use kinds, only: wp
-    use strings, only: to_string
+    use strings, only: to_string, short => short_real_text
     use real_format, only: real_to_text
     use spectrum, only: spectrum_t
     implicit none
@@ -109,13 +109,5 @@ contains
             character(len=*), intent(in) :: text
             warnings = [character(len=WARNING_LEN) :: warnings, text]
         end subroutine add
-
-        pure function short(x) result(s)
-            real(wp), intent(in) :: x
-            character(len=:), allocatable :: s
-            character(len=16) :: b
-            write (b, '(es9.2)') x
-            s = trim(adjustl(b))
-        end function short
     end function accuracy_warnings
 end module accuracy

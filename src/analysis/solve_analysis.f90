@@ -6,6 +6,7 @@
 module solve_analysis
     use kinds, only: wp, i8, N_DIM
     use status, only: status_t, STATUS_SOLVER
+    use strings, only: short_real_text
     use timer, only: wall_time, timings_t
     use run_config, only: config_t
     use problem, only: problem_t
@@ -133,15 +134,8 @@ contains
         if (res%report%converged) return
         call stat%fail(STATUS_SOLVER, config%input_file//': &solve: Newton did not converge ('// &
             res%report%reason//'); relative residual history: '// &
-            newton_history_text(res%report)//' (tol = '//trim(real_text(config%solve%tol))// &
+            newton_history_text(res%report)//' (tol = '//short_real_text(config%solve%tol)// &
             '; see newton.csv)')
-    contains
-        function real_text(x) result(text)
-            real(wp), intent(in) :: x
-            character(len=16) :: text
-            write (text, '(es9.2)') x
-            text = adjustl(text)
-        end function real_text
     end subroutine solve_status
 
     !> n numbers uniform in [-1, 1) from the Park-Miller generator seeded with `seed`:

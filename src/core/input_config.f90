@@ -7,6 +7,7 @@ module input_config
     use run_config, only: config_t, mesh_config_t, material_config_t, analysis_config_t, &
                           eigen_config_t, output_config_t, branch_config_t, solve_config_t, &
                           sweep_config_t, MAX_SWEEP_LAMBDAS, NAME_LEN, LIST_LEN, PATH_LEN
+    use strings, only: to_string
     use real_format, only: real_to_text
     use ieee_arithmetic, only: ieee_is_finite
     use iso_fortran_env, only: iostat_end, iostat_eor
@@ -237,8 +238,8 @@ contains
                     body = body//c
                 else if (index(BLANKS//achar(13), c) == 0) then
                     ! The runtime would skip it; it is garbage or a group without its '&'.
-                    call stat%fail(STATUS_BAD_INPUT, path//': line '//int_text(line_number) &
-                        //', column '//int_text(i)//': text outside any namelist group: ' &
+                    call stat%fail(STATUS_BAD_INPUT, path//': line '//to_string(line_number) &
+                        //', column '//to_string(i)//': text outside any namelist group: ' &
                         //"expected '&group name = value ... /' or a '!' comment")
                     return
                 end if
@@ -253,7 +254,7 @@ contains
 
         do i = 1, size(groups)
             if (.not. any(KNOWN_GROUPS == groups(i)%name)) then
-                call stat%fail(STATUS_BAD_INPUT, path//': line '//int_text(groups(i)%line) &
+                call stat%fail(STATUS_BAD_INPUT, path//': line '//to_string(groups(i)%line) &
                                //': unknown namelist group &'//groups(i)%name &
                                //' (known groups: '//group_list()//')')
                 return
@@ -261,9 +262,9 @@ contains
             do j = 1, i - 1
                 if (groups(j)%name == groups(i)%name) then
                     call stat%fail(STATUS_BAD_INPUT, path//': line ' &
-                                   //int_text(groups(i)%line)//': namelist group &' &
+                                   //to_string(groups(i)%line)//': namelist group &' &
                                    //groups(i)%name//' appears twice (first on line ' &
-                                   //int_text(groups(j)%line)//'); merge them')
+                                   //to_string(groups(j)%line)//'); merge them')
                     return
                 end if
             end do
@@ -281,7 +282,7 @@ contains
             character(len=:), allocatable :: why
             why = ''
             if (quote /= ' ') why = ' (a quoted value is not closed)'
-            call stat%fail(STATUS_BAD_INPUT, path//': line '//int_text(group_line)//': &' &
+            call stat%fail(STATUS_BAD_INPUT, path//': line '//to_string(group_line)//': &' &
                            //groups(size(groups))%name//": the group has no closing '/'"//why)
         end subroutine unclosed
     end subroutine scan_groups
@@ -687,11 +688,11 @@ contains
         else if (.not. positive_finite(c%height)) then
             call reject('height', real_to_text(c%height), 'a finite number > 0')
         else if (c%nx < 1 .or. c%nx > MAX_CELLS_PER_SIDE) then
-            call reject('nx', int_text(c%nx), &
-                        'an integer from 1 to '//int_text(MAX_CELLS_PER_SIDE))
+            call reject('nx', to_string(c%nx), &
+                        'an integer from 1 to '//to_string(MAX_CELLS_PER_SIDE))
         else if (c%ny < 1 .or. c%ny > MAX_CELLS_PER_SIDE) then
-            call reject('ny', int_text(c%ny), &
-                        'an integer from 1 to '//int_text(MAX_CELLS_PER_SIDE))
+            call reject('ny', to_string(c%ny), &
+                        'an integer from 1 to '//to_string(MAX_CELLS_PER_SIDE))
         else if (.not. any(ELEMENT_NAMES == c%element)) then
             call reject('element', quoted(c%element), 'one of '//one_of(ELEMENT_NAMES))
         else if (.not. any(DIAGONALS == c%diagonal)) then
@@ -705,7 +706,7 @@ contains
             do i = 1, size(names)
                 if (len_trim(names(i)) > NAME_LEN) then
                     call reject(trim(LIST_VARIABLES(k)), quoted(lists(k)), 'names of at most ' &
-                                //int_text(NAME_LEN)//' characters')
+                                //to_string(NAME_LEN)//' characters')
                 else if (c%source == 'rectangle' .and. &
                          .not. any(RECTANGLE_SIDES == names(i))) then
                     call reject(trim(LIST_VARIABLES(k)), quoted(lists(k)), 'sides among ' &
@@ -800,18 +801,18 @@ contains
         if (.not. any(ACCEPTED_SOLVERS == c%solver)) then
             call reject('solver', quoted(c%solver), 'one of '//one_of(ACCEPTED_SOLVERS))
         else if (c%nev < 1) then
-            call reject('nev', int_text(c%nev), 'an integer >= 1')
+            call reject('nev', to_string(c%nev), 'an integer >= 1')
         else if (.not. ieee_is_finite(c%target)) then
             call reject('target', real_to_text(c%target), 'a finite number')
         else if (.not. tol_ok) then
             call reject('tol', real_to_text(c%tol), 'a number in [0, 1) (0: machine precision)')
         else if (c%maxit < 1) then
-            call reject('maxit', int_text(c%maxit), 'an integer >= 1')
+            call reject('maxit', to_string(c%maxit), 'an integer >= 1')
         else if (c%ncv /= 0 .and. c%ncv < c%nev + 2) then
-            call reject('ncv', int_text(c%ncv), '0 (automatic) or at least nev + 2 = ' &
-                        //int_text(c%nev + 2))
+            call reject('ncv', to_string(c%ncv), '0 (automatic) or at least nev + 2 = ' &
+                        //to_string(c%nev + 2))
         else if (c%dense_max_contact < 1) then
-            call reject('dense_max_contact', int_text(c%dense_max_contact), 'an integer >= 1')
+            call reject('dense_max_contact', to_string(c%dense_max_contact), 'an integer >= 1')
         end if
 
     contains
@@ -828,7 +829,7 @@ contains
         type(status_t), intent(inout) :: stat
 
         if (c%modes < 0) then
-            call fail_value(stat, path, 'output', 'modes', int_text(c%modes), 'an integer >= 0')
+            call fail_value(stat, path, 'output', 'modes', to_string(c%modes), 'an integer >= 0')
         else if (.not. any(VTK_FORMATS == c%vtk_format)) then
             call fail_value(stat, path, 'output', 'vtk_format', quoted(c%vtk_format), &
                             'one of '//one_of(VTK_FORMATS))
@@ -847,10 +848,10 @@ contains
             call fail_value(stat, path, 'branch', 'beta', real_to_text(c%beta), &
                             'a finite number > 0 (|u_t| of U on the contact boundary)')
         else if (c%n_delta < 1) then
-            call fail_value(stat, path, 'branch', 'n_delta', int_text(c%n_delta), &
+            call fail_value(stat, path, 'branch', 'n_delta', to_string(c%n_delta), &
                             'an integer >= 1')
         else if (c%write_members < 0) then
-            call fail_value(stat, path, 'branch', 'write_members', int_text(c%write_members), &
+            call fail_value(stat, path, 'branch', 'write_members', to_string(c%write_members), &
                             'an integer >= 0')
         end if
     end subroutine validate_branch
@@ -887,7 +888,7 @@ contains
         else if (.not. tol_ok) then
             call reject('tol', real_to_text(c%tol), 'a number with 0 < tol < 1')
         else if (c%max_iterations < 1) then
-            call reject('max_iterations', int_text(c%max_iterations), 'an integer >= 1')
+            call reject('max_iterations', to_string(c%max_iterations), 'an integer >= 1')
         end if
 
     contains
@@ -955,13 +956,13 @@ contains
         do i = 1, size(c%lambdas)
             if (i <= n_list) then
                 if (.not. ieee_is_finite(c%lambdas(i))) then
-                    call reject('lambdas('//int_text(i)//')', real_to_text(c%lambdas(i)), &
+                    call reject('lambdas('//to_string(i)//')', real_to_text(c%lambdas(i)), &
                                 'a finite number')
                     return
                 end if
             else if (lambda_is_set(c%lambdas(i))) then
-                call reject('lambdas('//int_text(i)//')', real_to_text(c%lambdas(i)), &
-                            'consecutive entries from lambdas(1) (lambdas('//int_text(i - 1) &
+                call reject('lambdas('//to_string(i)//')', real_to_text(c%lambdas(i)), &
+                            'consecutive entries from lambdas(1) (lambdas('//to_string(i - 1) &
                             //') is unset)')
                 return
             end if
@@ -976,8 +977,8 @@ contains
             call reject('lambda_max', real_to_text(c%lambda_max), 'a number > lambda_min = ' &
                         //real_to_text(c%lambda_min))
         else if (c%n_lambda < 2 .or. c%n_lambda > MAX_SWEEP_POINTS) then
-            call reject('n_lambda', int_text(c%n_lambda), 'an integer from 2 to ' &
-                        //int_text(MAX_SWEEP_POINTS))
+            call reject('n_lambda', to_string(c%n_lambda), 'an integer from 2 to ' &
+                        //to_string(MAX_SWEEP_POINTS))
         else if (.not. any(SWEEP_SPACINGS == c%spacing)) then
             call reject('spacing', quoted(c%spacing), 'one of '//one_of(SWEEP_SPACINGS))
         else if (c%spacing == 'log' .and. .not. (c%lambda_min > 0.0_wp .or. &
@@ -1189,9 +1190,9 @@ contains
                        //' to the input file''s folder') &
                //entry('width', real_to_text(d%mesh%width), 'rectangle size along x') &
                //entry('height', real_to_text(d%mesh%height), 'rectangle size along y') &
-               //entry('nx', int_text(d%mesh%nx), 'cells along x (1 to ' &
-                       //int_text(MAX_CELLS_PER_SIDE)//')') &
-               //entry('ny', int_text(d%mesh%ny), 'cells along y') &
+               //entry('nx', to_string(d%mesh%nx), 'cells along x (1 to ' &
+                       //to_string(MAX_CELLS_PER_SIDE)//')') &
+               //entry('ny', to_string(d%mesh%ny), 'cells along y') &
                //entry('element', quoted(d%mesh%element), one_of(ELEMENT_NAMES) &
                        //' (rectangle; a Gmsh file sets its own)') &
                //entry('diagonal', quoted(d%mesh%diagonal), one_of(DIAGONALS) &
@@ -1211,22 +1212,22 @@ contains
                        'ratio in b_lambda(phi, v) = lambda int phi_n v_t - int phi_n v_n')
         text = text//'&eigen'//NL &
                //entry('solver', quoted(d%eigen%solver), 'one of '//one_of(ACCEPTED_SOLVERS)) &
-               //entry('nev', int_text(d%eigen%nev), 'ARPACK: eigenvalues nearest target' &
+               //entry('nev', to_string(d%eigen%nev), 'ARPACK: eigenvalues nearest target' &
                        //' per run (doubled while undecided)') &
                //entry('target', real_to_text(d%eigen%target), 'shift sigma: eigenvalues' &
                        //' nearest to it are found first') &
                //entry('tol', real_to_text(d%eigen%tol), 'sparse solver tolerance' &
                        //' (0: machine precision)') &
-               //entry('maxit', int_text(d%eigen%maxit), 'sparse solver restarts') &
-               //entry('ncv', int_text(d%eigen%ncv), 'Krylov dimension, 0 or >= nev + 2' &
+               //entry('maxit', to_string(d%eigen%maxit), 'sparse solver restarts') &
+               //entry('ncv', to_string(d%eigen%ncv), 'Krylov dimension, 0 or >= nev + 2' &
                        //' (0: chosen from nev)') &
-               //entry('dense_max_contact', int_text(d%eigen%dense_max_contact), &
+               //entry('dense_max_contact', to_string(d%eigen%dense_max_contact), &
                        "'auto' picks 'dense' up to this many contact nodes, else 'arpack'")
         text = text//'&output'//NL &
                //entry('directory', quoted(d%output%directory), "'' means output/<input" &
                        //' file stem> (from the working directory)') &
                //entry('vtk', logical_text(d%output%vtk), 'write mode_NNN.vtu for ParaView') &
-               //entry('modes', int_text(d%output%modes), 'how many modes to write as .vtu') &
+               //entry('modes', to_string(d%output%modes), 'how many modes to write as .vtu') &
                //entry('matrices', logical_text(d%output%matrices), &
                        'write K.mtx and B.mtx (Matrix Market)') &
                //entry('vtk_format', quoted(d%output%vtk_format), one_of(VTK_FORMATS) &
@@ -1236,20 +1237,20 @@ contains
                        //' range (either sign)') &
                //entry('lambda_max', real_to_text(d%sweep%lambda_max), 'last lambda, >' &
                        //' lambda_min') &
-               //entry('n_lambda', int_text(d%sweep%n_lambda), 'points in the range (2 to ' &
-                       //int_text(MAX_SWEEP_POINTS)//')') &
+               //entry('n_lambda', to_string(d%sweep%n_lambda), 'points in the range (2 to ' &
+                       //to_string(MAX_SWEEP_POINTS)//')') &
                //entry('spacing', quoted(d%sweep%spacing), one_of(SWEEP_SPACINGS) &
                        //" ('log': one sign, geometric in |lambda|)") &
                //entry('lambdas', 'unset', 'explicit list (up to '// &
-                       int_text(MAX_SWEEP_LAMBDAS)//'), replaces the range') &
+                       to_string(MAX_SWEEP_LAMBDAS)//'), replaces the range') &
                //entry('plot', logical_text(d%sweep%plot), 'draw lambda_sweep.png with' &
                        //' gnuplot when it is installed')
         text = text//'&branch      (kind = ''branch'': U + delta phi, SPEC section 5)'//NL &
                //entry('alpha', real_to_text(d%branch%alpha), 'u_n of U on Gamma_C, > 0') &
                //entry('beta', real_to_text(d%branch%beta), '|u_t| of U on Gamma_C, > 0') &
-               //entry('n_delta', int_text(d%branch%n_delta), 'deltas evenly spaced in' &
+               //entry('n_delta', to_string(d%branch%n_delta), 'deltas evenly spaced in' &
                        //' [-delta_max, delta_max]') &
-               //entry('write_members', int_text(d%branch%write_members), &
+               //entry('write_members', to_string(d%branch%write_members), &
                        'members written as branch_NNN.vtu')
         text = text//'&solve       (kind = ''solve'': frictional normal compliance, Newton)'//NL &
                //entry('data', quoted(d%solve%data), one_of(SOLVE_DATA)//': the loads below,' &
@@ -1271,10 +1272,10 @@ contains
                        'start = ''random'' or ''mode'': size of the guess') &
                //entry('start_noise', real_to_text(d%solve%start_noise), &
                        'uniform noise of this size added to any start') &
-               //entry('seed', int_text(d%solve%seed), 'of the random start and the noise') &
+               //entry('seed', to_string(d%solve%seed), 'of the random start and the noise') &
                //entry('tol', real_to_text(d%solve%tol), '||residual|| / ||load||' &
                        //' (infinity norms) to stop at') &
-               //entry('max_iterations', int_text(d%solve%max_iterations), 'Newton iterations')
+               //entry('max_iterations', to_string(d%solve%max_iterations), 'Newton iterations')
 
     contains
 
@@ -1294,14 +1295,6 @@ contains
         character(len=:), allocatable :: q
         q = "'"//trim(text)//"'"
     end function quoted
-
-    pure function int_text(n) result(text)
-        integer, intent(in) :: n
-        character(len=:), allocatable :: text
-        character(len=16) :: buffer
-        write (buffer, '(i0)') n
-        text = trim(buffer)
-    end function int_text
 
     pure function logical_text(flag) result(text)
         logical, intent(in) :: flag

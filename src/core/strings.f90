@@ -1,10 +1,11 @@
 ! SPDX-License-Identifier: MIT
-!> Number-to-text conversions for messages and file names.
+!> Number-to-text conversions for messages, file names and the stdout summaries. Every
+!> module uses these rather than a local twin, so a count or a time reads the same everywhere.
 module strings
     use kinds, only: wp, i8
     implicit none
     private
-    public :: to_string, zero_padded
+    public :: to_string, zero_padded, short_real_text, seconds_text
 
     interface to_string
         module procedure integer_to_string, long_integer_to_string, real_to_string
@@ -47,4 +48,32 @@ contains
         write (fmt, '(a, i0, a, i0, a)') '(i', width, '.', width, ')'
         write (text, fmt) i
     end function zero_padded
+
+    !> `x` in scientific notation with `digits` decimals (2 unless given), no blanks:
+    !> '1.23E-05' for backward errors, times and rcond in messages; digits = 5 names an
+    !> offending input value ('2.00000E+11').
+    pure function short_real_text(x, digits) result(text)
+        real(wp), intent(in) :: x
+        integer, intent(in), optional :: digits
+        character(len=:), allocatable :: text
+        character(len=48) :: buffer
+        character(len=16) :: edit
+        integer :: d
+        d = 2
+        if (present(digits)) d = digits
+        ! es(d+7).d is the narrowest field that holds a sign and a 2-digit exponent.
+        write (edit, '(a, i0, a, i0, a)') '(es', d + 7, '.', d, ')'
+        write (buffer, edit) x
+        text = trim(adjustl(buffer))
+    end function short_real_text
+
+    !> Seconds with three decimals and a leading zero ('0.042', '12.500') for the summaries.
+    pure function seconds_text(t) result(text)
+        real(wp), intent(in) :: t
+        character(len=:), allocatable :: text
+        character(len=16) :: buffer
+        write (buffer, '(f0.3)') t
+        text = trim(buffer)
+        if (text(1:1) == '.') text = '0'//text
+    end function seconds_text
 end module strings

@@ -7,6 +7,7 @@ module assembly
     use mesh, only: mesh_t, element_nodes_per_cell
     use dof_map, only: dof_map_t, cell_dofs
     use csr_matrix, only: csr_matrix_t, csr_from_element_dofs
+    use strings, only: to_string, short_real_text
     use elasticity, only: element_stiffness, ELEMENT_OK, ELEMENT_INVERTED
     implicit none
     private
@@ -27,18 +28,15 @@ contains
         real(wp), allocatable :: ke(:, :), xy(:, :)
         real(wp) :: min_det
         integer :: n_nodes, cell, info, i
-        character(len=32) :: cell_text, det_text
 
         if (.not. (young > 0.0_wp .and. young <= huge(young))) then
-            write (det_text, '(es12.5)') young
             call stat%fail(STATUS_BAD_INPUT, 'assembly: Young''s modulus must be positive '// &
-                           'and finite, got '//trim(adjustl(det_text)))
+                           'and finite, got '//short_real_text(young, 5))
             return
         end if
         if (.not. (poisson > -1.0_wp .and. poisson < 0.5_wp)) then
-            write (det_text, '(es12.5)') poisson
             call stat%fail(STATUS_BAD_INPUT, 'assembly: Poisson''s ratio must lie in '// &
-                           '(-1, 1/2), got '//trim(adjustl(det_text)))
+                           '(-1, 1/2), got '//short_real_text(poisson, 5))
             return
         end if
         if (.not. (allocated(m%cells) .and. allocated(m%coords))) then
@@ -68,20 +66,18 @@ contains
             end do
             call element_stiffness(m%element, xy, young, poisson, ke, info, min_det)
             if (info /= ELEMENT_OK) then
-                write (cell_text, '(i0)') cell
-                write (det_text, '(es12.5)') min_det
                 if (info == ELEMENT_INVERTED) then
-                    call stat%fail(STATUS_MESH, 'mesh: cell '//trim(cell_text)// &
+                    call stat%fail(STATUS_MESH, 'mesh: cell '//to_string(cell)// &
                                    ' is inverted or degenerate (Jacobian determinant '// &
-                                   trim(adjustl(det_text))//')')
+                                   short_real_text(min_det, 5)//')')
                     ! A mesh read from a file: name the file and the line of the cell.
                     if (allocated(m%file) .and. allocated(m%cell_line)) then
-                        write (cell_text, '(i0)') m%cell_line(cell)
-                        stat%message = m%file//':'//trim(cell_text)//': '//stat%message
+                        stat%message = m%file//':'//to_string(m%cell_line(cell))//': '// &
+                                       stat%message
                     end if
                 else
                     call stat%fail(STATUS_INTERNAL, 'assembly: element_stiffness rejected '// &
-                                   'the arguments for cell '//trim(cell_text))
+                                   'the arguments for cell '//to_string(cell))
                 end if
                 return
             end if

@@ -5,6 +5,7 @@ module dof_map
     use kinds, only: N_DIM
     use status, only: status_t, STATUS_BAD_INPUT
     use mesh, only: mesh_t
+    use strings, only: to_string
     implicit none
     private
     public :: build_dof_map, cell_dofs
@@ -29,7 +30,6 @@ contains
         type(status_t), intent(out) :: stat
         logical, allocatable :: in_dirichlet(:), fixed(:)
         integer :: n_parts, i, e, node, count
-        character(len=16) :: text
 
         if (.not. (allocated(m%coords) .and. allocated(m%edges) .and. &
                    allocated(m%edge_part) .and. allocated(m%part_names))) then
@@ -41,9 +41,9 @@ contains
         allocate (in_dirichlet(n_parts), source=.false.)
         do i = 1, size(dirichlet_parts)
             if (dirichlet_parts(i) < 1 .or. dirichlet_parts(i) > n_parts) then
-                write (text, '(i0)') dirichlet_parts(i)
                 call stat%fail(STATUS_BAD_INPUT, 'dof map: Dirichlet part index '// &
-                               trim(text)//' is not a boundary part of the mesh')
+                               to_string(dirichlet_parts(i))// &
+                               ' is not a boundary part of the mesh')
                 return
             end if
             in_dirichlet(dirichlet_parts(i)) = .true.

@@ -6,7 +6,7 @@
 module compliance_output
     use kinds, only: wp, N_DIM
     use status, only: status_t, STATUS_IO
-    use strings, only: to_string, zero_padded
+    use strings, only: to_string, zero_padded, short_real_text
     use real_format, only: real_to_text
     use timer, only: wall_time, timings_t
     use version, only: NCEIG_VERSION
@@ -128,8 +128,8 @@ contains
             '  branch      U + delta phi for |delta| <= delta_max = '// &
             real_to_text(res%delta_max)//' (alpha = '//real_to_text(res%critical%alpha)// &
             ', beta = '//real_to_text(res%critical%beta)//')'//NL// &
-            '  residual    U: '//short(res%residual_base)//', max over '// &
-            to_string(size(res%deltas))//' members: '//short(res%max_residual)// &
+            '  residual    U: '//short_real_text(res%residual_base)//', max over '// &
+            to_string(size(res%deltas))//' members: '//short_real_text(res%max_residual)// &
             ' (relative to the load)'//NL// &
             '  output      '//trim(config%output%directory)
     end function branch_summary_lines
@@ -272,7 +272,7 @@ contains
             ', c_t = '//real_to_text(res%cp%c_t)//NL// &
             '  newton      '//res%report%reason//' after '// &
             to_string(res%report%iterations)//' iterations, relative residual '// &
-            short(res%report%residual(size(res%report%residual)))//NL// &
+            short_real_text(res%report%residual(size(res%report%residual)))//NL// &
             '  contact     '//to_string(res%n_state(STATE_SEPARATED))//' separated, '// &
             to_string(res%n_state(STATE_STICK))//' stick, '// &
             to_string(res%n_state(STATE_SLIP_PLUS))//' slip+, '// &
@@ -280,16 +280,8 @@ contains
         if (res%on_branch_data) then
             text = text//'  branch      x = U + delta phi + r with delta = '// &
                 real_to_text(res%branch_delta)//', ||r|| / ||U|| = '// &
-                short(res%branch_distance)//NL
+                short_real_text(res%branch_distance)//NL
         end if
         text = text//'  output      '//trim(config%output%directory)
     end function solve_summary_lines
-
-    function short(x) result(s)
-        real(wp), intent(in) :: x
-        character(len=:), allocatable :: s
-        character(len=16) :: b
-        write (b, '(es9.2)') x
-        s = trim(adjustl(b))
-    end function short
 end module compliance_output

@@ -5,6 +5,7 @@ module matrix_market
     use kinds, only: wp
     use status, only: status_t, STATUS_IO, STATUS_BAD_INPUT
     use csr_matrix, only: csr_matrix_t
+    use strings, only: to_string
     implicit none
     private
     public :: write_matrix_market, read_matrix_market
@@ -104,7 +105,7 @@ contains
         read (line, *, iostat=io) n_rows, n_cols, n_entries
         if (io /= 0 .or. n_rows /= n_cols .or. n_rows < 0 .or. n_entries < 0) then
             call stat%fail(STATUS_BAD_INPUT, 'matrix_market: '//path//': line '// &
-                int_text(line_number)//' should give the sizes of a square matrix, found "'// &
+                to_string(line_number)//' should give the sizes of a square matrix, found "'// &
                 trim(line)//'"')
             close (unit)
             return
@@ -114,13 +115,13 @@ contains
         do k = 1, n_entries
             read (unit, *, iostat=io, iomsg=message) rows(k), cols(k), values(k)
             if (io /= 0) then
-                call fail_read('entry '//int_text(k)//' of '//int_text(n_entries))
+                call fail_read('entry '//to_string(k)//' of '//to_string(n_entries))
                 return
             end if
             if (min(rows(k), cols(k)) < 1 .or. max(rows(k), cols(k)) > n_rows) then
                 call stat%fail(STATUS_BAD_INPUT, 'matrix_market: '//path//': entry '// &
-                    int_text(k)//' at ('//int_text(rows(k))//', '//int_text(cols(k))// &
-                    ') lies outside the '//int_text(n_rows)//' x '//int_text(n_rows)//' matrix')
+                    to_string(k)//' at ('//to_string(rows(k))//', '//to_string(cols(k))// &
+                    ') lies outside the '//to_string(n_rows)//' x '//to_string(n_rows)//' matrix')
                 close (unit)
                 return
             end if
@@ -253,12 +254,4 @@ contains
             if (code >= iachar('A') .and. code <= iachar('Z')) lower(i:i) = achar(code + 32)
         end do
     end function lowercase
-
-    pure function int_text(value) result(text)
-        integer, intent(in) :: value
-        character(len=:), allocatable :: text
-        character(len=16) :: buffer
-        write (buffer, '(i0)') value
-        text = trim(buffer)
-    end function int_text
 end module matrix_market

@@ -5,7 +5,7 @@
 module results_output
     use kinds, only: wp
     use status, only: status_t, STATUS_IO
-    use strings, only: to_string, zero_padded
+    use strings, only: to_string, zero_padded, short_real_text, seconds_text
     use real_format, only: real_to_text
     use timer, only: wall_time, timings_t
     use version, only: NCEIG_VERSION
@@ -222,7 +222,7 @@ contains
             '  problem     '//to_string(prob%dofs%n_free)//' dofs, '// &
             to_string(prob%contact%p())//' contact nodes, lambda = '//real_to_text(res%lambda)// &
             NL//'  solver      '//res%solver//': '//to_string(res%spec%n())// &
-            ' eigenvalues, max backward error '//short(res%spec%max_residual())//NL
+            ' eigenvalues, max backward error '//short_real_text(res%spec%max_residual())//NL
         lowest = res%spec%lowest_positive()
         if (lowest > 0) then
             mu = real(res%spec%mu(lowest), wp)
@@ -233,34 +233,18 @@ contains
         else
             text = text//'  no positive real eigenvalue for this lambda'//NL
         end if
-        text = text//'  time [s]    assembly '//seconds(timings%assembly)//', ordering '// &
-            seconds(timings%ordering)//', factor '// &
-            seconds(timings%factor)//', reduction '//seconds(timings%reduction)//', eigen '// &
-            seconds(timings%eigen)//', output '//seconds(timings%output)//', total '// &
-            seconds(timings%total)//NL//'  output      '//trim(config%output%directory)
+        text = text//'  time [s]    assembly '//seconds_text(timings%assembly)// &
+            ', ordering '//seconds_text(timings%ordering)// &
+            ', factor '//seconds_text(timings%factor)// &
+            ', reduction '//seconds_text(timings%reduction)// &
+            ', eigen '//seconds_text(timings%eigen)// &
+            ', output '//seconds_text(timings%output)// &
+            ', total '//seconds_text(timings%total)//NL// &
+            '  output      '//trim(config%output%directory)
         if (allocated(res%warnings)) then
             do i = 1, size(res%warnings)
                 text = text//NL//'warning: '//trim(res%warnings(i))
             end do
         end if
-
-    contains
-
-        function seconds(t) result(s)
-            real(wp), intent(in) :: t
-            character(len=:), allocatable :: s
-            character(len=16) :: b
-            write (b, '(f0.3)') t
-            s = trim(b)
-            if (s(1:1) == '.') s = '0'//s
-        end function seconds
-
-        function short(x) result(s)
-            real(wp), intent(in) :: x
-            character(len=:), allocatable :: s
-            character(len=16) :: b
-            write (b, '(es9.2)') x
-            s = trim(adjustl(b))
-        end function short
     end function summary_lines
 end module results_output

@@ -5,7 +5,7 @@
 module threshold_output
     use kinds, only: wp
     use status, only: status_t, STATUS_IO
-    use strings, only: to_string
+    use strings, only: to_string, short_real_text
     use real_format, only: real_to_text
     use timer, only: wall_time, timings_t
     use run_config, only: config_t
@@ -167,7 +167,7 @@ contains
                     cycle
                 end if
                 text = text//real_to_text(thr%lambda(side))//' (pencil backward error '// &
-                    short(thr%residual(side))//'), '// &
+                    short_real_text(thr%residual(side))//'), '// &
                     trim(merge('confirmed    ', 'NOT confirmed', thr%confirmed(side)))//NL// &
                     '              just outside, lambda = '// &
                     real_to_text(thr%lambda_outside(side))//': lowest positive mu = '// &
@@ -177,9 +177,9 @@ contains
                     mu_text(thr%has_mu_inside(side), thr%mu_inside(side))
             end do
         end associate
-        text = text//NL//'  time [s]    thresholds '//short(res%time_threshold)
+        text = text//NL//'  time [s]    thresholds '//short_real_text(res%time_threshold)
         if (allocated(res%sweep%lambda)) then
-            text = text//', sweep '//short(res%time_sweep)//NL//'  sweep       '// &
+            text = text//', sweep '//short_real_text(res%time_sweep)//NL//'  sweep       '// &
                 to_string(size(res%sweep%lambda))//' lambdas from '// &
                 real_to_text(minval(res%sweep%lambda))//' to '// &
                 real_to_text(maxval(res%sweep%lambda))//', a positive mu at '// &
@@ -195,13 +195,5 @@ contains
             s = 'none'
             if (found) s = real_to_text(mu)
         end function mu_text
-
-        function short(x) result(s)
-            real(wp), intent(in) :: x
-            character(len=:), allocatable :: s
-            character(len=16) :: b
-            write (b, '(es9.2)') x
-            s = trim(adjustl(b))
-        end function short
     end function threshold_summary_lines
 end module threshold_output

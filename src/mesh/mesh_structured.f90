@@ -4,6 +4,7 @@
 module mesh_structured
     use kinds, only: wp, i8
     use status, only: status_t, STATUS_BAD_INPUT
+    use strings, only: to_string, short_real_text
     use mesh, only: mesh_t, ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, &
                     element_nodes_per_cell, element_nodes_per_edge
     implicit none
@@ -37,17 +38,17 @@ contains
 
         if (.not. (width > 0.0_wp .and. width <= huge(width))) then
             call stat%fail(STATUS_BAD_INPUT, 'structured mesh: width must be a positive '// &
-                           'finite number, got '//real_text(width))
+                           'finite number, got '//short_real_text(width, 5))
             return
         end if
         if (.not. (height > 0.0_wp .and. height <= huge(height))) then
             call stat%fail(STATUS_BAD_INPUT, 'structured mesh: height must be a positive '// &
-                           'finite number, got '//real_text(height))
+                           'finite number, got '//short_real_text(height, 5))
             return
         end if
         if (nx < 1 .or. ny < 1) then
             call stat%fail(STATUS_BAD_INPUT, 'structured mesh: nx and ny must be >= 1, got '// &
-                           int_text(nx)//' and '//int_text(ny))
+                           to_string(nx)//' and '//to_string(ny))
             return
         end if
         select case (element)
@@ -55,7 +56,7 @@ contains
         case (ELEMENT_Q1, ELEMENT_Q2); triangles = .false.
         case default
             call stat%fail(STATUS_BAD_INPUT, 'structured mesh: unknown element code '// &
-                           int_text(element))
+                           to_string(element))
             return
         end select
         right_diagonal = .true.
@@ -75,8 +76,8 @@ contains
         ! (or whose dof count, twice as large, would) before any arithmetic wraps round.
         n_nodes_wide = (step*int(nx, i8) + 1)*(step*int(ny, i8) + 1)
         if (2*n_nodes_wide > int(huge(1), i8)) then
-            call stat%fail(STATUS_BAD_INPUT, 'structured mesh: '//int_text(nx)//' x '// &
-                           int_text(ny)//' cells give too many nodes for default integers')
+            call stat%fail(STATUS_BAD_INPUT, 'structured mesh: '//to_string(nx)//' x '// &
+                           to_string(ny)//' cells give too many nodes for default integers')
             return
         end if
         n_grid_x = step*nx + 1
@@ -175,20 +176,4 @@ contains
             m%edge_part(e) = part
         end subroutine add_edge
     end subroutine structured_rectangle
-
-    pure function int_text(value) result(text)
-        integer, intent(in) :: value
-        character(len=:), allocatable :: text
-        character(len=16) :: buffer
-        write (buffer, '(i0)') value
-        text = trim(buffer)
-    end function int_text
-
-    pure function real_text(value) result(text)
-        real(wp), intent(in) :: value
-        character(len=:), allocatable :: text
-        character(len=32) :: buffer
-        write (buffer, '(es12.5)') value
-        text = trim(adjustl(buffer))
-    end function real_text
 end module mesh_structured

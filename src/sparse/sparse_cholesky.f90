@@ -11,6 +11,7 @@ module sparse_cholesky
     use kinds, only: wp, i8
     use status, only: status_t, STATUS_BAD_INPUT, STATUS_SINGULAR, STATUS_SOLVER
     use csr_matrix, only: csr_matrix_t
+    use strings, only: to_string, short_real_text
     implicit none
     private
     public :: cholmod_status_message
@@ -136,8 +137,8 @@ contains
             return
         end if
         if (chosen < ORDERING_DEFAULT .or. chosen > ORDERING_GIVEN) then
-            write (text, '(i0)') chosen
-            call stat%fail(STATUS_BAD_INPUT, 'sparse_cholesky: unknown ordering '//trim(text))
+            call stat%fail(STATUS_BAD_INPUT, 'sparse_cholesky: unknown ordering '// &
+                           to_string(chosen))
             return
         end if
         perm_address = c_null_ptr
@@ -275,7 +276,7 @@ contains
         end if
         if (m < 1 .or. m > this%n) then
             call stat%fail(STATUS_BAD_INPUT, 'sparse_cholesky: trailing_block: m = '// &
-                           int_text(m)//' for n = '//int_text(this%n))
+                           to_string(m)//' for n = '//to_string(this%n))
             return
         end if
         allocate (l_tail(m, m), rows0(m))
@@ -294,21 +295,19 @@ contains
         integer, intent(in), optional :: column
         real(wp), intent(in), optional :: rcond
         character(len=:), allocatable :: message
-        character(len=32) :: value
         select case (code)
         case (SHIM_OK)
             message = 'CHOLMOD: success'
         case (SHIM_NOT_POSDEF)
             message = 'CHOLMOD: the matrix is not positive definite'
             if (present(column)) then
-                write (value, '(i0)') column
-                message = message//': a pivot <= 0 at row/column '//trim(value)
+                message = message//': a pivot <= 0 at row/column '//to_string(column)
             end if
         case (SHIM_SINGULAR)
             message = 'CHOLMOD: the matrix is numerically singular'
             if (present(rcond)) then
-                write (value, '(es9.2)') rcond
-                message = message//': pivot ratio (rcond estimate) '//trim(adjustl(value))// &
+                message = message//': pivot ratio (rcond estimate) '// &
+                          short_real_text(rcond)// &
                           ' < 1e3 eps'
             end if
         case (SHIM_OUT_OF_MEMORY)
@@ -322,8 +321,7 @@ contains
         case (SHIM_FAILED)
             message = 'CHOLMOD: the factorization or solve failed'
         case default
-            write (value, '(i0)') code
-            message = 'CHOLMOD: unknown shim code '//trim(value)
+            message = 'CHOLMOD: unknown shim code '//to_string(code)
         end select
     end function cholmod_status_message
 
@@ -357,17 +355,9 @@ contains
             write (text, '(4(a, i0))') 'b is ', size(b, 1), ' x ', size(b, 2), &
                 ', result is ', size(x, 1), ' x ', size(x, 2)
             call stat%fail(STATUS_BAD_INPUT, 'sparse_cholesky: '//what//': '//trim(text)// &
-                           ' for n = '//trim(int_text(this%n)))
+                           ' for n = '//to_string(this%n))
             return
         end if
         shapes_fit = .true.
     end function shapes_fit
-
-    pure function int_text(value) result(text)
-        integer, intent(in) :: value
-        character(len=:), allocatable :: text
-        character(len=16) :: buffer
-        write (buffer, '(i0)') value
-        text = trim(buffer)
-    end function int_text
 end module sparse_cholesky

@@ -11,6 +11,7 @@ module sparse_lu
     use kinds, only: wp
     use status, only: status_t, STATUS_BAD_INPUT, STATUS_SINGULAR, STATUS_SOLVER
     use csr_matrix, only: csr_matrix_t
+    use strings, only: to_string
     use umfpack_c, only: umfpack_di_symbolic, umfpack_di_numeric, umfpack_di_solve, &
                          umfpack_di_free_symbolic, umfpack_di_free_numeric, umfpack_di_defaults, &
                          UMFPACK_CONTROL, UMFPACK_INFO, UMFPACK_At, UMFPACK_PRL, &
@@ -68,7 +69,6 @@ contains
         integer, intent(in), optional :: ordering
         type(c_ptr) :: symbolic
         integer(c_int) :: code, n
-        character(len=32) :: text
 
         call this%free()
         n = int(a%n(), c_int)
@@ -88,8 +88,8 @@ contains
                   LU_ORDERING_CHOLMOD)
                 this%control(UMFPACK_ORDERING + 1) = real(ordering, c_double)
             case default
-                write (text, '(i0)') ordering
-                call stat%fail(STATUS_BAD_INPUT, 'sparse_lu: unknown ordering '//trim(text))
+                call stat%fail(STATUS_BAD_INPUT, 'sparse_lu: unknown ordering '// &
+                               to_string(ordering))
                 call this%free()
                 return
             end select
@@ -196,7 +196,6 @@ contains
     pure function umfpack_status_message(code) result(message)
         integer, intent(in) :: code
         character(len=:), allocatable :: message
-        character(len=16) :: value
         select case (code)
         case (UMFPACK_OK)
             message = 'UMFPACK: success'
@@ -231,8 +230,7 @@ contains
         case (UMFPACK_ERROR_ordering_failed)
             message = 'UMFPACK: the fill-reducing ordering failed'
         case default
-            write (value, '(i0)') code
-            message = 'UMFPACK: unknown status '//trim(value)
+            message = 'UMFPACK: unknown status '//to_string(code)
         end select
     end function umfpack_status_message
 end module sparse_lu
