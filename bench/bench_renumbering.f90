@@ -19,6 +19,7 @@ program bench_renumbering
     use sparse_cholesky, only: cholesky_t, ORDERING_DEFAULT, ORDERING_NATURAL
     use timer, only: wall_time
     use strings, only: to_string
+    use sorting, only: sort_index
     implicit none
 
     integer, parameter :: REPEATS = 5
@@ -104,19 +105,8 @@ contains
 
     real(wp) function median(values)
         real(wp), intent(in) :: values(:)
-        real(wp) :: sorted(size(values)), key
-        integer :: i, j
-        sorted = values
-        do i = 2, size(sorted)
-            key = sorted(i)
-            j = i - 1
-            do while (j >= 1)
-                if (sorted(j) <= key) exit
-                sorted(j + 1) = sorted(j)
-                j = j - 1
-            end do
-            sorted(j + 1) = key
-        end do
+        real(wp) :: sorted(size(values))
+        sorted = values(sort_index(values))
         median = sorted((size(sorted) + 1)/2)
     end function median
 

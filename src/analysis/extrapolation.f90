@@ -7,6 +7,7 @@
 !> number extrapolated from noise.
 module extrapolation
     use kinds, only: wp
+    use sorting, only: sort_index
     use ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_finite
     implicit none
     private
@@ -70,7 +71,7 @@ contains
             fit%code = FIT_NOT_FINITE
             return
         end if
-        order_idx = descending(h)
+        order_idx = sort_index(-h)   ! coarsest mesh first
         hs = h(order_idx)
         fs = f(order_idx)
         if (.not. (hs(3) > 0.0_wp .and. hs(2) > hs(3) .and. hs(1) > hs(2))) then
@@ -157,7 +158,7 @@ contains
             est%code = FIT_TOO_FEW
             return
         end if
-        idx = descending(hs)
+        idx = sort_index(-hs)   ! coarsest mesh first
         hs = hs(idx)
         fs = fs(idx)
         est%h_used = hs(n - 2:n)
@@ -252,24 +253,6 @@ contains
             expm1 = exp(x) - 1.0_wp
         end if
     end function expm1
-
-    !> Indices that sort `x` in decreasing order (insertion sort: a handful of meshes).
-    pure function descending(x) result(idx)
-        real(wp), intent(in) :: x(:)
-        integer :: idx(size(x))
-        integer :: i, j, moving
-        idx = [(i, i=1, size(x))]
-        do i = 2, size(x)
-            moving = idx(i)
-            j = i - 1
-            do while (j >= 1)
-                if (x(idx(j)) >= x(moving)) exit
-                idx(j + 1) = idx(j)
-                j = j - 1
-            end do
-            idx(j + 1) = moving
-        end do
-    end function descending
 
     pure real(wp) function nan()
         nan = ieee_value(1.0_wp, ieee_quiet_nan)

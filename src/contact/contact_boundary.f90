@@ -10,6 +10,7 @@ module contact_boundary
     use dof_map, only: dof_map_t
     use csr_matrix, only: csr_matrix_t, csr_from_element_dofs
     use strings, only: to_string
+    use sorting, only: sort_index
     implicit none
     private
     public :: contact_t, build_contact, assemble_b, edge_mass
@@ -283,22 +284,4 @@ contains
         real(wp), intent(in) :: u(2), v(2)
         cross = u(1)*v(2) - u(2)*v(1)
     end function cross
-
-    !> Permutation that sorts `values` ascending (insertion sort: p is at most a few thousand).
-    pure function sort_index(values) result(order)
-        real(wp), intent(in) :: values(:)
-        integer :: order(size(values))
-        integer :: i, j, key
-        order = [(i, i=1, size(values))]
-        do i = 2, size(values)
-            key = order(i)
-            j = i - 1
-            do while (j >= 1)
-                if (values(order(j)) <= values(key)) exit
-                order(j + 1) = order(j)
-                j = j - 1
-            end do
-            order(j + 1) = key
-        end do
-    end function sort_index
 end module contact_boundary

@@ -8,6 +8,7 @@ module assembly
     use dof_map, only: dof_map_t, cell_dofs
     use csr_matrix, only: csr_matrix_t, csr_from_element_dofs
     use strings, only: to_string, short_real_text
+    use sorting, only: sort_by_key
     use elasticity, only: element_stiffness, ELEMENT_OK, ELEMENT_INVERTED
     implicit none
     private
@@ -157,21 +158,16 @@ contains
         integer, intent(in) :: dofs(:)
         real(wp), intent(in) :: block(:, :)
         integer, intent(out) :: info
-        integer :: order(size(dofs)), n_order, i, j, key, row, pos, last
+        integer :: order(size(dofs)), n_order, i, j, row, pos, last
 
-        ! Positions of the free dofs, sorted by dof number (insertion sort: <= 18 entries).
+        ! Positions of the free dofs, sorted by dof number.
         n_order = 0
         do i = 1, size(dofs)
             if (dofs(i) == 0) cycle
             n_order = n_order + 1
             order(n_order) = i
-            do j = n_order, 2, -1
-                if (dofs(order(j - 1)) <= dofs(order(j))) exit
-                key = order(j)
-                order(j) = order(j - 1)
-                order(j - 1) = key
-            end do
         end do
+        call sort_by_key(order(:n_order), dofs)
 
         info = 0
         do i = 1, size(dofs)

@@ -6,6 +6,7 @@ module matrix_market
     use status, only: status_t, STATUS_IO, STATUS_BAD_INPUT
     use csr_matrix, only: csr_matrix_t
     use strings, only: to_string
+    use sorting, only: sort_index
     implicit none
     private
     public :: write_matrix_market, read_matrix_market
@@ -178,7 +179,7 @@ contains
         integer, intent(in) :: rows(:), cols(:)
         real(wp), intent(in) :: values(:)
         type(csr_matrix_t), intent(out) :: a
-        integer, allocatable :: start(:), fill(:), row_cols(:)
+        integer, allocatable :: start(:), fill(:), row_cols(:), order(:)
         real(wp), allocatable :: row_values(:)
         integer :: k, row, first, last, kept, i
 
@@ -205,7 +206,10 @@ contains
         do row = 1, n
             first = start(row)
             last = start(row + 1) - 1
-            call sort_by_column(row_cols(first:last), row_values(first:last))
+            ! Stable, so duplicates are summed in file order, as before.
+            order = first - 1 + sort_index(row_cols(first:last))
+            row_cols(first:last) = row_cols(order)
+            row_values(first:last) = row_values(order)
             do i = first, last
                 if (i > first) then
                     if (row_cols(i) == row_cols(kept)) then
@@ -222,27 +226,6 @@ contains
         a%col = row_cols(1:kept)
         a%val = row_values(1:kept)
     end subroutine csr_from_triplets
-
-    !> Insertion sort of one row: rows of FE matrices hold a few dozen entries.
-    pure subroutine sort_by_column(cols, values)
-        integer, intent(inout) :: cols(:)
-        real(wp), intent(inout) :: values(:)
-        integer :: i, j, key
-        real(wp) :: value
-        do i = 2, size(cols)
-            key = cols(i)
-            value = values(i)
-            j = i - 1
-            do while (j >= 1)
-                if (cols(j) <= key) exit
-                cols(j + 1) = cols(j)
-                values(j + 1) = values(j)
-                j = j - 1
-            end do
-            cols(j + 1) = key
-            values(j + 1) = value
-        end do
-    end subroutine sort_by_column
 
     elemental function lowercase(text) result(lower)
         character(len=*), intent(in) :: text

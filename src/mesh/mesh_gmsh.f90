@@ -19,6 +19,7 @@ module mesh_gmsh
     use mesh_renumber, only: renumber_nodes, RENUMBER_RCM
     use shape_functions, only: evaluate_shape, reference_nodes, MAX_NODES
     use strings, only: to_string
+    use sorting, only: sort_index
     use input_config, only: lowercase
     implicit none
     private
@@ -1375,39 +1376,6 @@ contains
         case default; order_of = 1
         end select
     end function order_of
-
-    !> Stable sort permutation of integer keys (merge sort: node counts reach millions).
-    pure function sort_index(keys) result(order)
-        integer, intent(in) :: keys(:)
-        integer, allocatable :: order(:), work(:)
-        integer :: width, low, middle, high, i, j, k, n
-        logical :: take_left
-        n = size(keys)
-        order = [(i, i=1, n)]
-        allocate (work(n))
-        width = 1
-        do while (width < n)
-            do low = 1, n, 2*width
-                middle = min(low + width, n + 1)
-                high = min(low + 2*width, n + 1)
-                i = low
-                j = middle
-                do k = low, high - 1
-                    take_left = i < middle
-                    if (take_left .and. j < high) take_left = keys(order(i)) <= keys(order(j))
-                    if (take_left) then
-                        work(k) = order(i)
-                        i = i + 1
-                    else
-                        work(k) = order(j)
-                        j = j + 1
-                    end if
-                end do
-            end do
-            order(:) = work
-            width = 2*width
-        end do
-    end function sort_index
 
     !> At most 60 characters of a line, for messages, in printable ASCII: a stray carriage
     !> return would break the one-line message, and bytes of a binary or garbage file

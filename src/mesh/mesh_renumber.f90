@@ -11,6 +11,7 @@ module mesh_renumber
     use mesh, only: mesh_t
     use csr_matrix, only: csr_matrix_t, csr_from_element_dofs
     use strings, only: to_string
+    use sorting, only: sort_by_key
     implicit none
     private
     public :: renumber_nodes, node_order, node_bandwidth
@@ -106,7 +107,7 @@ contains
         integer, allocatable :: new_of_old(:)
         integer, allocatable :: degree(:), queue(:), level(:), order(:)
         logical, allocatable :: placed(:)
-        integer :: n, node, root, n_ordered, head, tail, k, neighbour, first, i, key, j
+        integer :: n, node, root, n_ordered, head, tail, k, neighbour, first, i
 
         n = size(graph%row_start) - 1
         allocate (degree(n), queue(n), level(n), order(n), new_of_old(n))
@@ -131,17 +132,8 @@ contains
                     tail = tail + 1
                     order(tail) = neighbour
                 end do
-                ! The new neighbours by increasing degree (insertion sort: a few dozen).
-                do i = first + 1, tail
-                    key = order(i)
-                    j = i - 1
-                    do while (j >= first)
-                        if (degree(order(j)) <= degree(key)) exit
-                        order(j + 1) = order(j)
-                        j = j - 1
-                    end do
-                    order(j + 1) = key
-                end do
+                ! The new neighbours by increasing degree, ties in the order met.
+                call sort_by_key(order(first:tail), degree)
                 head = head + 1
             end do
             n_ordered = tail

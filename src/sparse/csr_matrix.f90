@@ -4,6 +4,7 @@
 module csr_matrix
     use kinds, only: wp, i8
     use status, only: status_t, STATUS_INTERNAL
+    use sorting, only: sort
     implicit none
     private
     public :: csr_from_element_dofs
@@ -95,7 +96,7 @@ contains
                     end if
                 end do
             end do
-            call sort_integers(a%col(a%row_start(row):a%row_start(row + 1) - 1))
+            call sort(a%col(a%row_start(row):a%row_start(row + 1) - 1))
         end do
         allocate (a%val(size(a%col)), source=0.0_wp)
     end subroutine csr_from_element_dofs
@@ -187,20 +188,4 @@ contains
                 sum(abs(this%val(this%row_start(i):this%row_start(i + 1) - 1))))
         end do
     end function csr_matrix_norm_inf
-
-    !> Insertion sort: rows hold a few dozen columns at most.
-    pure subroutine sort_integers(values)
-        integer, intent(inout) :: values(:)
-        integer :: i, j, key
-        do i = 2, size(values)
-            key = values(i)
-            j = i - 1
-            do while (j >= 1)
-                if (values(j) <= key) exit
-                values(j + 1) = values(j)
-                j = j - 1
-            end do
-            values(j + 1) = key
-        end do
-    end subroutine sort_integers
 end module csr_matrix
