@@ -22,7 +22,7 @@ module results_output
     implicit none
     private
     public :: write_eigen_outputs, summary_lines, nodal_field, eigen_summary_json
-    public :: write_eigenvalues_csv, write_modes, slip_sign
+    public :: write_eigenvalues_csv, write_modes, slip_sign, write_eigen_files
 
 contains
 
@@ -42,13 +42,7 @@ contains
         start = wall_time()
         call stage%begin(trim(config%output%directory), stat)
         if (.not. stat%ok()) return
-        call write_eigenvalues_csv(stage%path('eigenvalues.csv'), res%spec, stat)
-        if (stat%ok() .and. config%output%vtk) call write_modes(stage, prob, res%spec, &
-            config%output%modes, trim(config%output%vtk_format), stat)
-        if (stat%ok() .and. config%output%matrices) then
-            call write_matrix_market(stage%path('K.mtx'), prob%k, stat)
-            if (stat%ok()) call write_matrix_market(stage%path('B.mtx'), res%b, stat)
-        end if
+        call write_eigen_files(stage, config, prob, res, stat)
         if (stat%ok()) then
             timings%output = wall_time() - start
             timings%total = wall_time() - run_start
@@ -247,4 +241,21 @@ contains
             end do
         end if
     end function summary_lines
+
+    !> eigenvalues.csv, mode_NNN.vtu and K.mtx, B.mtx as &output asks, into `stage`: the
+    !> files of an eigen run, which the threshold and sweep runs write too.
+    subroutine write_eigen_files(stage, config, prob, res, stat)
+        type(output_stage_t), intent(inout) :: stage
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(in) :: prob
+        type(eigen_result_t), intent(in) :: res
+        type(status_t), intent(out) :: stat
+        call write_eigenvalues_csv(stage%path('eigenvalues.csv'), res%spec, stat)
+        if (stat%ok() .and. config%output%vtk) call write_modes(stage, prob, res%spec, &
+            config%output%modes, trim(config%output%vtk_format), stat)
+        if (stat%ok() .and. config%output%matrices) then
+            call write_matrix_market(stage%path('K.mtx'), prob%k, stat)
+            if (stat%ok()) call write_matrix_market(stage%path('B.mtx'), res%b, stat)
+        end if
+    end subroutine write_eigen_files
 end module results_output

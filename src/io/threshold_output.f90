@@ -14,9 +14,7 @@ module threshold_output
     use critical_lambda, only: thresholds_t, SIDE_PLUS, SIDE_MINUS, CONFIRM_OFFSET
     use output_stage, only: output_stage_t
     use json_writer, only: json_object_t
-    use matrix_market, only: write_matrix_market
-    use results_output, only: eigen_summary_json, summary_lines, write_eigenvalues_csv, &
-                              write_modes, slip_sign
+    use results_output, only: eigen_summary_json, summary_lines, write_eigen_files, slip_sign
     implicit none
     private
     public :: write_threshold_outputs, threshold_summary_lines, add_threshold_keys, &
@@ -44,13 +42,7 @@ contains
         start = wall_time()
         call stage%begin(trim(config%output%directory), stat)
         if (.not. stat%ok()) return
-        call write_eigenvalues_csv(stage%path('eigenvalues.csv'), res%eigen%spec, stat)
-        if (stat%ok() .and. config%output%vtk) call write_modes(stage, prob, res%eigen%spec, &
-            config%output%modes, trim(config%output%vtk_format), stat)
-        if (stat%ok() .and. config%output%matrices) then
-            call write_matrix_market(stage%path('K.mtx'), prob%k, stat)
-            if (stat%ok()) call write_matrix_market(stage%path('B.mtx'), res%eigen%b, stat)
-        end if
+        call write_eigen_files(stage, config, prob, res%eigen, stat)
         if (stat%ok() .and. allocated(res%sweep%lambda)) then
             call write_sweep_csv(stage%path(SWEEP_FILE), res%sweep, stat)
         end if
