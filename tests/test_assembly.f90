@@ -17,6 +17,7 @@ program test_assembly
     use sparse_cholesky, only: cholesky_t
     use shape_functions, only: evaluate_shape, evaluate_line_shape, MAX_NODES
     use testing, only: test_suite_t
+    use fixtures, only: csr_to_dense
     implicit none
 
     interface
@@ -82,7 +83,7 @@ contains
         call t%check('assembly succeeds'//label, stat%ok())
         if (.not. stat%ok()) return
 
-        call csr_to_dense(k, dense)
+        dense = csr_to_dense(k)
         reference = dense_assembly(m, dofs)
         ! Same element matrices added in the same cell order: equal to round-off (the bound
         ! allows a different summation order).
@@ -154,7 +155,7 @@ contains
         call t%check('top clamped: 2 (nodes - top row) free dofs'//label, &
                      dofs%n_free == 2*(m%n_nodes() - (step*NX + 1)))
         call assemble_stiffness(m, dofs, YOUNG, POISSON, k, stat)
-        call csr_to_dense(k, dense)
+        allocate (dense, source=csr_to_dense(k))
         call t%check('top clamped: K equals the dense assembly'//label, &
                      maxval(abs(dense - dense_assembly(m, dofs))) <= &
                      1.0e-14_wp*maxval(abs(dense)))
@@ -202,7 +203,7 @@ contains
         call build_dof_map(m, [m%part_index('left')], dofs, stat)
         where (dofs%free_dof > 0) dofs%free_dof = dofs%n_free + 1 - dofs%free_dof
         call assemble_stiffness(m, dofs, YOUNG, POISSON, k, stat)
-        call csr_to_dense(k, dense)
+        allocate (dense, source=csr_to_dense(k))
         call t%check('reversed dof numbering: K equals the dense assembly', stat%ok() .and. &
                      maxval(abs(dense - dense_assembly(m, dofs))) <= &
                      1.0e-14_wp*maxval(abs(dense)))
@@ -229,19 +230,6 @@ contains
             end do
         end do
     end function dense_assembly
-
-    subroutine csr_to_dense(k, a)
-        type(csr_matrix_t), intent(in) :: k
-        real(wp), allocatable, intent(out) :: a(:, :)
-        integer :: i, s
-        allocate (a(k%n(), k%n()), source=0.0_wp)
-        do i = 1, k%n()
-            do s = k%row_start(i), k%row_start(i + 1) - 1
-                a(i, k%col(s)) = k%val(s)
-            end do
-        end do
-    end subroutine csr_to_dense
-
     logical function pattern_symmetric(k)
         type(csr_matrix_t), intent(in) :: k
         integer :: i, s

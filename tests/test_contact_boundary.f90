@@ -5,6 +5,7 @@ program test_contact_boundary
     use kinds, only: wp
     use status, only: status_t, STATUS_MESH
     use testing, only: test_suite_t
+    use fixtures, only: single_triangle
     use mesh, only: mesh_t, ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2
     use mesh_structured, only: structured_rectangle
     use dof_map, only: dof_map_t, build_dof_map
@@ -35,12 +36,7 @@ contains
         type(status_t) :: stat
         real(wp) :: bd(2, 2)
         integer :: i, k
-        m%element = ELEMENT_P1
-        m%coords = reshape([0.0_wp, 0.0_wp, L_SIDE, 0.0_wp, 0.0_wp, L_SIDE], [2, 3])
-        m%cells = reshape([1, 2, 3], [3, 1])
-        m%edges = reshape([1, 2, 2, 3, 3, 1], [2, 3])
-        m%edge_part = [1, 2, 3]
-        m%part_names = [character(len=64) :: 'contact', 'fixed', 'side']
+        call single_triangle(L_SIDE, m)
         call build_dof_map(m, [2], dofs, stat)
         call build_contact(m, 1, dofs, contact, stat)
         call t%check('single element: contact built', stat%ok())

@@ -6,6 +6,7 @@ program test_critical_lambda
     use kinds, only: wp
     use status, only: status_t
     use testing, only: test_suite_t
+    use fixtures, only: single_triangle
     use mesh, only: mesh_t, ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2
     use mesh_structured, only: structured_rectangle
     use dof_map, only: dof_map_t, build_dof_map
@@ -291,17 +292,4 @@ contains
         s%nn_m = matmul(s%kt_nn, mass)
         s%nt_m = matmul(s%kt_nt, mass)
     end subroutine build_scene
-
-    !> The triangle A = (0,0), B = (l,0), C = (0,l): part 1 = [A,B] (contact), part 2 = [B,C]
-    !> (fixed), part 3 = [C,A] (Neumann).
-    subroutine single_triangle(l, m)
-        real(wp), intent(in) :: l
-        type(mesh_t), intent(out) :: m
-        m%element = ELEMENT_P1
-        m%coords = reshape([0.0_wp, 0.0_wp, l, 0.0_wp, 0.0_wp, l], [2, 3])
-        m%cells = reshape([1, 2, 3], [3, 1])
-        m%edges = reshape([1, 2, 2, 3, 3, 1], [2, 3])
-        m%edge_part = [1, 2, 3]
-        m%part_names = [character(len=64) :: 'contact', 'fixed', 'side']
-    end subroutine single_triangle
 end program test_critical_lambda

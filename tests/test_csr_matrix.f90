@@ -5,6 +5,7 @@ program test_csr_matrix
     use status, only: status_t, STATUS_INTERNAL
     use csr_matrix, only: csr_matrix_t, csr_from_element_dofs
     use testing, only: test_suite_t
+    use fixtures, only: to_dense => csr_to_dense
     implicit none
 
     real(wp), parameter :: EPS = epsilon(1.0_wp)
@@ -108,16 +109,4 @@ program test_csr_matrix
     call t%report()
 
 contains
-
-    function to_dense(a) result(dense)
-        type(csr_matrix_t), intent(in) :: a
-        real(wp) :: dense(a%n(), a%n())
-        integer :: i, k
-        dense = 0.0_wp
-        do i = 1, a%n()
-            do k = a%row_start(i), a%row_start(i + 1) - 1
-                dense(i, a%col(k)) = a%val(k)
-            end do
-        end do
-    end function to_dense
 end program test_csr_matrix

@@ -5,6 +5,7 @@ program test_dense_eigen
     use kinds, only: wp
     use status, only: status_t
     use testing, only: test_suite_t
+    use fixtures, only: single_triangle, csr_to_dense
     use mesh, only: mesh_t, ELEMENT_P1, ELEMENT_Q1
     use mesh_structured, only: structured_rectangle
     use dof_map, only: dof_map_t, build_dof_map
@@ -99,8 +100,8 @@ contains
                              LAMBDAS(c), spec)
             n = dofs%n_free
             p = contact%p()
-            kd = dense(k, n)
-            bd = dense(b, n)
+            kd = csr_to_dense(k)
+            bd = csr_to_dense(b)
             allocate (alphar(n), alphai(n), beta(n), vl(1, 1), vr(1, 1))
             call dggev('N', 'N', n, bd, n, kd, n, alphar, alphai, beta, vl, 1, vr, 1, query, &
                        -1, info)
@@ -222,30 +223,4 @@ contains
             allocate (spec%mu(0), spec%kind(0), spec%residual(0), spec%condition(0))
         end if
     end subroutine solve_scene
-
-    !> The triangle A = (0,0), B = (l,0), C = (0,l): part 1 = [A,B] (contact), part 2 = [B,C]
-    !> (fixed), part 3 = [C,A] (Neumann).
-    subroutine single_triangle(l, m)
-        real(wp), intent(in) :: l
-        type(mesh_t), intent(out) :: m
-        m%element = ELEMENT_P1
-        m%coords = reshape([0.0_wp, 0.0_wp, l, 0.0_wp, 0.0_wp, l], [2, 3])
-        m%cells = reshape([1, 2, 3], [3, 1])
-        m%edges = reshape([1, 2, 2, 3, 3, 1], [2, 3])
-        m%edge_part = [1, 2, 3]
-        m%part_names = [character(len=64) :: 'contact', 'fixed', 'side']
-    end subroutine single_triangle
-
-    function dense(a, n) result(d)
-        type(csr_matrix_t), intent(in) :: a
-        integer, intent(in) :: n
-        real(wp) :: d(n, n)
-        integer :: i, j
-        d = 0.0_wp
-        do i = 1, n
-            do j = a%row_start(i), a%row_start(i + 1) - 1
-                d(i, a%col(j)) = a%val(j)
-            end do
-        end do
-    end function dense
 end program test_dense_eigen

@@ -7,6 +7,7 @@ program test_extremes_scaling
     use kinds, only: wp
     use status, only: status_t
     use testing, only: test_suite_t
+    use fixtures, only: has_warning
     use timer, only: timings_t
     use run_config, only: config_t
     use problem, only: problem_t, build_problem
@@ -218,17 +219,6 @@ contains
         call t%check(what//': every real mu scales, within 100 condition eps', worst <= 100.0_wp)
         call t%check(what//': no warning', size(res%warnings) == 0)
     end subroutine check_scaled
-
-    logical function has_warning(res, words)
-        type(eigen_result_t), intent(in) :: res
-        character(len=*), intent(in) :: words
-        integer :: i
-        has_warning = .false.
-        do i = 1, size(res%warnings)
-            if (index(res%warnings(i), words) > 0) has_warning = .true.
-        end do
-    end function has_warning
-
     !> p = free contact nodes: bottom side nodes minus the two corners when the sides are
     !> fixed; here left and right are free, so every bottom node counts.
     integer function count_nonzero(c)

@@ -7,9 +7,9 @@ program test_extremes_threshold
     use kinds, only: wp
     use status, only: status_t
     use testing, only: test_suite_t
+    use fixtures, only: has_warning, single_triangle_mesh => single_triangle
     use timer, only: timings_t
     use run_config, only: config_t
-    use mesh, only: ELEMENT_P1
     use problem, only: problem_t, build_problem
     use eigen_analysis, only: eigen_result_t, solve_eigen
     use dof_map, only: build_dof_map
@@ -166,17 +166,6 @@ contains
             if (abs(res%spec%mu(i)) > abs(largest_real)) largest_real = real(res%spec%mu(i), wp)
         end do
     end function largest_real
-
-    logical function has_warning(res, words)
-        type(eigen_result_t), intent(in) :: res
-        character(len=*), intent(in) :: words
-        integer :: i
-        has_warning = .false.
-        do i = 1, size(res%warnings)
-            if (index(res%warnings(i), words) > 0) has_warning = .true.
-        end do
-    end function has_warning
-
     subroutine solve(c, prob, lambda, res)
         type(config_t), intent(in) :: c
         type(problem_t), intent(in) :: prob
@@ -196,12 +185,7 @@ contains
         real(wp), intent(in) :: l, young, poisson
         type(problem_t), intent(out) :: prob
         type(status_t) :: stat
-        prob%mesh%element = ELEMENT_P1
-        prob%mesh%coords = reshape([0.0_wp, 0.0_wp, l, 0.0_wp, 0.0_wp, l], [2, 3])
-        prob%mesh%cells = reshape([1, 2, 3], [3, 1])
-        prob%mesh%edges = reshape([1, 2, 2, 3, 3, 1], [2, 3])
-        prob%mesh%edge_part = [1, 2, 3]
-        prob%mesh%part_names = [character(len=64) :: 'contact', 'fixed', 'side']
+        call single_triangle_mesh(l, prob%mesh)
         prob%young = young
         prob%poisson = poisson
         prob%dirichlet_parts = [2]

@@ -6,6 +6,7 @@ program test_json_writer
     use json_writer, only: json_object_t
     use ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_positive_inf
     use testing, only: test_suite_t
+    use fixtures, only: file_text
     implicit none
     type(test_suite_t) :: t
     type(json_object_t) :: object, numbers
@@ -50,7 +51,7 @@ program test_json_writer
                //'}'
     call object%write('object.json', stat)
     call t%check('write succeeds', stat%ok())
-    text = file_text('object.json')
+    text = file_text('object.json', NL)
     call t%check('exact text of a small object', text == expected//NL)
     if (text /= expected//NL) print '(a)', text
 
@@ -76,23 +77,6 @@ program test_json_writer
     call t%report()
 
 contains
-
-    !> Whole file as text, lines joined by new_line('a'), ending with one.
-    function file_text(path) result(text)
-        character(len=*), intent(in) :: path
-        character(len=:), allocatable :: text
-        character(len=1000) :: line
-        integer :: unit, ios
-        text = ''
-        open (newunit=unit, file=path, status='old', action='read')
-        do
-            read (unit, '(a)', iostat=ios) line
-            if (ios /= 0) exit
-            text = text//trim(line)//NL
-        end do
-        close (unit)
-    end function file_text
-
     !> The JSON number grammar: -?(0|[1-9]d*)(.d+)?([eE][+-]?d+)?
     logical function json_number(s)
         character(len=*), intent(in) :: s

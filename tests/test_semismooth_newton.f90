@@ -7,8 +7,9 @@ program test_semismooth_newton
     use kinds, only: wp
     use status, only: status_t
     use testing, only: test_suite_t
+    use fixtures, only: single_triangle
     use timer, only: timings_t
-    use mesh, only: mesh_t, ELEMENT_P1
+    use mesh, only: mesh_t
     use dof_map, only: dof_map_t, build_dof_map
     use assembly, only: assemble_stiffness
     use csr_matrix, only: csr_matrix_t
@@ -179,12 +180,7 @@ contains
         type(csr_matrix_t) :: k
         real(wp) :: load(6)
         real(wp), parameter :: NO_STRESS(2, 2) = 0.0_wp, CLAMPED(6) = 0.0_wp
-        m%element = ELEMENT_P1
-        m%coords = reshape([0.0_wp, 0.0_wp, l, 0.0_wp, 0.0_wp, l], [2, 3])
-        m%cells = reshape([1, 2, 3], [3, 1])
-        m%edges = reshape([1, 2, 2, 3, 3, 1], [2, 3])
-        m%edge_part = [1, 2, 3]
-        m%part_names = [character(len=64) :: 'contact', 'fixed', 'side']
+        call single_triangle(l, m)
         call build_dof_map(m, [2], dofs, stat)
         if (stat%ok()) call assemble_stiffness(m, dofs, YOUNG, POISSON, k, stat)
         load = 0.0_wp

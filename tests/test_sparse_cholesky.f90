@@ -9,6 +9,7 @@ program test_sparse_cholesky
     use sparse_cholesky, only: cholesky_t, cholmod_status_message, ORDERING_DEFAULT, &
                                ORDERING_AMD, ORDERING_METIS, ORDERING_NATURAL, ORDERING_GIVEN
     use testing, only: test_suite_t
+    use fixtures, only: to_dense => csr_to_dense
     implicit none
 
     interface
@@ -251,19 +252,6 @@ contains
                 /(a%norm_inf()*maxval(abs(x(:, k))) + maxval(abs(b(:, k)))))
         end do
     end function backward_error
-
-    function to_dense(a) result(dense)
-        type(csr_matrix_t), intent(in) :: a
-        real(wp), allocatable :: dense(:, :)
-        integer :: i, k
-        allocate (dense(a%n(), a%n()), source=0.0_wp)
-        do i = 1, a%n()
-            do k = a%row_start(i), a%row_start(i + 1) - 1
-                dense(i, a%col(k)) = a%val(k)
-            end do
-        end do
-    end function to_dense
-
     !> A local factor is finalized on return; doing it repeatedly must neither crash nor
     !> leave the caller's matrix changed.
     subroutine factor_in_a_scope(a, t)

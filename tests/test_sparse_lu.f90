@@ -9,6 +9,7 @@ program test_sparse_lu
     use sparse_lu, only: lu_t, umfpack_status_message, LU_ORDERING_DEFAULT, &
                          LU_ORDERING_METIS, LU_ORDERING_NATURAL, LU_ORDERING_CHOLMOD
     use testing, only: test_suite_t
+    use fixtures, only: to_dense => csr_to_dense
     implicit none
 
     interface
@@ -199,16 +200,4 @@ contains
         call a%matvec(x, ax)
         backward_error = maxval(abs(b - ax))/(a%norm_inf()*maxval(abs(x)) + maxval(abs(b)))
     end function backward_error
-
-    function to_dense(a) result(dense)
-        type(csr_matrix_t), intent(in) :: a
-        real(wp), allocatable :: dense(:, :)
-        integer :: i, k
-        allocate (dense(a%n(), a%n()), source=0.0_wp)
-        do i = 1, a%n()
-            do k = a%row_start(i), a%row_start(i + 1) - 1
-                dense(i, a%col(k)) = a%val(k)
-            end do
-        end do
-    end function to_dense
 end program test_sparse_lu

@@ -16,6 +16,7 @@ program test_vtk_writer
                           VTK_BINARY, VTK_ASCII
     use strings, only: to_string
     use testing, only: test_suite_t
+    use fixtures, only: file_text
     implicit none
     type(test_suite_t) :: t
     type(mesh_t) :: m
@@ -52,7 +53,7 @@ program test_vtk_writer
     call write_vtu('two_triangles_binary.vtu', m, NAMES, fields, VTK_BINARY, stat)
     call t%check('binary write succeeds', stat%ok())
 
-    text = file_text('two_triangles.vtu')
+    text = file_text('two_triangles.vtu', ' ')
     call t%check('ascii: XML declaration first', index(text, '<?xml version="1.0"?>') == 1)
     call t%check('ascii: an UnstructuredGrid', index(text, '<VTKFile type="UnstructuredGrid"') > 0)
     call t%check('ascii: NumberOfPoints = 4', index(text, 'NumberOfPoints="4"') > 0)
@@ -158,7 +159,7 @@ contains
                        reshape(r%coords, [2, r%n_nodes(), 1]), VTK_BINARY, stat)
         call t%check(name//': binary write', stat%ok())
         saved_text = text
-        text = file_text(name//'.vtu')
+        text = file_text(name//'.vtu', ' ')
         n_cells = r%n_cells()
         n_per_cell = size(r%cells, 1)
 
@@ -181,22 +182,6 @@ contains
             call t%check(name//': binary connectivity', all(from_binary == from_text))
         text = saved_text
     end subroutine check_element
-
-    function file_text(path) result(text)
-        character(len=*), intent(in) :: path
-        character(len=:), allocatable :: text
-        character(len=1000) :: line
-        integer :: unit, ios
-        text = ''
-        open (newunit=unit, file=path, status='old', action='read')
-        do
-            read (unit, '(a)', iostat=ios) line
-            if (ios /= 0) exit
-            text = text//trim(line)//' '
-        end do
-        close (unit)
-    end function file_text
-
     !> The `n` integers of the text DataArray found by `marker`.
     subroutine read_text_ints(marker, n, values)
         character(len=*), intent(in) :: marker

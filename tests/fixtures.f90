@@ -1,0 +1,68 @@
+! SPDX-License-Identifier: MIT
+!> Fixtures and views that several test programs need: the one-triangle mesh with closed
+!> forms, a CSR matrix as a dense array, a file as text, a search in a run's warnings.
+!> One copy here, so a fix reaches every test that uses them.
+module fixtures
+    use kinds, only: wp
+    use mesh, only: mesh_t, ELEMENT_P1
+    use csr_matrix, only: csr_matrix_t
+    use eigen_analysis, only: eigen_result_t
+    implicit none
+    private
+    public :: single_triangle, csr_to_dense, file_text, has_warning
+
+contains
+
+    !> The triangle A = (0,0), B = (l,0), C = (0,l): part 1 = [A,B] (contact), part 2 = [B,C]
+    !> (fixed), part 3 = [C,A] (Neumann).
+    subroutine single_triangle(l, m)
+        real(wp), intent(in) :: l
+        type(mesh_t), intent(out) :: m
+        m%element = ELEMENT_P1
+        m%coords = reshape([0.0_wp, 0.0_wp, l, 0.0_wp, 0.0_wp, l], [2, 3])
+        m%cells = reshape([1, 2, 3], [3, 1])
+        m%edges = reshape([1, 2, 2, 3, 3, 1], [2, 3])
+        m%edge_part = [1, 2, 3]
+        m%part_names = [character(len=64) :: 'contact', 'fixed', 'side']
+    end subroutine single_triangle
+
+    !> The n x n dense array of a square CSR matrix (zeros off the pattern).
+    function csr_to_dense(a) result(dense)
+        type(csr_matrix_t), intent(in) :: a
+        real(wp), allocatable :: dense(:, :)
+        integer :: i, k
+        allocate (dense(a%n(), a%n()), source=0.0_wp)
+        do i = 1, a%n()
+            do k = a%row_start(i), a%row_start(i + 1) - 1
+                dense(i, a%col(k)) = a%val(k)
+            end do
+        end do
+    end function csr_to_dense
+
+    !> Whole file as text: each line trimmed and followed by `separator`.
+    function file_text(path, separator) result(text)
+        character(len=*), intent(in) :: path, separator
+        character(len=:), allocatable :: text
+        character(len=1000) :: line
+        integer :: unit, ios
+        text = ''
+        open (newunit=unit, file=path, status='old', action='read')
+        do
+            read (unit, '(a)', iostat=ios) line
+            if (ios /= 0) exit
+            text = text//trim(line)//separator
+        end do
+        close (unit)
+    end function file_text
+
+    !> Whether one of the run's warnings contains `words`.
+    logical function has_warning(res, words)
+        type(eigen_result_t), intent(in) :: res
+        character(len=*), intent(in) :: words
+        integer :: i
+        has_warning = .false.
+        do i = 1, size(res%warnings)
+            if (index(res%warnings(i), words) > 0) has_warning = .true.
+        end do
+    end function has_warning
+end module fixtures
