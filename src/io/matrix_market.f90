@@ -7,6 +7,7 @@ module matrix_market
     use csr_matrix, only: csr_matrix_t
     use strings, only: to_string
     use sorting, only: sort_index
+    use input_config, only: lowercase
     implicit none
     private
     public :: write_matrix_market, read_matrix_market
@@ -226,15 +227,4 @@ contains
         a%col = row_cols(1:kept)
         a%val = row_values(1:kept)
     end subroutine csr_from_triplets
-
-    elemental function lowercase(text) result(lower)
-        character(len=*), intent(in) :: text
-        character(len=len(text)) :: lower
-        integer :: i, code
-        lower = text
-        do i = 1, len(text)
-            code = iachar(text(i:i))
-            if (code >= iachar('A') .and. code <= iachar('Z')) lower(i:i) = achar(code + 32)
-        end do
-    end function lowercase
 end module matrix_market
