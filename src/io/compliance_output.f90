@@ -15,7 +15,8 @@ module compliance_output
     use output_stage, only: output_stage_t
     use json_writer, only: json_object_t
     use vtk_writer, only: write_vtu
-    use results_output, only: eigen_summary_json, write_eigenvalues_csv
+    use results_output, only: eigen_summary_json, write_eigenvalues_csv, commit_with_summary
+    use mesh, only: element_name
     use normal_compliance, only: state_name, STATE_SEPARATED, STATE_STICK, &
                                  STATE_SLIP_PLUS, STATE_SLIP_MINUS
     use branch_analysis, only: branch_result_t
@@ -89,9 +90,8 @@ contains
             call summary%add_real('branch_max_residual', res%max_residual)
             call summary%add_real('load_norm', res%cp%load_norm)
             call summary%add_real('time_branch_s', res%time_branch)
-            call summary%write(stage%path('summary.json'), stat)
+            call commit_with_summary(stage, summary, stat)
         end if
-        if (stat%ok()) call stage%commit(stat)
         if (.not. stat%ok()) call stage%abort()
     end subroutine write_branch_outputs
 
@@ -159,9 +159,8 @@ contains
             timings%output = wall_time() - start
             timings%total = wall_time() - run_start
             summary = solve_summary_json(config, prob, res, timings)
-            call summary%write(stage%path('summary.json'), stat)
+            call commit_with_summary(stage, summary, stat)
         end if
-        if (stat%ok()) call stage%commit(stat)
         if (.not. stat%ok()) call stage%abort()
     end subroutine write_solve_outputs
 
@@ -176,7 +175,7 @@ contains
         call summary%add_string('input', config%input_file)
         call summary%add_string('analysis', trim(config%analysis%kind))
         call summary%add_real('lambda', config%analysis%lambda)
-        call summary%add_string('element', trim(config%mesh%element))
+        call summary%add_string('element', element_name(prob%mesh%element))
         call summary%add_string('mesh_source', trim(config%mesh%source))
         call summary%add_integer('n_nodes', prob%mesh%n_nodes())
         call summary%add_integer('n_cells', prob%mesh%n_cells())

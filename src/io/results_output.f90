@@ -22,7 +22,8 @@ module results_output
     implicit none
     private
     public :: write_eigen_outputs, summary_lines, nodal_field, eigen_summary_json
-    public :: write_eigenvalues_csv, write_modes, slip_sign, write_eigen_files
+    public :: write_eigenvalues_csv, write_modes, slip_sign, write_eigen_files, &
+              commit_with_summary
 
 contains
 
@@ -36,7 +37,6 @@ contains
         type(status_t), intent(out) :: stat
         type(output_stage_t) :: stage
         type(json_object_t) :: summary
-        character(len=:), allocatable :: summary_path
         real(wp) :: start
 
         start = wall_time()
@@ -47,15 +47,24 @@ contains
             timings%output = wall_time() - start
             timings%total = wall_time() - run_start
             summary = eigen_summary_json(config, prob, res, timings)
-            ! summary.json is registered last: the commit's completion marker, so it lists
-            ! the files of its set (an older run may have left other mode_NNN.vtu).
-            summary_path = stage%path('summary.json')
-            call summary%add_string_array('files', stage%file_names(64))
-            call summary%write(summary_path, stat)
+            call commit_with_summary(stage, summary, stat)
         end if
-        if (stat%ok()) call stage%commit(stat)
         if (.not. stat%ok()) call stage%abort()
     end subroutine write_eigen_outputs
+
+    !> Every analysis ends its outputs here: summary.json is registered last, as the commit's
+    !> completion marker, and lists the files of its set (an older run may have left other
+    !> mode_NNN.vtu); then the staged files move into place together.
+    subroutine commit_with_summary(stage, summary, stat)
+        type(output_stage_t), intent(inout) :: stage
+        type(json_object_t), intent(inout) :: summary
+        type(status_t), intent(out) :: stat
+        character(len=:), allocatable :: summary_path
+        summary_path = stage%path('summary.json')
+        call summary%add_string_array('files', stage%file_names(64))
+        call summary%write(summary_path, stat)
+        if (stat%ok()) call stage%commit(stat)
+    end subroutine commit_with_summary
 
     !> summary.json of an eigen run; other analyses add their own keys to it.
     function eigen_summary_json(config, prob, res, timings) result(summary)

@@ -14,7 +14,8 @@ module threshold_output
     use critical_lambda, only: thresholds_t, SIDE_PLUS, SIDE_MINUS, CONFIRM_OFFSET
     use output_stage, only: output_stage_t
     use json_writer, only: json_object_t
-    use results_output, only: eigen_summary_json, summary_lines, write_eigen_files, slip_sign
+    use results_output, only: eigen_summary_json, summary_lines, write_eigen_files, slip_sign, &
+                              commit_with_summary
     implicit none
     private
     public :: write_threshold_outputs, threshold_summary_lines, add_threshold_keys, &
@@ -52,9 +53,8 @@ contains
             summary = eigen_summary_json(config, prob, res%eigen, timings)
             call add_threshold_keys(summary, res)
             if (allocated(res%sweep%lambda)) call add_sweep_keys(summary, config, res)
-            call summary%write(stage%path('summary.json'), stat)
+            call commit_with_summary(stage, summary, stat)
         end if
-        if (stat%ok()) call stage%commit(stat)
         if (.not. stat%ok()) call stage%abort()
     end subroutine write_threshold_outputs
 
