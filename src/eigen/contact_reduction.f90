@@ -21,7 +21,7 @@ module contact_reduction
     use node_ordering, only: nested_dissection_last
     use contact_boundary, only: contact_t
     use spectrum, only: backward_error, normalise_mode
-    use lapack_interfaces, only: dpotri
+    use lapack_interfaces, only: dpotri, dtrsm
     implicit none
     private
     public :: factor_stiffness, contact_tail, flexibility_blocks, contact_flexibility, &
@@ -170,7 +170,9 @@ contains
     !> are normalised (normalise_mode) and kept in `vectors`. A real y costs one column, a
     !> complex one two (real and imaginary part); the conjugate partner that follows a
     !> complex pair's first member costs none (K and B are real: conjugate vector, same
-    !> backward error). `chol` is any factor of K.
+    !> backward error). `chol` is the factor from factor_stiffness: the right-hand sides live
+    !> on the contact dofs, pivoted last, so the forward half of each solve is L_c^-1 on the
+    !> trailing rows (dense, O(p^2) per column) and only the backward half passes over L.
     subroutine lift_eigenvectors(k, b, chol, contact, lambda, mu, y, n_keep, residual, vectors, &
                                  stat)
         type(csr_matrix_t), intent(in) :: k, b
@@ -183,11 +185,11 @@ contains
         real(wp), allocatable, intent(out) :: residual(:)
         complex(wp), allocatable, intent(out) :: vectors(:, :)
         type(status_t), intent(out) :: stat
-        real(wp), allocatable :: rhs(:, :), g(:, :), my(:)
+        real(wp), allocatable :: w(:, :), g(:, :), my(:), l_tail(:, :), w_tail(:, :)
         complex(wp), allocatable :: phi(:)
-        integer, allocatable :: columns(:), first_column(:)
+        integer, allocatable :: columns(:), first_column(:), slot(:, :)
         real(wp) :: direction(2), k_norm, b_norm
-        integer :: n_ev, n_free, block_columns, first, last, i, c, n_cols
+        integer :: n_ev, n_free, block_columns, first, last, i, c, n_cols, m, a
 
         n_ev = size(mu)
         n_free = k%n()
@@ -195,6 +197,9 @@ contains
         k_norm = k%norm_inf()
         b_norm = b%norm_inf()
         allocate (residual(n_ev), vectors(n_free, min(n_keep, n_ev)))
+        call contact_tail(chol, contact, l_tail, slot, stat)
+        if (.not. stat%ok()) return
+        m = size(l_tail, 1)
         allocate (columns(n_ev), first_column(n_ev), my(contact%p()), phi(n_free))
         do i = 1, n_ev
             columns(i) = merge(2, 1, any(abs(aimag(y(:, i))) > 0.0_wp))
@@ -216,23 +221,32 @@ contains
                 last = last + 1
                 n_cols = n_cols + columns(last)
             end do
-            allocate (rhs(n_free, n_cols), source=0.0_wp)
-            allocate (g(n_free, n_cols))
+            ! right-hand sides (lambda T' - N') M y in the trailing pivot order, then L_c^-1
+            allocate (w_tail(m, n_cols), source=0.0_wp)
             c = 0
             do i = first, last
                 first_column(i) = c + 1
                 if (columns(i) == 0) cycle
                 call contact%mass%matvec(real(y(:, i), wp), my)
-                call contact%scatter(direction, my, rhs(:, c + 1))
+                do a = 1, size(my)
+                    w_tail(slot(:, a), c + 1) = direction*my(a)
+                end do
                 if (columns(i) == 2) then
                     call contact%mass%matvec(aimag(y(:, i)), my)
-                    call contact%scatter(direction, my, rhs(:, c + 2))
+                    do a = 1, size(my)
+                        w_tail(slot(:, a), c + 2) = direction*my(a)
+                    end do
                 end if
                 c = c + columns(i)
             end do
-            call chol%solve(rhs, g, stat)
+            call dtrsm('L', 'L', 'N', 'N', m, n_cols, 1.0_wp, l_tail, m, w_tail, m)
+            allocate (w(n_free, n_cols), source=0.0_wp)
+            w(n_free - m + 1:, :) = w_tail
+            deallocate (w_tail)
+            allocate (g(n_free, n_cols))
+            call chol%backward(w, g, stat)
             if (.not. stat%ok()) return
-            deallocate (rhs)
+            deallocate (w)
             do i = first, last
                 c = first_column(i)
                 select case (columns(i))
