@@ -1,6 +1,7 @@
 ! SPDX-License-Identifier: MIT
-!> The ARPACK solver against the dense solver (an independent computation: dense forward
-!> solves and LAPACK dgeevx on the whole reduced matrix) over many scenes, and its parts
+!> The ARPACK solver against the dense solver (LAPACK dgeevx on the whole reduced matrix;
+!> both read K^-1 on the contact dofs off the same factor, which test_dense_eigen checks
+!> against forward solves and dense inverses) over many scenes, and its parts
 !> against mathematics: the trailing block of the factor is K^-1 on the contact dofs, the
 !> node ordering puts the contact dofs last, the certificate logic, the info sentences.
 program test_arpack_eigen
@@ -11,7 +12,8 @@ program test_arpack_eigen
     use problem, only: problem_t, build_problem
     use timer, only: timings_t
     use eigen_analysis, only: eigen_result_t, solve_eigen
-    use sparse_cholesky, only: cholesky_t, ORDERING_GIVEN
+    use sparse_cholesky, only: cholesky_t
+    use contact_reduction, only: factor_stiffness
     use node_ordering, only: nested_dissection_last, metis_status_message
     use arpack_eigen, only: certify_lowest, is_real_ritz, CERTIFIED_FOUND, CERTIFIED_NONE, &
                             UNDECIDED
@@ -109,14 +111,15 @@ contains
         type(problem_t) :: prob
         type(status_t) :: stat
         type(cholesky_t) :: chol
+        type(timings_t) :: timings
         integer, allocatable :: perm(:), rows(:)
         real(wp), allocatable :: l_tail(:, :), rhs(:, :), x(:, :), inverse(:, :)
         integer :: m, j, n
         call scene(10, 'p1', 'left', config)
         call build_problem(config, prob, stat)
         call nested_dissection_last(prob%mesh, prob%dofs, prob%contact%nodes, perm, stat)
-        call chol%factor(prob%k, stat, ordering=ORDERING_GIVEN, permutation=perm)
-        call t%check('factor with the given ordering', stat%ok())
+        call factor_stiffness(prob%k, prob%mesh, prob%dofs, prob%contact, chol, timings, stat)
+        call t%check('factor with the contact dofs last', stat%ok())
         if (.not. stat%ok()) return
         m = 2*prob%contact%p()
         n = prob%dofs%n_free

@@ -14,7 +14,8 @@ program test_critical_lambda
     use contact_boundary, only: contact_t, build_contact
     use csr_matrix, only: csr_matrix_t
     use sparse_cholesky, only: cholesky_t
-    use dense_eigen, only: contact_flexibility
+    use contact_reduction, only: factor_stiffness, contact_flexibility
+    use timer, only: timings_t
     use lapack_interfaces, only: dgeev
     use critical_lambda, only: thresholds_t, pencil_thresholds, lowest_positive_mu, &
                                confirm_thresholds, SIDE_PLUS, SIDE_MINUS
@@ -274,15 +275,15 @@ contains
         type(contact_t) :: contact
         type(csr_matrix_t) :: k
         type(cholesky_t) :: chol
+        type(timings_t) :: timings
         type(status_t) :: stat
         real(wp), allocatable :: mass(:, :)
 
         call build_dof_map(m, dirichlet_parts, dofs, stat)
         if (stat%ok()) call build_contact(m, contact_part, dofs, contact, stat)
         if (stat%ok()) call assemble_stiffness(m, dofs, 1.0_wp, poisson, k, stat)
-        if (stat%ok()) call chol%factor(k, stat)
-        if (stat%ok()) call contact_flexibility(chol, contact, dofs%n_free, s%kt_nn, s%kt_nt, &
-                                                stat)
+        if (stat%ok()) call factor_stiffness(k, m, dofs, contact, chol, timings, stat)
+        if (stat%ok()) call contact_flexibility(chol, contact, s%kt_nn, s%kt_nt, stat)
         call chol%free()
         if (.not. stat%ok()) then
             call t%check('build_scene: '//stat%message, .false.)

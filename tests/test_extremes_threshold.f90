@@ -16,7 +16,7 @@ program test_extremes_threshold
     use contact_boundary, only: build_contact
     use assembly, only: assemble_stiffness
     use sparse_cholesky, only: cholesky_t
-    use dense_eigen, only: contact_flexibility
+    use contact_reduction, only: factor_stiffness, contact_flexibility
     use lapack_interfaces, only: dggev
     use spectrum, only: KIND_COMPLEX
     use accuracy, only: LAMBDA_SENSITIVITY_BOUND
@@ -132,13 +132,14 @@ contains
         type(problem_t), intent(in) :: prob
         real(wp), intent(out) :: thresholds(2)
         type(cholesky_t) :: chol
+        type(timings_t) :: timings
         type(status_t) :: stat
         real(wp), allocatable :: kt_nn(:, :), kt_nt(:, :), alphar(:), alphai(:), beta(:), &
                                  work(:), vl(:, :), vr(:, :)
         real(wp) :: query(1), value
         integer :: p, info, j
-        call chol%factor(prob%k, stat)
-        call contact_flexibility(chol, prob%contact, prob%dofs%n_free, kt_nn, kt_nt, stat)
+        call factor_stiffness(prob%k, prob%mesh, prob%dofs, prob%contact, chol, timings, stat)
+        call contact_flexibility(chol, prob%contact, kt_nn, kt_nt, stat)
         call chol%free()
         p = prob%contact%p()
         allocate (alphar(p), alphai(p), beta(p), vl(1, 1), vr(1, 1))

@@ -47,7 +47,8 @@ contains
         type(cholesky_t) :: chol
         type(status_t) :: stat
         real(wp), allocatable :: b(:, :), x(:, :), x_default(:, :), x_lapack(:, :), dense(:, :)
-        real(wp), allocatable :: b1(:, :), b2(:, :), w1(:, :), w2(:, :), x2(:, :), gram(:, :)
+        real(wp), allocatable :: b1(:, :), b2(:, :), w1(:, :), w2(:, :), x2(:, :), gram(:, :), &
+                                 x_back(:, :)
         integer, allocatable :: reversed(:)
         real(wp) :: lambda_min, lambda_max, cond, forward_tol
         integer :: i, k, info
@@ -126,6 +127,13 @@ contains
         call t%check('W1''W2 equals B1''A^{-1}B2 within 1e3 eps ||B1|| ||B2|| / lambda_min', &
                      maxval(abs(gram - matmul(transpose(b1), x2))) <= &
                      BACKWARD_TOL*norm2(b1)*norm2(b2)/lambda_min)
+        ! backward undoes the rest of a solve: P' L^-T (L^-1 P B) = A^-1 B, the same rounding
+        ! bound as above with ||B2|| for the other factor
+        allocate (x_back(N, 3))
+        call chol%backward(w2, x_back, stat)
+        call t%check('backward solve of W2', stat%ok())
+        call t%check('backward(forward(B2)) = A^{-1} B2 within 1e3 eps ||B2|| / lambda_min', &
+                     maxval(abs(x_back - x2)) <= BACKWARD_TOL*norm2(b2)/lambda_min)
 
         ! --- errors are statuses, not crashes ---
         call chol%factor(a, stat, ordering=ORDERING_GIVEN)

@@ -3,14 +3,14 @@
 !> the solver the input asks for, with the phase timings of SPEC section 7.
 module eigen_analysis
     use kinds, only: wp
-    use status, only: status_t, STATUS_SINGULAR
+    use status, only: status_t
     use timer, only: wall_time, timings_t
     use run_config, only: config_t
     use problem, only: problem_t
     use mesh, only: element_name
     use csr_matrix, only: csr_matrix_t
-    use sparse_cholesky, only: cholesky_t, ORDERING_GIVEN
-    use node_ordering, only: nested_dissection_last
+    use sparse_cholesky, only: cholesky_t
+    use contact_reduction, only: factor_stiffness
     use contact_boundary, only: assemble_b
     use spectrum, only: spectrum_t
     use dense_eigen, only: dense_spectrum
@@ -43,7 +43,8 @@ contains
         end if
     end function choose_solver
 
-    !> Assemble B for `lambda`, factor K, and compute the spectrum.
+    !> Assemble B for `lambda`, factor K (factor_stiffness: contact dofs last, which both
+    !> solvers read the contact blocks from), and compute the spectrum.
     subroutine solve_eigen(config, prob, lambda, res, timings, stat)
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: prob
@@ -55,7 +56,6 @@ contains
         type(arpack_options_t) :: options
         real(wp) :: start, reduction_seconds
         character(len=:), allocatable :: certificate   !! why ARPACK's answer is not certified
-        integer, allocatable :: permutation(:)
         integer :: n_keep
 
         res%lambda = lambda
@@ -67,29 +67,8 @@ contains
         res%solver = choose_solver(config%eigen%solver, prob%contact%p(), &
                                    config%eigen%dense_max_contact)
         n_keep = max(1, config%output%modes)
-        if (res%solver == 'arpack') then
-            ! Contact dofs last, so that the trailing block of the factor is all ARPACK needs.
-            start = wall_time()
-            call nested_dissection_last(prob%mesh, prob%dofs, prob%contact%nodes, &
-                                        permutation, stat)
-            if (.not. stat%ok()) return
-            timings%ordering = timings%ordering + (wall_time() - start)
-            start = wall_time()
-            call chol%factor(prob%k, stat, ordering=ORDERING_GIVEN, permutation=permutation)
-            deallocate (permutation)
-        else
-            start = wall_time()
-            call chol%factor(prob%k, stat)
-        end if
-        if (stat%code == STATUS_SINGULAR) then
-            stat%message = 'the stiffness matrix K is singular: is there a Dirichlet boundary ' &
-                //'that stops every rigid motion? ('//stat%message//')'
-            return
-        else if (.not. stat%ok()) then
-            stat%message = 'stiffness matrix K: '//stat%message
-            return
-        end if
-        timings%factor = timings%factor + (wall_time() - start)
+        call factor_stiffness(prob%k, prob%mesh, prob%dofs, prob%contact, chol, timings, stat)
+        if (.not. stat%ok()) return
 
         start = wall_time()
         certificate = ''

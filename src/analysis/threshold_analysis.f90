@@ -14,7 +14,8 @@ module threshold_analysis
     use problem, only: problem_t
     use sparse_cholesky, only: cholesky_t
     use contact_boundary, only: assemble_b
-    use dense_eigen, only: contact_flexibility, dense_spectrum
+    use contact_reduction, only: factor_stiffness, contact_flexibility
+    use dense_eigen, only: dense_spectrum
     use critical_lambda, only: thresholds_t, pencil_thresholds, confirm_thresholds, &
                                lowest_positive_mu
     use eigen_analysis, only: eigen_result_t, choose_solver
@@ -68,16 +69,11 @@ contains
         if (.not. stat%ok()) return
         timings%assembly = timings%assembly + (wall_time() - start)
 
-        start = wall_time()
-        call chol%factor(prob%k, stat)
-        if (.not. stat%ok()) then
-            stat%message = 'stiffness matrix K: '//stat%message
-            return
-        end if
-        timings%factor = timings%factor + (wall_time() - start)
+        call factor_stiffness(prob%k, prob%mesh, prob%dofs, prob%contact, chol, timings, stat)
+        if (.not. stat%ok()) return
 
         start = wall_time()
-        call contact_flexibility(chol, prob%contact, prob%dofs%n_free, kt_nn, kt_nt, stat)
+        call contact_flexibility(chol, prob%contact, kt_nn, kt_nt, stat)
         if (.not. stat%ok()) then
             call chol%free()
             return

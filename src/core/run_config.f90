@@ -41,9 +41,10 @@ module run_config
         real(wp) :: tol = 0.0_wp      !! ARPACK tolerance (0: machine precision)
         integer :: maxit = 1000       !! ARPACK restarts
         integer :: ncv = 0            !! Krylov dimension (0: chosen from nev)
-        !> 'auto' uses dense up to this many contact nodes: the measured cross-over of total
-        !> run time (README, "Choosing the solver"); both take milliseconds there.
-        integer :: dense_max_contact = 16
+        !> 'auto' uses dense up to this many contact nodes: both solvers share the factor of
+        !> K, and up to here the dense solver's extra eigen + output time (1-4 ms) is within
+        !> the run-to-run noise (README, "Choosing the solver")
+        integer :: dense_max_contact = 24
     end type eigen_config_t
 
     type, public :: output_config_t

@@ -22,9 +22,9 @@ module arpack_eigen
     use csr_matrix, only: csr_matrix_t
     use sparse_cholesky, only: cholesky_t
     use contact_boundary, only: contact_t
-    use spectrum, only: spectrum_t, order_eigenvalues, backward_error, normalise_mode, &
-                        KIND_COMPLEX
-    use lapack_interfaces, only: dtrsv, dgetrf, dgetrs, dpotri, dgeev, lapack_info_message
+    use spectrum, only: spectrum_t, order_eigenvalues
+    use lapack_interfaces, only: dtrsv, dgetrf, dgetrs, dgeev, lapack_info_message
+    use contact_reduction, only: contact_tail, flexibility_blocks, lift_eigenvectors
     use arpack_interfaces, only: dnaupd, dneupd, arpack_info_message
     implicit none
     private
@@ -47,12 +47,6 @@ module arpack_eigen
     !> vectors costs about 25 p^3 flops, a few seconds at p = 2000 on two cores, a minute
     !> at 4000 (measured: eigenvalues alone take 0.54 s at p = 1025).
     integer, parameter :: DENSE_FALLBACK_MAX = 4000
-
-    !> Columns per multi-right-hand-side solve when forming full eigenvectors: each solve
-    !> streams the whole factor (1.9 GB at n = 2.1e6), so the default nev = 6 (at most 7
-    !> values, 2 columns per complex pair) should fit in one; the block costs 2 x 16
-    !> n-vectors, less than the factor's own working storage.
-    integer, parameter :: RHS_BLOCK = 16
 
     !> Two runs agree on the lowest positive mu when they match to this relative accuracy:
     !> both are converged to ~eps relative residual, and a simple eigenvalue with condition
@@ -101,15 +95,13 @@ contains
 
     !> Build the reduced operator from a factor of K whose last 2p pivots are the contact
     !> dofs (see node_ordering), and factor I - sigma A when sigma /= 0.
-    subroutine operator_setup(this, chol, contact, n_free, lambda, sigma, stat)
+    subroutine operator_setup(this, chol, contact, lambda, sigma, stat)
         class(contact_operator_t), intent(inout) :: this
         type(cholesky_t), intent(in) :: chol
         type(contact_t), intent(in) :: contact
-        integer, intent(in) :: n_free
         real(wp), intent(in) :: lambda, sigma
         type(status_t), intent(out) :: stat
-        integer, allocatable :: rows(:), position(:)
-        integer :: a, c, m, info
+        integer :: a, info
 
         this%p = contact%p()
         this%lambda = lambda
@@ -117,25 +109,8 @@ contains
         this%normal = contact%normal
         this%tangent = contact%tangent
         this%mass = contact%mass
-        m = 2*this%p
-        if (any(contact%dofs <= 0)) then
-            call stat%fail(STATUS_BAD_INPUT, 'arpack: a contact node has a fixed dof; '// &
-                           'the reduced operator needs both dofs of every contact node free')
-            return
-        end if
-        call chol%trailing_block(m, this%l_tail, rows, stat)
+        call contact_tail(chol, contact, this%l_tail, this%slot, stat)
         if (.not. stat%ok()) return
-        allocate (position(n_free), source=0)
-        position(rows) = [(c, c=1, m)]
-        allocate (this%slot(2, this%p))
-        do a = 1, this%p
-            this%slot(:, a) = position(contact%dofs(:, a))
-        end do
-        if (any(this%slot == 0)) then
-            call stat%fail(STATUS_SOLVER, 'arpack: the Cholesky factor of K does not end '// &
-                           'with the contact dofs (ordering not honoured)')
-            return
-        end if
         if (.not. (abs(sigma) > 0.0_wp)) return
 
         call this%dense_a(this%a, stat)
@@ -153,34 +128,20 @@ contains
         end if
     end subroutine operator_setup
 
-    !> A as a dense p x p matrix: (K^-1) on the contact dofs is S^-1 = L_c^-T L_c^-1, which
-    !> LAPACK dpotri forms from L_c in (2p)^3/3 flops; then A = N S^-1 (lambda T' - N') M.
+    !> A = (lambda Kt_nt - Kt_nn) M as a dense p x p matrix, with Kt_nn and Kt_nt formed from
+    !> L_c as the dense solver forms them (contact_reduction: dpotri, O(p^3)).
     subroutine operator_dense_a(this, a, stat)
         class(contact_operator_t), intent(in) :: this
         real(wp), allocatable, intent(out) :: a(:, :)
         type(status_t), intent(out) :: stat
-        real(wp), allocatable :: s_inv(:, :), flex(:, :)
-        real(wp) :: direction(2)
-        integer :: m, i, j, info
-        m = 2*this%p
-        allocate (s_inv, source=this%l_tail)
-        call dpotri('L', m, s_inv, m, info)
-        if (info /= 0) then
-            call stat%fail(STATUS_SOLVER, 'arpack: dpotri on the contact block of the '// &
-                           'factor: info = '//to_string(info))
-            return
-        end if
-        do j = 1, m   ! dpotri fills the lower triangle only
-            s_inv(j, j + 1:m) = s_inv(j + 1:m, j)
-        end do
-        direction = this%lambda*this%tangent - this%normal
-        allocate (flex(this%p, this%p), a(this%p, this%p))
-        do j = 1, this%p
-            do i = 1, this%p
-                flex(i, j) = dot_product(this%normal, &
-                    matmul(s_inv(this%slot(:, i), this%slot(:, j)), direction))
-            end do
-        end do
+        real(wp), allocatable :: kt_nn(:, :), kt_nt(:, :), flex(:, :)
+        integer :: i
+        call flexibility_blocks(this%l_tail, this%slot, this%normal, this%tangent, kt_nn, &
+                                kt_nt, stat)
+        if (.not. stat%ok()) return
+        flex = this%lambda*kt_nt - kt_nn
+        deallocate (kt_nn, kt_nt)
+        allocate (a(this%p, this%p))
         do i = 1, this%p   ! A = flex M, row by row through the sparse symmetric M
             call this%mass%matvec(flex(i, :), a(i, :))
         end do
@@ -296,7 +257,7 @@ contains
                 'ARPACK needs at least 3 (nev + 2 <= ncv <= p); use solver = ''dense''')
             return
         end if
-        call op%setup(chol, contact, k%n(), lambda, options%target, stat)
+        call op%setup(chol, contact, lambda, options%target, stat)
         if (.not. stat%ok()) return
 
         nev = min(options%nev, cap)
@@ -525,8 +486,8 @@ contains
     end subroutine run_arpack
 
     !> The spectrum of the final run, in output order: full eigenvectors
-    !> phi = K^-1 (lambda T' - N') M y by multi-right-hand-side solves, backward errors on
-    !> (K, B) for every pair, modes of the first n_keep.
+    !> phi = K^-1 (lambda T' - N') M y, backward errors on (K, B) for every pair, modes of the
+    !> first n_keep (contact_reduction's lift, as for the dense solver).
     subroutine fill_spectrum(k, b, chol, contact, lambda, mu, run, n_keep, spec, stat)
         type(csr_matrix_t), intent(in) :: k, b
         type(cholesky_t), intent(in) :: chol
@@ -537,96 +498,17 @@ contains
         integer, intent(in) :: n_keep
         type(spectrum_t), intent(out) :: spec
         type(status_t), intent(out) :: stat
-        integer, allocatable :: order(:), kinds(:), column(:), todo(:)
-        real(wp), allocatable :: rhs(:, :), g(:, :), my(:)
-        complex(wp), allocatable :: phi(:)
-        integer :: n_ev, n_free, i, j, first, last, c, n_cols, n_kept
-        logical, allocatable :: done(:)
+        integer, allocatable :: order(:), kinds(:)
+        integer :: n_ev
 
         n_ev = size(mu)
-        n_free = k%n()
         allocate (order(n_ev), kinds(n_ev))
         call order_eigenvalues(mu, run%is_real, order, kinds)
         spec%mu = mu(order)
         where (run%is_real(order)) spec%mu = real(spec%mu, wp)
         spec%kind = kinds
         allocate (spec%condition(n_ev), source=-1.0_wp)
-        allocate (spec%residual(n_ev))
-        n_kept = min(n_keep, n_ev)
-        allocate (spec%vectors(n_free, n_kept))
-        allocate (done(n_ev), source=.false.)
-        allocate (my(contact%p()), phi(n_free))
-        ! The conjugate of a pair has the conjugate vector and the same backward error
-        ! (K and B are real), so each pair costs one complex solve; real ones one real solve.
-        todo = [integer ::]
-        do i = 1, n_ev
-            if (kinds(i) == KIND_COMPLEX .and. aimag(spec%mu(i)) < 0.0_wp .and. i > 1) then
-                if (.not. (abs(spec%mu(i) - conjg(spec%mu(i - 1))) > 0.0_wp)) cycle
-            end if
-            todo = [todo, i]
-        end do
-        first = 1
-        do while (first <= size(todo))
-            ! gather up to RHS_BLOCK columns: one per real eigenvalue, two per complex one
-            n_cols = 0
-            last = first - 1
-            do while (last < size(todo))
-                c = merge(1, 2, run%is_real(order(todo(last + 1))))
-                if (n_cols + c > RHS_BLOCK .and. n_cols > 0) exit
-                n_cols = n_cols + c
-                last = last + 1
-            end do
-            allocate (rhs(n_free, n_cols), g(n_free, n_cols), source=0.0_wp)
-            allocate (column(last - first + 1))
-            c = 0
-            do i = first, last
-                j = order(todo(i))
-                column(i - first + 1) = c + 1
-                call contact%mass%matvec(real(run%y(:, j), wp), my)
-                call contact%scatter(lambda*contact%tangent - contact%normal, my, rhs(:, c + 1))
-                c = c + 1
-                if (.not. run%is_real(j)) then
-                    call contact%mass%matvec(aimag(run%y(:, j)), my)
-                    call contact%scatter(lambda*contact%tangent - contact%normal, my, &
-                                         rhs(:, c + 1))
-                    c = c + 1
-                end if
-            end do
-            call chol%solve(rhs, g, stat)
-            if (.not. stat%ok()) return
-            do i = first, last
-                j = order(todo(i))
-                c = column(i - first + 1)
-                if (run%is_real(j)) then
-                    phi = cmplx(g(:, c), 0.0_wp, wp)
-                else
-                    phi = cmplx(g(:, c), g(:, c + 1), wp)
-                end if
-                call record(todo(i), phi)
-                if (.not. run%is_real(j) .and. todo(i) < n_ev) then
-                    if (kinds(todo(i) + 1) == KIND_COMPLEX .and. .not. done(todo(i) + 1)) &
-                        call record(todo(i) + 1, conjg(phi))
-                end if
-            end do
-            deallocate (rhs, g, column)
-            first = last + 1
-        end do
-        if (.not. all(done)) call stat%fail(STATUS_SOLVER, 'arpack: internal error: '// &
-            'an eigenvalue was left without an eigenvector')
-
-    contains
-
-        subroutine record(i, vector)
-            integer, intent(in) :: i
-            complex(wp), intent(in) :: vector(:)
-            complex(wp), allocatable :: scaled(:)
-            spec%residual(i) = backward_error(k, b, spec%mu(i), vector)
-            done(i) = .true.
-            if (i <= n_kept) then
-                scaled = vector
-                call normalise_mode(scaled)
-                spec%vectors(:, i) = scaled
-            end if
-        end subroutine record
+        call lift_eigenvectors(k, b, chol, contact, lambda, spec%mu, run%y(:, order), n_keep, &
+                               spec%residual, spec%vectors, stat)
     end subroutine fill_spectrum
 end module arpack_eigen

@@ -2,7 +2,9 @@
 !> The dense solver: all p nonzero eigenvalues of K phi = mu B phi through the reduced p x p
 !> problem (lambda Kt_nt - Kt_nn) M y = (1/mu) y of SPEC section 3, with LAPACK dgeevx for
 !> eigenvalues, eigenvectors and condition numbers, then the full eigenvectors
-!> phi = mu K^-1 B phi and their backward errors on the sparse pencil.
+!> phi = mu K^-1 B phi and their backward errors on the sparse pencil. Kt_nn and Kt_nt come
+!> from the trailing block of the factor of K (contact_reduction, re-exported here as
+!> contact_flexibility), so nothing here is O(n p) in memory.
 module dense_eigen
     use kinds, only: wp
     use timer, only: wall_time
@@ -10,78 +12,23 @@ module dense_eigen
     use csr_matrix, only: csr_matrix_t
     use sparse_cholesky, only: cholesky_t
     use contact_boundary, only: contact_t
-    use spectrum, only: spectrum_t, order_eigenvalues, backward_error, normalise_mode, &
-                        KIND_POSITIVE, KIND_COMPLEX
-    use lapack_interfaces, only: dgeevx, dgemm, dsyrk, lapack_info_message
+    use contact_reduction, only: contact_flexibility, lift_eigenvectors
+    use spectrum, only: spectrum_t, order_eigenvalues, KIND_POSITIVE, KIND_COMPLEX
+    use lapack_interfaces, only: dgeevx, lapack_info_message
     implicit none
     private
     public :: contact_flexibility, dense_spectrum
 
-    !> Right-hand sides per forward solve: enough for BLAS-3 speed inside CHOLMOD, small
-    !> enough that the block costs little memory next to the n x p result.
-    integer, parameter :: RHS_BLOCK = 64
-
 contains
 
-    !> Kt_nn = N K^-1 N^T and Kt_nt = N K^-1 T^T (p x p). With K = P^T L L^T P,
-    !> X^T K^-1 Y = (L^-1 P X)^T (L^-1 P Y), so forward solves and one product suffice.
-    subroutine contact_flexibility(chol, contact, n_free, kt_nn, kt_nt, stat)
-        type(cholesky_t), intent(inout) :: chol
-        type(contact_t), intent(in) :: contact
-        integer, intent(in) :: n_free
-        real(wp), allocatable, intent(out) :: kt_nn(:, :), kt_nt(:, :)
-        type(status_t), intent(out) :: stat
-        real(wp), allocatable :: wn(:, :), w_block(:, :)
-        integer :: p, first, last, i, j
-
-        p = contact%p()
-        allocate (wn(n_free, p), kt_nn(p, p), kt_nt(p, p))
-        do first = 1, p, RHS_BLOCK
-            last = min(p, first + RHS_BLOCK - 1)
-            call forward_block(contact%normal, first, last, w_block, stat)
-            if (.not. stat%ok()) return
-            wn(:, first:last) = w_block
-        end do
-        call dsyrk('U', 'T', p, n_free, 1.0_wp, wn, n_free, 0.0_wp, kt_nn, p)
-        do j = 1, p
-            do i = j + 1, p
-                kt_nn(i, j) = kt_nn(j, i)
-            end do
-        end do
-        do first = 1, p, RHS_BLOCK
-            last = min(p, first + RHS_BLOCK - 1)
-            call forward_block(contact%tangent, first, last, w_block, stat)
-            if (.not. stat%ok()) return
-            call dgemm('T', 'N', p, last - first + 1, n_free, 1.0_wp, wn, n_free, w_block, &
-                       n_free, 0.0_wp, kt_nt(1, first), p)
-        end do
-
-    contains
-
-        !> L^-1 P applied to the columns first..last of X^T (X = N or T).
-        subroutine forward_block(direction, first, last, w, stat)
-            real(wp), intent(in) :: direction(2)
-            integer, intent(in) :: first, last
-            real(wp), allocatable, intent(out) :: w(:, :)
-            type(status_t), intent(out) :: stat
-            real(wp), allocatable :: rhs(:, :)
-            integer :: a
-            allocate (rhs(n_free, last - first + 1), source=0.0_wp)
-            allocate (w(n_free, last - first + 1))
-            do a = first, last
-                rhs(contact%dofs(:, a), a - first + 1) = direction
-            end do
-            call chol%forward(rhs, w, stat)
-        end subroutine forward_block
-    end subroutine contact_flexibility
-
-    !> All nonzero eigenvalues of K phi = mu B phi (B for `lambda`), in output order; the full
-    !> eigenvectors of the first `n_keep` are kept. `chol` holds the factor of K. A caller that
+    !> All nonzero eigenvalues of K phi = mu B phi (B for `lambda`), in output order, each with
+    !> its backward error on (K, B); the full eigenvectors of the first `n_keep` are kept.
+    !> `chol` is the factor of K from factor_stiffness (contact dofs last). A caller that
     !> already has Kt_nn and Kt_nt (from contact_flexibility) passes them to skip forming them.
     subroutine dense_spectrum(k, b, chol, contact, lambda, n_keep, spec, stat, reduction_seconds, &
                               kt_nn_given, kt_nt_given)
         type(csr_matrix_t), intent(in) :: k, b
-        type(cholesky_t), intent(inout) :: chol
+        type(cholesky_t), intent(in) :: chol
         type(contact_t), intent(in) :: contact
         real(wp), intent(in) :: lambda
         integer, intent(in) :: n_keep
@@ -90,21 +37,19 @@ contains
         real(wp), intent(out), optional :: reduction_seconds   !! time to form the p x p matrix
         real(wp), intent(in), optional :: kt_nn_given(:, :), kt_nt_given(:, :)   !! (p, p) both
         real(wp), allocatable :: kt_nn(:, :), kt_nt(:, :), a(:, :), wr(:), wi(:), vl(:, :), &
-                                 vr(:, :), scale(:), rconde(:), rcondv(:), work(:), rhs(:, :), &
-                                 g(:, :), mass_vr(:, :), condition(:)
+                                 vr(:, :), scale(:), rconde(:), rcondv(:), work(:), condition(:)
         integer, allocatable :: iwork(:), order(:), kinds(:), keep(:)
-        complex(wp), allocatable :: theta(:), mu(:), phi(:)
+        complex(wp), allocatable :: theta(:), mu(:), y(:, :)
         real(wp) :: abnrm, query(1), start
-        integer :: p, n_free, ilo, ihi, info, j, i, n_ev
+        integer :: p, ilo, ihi, info, j, i, n_ev
 
         p = contact%p()
-        n_free = k%n()
         start = wall_time()
         if (present(kt_nn_given) .and. present(kt_nt_given)) then
             kt_nt = kt_nt_given   ! kept for the lambda sensitivity below
             a = matmul(lambda*kt_nt - kt_nn_given, contact%mass_dense())
         else
-            call contact_flexibility(chol, contact, n_free, kt_nn, kt_nt, stat)
+            call contact_flexibility(chol, contact, kt_nn, kt_nt, stat)
             if (.not. stat%ok()) return
             a = matmul(lambda*kt_nt - kt_nn, contact%mass_dense())
             deallocate (kt_nn)
@@ -139,21 +84,6 @@ contains
             end if
         end do
 
-        ! phi = mu K^-1 (lambda T^T - N^T) M y for every eigenvector y: one multi-RHS solve
-        ! on the real and imaginary parts as LAPACK stores them (consecutive columns).
-        allocate (mass_vr(p, p), rhs(n_free, p), g(n_free, p))
-        do j = 1, p
-            call contact%mass%matvec(vr(:, j), mass_vr(:, j))
-        end do
-        rhs = 0.0_wp
-        do j = 1, p
-            call contact%scatter(lambda*contact%tangent - contact%normal, mass_vr(:, j), &
-                                 rhs(:, j))
-        end do
-        call chol%solve(rhs, g, stat)
-        if (.not. stat%ok()) return
-        deallocate (rhs, mass_vr)
-
         allocate (order(n_ev), kinds(n_ev))
         call order_eigenvalues(mu(keep), .not. (abs(wi(keep)) > 0.0_wp), order, kinds)
         ! Allocated, then filled through (:): gfortran's reallocation on assignment reads the
@@ -181,17 +111,25 @@ contains
             if (i > 0) spec%lambda_sensitivity(i) = lambda_sensitivity(keep(order(i)))
         end if
         deallocate (vl, kt_nt)
-        allocate (spec%residual(n_ev), spec%vectors(n_free, min(n_keep, n_ev)))
-        allocate (phi(n_free))
+
+        ! The reduced eigenvectors in output order (LAPACK stores a complex pair (j, j+1) with
+        ! wi(j) > 0 as real part in column j and imaginary part in column j + 1); lifting
+        ! them to phi = K^-1 (lambda T' - N') M y (= phi / mu of SPEC section 3: same mode)
+        ! in column blocks keeps memory at O(n x block + p^2).
+        allocate (y(p, n_ev))
         do i = 1, n_ev
             j = keep(order(i))
-            phi = eigenvector(j)
-            spec%residual(i) = backward_error(k, b, mu(j), phi)
-            if (i <= size(spec%vectors, 2)) then
-                call normalise_mode(phi)
-                spec%vectors(:, i) = phi
+            if (.not. (abs(wi(j)) > 0.0_wp)) then
+                y(:, i) = cmplx(vr(:, j), 0.0_wp, wp)
+            else if (wi(j) > 0.0_wp) then
+                y(:, i) = cmplx(vr(:, j), vr(:, j + 1), wp)
+            else
+                y(:, i) = cmplx(vr(:, j - 1), -vr(:, j), wp)
             end if
         end do
+        deallocate (vr)
+        call lift_eigenvectors(k, b, chol, contact, lambda, spec%mu, y, n_keep, spec%residual, &
+                               spec%vectors, stat)
 
     contains
 
@@ -207,20 +145,5 @@ contains
             if (abs(y_dot_x) > 0.0_wp) lambda_sensitivity = abs(lambda)* &
                 abs(dot_product(vl(:, j), matmul(kt_nt, mass_x)))/(abs(y_dot_x)*abs(theta(j)))
         end function lambda_sensitivity
-
-        !> Full eigenvector j from the solved columns: a complex pair (j, j+1) with wi(j) > 0
-        !> is stored as real part in column j and imaginary part in column j + 1.
-        function eigenvector(j) result(v)
-            integer, intent(in) :: j
-            complex(wp) :: v(n_free)
-            ! LAPACK returns an exactly zero imaginary part for a real eigenvalue
-            if (.not. (abs(wi(j)) > 0.0_wp)) then
-                v = mu(j)*g(:, j)
-            else if (wi(j) > 0.0_wp) then
-                v = mu(j)*cmplx(g(:, j), g(:, j + 1), wp)
-            else
-                v = mu(j)*cmplx(g(:, j - 1), -g(:, j), wp)
-            end if
-        end function eigenvector
     end subroutine dense_spectrum
 end module dense_eigen

@@ -258,6 +258,29 @@ int nceig_cholmod_forward(void *handle, int nrhs, const double *b, double *w)
     return NCEIG_CHOLMOD_OK;
 }
 
+/* X = P' L^{-T} W: the second half of a solve, for a W = L^{-1} P B known otherwise (e.g.
+ * B supported on unknowns ordered last, where W is zero but for a small trailing part). */
+int nceig_cholmod_backward(void *handle, int nrhs, const double *w, double *x)
+{
+    nceig_cholmod_t *h = handle;
+    if (h == NULL) return NCEIG_CHOLMOD_NOT_FACTORED;
+    if (nrhs < 1) return nrhs == 0 ? NCEIG_CHOLMOD_OK : NCEIG_CHOLMOD_INVALID;
+    cholmod_dense wview = dense_view(h->n, nrhs, w);
+    cholmod_dense *solved = cholmod_solve(CHOLMOD_Lt, h->factor, &wview, &h->common);
+    if (solved == NULL) {
+        int code = code_from_common(&h->common);
+        return code == NCEIG_CHOLMOD_OK ? NCEIG_CHOLMOD_FAILED : code;
+    }
+    cholmod_dense *result = cholmod_solve(CHOLMOD_Pt, h->factor, solved, &h->common);
+    cholmod_free_dense(&solved, &h->common);
+    if (result == NULL) {
+        int code = code_from_common(&h->common);
+        return code == NCEIG_CHOLMOD_OK ? NCEIG_CHOLMOD_FAILED : code;
+    }
+    copy_and_free(&result, x, &h->common);
+    return NCEIG_CHOLMOD_OK;
+}
+
 /*
  * The last m rows and columns of L (P A P' = L L'), as a dense column-major m x m lower
  * triangle in out (upper part zeroed), and perm_tail[k] = the 0-based row of A that is pivot

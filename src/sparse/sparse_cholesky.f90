@@ -50,6 +50,7 @@ module sparse_cholesky
         procedure :: factor => cholesky_factor
         procedure :: solve => cholesky_solve
         procedure :: forward => cholesky_forward
+        procedure :: backward => cholesky_backward
         procedure :: free => cholesky_free
         procedure :: factor_nnz => cholesky_factor_nnz
         procedure :: flops => cholesky_flops
@@ -93,6 +94,16 @@ module sparse_cholesky
             real(c_double), intent(out) :: w(*)
             integer(c_int) :: code
         end function nceig_cholmod_forward
+
+        function nceig_cholmod_backward(handle, nrhs, w, x) &
+                bind(C, name='nceig_cholmod_backward') result(code)
+            import :: c_int, c_double, c_ptr
+            type(c_ptr), value :: handle
+            integer(c_int), value :: nrhs
+            real(c_double), intent(in) :: w(*)
+            real(c_double), intent(out) :: x(*)
+            integer(c_int) :: code
+        end function nceig_cholmod_backward
 
         function nceig_cholmod_trailing(handle, m, out, perm_tail) &
                 bind(C, name='nceig_cholmod_trailing') result(code)
@@ -196,6 +207,20 @@ contains
         code = nceig_cholmod_forward(this%handle, int(size(b, 2), c_int), b, w)
         if (code /= SHIM_OK) call stat%fail(status_code(code), cholmod_status_message(code))
     end subroutine cholesky_forward
+
+    !> X = P' L^{-T} W, the second half of a solve: with W = L^{-1} P B it gives A^{-1} B. For
+    !> B supported on the unknowns pivoted last, W is zero but for its trailing rows, which the
+    !> trailing block gives (trailing_block): then a solve costs one pass over L, not two.
+    subroutine cholesky_backward(this, w, x, stat)
+        class(cholesky_t), intent(in) :: this
+        real(wp), intent(in) :: w(:, :)
+        real(wp), intent(out) :: x(:, :)
+        type(status_t), intent(out) :: stat
+        integer :: code
+        if (.not. shapes_fit(this, w, x, 'backward', stat)) return
+        code = nceig_cholmod_backward(this%handle, int(size(w, 2), c_int), w, x)
+        if (code /= SHIM_OK) call stat%fail(status_code(code), cholmod_status_message(code))
+    end subroutine cholesky_backward
 
     !> Release the factor. Safe to call on an object never factored or already freed.
     subroutine cholesky_free(this)

@@ -1,0 +1,270 @@
+! SPDX-License-Identifier: MIT
+!> What both eigensolvers share on the way from K phi = mu B phi to the p contact nodes and
+!> back (SPEC section 3): the Cholesky factor of K with the contact dofs pivoted last, the
+!> contact blocks Kt_nn = N K^-1 N' and Kt_nt = N K^-1 T' read off its trailing block, and
+!> the lift of reduced eigenvectors y to full ones phi = K^-1 (lambda T' - N') M y with the
+!> backward error of every pair on (K, B).
+!>
+!> Why the contact dofs last: then the trailing 2p x 2p block L_c of P K P' = L L' is the
+!> Cholesky factor of the Schur complement S of K onto the contact dofs, and K^-1 restricted
+!> to them is S^-1 = L_c^-T L_c^-1: O(p^3) flops, independent of n, where forming the
+!> blocks by forward solves costs O(p nnz(L)) flops and an n x p array.
+module contact_reduction
+    use kinds, only: wp, i8
+    use status, only: status_t, STATUS_SOLVER, STATUS_BAD_INPUT, STATUS_SINGULAR
+    use strings, only: to_string
+    use timer, only: wall_time, timings_t
+    use mesh, only: mesh_t
+    use dof_map, only: dof_map_t
+    use csr_matrix, only: csr_matrix_t
+    use sparse_cholesky, only: cholesky_t, ORDERING_GIVEN
+    use node_ordering, only: nested_dissection_last
+    use contact_boundary, only: contact_t
+    use spectrum, only: backward_error, normalise_mode
+    use lapack_interfaces, only: dpotri, dtrsm
+    implicit none
+    private
+    public :: factor_stiffness, contact_tail, flexibility_blocks, contact_flexibility, &
+              lift_eigenvectors, lift_block_columns
+
+    !> Columns per multi-right-hand-side solve of the lift: up to 64 keeps CHOLMOD's
+    !> supernodal solve in BLAS-3 (each solve streams the whole factor), but one n x block
+    !> array stays within BLOCK_BYTES: the solve holds about four of them (our right-hand
+    !> sides and result, CHOLMOD's result and workspace), so about 1 GB at most beside the
+    !> factor. At n = 2.1e6 (N = 1024) that is 15 columns, at n = 5.3e5 (N = 512) 61.
+    integer, parameter :: RHS_BLOCK_MAX = 64
+    integer, parameter :: RHS_BLOCK_MIN = 8
+    integer(i8), parameter :: BLOCK_BYTES = 256_i8*1024_i8**2
+
+contains
+
+    !> Factor K for the eigenproblem, whatever the solver and analysis: METIS nested
+    !> dissection on the node graph with the contact nodes last (node_ordering), then CHOLMOD
+    !> with that ordering, so that `contact_tail` can read K^-1 on the contact dofs off the
+    !> factor. Adds the ordering and factorization times to `timings`. A singular K is
+    !> explained (the usual cause: no Dirichlet boundary).
+    subroutine factor_stiffness(k, m, dofs, contact, chol, timings, stat)
+        type(csr_matrix_t), intent(in) :: k
+        type(mesh_t), intent(in) :: m
+        type(dof_map_t), intent(in) :: dofs
+        type(contact_t), intent(in) :: contact
+        type(cholesky_t), intent(inout) :: chol
+        type(timings_t), intent(inout) :: timings
+        type(status_t), intent(out) :: stat
+        integer, allocatable :: permutation(:)
+        real(wp) :: start
+
+        start = wall_time()
+        call nested_dissection_last(m, dofs, contact%nodes, permutation, stat)
+        if (.not. stat%ok()) return
+        timings%ordering = timings%ordering + (wall_time() - start)
+        start = wall_time()
+        call chol%factor(k, stat, ordering=ORDERING_GIVEN, permutation=permutation)
+        if (stat%code == STATUS_SINGULAR) then
+            stat%message = 'the stiffness matrix K is singular: is there a Dirichlet boundary ' &
+                //'that stops every rigid motion? ('//stat%message//')'
+            return
+        else if (.not. stat%ok()) then
+            stat%message = 'stiffness matrix K: '//stat%message
+            return
+        end if
+        timings%factor = timings%factor + (wall_time() - start)
+    end subroutine factor_stiffness
+
+    !> The trailing 2p x 2p block L_c of a factor made by factor_stiffness, and `slot`(c, a):
+    !> the row of L_c of the dof c (1 = x, 2 = y) of contact node a.
+    subroutine contact_tail(chol, contact, l_tail, slot, stat)
+        type(cholesky_t), intent(in) :: chol
+        type(contact_t), intent(in) :: contact
+        real(wp), allocatable, intent(out) :: l_tail(:, :)
+        integer, allocatable, intent(out) :: slot(:, :)
+        type(status_t), intent(out) :: stat
+        integer, allocatable :: rows(:), position(:)
+        integer :: a, c, m
+
+        if (any(contact%dofs <= 0)) then
+            call stat%fail(STATUS_BAD_INPUT, 'contact blocks: a contact node has a fixed '// &
+                           'dof; the reduction needs both dofs of every contact node free')
+            return
+        end if
+        m = 2*contact%p()
+        call chol%trailing_block(m, l_tail, rows, stat)
+        if (.not. stat%ok()) return
+        allocate (position(max(maxval(rows), maxval(contact%dofs))), source=0)
+        position(rows) = [(c, c=1, m)]
+        allocate (slot(2, contact%p()))
+        do a = 1, contact%p()
+            slot(:, a) = position(contact%dofs(:, a))
+        end do
+        if (any(slot == 0)) then
+            call stat%fail(STATUS_SOLVER, 'contact blocks: the Cholesky factor of K does not '// &
+                           'end with the contact dofs (factor it with factor_stiffness)')
+        end if
+    end subroutine contact_tail
+
+    !> Kt_nn = N S^-1 N' and Kt_nt = N S^-1 T' (p x p) from L_c (S = L_c L_c'): LAPACK dpotri
+    !> forms S^-1 in 2 (2p)^3 / 3 flops, then entry (a, b) is n' [S^-1]_ab n, resp.
+    !> n' [S^-1]_ab t, with [S^-1]_ab the 2 x 2 block of contact nodes a, b.
+    subroutine flexibility_blocks(l_tail, slot, normal, tangent, kt_nn, kt_nt, stat)
+        real(wp), intent(in) :: l_tail(:, :)      !! (2p, 2p) lower triangle
+        integer, intent(in) :: slot(:, :)         !! (2, p), see contact_tail
+        real(wp), intent(in) :: normal(2), tangent(2)
+        real(wp), allocatable, intent(out) :: kt_nn(:, :), kt_nt(:, :)
+        type(status_t), intent(out) :: stat
+        real(wp), allocatable :: s_inv(:, :), column_n(:), column_t(:)
+        integer :: m, p, a, b, j, info
+
+        m = size(l_tail, 1)
+        p = size(slot, 2)
+        allocate (s_inv, source=l_tail)
+        call dpotri('L', m, s_inv, m, info)
+        if (info /= 0) then
+            call stat%fail(STATUS_SOLVER, 'contact blocks: dpotri on the trailing block of '// &
+                           'the factor of K: info = '//to_string(info))
+            return
+        end if
+        do j = 1, m   ! dpotri fills the lower triangle only
+            s_inv(j, j + 1:m) = s_inv(j + 1:m, j)
+        end do
+        allocate (kt_nn(p, p), kt_nt(p, p), column_n(m), column_t(m))
+        do b = 1, p
+            ! S^-1 n_b and S^-1 t_b: the contact loads of unit normal / tangential force at b
+            column_n = normal(1)*s_inv(:, slot(1, b)) + normal(2)*s_inv(:, slot(2, b))
+            column_t = tangent(1)*s_inv(:, slot(1, b)) + tangent(2)*s_inv(:, slot(2, b))
+            do a = 1, p
+                kt_nn(a, b) = normal(1)*column_n(slot(1, a)) + normal(2)*column_n(slot(2, a))
+                kt_nt(a, b) = normal(1)*column_t(slot(1, a)) + normal(2)*column_t(slot(2, a))
+            end do
+        end do
+        ! Kt_nn is symmetric; make it exactly so (the two triangles round differently)
+        do b = 1, p
+            kt_nn(b + 1:p, b) = kt_nn(b, b + 1:p)
+        end do
+    end subroutine flexibility_blocks
+
+    !> Kt_nn and Kt_nt (p x p) from a factor made by factor_stiffness.
+    subroutine contact_flexibility(chol, contact, kt_nn, kt_nt, stat)
+        type(cholesky_t), intent(in) :: chol
+        type(contact_t), intent(in) :: contact
+        real(wp), allocatable, intent(out) :: kt_nn(:, :), kt_nt(:, :)
+        type(status_t), intent(out) :: stat
+        real(wp), allocatable :: l_tail(:, :)
+        integer, allocatable :: slot(:, :)
+        call contact_tail(chol, contact, l_tail, slot, stat)
+        if (.not. stat%ok()) return
+        call flexibility_blocks(l_tail, slot, contact%normal, contact%tangent, kt_nn, kt_nt, &
+                                stat)
+    end subroutine contact_flexibility
+
+    !> Columns per block of lift_eigenvectors for n free dofs (see RHS_BLOCK_MAX).
+    pure integer function lift_block_columns(n_free)
+        integer, intent(in) :: n_free
+        lift_block_columns = int(max(int(RHS_BLOCK_MIN, i8), min(int(RHS_BLOCK_MAX, i8), &
+                                 BLOCK_BYTES/(8_i8*max(1, n_free)))))
+    end function lift_block_columns
+
+    !> Full eigenvectors phi = K^-1 (lambda T' - N') M y of the reduced eigenvectors y (the
+    !> columns of `y`, p x n_ev, in output order, for the eigenvalues `mu`), by
+    !> multi-right-hand-side solves in column blocks, so that memory is O(n x block), never
+    !> n x n_ev. Every pair gets its backward error on (K, B) in `residual`; the first n_keep
+    !> are normalised (normalise_mode) and kept in `vectors`. A real y costs one column, a
+    !> complex one two (real and imaginary part); the conjugate partner that follows a
+    !> complex pair's first member costs none (K and B are real: conjugate vector, same
+    !> backward error). `chol` is the factor from factor_stiffness: the right-hand sides live
+    !> on the contact dofs, pivoted last, so the forward half of each solve is L_c^-1 on the
+    !> trailing rows (dense, O(p^2) per column) and only the backward half passes over L.
+    subroutine lift_eigenvectors(k, b, chol, contact, lambda, mu, y, n_keep, residual, vectors, &
+                                 stat)
+        type(csr_matrix_t), intent(in) :: k, b
+        type(cholesky_t), intent(in) :: chol
+        type(contact_t), intent(in) :: contact
+        real(wp), intent(in) :: lambda
+        complex(wp), intent(in) :: mu(:)         !! (n_ev)
+        complex(wp), intent(in) :: y(:, :)       !! (p, n_ev)
+        integer, intent(in) :: n_keep
+        real(wp), allocatable, intent(out) :: residual(:)
+        complex(wp), allocatable, intent(out) :: vectors(:, :)
+        type(status_t), intent(out) :: stat
+        real(wp), allocatable :: w(:, :), g(:, :), my(:), l_tail(:, :), w_tail(:, :)
+        complex(wp), allocatable :: phi(:)
+        integer, allocatable :: columns(:), first_column(:), slot(:, :)
+        real(wp) :: direction(2), k_norm, b_norm
+        integer :: n_ev, n_free, block_columns, first, last, i, c, n_cols, m, a
+
+        n_ev = size(mu)
+        n_free = k%n()
+        direction = lambda*contact%tangent - contact%normal
+        k_norm = k%norm_inf()
+        b_norm = b%norm_inf()
+        allocate (residual(n_ev), vectors(n_free, min(n_keep, n_ev)))
+        call contact_tail(chol, contact, l_tail, slot, stat)
+        if (.not. stat%ok()) return
+        m = size(l_tail, 1)
+        allocate (columns(n_ev), first_column(n_ev), my(contact%p()), phi(n_free))
+        do i = 1, n_ev
+            columns(i) = merge(2, 1, any(abs(aimag(y(:, i))) > 0.0_wp))
+        end do
+        do i = 2, n_ev
+            if (columns(i) /= 2 .or. columns(i - 1) /= 2) cycle
+            ! exact conjugates, as LAPACK and ARPACK return the members of a pair
+            if (abs(mu(i) - conjg(mu(i - 1))) <= 0.0_wp .and. &
+                maxval(abs(y(:, i) - conjg(y(:, i - 1)))) <= 0.0_wp) columns(i) = 0
+        end do
+        block_columns = lift_block_columns(n_free)
+        first = 1
+        do while (first <= n_ev)
+            ! A partner (0 columns) always fits, so it joins its first member's block.
+            n_cols = 0
+            last = first - 1
+            do while (last < n_ev)
+                if (n_cols + columns(last + 1) > block_columns .and. n_cols > 0) exit
+                last = last + 1
+                n_cols = n_cols + columns(last)
+            end do
+            ! right-hand sides (lambda T' - N') M y in the trailing pivot order, then L_c^-1
+            allocate (w_tail(m, n_cols), source=0.0_wp)
+            c = 0
+            do i = first, last
+                first_column(i) = c + 1
+                if (columns(i) == 0) cycle
+                call contact%mass%matvec(real(y(:, i), wp), my)
+                do a = 1, size(my)
+                    w_tail(slot(:, a), c + 1) = direction*my(a)
+                end do
+                if (columns(i) == 2) then
+                    call contact%mass%matvec(aimag(y(:, i)), my)
+                    do a = 1, size(my)
+                        w_tail(slot(:, a), c + 2) = direction*my(a)
+                    end do
+                end if
+                c = c + columns(i)
+            end do
+            call dtrsm('L', 'L', 'N', 'N', m, n_cols, 1.0_wp, l_tail, m, w_tail, m)
+            allocate (w(n_free, n_cols), source=0.0_wp)
+            w(n_free - m + 1:, :) = w_tail
+            deallocate (w_tail)
+            allocate (g(n_free, n_cols))
+            call chol%backward(w, g, stat)
+            if (.not. stat%ok()) return
+            deallocate (w)
+            do i = first, last
+                c = first_column(i)
+                select case (columns(i))
+                case (0)
+                    phi = conjg(phi)   ! the partner of the pair just recorded
+                case (1)
+                    phi = cmplx(g(:, c), 0.0_wp, wp)
+                case default
+                    phi = cmplx(g(:, c), g(:, c + 1), wp)
+                end select
+                residual(i) = backward_error(k, b, mu(i), phi, k_norm, b_norm)
+                if (i <= size(vectors, 2)) then
+                    vectors(:, i) = phi
+                    call normalise_mode(vectors(:, i))
+                end if
+            end do
+            deallocate (g)
+            first = last + 1
+        end do
+    end subroutine lift_eigenvectors
+end module contact_reduction
