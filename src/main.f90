@@ -77,7 +77,6 @@ program nceig
         if (config%sweep%plot) then
             call plot_lambda_sweep(trim(config%output%directory), plot_note)
             write (output_unit, '(a)') '  plot        '//plot_note
-            deallocate (plot_note)   ! gfortran 12 never frees main-program allocatables
         end if
     case ('branch')
         call run_branch(config, prob, branch_res, timings, stat)
