@@ -15,7 +15,8 @@ module compliance_output
     use output_stage, only: output_stage_t
     use json_writer, only: json_object_t
     use vtk_writer, only: write_vtu
-    use results_output, only: eigen_summary_json, write_eigenvalues_csv, commit_with_summary
+    use results_output, only: eigen_summary_json, write_eigenvalues_csv, commit_with_summary, &
+                              slip_sign
     use mesh, only: element_name
     use normal_compliance, only: state_name, STATE_SEPARATED, STATE_STICK, &
                                  STATE_SLIP_PLUS, STATE_SLIP_MINUS
@@ -171,24 +172,34 @@ contains
         type(timings_t), intent(in) :: timings
         type(json_object_t) :: summary
 
-        call summary%add_string('nceig_version', NCEIG_VERSION)
-        call summary%add_string('input', config%input_file)
-        call summary%add_string('analysis', trim(config%analysis%kind))
-        call summary%add_real('lambda', config%analysis%lambda)
-        call summary%add_string('element', element_name(prob%mesh%element))
-        call summary%add_string('mesh_source', trim(config%mesh%source))
-        call summary%add_integer('n_nodes', prob%mesh%n_nodes())
-        call summary%add_integer('n_cells', prob%mesh%n_cells())
-        call summary%add_integer('n_dofs', prob%dofs%n_free)
-        call summary%add_integer('n_contact', prob%contact%p())
+        ! The keys every summary.json has (SPEC section 7): from the eigen solve when the run
+        ! needed the critical eigenpair, null where no eigenproblem was solved.
+        if (res%has_critical) then
+            summary = eigen_summary_json(config, prob, res%critical%eig, timings)
+        else
+            call summary%add_string('nceig_version', NCEIG_VERSION)
+            call summary%add_string('input', config%input_file)
+            call summary%add_string('analysis', trim(config%analysis%kind))
+            call summary%add_real('lambda', config%analysis%lambda)
+            call summary%add_string('element', element_name(prob%mesh%element))
+            call summary%add_string('mesh_source', trim(config%mesh%source))
+            call summary%add_integer('n_nodes', prob%mesh%n_nodes())
+            call summary%add_integer('n_cells', prob%mesh%n_cells())
+            call summary%add_integer('n_dofs', prob%dofs%n_free)
+            call summary%add_integer('n_contact', prob%contact%p())
+            call summary%add_null('solver')
+            call summary%add_null('lowest_positive_mu')
+            call summary%add_null('critical_c_n')
+            call summary%add_null('critical_c_t')
+            call summary%add_integer('slip_sign', slip_sign(config%analysis%lambda))
+            call summary%add_integer('n_eigenvalues', 0)
+            call summary%add_null('max_residual')
+            call summary%add_string_array('warnings', [character(len=1) ::])
+        end if
         call summary%add_string('data', trim(config%solve%data))
         call summary%add_string('start', trim(config%solve%start))
         call summary%add_real('c_n', res%cp%c_n)
         call summary%add_real('c_t', res%cp%c_t)
-        if (res%has_critical) then
-            call summary%add_real('critical_c_n', res%critical%mu)
-            call summary%add_real('critical_c_t', res%critical%mu*abs(res%critical%lambda))
-        end if
         call summary%add_logical('converged', res%report%converged)
         call summary%add_string('newton_stop', res%report%reason)
         call summary%add_integer('iterations', res%report%iterations)
