@@ -19,7 +19,7 @@ module mesh
     type :: mesh_t
         integer :: element = ELEMENT_P1
         real(wp), allocatable :: coords(:, :)    !! (2, n_nodes)
-        integer, allocatable :: cells(:, :)      !! (nodes_per_cell, n_cells), 1-based, anticlockwise
+        integer, allocatable :: cells(:, :)      !! (nodes_per_cell, n_cells), anticlockwise
         integer, allocatable :: edges(:, :)      !! (nodes_per_edge, n_edges): ends, then mid node
         integer, allocatable :: edge_part(:)     !! (n_edges) index into part_names
         character(len=64), allocatable :: part_names(:)  !! boundary part names ('bottom'...)
