@@ -20,7 +20,7 @@ module threshold_analysis
     use contact_reduction, only: factor_stiffness, contact_flexibility
     use arpack_eigen, only: arpack_options_t, arpack_lowest_positive
     use critical_lambda, only: thresholds_t, pencil_thresholds, confirm_thresholds, &
-                               lowest_positive_mu
+                               lowest_positive_mu, SIDE_PLUS, SIDE_MINUS
     use eigen_analysis, only: eigen_result_t, choose_solver, eigen_with_factor
     implicit none
     private
@@ -110,7 +110,10 @@ contains
             maxit=config%eigen%maxit, tol=config%eigen%tol)
         do i = 1, size(res%sweep%lambda)
             certified = .false.
-            if (res%eigen%solver == 'arpack') then
+            ! Between the thresholds a positive mu is (generically) absent, which ARPACK can
+            ! never certify (only the whole spectrum can): its attempts would be wasted.
+            if (res%eigen%solver == 'arpack' .and. &
+                .not. between_thresholds(res%thresholds, res%sweep%lambda(i))) then
                 call arpack_lowest_positive(res%sweep%lambda(i)*nt_m - nn_m, options, &
                                             res%sweep%mu(i), res%sweep%found(i), certified, &
                                             n_operator, stat)
@@ -128,4 +131,14 @@ contains
         end do
         res%time_sweep = wall_time() - start
     end subroutine solve_thresholds
+
+    !> lambda- <= lambda <= lambda+, a missing threshold counting as infinitely far.
+    pure logical function between_thresholds(thr, lambda)
+        type(thresholds_t), intent(in) :: thr
+        real(wp), intent(in) :: lambda
+        between_thresholds = .true.
+        if (thr%found(SIDE_PLUS)) between_thresholds = lambda <= thr%lambda(SIDE_PLUS)
+        if (thr%found(SIDE_MINUS)) between_thresholds = between_thresholds .and. &
+                                                        lambda >= thr%lambda(SIDE_MINUS)
+    end function between_thresholds
 end module threshold_analysis
