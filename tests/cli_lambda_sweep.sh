@@ -84,5 +84,23 @@ bad 'unknown spacing' "spacing = 'cubic'" 'spacing'
 bad 'unknown variable' 'lambda_mni = 1.0' 'lambda_mni'
 bad 'gap in the list' 'lambdas(1) = 1.0, lambdas(3) = 2.0' 'lambdas(3)'
 
+# solver = 'arpack' (refused before): the spectrum at lambda and the sweep points by ARPACK,
+# on the same factor; the curve must match the dense one (1e-9 relative: well-conditioned
+# eigenvalues, backward-stable solvers, see test_threshold_analysis).
+for s in dense arpack; do
+    cat >"$work/$s.nml" <<NML
+&mesh nx = 16, ny = 16 /
+&analysis kind = 'lambda_sweep', lambda = 5.0 /
+&eigen solver = '$s' /
+&sweep lambda_min = -10.0, lambda_max = 10.0, n_lambda = 21, plot = .false. /
+&output directory = '$work/$s', vtk = .false. /
+NML
+    "$nceig" "$work/$s.nml" >"$work/stdout" 2>"$work/stderr"; rc=$?
+    check "sweep with solver = '$s' runs" '[[ $rc -eq 0 && ! -s "$work/stderr" ]]'
+done
+check 'arpack sweep: solver arpack, some points certified by ARPACK' '[[ $(key "$work/arpack" solver) == arpack && $(key "$work/arpack" sweep_n_arpack) -gt 0 ]]'
+check 'arpack sweep: same thresholds as dense' '[[ $(key "$work/arpack" lambda_critical_plus) == $(key "$work/dense" lambda_critical_plus) && $(key "$work/arpack" lambda_critical_minus) == $(key "$work/dense" lambda_critical_minus) ]]'
+check 'arpack sweep: same curve as dense' 'paste -d, "$work/dense/lambda_sweep.csv" "$work/arpack/lambda_sweep.csv" | tail -n +2 | awk -F, "{ if ((\$2 == \"\") != (\$7 == \"\")) exit 1; if (\$2 != \"\") { d = \$2 - \$7; if (d < 0) d = -d; if (d > 1e-9 * \$2) exit 1 } }"'
+
 echo "cli_lambda_sweep: $passed passed, $failed failed"
 [[ $failed -eq 0 ]]

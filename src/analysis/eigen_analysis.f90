@@ -18,7 +18,7 @@ module eigen_analysis
     use arpack_eigen, only: arpack_spectrum, arpack_options_t
     implicit none
     private
-    public :: eigen_result_t, solve_eigen, choose_solver
+    public :: eigen_result_t, solve_eigen, choose_solver, eigen_with_factor
 
     type, public :: eigen_result_t
         real(wp) :: lambda = 0.0_wp
@@ -53,10 +53,7 @@ contains
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
         type(cholesky_t) :: chol
-        type(arpack_options_t) :: options
-        real(wp) :: start, reduction_seconds
-        character(len=:), allocatable :: certificate   !! why ARPACK's answer is not certified
-        integer :: n_keep
+        real(wp) :: start
 
         res%lambda = lambda
         start = wall_time()
@@ -66,24 +63,48 @@ contains
 
         res%solver = choose_solver(config%eigen%solver, prob%contact%p(), &
                                    config%eigen%dense_max_contact)
-        n_keep = max(1, config%output%modes)
         call factor_stiffness(prob%k, prob%mesh, prob%dofs, prob%contact, chol, timings, stat)
         if (.not. stat%ok()) return
+        call eigen_with_factor(config, prob, chol, res, timings, stat)
+        call chol%free()
+    end subroutine solve_eigen
 
+    !> The spectrum at res%lambda (res%b assembled, res%solver chosen) from a factor of K made
+    !> by factor_stiffness, which stays allocated for the caller (the threshold analysis reads
+    !> the contact blocks off the same factor). A caller that already has Kt_nn and Kt_nt
+    !> passes them to spare the dense solver forming them again.
+    subroutine eigen_with_factor(config, prob, chol, res, timings, stat, kt_nn, kt_nt)
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(in) :: prob
+        type(cholesky_t), intent(in) :: chol
+        type(eigen_result_t), intent(inout) :: res
+        type(timings_t), intent(inout) :: timings
+        type(status_t), intent(out) :: stat
+        real(wp), intent(in), optional :: kt_nn(:, :), kt_nt(:, :)   !! (p, p) both
+        type(arpack_options_t) :: options
+        real(wp) :: start, reduction_seconds
+        character(len=:), allocatable :: certificate   !! why ARPACK's answer is not certified
+        integer :: n_keep
+
+        n_keep = max(1, config%output%modes)
         start = wall_time()
         certificate = ''
         if (res%solver == 'arpack') then
             options = arpack_options_t(nev=config%eigen%nev, ncv=config%eigen%ncv, &
                 maxit=config%eigen%maxit, tol=config%eigen%tol, target=config%eigen%target)
-            call arpack_spectrum(prob%k, res%b, chol, prob%contact, lambda, options, n_keep, &
+            call arpack_spectrum(prob%k, res%b, chol, prob%contact, res%lambda, options, n_keep, &
                                  res%spec, certificate, stat)
-            call chol%free()
             if (.not. stat%ok()) return
             timings%eigen = timings%eigen + (wall_time() - start)
         else
-            call dense_spectrum(prob%k, res%b, chol, prob%contact, lambda, n_keep, res%spec, &
-                                stat, reduction_seconds)
-            call chol%free()
+            reduction_seconds = 0.0_wp
+            if (present(kt_nn) .and. present(kt_nt)) then
+                call dense_spectrum(prob%k, res%b, chol, prob%contact, res%lambda, n_keep, &
+                                    res%spec, stat, kt_nn_given=kt_nn, kt_nt_given=kt_nt)
+            else
+                call dense_spectrum(prob%k, res%b, chol, prob%contact, res%lambda, n_keep, &
+                                    res%spec, stat, reduction_seconds)
+            end if
             if (.not. stat%ok()) return
             timings%reduction = timings%reduction + reduction_seconds
             timings%eigen = timings%eigen + (wall_time() - start - reduction_seconds)
@@ -91,5 +112,5 @@ contains
         res%warnings = accuracy_warnings(res%spec, element_name(prob%mesh%element), prob%poisson)
         if (len(certificate) > 0) res%warnings = [character(len=WARNING_LEN) :: certificate, &
                                                   res%warnings]
-    end subroutine solve_eigen
+    end subroutine eigen_with_factor
 end module eigen_analysis

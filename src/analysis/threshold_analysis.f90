@@ -2,12 +2,15 @@
 !> analysis = 'threshold' and 'lambda_sweep': the critical lambdas (SPEC section 3) and the
 !> curve lambda -> lowest positive mu, from ONE factorization of K and ONE formation of the
 !> contact blocks Kt_nn, Kt_nt. B depends on lambda only through the reduced matrix
-!> (lambda Kt_nt - Kt_nn) M, so every further lambda costs one p x p eigen-solve. Both
-!> analyses also solve the eigenproblem at &analysis lambda as 'eigen' does, so that their
-!> summary.json carries every key of the contract.
+!> (lambda Kt_nt - Kt_nn) M, so every further lambda costs one p x p eigen-solve: dense
+!> (dgeev, eigenvalues only) for the dense solver, the certified ARPACK search on that matrix
+!> (O(p^2) per product) for ARPACK, with a dense decision whenever ARPACK cannot certify.
+!> Both analyses also solve the eigenproblem at &analysis lambda as 'eigen' does, with the
+!> same solver choice and on the same factor, so that their summary.json carries every key
+!> of the contract.
 module threshold_analysis
     use kinds, only: wp
-    use status, only: status_t, STATUS_BAD_INPUT
+    use status, only: status_t
     use timer, only: wall_time, timings_t
     use run_config, only: config_t
     use input_config, only: sweep_lambdas
@@ -15,10 +18,10 @@ module threshold_analysis
     use sparse_cholesky, only: cholesky_t
     use contact_boundary, only: assemble_b
     use contact_reduction, only: factor_stiffness, contact_flexibility
-    use dense_eigen, only: dense_spectrum
+    use arpack_eigen, only: arpack_options_t, arpack_lowest_positive
     use critical_lambda, only: thresholds_t, pencil_thresholds, confirm_thresholds, &
-                               lowest_positive_mu
-    use eigen_analysis, only: eigen_result_t, choose_solver
+                               lowest_positive_mu, SIDE_PLUS, SIDE_MINUS
+    use eigen_analysis, only: eigen_result_t, choose_solver, eigen_with_factor
     implicit none
     private
     public :: threshold_result_t, solve_thresholds
@@ -28,7 +31,10 @@ module threshold_analysis
         real(wp), allocatable :: lambda(:)
         real(wp), allocatable :: mu(:)           !! lowest positive mu where found(i)
         logical, allocatable :: found(:)
-        integer, allocatable :: n_positive(:)    !! positive real eigenvalues at lambda(i)
+        !> positive real eigenvalues at lambda(i); -1 where ARPACK decided (it sees a few)
+        integer, allocatable :: n_positive(:)
+        integer :: n_arpack = 0                  !! points certified by ARPACK
+        integer :: n_dense = 0                   !! points decided densely (incl. fallbacks)
     end type sweep_curve_t
 
     type, public :: threshold_result_t
@@ -52,17 +58,13 @@ contains
         type(status_t), intent(out) :: stat
         type(cholesky_t) :: chol
         real(wp), allocatable :: kt_nn(:, :), kt_nt(:, :), mass(:, :), nn_m(:, :), nt_m(:, :)
+        type(arpack_options_t) :: options
         real(wp) :: start
-        integer :: i
+        integer :: i, n_operator
+        logical :: certified
 
-        ! The thresholds need the dense blocks; a sparse solver has no pencil to offer.
-        res%eigen%solver = choose_solver(config%eigen%solver, prob%contact%p(), huge(1))
-        if (res%eigen%solver /= 'dense') then
-            call stat%fail(STATUS_BAD_INPUT, config%input_file//': &eigen: solver = '''// &
-                trim(config%eigen%solver)//''': expected ''dense'' or ''auto'' for analysis ''' &
-                //trim(config%analysis%kind)//''' (it needs the dense p x p blocks)')
-            return
-        end if
+        res%eigen%solver = choose_solver(config%eigen%solver, prob%contact%p(), &
+                                         config%eigen%dense_max_contact)
         res%eigen%lambda = config%analysis%lambda
         start = wall_time()
         call assemble_b(prob%contact, prob%dofs%n_free, res%eigen%lambda, res%eigen%b, stat)
@@ -80,13 +82,9 @@ contains
         end if
         timings%reduction = timings%reduction + (wall_time() - start)
 
-        start = wall_time()
-        call dense_spectrum(prob%k, res%eigen%b, chol, prob%contact, res%eigen%lambda, &
-                            max(1, config%output%modes), res%eigen%spec, stat, &
-                            kt_nn_given=kt_nn, kt_nt_given=kt_nt)
+        call eigen_with_factor(config, prob, chol, res%eigen, timings, stat, kt_nn, kt_nt)
         call chol%free()
         if (.not. stat%ok()) return
-        timings%eigen = timings%eigen + (wall_time() - start)
 
         start = wall_time()
         call pencil_thresholds(kt_nn, kt_nt, res%thresholds, stat)
@@ -95,6 +93,9 @@ contains
         nn_m = matmul(kt_nn, mass)
         nt_m = matmul(kt_nt, mass)
         deallocate (kt_nn, kt_nt, mass)
+        ! Dense on purpose, whatever the solver: just inside a threshold there is no positive
+        ! mu, which only the complete spectrum shows, and just outside the wanted mu is huge,
+        ! deep in the spectrum; dgeev without vectors is O(p^3) with a small constant.
         call confirm_thresholds(nn_m, nt_m, res%thresholds, stat)
         if (.not. stat%ok()) return
         res%time_threshold = wall_time() - start
@@ -105,11 +106,39 @@ contains
         associate (n => size(res%sweep%lambda))
             allocate (res%sweep%mu(n), res%sweep%found(n), res%sweep%n_positive(n))
         end associate
+        options = arpack_options_t(nev=config%eigen%nev, ncv=config%eigen%ncv, &
+            maxit=config%eigen%maxit, tol=config%eigen%tol)
         do i = 1, size(res%sweep%lambda)
-            call lowest_positive_mu(nn_m, nt_m, res%sweep%lambda(i), res%sweep%mu(i), &
-                                    res%sweep%found(i), res%sweep%n_positive(i), stat)
-            if (.not. stat%ok()) return
+            certified = .false.
+            ! Between the thresholds a positive mu is (generically) absent, which ARPACK can
+            ! never certify (only the whole spectrum can): its attempts would be wasted.
+            if (res%eigen%solver == 'arpack' .and. &
+                .not. between_thresholds(res%thresholds, res%sweep%lambda(i))) then
+                call arpack_lowest_positive(res%sweep%lambda(i)*nt_m - nn_m, options, &
+                                            res%sweep%mu(i), res%sweep%found(i), certified, &
+                                            n_operator, stat)
+                if (.not. stat%ok()) return
+            end if
+            if (certified) then
+                res%sweep%n_positive(i) = -1
+                res%sweep%n_arpack = res%sweep%n_arpack + 1
+            else
+                call lowest_positive_mu(nn_m, nt_m, res%sweep%lambda(i), res%sweep%mu(i), &
+                                        res%sweep%found(i), res%sweep%n_positive(i), stat)
+                if (.not. stat%ok()) return
+                res%sweep%n_dense = res%sweep%n_dense + 1
+            end if
         end do
         res%time_sweep = wall_time() - start
     end subroutine solve_thresholds
+
+    !> lambda- <= lambda <= lambda+, a missing threshold counting as infinitely far.
+    pure logical function between_thresholds(thr, lambda)
+        type(thresholds_t), intent(in) :: thr
+        real(wp), intent(in) :: lambda
+        between_thresholds = .true.
+        if (thr%found(SIDE_PLUS)) between_thresholds = lambda <= thr%lambda(SIDE_PLUS)
+        if (thr%found(SIDE_MINUS)) between_thresholds = between_thresholds .and. &
+                                                        lambda >= thr%lambda(SIDE_MINUS)
+    end function between_thresholds
 end module threshold_analysis

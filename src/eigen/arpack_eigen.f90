@@ -23,13 +23,14 @@ module arpack_eigen
     use sparse_cholesky, only: cholesky_t
     use contact_boundary, only: contact_t
     use spectrum, only: spectrum_t, order_eigenvalues
-    use lapack_interfaces, only: dtrsv, dgetrf, dgetrs, dgeev, lapack_info_message
+    use lapack_interfaces, only: dtrsv, dgetrf, dgetrs, dgeev, dgemm, lapack_info_message
     use contact_reduction, only: contact_tail, flexibility_blocks, lift_eigenvectors
     use arpack_interfaces, only: dnaupd, dneupd, arpack_info_message
     implicit none
     private
     public :: arpack_options_t, contact_operator_t, arpack_spectrum, is_real_ritz
     public :: certify_lowest, CERTIFIED_FOUND, CERTIFIED_NONE, UNDECIDED
+    public :: arpack_lowest_positive
 
     !> Outcomes of the certificate on one ARPACK run (see certify_lowest).
     integer, parameter :: CERTIFIED_FOUND = 1   !! the lowest positive mu is in the set
@@ -74,6 +75,8 @@ module arpack_eigen
         type(csr_matrix_t) :: mass              !! (p, p) boundary mass M
         real(wp), allocatable :: a(:, :)        !! (p, p) A, then LU of I - sigma A (sigma /= 0)
         integer, allocatable :: pivots(:)
+        !> `a` is A itself, given by the caller (sigma = 0): one O(p^2) product per application
+        logical :: explicit = .false.
     contains
         procedure :: setup => operator_setup
         procedure :: apply_a => operator_apply_a
@@ -136,6 +139,10 @@ contains
         type(status_t), intent(out) :: stat
         real(wp), allocatable :: kt_nn(:, :), kt_nt(:, :), flex(:, :)
         integer :: i
+        if (this%explicit) then
+            allocate (a, source=this%a)
+            return
+        end if
         call flexibility_blocks(this%l_tail, this%slot, this%normal, this%tangent, kt_nn, &
                                 kt_nt, stat)
         if (.not. stat%ok()) return
@@ -154,6 +161,11 @@ contains
         real(wp), intent(out) :: out(:)
         real(wp) :: my(this%p), z(2*this%p)
         integer :: a
+        if (this%explicit) then
+            call dgemm('N', 'N', this%p, 1, this%p, 1.0_wp, this%a, this%p, y, this%p, 0.0_wp, &
+                       out, this%p)
+            return
+        end if
         call this%mass%matvec(y, my)
         z = 0.0_wp
         do a = 1, this%p
@@ -245,8 +257,8 @@ contains
         type(contact_operator_t) :: op
         type(ritz_t) :: run
         complex(wp), allocatable :: mu(:)
-        real(wp) :: mu_now, mu_before, radius
-        integer :: p, nev, cap, attempt, outcome, lowest, n_operator
+        real(wp) :: radius
+        integer :: p, cap, n_operator
         logical :: found_before, confirmed
 
         warning = ''
@@ -260,35 +272,8 @@ contains
         call op%setup(chol, contact, lambda, options%target, stat)
         if (.not. stat%ok()) return
 
-        nev = min(options%nev, cap)
-        n_operator = 0
-        found_before = .false.
-        confirmed = .false.
-        mu_before = 0.0_wp
-        do attempt = 1, MAX_ATTEMPTS
-            call run_arpack(op, nev, options, attempt, run, stat)
-            if (.not. stat%ok()) return
-            n_operator = n_operator + run%n_operator
-            mu = options%target + 1.0_wp/run%nu
-            call certify_lowest(mu, run%is_real, options%target, .false., outcome, lowest)
-            ! with info = 1 (maxit) only some wanted values converged: nearer ones may be
-            ! missing, so the disc argument does not hold
-            if (run%info /= 0) outcome = UNDECIDED
-            if (outcome == CERTIFIED_FOUND) then
-                mu_now = real(mu(lowest), wp)
-                if (found_before) then
-                    confirmed = abs(mu_now - mu_before) <= AGREE_TOL*abs(mu_now)
-                    if (confirmed) exit
-                    nev = min(2*nev, cap)   ! two runs disagree: look wider
-                end if
-                found_before = .true.
-                mu_before = mu_now
-            else
-                found_before = .false.
-                nev = min(2*nev, cap)
-            end if
-            if (.not. found_before .and. (4*nev > p .or. nev > NEV_SEARCH_MAX)) exit
-        end do
+        call certified_search(op, options, run, mu, confirmed, found_before, n_operator, stat)
+        if (.not. stat%ok()) return
 
         if (.not. confirmed) then
             ! Undecided: all p eigenvalues of the reduced p x p matrix decide (O(p^3)).
@@ -318,6 +303,94 @@ contains
         call fill_spectrum(k, b, chol, contact, lambda, mu, run, n_keep, spec, stat)
         spec%n_operator = n_operator
     end subroutine arpack_spectrum
+
+    !> ARPACK runs on `op` until the lowest positive real mu is certified (certify_lowest)
+    !> by two runs from different start vectors that agree on it (`confirmed`), doubling nev
+    !> while undecided; stops undecided past nev > p/4 or NEV_SEARCH_MAX. `run` and `mu` are
+    !> the last run's Ritz values and mu = target + 1/nu; `found_before`: the last run
+    !> certified a value that the one before did not confirm.
+    subroutine certified_search(op, options, run, mu, confirmed, found_before, n_operator, stat)
+        type(contact_operator_t), intent(in) :: op
+        type(arpack_options_t), intent(in) :: options
+        type(ritz_t), intent(out) :: run
+        complex(wp), allocatable, intent(out) :: mu(:)
+        logical, intent(out) :: confirmed, found_before
+        integer, intent(out) :: n_operator
+        type(status_t), intent(out) :: stat
+        real(wp) :: mu_now, mu_before
+        integer :: p, nev, cap, attempt, outcome, lowest
+
+        p = op%p
+        cap = p - 2
+        nev = min(options%nev, cap)
+        n_operator = 0
+        found_before = .false.
+        confirmed = .false.
+        mu_before = 0.0_wp
+        do attempt = 1, MAX_ATTEMPTS
+            call run_arpack(op, nev, options, attempt, run, stat)
+            if (.not. stat%ok()) return
+            n_operator = n_operator + run%n_operator
+            mu = options%target + 1.0_wp/run%nu
+            call certify_lowest(mu, run%is_real, options%target, .false., outcome, lowest)
+            ! with info = 1 (maxit) only some wanted values converged: nearer ones may be
+            ! missing, so the disc argument does not hold
+            if (run%info /= 0) outcome = UNDECIDED
+            if (outcome == CERTIFIED_FOUND) then
+                mu_now = real(mu(lowest), wp)
+                if (found_before) then
+                    confirmed = abs(mu_now - mu_before) <= AGREE_TOL*abs(mu_now)
+                    if (confirmed) exit
+                    nev = min(2*nev, cap)   ! two runs disagree: look wider
+                end if
+                found_before = .true.
+                mu_before = mu_now
+            else
+                found_before = .false.
+                nev = min(2*nev, cap)
+            end if
+            if (.not. found_before .and. (4*nev > p .or. nev > NEV_SEARCH_MAX)) exit
+        end do
+    end subroutine certified_search
+
+    !> The lowest positive real mu of the reduced problem A y = (1/mu) y for an explicit
+    !> p x p matrix `a` = (lambda Kt_nt - Kt_nn) M (a lambda sweep has the Kt blocks already),
+    !> by the certified ARPACK search without shift (options%target is ignored: the disc
+    !> certificate needs sigma <= 0, see certify_lowest). `certified` is false when ARPACK
+    !> could not decide (in particular when no positive mu exists, which only the complete
+    !> spectrum can show): the caller then decides densely; `found` and `mu` are meaningful
+    !> only when certified. `n_operator` counts the products with A.
+    subroutine arpack_lowest_positive(a, options, mu, found, certified, n_operator, stat)
+        real(wp), intent(in) :: a(:, :)
+        type(arpack_options_t), intent(in) :: options
+        real(wp), intent(out) :: mu
+        logical, intent(out) :: found, certified
+        integer, intent(out) :: n_operator
+        type(status_t), intent(out) :: stat
+        type(contact_operator_t) :: op
+        type(arpack_options_t) :: unshifted
+        type(ritz_t) :: run
+        complex(wp), allocatable :: mu_all(:)
+        integer :: outcome, lowest
+        logical :: found_before
+
+        mu = 0.0_wp
+        found = .false.
+        certified = .false.
+        n_operator = 0
+        op%p = size(a, 1)
+        if (op%p - 2 < 1) return   ! too small for ARPACK: the caller goes dense
+        op%explicit = .true.
+        allocate (op%a, source=a)
+        unshifted = options
+        unshifted%target = 0.0_wp
+        call certified_search(op, unshifted, run, mu_all, certified, found_before, n_operator, &
+                              stat)
+        if (.not. stat%ok() .or. .not. certified) return
+        call certify_lowest(mu_all, run%is_real, 0.0_wp, .false., outcome, lowest)
+        found = .true.
+        mu = real(mu_all(lowest), wp)
+    end subroutine arpack_lowest_positive
 
     !> All p eigenvalues of the reduced operator by LAPACK dgeev, as a run would give them
     !> (nu of the operator), keeping the `n_report` of largest |nu| (nearest the target) and

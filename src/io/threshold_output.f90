@@ -110,6 +110,8 @@ contains
         call summary%add_real('sweep_lambda_min', minval(res%sweep%lambda))
         call summary%add_real('sweep_lambda_max', maxval(res%sweep%lambda))
         call summary%add_integer('sweep_n_with_positive_mu', count(res%sweep%found))
+        call summary%add_integer('sweep_n_arpack', res%sweep%n_arpack)
+        call summary%add_integer('sweep_n_dense', res%sweep%n_dense)
         call summary%add_real('time_sweep_s', res%time_sweep)
     end subroutine add_sweep_keys
 

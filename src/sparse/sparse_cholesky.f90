@@ -310,7 +310,10 @@ contains
             call stat%fail(status_code(code), cholmod_status_message(code))
             return
         end if
-        rows = rows0 + 1
+        ! allocate, then fill: gfortran 12's reallocation of an unallocated intent(out) array
+        ! reads its undefined bounds first, which UBSan reports as an integer overflow
+        allocate (rows(m))
+        rows(:) = rows0 + 1
     end subroutine cholesky_trailing_block
 
     !> A sentence for each code of the shim. `column` (1-based, of A) names where a not
