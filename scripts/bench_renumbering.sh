@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 # Node orderings of Delaunay meshes (file order, reverse Cuthill-McKee, METIS) measured by
-# bench/bench_renumbering.f90: scripts/bench_renumbering.sh [N...] (default 64 128 256),
+# scripts/bench_renumbering.f90: scripts/bench_renumbering.sh [N...] (default 64 128 256),
 # order-1 meshes of size 1/N made by scripts/make_mesh.sh. Prints a Markdown table.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
