@@ -9,7 +9,7 @@ module fixtures
     use eigen_analysis, only: eigen_result_t
     implicit none
     private
-    public :: single_triangle, csr_to_dense, file_text, has_warning
+    public :: single_triangle, csr_to_dense, file_text, has_warning, five_point_matrix
 
 contains
 
@@ -65,4 +65,35 @@ contains
             if (index(res%warnings(i), words) > 0) has_warning = .true.
         end do
     end function has_warning
+
+    !> The 5-point stencil on an m x m grid of unknowns, lexicographic order; `stencil` holds
+    !> the south, west, centre, east and north coefficients. Neighbours outside the grid are
+    !> dropped (a zero Dirichlet boundary).
+    subroutine five_point_matrix(m, stencil, a)
+        integer, intent(in) :: m
+        real(wp), intent(in) :: stencil(5)
+        type(csr_matrix_t), intent(out) :: a
+        integer :: i, j, p, pos, neighbour
+        integer :: columns(5)
+        logical :: inside(5)
+        allocate (a%row_start(m*m + 1), a%col(5*m*m), a%val(5*m*m))
+        pos = 1
+        do j = 1, m
+            do i = 1, m
+                p = i + (j - 1)*m
+                a%row_start(p) = pos
+                columns = [p - m, p - 1, p, p + 1, p + m]     ! sorted
+                inside = [j > 1, i > 1, .true., i < m, j < m]
+                do neighbour = 1, 5
+                    if (.not. inside(neighbour)) cycle
+                    a%col(pos) = columns(neighbour)
+                    a%val(pos) = stencil(neighbour)
+                    pos = pos + 1
+                end do
+            end do
+        end do
+        a%row_start(m*m + 1) = pos
+        a%col = a%col(1:pos - 1)
+        a%val = a%val(1:pos - 1)
+    end subroutine five_point_matrix
 end module fixtures

@@ -9,7 +9,7 @@ program test_sparse_cholesky
     use sparse_cholesky, only: cholesky_t, cholmod_status_message, ORDERING_DEFAULT, &
                                ORDERING_AMD, ORDERING_METIS, ORDERING_NATURAL, ORDERING_GIVEN
     use testing, only: test_suite_t
-    use fixtures, only: to_dense => csr_to_dense
+    use fixtures, only: to_dense => csr_to_dense, five_point_matrix
     implicit none
 
     interface
@@ -212,30 +212,14 @@ contains
         integer, intent(in) :: m
         logical, intent(in) :: dirichlet
         type(csr_matrix_t), intent(out) :: a
-        integer :: i, j, p, pos, neighbour
-        integer :: columns(5)
-        logical :: inside(5)
-        allocate (a%row_start(m*m + 1), a%col(5*m*m), a%val(5*m*m))
-        pos = 1
-        do j = 1, m
-            do i = 1, m
-                p = i + (j - 1)*m
-                a%row_start(p) = pos
-                columns = [p - m, p - 1, p, p + 1, p + m]     ! sorted
-                inside = [j > 1, i > 1, .true., i < m, j < m]
-                do neighbour = 1, 5
-                    if (.not. inside(neighbour)) cycle
-                    a%col(pos) = columns(neighbour)
-                    a%val(pos) = -1.0_wp
-                    if (neighbour == 3) a%val(pos) = 4.0_wp
-                    if (neighbour == 3 .and. .not. dirichlet) a%val(pos) = count(inside) - 1
-                    pos = pos + 1
-                end do
+        integer :: row, k
+        call five_point_matrix(m, [-1.0_wp, -1.0_wp, 4.0_wp, -1.0_wp, -1.0_wp], a)
+        if (dirichlet) return
+        do row = 1, m*m
+            do k = a%row_start(row), a%row_start(row + 1) - 1
+                if (a%col(k) == row) a%val(k) = a%row_start(row + 1) - a%row_start(row) - 1
             end do
         end do
-        a%row_start(m*m + 1) = pos
-        a%col = a%col(1:pos - 1)
-        a%val = a%val(1:pos - 1)
     end subroutine laplacian
 
     !> The SPD matrix [1 1; 1 1 + d] in CSR.

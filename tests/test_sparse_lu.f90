@@ -9,7 +9,7 @@ program test_sparse_lu
     use sparse_lu, only: lu_t, umfpack_status_message, LU_ORDERING_DEFAULT, &
                          LU_ORDERING_METIS, LU_ORDERING_NATURAL, LU_ORDERING_CHOLMOD
     use testing, only: test_suite_t
-    use fixtures, only: to_dense => csr_to_dense
+    use fixtures, only: to_dense => csr_to_dense, five_point_matrix
     implicit none
 
     interface
@@ -154,31 +154,8 @@ contains
         integer, intent(in) :: m
         real(wp), intent(in) :: east_west, north_south
         type(csr_matrix_t), intent(out) :: a
-        integer :: i, j, p, pos, neighbour
-        integer :: columns(5)
-        logical :: inside(5)
-        real(wp) :: stencil(5)
-        stencil = [-1.0_wp - north_south, -1.0_wp - east_west, 4.0_wp, &
-                   -1.0_wp + east_west, -1.0_wp + north_south]
-        allocate (a%row_start(m*m + 1), a%col(5*m*m), a%val(5*m*m))
-        pos = 1
-        do j = 1, m
-            do i = 1, m
-                p = i + (j - 1)*m
-                a%row_start(p) = pos
-                columns = [p - m, p - 1, p, p + 1, p + m]     ! sorted
-                inside = [j > 1, i > 1, .true., i < m, j < m]
-                do neighbour = 1, 5
-                    if (.not. inside(neighbour)) cycle
-                    a%col(pos) = columns(neighbour)
-                    a%val(pos) = stencil(neighbour)
-                    pos = pos + 1
-                end do
-            end do
-        end do
-        a%row_start(m*m + 1) = pos
-        a%col = a%col(1:pos - 1)
-        a%val = a%val(1:pos - 1)
+        call five_point_matrix(m, [-1.0_wp - north_south, -1.0_wp - east_west, 4.0_wp, &
+                                   -1.0_wp + east_west, -1.0_wp + north_south], a)
     end subroutine convection_diffusion
 
     !> Absolute column sums: their maximum is the 1-norm dgecon needs.
