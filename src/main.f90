@@ -11,24 +11,14 @@ program nceig
     use run_config, only: config_t
     use input_config, only: read_input, help_text
     use problem, only: problem_t, build_problem
-    use eigen_analysis, only: eigen_result_t, solve_eigen
-    use results_output, only: write_eigen_outputs, summary_lines
-    use threshold_analysis, only: threshold_result_t, solve_thresholds
-    use threshold_output, only: write_threshold_outputs, threshold_summary_lines
-    use sweep_plot, only: plot_lambda_sweep
-    use branch_analysis, only: branch_result_t, run_branch
-    use solve_analysis, only: solve_result_t, run_solve, solve_status
-    use compliance_output, only: write_branch_outputs, branch_summary_lines, &
-                                 write_solve_outputs, solve_summary_lines
+    use analysis_base, only: analysis_t, run_analysis
+    use analysis_registry, only: new_analysis
     implicit none
 
     type(config_t) :: config
     type(problem_t) :: prob
-    type(eigen_result_t) :: res
-    type(threshold_result_t) :: thresholds
-    character(len=:), allocatable :: plot_note
-    type(branch_result_t) :: branch_res
-    type(solve_result_t) :: solve_res
+    class(analysis_t), allocatable :: analysis
+    character(len=:), allocatable :: note
     type(timings_t) :: timings
     type(status_t) :: stat
     character(len=:), allocatable :: argument
@@ -56,53 +46,27 @@ program nceig
     call read_input(argument, config, stat)
     call stop_on_failure(stat)
 
+    call new_analysis(trim(config%analysis%kind), analysis)
+    if (.not. allocated(analysis)) then
+        write (error_unit, '(a)') 'nceig: '//config%input_file//': &analysis: kind = '''// &
+            trim(config%analysis%kind)//''' has no analysis'
+        call exit_with(STATUS_BAD_INPUT)
+    end if
+
     phase = wall_time()
     call build_problem(config, prob, stat)
     call stop_on_failure(stat)
     timings%assembly = wall_time() - phase
 
-    select case (config%analysis%kind)
-    case ('threshold')
-        call solve_thresholds(config, prob, .false., thresholds, timings, stat)
-        call stop_on_failure(stat)
-        call write_threshold_outputs(config, prob, thresholds, start, timings, stat)
-        call stop_on_failure(stat)
-        write (output_unit, '(a)') threshold_summary_lines(config, prob, thresholds, timings)
-    case ('lambda_sweep')
-        call solve_thresholds(config, prob, .true., thresholds, timings, stat)
-        call stop_on_failure(stat)
-        call write_threshold_outputs(config, prob, thresholds, start, timings, stat)
-        call stop_on_failure(stat)
-        write (output_unit, '(a)') threshold_summary_lines(config, prob, thresholds, timings)
-        if (config%sweep%plot) then
-            call plot_lambda_sweep(trim(config%output%directory), plot_note)
-            write (output_unit, '(a)') '  plot        '//plot_note
-        end if
-    case ('branch')
-        call run_branch(config, prob, branch_res, timings, stat)
-        call stop_on_failure(stat)
-        call write_branch_outputs(config, prob, branch_res, start, timings, stat)
-        call stop_on_failure(stat)
-        write (output_unit, '(a)') branch_summary_lines(config, prob, branch_res)
-    case ('solve')
-        call run_solve(config, prob, solve_res, timings, stat)
-        call stop_on_failure(stat)
-        ! A failed Newton iteration still writes its history, then ends the run in error.
-        call write_solve_outputs(config, prob, solve_res, start, timings, stat)
-        call stop_on_failure(stat)
-        write (output_unit, '(a)') solve_summary_lines(config, prob, solve_res)
-        call solve_status(config, solve_res, stat)
-        call stop_on_failure(stat)
-    case default
-        call solve_eigen(config, prob, config%analysis%lambda, res, timings, stat)
-        call stop_on_failure(stat)
-        call write_eigen_outputs(config, prob, res, start, timings, stat)
-        call stop_on_failure(stat)
-        write (output_unit, '(a)') summary_lines(config, prob, res, timings)
-    end select
+    call run_analysis(analysis, config, prob, start, timings, stat)
+    call stop_on_failure(stat)
+    write (output_unit, '(a)') analysis%report(config, prob)
+    call analysis%finish(note, stat)
+    if (len(note) > 0) write (output_unit, '(a)') note
+    call stop_on_failure(stat)
     ! gfortran 12 keeps main-program allocatables in a frame gone before LeakSanitizer looks
     deallocate (argument)
-    if (allocated(plot_note)) deallocate (plot_note)
+    deallocate (analysis, note)
 
 contains
 

@@ -11,7 +11,8 @@ program test_loads
     use assembly, only: assemble_stiffness
     use csr_matrix, only: csr_matrix_t
     use elasticity, only: lame_coefficients
-    use loads, only: edge_loads, body_force_loads, all_dof, node_dofs
+    use loads, only: edge_loads, body_force_loads
+    use dof_map, only: all_dof, node_dofs
     implicit none
 
     type(test_suite_t) :: t

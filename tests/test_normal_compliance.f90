@@ -8,10 +8,9 @@ program test_normal_compliance
     use testing, only: test_suite_t
     use mesh, only: mesh_t, ELEMENT_P1, ELEMENT_Q2, element_name
     use mesh_structured, only: structured_rectangle
-    use dof_map, only: dof_map_t, build_dof_map
+    use dof_map, only: dof_map_t, build_dof_map, node_dofs
     use assembly, only: assemble_stiffness
     use csr_matrix, only: csr_matrix_t
-    use loads, only: node_dofs
     use normal_compliance, only: compliance_t, build_compliance, state_name, &
                                  STATE_SEPARATED, STATE_STICK, STATE_SLIP_PLUS, STATE_SLIP_MINUS
     use solve_analysis, only: random_vector

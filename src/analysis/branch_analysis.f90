@@ -15,6 +15,7 @@ module branch_analysis
     use loads, only: edge_loads
     use normal_compliance, only: compliance_t, build_compliance
     use real_format, only: real_to_text
+    use critical_point, only: slip_sign, critical_c_t
     implicit none
     private
     public :: critical_data_t, branch_result_t, critical_branch_data, branch_compliance, &
@@ -80,7 +81,7 @@ contains
             return
         end if
         crit%mu = real(crit%eig%spec%mu(lowest), wp)
-        crit%slip_sign = merge(-1, 1, crit%lambda > 0.0_wp)
+        crit%slip_sign = slip_sign(crit%lambda)
         crit%phi = real(crit%eig%spec%vectors(:, lowest), wp)
         crit%u_base = base_solution(prob%mesh%coords, crit%lambda, crit%mu, crit%alpha, &
             crit%beta, crit%contact_height, prob%young, prob%poisson)
@@ -136,7 +137,7 @@ contains
                         crit%alpha, prob%young, prob%poisson), load, stat)
         if (.not. stat%ok()) return
         call build_compliance(prob%mesh, prob%dofs, prob%k, prob%young, prob%poisson, &
-            prob%contact_part, factor*crit%mu, factor*crit%mu*abs(crit%lambda), load, &
+            prob%contact_part, factor*crit%mu, critical_c_t(factor*crit%mu, crit%lambda), load, &
             crit%u_base, cp, stat)
     end subroutine branch_compliance
 

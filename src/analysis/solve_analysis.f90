@@ -10,7 +10,8 @@ module solve_analysis
     use timer, only: wall_time, timings_t
     use run_config, only: config_t
     use problem, only: problem_t
-    use loads, only: edge_loads, body_force_loads, node_dofs
+    use loads, only: edge_loads, body_force_loads
+    use dof_map, only: node_dofs
     use normal_compliance, only: compliance_t, build_compliance, STATE_SEPARATED, &
                                  STATE_SLIP_MINUS
     use semismooth_newton, only: newton_options_t, newton_report_t, newton_solve, &

@@ -40,6 +40,7 @@ module normal_compliance
         type(csr_matrix_t) :: k_all              !! K on all dofs, numbered 2 (node - 1) + c
         type(csr_matrix_t) :: k_free             !! K on the free dofs (the Jacobian's pattern)
         type(contact_t) :: contact               !! Gamma_C, all its nodes, all-dof numbering
+        type(dof_map_t) :: dofs                  !! the free dofs x lives on
         integer, allocatable :: free_to_all(:)   !! (n_free) all-dof number of each free dof
         integer, allocatable :: contact_free(:, :) !! (2, p) free dofs of contact node a, or 0
         real(wp), allocatable :: load(:)         !! (2 n_nodes) consistent nodal forces f
@@ -99,20 +100,10 @@ contains
         cp%load = load
         cp%prescribed = prescribed
 
-        allocate (cp%free_to_all(dofs%n_free))
-        do node = 1, size(dofs%free_dof, 2)
-            do c = 1, N_DIM
-                if (dofs%free_dof(c, node) > 0) then
-                    cp%free_to_all(dofs%free_dof(c, node)) = all_dofs%free_dof(c, node)
-                end if
-            end do
-        end do
+        cp%dofs = dofs
+        cp%free_to_all = dofs%free_to_all()
         ! Prescribed values only where a dof is prescribed: a free entry would leak into K u.
-        do node = 1, size(dofs%free_dof, 2)
-            do c = 1, N_DIM
-                if (dofs%free_dof(c, node) > 0) cp%prescribed(all_dofs%free_dof(c, node)) = 0.0_wp
-            end do
-        end do
+        cp%prescribed(cp%free_to_all) = 0.0_wp
 
         p = cp%contact%p()
         allocate (cp%contact_free(N_DIM, p), cp%rho(p))
@@ -149,8 +140,7 @@ contains
         class(compliance_t), intent(in) :: this
         real(wp), intent(in) :: x(:)
         real(wp) :: u(size(this%prescribed))
-        u = this%prescribed
-        u(this%free_to_all) = x
+        u = this%dofs%expand(x, this%prescribed)
     end function compliance_expand
 
     !> H(x) (see the module), and optionally the state of every contact node (prescribed

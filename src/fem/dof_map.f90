@@ -2,22 +2,82 @@
 !> Numbering of the free degrees of freedom: two displacement components per node, minus
 !> those prescribed (Dirichlet) on the chosen boundary parts, which are eliminated.
 module dof_map
-    use kinds, only: N_DIM
+    use kinds, only: wp, N_DIM
     use status, only: status_t, STATUS_BAD_INPUT
     use mesh, only: mesh_t
     use strings, only: to_string
     implicit none
     private
-    public :: build_dof_map, cell_dofs
+    public :: build_dof_map, cell_dofs, all_dof, node_dofs
 
     type, public :: dof_map_t
         !> (2, n_nodes): number of dof (component, node) in the free system, 1-based;
         !> 0 when the dof is prescribed.
         integer, allocatable :: free_dof(:, :)
         integer :: n_free = 0   !! size of the free system
+    contains
+        procedure :: free_to_all => dof_map_free_to_all
+        procedure :: expand => dof_map_expand
+        procedure :: nodal_field => dof_map_nodal_field
     end type dof_map_t
 
 contains
+
+    !> Number of dof (component, node) in the numbering of all dofs, node-major: the numbering
+    !> build_dof_map gives when no dof is prescribed, in which loads and K on all dofs live.
+    elemental integer function all_dof(component, node)
+        integer, intent(in) :: component, node
+        all_dof = N_DIM*(node - 1) + component
+    end function all_dof
+
+    !> The two dofs (x, y) of `node` in the numbering of all dofs.
+    pure function node_dofs(node) result(dofs)
+        integer, intent(in) :: node
+        integer :: dofs(N_DIM)
+        dofs = [all_dof(1, node), all_dof(2, node)]
+    end function node_dofs
+
+    !> (n_free) the number of each free dof in the numbering of all dofs.
+    pure function dof_map_free_to_all(this) result(map)
+        class(dof_map_t), intent(in) :: this
+        integer :: map(this%n_free)
+        integer :: node, c
+        do node = 1, size(this%free_dof, 2)
+            do c = 1, N_DIM
+                if (this%free_dof(c, node) > 0) map(this%free_dof(c, node)) = all_dof(c, node)
+            end do
+        end do
+    end function dof_map_free_to_all
+
+    !> A free-dof vector on all dofs: x on the free dofs, `prescribed` (all dofs; only its
+    !> prescribed entries are read) or zero elsewhere. The one map from the free system to
+    !> the nodes: nodal fields, the compliance problem's u and the loads all go through it.
+    pure function dof_map_expand(this, x, prescribed) result(u)
+        class(dof_map_t), intent(in) :: this
+        real(wp), intent(in) :: x(:)
+        real(wp), intent(in), optional :: prescribed(:)
+        real(wp) :: u(N_DIM*size(this%free_dof, 2))
+        integer :: node, c
+        do node = 1, size(this%free_dof, 2)
+            do c = 1, N_DIM
+                if (this%free_dof(c, node) > 0) then
+                    u(all_dof(c, node)) = x(this%free_dof(c, node))
+                else if (present(prescribed)) then
+                    u(all_dof(c, node)) = prescribed(all_dof(c, node))
+                else
+                    u(all_dof(c, node)) = 0.0_wp
+                end if
+            end do
+        end do
+    end function dof_map_expand
+
+    !> A free-dof vector as a (2, n_nodes) nodal field, zero on the prescribed dofs.
+    pure function dof_map_nodal_field(this, x) result(field)
+        class(dof_map_t), intent(in) :: this
+        real(wp), intent(in) :: x(:)
+        real(wp) :: field(N_DIM, size(this%free_dof, 2))
+        field = reshape(this%expand(x), shape(field))
+    end function dof_map_nodal_field
 
     !> Fix both components of every node of every boundary edge in the parts
     !> `dirichlet_parts` (indices into m%part_names; may be empty), and number the other

@@ -11,28 +11,16 @@ module loads
     use shape_functions, only: evaluate_shape, evaluate_line_shape, MAX_NODES
     use elasticity, only: stiffness_rule, jacobian_at
     use strings, only: to_string
+    use dof_map, only: node_dofs
     implicit none
     private
-    public :: all_dof, node_dofs, edge_loads, body_force_loads
+    public :: edge_loads, body_force_loads
 
     !> Gauss points per edge: exact for the quadratic edge functions times the degree-1 length
     !> element of a curved P2 edge, and for a traction linear in the outward normal.
     integer, parameter :: EDGE_POINTS = 3
 
 contains
-
-    !> Number of dof (component, node) in the numbering of all dofs.
-    elemental integer function all_dof(component, node)
-        integer, intent(in) :: component, node
-        all_dof = N_DIM*(node - 1) + component
-    end function all_dof
-
-    !> The two dofs (x, y) of `node` in the numbering of all dofs.
-    pure function node_dofs(node) result(dofs)
-        integer, intent(in) :: node
-        integer :: dofs(N_DIM)
-        dofs = [N_DIM*(node - 1) + 1, N_DIM*(node - 1) + 2]
-    end function node_dofs
 
     !> f += int_edge N_a (traction + stress n) ds over every boundary edge whose part is marked
     !> in `in_part`, with n the outward unit normal: a constant traction vector plus the

@@ -1,70 +1,75 @@
 ! SPDX-License-Identifier: MIT
-!> The files of an eigen run (SPEC section 7): eigenvalues.csv, mode_NNN.vtu, K.mtx and
-!> B.mtx, and summary.json last, all staged and moved into place together; and the short
-!> human summary printed on stdout.
-module results_output
+!> analysis = 'eigen': the spectrum at &analysis lambda, and its files: eigenvalues.csv,
+!> mode_NNN.vtu, K.mtx and B.mtx, summary.json; and the short human summary on stdout. The
+!> other analyses reuse its files, summary keys and lines for the eigen solve they contain.
+module eigen_run
     use kinds, only: wp
-    use status, only: status_t, STATUS_IO
+    use status, only: status_t
     use strings, only: to_string, zero_padded, short_real_text, seconds_text
     use real_format, only: real_to_text
-    use timer, only: wall_time, timings_t
+    use timer, only: timings_t
     use version, only: NCEIG_VERSION
     use run_config, only: config_t
     use problem, only: problem_t
-    use eigen_analysis, only: eigen_result_t
+    use eigen_analysis, only: eigen_result_t, solve_eigen
+    use critical_point, only: slip_sign, critical_c_t
+    use analysis_base, only: analysis_t
     use spectrum, only: spectrum_t, kind_name, KIND_COMPLEX
     use output_stage, only: output_stage_t
     use json_writer, only: json_object_t
+    use csv_writer, only: csv_writer_t
     use vtk_writer, only: write_vtu
     use matrix_market, only: write_matrix_market
-    use dof_map, only: dof_map_t
     use mesh, only: element_name
     implicit none
     private
-    public :: write_eigen_outputs, summary_lines, nodal_field, eigen_summary_json
-    public :: write_eigenvalues_csv, write_modes, slip_sign, write_eigen_files, &
-              commit_with_summary
+    public :: eigen_summary_json, summary_lines, write_eigenvalues_csv, write_modes, &
+              write_eigen_files
+
+    type, extends(analysis_t), public :: eigen_run_t
+        type(eigen_result_t) :: res
+    contains
+        procedure :: solve => eigen_run_solve
+        procedure :: write_files => eigen_run_write_files
+        procedure :: summary => eigen_run_summary
+        procedure :: report => eigen_run_report
+    end type eigen_run_t
 
 contains
 
-    !> Write every output of an eigen run to the output directory, or none of them.
-    subroutine write_eigen_outputs(config, prob, res, run_start, timings, stat)
+    subroutine eigen_run_solve(this, config, prob, timings, stat)
+        class(eigen_run_t), intent(inout) :: this
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: prob
-        type(eigen_result_t), intent(in) :: res
-        real(wp), intent(in) :: run_start          !! wall_time() at the start of the run
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
-        type(output_stage_t) :: stage
-        type(json_object_t) :: summary
-        real(wp) :: start
+        call solve_eigen(config, prob, config%analysis%lambda, this%res, timings, stat)
+    end subroutine eigen_run_solve
 
-        start = wall_time()
-        call stage%begin(trim(config%output%directory), stat)
-        if (.not. stat%ok()) return
-        call write_eigen_files(stage, config, prob, res, stat)
-        if (stat%ok()) then
-            timings%output = wall_time() - start
-            timings%total = wall_time() - run_start
-            summary = eigen_summary_json(config, prob, res, timings)
-            call commit_with_summary(stage, summary, stat)
-        end if
-        if (.not. stat%ok()) call stage%abort()
-    end subroutine write_eigen_outputs
-
-    !> Every analysis ends its outputs here: summary.json is registered last, as the commit's
-    !> completion marker, and lists the files of its set (an older run may have left other
-    !> mode_NNN.vtu); then the staged files move into place together.
-    subroutine commit_with_summary(stage, summary, stat)
+    subroutine eigen_run_write_files(this, stage, config, prob, stat)
+        class(eigen_run_t), intent(in) :: this
         type(output_stage_t), intent(inout) :: stage
-        type(json_object_t), intent(inout) :: summary
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(in) :: prob
         type(status_t), intent(out) :: stat
-        character(len=:), allocatable :: summary_path
-        summary_path = stage%path('summary.json')
-        call summary%add_string_array('files', stage%file_names(64))
-        call summary%write(summary_path, stat)
-        if (stat%ok()) call stage%commit(stat)
-    end subroutine commit_with_summary
+        call write_eigen_files(stage, config, prob, this%res, stat)
+    end subroutine eigen_run_write_files
+
+    function eigen_run_summary(this, config, prob) result(summary)
+        class(eigen_run_t), intent(in) :: this
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(in) :: prob
+        type(json_object_t) :: summary
+        summary = eigen_summary_json(config, prob, this%res, this%timings)
+    end function eigen_run_summary
+
+    function eigen_run_report(this, config, prob) result(text)
+        class(eigen_run_t), intent(in) :: this
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(in) :: prob
+        character(len=:), allocatable :: text
+        text = summary_lines(config, prob, this%res, this%timings)
+    end function eigen_run_report
 
     !> summary.json of an eigen run; other analyses add their own keys to it.
     function eigen_summary_json(config, prob, res, timings) result(summary)
@@ -103,7 +108,7 @@ contains
             mu = real(res%spec%mu(lowest), wp)
             call summary%add_real('lowest_positive_mu', mu)
             call summary%add_real('critical_c_n', mu)
-            call summary%add_real('critical_c_t', mu*abs(res%lambda))
+            call summary%add_real('critical_c_t', critical_c_t(mu, res%lambda))
             call summary%add_real('lowest_positive_condition', res%spec%condition(lowest))
             call summary%add_real('lowest_positive_residual', res%spec%residual(lowest))
         else
@@ -131,37 +136,24 @@ contains
         end if
     end function eigen_summary_json
 
-    !> s = -sgn(lambda): the slip direction along t on the critical branch (0 for lambda = 0).
-    pure integer function slip_sign(lambda)
-        real(wp), intent(in) :: lambda
-        slip_sign = 0
-        if (lambda > 0.0_wp) slip_sign = -1
-        if (lambda < 0.0_wp) slip_sign = 1
-    end function slip_sign
-
     !> index,re,im,kind,residual,condition; an unknown condition is left empty.
     subroutine write_eigenvalues_csv(path, spec, stat)
         character(len=*), intent(in) :: path
         type(spectrum_t), intent(in) :: spec
         type(status_t), intent(out) :: stat
-        character(len=512) :: msg
+        type(csv_writer_t) :: csv
         character(len=:), allocatable :: condition
-        integer :: unit, ios, i
+        integer :: i
 
-        open (newunit=unit, file=path, status='replace', action='write', iostat=ios, iomsg=msg)
-        if (ios == 0) write (unit, '(a)', iostat=ios, iomsg=msg) &
-            'index,re,im,kind,residual,condition'
+        call csv%open(path, 'index,re,im,kind,residual,condition')
         do i = 1, spec%n()
-            if (ios /= 0) exit
             condition = ''
             if (spec%condition(i) >= 0.0_wp) condition = real_to_text(spec%condition(i))
-            write (unit, '(a)', iostat=ios, iomsg=msg) to_string(i)//','// &
-                real_to_text(real(spec%mu(i), wp))//','//real_to_text(aimag(spec%mu(i)))// &
-                ','//kind_name(spec%kind(i))//','//real_to_text(spec%residual(i))//','// &
-                condition
+            call csv%row(to_string(i)//','//real_to_text(real(spec%mu(i), wp))//','// &
+                real_to_text(aimag(spec%mu(i)))//','//kind_name(spec%kind(i))//','// &
+                real_to_text(spec%residual(i))//','//condition)
         end do
-        if (ios == 0) close (unit, iostat=ios, iomsg=msg)
-        if (ios /= 0) call stat%fail(STATUS_IO, path//': cannot write: '//trim(msg))
+        call csv%close(stat)
     end subroutine write_eigenvalues_csv
 
     !> mode_001.vtu ...: displacement (real part) and, for complex modes, displacement_imag.
@@ -181,31 +173,17 @@ contains
         do i = 1, min(n_modes, size(spec%vectors, 2))
             if (spec%kind(i) == KIND_COMPLEX) then
                 allocate (fields(2, n_nodes, 2))
-                fields(:, :, 2) = nodal_field(prob%dofs, aimag(spec%vectors(:, i)))
+                fields(:, :, 2) = prob%dofs%nodal_field(aimag(spec%vectors(:, i)))
             else
                 allocate (fields(2, n_nodes, 1))
             end if
-            fields(:, :, 1) = nodal_field(prob%dofs, real(spec%vectors(:, i), wp))
+            fields(:, :, 1) = prob%dofs%nodal_field(real(spec%vectors(:, i), wp))
             call write_vtu(stage%path('mode_'//zero_padded(i, 3)//'.vtu'), prob%mesh, &
                            FIELD_NAMES(1:size(fields, 3)), fields, vtk_format, stat)
             deallocate (fields)
             if (.not. stat%ok()) return
         end do
     end subroutine write_modes
-
-    !> A free-dof vector as a (2, n_nodes) nodal field, zero on the Dirichlet boundary.
-    pure function nodal_field(dofs, x) result(field)
-        type(dof_map_t), intent(in) :: dofs
-        real(wp), intent(in) :: x(:)
-        real(wp) :: field(2, size(dofs%free_dof, 2))
-        integer :: node, c
-        do node = 1, size(dofs%free_dof, 2)
-            do c = 1, 2
-                field(c, node) = 0.0_wp
-                if (dofs%free_dof(c, node) > 0) field(c, node) = x(dofs%free_dof(c, node))
-            end do
-        end do
-    end function nodal_field
 
     !> The human summary: mesh, sizes, the headline eigenvalue and the time of each phase.
     function summary_lines(config, prob, res, timings) result(text)
@@ -230,7 +208,7 @@ contains
         if (lowest > 0) then
             mu = real(res%spec%mu(lowest), wp)
             text = text//'  lowest positive mu = critical c_n = '//real_to_text(mu)//NL// &
-                '  critical c_t = mu |lambda| = '//real_to_text(mu*abs(res%lambda))// &
+                '  critical c_t = mu |lambda| = '//real_to_text(critical_c_t(mu, res%lambda))// &
                 ', slip sign s = '//to_string(slip_sign(res%lambda))// &
                 ' (u_t '//merge('< 0', '> 0', slip_sign(res%lambda) < 0)//' along t)'//NL
         else
@@ -267,4 +245,4 @@ contains
             if (stat%ok()) call write_matrix_market(stage%path('B.mtx'), res%b, stat)
         end if
     end subroutine write_eigen_files
-end module results_output
+end module eigen_run

@@ -1,62 +1,103 @@
 ! SPDX-License-Identifier: MIT
-!> The files of a 'threshold' or 'lambda_sweep' run: those of an eigen run at &analysis lambda,
-!> lambda_sweep.csv for a sweep, and summary.json with the threshold and sweep keys, all staged
-!> and moved into place together; and the lines they add to the stdout summary.
-module threshold_output
+!> analysis = 'threshold' and 'lambda_sweep': the files of an eigen run at &analysis lambda,
+!> lambda_sweep.csv for a sweep (and its plot once committed), summary.json with the threshold
+!> and sweep keys; and the lines they add to the stdout summary.
+module threshold_run
     use kinds, only: wp
-    use status, only: status_t, STATUS_IO
+    use status, only: status_t
     use strings, only: to_string, short_real_text
     use real_format, only: real_to_text
-    use timer, only: wall_time, timings_t
+    use timer, only: timings_t
     use run_config, only: config_t
     use problem, only: problem_t
-    use threshold_analysis, only: threshold_result_t, sweep_curve_t
-    use critical_lambda, only: thresholds_t, SIDE_PLUS, SIDE_MINUS, CONFIRM_OFFSET
+    use threshold_analysis, only: threshold_result_t, sweep_curve_t, solve_thresholds
+    use critical_lambda, only: SIDE_PLUS, SIDE_MINUS, CONFIRM_OFFSET
+    use critical_point, only: slip_sign, critical_c_t
+    use analysis_base, only: analysis_t
+    use eigen_run, only: eigen_summary_json, summary_lines, write_eigen_files
     use output_stage, only: output_stage_t
     use json_writer, only: json_object_t
-    use results_output, only: eigen_summary_json, summary_lines, write_eigen_files, slip_sign, &
-                              commit_with_summary
+    use csv_writer, only: csv_writer_t
+    use sweep_plot, only: plot_lambda_sweep
     implicit none
     private
-    public :: write_threshold_outputs, threshold_summary_lines, add_threshold_keys, &
-              write_sweep_csv
+    public :: write_sweep_csv
 
     character(len=*), parameter :: SWEEP_FILE = 'lambda_sweep.csv'
     character(len=*), parameter :: SWEEP_HEADER = &
         'lambda,critical_c_n,critical_c_t,slip_sign,n_positive'
     character(len=*), parameter :: SIDE_NAMES(2) = [character(len=5) :: 'plus', 'minus']
 
+    !> 'threshold' (with_sweep false) or 'lambda_sweep'.
+    type, extends(analysis_t), public :: threshold_run_t
+        logical :: with_sweep = .false.
+        type(threshold_result_t) :: res
+        logical :: plot = .false.                       !! draw lambda_sweep.png when done
+        character(len=:), allocatable :: directory      !! the output directory, for the plot
+    contains
+        procedure :: solve => threshold_run_solve
+        procedure :: write_files => threshold_run_write_files
+        procedure :: summary => threshold_run_summary
+        procedure :: report => threshold_run_report
+        procedure :: finish => threshold_run_finish
+    end type threshold_run_t
+
 contains
 
-    !> Write every output of the run to the output directory, or none of them.
-    subroutine write_threshold_outputs(config, prob, res, run_start, timings, stat)
+    subroutine threshold_run_solve(this, config, prob, timings, stat)
+        class(threshold_run_t), intent(inout) :: this
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: prob
-        type(threshold_result_t), intent(in) :: res
-        real(wp), intent(in) :: run_start          !! wall_time() at the start of the run
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
-        type(output_stage_t) :: stage
-        type(json_object_t) :: summary
-        real(wp) :: start
+        this%plot = this%with_sweep .and. config%sweep%plot
+        this%directory = trim(config%output%directory)
+        call solve_thresholds(config, prob, this%with_sweep, this%res, timings, stat)
+    end subroutine threshold_run_solve
 
-        start = wall_time()
-        call stage%begin(trim(config%output%directory), stat)
-        if (.not. stat%ok()) return
-        call write_eigen_files(stage, config, prob, res%eigen, stat)
-        if (stat%ok() .and. allocated(res%sweep%lambda)) then
-            call write_sweep_csv(stage%path(SWEEP_FILE), res%sweep, stat)
+    subroutine threshold_run_write_files(this, stage, config, prob, stat)
+        class(threshold_run_t), intent(in) :: this
+        type(output_stage_t), intent(inout) :: stage
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(in) :: prob
+        type(status_t), intent(out) :: stat
+        call write_eigen_files(stage, config, prob, this%res%eigen, stat)
+        if (stat%ok() .and. allocated(this%res%sweep%lambda)) then
+            call write_sweep_csv(stage%path(SWEEP_FILE), this%res%sweep, stat)
         end if
-        if (stat%ok()) then
-            timings%output = wall_time() - start
-            timings%total = wall_time() - run_start
-            summary = eigen_summary_json(config, prob, res%eigen, timings)
-            call add_threshold_keys(summary, res)
-            if (allocated(res%sweep%lambda)) call add_sweep_keys(summary, config, res)
-            call commit_with_summary(stage, summary, stat)
-        end if
-        if (.not. stat%ok()) call stage%abort()
-    end subroutine write_threshold_outputs
+    end subroutine threshold_run_write_files
+
+    function threshold_run_summary(this, config, prob) result(summary)
+        class(threshold_run_t), intent(in) :: this
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(in) :: prob
+        type(json_object_t) :: summary
+        summary = eigen_summary_json(config, prob, this%res%eigen, this%timings)
+        call add_threshold_keys(summary, this%res)
+        if (allocated(this%res%sweep%lambda)) call add_sweep_keys(summary, config, this%res)
+    end function threshold_run_summary
+
+    function threshold_run_report(this, config, prob) result(text)
+        class(threshold_run_t), intent(in) :: this
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(in) :: prob
+        character(len=:), allocatable :: text
+        text = threshold_summary_lines(config, prob, this%res, this%timings)
+    end function threshold_run_report
+
+    !> The sweep's plot reads the committed lambda_sweep.csv and summary.json; drawing it is
+    !> optional, so its outcome is a note, never a failure.
+    subroutine threshold_run_finish(this, note, stat)
+        class(threshold_run_t), intent(inout) :: this
+        character(len=:), allocatable, intent(out) :: note
+        type(status_t), intent(out) :: stat
+        character(len=:), allocatable :: plot_note
+        note = ''
+        stat = this%verdict
+        if (.not. this%plot) return
+        call plot_lambda_sweep(this%directory, plot_note)
+        note = '  plot        '//plot_note
+    end subroutine threshold_run_finish
 
     !> lambda_critical_plus/minus (null where none), the backward error of each on the pencil,
     !> the pencil's eigenvalue counts, and the confirming solves on each side.
@@ -121,23 +162,19 @@ contains
         character(len=*), intent(in) :: path
         type(sweep_curve_t), intent(in) :: curve
         type(status_t), intent(out) :: stat
-        character(len=512) :: msg
+        type(csv_writer_t) :: csv
         character(len=:), allocatable :: values
-        integer :: unit, ios, i
+        integer :: i
 
-        open (newunit=unit, file=path, status='replace', action='write', iostat=ios, iomsg=msg)
-        if (ios == 0) write (unit, '(a)', iostat=ios, iomsg=msg) SWEEP_HEADER
+        call csv%open(path, SWEEP_HEADER)
         do i = 1, size(curve%lambda)
-            if (ios /= 0) exit
             values = ','
             if (curve%found(i)) values = real_to_text(curve%mu(i))//','// &
-                real_to_text(curve%mu(i)*abs(curve%lambda(i)))
-            write (unit, '(a)', iostat=ios, iomsg=msg) real_to_text(curve%lambda(i))//','// &
-                values//','//to_string(slip_sign(curve%lambda(i)))//','// &
-                to_string(curve%n_positive(i))
+                real_to_text(critical_c_t(curve%mu(i), curve%lambda(i)))
+            call csv%row(real_to_text(curve%lambda(i))//','//values//','// &
+                to_string(slip_sign(curve%lambda(i)))//','//to_string(curve%n_positive(i)))
         end do
-        if (ios == 0) close (unit, iostat=ios, iomsg=msg)
-        if (ios /= 0) call stat%fail(STATUS_IO, path//': cannot write: '//trim(msg))
+        call csv%close(stat)
     end subroutine write_sweep_csv
 
     !> The eigen summary, then the thresholds with their confirmations and the sweep.
@@ -190,4 +227,4 @@ contains
             if (found) s = real_to_text(mu)
         end function mu_text
     end function threshold_summary_lines
-end module threshold_output
+end module threshold_run

@@ -1,0 +1,121 @@
+! SPDX-License-Identifier: MIT
+!> The one shape of every analysis: solve, write its files into a staging area, build its
+!> summary.json, commit the set, print its summary. An analysis extends analysis_t with what
+!> is its own (the numerics, its files, its summary keys and lines); run_analysis is the
+!> skeleton they all share, so staging, timings and the commit are written once.
+module analysis_base
+    use kinds, only: wp
+    use status, only: status_t
+    use timer, only: wall_time, timings_t
+    use run_config, only: config_t
+    use problem, only: problem_t
+    use output_stage, only: output_stage_t
+    use json_writer, only: json_object_t
+    implicit none
+    private
+    public :: run_analysis
+
+    !> Length of the file names listed in summary.json (mode_NNN.vtu, lambda_sweep.csv, ...).
+    integer, parameter :: FILE_NAME_LEN = 64
+
+    type, abstract, public :: analysis_t
+        !> The run's verdict once its outputs are written: a solve whose Newton iteration did
+        !> not converge still writes its history, then ends in error.
+        type(status_t) :: verdict
+        !> The phase timings as committed to summary.json, which the report prints too.
+        type(timings_t) :: timings
+    contains
+        procedure(solve_interface), deferred :: solve
+        procedure(write_interface), deferred :: write_files
+        procedure(summary_interface), deferred :: summary
+        procedure(report_interface), deferred :: report
+        procedure :: finish => analysis_finish
+    end type analysis_t
+
+    abstract interface
+        !> The numerics: fill the analysis from the problem, adding to the phase timings.
+        subroutine solve_interface(this, config, prob, timings, stat)
+            import :: analysis_t, config_t, problem_t, timings_t, status_t
+            class(analysis_t), intent(inout) :: this
+            type(config_t), intent(in) :: config
+            type(problem_t), intent(in) :: prob
+            type(timings_t), intent(inout) :: timings
+            type(status_t), intent(out) :: stat
+        end subroutine solve_interface
+
+        !> Every file of the analysis but summary.json, each at stage%path(name).
+        subroutine write_interface(this, stage, config, prob, stat)
+            import :: analysis_t, output_stage_t, config_t, problem_t, status_t
+            class(analysis_t), intent(in) :: this
+            type(output_stage_t), intent(inout) :: stage
+            type(config_t), intent(in) :: config
+            type(problem_t), intent(in) :: prob
+            type(status_t), intent(out) :: stat
+        end subroutine write_interface
+
+        !> summary.json without its 'files' list, which the commit adds.
+        function summary_interface(this, config, prob) result(summary)
+            import :: analysis_t, config_t, problem_t, json_object_t
+            class(analysis_t), intent(in) :: this
+            type(config_t), intent(in) :: config
+            type(problem_t), intent(in) :: prob
+            type(json_object_t) :: summary
+        end function summary_interface
+
+        !> The human summary printed on stdout once the outputs are in place.
+        function report_interface(this, config, prob) result(text)
+            import :: analysis_t, config_t, problem_t
+            class(analysis_t), intent(in) :: this
+            type(config_t), intent(in) :: config
+            type(problem_t), intent(in) :: prob
+            character(len=:), allocatable :: text
+        end function report_interface
+    end interface
+
+contains
+
+    !> Solve, then write every output to the output directory or none of them: the files are
+    !> staged, summary.json is registered last as the commit's completion marker and lists
+    !> the files of its set (an older run may have left other mode_NNN.vtu), then the set
+    !> moves into place together.
+    subroutine run_analysis(this, config, prob, run_start, timings, stat)
+        class(analysis_t), intent(inout) :: this
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(in) :: prob
+        real(wp), intent(in) :: run_start          !! wall_time() at the start of the run
+        type(timings_t), intent(inout) :: timings
+        type(status_t), intent(out) :: stat
+        type(output_stage_t) :: stage
+        type(json_object_t) :: summary
+        character(len=:), allocatable :: summary_path
+        real(wp) :: start
+
+        call this%solve(config, prob, timings, stat)
+        if (.not. stat%ok()) return
+        start = wall_time()
+        call stage%begin(trim(config%output%directory), stat)
+        if (.not. stat%ok()) return
+        call this%write_files(stage, config, prob, stat)
+        if (stat%ok()) then
+            timings%output = wall_time() - start
+            timings%total = wall_time() - run_start
+            this%timings = timings
+            summary = this%summary(config, prob)
+            summary_path = stage%path('summary.json')
+            call summary%add_string_array('files', stage%file_names(FILE_NAME_LEN))
+            call summary%write(summary_path, stat)
+            if (stat%ok()) call stage%commit(stat)
+        end if
+        if (.not. stat%ok()) call stage%abort()
+    end subroutine run_analysis
+
+    !> After the outputs are committed and the report printed: lines to print (`note`, empty
+    !> for none) and the verdict of the run.
+    subroutine analysis_finish(this, note, stat)
+        class(analysis_t), intent(inout) :: this
+        character(len=:), allocatable, intent(out) :: note
+        type(status_t), intent(out) :: stat
+        note = ''
+        stat = this%verdict
+    end subroutine analysis_finish
+end module analysis_base

@@ -1,0 +1,29 @@
+! SPDX-License-Identifier: MIT
+!> The analyses by their &analysis kind. A new analysis is one module extending analysis_t
+!> and one line here (and its name among the kinds the input accepts).
+module analysis_registry
+    use analysis_base, only: analysis_t
+    use eigen_run, only: eigen_run_t
+    use threshold_run, only: threshold_run_t
+    use branch_run, only: branch_run_t
+    use solve_run, only: solve_run_t
+    implicit none
+    private
+    public :: new_analysis
+
+contains
+
+    !> The analysis of `kind`; an unknown kind (which the input check refuses first) leaves
+    !> `analysis` unallocated.
+    subroutine new_analysis(kind, analysis)
+        character(len=*), intent(in) :: kind
+        class(analysis_t), allocatable, intent(out) :: analysis
+        select case (kind)
+        case ('eigen'); allocate (eigen_run_t :: analysis)
+        case ('threshold'); allocate (analysis, source=threshold_run_t(with_sweep=.false.))
+        case ('lambda_sweep'); allocate (analysis, source=threshold_run_t(with_sweep=.true.))
+        case ('branch'); allocate (branch_run_t :: analysis)
+        case ('solve'); allocate (solve_run_t :: analysis)
+        end select
+    end subroutine new_analysis
+end module analysis_registry
