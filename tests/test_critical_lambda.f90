@@ -14,7 +14,7 @@ program test_critical_lambda
     use contact_boundary, only: contact_t, build_contact
     use csr_matrix, only: csr_matrix_t
     use sparse_cholesky, only: cholesky_t
-    use contact_reduction, only: factor_stiffness, contact_flexibility
+    use contact_reduction, only: factor_stiffness, contact_flexibility, reduced_blocks_t
     use timer, only: timings_t
     use lapack_interfaces, only: dgeev
     use critical_lambda, only: thresholds_t, pencil_thresholds, lowest_positive_mu, &
@@ -23,10 +23,6 @@ program test_critical_lambda
     use input_config, only: sweep_lambdas
     implicit none
 
-    !> The p x p data of one scene: Kt_nn, Kt_nt, and both times M.
-    type :: scene_t
-        real(wp), allocatable :: kt_nn(:, :), kt_nt(:, :), nn_m(:, :), nt_m(:, :)
-    end type scene_t
 
     type(test_suite_t) :: t
     t%name = 'test_critical_lambda'
@@ -51,7 +47,7 @@ contains
         real(wp), parameter :: POISSONS(3) = [0.0_wp, 0.3_wp, 0.45_wp]
         real(wp) :: lame_l, shear_g, expected
         type(mesh_t) :: m
-        type(scene_t) :: s
+        type(reduced_blocks_t) :: s
         type(thresholds_t) :: thr
         type(status_t) :: stat
         character(len=60) :: what
@@ -85,7 +81,7 @@ contains
         real(wp), parameter :: LAMBDAS(4) = [5.0_wp, -5.0_wp, 2.5_wp, -40.0_wp]
         integer, parameter :: ELEMENTS(2) = [ELEMENT_P1, ELEMENT_P2]
         type(mesh_t) :: m
-        type(scene_t) :: right, left
+        type(reduced_blocks_t) :: right, left
         type(thresholds_t) :: thr_right, thr_left
         type(status_t) :: stat
         real(wp) :: mu_right, mu_left
@@ -113,9 +109,9 @@ contains
                 abs(thr_right%lambda(SIDE_PLUS) + thr_right%lambda(SIDE_MINUS)) > &
                 1.0e-6_wp*abs(thr_right%lambda(SIDE_PLUS)))
             do i = 1, size(LAMBDAS)
-                call lowest_positive_mu(left%nn_m, left%nt_m, LAMBDAS(i), mu_left, found_left, &
+                call lowest_positive_mu(left, LAMBDAS(i), mu_left, found_left, &
                                         n_left, stat)
-                call lowest_positive_mu(right%nn_m, right%nt_m, -LAMBDAS(i), mu_right, &
+                call lowest_positive_mu(right, -LAMBDAS(i), mu_right, &
                                         found_right, n_right, stat)
                 write (what, '(a, i0, a, f6.1)') 'mirror, element ', e, ': mu, lambda =', &
                     LAMBDAS(i)
@@ -132,7 +128,7 @@ contains
         type(test_suite_t), intent(inout) :: t
         integer, parameter :: SIZES(3) = [2, 5, 12]
         type(mesh_t) :: m
-        type(scene_t) :: s
+        type(reduced_blocks_t) :: s
         type(thresholds_t) :: thr
         type(status_t) :: stat
         character(len=40) :: what
@@ -157,7 +153,7 @@ contains
     subroutine reduced_matrix_singular_at_thresholds(t)
         type(test_suite_t), intent(inout) :: t
         type(mesh_t) :: m
-        type(scene_t) :: s
+        type(reduced_blocks_t) :: s
         type(thresholds_t) :: thr
         type(status_t) :: stat
         real(wp), allocatable :: a(:, :), wr(:), wi(:), work(:)
@@ -170,7 +166,7 @@ contains
         p = size(s%kt_nn, 1)
         allocate (a(p, p), wr(p), wi(p))
         do side = SIDE_PLUS, SIDE_MINUS
-            a = thr%lambda(side)*s%nt_m - s%nn_m
+            a = s%matrix(thr%lambda(side))
             norm_a = maxval(sum(abs(a), dim=2))
             call dgeev('N', 'N', p, a, p, wr, wi, vl, 1, vr, 1, query, -1, info)
             if (.not. allocated(work)) allocate (work(int(query(1))))
@@ -189,7 +185,7 @@ contains
     subroutine mu_has_a_pole_at_the_threshold(t)
         type(test_suite_t), intent(inout) :: t
         type(mesh_t) :: m
-        type(scene_t) :: s
+        type(reduced_blocks_t) :: s
         type(thresholds_t) :: thr
         type(status_t) :: stat
         real(wp) :: mu(2:7), product(2:7), lambda
@@ -202,7 +198,7 @@ contains
         all_found = .true.
         do k = 2, 7
             lambda = thr%lambda(SIDE_PLUS)*(1.0_wp + 10.0_wp**(-k))
-            call lowest_positive_mu(s%nn_m, s%nt_m, lambda, mu(k), found, n_positive, stat)
+            call lowest_positive_mu(s, lambda, mu(k), found, n_positive, stat)
             all_found = all_found .and. found
             product(k) = mu(k)*(lambda - thr%lambda(SIDE_PLUS))
         end do
@@ -222,14 +218,14 @@ contains
     subroutine thresholds_are_confirmed(t)
         type(test_suite_t), intent(inout) :: t
         type(mesh_t) :: m
-        type(scene_t) :: s
+        type(reduced_blocks_t) :: s
         type(thresholds_t) :: thr
         type(status_t) :: stat
 
         call structured_rectangle(1.0_wp, 1.0_wp, 8, 8, ELEMENT_P1, 'right', m, stat)
         call build_scene(m, [m%part_index('top')], m%part_index('bottom'), 0.3_wp, s)
         call pencil_thresholds(s%kt_nn, s%kt_nt, thr, stat)
-        call confirm_thresholds(s%nn_m, s%nt_m, thr, stat)
+        call confirm_thresholds(s, thr, stat)
         call t%check('reference scene N=8: lambda+ > 0 > lambda-', all(thr%found) .and. &
                      thr%lambda(SIDE_PLUS) > 0.0_wp .and. thr%lambda(SIDE_MINUS) < 0.0_wp)
         call t%check('lambda+ confirmed', thr%confirmed(SIDE_PLUS))
@@ -270,14 +266,13 @@ contains
         type(mesh_t), intent(in) :: m
         integer, intent(in) :: dirichlet_parts(:), contact_part
         real(wp), intent(in) :: poisson
-        type(scene_t), intent(out) :: s
+        type(reduced_blocks_t), intent(out) :: s
         type(dof_map_t) :: dofs
         type(contact_t) :: contact
         type(csr_matrix_t) :: k
         type(cholesky_t) :: chol
         type(timings_t) :: timings
         type(status_t) :: stat
-        real(wp), allocatable :: mass(:, :)
 
         call build_dof_map(m, dirichlet_parts, dofs, stat)
         if (stat%ok()) call build_contact(m, contact_part, dofs, contact, stat)
@@ -289,8 +284,6 @@ contains
             call t%check('build_scene: '//stat%message, .false.)
             error stop 1
         end if
-        mass = contact%mass_dense()
-        s%nn_m = matmul(s%kt_nn, mass)
-        s%nt_m = matmul(s%kt_nt, mass)
+        s%mass = contact%mass
     end subroutine build_scene
 end program test_critical_lambda

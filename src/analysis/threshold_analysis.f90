@@ -17,7 +17,7 @@ module threshold_analysis
     use problem, only: problem_t
     use sparse_cholesky, only: cholesky_t
     use contact_boundary, only: assemble_b
-    use contact_reduction, only: factor_stiffness, contact_flexibility
+    use contact_reduction, only: factor_stiffness, contact_flexibility, reduced_blocks_t
     use arpack_eigen, only: arpack_options_t, arpack_lowest_positive
     use critical_lambda, only: thresholds_t, pencil_thresholds, confirm_thresholds, &
                                lowest_positive_mu, SIDE_PLUS, SIDE_MINUS
@@ -57,7 +57,7 @@ contains
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
         type(cholesky_t) :: chol
-        real(wp), allocatable :: kt_nn(:, :), kt_nt(:, :), mass(:, :), nn_m(:, :), nt_m(:, :)
+        type(reduced_blocks_t) :: blocks
         type(arpack_options_t) :: options
         real(wp) :: start
         integer :: i, n_operator
@@ -75,28 +75,26 @@ contains
         if (.not. stat%ok()) return
 
         start = wall_time()
-        call contact_flexibility(chol, prob%contact, kt_nn, kt_nt, stat)
+        call contact_flexibility(chol, prob%contact, blocks%kt_nn, blocks%kt_nt, stat)
         if (.not. stat%ok()) then
             call chol%free()
             return
         end if
         timings%reduction = timings%reduction + (wall_time() - start)
 
-        call eigen_with_factor(config, prob, chol, res%eigen, timings, stat, kt_nn, kt_nt)
+        call eigen_with_factor(config, prob, chol, res%eigen, timings, stat, blocks%kt_nn, &
+                               blocks%kt_nt)
         call chol%free()
         if (.not. stat%ok()) return
 
         start = wall_time()
-        call pencil_thresholds(kt_nn, kt_nt, res%thresholds, stat)
+        call pencil_thresholds(blocks%kt_nn, blocks%kt_nt, res%thresholds, stat)
         if (.not. stat%ok()) return
-        mass = prob%contact%mass_dense()
-        nn_m = matmul(kt_nn, mass)
-        nt_m = matmul(kt_nt, mass)
-        deallocate (kt_nn, kt_nt, mass)
+        blocks%mass = prob%contact%mass
         ! Dense on purpose, whatever the solver: just inside a threshold there is no positive
         ! mu, which only the complete spectrum shows, and just outside the wanted mu is huge,
         ! deep in the spectrum; dgeev without vectors is O(p^3) with a small constant.
-        call confirm_thresholds(nn_m, nt_m, res%thresholds, stat)
+        call confirm_thresholds(blocks, res%thresholds, stat)
         if (.not. stat%ok()) return
         res%time_threshold = wall_time() - start
         if (.not. with_sweep) return
@@ -114,7 +112,7 @@ contains
             ! never certify (only the whole spectrum can): its attempts would be wasted.
             if (res%eigen%solver == 'arpack' .and. &
                 .not. between_thresholds(res%thresholds, res%sweep%lambda(i))) then
-                call arpack_lowest_positive(res%sweep%lambda(i)*nt_m - nn_m, options, &
+                call arpack_lowest_positive(blocks%matrix(res%sweep%lambda(i)), options, &
                                             res%sweep%mu(i), res%sweep%found(i), certified, &
                                             n_operator, stat)
                 if (.not. stat%ok()) return
@@ -123,7 +121,7 @@ contains
                 res%sweep%n_positive(i) = -1
                 res%sweep%n_arpack = res%sweep%n_arpack + 1
             else
-                call lowest_positive_mu(nn_m, nt_m, res%sweep%lambda(i), res%sweep%mu(i), &
+                call lowest_positive_mu(blocks, res%sweep%lambda(i), res%sweep%mu(i), &
                                         res%sweep%found(i), res%sweep%n_positive(i), stat)
                 if (.not. stat%ok()) return
                 res%sweep%n_dense = res%sweep%n_dense + 1

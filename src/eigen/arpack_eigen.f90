@@ -24,7 +24,8 @@ module arpack_eigen
     use contact_boundary, only: contact_t
     use spectrum, only: spectrum_t, order_eigenvalues
     use lapack_interfaces, only: dtrsv, dgetrf, dgetrs, dgeev, dgemm, lapack_info_message
-    use contact_reduction, only: contact_tail, flexibility_blocks, lift_eigenvectors
+    use contact_reduction, only: contact_tail, flexibility_blocks, lift_eigenvectors, &
+                                 reduced_matrix
     use arpack_interfaces, only: dnaupd, dneupd, arpack_info_message
     implicit none
     private
@@ -137,8 +138,7 @@ contains
         class(contact_operator_t), intent(in) :: this
         real(wp), allocatable, intent(out) :: a(:, :)
         type(status_t), intent(out) :: stat
-        real(wp), allocatable :: kt_nn(:, :), kt_nt(:, :), flex(:, :)
-        integer :: i
+        real(wp), allocatable :: kt_nn(:, :), kt_nt(:, :)
         if (this%explicit) then
             allocate (a, source=this%a)
             return
@@ -146,12 +146,7 @@ contains
         call flexibility_blocks(this%l_tail, this%slot, this%normal, this%tangent, kt_nn, &
                                 kt_nt, stat)
         if (.not. stat%ok()) return
-        flex = this%lambda*kt_nt - kt_nn
-        deallocate (kt_nn, kt_nt)
-        allocate (a(this%p, this%p))
-        do i = 1, this%p   ! A = flex M, row by row through the sparse symmetric M
-            call this%mass%matvec(flex(i, :), a(i, :))
-        end do
+        a = reduced_matrix(kt_nn, kt_nt, this%mass, this%lambda)
     end subroutine operator_dense_a
 
     !> out = A y = N K^-1 (lambda T' - N') M y, through two triangular solves with L_c.

@@ -25,7 +25,7 @@ module contact_reduction
     implicit none
     private
     public :: factor_stiffness, contact_tail, flexibility_blocks, contact_flexibility, &
-              lift_eigenvectors, lift_block_columns
+              lift_eigenvectors, lift_block_columns, reduced_matrix
 
     !> Columns per multi-right-hand-side solve of the lift: up to 64 keeps CHOLMOD's
     !> supernodal solve in BLAS-3 (each solve streams the whole factor), but one n x block
@@ -36,7 +36,41 @@ module contact_reduction
     integer, parameter :: RHS_BLOCK_MIN = 8
     integer(i8), parameter :: BLOCK_BYTES = 256_i8*1024_i8**2
 
+    !> The contact blocks of K^-1 with the contact mass: all the reduced problem needs at any
+    !> lambda, so an analysis that visits many lambdas forms them once.
+    type, public :: reduced_blocks_t
+        real(wp), allocatable :: kt_nn(:, :)   !! (p, p) N K^-1 N'
+        real(wp), allocatable :: kt_nt(:, :)   !! (p, p) N K^-1 T'
+        type(csr_matrix_t) :: mass             !! (p, p) M, the contact mass matrix
+    contains
+        procedure :: matrix => reduced_blocks_matrix
+    end type reduced_blocks_t
+
 contains
+
+    !> A = (lambda Kt_nt - Kt_nn) M, the reduced p x p matrix whose eigenvalues are theta =
+    !> 1/mu (SPEC section 3): the one place it is formed. M is sparse (a band along Gamma_C),
+    !> so the product costs O(p^2) per lambda, not O(p^3).
+    pure function reduced_matrix(kt_nn, kt_nt, mass, lambda) result(a)
+        real(wp), intent(in) :: kt_nn(:, :), kt_nt(:, :)   !! (p, p)
+        type(csr_matrix_t), intent(in) :: mass
+        real(wp), intent(in) :: lambda
+        real(wp) :: a(size(kt_nn, 1), size(kt_nn, 2))
+        real(wp) :: flex(size(kt_nn, 1), size(kt_nn, 2))
+        integer :: i
+        flex = lambda*kt_nt - kt_nn
+        do i = 1, size(a, 1)   ! row i of flex M is M flex(i, :), M being symmetric
+            call mass%matvec(flex(i, :), a(i, :))
+        end do
+    end function reduced_matrix
+
+    !> A(lambda) of these blocks (see reduced_matrix).
+    pure function reduced_blocks_matrix(this, lambda) result(a)
+        class(reduced_blocks_t), intent(in) :: this
+        real(wp), intent(in) :: lambda
+        real(wp) :: a(size(this%kt_nn, 1), size(this%kt_nn, 2))
+        a = reduced_matrix(this%kt_nn, this%kt_nt, this%mass, lambda)
+    end function reduced_blocks_matrix
 
     !> Factor K for the eigenproblem, whatever the solver and analysis: METIS nested
     !> dissection on the node graph with the contact nodes last (node_ordering), then CHOLMOD

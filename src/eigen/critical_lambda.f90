@@ -3,7 +3,7 @@
 !> eigenvalue theta = 1/mu of (lambda Kt_nt - Kt_nn) M crosses zero, i.e. when
 !> det(lambda Kt_nt - Kt_nn) = 0 (M is SPD), so the thresholds are the real eigenvalues of the
 !> pencil Kt_nn x = lambda Kt_nt x nearest to zero on each side. Also the cheap p x p
-!> evaluation of the lowest positive mu at any lambda once Kt_nn M and Kt_nt M are known,
+!> evaluation of the lowest positive mu at any lambda once Kt_nn and Kt_nt are known,
 !> which confirms the thresholds and draws the c_n(lambda) curve.
 !>
 !> Why QZ (dggev) on the pencil rather than a Cholesky reduction Kt_nn = R^T R and dgeev on
@@ -17,6 +17,7 @@ module critical_lambda
     use kinds, only: wp
     use status, only: status_t, STATUS_SOLVER
     use lapack_interfaces, only: dggev, dgeev, lapack_info_message
+    use contact_reduction, only: reduced_blocks_t
     implicit none
     private
     public :: thresholds_t, pencil_thresholds, lowest_positive_mu, confirm_thresholds
@@ -120,11 +121,11 @@ contains
     end subroutine pencil_thresholds
 
     !> The lowest positive real mu of K phi = mu B_lambda phi from the reduced problem
-    !> (lambda Kt_nt M - Kt_nn M) y = (1/mu) y, eigenvalues only (dgeev, balanced): O(p^3)
+    !> (lambda Kt_nt - Kt_nn) M y = (1/mu) y, eigenvalues only (dgeev, balanced): O(p^3)
     !> with a small constant, and no sparse work. `found` is false when no eigenvalue is
     !> positive real; `n_positive` counts them.
-    subroutine lowest_positive_mu(nn_m, nt_m, lambda, mu, found, n_positive, stat)
-        real(wp), intent(in) :: nn_m(:, :), nt_m(:, :)   !! Kt_nn M and Kt_nt M, (p, p)
+    subroutine lowest_positive_mu(blocks, lambda, mu, found, n_positive, stat)
+        type(reduced_blocks_t), intent(in) :: blocks
         real(wp), intent(in) :: lambda
         real(wp), intent(out) :: mu
         logical, intent(out) :: found
@@ -134,12 +135,11 @@ contains
         real(wp) :: vl(1, 1), vr(1, 1), query(1), theta_max
         integer :: p, info, j
 
-        p = size(nn_m, 1)
+        p = size(blocks%kt_nn, 1)
         mu = 0.0_wp
         found = .false.
         n_positive = 0
-        allocate (a(p, p))
-        a = lambda*nt_m - nn_m
+        a = blocks%matrix(lambda)
         allocate (wr(p), wi(p))
         call dgeev('N', 'N', p, a, p, wr, wi, vl, 1, vr, 1, query, -1, info)
         allocate (work(max(1, int(query(1)))))
@@ -164,8 +164,8 @@ contains
 
     !> Solve the reduced problem just outside (lambda* (1 + CONFIRM_OFFSET), away from zero)
     !> and just inside (lambda* (1 - CONFIRM_OFFSET)) each threshold found.
-    subroutine confirm_thresholds(nn_m, nt_m, thr, stat)
-        real(wp), intent(in) :: nn_m(:, :), nt_m(:, :)   !! Kt_nn M and Kt_nt M
+    subroutine confirm_thresholds(blocks, thr, stat)
+        type(reduced_blocks_t), intent(in) :: blocks
         type(thresholds_t), intent(inout) :: thr
         type(status_t), intent(out) :: stat
         integer :: side, n_positive
@@ -174,11 +174,11 @@ contains
             if (.not. thr%found(side)) cycle
             thr%lambda_outside(side) = thr%lambda(side)*(1.0_wp + CONFIRM_OFFSET)
             thr%lambda_inside(side) = thr%lambda(side)*(1.0_wp - CONFIRM_OFFSET)
-            call lowest_positive_mu(nn_m, nt_m, thr%lambda_outside(side), &
+            call lowest_positive_mu(blocks, thr%lambda_outside(side), &
                                     thr%mu_outside(side), thr%has_mu_outside(side), &
                                     n_positive, stat)
             if (.not. stat%ok()) return
-            call lowest_positive_mu(nn_m, nt_m, thr%lambda_inside(side), &
+            call lowest_positive_mu(blocks, thr%lambda_inside(side), &
                                     thr%mu_inside(side), thr%has_mu_inside(side), &
                                     n_positive, stat)
             if (.not. stat%ok()) return

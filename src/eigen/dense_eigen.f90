@@ -12,7 +12,7 @@ module dense_eigen
     use csr_matrix, only: csr_matrix_t
     use sparse_cholesky, only: cholesky_t
     use contact_boundary, only: contact_t
-    use contact_reduction, only: contact_flexibility, lift_eigenvectors
+    use contact_reduction, only: contact_flexibility, lift_eigenvectors, reduced_matrix
     use spectrum, only: spectrum_t, order_eigenvalues, KIND_POSITIVE, KIND_COMPLEX
     use lapack_interfaces, only: dgeevx, lapack_info_message
     implicit none
@@ -47,11 +47,11 @@ contains
         start = wall_time()
         if (present(kt_nn_given) .and. present(kt_nt_given)) then
             kt_nt = kt_nt_given   ! kept for the lambda sensitivity below
-            a = matmul(lambda*kt_nt - kt_nn_given, contact%mass_dense())
+            a = reduced_matrix(kt_nn_given, kt_nt, contact%mass, lambda)
         else
             call contact_flexibility(chol, contact, kt_nn, kt_nt, stat)
             if (.not. stat%ok()) return
-            a = matmul(lambda*kt_nt - kt_nn, contact%mass_dense())
+            a = reduced_matrix(kt_nn, kt_nt, contact%mass, lambda)
             deallocate (kt_nn)
         end if
         if (present(reduction_seconds)) reduction_seconds = wall_time() - start
