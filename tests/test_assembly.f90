@@ -189,6 +189,7 @@ contains
         m%cells(3, 5) = swap
         call assemble_stiffness(m, dofs, YOUNG, POISSON, k, stat)
         call t%check('inverted cell: STATUS_MESH', stat%code == STATUS_MESH)
+        call t%check('inverted cell: a message', allocated(stat%message))
         if (allocated(stat%message)) then
             call t%check('inverted cell: message names cell 5 and det J = -2.5E-01', &
                          index(stat%message, 'mesh: cell 5 is inverted or degenerate '// &
