@@ -27,5 +27,6 @@ mkdir "$work/layers/misc"
 cp "$tree/core/base.f90" "$work/layers/misc/extra.f90"
 bash "$checker" "$work/layers" >"$work/out" 2>&1; rc=$?
 check 'folder outside the order: exit 1, named' \
-    '[[ $rc -eq 1 && $(cat "$work/out") == "layers/misc/extra.f90: folder misc/ is not in the layer order" ]]'
+    '[[ $rc -eq 1 && $(cat "$work/out") == \
+       "layers/misc/extra.f90: folder misc/ is not in the layer order" ]]'
 cli_end

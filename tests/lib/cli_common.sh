@@ -58,6 +58,7 @@ json() {
 
 # close A B TOL: |A - B| <= TOL |B|, and A is not empty.
 close() {
-    awk -v a="$1" -v b="$2" -v tol="$3" \
-        'BEGIN { d = a - b; if (d < 0) d = -d; m = b < 0 ? -b : b; exit !(a != "" && d <= tol * m) }'
+    awk -v a="$1" -v b="$2" -v tol="$3" 'BEGIN {
+        d = a - b; if (d < 0) d = -d; m = b < 0 ? -b : b
+        exit !(a != "" && d <= tol * m) }'
 }
