@@ -5,11 +5,8 @@
 # same lowest positive mu as the dense solver. Usage: cli_arpack.sh NCEIG SOURCE_DIR
 set -u
 nceig=$1
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-passed=0 failed=0
-check() { if eval "$2"; then passed=$((passed + 1)); echo "PASS  $1"; else failed=$((failed + 1)); echo "FAIL  $1"; fi; }
-key() { grep -o "\"$2\": *[^,}]*" "$1/summary.json" | sed 's/^[^:]*: *//'; }
+source "$(dirname "$0")/lib/cli_common.sh"
+cli_begin cli_arpack
 
 for solver in arpack dense; do
     cat >"$work/$solver.nml" <<NML
@@ -21,11 +18,11 @@ NML
     "$nceig" "$work/$solver.nml" >"$work/$solver.out" 2>"$work/$solver.err"; rc=$?
     check "$solver runs" '[[ $rc -eq 0 && ! -s "$work/$solver.err" ]]'
 done
-check 'summary names the solver arpack' '[[ $(key "$work/arpack" solver) == "\"arpack\"" ]]'
-check 'certified: warning is null' '[[ $(key "$work/arpack" warning) == null ]]'
-check 'stdout has no WARNING line' '! grep -q WARNING "$work/arpack.out"'
+check 'summary names the solver arpack' '[[ $(json "$work/arpack/summary.json" solver) == arpack ]]'
+check 'certified: the warnings array is empty' '[[ $(json "$work/arpack/summary.json" warnings) == "[]" ]]'
+check 'stdout has no warning: line' '! grep -q "^warning:" "$work/arpack.out"'
 check 'summary has time_ordering_s and operator_applications > 0' \
-    '[[ -n $(key "$work/arpack" time_ordering_s) && $(key "$work/arpack" operator_applications) -gt 0 ]]'
+    '[[ -n $(json "$work/arpack/summary.json" time_ordering_s) && $(json "$work/arpack/summary.json" operator_applications) -gt 0 ]]'
 for f in K.mtx B.mtx mode_001.vtu mode_002.vtu eigenvalues.csv; do
     check "arpack writes $f" '[[ -s "$work/arpack/$f" ]]'
 done
@@ -33,9 +30,9 @@ check 'K.mtx identical to the dense run' 'cmp -s "$work/arpack/K.mtx" "$work/den
 check 'B.mtx identical to the dense run' 'cmp -s "$work/arpack/B.mtx" "$work/dense/B.mtx"'
 # Both solvers are backward stable and this eigenvalue is well conditioned (dgeevx: ~10):
 # 1e-9 relative is far above their rounding and far below the gap to the next eigenvalue.
-a=$(key "$work/arpack" lowest_positive_mu) d=$(key "$work/dense" lowest_positive_mu)
+a=$(json "$work/arpack/summary.json" lowest_positive_mu) d=$(json "$work/dense/summary.json" lowest_positive_mu)
 check "same lowest positive mu ($a vs $d)" \
     'awk -v a="$a" -v d="$d" "BEGIN { e = a - d; if (e < 0) e = -e; exit !(d > 0 && e <= 1e-9 * d) }"'
 check 'eigenvalues.csv: the first row is the positive one' \
     '[[ $(sed -n 2p "$work/arpack/eigenvalues.csv" | cut -d, -f4) == positive ]]'
-echo "cli_arpack: $passed passed, $failed failed"
+cli_end

@@ -11,10 +11,8 @@
 set -u
 nceig=$1
 source_dir=$2
-work=$(mktemp -d)
-trap 'chmod -R u+rwx "$work" 2>/dev/null; rm -rf "$work"' EXIT
-passed=0 failed=0
-check() { if eval "$2"; then passed=$((passed + 1)); else failed=$((failed + 1)); echo "FAIL  $1"; fi; }
+source "$(dirname "$0")/lib/cli_common.sh"
+cli_begin cli_bad_input
 out="$work/out"
 
 # run_bad NAME FILE WORD...: run on FILE; one stderr line containing every WORD (fixed
@@ -196,5 +194,4 @@ check 'output under a regular file: non-zero exit, one line naming it' \
 echo "      $(cat "$work/err")"
 check 'output under a regular file: the file is untouched' '[[ $(cat "$work/plain") == x ]]'
 
-echo "cli_bad_input: $passed passed, $failed failed"
-[[ $failed -eq 0 ]]
+cli_end

@@ -6,11 +6,8 @@
 # Usage: cli_branch_solve.sh NCEIG SOURCE_DIR
 set -u
 nceig=$1
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-passed=0 failed=0
-check() { if eval "$2"; then passed=$((passed + 1)); echo "PASS  $1"; else failed=$((failed + 1)); echo "FAIL  $1"; fi; }
-json() { sed -n "s/^ *\"$2\": *\\([^,]*\\),\\{0,1\\}$/\\1/p" "$1"; }
+source "$(dirname "$0")/lib/cli_common.sh"
+cli_begin cli_branch_solve
 
 cat >"$work/branch.nml" <<NML
 &mesh nx = 6, ny = 6, element = 'q1' /
@@ -68,5 +65,4 @@ bad 'start' "&analysis kind = 'solve' / &solve start = 'nowhere' / &output direc
 bad 'contact on top' "&mesh dirichlet = 'bottom', contact = 'top' / &analysis kind = 'branch' / &output directory = '$work/bad' /" 'normal (0, -1)'
 check 'bad input leaves no output' '[[ ! -e "$work/bad" ]]'
 
-echo "cli_branch_solve: $passed passed, $failed failed"
-[[ $failed -eq 0 ]]
+cli_end

@@ -5,10 +5,8 @@
 # and no output. Usage: cli_contract.sh NCEIG SOURCE_DIR
 set -u
 nceig=$1
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-passed=0 failed=0
-check() { if eval "$2"; then passed=$((passed + 1)); echo "PASS  $1"; else failed=$((failed + 1)); echo "FAIL  $1"; fi; }
+source "$(dirname "$0")/lib/cli_common.sh"
+cli_begin cli_contract
 
 "$nceig" --version >"$work/version" 2>&1
 check '--version prints the version' 'grep -q "^nceig [0-9]" "$work/version"'
@@ -47,5 +45,4 @@ bad 'unknown element' "&mesh element = 'p7' / &output directory = '$work/badout'
 "$nceig" "$work/missing.nml" >/dev/null 2>"$work/err"; rc=$?
 check 'missing input file: non-zero exit, one line naming it' '[[ $rc -ne 0 && $(wc -l <"$work/err") -eq 1 ]] && grep -q missing.nml "$work/err"'
 
-echo "cli_contract: $passed passed, $failed failed"
-[[ $failed -eq 0 ]]
+cli_end

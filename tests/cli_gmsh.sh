@@ -7,19 +7,12 @@
 set -u
 nceig=$1
 source_dir=$2
+source "$(dirname "$0")/lib/cli_common.sh"
 if ! command -v gmsh >/dev/null 2>&1; then
-    echo "SKIP  gmsh is not installed: the Gmsh end-to-end checks did not run"
-    echo "cli_gmsh: 0 passed, 0 failed"
-    exit 0
+    cli_skip cli_gmsh 'gmsh is not installed: the Gmsh end-to-end checks did not run'
 fi
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
+cli_begin cli_gmsh
 cd "$work"
-passed=0 failed=0
-check() { if eval "$2"; then passed=$((passed + 1)); echo "PASS  $1"; else failed=$((failed + 1)); echo "FAIL  $1"; fi; }
-json() { sed -n "s/.*\"$2\": *\"\{0,1\}\([^\",}]*\).*/\1/p" "$1" | head -1; }
-# |a - b| <= tol |b|
-close() { awk -v a="$1" -v b="$2" -v tol="$3" 'BEGIN { d = a - b; if (d < 0) d = -d; m = b < 0 ? -b : b; exit !(a != "" && d <= tol * m) }'; }
 
 run() {  # name, mesh text (the &mesh body); writes out_<name>/summary.json
     # ascii VTU: the cell-type check below greps its text.
@@ -96,5 +89,4 @@ check 'binary mesh: one line with file:line and the advice' \
     '[[ $(wc -l <bad.log) -eq 1 ]] && grep -q "binary.msh:2: binary MSH files are not supported; write ASCII with gmsh -format msh41" bad.log'
 check 'binary mesh: no output folder' '[[ ! -e out_bad ]]'
 
-echo "cli_gmsh: $passed passed, $failed failed"
-[[ $failed -eq 0 ]]
+cli_end

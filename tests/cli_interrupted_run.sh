@@ -7,10 +7,8 @@
 # Usage: cli_interrupted_run.sh NCEIG SOURCE_DIR
 set -u
 nceig=$1
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-passed=0 failed=0
-check() { if eval "$2"; then passed=$((passed + 1)); echo "PASS  $1"; else failed=$((failed + 1)); echo "FAIL  $1"; fi; }
+source "$(dirname "$0")/lib/cli_common.sh"
+cli_begin cli_interrupted_run
 out="$work/out"
 
 # A small complete result first (lambda = 5, two modes) ...
@@ -87,5 +85,4 @@ check 'the next run did not follow a link named like a staging folder' \
 check 'the next run left no staging folder of its own' \
     '[[ $(cd "$out" && ls -A | grep -c "^\.nceig-partial-") -eq 2 ]]'
 
-echo "cli_interrupted_run: $passed passed, $failed failed"
-[[ $failed -eq 0 ]]
+cli_end

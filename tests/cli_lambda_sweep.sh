@@ -6,11 +6,8 @@
 # Usage: cli_lambda_sweep.sh NCEIG SOURCE_DIR
 set -u
 nceig=$1
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-passed=0 failed=0
-check() { if eval "$2"; then passed=$((passed + 1)); echo "PASS  $1"; else failed=$((failed + 1)); echo "FAIL  $1"; fi; }
-key() { sed -n "s/^ *\"$2\": *\"\{0,1\}\([^\",]*\)\"\{0,1\},\{0,1\}$/\1/p" "$1/summary.json"; }
+source "$(dirname "$0")/lib/cli_common.sh"
+cli_begin cli_lambda_sweep
 
 cat >"$work/thr.nml" <<NML
 &mesh nx = 8, ny = 8 /
@@ -20,12 +17,12 @@ NML
 "$nceig" "$work/thr.nml" >"$work/stdout" 2>"$work/stderr"; rc=$?
 check 'threshold runs' '[[ $rc -eq 0 && ! -s "$work/stderr" ]]'
 check 'threshold: summary has the contract keys' 'for k in analysis lambda n_contact lowest_positive_mu time_total_s lambda_critical_plus lambda_critical_minus; do grep -q "\"$k\":" "$work/thr/summary.json" || exit 1; done'
-plus=$(key "$work/thr" lambda_critical_plus)
-minus=$(key "$work/thr" lambda_critical_minus)
+plus=$(json "$work/thr/summary.json" lambda_critical_plus)
+minus=$(json "$work/thr/summary.json" lambda_critical_minus)
 check "threshold: lambda+ = $plus > 0 > lambda- = $minus" 'awk -v p="$plus" -v m="$minus" "BEGIN { exit !(p > 0 && m < 0) }"'
-check 'threshold: both confirmed' '[[ $(key "$work/thr" lambda_critical_plus_confirmed) == true && $(key "$work/thr" lambda_critical_minus_confirmed) == true ]]'
-check 'threshold: no positive mu just inside' '[[ $(key "$work/thr" mu_plus_inside) == null && $(key "$work/thr" mu_minus_inside) == null ]]'
-check 'threshold: a large positive mu just outside' 'awk -v a="$(key "$work/thr" mu_plus_outside)" -v b="$(key "$work/thr" mu_minus_outside)" "BEGIN { exit !(a > 1e4 && b > 1e4) }"'
+check 'threshold: both confirmed' '[[ $(json "$work/thr/summary.json" lambda_critical_plus_confirmed) == true && $(json "$work/thr/summary.json" lambda_critical_minus_confirmed) == true ]]'
+check 'threshold: no positive mu just inside' '[[ $(json "$work/thr/summary.json" mu_plus_inside) == null && $(json "$work/thr/summary.json" mu_minus_inside) == null ]]'
+check 'threshold: a large positive mu just outside' 'awk -v a="$(json "$work/thr/summary.json" mu_plus_outside)" -v b="$(json "$work/thr/summary.json" mu_minus_outside)" "BEGIN { exit !(a > 1e4 && b > 1e4) }"'
 check 'threshold: stdout shows lambda+ and lambda- confirmed' '[[ $(grep -c "lambda[+-] .*confirmed" "$work/stdout") -eq 2 ]]'
 check 'threshold: no sweep file' '[[ ! -e "$work/thr/lambda_sweep.csv" ]]'
 
@@ -45,9 +42,9 @@ check 'sweep csv: c_t = c_n |lambda|' 'tail -n +2 "$csv" | awk -F, "\$2 != \"\" 
 check 'sweep csv: slip sign -sgn(lambda)' '[[ $(tail -n +2 "$csv" | cut -d, -f4 | tr "\n" " ") == "-1 1 -1 1 " ]]'
 # The sweep (dgeev on the reduced matrix) and the eigen solve at lambda (dgeevx) are two
 # backward-stable paths to the same mu (condition ~ 10): agreement to 1e-12 relative.
-check 'sweep mu at lambda = 5 equals the eigen solver'"'"'s lowest positive mu' 'awk -v a="$(sed -n 2p "$csv" | cut -d, -f2)" -v b="$(key "$work/list" lowest_positive_mu)" "BEGIN { d = a - b; if (d < 0) d = -d; exit !(d <= 1e-12 * b) }"'
+check 'sweep mu at lambda = 5 equals the eigen solver'"'"'s lowest positive mu' 'awk -v a="$(sed -n 2p "$csv" | cut -d, -f2)" -v b="$(json "$work/list/summary.json" lowest_positive_mu)" "BEGIN { d = a - b; if (d < 0) d = -d; exit !(d <= 1e-12 * b) }"'
 check 'sweep summary has the thresholds and sweep keys' 'for k in lambda_critical_plus lambda_critical_minus sweep_file sweep_n_lambda sweep_spacing time_sweep_s; do grep -q "\"$k\":" "$work/list/summary.json" || exit 1; done'
-check 'sweep summary: spacing list, 4 lambdas, 3 with a mu' '[[ $(key "$work/list" sweep_spacing) == list && $(key "$work/list" sweep_n_lambda) == 4 && $(key "$work/list" sweep_n_with_positive_mu) == 3 ]]'
+check 'sweep summary: spacing list, 4 lambdas, 3 with a mu' '[[ $(json "$work/list/summary.json" sweep_spacing) == list && $(json "$work/list/summary.json" sweep_n_lambda) == 4 && $(json "$work/list/summary.json" sweep_n_with_positive_mu) == 3 ]]'
 check 'plot = .false.: no png, no note' '[[ ! -e "$work/list/lambda_sweep.png" ]] && ! grep -q "plot " "$work/stdout"'
 
 cat >"$work/range.nml" <<NML
@@ -98,9 +95,8 @@ NML
     "$nceig" "$work/$s.nml" >"$work/stdout" 2>"$work/stderr"; rc=$?
     check "sweep with solver = '$s' runs" '[[ $rc -eq 0 && ! -s "$work/stderr" ]]'
 done
-check 'arpack sweep: solver arpack, some points certified by ARPACK' '[[ $(key "$work/arpack" solver) == arpack && $(key "$work/arpack" sweep_n_arpack) -gt 0 ]]'
-check 'arpack sweep: same thresholds as dense' '[[ $(key "$work/arpack" lambda_critical_plus) == $(key "$work/dense" lambda_critical_plus) && $(key "$work/arpack" lambda_critical_minus) == $(key "$work/dense" lambda_critical_minus) ]]'
+check 'arpack sweep: solver arpack, some points certified by ARPACK' '[[ $(json "$work/arpack/summary.json" solver) == arpack && $(json "$work/arpack/summary.json" sweep_n_arpack) -gt 0 ]]'
+check 'arpack sweep: same thresholds as dense' '[[ $(json "$work/arpack/summary.json" lambda_critical_plus) == $(json "$work/dense/summary.json" lambda_critical_plus) && $(json "$work/arpack/summary.json" lambda_critical_minus) == $(json "$work/dense/summary.json" lambda_critical_minus) ]]'
 check 'arpack sweep: same curve as dense' 'paste -d, "$work/dense/lambda_sweep.csv" "$work/arpack/lambda_sweep.csv" | tail -n +2 | awk -F, "{ if ((\$2 == \"\") != (\$7 == \"\")) exit 1; if (\$2 != \"\") { d = \$2 - \$7; if (d < 0) d = -d; if (d > 1e-9 * \$2) exit 1 } }"'
 
-echo "cli_lambda_sweep: $passed passed, $failed failed"
-[[ $failed -eq 0 ]]
+cli_end

@@ -8,10 +8,8 @@ set -u
 nceig=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
 source_dir=$2
 sweep="$source_dir/scripts/sweep_mesh.sh"
-work=$(mktemp -d)
-trap '[[ -n ${KEEP:-} ]] || rm -rf "$work"' EXIT; [[ -n ${KEEP:-} ]] && echo "work: $work"
-passed=0 failed=0
-check() { if eval "$2"; then passed=$((passed + 1)); echo "PASS  $1"; else failed=$((failed + 1)); echo "FAIL  $1"; fi; }
+source "$(dirname "$0")/lib/cli_common.sh"
+cli_begin cli_sweep
 column_of() { awk -F, -v name="$2" 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == name) print i }' "$1"; }
 export NCEIG=$nceig
 
@@ -123,5 +121,4 @@ check 'the scripts are valid bash' 'bash -n "$array" && bash -n "$out3/slurm_col
 SLURM_ARRAY_TASK_ID=3 bash "$array" >"$work/task.log" 2>&1
 check 'array task 3 runs q1 N=4 alone' '[[ -s $out3/runs/q1_n0004/output/summary.json && $(ls "$out3/runs" | wc -l) -eq 1 ]]'
 
-echo "cli_sweep: $passed passed, $failed failed"
-[[ $failed -eq 0 ]]
+cli_end

@@ -5,14 +5,13 @@
 program test_assembly
     use kinds, only: wp
     use status, only: status_t, STATUS_MESH, STATUS_BAD_INPUT
-    use mesh, only: mesh_t, ELEMENT_P1, ELEMENT_P2, ELEMENT_Q2, element_name, &
-                    element_nodes_per_cell
+    use mesh, only: mesh_t, ELEMENT_P1, ELEMENT_P2, ELEMENT_Q2, element_name
     use mesh_structured, only: structured_rectangle
     use dof_map, only: dof_map_t, build_dof_map, cell_dofs
     use assembly, only: assemble_stiffness
     use csr_matrix, only: csr_matrix_t
     use elasticity, only: element_stiffness, plane_strain_matrix, lame_coefficients, &
-                          stiffness_rule, jacobian_at
+                          jacobian_at
     use quadrature, only: quadrature_rule_t, line_rule, triangle_rule, quad_rule
     use sparse_cholesky, only: cholesky_t
     use shape_functions, only: evaluate_shape, evaluate_line_shape, MAX_NODES
@@ -122,12 +121,25 @@ contains
 
         if (element == ELEMENT_P2 .or. element == ELEMENT_Q2) then
             ! Quadratic field, in the P2/Q2 space: K u = int f.v + int (sigma n).v with
-            ! f = -div sigma constant; the integrals are exact with the rules used.
+            ! f = -div sigma constant; the body load in closed form, the traction load
+            ! exactly integrated.
             u = quadratic_field(m)
             call k%matvec(u, ku)
             load = quadratic_body_load(m)
+            ! The closed form against int f = f |Omega| and, since the nodes' x interpolate
+            ! x exactly, sum_a x_a int f N_a = f int x = f |Omega| (WIDTH/2, HEIGHT/2). The
+            ! terms summed share a sign, so round-off stays below (number of terms) ulps,
+            ! ~1e-14; a wrong weight is off by O(1).
             call t%check_close('quadratic patch: body load sums to f_x area'//label, &
                                sum(load(1::2)), body_force(1)*WIDTH*HEIGHT, 1.0e-13_wp)
+            call t%check_close('quadratic patch: body load sums to f_y area'//label, &
+                               sum(load(2::2)), body_force(2)*WIDTH*HEIGHT, 1.0e-13_wp)
+            call t%check_close('quadratic patch: x moment of the body load'//label, &
+                               sum(m%coords(1, :)*load(2::2)), &
+                               body_force(2)*WIDTH*HEIGHT*0.5_wp*WIDTH, 1.0e-13_wp)
+            call t%check_close('quadratic patch: y moment of the body load'//label, &
+                               sum(m%coords(2, :)*load(1::2)), &
+                               body_force(1)*WIDTH*HEIGHT*0.5_wp*HEIGHT, 1.0e-13_wp)
             call t%check('quadratic patch: K u = body load at interior nodes'//label, &
                          maxval(abs(ku - load), mask=interior_dof) <= &
                          RESIDUAL_TOL*norm_k*maxval(abs(u)))
@@ -177,6 +189,7 @@ contains
         m%cells(3, 5) = swap
         call assemble_stiffness(m, dofs, YOUNG, POISSON, k, stat)
         call t%check('inverted cell: STATUS_MESH', stat%code == STATUS_MESH)
+        call t%check('inverted cell: a message', allocated(stat%message))
         if (allocated(stat%message)) then
             call t%check('inverted cell: message names cell 5 and det J = -2.5E-01', &
                          index(stat%message, 'mesh: cell 5 is inverted or degenerate '// &
@@ -340,28 +353,36 @@ contains
         end if
     end function body_force
 
-    !> int f N_a over the mesh with the shape functions and the stiffness rule (degree 2 on
-    !> P2 triangles, 3 x 3 Gauss on Q2 rectangles: exact for these affine cells).
+    !> int f N_a over the mesh for the constant f, in closed form (no quadrature, no shape
+    !> function code): on a straight-sided P2 triangle of area A, int N_a = 0 at the corners
+    !> and A/3 at the mid-edge nodes; on a Q2 rectangle of area A, the product of the 1D
+    !> Simpson weights 1/6, 2/3, 1/6: A/36 at the corners, A/9 at the mid-edge nodes, 4A/9 at
+    !> the centre. Nodes in Gmsh order: corners, then mid-edge nodes, then the Q2 centre.
     function quadratic_body_load(m) result(load)
         type(mesh_t), intent(in) :: m
         real(wp), allocatable :: load(:)
-        type(quadrature_rule_t) :: rule
-        real(wp) :: values(MAX_NODES), gradients(2, MAX_NODES), jacobian(2, 2), det, f(2)
-        integer :: cell, q, a, node, n
+        real(wp) :: f(2), weights(9), side_a(2), side_b(2), area
+        integer :: cell, a, node, last_corner
         allocate (load(2*m%n_nodes()), source=0.0_wp)
         f = [body_force(1), body_force(2)]
-        rule = stiffness_rule(m%element)
-        n = element_nodes_per_cell(m%element)
+        if (m%element == ELEMENT_P2) then
+            weights(1:6) = [0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, 1.0_wp, 1.0_wp]/3.0_wp
+            last_corner = 3
+        else
+            weights = [1.0_wp, 1.0_wp, 1.0_wp, 1.0_wp, 4.0_wp, 4.0_wp, 4.0_wp, 4.0_wp, &
+                       16.0_wp]/36.0_wp
+            last_corner = 4
+        end if
         do cell = 1, m%n_cells()
-            do q = 1, rule%n_points
-                call evaluate_shape(m%element, rule%points(:, q), values, gradients)
-                call jacobian_at(m%element, m%coords(:, m%cells(:, cell)), rule%points(:, q), &
-                                 jacobian, det)
-                do a = 1, n
-                    node = m%cells(a, cell)
-                    load(2*node - 1:2*node) = load(2*node - 1:2*node) + &
-                                              rule%weights(q)*det*values(a)*f
-                end do
+            ! The sides from corner 1 to corner 2 and to the last corner: the modulus of their
+            ! cross product is the rectangle's area, twice the triangle's.
+            side_a = m%coords(:, m%cells(2, cell)) - m%coords(:, m%cells(1, cell))
+            side_b = m%coords(:, m%cells(last_corner, cell)) - m%coords(:, m%cells(1, cell))
+            area = abs(side_a(1)*side_b(2) - side_a(2)*side_b(1))
+            if (m%element == ELEMENT_P2) area = 0.5_wp*area
+            do a = 1, size(m%cells, 1)
+                node = m%cells(a, cell)
+                load(2*node - 1:2*node) = load(2*node - 1:2*node) + weights(a)*area*f
             end do
         end do
     end function quadratic_body_load

@@ -73,8 +73,22 @@ program test_output_stage
         print '(a)', '      '//stat%message
         call t%check('message names the directory', index(stat%message, 'stage_out/plain/sub') > 0)
     end if
+    ! The failed begin left the stage inactive, still holding the staging path of the run
+    ! before: abort must then touch nothing on disk. A folder at that path stands for
+    ! another run's staging.
+    call make_directories(staging, stat)
     call stage%abort()
-    call t%check('abort after a failed begin is harmless', .true.)
+    call t%check('abort after a failed begin keeps the file in the way', &
+                 first_line('stage_out/plain') == 'not a directory')
+    call t%check('abort after a failed begin keeps the committed a.txt', &
+                 first_line(dir//'/a.txt') == 'newer a')
+    call t%check('abort after a failed begin keeps the committed b.txt', &
+                 first_line(dir//'/b.txt') == 'new b')
+    call t%check('abort after a failed begin leaves the earlier staging path alone', &
+                 is_directory(staging))
+    call t%check('abort after a failed begin creates nothing under the file', &
+                 .not. file_exists('stage_out/plain/sub'))
+    call remove_directory(staging)
     call stage%commit(stat)
     call t%check('commit without begin fails', .not. stat%ok())
 

@@ -160,6 +160,7 @@ contains
         call chol%factor(shifted, stat, ordering=ORDERING_NATURAL)
         call t%check('indefinite A - 4I is reported as STATUS_SINGULAR', &
                      stat%code == STATUS_SINGULAR)
+        call t%check('indefinite A - 4I: a message', allocated(stat%message))
         if (allocated(stat%message)) then
             write (output_unit, '(a)') '      message: '//stat%message
             call t%check('the message names the first column', stat%message == &
@@ -185,6 +186,7 @@ contains
         call two_by_two(1.0e-15_wp, tiny_pivot)
         call chol%factor(tiny_pivot, stat, ordering=ORDERING_NATURAL)
         call t%check('pivot ratio 1e-15 is numerically singular', stat%code == STATUS_SINGULAR)
+        call t%check('pivot ratio 1e-15: a message', allocated(stat%message))
         if (allocated(stat%message)) then
             write (output_unit, '(a)') '      message: '//stat%message
             call t%check('the message says numerically singular', &
