@@ -13,6 +13,7 @@ program test_threshold_analysis
     use threshold_analysis, only: threshold_result_t, solve_thresholds
     use critical_lambda, only: SIDE_PLUS, SIDE_MINUS
     use arpack_eigen, only: arpack_options_t, arpack_lowest_positive
+    use eigen_analysis, only: SOLVER_DENSE, SOLVER_ARPACK
     implicit none
 
     type(test_suite_t) :: t
@@ -77,7 +78,7 @@ contains
                 call t%check(trim(what)//': both succeed', ok_dense .and. ok_arpack)
                 if (.not. (ok_dense .and. ok_arpack)) cycle
                 call t%check(trim(what)//': solvers dense and arpack', &
-                             dense%eigen%solver == 'dense' .and. arpack%eigen%solver == 'arpack')
+                             dense%eigen%solver == SOLVER_DENSE .and. arpack%eigen%solver == SOLVER_ARPACK)
                 do side = SIDE_PLUS, SIDE_MINUS
                     call t%check(trim(what)//': same thresholds found', &
                                  dense%thresholds%found(side) .eqv. arpack%thresholds%found(side))

@@ -18,11 +18,16 @@ module eigen_analysis
     use arpack_eigen, only: arpack_spectrum, arpack_options_t
     implicit none
     private
-    public :: eigen_result_t, solve_eigen, choose_solver, eigen_with_factor
+    public :: eigen_result_t, solve_eigen, choose_solver, eigen_with_factor, solver_name
+    public :: SOLVER_DENSE, SOLVER_ARPACK
+
+    !> The eigensolver a run used (&eigen solver = 'auto' resolves to one of them).
+    integer, parameter :: SOLVER_DENSE = 1    !! all p eigenpairs of the reduced problem
+    integer, parameter :: SOLVER_ARPACK = 2   !! a few, by ARPACK, with the certificate
 
     type, public :: eigen_result_t
         real(wp) :: lambda = 0.0_wp
-        character(len=:), allocatable :: solver   !! the solver actually used
+        integer :: solver = SOLVER_DENSE          !! the solver actually used
         type(csr_matrix_t) :: b                   !! B for this lambda
         type(spectrum_t) :: spec
         !> accuracy lost or the result not certified, and why (empty when trustworthy)
@@ -31,17 +36,27 @@ module eigen_analysis
 
 contains
 
-    !> 'auto' means dense while the p x p dense problem is cheap.
-    pure function choose_solver(requested, p, dense_max_contact) result(solver)
+    !> The solver &eigen solver names; 'auto' means dense while the p x p dense problem is
+    !> cheap.
+    pure integer function choose_solver(requested, p, dense_max_contact) result(solver)
         character(len=*), intent(in) :: requested
         integer, intent(in) :: p, dense_max_contact
-        character(len=:), allocatable :: solver
-        solver = trim(requested)
-        if (solver == 'auto') then
-            solver = 'dense'
-            if (p > dense_max_contact) solver = 'arpack'
-        end if
+        solver = SOLVER_DENSE
+        select case (trim(requested))
+        case ('arpack')
+            solver = SOLVER_ARPACK
+        case ('auto')
+            if (p > dense_max_contact) solver = SOLVER_ARPACK
+        end select
     end function choose_solver
+
+    !> 'dense' or 'arpack', as summary.json and the stdout summary name the solver.
+    pure function solver_name(solver) result(name)
+        integer, intent(in) :: solver
+        character(len=:), allocatable :: name
+        name = 'dense'
+        if (solver == SOLVER_ARPACK) name = 'arpack'
+    end function solver_name
 
     !> Assemble B for `lambda`, factor K (factor_stiffness: contact dofs last, which both
     !> solvers read the contact blocks from), and compute the spectrum.
@@ -89,7 +104,7 @@ contains
         n_keep = max(1, config%output%modes)
         start = wall_time()
         certificate = ''
-        if (res%solver == 'arpack') then
+        if (res%solver == SOLVER_ARPACK) then
             options = arpack_options_t(nev=config%eigen%nev, ncv=config%eigen%ncv, &
                 maxit=config%eigen%maxit, tol=config%eigen%tol, target=config%eigen%target)
             call arpack_spectrum(prob%k, res%b, chol, prob%contact, res%lambda, options, n_keep, &

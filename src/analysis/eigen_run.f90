@@ -11,7 +11,7 @@ module eigen_run
     use version, only: NCEIG_VERSION
     use run_config, only: config_t
     use problem, only: problem_t
-    use eigen_analysis, only: eigen_result_t, solve_eigen
+    use eigen_analysis, only: eigen_result_t, solve_eigen, solver_name
     use critical_point, only: slip_sign, critical_c_t
     use analysis_base, only: analysis_t
     use spectrum, only: spectrum_t, kind_name, KIND_COMPLEX
@@ -103,7 +103,7 @@ contains
         call summary%add_integer('n_dofs', prob%dofs%n_free)
         call summary%add_integer('nnz_k', prob%k%nnz())
         call summary%add_integer('n_contact', prob%contact%p())
-        call summary%add_string('solver', res%solver)
+        call summary%add_string('solver', solver_name(res%solver))
         if (lowest > 0) then
             mu = real(res%spec%mu(lowest), wp)
             call summary%add_real('lowest_positive_mu', mu)
@@ -202,7 +202,7 @@ contains
             ' nodes'//NL// &
             '  problem     '//to_string(prob%dofs%n_free)//' dofs, '// &
             to_string(prob%contact%p())//' contact nodes, lambda = '//real_to_text(res%lambda)// &
-            NL//'  solver      '//res%solver//': '//to_string(res%spec%n())// &
+            NL//'  solver      '//solver_name(res%solver)//': '//to_string(res%spec%n())// &
             ' eigenvalues, max backward error '//short_real_text(res%spec%max_residual())//NL
         lowest = res%spec%lowest_positive()
         if (lowest > 0) then

@@ -21,7 +21,7 @@ module threshold_analysis
     use arpack_eigen, only: arpack_options_t, arpack_lowest_positive
     use critical_lambda, only: thresholds_t, pencil_thresholds, confirm_thresholds, &
                                lowest_positive_mu, SIDE_PLUS, SIDE_MINUS
-    use eigen_analysis, only: eigen_result_t, choose_solver, eigen_with_factor
+    use eigen_analysis, only: eigen_result_t, choose_solver, eigen_with_factor, SOLVER_ARPACK
     implicit none
     private
     public :: threshold_result_t, solve_thresholds
@@ -110,7 +110,7 @@ contains
             certified = .false.
             ! Between the thresholds a positive mu is (generically) absent, which ARPACK can
             ! never certify (only the whole spectrum can): its attempts would be wasted.
-            if (res%eigen%solver == 'arpack' .and. &
+            if (res%eigen%solver == SOLVER_ARPACK .and. &
                 .not. between_thresholds(res%thresholds, res%sweep%lambda(i))) then
                 call arpack_lowest_positive(blocks%matrix(res%sweep%lambda(i)), options, &
                                             res%sweep%mu(i), res%sweep%found(i), certified, &

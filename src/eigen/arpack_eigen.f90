@@ -23,7 +23,8 @@ module arpack_eigen
     use sparse_cholesky, only: cholesky_t
     use contact_boundary, only: contact_t
     use spectrum, only: spectrum_t, order_eigenvalues
-    use lapack_interfaces, only: dtrsv, dgetrf, dgetrs, dgeev, dgemm, lapack_info_message
+    use lapack_interfaces, only: dtrsv, dgetrf, dgetrs, dgeev, dgemm, lapack_info_message, &
+                                 lapack_eigenvector
     use contact_reduction, only: contact_tail, flexibility_blocks, lift_eigenvectors, &
                                  reduced_matrix
     use arpack_interfaces, only: dnaupd, dneupd, arpack_info_message
@@ -440,13 +441,7 @@ contains
             i = i + 1
             run%nu(i) = nu(j)
             run%is_real(i) = is_real(j)
-            if (is_real(j)) then
-                run%y(:, i) = cmplx(vr(:, j), 0.0_wp, wp)
-            else if (wi(j) > 0.0_wp) then
-                run%y(:, i) = cmplx(vr(:, j), vr(:, j + 1), wp)
-            else
-                run%y(:, i) = cmplx(vr(:, j - 1), -vr(:, j), wp)
-            end if
+            run%y(:, i) = lapack_eigenvector(vr, wi, j)
         end do
     end subroutine dense_ritz
 

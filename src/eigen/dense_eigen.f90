@@ -14,7 +14,7 @@ module dense_eigen
     use contact_boundary, only: contact_t
     use contact_reduction, only: contact_flexibility, lift_eigenvectors, reduced_matrix
     use spectrum, only: spectrum_t, order_eigenvalues, KIND_POSITIVE, KIND_COMPLEX
-    use lapack_interfaces, only: dgeevx, lapack_info_message
+    use lapack_interfaces, only: dgeevx, lapack_info_message, lapack_eigenvector
     implicit none
     private
     public :: contact_flexibility, dense_spectrum
@@ -112,20 +112,12 @@ contains
         end if
         deallocate (vl, kt_nt)
 
-        ! The reduced eigenvectors in output order (LAPACK stores a complex pair (j, j+1) with
-        ! wi(j) > 0 as real part in column j and imaginary part in column j + 1); lifting
+        ! The reduced eigenvectors in output order (see lapack_eigenvector); lifting
         ! them to phi = K^-1 (lambda T' - N') M y (= phi / mu of SPEC section 3: same mode)
         ! in column blocks keeps memory at O(n x block + p^2).
         allocate (y(p, n_ev))
         do i = 1, n_ev
-            j = keep(order(i))
-            if (.not. (abs(wi(j)) > 0.0_wp)) then
-                y(:, i) = cmplx(vr(:, j), 0.0_wp, wp)
-            else if (wi(j) > 0.0_wp) then
-                y(:, i) = cmplx(vr(:, j), vr(:, j + 1), wp)
-            else
-                y(:, i) = cmplx(vr(:, j - 1), -vr(:, j), wp)
-            end if
+            y(:, i) = lapack_eigenvector(vr, wi, keep(order(i)))
         end do
         deallocate (vr)
         call lift_eigenvectors(k, b, chol, contact, lambda, spec%mu, y, n_keep, spec%residual, &

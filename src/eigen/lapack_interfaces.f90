@@ -1,13 +1,14 @@
 ! SPDX-License-Identifier: MIT
 !> Explicit interfaces of the LAPACK and BLAS routines nceig calls, so that argument
-!> mistakes are compile-time errors, and a pure function that explains LAPACK's info codes.
+!> mistakes are compile-time errors, a pure function that explains LAPACK's info codes, and
+!> the one reading of LAPACK's real storage of complex eigenvectors.
 module lapack_interfaces
     use kinds, only: wp
     use strings, only: to_string
     implicit none
     private
     public :: dgeevx, dggev, dgemm, dsyrk, lapack_info_message
-    public :: dgeev, dtrsv, dtrsm, dgetrf, dgetrs, dpotri
+    public :: dgeev, dtrsv, dtrsm, dgetrf, dgetrs, dpotri, lapack_eigenvector
 
     interface
         subroutine dgeevx(balanc, jobvl, jobvr, sense, n, a, lda, wr, wi, vl, ldvl, vr, ldvr, &
@@ -112,4 +113,20 @@ contains
                    to_string(info)//'); no eigenvalues are reliable'
         end if
     end function lapack_info_message
+
+    !> Eigenvector j of dgeev/dgeevx as a complex vector: a real eigenvalue (wi(j) = 0) has
+    !> column j; a complex pair (j, j+1) with wi(j) > 0 stores the real part in column j and
+    !> the imaginary part in column j + 1, the partner being the conjugate.
+    pure function lapack_eigenvector(vr, wi, j) result(y)
+        real(wp), intent(in) :: vr(:, :), wi(:)
+        integer, intent(in) :: j
+        complex(wp) :: y(size(vr, 1))
+        if (.not. (abs(wi(j)) > 0.0_wp)) then
+            y = cmplx(vr(:, j), 0.0_wp, wp)
+        else if (wi(j) > 0.0_wp) then
+            y = cmplx(vr(:, j), vr(:, j + 1), wp)
+        else
+            y = cmplx(vr(:, j - 1), -vr(:, j), wp)
+        end if
+    end function lapack_eigenvector
 end module lapack_interfaces
