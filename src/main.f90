@@ -54,7 +54,7 @@ program nceig
     end if
 
     phase = wall_time()
-    call build_problem(config, prob, stat)
+    call build_problem(config, prob, stat, analysis%needs_all_dofs)
     call stop_on_failure(stat)
     timings%assembly = wall_time() - phase
 

@@ -62,7 +62,7 @@ contains
             config%branch%n_delta = 9
             write (what, '(a, a, 1x, a, a, f5.1)') ELEMENTS(c), '/', trim(DIAGONALS(c)), &
                 ', lambda', LAMBDAS(c)
-            call build_problem(config, prob, stat)
+            call build_problem(config, prob, stat, with_all_dofs=.true.)
             if (stat%ok()) call run_branch(config, prob, res, timings, stat)
             call t%check(trim(what)//': runs', stat%ok())
             if (.not. stat%ok()) then
@@ -101,7 +101,7 @@ contains
         config%mesh%dirichlet = 'bottom'
         config%mesh%contact = 'top'
         config%analysis%kind = 'branch'
-        call build_problem(config, prob, stat)
+        call build_problem(config, prob, stat, with_all_dofs=.true.)
         call critical_branch_data(config, prob, timings, crit, stat)
         call t%check('contact on top: bad input', stat%code == STATUS_BAD_INPUT)
         if (.not. stat%ok()) call t%check('contact on top: message names the normal', &
@@ -110,7 +110,7 @@ contains
         config%mesh%dirichlet = 'top'
         config%mesh%contact = 'bottom'
         config%analysis%lambda = 0.5_wp   ! below the threshold: no positive eigenvalue
-        call build_problem(config, prob, stat)
+        call build_problem(config, prob, stat, with_all_dofs=.true.)
         call critical_branch_data(config, prob, timings, crit, stat)
         call t%check('lambda = 0.5: bad input', stat%code == STATUS_BAD_INPUT)
         if (.not. stat%ok()) call t%check('lambda = 0.5: message says no positive eigenvalue', &

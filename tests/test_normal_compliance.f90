@@ -14,6 +14,8 @@ program test_normal_compliance
     use normal_compliance, only: compliance_t, build_compliance, state_name, &
                                  STATE_SEPARATED, STATE_STICK, STATE_SLIP_PLUS, STATE_SLIP_MINUS
     use solve_analysis, only: random_vector
+    use problem, only: assemble_all_dofs
+    use contact_boundary, only: contact_t
     implicit none
 
     type(test_suite_t) :: t
@@ -38,6 +40,9 @@ contains
         type(csr_matrix_t) :: k, jac
         type(compliance_t) :: cp
         type(status_t) :: stat
+        type(dof_map_t) :: all_dofs
+        type(csr_matrix_t) :: k_all
+        type(contact_t) :: all_contact
         real(wp), allocatable :: load(:), prescribed(:), x(:), v(:), h_plus(:), h_minus(:), &
                                  jv(:), h0(:)
         integer, allocatable :: states(:), states_plus(:), states_minus(:)
@@ -55,8 +60,10 @@ contains
         do node = 1, m%n_nodes()
             prescribed(node_dofs(node)) = [0.01_wp, -0.03_wp]
         end do
-        call build_compliance(m, dofs, k, 1.0_wp, 0.3_wp, m%part_index('bottom'), 0.7_wp, &
-                              0.4_wp, load, prescribed, cp, stat)
+        call assemble_all_dofs(m, 1.0_wp, 0.3_wp, m%part_index('bottom'), all_dofs, k_all, &
+                               all_contact, stat)
+        call build_compliance(k_all, all_contact, dofs, k, 0.7_wp, 0.4_wp, load, prescribed, &
+                              cp, stat)
         call t%check(name//': problem set up', stat%ok())
         allocate (h_plus(dofs%n_free), h_minus(dofs%n_free), jv(dofs%n_free), h0(dofs%n_free))
         allocate (states(cp%contact%p()), states_plus(cp%contact%p()), &

@@ -16,7 +16,8 @@ program test_semismooth_newton
     use elasticity, only: lame_coefficients
     use loads, only: edge_loads
     use run_config, only: config_t
-    use problem, only: problem_t, build_problem
+    use problem, only: problem_t, build_problem, assemble_all_dofs
+    use contact_boundary, only: contact_t
     use normal_compliance, only: compliance_t, build_compliance
     use semismooth_newton, only: newton_options_t, newton_report_t, newton_solve
     use branch_analysis, only: critical_data_t, critical_branch_data, branch_compliance
@@ -64,7 +65,7 @@ contains
             config%solve%u_d1 = DATA(4, c)
             config%solve%u_d2 = DATA(5, c)
             config%solve%tol = 1.0e-14_wp
-            call build_problem(config, prob, stat)
+            call build_problem(config, prob, stat, with_all_dofs=.true.)
             if (stat%ok()) call run_solve(config, prob, res, timings, stat)
             call t%check(trim(NAMES(c))//': converges', stat%ok() .and. res%report%converged)
             if (.not. res%report%converged) cycle
@@ -177,7 +178,9 @@ contains
         type(status_t), intent(out) :: stat
         type(mesh_t) :: m
         type(dof_map_t) :: dofs
-        type(csr_matrix_t) :: k
+        type(csr_matrix_t) :: k, k_all
+        type(dof_map_t) :: all_dofs
+        type(contact_t) :: all_contact
         real(wp) :: load(6)
         real(wp), parameter :: NO_STRESS(2, 2) = 0.0_wp, CLAMPED(6) = 0.0_wp
         call single_triangle(l, m)
@@ -186,7 +189,9 @@ contains
         load = 0.0_wp
         if (stat%ok()) call edge_loads(m, [.false., .false., .true.], [f1, f2], NO_STRESS, &
                                        load, stat)
-        if (stat%ok()) call build_compliance(m, dofs, k, YOUNG, POISSON, 1, c_n, c_t, load, &
+        if (stat%ok()) call assemble_all_dofs(m, YOUNG, POISSON, 1, all_dofs, k_all, &
+                                              all_contact, stat)
+        if (stat%ok()) call build_compliance(k_all, all_contact, dofs, k, c_n, c_t, load, &
                                              CLAMPED, cp, stat)
     end subroutine single_element_problem
 
@@ -218,7 +223,7 @@ contains
         config%branch%alpha = 0.1_wp
         config%branch%beta = 0.1_wp
         options%tol = 1.0e-11_wp
-        call build_problem(config, prob, stat)
+        call build_problem(config, prob, stat, with_all_dofs=.true.)
         if (stat%ok()) call critical_branch_data(config, prob, timings, crit, stat)
         call t%check('branch data set up', stat%ok())
         if (.not. stat%ok()) return
@@ -269,7 +274,7 @@ contains
         config%analysis%kind = 'solve'
         config%solve%u_d2 = -0.05_wp
         config%solve%max_iterations = 1
-        call build_problem(config, prob, stat)
+        call build_problem(config, prob, stat, with_all_dofs=.true.)
         if (stat%ok()) call run_solve(config, prob, res, timings, stat)
         call t%check('max_iterations = 1: runs', stat%ok())
         call t%check('max_iterations = 1: not converged', .not. res%report%converged)

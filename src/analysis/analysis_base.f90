@@ -24,6 +24,8 @@ module analysis_base
         type(status_t) :: verdict
         !> The phase timings as committed to summary.json, which the report prints too.
         type(timings_t) :: timings
+        !> The problem must carry K and Gamma_C on all dofs too (non-zero Dirichlet data).
+        logical :: needs_all_dofs = .false.
     contains
         procedure(solve_interface), deferred :: solve
         procedure(write_interface), deferred :: write_files

@@ -22,8 +22,8 @@ contains
         case ('eigen'); allocate (eigen_run_t :: analysis)
         case ('threshold'); allocate (analysis, source=threshold_run_t(with_sweep=.false.))
         case ('lambda_sweep'); allocate (analysis, source=threshold_run_t(with_sweep=.true.))
-        case ('branch'); allocate (branch_run_t :: analysis)
-        case ('solve'); allocate (solve_run_t :: analysis)
+        case ('branch'); allocate (analysis, source=branch_run_t(needs_all_dofs=.true.))
+        case ('solve'); allocate (analysis, source=solve_run_t(needs_all_dofs=.true.))
         end select
     end subroutine new_analysis
 end module analysis_registry

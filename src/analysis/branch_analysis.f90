@@ -136,9 +136,8 @@ contains
         call edge_loads(prob%mesh, loaded, [0.0_wp, 0.0_wp], base_stress(crit%lambda, crit%mu, &
                         crit%alpha, prob%young, prob%poisson), load, stat)
         if (.not. stat%ok()) return
-        call build_compliance(prob%mesh, prob%dofs, prob%k, prob%young, prob%poisson, &
-            prob%contact_part, factor*crit%mu, critical_c_t(factor*crit%mu, crit%lambda), load, &
-            crit%u_base, cp, stat)
+        call build_compliance(prob%k_all, prob%all_contact, prob%dofs, prob%k, factor*crit%mu, &
+            critical_c_t(factor*crit%mu, crit%lambda), load, crit%u_base, cp, stat)
     end subroutine branch_compliance
 
     !> The largest delta_max such that U + delta phi keeps, at every free contact node,

@@ -15,13 +15,18 @@ module problem
     use csr_matrix, only: csr_matrix_t
     implicit none
     private
-    public :: problem_t, build_problem
+    public :: problem_t, build_problem, assemble_all_dofs
 
     type, public :: problem_t
         type(mesh_t) :: mesh
         type(dof_map_t) :: dofs
         type(contact_t) :: contact
         type(csr_matrix_t) :: k                  !! stiffness on the free dofs
+        !> Only for analyses with non-zero Dirichlet data (with_all_dofs): K and Gamma_C on all
+        !> dofs, prescribed ones included; k is then their restriction to the free dofs.
+        type(dof_map_t) :: all_dofs
+        type(csr_matrix_t) :: k_all
+        type(contact_t) :: all_contact
         integer, allocatable :: dirichlet_parts(:), neumann_parts(:)
         integer :: contact_part = 0
         real(wp) :: young = 0.0_wp
@@ -31,11 +36,12 @@ module problem
 contains
 
     !> Mesh the domain, resolve the boundary part names, number the free dofs, collect the
-    !> contact boundary and assemble K.
-    subroutine build_problem(config, prob, stat)
+    !> contact boundary and assemble K; `with_all_dofs` also keeps K and Gamma_C on all dofs.
+    subroutine build_problem(config, prob, stat, with_all_dofs)
         type(config_t), intent(in) :: config
         type(problem_t), intent(out) :: prob
         type(status_t), intent(out) :: stat
+        logical, intent(in), optional :: with_all_dofs   !! default false
         integer, allocatable :: contact_parts(:)
 
         select case (config%mesh%source)
@@ -71,9 +77,26 @@ contains
                 stat%message = config%input_file//': &mesh: contact: '//stat%message
             return
         end if
-        call assemble_stiffness(prob%mesh, prob%dofs, prob%young, prob%poisson, prob%k, stat)
+        if (.not. present(with_all_dofs)) then
+            call assemble_stiffness(prob%mesh, prob%dofs, prob%young, prob%poisson, prob%k, stat)
+            return
+        end if
+        if (.not. with_all_dofs) then
+            call assemble_stiffness(prob%mesh, prob%dofs, prob%young, prob%poisson, prob%k, stat)
+            return
+        end if
+        call assemble_all_dofs(prob%mesh, prob%young, prob%poisson, prob%contact_part, &
+                               prob%all_dofs, prob%k_all, prob%all_contact, stat)
+        if (stat%ok()) prob%k = prob%k_all%restrict(free_numbers(prob%dofs))
 
     contains
+
+        !> The free number of every dof in the numbering of all dofs (0 where prescribed).
+        pure function free_numbers(dofs) result(numbers)
+            type(dof_map_t), intent(in) :: dofs
+            integer :: numbers(size(dofs%free_dof))
+            numbers = reshape(dofs%free_dof, [size(dofs%free_dof)])
+        end function free_numbers
 
         !> Indices of the mesh's boundary parts named in `list`.
         subroutine resolve_parts(variable, list, parts, stat)
@@ -117,4 +140,20 @@ contains
             end do
         end function join
     end subroutine build_problem
+
+    !> K and the contact boundary on all dofs (none prescribed), in the node-major numbering
+    !> of dof_map::all_dof: what the compliance problem with Dirichlet data needs.
+    subroutine assemble_all_dofs(m, young, poisson, contact_part, all_dofs, k_all, &
+                                 all_contact, stat)
+        type(mesh_t), intent(in) :: m
+        real(wp), intent(in) :: young, poisson
+        integer, intent(in) :: contact_part
+        type(dof_map_t), intent(out) :: all_dofs
+        type(csr_matrix_t), intent(out) :: k_all
+        type(contact_t), intent(out) :: all_contact
+        type(status_t), intent(out) :: stat
+        call build_dof_map(m, [integer ::], all_dofs, stat)
+        if (stat%ok()) call assemble_stiffness(m, all_dofs, young, poisson, k_all, stat)
+        if (stat%ok()) call build_contact(m, contact_part, all_dofs, all_contact, stat)
+    end subroutine assemble_all_dofs
 end module problem

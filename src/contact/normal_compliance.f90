@@ -20,10 +20,8 @@
 module normal_compliance
     use kinds, only: wp, N_DIM
     use status, only: status_t, STATUS_INTERNAL
-    use mesh, only: mesh_t
-    use dof_map, only: dof_map_t, build_dof_map
-    use assembly, only: assemble_stiffness
-    use contact_boundary, only: contact_t, build_contact
+    use dof_map, only: dof_map_t
+    use contact_boundary, only: contact_t
     use csr_matrix, only: csr_matrix_t
     implicit none
     private
@@ -71,29 +69,24 @@ contains
         end select
     end function state_name
 
-    !> Set up the problem: `dofs` numbers the free dofs (K on them is `k_free`), `load` holds
+    !> Set up the problem from K and Gamma_C on all dofs (k_all, all_contact) and on the free
+    !> dofs (`dofs` numbers them, `k_free` is K on them, the Jacobian's pattern): `load` holds
     !> the consistent nodal forces on all dofs and `prescribed` the displacement on all dofs
     !> (only its prescribed entries are used).
-    subroutine build_compliance(m, dofs, k_free, young, poisson, contact_part, c_n, c_t, &
-                                load, prescribed, cp, stat)
-        type(mesh_t), intent(in) :: m
+    subroutine build_compliance(k_all, all_contact, dofs, k_free, c_n, c_t, load, prescribed, &
+                                cp, stat)
+        type(csr_matrix_t), intent(in) :: k_all, k_free
+        type(contact_t), intent(in) :: all_contact
         type(dof_map_t), intent(in) :: dofs
-        type(csr_matrix_t), intent(in) :: k_free
-        real(wp), intent(in) :: young, poisson, c_n, c_t
-        integer, intent(in) :: contact_part
+        real(wp), intent(in) :: c_n, c_t
         real(wp), intent(in) :: load(:), prescribed(:)   !! (2 n_nodes)
         type(compliance_t), intent(out) :: cp
         type(status_t), intent(out) :: stat
-        type(dof_map_t) :: all_dofs
         real(wp), allocatable :: b(:), u_d(:)
         integer :: node, c, a, k, i, p
 
-        call build_dof_map(m, [integer ::], all_dofs, stat)
-        if (.not. stat%ok()) return
-        call assemble_stiffness(m, all_dofs, young, poisson, cp%k_all, stat)
-        if (.not. stat%ok()) return
-        call build_contact(m, contact_part, all_dofs, cp%contact, stat)
-        if (.not. stat%ok()) return
+        cp%k_all = k_all
+        cp%contact = all_contact
         cp%k_free = k_free
         cp%c_n = c_n
         cp%c_t = c_t

@@ -21,6 +21,7 @@ module csr_matrix
         procedure :: add_block => csr_matrix_add_block
         procedure :: matvec => csr_matrix_matvec
         procedure :: norm_inf => csr_matrix_norm_inf
+        procedure :: restrict => csr_matrix_restrict
     end type csr_matrix_t
 
 contains
@@ -188,4 +189,38 @@ contains
                 sum(abs(this%val(this%row_start(i):this%row_start(i + 1) - 1))))
         end do
     end function csr_matrix_norm_inf
+
+    !> The submatrix of the rows and columns i with new_index(i) > 0, renumbered by new_index,
+    !> which must be increasing on them (so columns stay sorted): K on the free dofs from K on
+    !> all dofs, with the same values, so nothing is assembled twice.
+    pure function csr_matrix_restrict(this, new_index) result(sub)
+        class(csr_matrix_t), intent(in) :: this
+        integer, intent(in) :: new_index(:)   !! (n) new number of each row/column, or 0
+        type(csr_matrix_t) :: sub
+        integer :: i, k, row, n_entries
+
+        n_entries = 0
+        do i = 1, this%n()
+            if (new_index(i) <= 0) cycle
+            do k = this%row_start(i), this%row_start(i + 1) - 1
+                if (new_index(this%col(k)) > 0) n_entries = n_entries + 1
+            end do
+        end do
+        allocate (sub%row_start(count(new_index > 0) + 1), sub%col(n_entries), &
+                  sub%val(n_entries))
+        sub%row_start(1) = 1
+        n_entries = 0
+        row = 0
+        do i = 1, this%n()
+            if (new_index(i) <= 0) cycle
+            row = row + 1
+            do k = this%row_start(i), this%row_start(i + 1) - 1
+                if (new_index(this%col(k)) <= 0) cycle
+                n_entries = n_entries + 1
+                sub%col(n_entries) = new_index(this%col(k))
+                sub%val(n_entries) = this%val(k)
+            end do
+            sub%row_start(row + 1) = n_entries + 1
+        end do
+    end function csr_matrix_restrict
 end module csr_matrix
