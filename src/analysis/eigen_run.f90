@@ -23,7 +23,7 @@ module eigen_run
     use mesh, only: element_name
     implicit none
     private
-    public :: eigen_summary_json, summary_lines, write_eigenvalues_csv, write_modes, &
+    public :: eigen_summary_json, no_eigen_summary_json, summary_lines, write_eigenvalues_csv, write_modes, &
               write_eigen_files
 
     type, extends(analysis_t), public :: eigen_run_t
@@ -78,14 +78,43 @@ contains
         type(eigen_result_t), intent(in) :: res
         type(timings_t), intent(in) :: timings
         type(json_object_t) :: summary
-        integer :: lowest
-        real(wp) :: mu
+        summary = summary_json(config, prob, timings, res)
+    end function eigen_summary_json
 
-        lowest = res%spec%lowest_positive()
+    !> The same keys for a run that solved no eigenproblem: those of the spectrum are null
+    !> (n_eigenvalues 0), lambda is &analysis lambda.
+    function no_eigen_summary_json(config, prob, timings) result(summary)
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(in) :: prob
+        type(timings_t), intent(in) :: timings
+        type(json_object_t) :: summary
+        summary = summary_json(config, prob, timings)
+    end function no_eigen_summary_json
+
+    !> The keys every summary.json starts with: the run, the mesh, the problem sizes, the
+    !> lowest positive eigenvalue with its meaning (null without `res`), the timings.
+    function summary_json(config, prob, timings, res) result(summary)
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(in) :: prob
+        type(timings_t), intent(in) :: timings
+        type(eigen_result_t), intent(in), optional :: res
+        type(json_object_t) :: summary
+        character(len=*), parameter :: LOWEST_KEYS(5) = [character(len=25) :: &
+            'lowest_positive_mu', 'critical_c_n', 'critical_c_t', &
+            'lowest_positive_condition', 'lowest_positive_residual']
+        integer :: lowest, i
+        real(wp) :: mu, lambda
+
+        lambda = config%analysis%lambda
+        lowest = 0
+        if (present(res)) then
+            lambda = res%lambda
+            lowest = res%spec%lowest_positive()
+        end if
         call summary%add_string('nceig_version', NCEIG_VERSION)
         call summary%add_string('input', config%input_file)
         call summary%add_string('analysis', trim(config%analysis%kind))
-        call summary%add_real('lambda', res%lambda)
+        call summary%add_real('lambda', lambda)
         ! From the mesh: a Gmsh file decides its element type, not &mesh element.
         call summary%add_string('element', element_name(prob%mesh%element))
         call summary%add_string('mesh_source', trim(config%mesh%source))
@@ -103,7 +132,11 @@ contains
         call summary%add_integer('n_dofs', prob%dofs%n_free)
         call summary%add_integer('nnz_k', prob%k%nnz())
         call summary%add_integer('n_contact', prob%contact%p())
-        call summary%add_string('solver', solver_name(res%solver))
+        if (present(res)) then
+            call summary%add_string('solver', solver_name(res%solver))
+        else
+            call summary%add_null('solver')
+        end if
         if (lowest > 0) then
             mu = real(res%spec%mu(lowest), wp)
             call summary%add_real('lowest_positive_mu', mu)
@@ -112,16 +145,20 @@ contains
             call summary%add_real('lowest_positive_condition', res%spec%condition(lowest))
             call summary%add_real('lowest_positive_residual', res%spec%residual(lowest))
         else
-            call summary%add_null('lowest_positive_mu')
-            call summary%add_null('critical_c_n')
-            call summary%add_null('critical_c_t')
-            call summary%add_null('lowest_positive_condition')
-            call summary%add_null('lowest_positive_residual')
+            do i = 1, size(LOWEST_KEYS)
+                call summary%add_null(trim(LOWEST_KEYS(i)))
+            end do
         end if
-        call summary%add_integer('slip_sign', slip_sign(res%lambda))
-        call summary%add_integer('n_eigenvalues', res%spec%n())
-        call summary%add_real('max_residual', res%spec%max_residual())
-        call summary%add_integer('operator_applications', res%spec%n_operator)
+        call summary%add_integer('slip_sign', slip_sign(lambda))
+        if (present(res)) then
+            call summary%add_integer('n_eigenvalues', res%spec%n())
+            call summary%add_real('max_residual', res%spec%max_residual())
+            call summary%add_integer('operator_applications', res%spec%n_operator)
+        else
+            call summary%add_integer('n_eigenvalues', 0)
+            call summary%add_null('max_residual')
+            call summary%add_integer('operator_applications', 0)
+        end if
         call summary%add_real('time_assembly_s', timings%assembly)
         call summary%add_real('time_ordering_s', timings%ordering)
         call summary%add_real('time_factor_s', timings%factor)
@@ -129,12 +166,11 @@ contains
         call summary%add_real('time_eigen_s', timings%eigen)
         call summary%add_real('time_output_s', timings%output)
         call summary%add_real('time_total_s', timings%total)
-        if (allocated(res%warnings)) then
-            call summary%add_string_array('warnings', res%warnings)
-        else
-            call summary%add_string_array('warnings', [character(len=1) ::])
+        call summary%add_string_array('warnings', [character(len=1) ::])
+        if (present(res)) then
+            if (allocated(res%warnings)) call summary%add_string_array('warnings', res%warnings)
         end if
-    end function eigen_summary_json
+    end function summary_json
 
     !> index,re,im,kind,residual,condition; an unknown condition is left empty.
     subroutine write_eigenvalues_csv(path, spec, stat)

@@ -12,8 +12,7 @@ module solve_run
     use run_config, only: config_t
     use problem, only: problem_t
     use analysis_base, only: analysis_t
-    use eigen_run, only: eigen_summary_json
-    use critical_point, only: slip_sign
+    use eigen_run, only: eigen_summary_json, no_eigen_summary_json
     use solve_analysis, only: solve_result_t, run_solve, solve_status
     use normal_compliance, only: state_name, STATE_SEPARATED, STATE_STICK, &
                                  STATE_SLIP_PLUS, STATE_SLIP_MINUS
@@ -21,7 +20,6 @@ module solve_run
     use json_writer, only: json_object_t
     use csv_writer, only: csv_writer_t
     use vtk_writer, only: write_vtu
-    use mesh, only: element_name
     implicit none
     private
 
@@ -92,24 +90,7 @@ contains
         if (res%has_critical) then
             summary = eigen_summary_json(config, prob, res%critical%eig, timings)
         else
-            call summary%add_string('nceig_version', NCEIG_VERSION)
-            call summary%add_string('input', config%input_file)
-            call summary%add_string('analysis', trim(config%analysis%kind))
-            call summary%add_real('lambda', config%analysis%lambda)
-            call summary%add_string('element', element_name(prob%mesh%element))
-            call summary%add_string('mesh_source', trim(config%mesh%source))
-            call summary%add_integer('n_nodes', prob%mesh%n_nodes())
-            call summary%add_integer('n_cells', prob%mesh%n_cells())
-            call summary%add_integer('n_dofs', prob%dofs%n_free)
-            call summary%add_integer('n_contact', prob%contact%p())
-            call summary%add_null('solver')
-            call summary%add_null('lowest_positive_mu')
-            call summary%add_null('critical_c_n')
-            call summary%add_null('critical_c_t')
-            call summary%add_integer('slip_sign', slip_sign(config%analysis%lambda))
-            call summary%add_integer('n_eigenvalues', 0)
-            call summary%add_null('max_residual')
-            call summary%add_string_array('warnings', [character(len=1) ::])
+            summary = no_eigen_summary_json(config, prob, timings)
         end if
         call summary%add_string('data', trim(config%solve%data))
         call summary%add_string('start', trim(config%solve%start))
