@@ -10,7 +10,7 @@ module timer
         real(wp) :: assembly = 0.0_wp   !! mesh, dof map, K, M, B
         real(wp) :: factor = 0.0_wp     !! sparse factorization(s)
         real(wp) :: ordering = 0.0_wp   !! fill-reducing ordering computed by nceig (METIS)
-        real(wp) :: reduction = 0.0_wp  !! dense p x p contact blocks (dense solver)
+        real(wp) :: reduction = 0.0_wp  !! contact blocks Kt_nn, Kt_nt and the reduced matrix
         real(wp) :: eigen = 0.0_wp      !! eigen-solve, eigenvectors and residuals
         real(wp) :: output = 0.0_wp     !! files
         real(wp) :: total = 0.0_wp
