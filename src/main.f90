@@ -7,7 +7,8 @@ program nceig
     use status, only: status_t, STATUS_BAD_INPUT
     use version, only: NCEIG_VERSION
     use process_exit, only: exit_with
-    use timer, only: wall_time, timings_t
+    use timer, only: wall_time, timings_t, PHASE_ASSEMBLY
+    use strings, only: to_string
     use run_config, only: config_t
     use input_config, only: read_input, help_text
     use problem, only: problem_t, build_problem
@@ -53,10 +54,15 @@ program nceig
         call exit_with(STATUS_BAD_INPUT)
     end if
 
+    timings%listener => print_progress
+    call print_progress('nceig '//NCEIG_VERSION//': '//config%input_file//' ('// &
+                        trim(config%analysis%kind)//'), started')
     phase = wall_time()
     call build_problem(config, prob, stat, analysis%needs_all_dofs)
     call stop_on_failure(stat)
-    timings%assembly = wall_time() - phase
+    call timings%add(PHASE_ASSEMBLY, wall_time() - phase, ': '//to_string(prob%mesh%n_cells())// &
+        ' cells, '//to_string(prob%dofs%n_free)//' dofs, '//to_string(prob%contact%p())// &
+        ' contact nodes, K with '//to_string(prob%k%nnz())//' entries')
 
     call run_analysis(analysis, config, prob, start, timings, stat)
     call stop_on_failure(stat)
@@ -69,6 +75,14 @@ program nceig
     deallocate (analysis, note)
 
 contains
+
+    !> A progress line on stdout at once: runs of minutes must not look hung, and a log
+    !> file shows how far a killed run got.
+    subroutine print_progress(line)
+        character(len=*), intent(in) :: line
+        write (output_unit, '(a)') line
+        flush (output_unit)
+    end subroutine print_progress
 
     !> One line on standard error and a non-zero exit: 2 for bad input, the status code else.
     subroutine stop_on_failure(stat)

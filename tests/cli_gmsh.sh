@@ -14,11 +14,12 @@ fi
 cli_begin cli_gmsh
 cd "$work"
 
-run() {  # name, mesh text (the &mesh body); writes out_<name>/summary.json
+run() {  # name, mesh text (the &mesh body); writes out_<name>/summary.json, <name>.log
+          # (stdout: progress and summary) and <name>.err (stderr: the one error line)
     # ascii VTU: the cell-type check below greps its text.
     printf '&mesh %s /\n&output directory = "out_%s", vtk = .true., vtk_format = "ascii" /\n' \
         "$2" "$1" >"$1.nml"
-    "$nceig" "$1.nml" >"$1.log" 2>&1
+    "$nceig" "$1.nml" >"$1.log" 2>"$1.err"
 }
 
 # Delaunay meshes from the shipped script, both orders and both formats.
@@ -86,7 +87,7 @@ run bad "source = 'gmsh', file = 'binary.msh'"
 rc=$?
 check 'binary mesh: exit status 3' '[[ $rc -eq 3 ]]'
 check 'binary mesh: one line with file:line and the advice' \
-    '[[ $(wc -l <bad.log) -eq 1 ]] && grep -q "binary.msh:2: binary MSH files are not supported; write ASCII with gmsh -format msh41" bad.log'
+    '[[ $(wc -l <bad.err) -eq 1 ]] && grep -q "binary.msh:2: binary MSH files are not supported; write ASCII with gmsh -format msh41" bad.err'
 check 'binary mesh: no output folder' '[[ ! -e out_bad ]]'
 
 cli_end

@@ -6,7 +6,7 @@
 module analysis_base
     use kinds, only: wp
     use status, only: status_t
-    use timer, only: wall_time, timings_t
+    use timer, only: wall_time, timings_t, PHASE_OUTPUT
     use run_config, only: config_t
     use problem, only: problem_t
     use output_stage, only: output_stage_t
@@ -99,7 +99,7 @@ contains
         if (.not. stat%ok()) return
         call this%write_files(stage, config, prob, stat)
         if (stat%ok()) then
-            timings%output = wall_time() - start
+            call timings%add(PHASE_OUTPUT, wall_time() - start, ': '//trim(config%output%directory))
             timings%total = wall_time() - run_start
             this%timings = timings
             summary = this%summary(config, prob)

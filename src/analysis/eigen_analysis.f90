@@ -4,7 +4,9 @@
 module eigen_analysis
     use kinds, only: wp
     use status, only: status_t
-    use timer, only: wall_time, timings_t
+    use timer, only: wall_time, timings_t, PHASE_ASSEMBLY, PHASE_REDUCTION, PHASE_EIGEN
+    use strings, only: to_string
+    use real_format, only: real_to_text
     use run_config, only: config_t
     use problem, only: problem_t
     use mesh, only: element_name
@@ -74,7 +76,8 @@ contains
         start = wall_time()
         call assemble_b(prob%contact, prob%dofs%n_free, lambda, res%b, stat)
         if (.not. stat%ok()) return
-        timings%assembly = timings%assembly + (wall_time() - start)
+        call timings%add(PHASE_ASSEMBLY, wall_time() - start, ': B for lambda = '// &
+                         real_to_text(lambda))
 
         res%solver = choose_solver(config%eigen%solver, prob%contact%p(), &
                                    config%eigen%dense_max_contact)
@@ -110,7 +113,8 @@ contains
             call arpack_spectrum(prob%k, res%b, chol, prob%contact, res%lambda, options, n_keep, &
                                  res%spec, certificate, stat)
             if (.not. stat%ok()) return
-            timings%eigen = timings%eigen + (wall_time() - start)
+            call timings%add(PHASE_EIGEN, wall_time() - start, ': arpack, '// &
+                             to_string(res%spec%n())//' eigenvalues')
         else
             reduction_seconds = 0.0_wp
             if (present(kt_nn) .and. present(kt_nt)) then
@@ -121,8 +125,11 @@ contains
                                     res%spec, stat, reduction_seconds)
             end if
             if (.not. stat%ok()) return
-            timings%reduction = timings%reduction + reduction_seconds
-            timings%eigen = timings%eigen + (wall_time() - start - reduction_seconds)
+            if (reduction_seconds > 0.0_wp) call timings%add(PHASE_REDUCTION, &
+                reduction_seconds, ': contact blocks of K^-1, '//to_string(prob%contact%p())// &
+                ' x '//to_string(prob%contact%p()))
+            call timings%add(PHASE_EIGEN, wall_time() - start - reduction_seconds, ': dense, '// &
+                             to_string(res%spec%n())//' eigenvalues')
         end if
         res%warnings = accuracy_warnings(res%spec, element_name(prob%mesh%element), prob%poisson)
         if (len(certificate) > 0) res%warnings = [character(len=WARNING_LEN) :: certificate, &

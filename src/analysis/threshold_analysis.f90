@@ -11,7 +11,9 @@
 module threshold_analysis
     use kinds, only: wp
     use status, only: status_t
-    use timer, only: wall_time, timings_t
+    use timer, only: wall_time, timings_t, PHASE_ASSEMBLY, PHASE_REDUCTION
+    use strings, only: to_string, seconds_text
+    use real_format, only: real_to_text
     use run_config, only: config_t
     use input_config, only: sweep_lambdas
     use problem, only: problem_t
@@ -69,7 +71,8 @@ contains
         start = wall_time()
         call assemble_b(prob%contact, prob%dofs%n_free, res%eigen%lambda, res%eigen%b, stat)
         if (.not. stat%ok()) return
-        timings%assembly = timings%assembly + (wall_time() - start)
+        call timings%add(PHASE_ASSEMBLY, wall_time() - start, ': B for lambda = '// &
+                         real_to_text(res%eigen%lambda))
 
         call factor_stiffness(prob%k, prob%mesh, prob%dofs, prob%contact, chol, timings, stat)
         if (.not. stat%ok()) return
@@ -80,7 +83,8 @@ contains
             call chol%free()
             return
         end if
-        timings%reduction = timings%reduction + (wall_time() - start)
+        call timings%add(PHASE_REDUCTION, wall_time() - start, ': contact blocks of K^-1, '// &
+                         to_string(prob%contact%p())//' x '//to_string(prob%contact%p()))
 
         call eigen_with_factor(config, prob, chol, res%eigen, timings, stat, blocks%kt_nn, &
                                blocks%kt_nt)
@@ -97,6 +101,7 @@ contains
         call confirm_thresholds(blocks, res%thresholds, stat)
         if (.not. stat%ok()) return
         res%time_threshold = wall_time() - start
+        call timings%note('thresholds '//seconds_text(res%time_threshold)//' s')
         if (.not. with_sweep) return
 
         start = wall_time()
@@ -107,6 +112,7 @@ contains
         options = arpack_options_t(nev=config%eigen%nev, ncv=config%eigen%ncv, &
             maxit=config%eigen%maxit, tol=config%eigen%tol)
         do i = 1, size(res%sweep%lambda)
+            call timings%tick('sweep, lambda', i, size(res%sweep%lambda))
             certified = .false.
             ! Between the thresholds a positive mu is (generically) absent, which ARPACK can
             ! never certify (only the whole spectrum can): its attempts would be wasted.
@@ -128,6 +134,8 @@ contains
             end if
         end do
         res%time_sweep = wall_time() - start
+        call timings%note('sweep      '//seconds_text(res%time_sweep)//' s: '// &
+                          to_string(size(res%sweep%lambda))//' lambdas')
     end subroutine solve_thresholds
 
     !> lambda- <= lambda <= lambda+, a missing threshold counting as infinitely far.

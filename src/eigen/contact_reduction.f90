@@ -13,7 +13,7 @@ module contact_reduction
     use kinds, only: wp, i8
     use status, only: status_t, STATUS_SOLVER, STATUS_BAD_INPUT, STATUS_SINGULAR
     use strings, only: to_string
-    use timer, only: wall_time, timings_t
+    use timer, only: wall_time, timings_t, PHASE_ORDERING, PHASE_FACTOR
     use mesh, only: mesh_t
     use dof_map, only: dof_map_t
     use csr_matrix, only: csr_matrix_t
@@ -91,7 +91,7 @@ contains
         start = wall_time()
         call nested_dissection_last(m, dofs, contact%nodes, permutation, stat)
         if (.not. stat%ok()) return
-        timings%ordering = timings%ordering + (wall_time() - start)
+        call timings%add(PHASE_ORDERING, wall_time() - start, ': METIS, contact nodes last')
         start = wall_time()
         call chol%factor(k, stat, ordering=ORDERING_GIVEN, permutation=permutation)
         if (stat%code == STATUS_SINGULAR) then
@@ -102,7 +102,8 @@ contains
             stat%message = 'stiffness matrix K: '//stat%message
             return
         end if
-        timings%factor = timings%factor + (wall_time() - start)
+        call timings%add(PHASE_FACTOR, wall_time() - start, ': CHOLMOD, '//to_string(k%n())// &
+                         ' dofs')
     end subroutine factor_stiffness
 
     !> The trailing 2p x 2p block L_c of a factor made by factor_stiffness, and `slot`(c, a):
