@@ -146,9 +146,10 @@ contains
         call t%check('dyadic unit square: area exactly 1 after 8 mixed refinements', exact)
     end subroutine check_exact_area
 
-    !> NVB gives each initial triangle's descendants at most 4 similarity classes, all of them
-    !> present after two uniform steps, so the minimum angle never drops below its level-2
-    !> value; a scalene triangle with no symmetry to hide a wrong bisection.
+    !> NVB gives each initial triangle's descendants at most 4 similarity classes, so angles
+    !> are bounded: uniform steps 3..6 must not lower the minimum angle reached at level 2,
+    !> and the finest level may hold at most 4 shapes. A scalene triangle, with no symmetry
+    !> to hide a wrong bisection (a wrong newest vertex quickly creates new shapes).
     subroutine check_angles()
         type(mesh_t) :: m
         type(refinable_mesh_t) :: r
@@ -407,6 +408,10 @@ contains
         call r%refine([integer ::], stat)
         call t%check('refine nothing: ok, mesh unchanged', stat%ok() .and. &
                      all(r%cells == copy%cells) .and. all(r%parent == copy%parent))
+        copy%edges(2, 1) = copy%edges(2, 2)
+        call copy%refine([1], stat)
+        call t%check('refine with a boundary edge off the cell sides: STATUS_BAD_INPUT', &
+                     stat%code == STATUS_BAD_INPUT)
         call r%to_mesh(ELEMENT_Q1, out, stat)
         call t%check('to_mesh Q1: STATUS_BAD_INPUT', stat%code == STATUS_BAD_INPUT)
     end subroutine check_errors

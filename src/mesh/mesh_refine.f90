@@ -173,7 +173,8 @@ contains
     !> Bisect every cell listed in `marked` (indices into the current cells; repeats allowed)
     !> and as many others as conformity needs. Afterwards `parent` maps each new cell to the
     !> cell it came from (a cell left whole is its own child). Fails with STATUS_BAD_INPUT,
-    !> leaving the mesh unchanged, when an index is out of range.
+    !> leaving the mesh unchanged, when an index is out of range or a boundary edge (edited
+    !> since the build) is no cell side.
     subroutine refinable_mesh_refine(this, marked, stat)
         class(refinable_mesh_t), intent(inout) :: this
         integer, intent(in) :: marked(:)
@@ -181,7 +182,7 @@ contains
         type(edge_table_t) :: table
         logical, allocatable :: bisected(:)
         integer, allocatable :: queue(:), midpoint(:), cells(:, :), parent(:), edges(:, :), &
-                                edge_part(:)
+                                edge_part(:), boundary_edge(:)
         real(wp), allocatable :: coords(:, :)
         integer :: i, c, e, side, head, tail, n_vertices, n_new, n_cells, n_edges, middle
         integer :: v(N_CORNERS), mid(N_CORNERS)
@@ -196,6 +197,16 @@ contains
         end do
         n_vertices = this%n_vertices()
         call build_edge_table(this%cells, n_vertices, table)
+        ! The components are public: check that the boundary still lies on cell sides.
+        allocate (boundary_edge(size(this%edges, 2)))
+        do e = 1, size(this%edges, 2)
+            boundary_edge(e) = edge_number(table, this%edges(1, e), this%edges(2, e))
+            if (boundary_edge(e) == 0) then
+                call stat%fail(STATUS_BAD_INPUT, 'mesh refinement: boundary edge '// &
+                    to_string(e)//' is not a side of any cell; expected edges along cell sides')
+                return
+            end if
+        end do
 
         ! Closure: a cell with a bisected edge must bisect its refinement edge first; a newly
         ! bisected edge may in turn oblige the other cell that shares it. Each edge enters the
@@ -259,14 +270,11 @@ contains
 
         ! A bisected boundary edge becomes its two halves, in order along it, same part.
         n_edges = size(this%edges, 2)
-        do e = 1, size(this%edges, 2)
-            if (bisected(edge_number(table, this%edges(1, e), this%edges(2, e)))) &
-                n_edges = n_edges + 1
-        end do
+        n_edges = n_edges + count(bisected(boundary_edge))
         allocate (edges(2, n_edges), edge_part(n_edges))
         n_edges = 0
         do e = 1, size(this%edges, 2)
-            middle = midpoint(edge_number(table, this%edges(1, e), this%edges(2, e)))
+            middle = midpoint(boundary_edge(e))
             if (middle == 0) then
                 n_edges = n_edges + 1
                 edges(:, n_edges) = this%edges(:, e)
