@@ -6,7 +6,8 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${NCEIG_BUILD:-$root/build}
-[[ -f $build/libnceig_lib.a ]] || { echo "bench_mesh_refine: build first (scripts/build.sh Release)" >&2; exit 1; }
+[[ -f $build/libnceig_lib.a ]] ||
+    { echo "bench_mesh_refine: build first (scripts/build.sh Release)" >&2; exit 1; }
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 # The link line of a test program, minus its own object and the test library.

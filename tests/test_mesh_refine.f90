@@ -130,10 +130,11 @@ contains
         type(refinable_mesh_t) :: r
         type(status_t) :: stat
         integer :: level, c
-        logical :: exact
+        logical :: exact, conforming_ok
         call structured_rectangle(1.0_wp, 1.0_wp, 4, 4, ELEMENT_P1, 'right', m, stat)
         call build_refinable_mesh(m, r, stat)
         exact = .true.
+        conforming_ok = .true.
         do level = 1, 8
             ! Alternate uniform and local steps, so that 2-, 3- and 4-child splits all occur.
             if (modulo(level, 2) == 1) then
@@ -142,8 +143,11 @@ contains
                 call r%refine([(c, c=1, r%n_cells(), 7)], stat)
             end if
             exact = exact .and. abs(sum(signed_areas(r)) - 2.0_wp) <= 0.0_wp
+            conforming_ok = conforming_ok .and. conforming(r)
         end do
         call t%check('dyadic unit square: area exactly 1 after 8 mixed refinements', exact)
+        call t%check('mixed uniform and local refinements: conforming at every step', &
+                     conforming_ok)
     end subroutine check_exact_area
 
     !> NVB gives each initial triangle's descendants at most 4 similarity classes, so angles
