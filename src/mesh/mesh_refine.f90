@@ -444,7 +444,8 @@ contains
         table%cells_of = table%cells_of(:, :table%n_edges)
     end subroutine build_edge_table
 
-    !> Number of the edge joining vertices a and b, 0 when no cell has that side.
+    !> Number of the edge joining vertices a and b, 0 when no cell has that side (or a vertex
+    !> number is out of range).
     pure integer function edge_number(table, a, b)
         type(edge_table_t), intent(in) :: table
         integer, intent(in) :: a, b
@@ -452,6 +453,7 @@ contains
         low = min(a, b)
         high = max(a, b)
         edge_number = 0
+        if (low < 1 .or. high >= size(table%first)) return
         do i = table%first(low), table%first(low + 1) - 1
             if (table%upper(i) == high) then
                 edge_number = table%edge(i)
