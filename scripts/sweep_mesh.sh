@@ -27,7 +27,7 @@ usage: scripts/sweep_mesh.sh [-e FAMILIES] [-n SIZES] [-j JOBS] [-o OUTDIR] [-s]
   -s           write a SLURM job-array script and its collection step instead of running
 Each (family, N) is one nceig process in OUTDIR/runs/<family>_n<N>/; a run whose
 summary.json exists is not redone. Outputs: OUTDIR/results.csv, extrapolation.csv,
-tradeoff.csv, convergence.png, tradeoff.png. nceig is \$NCEIG, else on PATH, else build/.
+tradeoff.csv, convergence.png, tradeoff.png. nceig is \$NCEIG, else build/, else on PATH.
 EOF
 }
 
@@ -35,12 +35,14 @@ die() { echo "sweep_mesh: $*" >&2; exit 2; }
 
 # ------------------------------------------------------------------------- programs
 
+# The nceig of this tree first (a source tree's build/, or an install's bin/ as nceig-sweep
+# sets NCEIG), so an older nceig on PATH never answers for this one; PATH last.
 find_nceig() {
     local exe
     if [[ -n ${NCEIG:-} ]]; then exe=$NCEIG
-    elif command -v nceig >/dev/null 2>&1; then exe=$(command -v nceig)
     elif [[ -x $root/build/nceig ]]; then exe=$root/build/nceig
-    else die "nceig not found: not on PATH nor in $root/build (run scripts/build.sh Release, or set NCEIG)"
+    elif command -v nceig >/dev/null 2>&1; then exe=$(command -v nceig)
+    else die "nceig not found: not in $root/build nor on PATH (run scripts/build.sh Release, or set NCEIG)"
     fi
     [[ -x $exe ]] || die "NCEIG=$exe is not an executable"
     echo "$(cd "$(dirname "$exe")" && pwd)/$(basename "$exe")"

@@ -21,6 +21,7 @@ module eigen_run
     use vtk_writer, only: write_vtu
     use matrix_market, only: write_matrix_market
     use mesh, only: element_name
+    use blas_info, only: blas_in_use
     implicit none
     private
     public :: eigen_summary_json, no_eigen_summary_json, summary_lines, write_eigenvalues_csv, write_modes, &
@@ -102,8 +103,9 @@ contains
         character(len=*), parameter :: LOWEST_KEYS(5) = [character(len=25) :: &
             'lowest_positive_mu', 'critical_c_n', 'critical_c_t', &
             'lowest_positive_condition', 'lowest_positive_residual']
-        integer :: lowest, i
+        integer :: lowest, i, blas_threads
         real(wp) :: mu, lambda
+        character(len=:), allocatable :: blas_library, blas_config
 
         lambda = config%analysis%lambda
         lowest = 0
@@ -159,6 +161,10 @@ contains
             call summary%add_null('max_residual')
             call summary%add_integer('operator_applications', 0)
         end if
+        call blas_in_use(blas_library, blas_config, blas_threads)
+        call summary%add_string('blas_library', blas_library)
+        call summary%add_string('blas_config', blas_config)
+        call summary%add_integer('blas_threads', blas_threads)
         call summary%add_real('time_assembly_s', timings%assembly)
         call summary%add_real('time_ordering_s', timings%ordering)
         call summary%add_real('time_factor_s', timings%factor)

@@ -1,15 +1,13 @@
 ! SPDX-License-Identifier: MIT
-!> lambda_sweep.png, drawn by scripts/plot_lambda_sweep.sh with gnuplot after the outputs are
-!> committed. Plotting is optional: without gnuplot, or when the script fails, the run still
+!> lambda_sweep.png, drawn by plot_lambda_sweep.sh (from the installed share/nceig/scripts or
+!> the source tree's scripts/) with gnuplot after the outputs are committed. Plotting is optional: without gnuplot, or when the script fails, the run still
 !> succeeds and the caller prints the returned note.
 module sweep_plot
-    use version, only: NCEIG_SCRIPTS_DIR
+    use executable, only: scripts_directory
     use filesystem, only: file_exists
     implicit none
     private
-    public :: plot_lambda_sweep, PLOT_SCRIPT
-
-    character(len=*), parameter :: PLOT_SCRIPT = NCEIG_SCRIPTS_DIR//'/plot_lambda_sweep.sh'
+    public :: plot_lambda_sweep
 
 contains
 
@@ -19,13 +17,15 @@ contains
         character(len=*), intent(in) :: directory
         character(len=:), allocatable, intent(out) :: note
         integer :: exit_status, command_status
+        character(len=:), allocatable :: plot_script
 
+        plot_script = scripts_directory()//'/plot_lambda_sweep.sh'
         if (index(directory, "'") > 0) then
-            note = 'not drawn: the output path contains a quote; run '//PLOT_SCRIPT//' by hand'
+            note = 'not drawn: the output path contains a quote; run '//plot_script//' by hand'
             return
         end if
-        if (.not. file_exists(PLOT_SCRIPT)) then
-            note = 'not drawn: '//PLOT_SCRIPT//' is missing'
+        if (.not. file_exists(plot_script)) then
+            note = 'not drawn: '//plot_script//' is missing'
             return
         end if
         call execute_command_line('command -v gnuplot >/dev/null 2>&1', &
@@ -34,11 +34,11 @@ contains
             note = 'not drawn: gnuplot is not installed (the CSV holds the curve)'
             return
         end if
-        call execute_command_line("bash '"//PLOT_SCRIPT//"' '"//directory// &
+        call execute_command_line("bash '"//plot_script//"' '"//directory// &
                                   "' >/dev/null 2>&1", exitstat=exit_status, &
                                   cmdstat=command_status)
         if (command_status /= 0 .or. exit_status /= 0) then
-            note = 'not drawn: the plot script failed; run bash '//PLOT_SCRIPT//' '// &
+            note = 'not drawn: the plot script failed; run bash '//plot_script//' '// &
                    directory//' to see why'
         else
             note = directory//'/lambda_sweep.png'
