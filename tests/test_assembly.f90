@@ -5,8 +5,9 @@
 program test_assembly
     use kinds, only: wp
     use status, only: status_t, STATUS_MESH, STATUS_BAD_INPUT
-    use mesh, only: mesh_t, ELEMENT_P1, ELEMENT_P2, ELEMENT_Q2, element_name, &
-                    element_nodes_per_cell
+    use mesh, only: mesh_t
+    use element_types, only: ELEMENT_P1, ELEMENT_P2, ELEMENT_Q2, element_name, &
+                             element_nodes_per_cell
     use mesh_structured, only: structured_rectangle
     use dof_map, only: dof_map_t, build_dof_map, cell_dofs
     use assembly, only: assemble_stiffness

@@ -3,7 +3,8 @@
 !> bilinear form a(u, v) = int sigma(u) : eps(v).
 module elasticity
     use kinds, only: wp, N_DIM
-    use mesh, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, element_nodes_per_cell
+    use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, &
+                             element_nodes_per_cell
     use quadrature, only: quadrature_rule_t, triangle_rule, quad_rule
     use shape_functions, only: evaluate_shape, reference_nodes, MAX_NODES
     implicit none

@@ -17,7 +17,7 @@ module compliance_output
     use vtk_writer, only: write_vtu
     use results_output, only: eigen_summary_json, write_eigenvalues_csv, commit_with_summary, &
                               slip_sign
-    use mesh, only: element_name
+    use element_types, only: element_name
     use normal_compliance, only: state_name, STATE_SEPARATED, STATE_STICK, &
                                  STATE_SLIP_PLUS, STATE_SLIP_MINUS
     use branch_analysis, only: branch_result_t

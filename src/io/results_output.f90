@@ -18,7 +18,7 @@ module results_output
     use vtk_writer, only: write_vtu
     use matrix_market, only: write_matrix_market
     use dof_map, only: dof_map_t
-    use mesh, only: element_name
+    use element_types, only: element_name
     implicit none
     private
     public :: write_eigen_outputs, summary_lines, nodal_field, eigen_summary_json

@@ -14,8 +14,9 @@
 module mesh_gmsh
     use kinds, only: wp, i8
     use status, only: status_t, STATUS_MESH
-    use mesh, only: mesh_t, ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, &
-                    element_nodes_per_cell
+    use mesh, only: mesh_t
+    use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, &
+                             element_nodes_per_cell
     use mesh_renumber, only: renumber_nodes, RENUMBER_RCM
     use shape_functions, only: evaluate_shape, reference_nodes, MAX_NODES
     use strings, only: to_string
