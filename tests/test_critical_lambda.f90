@@ -20,8 +20,7 @@ program test_critical_lambda
     use lapack_interfaces, only: dgeev
     use critical_lambda, only: thresholds_t, pencil_thresholds, lowest_positive_mu, &
                                confirm_thresholds, SIDE_PLUS, SIDE_MINUS
-    use run_config, only: sweep_config_t
-    use input_config, only: sweep_lambdas
+    use run_config, only: sweep_config_t, sweep_lambdas
     implicit none
 
     !> The p x p data of one scene: Kt_nn, Kt_nt, and both times M.

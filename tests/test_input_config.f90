@@ -4,9 +4,9 @@
 program test_input_config
     use kinds, only: wp
     use status, only: status_t, STATUS_BAD_INPUT
-    use run_config, only: config_t, NAME_LEN
-    use input_config, only: read_input, split_names, lowercase, help_text, &
-                            default_output_directory, resolve_relative
+    use run_config, only: config_t
+    use strings, only: NAME_LEN, split_names, lowercase
+    use input_config, only: read_input, help_text, default_output_directory, resolve_relative
     use testing, only: test_suite_t
     implicit none
     type(test_suite_t) :: t

@@ -4,8 +4,8 @@
 module problem
     use kinds, only: wp
     use status, only: status_t, STATUS_BAD_INPUT
-    use run_config, only: config_t, NAME_LEN
-    use input_config, only: split_names
+    use run_config, only: config_t
+    use strings, only: NAME_LEN, split_names
     use mesh, only: mesh_t
     use element_types, only: element_from_name
     use mesh_structured, only: structured_rectangle

@@ -12,8 +12,7 @@ module threshold_analysis
     use kinds, only: wp
     use status, only: status_t
     use timer, only: wall_time, timings_t
-    use run_config, only: config_t
-    use input_config, only: sweep_lambdas
+    use run_config, only: config_t, sweep_lambdas
     use problem, only: problem_t
     use sparse_cholesky, only: cholesky_t
     use contact_boundary, only: assemble_b

@@ -6,20 +6,21 @@ module input_config
     use status, only: status_t, STATUS_BAD_INPUT
     use run_config, only: config_t, mesh_config_t, material_config_t, analysis_config_t, &
                           eigen_config_t, output_config_t, branch_config_t, solve_config_t, &
-                          sweep_config_t, MAX_SWEEP_LAMBDAS, NAME_LEN, LIST_LEN, PATH_LEN
-    use strings, only: to_string
+                          sweep_config_t, MAX_SWEEP_LAMBDAS, PATH_LEN, count_set_lambdas, &
+                          lambda_is_set
+    use strings, only: to_string, lowercase, split_words, count_names, normalized_list, &
+                       NAME_LEN, LIST_LEN
+    use text_file, only: read_line
     use real_format, only: real_to_text
     use ieee_arithmetic, only: ieee_is_finite
-    use iso_fortran_env, only: iostat_end, iostat_eor
+    use iso_fortran_env, only: iostat_end
     use filesystem, only: is_directory
     implicit none
     private
-    public :: read_input, split_names, lowercase, help_text, default_output_directory, &
-              resolve_relative
+    public :: read_input, help_text, default_output_directory, resolve_relative
     public :: KNOWN_GROUPS, MESH_SOURCES, ELEMENT_NAMES, DIAGONALS, RECTANGLE_SIDES, &
               ACCEPTED_ANALYSES, ACCEPTED_SOLVERS, MAX_CELLS_PER_SIDE, SOLVE_DATA, SOLVE_STARTS
-    public :: SWEEP_SPACINGS, sweep_lambdas, VTK_FORMATS
-    public :: read_line   !! also reads the results table of nceig-extrapolate
+    public :: SWEEP_SPACINGS, VTK_FORMATS
 
     !> Namelist groups, in the order they are read and documented.
     character(len=*), parameter :: KNOWN_GROUPS(*) = [character(len=8) :: &
@@ -76,11 +77,10 @@ module input_config
         'solve max_iterations:an integer']
 
     integer, parameter :: MSG_LEN = 1024     !! iomsg buffers
-    integer, parameter :: CHUNK_LEN = 256    !! pieces of an input line of any length
     integer, parameter :: HELP_COLUMN = 28   !! where descriptions start in the help text
     character(len=*), parameter :: NAME_CHARS = &
         'abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_'
-    character(len=*), parameter :: BLANKS = ' '//achar(9)   !! separators in name lists
+    character(len=*), parameter :: BLANKS = ' '//achar(9)   !! blanks outside groups
 
     !> One namelist group as found in the file: lines joined by blanks, comments removed.
     type :: group_text_t
@@ -306,28 +306,6 @@ contains
         grown(size(grown))%line = line
         call move_alloc(grown, groups)
     end subroutine append_group
-
-    !> One line of any length; the last line needs no line feed.
-    subroutine read_line(unit, line, ios, msg)
-        integer, intent(in) :: unit
-        character(len=:), allocatable, intent(out) :: line
-        integer, intent(out) :: ios
-        character(len=*), intent(inout) :: msg
-        character(len=CHUNK_LEN) :: chunk
-        integer :: n_read
-
-        line = ''
-        do
-            read (unit, '(a)', advance='no', size=n_read, iostat=ios, iomsg=msg) chunk
-            line = line//chunk(:n_read)
-            if (ios == iostat_eor) then
-                ios = 0
-                return
-            end if
-            if (ios == iostat_end .and. len(line) > 0) ios = 0
-            if (ios /= 0 .or. n_read < CHUNK_LEN) return
-        end do
-    end subroutine read_line
 
     !> Text of group `name` as scanned, or '' when the file lacks it.
     function group_body(groups, name) result(body)
@@ -995,146 +973,6 @@ contains
             call fail_value(stat, path, 'sweep', variable, value, expected)
         end subroutine reject
     end subroutine validate_sweep
-
-    !> Number of leading entries of &sweep lambdas that were set.
-    pure integer function count_set_lambdas(c)
-        type(sweep_config_t), intent(in) :: c
-        count_set_lambdas = 0
-        do while (count_set_lambdas < size(c%lambdas))
-            if (.not. lambda_is_set(c%lambdas(count_set_lambdas + 1))) exit
-            count_set_lambdas = count_set_lambdas + 1
-        end do
-    end function count_set_lambdas
-
-    !> An entry of &sweep lambdas differs from the unset mark huge(); NaN and infinities
-    !> count as set so that validation rejects them (and no ordered comparison sees a NaN).
-    elemental logical function lambda_is_set(x)
-        real(wp), intent(in) :: x
-        lambda_is_set = .not. ieee_is_finite(x)
-        if (.not. lambda_is_set) lambda_is_set = x < huge(1.0_wp)
-    end function lambda_is_set
-
-    !> The lambdas of a validated &sweep: the explicit list if any, else the range, evenly
-    !> spaced ('linear') or in geometric progression ('log', one sign), ends included exactly.
-    pure function sweep_lambdas(c) result(lambdas)
-        type(sweep_config_t), intent(in) :: c
-        real(wp), allocatable :: lambdas(:)
-        real(wp) :: ratio
-        integer :: n, i
-
-        n = count_set_lambdas(c)
-        if (n > 0) then
-            lambdas = c%lambdas(1:n)
-            return
-        end if
-        n = c%n_lambda
-        allocate (lambdas(n))
-        if (c%spacing == 'log') then
-            ratio = c%lambda_max/c%lambda_min   ! > 0: one sign
-            do i = 1, n
-                lambdas(i) = c%lambda_min*ratio**(real(i - 1, wp)/real(n - 1, wp))
-            end do
-        else
-            do i = 1, n
-                lambdas(i) = c%lambda_min + (c%lambda_max - c%lambda_min)* &
-                             (real(i - 1, wp)/real(n - 1, wp))
-            end do
-        end if
-        lambdas(1) = c%lambda_min
-        lambdas(n) = c%lambda_max
-    end function sweep_lambdas
-
-    ! ------------------------------------------------------------------- name lists
-
-    !> The blank-separated names of `list`, in order, each at most NAME_LEN characters
-    !> (longer ones are cut; read_input rejects them). gfortran 12 -O3 falsely warns of an
-    !> uninitialised descriptor when the result is the first value of an allocatable:
-    !> allocate that empty beforehand.
-    pure function split_names(list) result(names)
-        character(len=*), intent(in) :: list
-        character(len=NAME_LEN), allocatable :: names(:)
-        character(len=LIST_LEN), allocatable :: words(:)
-        integer :: i
-        call split_words(list, words)
-        allocate (names(size(words)))
-        do i = 1, size(words)
-            names(i) = words(i)(:NAME_LEN)
-        end do
-    end function split_names
-
-    !> The blank-separated words of `list`, uncut (lists are at most LIST_LEN long).
-    !> A subroutine with a fixed length: a function result of length len(list) crashes
-    !> gfortran 12, and assigning a function result draws false -Wuninitialized at -O3.
-    pure subroutine split_words(list, words)
-        character(len=*), intent(in) :: list
-        character(len=LIST_LEN), allocatable, intent(out) :: words(:)
-        integer :: i, n_words
-        logical :: in_word
-
-        n_words = 0
-        in_word = .false.
-        do i = 1, len(list)
-            if (index(BLANKS, list(i:i)) > 0) then
-                in_word = .false.
-            else if (.not. in_word) then
-                in_word = .true.
-                n_words = n_words + 1
-            end if
-        end do
-        allocate (words(n_words))
-        words = ''
-        n_words = 0
-        in_word = .false.
-        do i = 1, len(list)
-            if (index(BLANKS, list(i:i)) > 0) then
-                in_word = .false.
-                cycle
-            else if (.not. in_word) then
-                in_word = .true.
-                n_words = n_words + 1
-            end if
-            words(n_words) = trim(words(n_words))//list(i:i)
-        end do
-    end subroutine split_words
-
-    !> Number of blank-separated names in `list`.
-    pure integer function count_names(list)
-        character(len=*), intent(in) :: list
-        character(len=LIST_LEN), allocatable :: words(:)
-        call split_words(list, words)
-        count_names = size(words)
-    end function count_names
-
-    !> `list` lowercased, its names separated by single blanks.
-    pure function normalized_list(list) result(normal)
-        character(len=*), intent(in) :: list
-        character(len=len(list)) :: normal
-        character(len=LIST_LEN), allocatable :: words(:)
-        integer :: i
-        call split_words(lowercase(list), words)
-        normal = ''
-        do i = 1, size(words)
-            if (i == 1) then
-                normal = words(i)
-            else
-                normal = trim(normal)//' '//words(i)
-            end if
-        end do
-    end function normalized_list
-
-    !> `text` with ASCII capitals turned to small letters.
-    elemental function lowercase(text) result(lower)
-        character(len=*), intent(in) :: text
-        character(len=len(text)) :: lower
-        integer :: i, code
-        lower = text
-        do i = 1, len(text)
-            code = iachar(text(i:i))
-            if (code >= iachar('A') .and. code <= iachar('Z')) then
-                lower(i:i) = achar(code - iachar('A') + iachar('a'))
-            end if
-        end do
-    end function lowercase
 
     ! -------------------------------------------------------------------------- paths
 

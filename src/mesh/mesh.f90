@@ -4,6 +4,7 @@
 module mesh
     use kinds, only: wp
     use element_types, only: ELEMENT_P1
+    use strings, only: NAME_LEN
     implicit none
     private
     public :: mesh_t
@@ -14,7 +15,7 @@ module mesh
         integer, allocatable :: cells(:, :)      !! (nodes_per_cell, n_cells), anticlockwise
         integer, allocatable :: edges(:, :)      !! (nodes_per_edge, n_edges): ends, then mid node
         integer, allocatable :: edge_part(:)     !! (n_edges) index into part_names
-        character(len=64), allocatable :: part_names(:)  !! boundary part names ('bottom'...)
+        character(len=NAME_LEN), allocatable :: part_names(:)  !! boundary parts ('bottom'...)
         ! Where a mesh read from a file came from, so that later checks (contact segment,
         ! inverted cells) can name the file and line; unallocated for generated meshes.
         character(len=:), allocatable :: file        !! path of the mesh file

@@ -19,9 +19,8 @@ module mesh_gmsh
                              element_nodes_per_cell
     use mesh_renumber, only: renumber_nodes, RENUMBER_RCM
     use shape_functions, only: evaluate_shape, reference_nodes, MAX_NODES
-    use strings, only: to_string
+    use strings, only: to_string, lowercase, NAME_LEN
     use sorting, only: sort_index
-    use input_config, only: lowercase
     implicit none
     private
     public :: read_gmsh, gmsh_type_name
@@ -29,7 +28,6 @@ module mesh_gmsh
     ! Gmsh element type numbers (MSH file format documentation, section "Node ordering").
     integer, parameter :: GMSH_LINE2 = 1, GMSH_TRIANGLE3 = 2, GMSH_QUAD4 = 3, &
                           GMSH_LINE3 = 8, GMSH_TRIANGLE6 = 9, GMSH_QUAD9 = 10, GMSH_POINT = 15
-    integer, parameter :: NAME_LEN = 64      !! as mesh_t%part_names
     integer, parameter :: MAX_CELL_NODES = 9
     ! det J at a node below this fraction of (cell diameter)^2 is "zero": the threshold the
     ! assembly (elasticity.f90) uses, so that a cell accepted here is accepted there.
