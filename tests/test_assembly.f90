@@ -13,7 +13,8 @@ program test_assembly
     use assembly, only: assemble_stiffness
     use csr_matrix, only: csr_matrix_t
     use elasticity, only: element_stiffness, plane_strain_matrix, lame_coefficients, &
-                          stiffness_rule, jacobian_at
+                          stiffness_rule
+    use cell_geometry, only: jacobian_at
     use quadrature, only: quadrature_rule_t, line_rule, triangle_rule, quad_rule
     use sparse_cholesky, only: cholesky_t
     use shape_functions, only: evaluate_shape, evaluate_line_shape, MAX_NODES

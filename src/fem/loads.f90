@@ -10,7 +10,8 @@ module loads
                              ELEMENT_P2
     use quadrature, only: quadrature_rule_t, line_rule
     use shape_functions, only: evaluate_shape, evaluate_line_shape, MAX_NODES
-    use elasticity, only: stiffness_rule, jacobian_at
+    use elasticity, only: stiffness_rule
+    use cell_geometry, only: jacobian_at
     use strings, only: to_string
     implicit none
     private

@@ -18,7 +18,7 @@ module mesh_gmsh
     use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, &
                              element_nodes_per_cell
     use mesh_renumber, only: renumber_nodes, RENUMBER_RCM
-    use shape_functions, only: evaluate_shape, reference_nodes, MAX_NODES
+    use cell_geometry, only: cell_orientation, CELL_DEGENERATE, CELL_FOLDED
     use strings, only: to_string, lowercase, NAME_LEN
     use sorting, only: sort_index
     use text_tokens, only: integers_at, read_ints, read_int, read_reals, skip_tokens, &
@@ -31,12 +31,8 @@ module mesh_gmsh
     integer, parameter :: GMSH_LINE2 = 1, GMSH_TRIANGLE3 = 2, GMSH_QUAD4 = 3, &
                           GMSH_LINE3 = 8, GMSH_TRIANGLE6 = 9, GMSH_QUAD9 = 10, GMSH_POINT = 15
     integer, parameter :: MAX_CELL_NODES = 9
-    ! det J at a node below this fraction of (cell diameter)^2 is "zero": the threshold the
-    ! assembly (elasticity.f90) uses, so that a cell accepted here is accepted there.
-    real(wp), parameter :: DEGENERATE_FRACTION = 64.0_wp*epsilon(1.0_wp)
     ! z of a 2D mesh is written as 0 by Gmsh; allow round-off of a rotated plane geometry.
     real(wp), parameter :: PLANAR_TOL = 1.0e-10_wp
-    integer, parameter :: DEGENERATE = 0, FOLDED = 2   !! cell_orientation besides +-1
     ! Coordinates are below 1e100 in magnitude (text_tokens' MAX_DECIMAL_EXPONENT): far beyond
     ! any length in metres, and products of coordinate differences (Jacobians) stay finite.
     character(len=*), parameter :: REAL_HINT = '(decimal numbers below 1e100 in magnitude)'
@@ -1041,10 +1037,11 @@ contains
         end subroutine check_planar
     end subroutine build_mesh
 
-    !> Check every cell's Jacobian at its nodes and orient the cells anticlockwise: a
-    !> surface (entity) whose cells are all clockwise is reoriented; a cell whose
-    !> orientation differs from the others of its surface is inverted, one with a vanishing
-    !> or sign-changing Jacobian degenerate or folded.
+    !> Check every cell's Jacobian at its nodes (cell_geometry: the test element_stiffness
+    !> applies, so that a cell accepted here is accepted there) and orient the cells
+    !> anticlockwise: a surface (entity) whose cells are all clockwise is reoriented; a cell
+    !> whose orientation differs from the others of its surface is inverted, one with a
+    !> vanishing or sign-changing Jacobian degenerate or folded.
     subroutine orient_cells(path, entity, m, n_reoriented, stat)
         character(len=*), intent(in) :: path
         integer, intent(in) :: entity(:)
@@ -1063,9 +1060,9 @@ contains
         s = 0
         do c = 1, m%n_cells()
             orientation(c) = cell_orientation(m%element, m%coords(:, m%cells(:, c)))
-            if (orientation(c) == DEGENERATE .or. orientation(c) == FOLDED) then
+            if (orientation(c) == CELL_DEGENERATE .or. orientation(c) == CELL_FOLDED) then
                 problem = 'degenerate: zero area (its corners are collinear or coincide)'
-                if (orientation(c) == FOLDED) then
+                if (orientation(c) == CELL_FOLDED) then
                     problem = 'inverted or degenerate: its Jacobian determinant vanishes or ' &
                               //'changes sign at a node (a folded or flat cell'
                     if (n > 4) problem = problem//', or misplaced mid-edge nodes'
@@ -1116,45 +1113,6 @@ contains
             n_reoriented = n_reoriented + 1
         end do
     end subroutine orient_cells
-
-    !> +1 (anticlockwise) or -1 (clockwise) when det J has one sign, clear of zero, at every
-    !> node of the cell; else DEGENERATE (det J ~ 0 everywhere) or FOLDED.
-    pure function cell_orientation(element, xy) result(orientation)
-        integer, intent(in) :: element
-        real(wp), intent(in) :: xy(:, :)
-        integer :: orientation
-        real(wp) :: ref_nodes(2, MAX_NODES), values(MAX_NODES), gradients(2, MAX_NODES)
-        real(wp) :: jacobian(2, 2), det, det_min, det_max, diameter2, tol
-        integer :: a, b, n
-
-        n = size(xy, 2)
-        call reference_nodes(element, ref_nodes)
-        det_min = huge(1.0_wp)
-        det_max = -huge(1.0_wp)
-        do a = 1, n
-            call evaluate_shape(element, ref_nodes(:, a), values, gradients)
-            jacobian = matmul(xy, transpose(gradients(:, 1:n)))
-            det = jacobian(1, 1)*jacobian(2, 2) - jacobian(1, 2)*jacobian(2, 1)
-            det_min = min(det_min, det)
-            det_max = max(det_max, det)
-        end do
-        diameter2 = 0.0_wp
-        do a = 1, n
-            do b = a + 1, n
-                diameter2 = max(diameter2, sum((xy(:, a) - xy(:, b))**2))
-            end do
-        end do
-        tol = DEGENERATE_FRACTION*diameter2
-        if (det_min > tol) then
-            orientation = 1
-        else if (det_max < -tol) then
-            orientation = -1
-        else if (max(abs(det_min), abs(det_max)) <= tol) then
-            orientation = DEGENERATE
-        else
-            orientation = FOLDED
-        end if
-    end function cell_orientation
 
     !> Node order that turns a clockwise cell anticlockwise: corners reversed after the
     !> first, mid-edge nodes following their edges.
