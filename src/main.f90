@@ -9,7 +9,8 @@ program nceig
     use process_exit, only: exit_with
     use timer, only: wall_time, timings_t
     use run_config, only: config_t
-    use input_config, only: read_input, help_text
+    use input_config, only: read_input
+    use input_help, only: help_text
     use problem, only: problem_t, build_problem
     use eigen_analysis, only: eigen_result_t, solve_eigen
     use results_output, only: write_eigen_outputs, summary_lines

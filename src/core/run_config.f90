@@ -33,7 +33,9 @@ module run_config
     end type material_config_t
 
     type, public :: analysis_config_t
-        character(len=NAME_LEN) :: kind = 'eigen'   !! 'eigen' | 'threshold' | 'branch' | 'solve'
+        !> one of input_validation's ACCEPTED_ANALYSES: 'eigen', 'threshold', 'lambda_sweep',
+        !> 'branch', 'solve'
+        character(len=NAME_LEN) :: kind = 'eigen'
         real(wp) :: lambda = 5.0_wp
     end type analysis_config_t
 

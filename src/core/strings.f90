@@ -9,6 +9,7 @@ module strings
     private
     public :: to_string, zero_padded, short_real_text, seconds_text
     public :: lowercase, split_names, split_words, count_names, normalized_list
+    public :: quoted, one_of
     public :: NAME_LEN, LIST_LEN
 
     !> Names of elements, solvers, analyses and boundary parts (input file and mesh alike),
@@ -176,4 +177,23 @@ contains
             end if
         end do
     end function normalized_list
+
+    !> `text` trimmed, in single quotes: how a name is shown in messages and help.
+    pure function quoted(text) result(q)
+        character(len=*), intent(in) :: text
+        character(len=:), allocatable :: q
+        q = "'"//trim(text)//"'"
+    end function quoted
+
+    !> "'a', 'b', 'c'": the accepted values of a choice, for messages and help.
+    pure function one_of(choices) result(text)
+        character(len=*), intent(in) :: choices(:)
+        character(len=:), allocatable :: text
+        integer :: i
+        text = ''
+        do i = 1, size(choices)
+            if (i > 1) text = text//', '
+            text = text//quoted(choices(i))
+        end do
+    end function one_of
 end module strings
