@@ -4,12 +4,13 @@
 program nceig
     use iso_fortran_env, only: error_unit, output_unit
     use kinds, only: wp
-    use status, only: status_t, STATUS_BAD_INPUT
+    use status, only: status_t
     use version, only: NCEIG_VERSION
     use process_exit, only: exit_with
     use timer, only: wall_time, timings_t
     use run_config, only: config_t
     use input_config, only: read_input
+    use command_line, only: command_t, read_command_line
     use input_help, only: help_text
     use problem, only: problem_t, build_problem
     use eigen_analysis, only: eigen_result_t, solve_eigen
@@ -32,29 +33,22 @@ program nceig
     type(solve_result_t) :: solve_res
     type(timings_t) :: timings
     type(status_t) :: stat
-    character(len=:), allocatable :: argument
+    type(command_t) :: command
     real(wp) :: start, phase
-    integer :: length
 
-    if (command_argument_count() /= 1) then
-        write (error_unit, '(a)') 'nceig: expected one argument: nceig INPUT.nml | --help | '// &
-            '--version'
-        call exit_with(STATUS_BAD_INPUT)
-    end if
-    call get_command_argument(1, length=length)
-    allocate (character(len=length) :: argument)
-    call get_command_argument(1, argument)
-    select case (argument)
-    case ('--help', '-h')
+    call read_command_line(command, stat)
+    call stop_on_failure(stat)
+    select case (command%action)
+    case ('help')
         write (output_unit, '(a)') help_text()
         call exit_with(0)
-    case ('--version', '-V')
+    case ('version')
         write (output_unit, '(a)') 'nceig '//NCEIG_VERSION
         call exit_with(0)
     end select
 
     start = wall_time()
-    call read_input(argument, config, stat)
+    call read_input(command%input, config, stat, command%settings)
     call stop_on_failure(stat)
 
     phase = wall_time()
@@ -102,7 +96,7 @@ program nceig
         write (output_unit, '(a)') summary_lines(config, prob, res, timings)
     end select
     ! gfortran 12 keeps main-program allocatables in a frame gone before LeakSanitizer looks
-    deallocate (argument)
+    deallocate (command%action, command%input, command%settings)
     if (allocated(plot_note)) deallocate (plot_note)
 
 contains

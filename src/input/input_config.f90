@@ -1,13 +1,15 @@
 ! SPDX-License-Identifier: MIT
 !> Reads the namelist input file into a validated `config_t`: scans its groups
 !> (namelist_scan), reads each through its record (input_records), then checks the values
-!> (input_validation) and resolves the paths. Every default lives in `run_config`.
+!> (input_validation) and resolves the paths; values of `--set` go through the same records
+!> and rules. Every default lives in `run_config`.
 module input_config
     use status, only: status_t, STATUS_BAD_INPUT
     use run_config, only: config_t
     use namelist_scan, only: group_text_t, text_t, scan_groups, group_body, has_group, &
-                             split_assignments
-    use input_records, only: read_record, expectation, KNOWN_GROUPS
+                             split_assignments, group_list
+    use input_records, only: read_record, expectation, is_text_variable, KNOWN_GROUPS
+    use strings, only: lowercase
     use input_validation, only: validate_config
     use iso_fortran_env, only: iostat_end
     use filesystem, only: is_directory
@@ -25,11 +27,18 @@ contains
     !> relative to the input file's folder, and an empty output `directory` becomes
     !> default_output_directory(path). Any problem gives STATUS_BAD_INPUT with a one-line
     !> message naming the file, the group and the variable.
-    subroutine read_input(path, config, stat)
+    !> `settings` ('group%variable=value', the --set options) then override the file, in
+    !> order, as one-assignment records; a path so given stays relative to the working
+    !> directory. Their problems name '--set' instead of the file, and so does a broken rule
+    !> when the file alone keeps every rule.
+    subroutine read_input(path, config, stat, settings)
         character(len=*), intent(in) :: path
         type(config_t), intent(out) :: config
         type(status_t), intent(out) :: stat
+        type(text_t), intent(in), optional :: settings(:)
         type(group_text_t), allocatable :: groups(:)
+        type(config_t) :: file_config
+        type(status_t) :: file_stat, set_stat
         character(len=:), allocatable :: input
         character(len=MSG_LEN) :: msg
         integer :: unit, ios, i
@@ -53,13 +62,28 @@ contains
         end do
         close (unit)
         if (.not. stat%ok()) return
-
-        call validate_config(config, input, stat)
-        if (.not. stat%ok()) return
-
+        ! Only the file's own path is relative to its folder (validation never shows it).
         if (len_trim(config%mesh%file) > 0) then
             config%mesh%file = resolve_relative(input, config%mesh%file)
         end if
+
+        if (present(settings)) then
+            file_config = config
+            do i = 1, size(settings)
+                call apply_setting(settings(i)%text, config, stat)
+                if (.not. stat%ok()) return
+            end do
+        end if
+        call validate_config(config, input, stat)
+        if (.not. stat%ok() .and. present(settings)) then
+            call validate_config(file_config, input, file_stat)
+            if (file_stat%ok()) then
+                call validate_config(config, '--set', set_stat)
+                stat = set_stat
+            end if
+        end if
+        if (.not. stat%ok()) return
+
         if (len_trim(config%output%directory) == 0) then
             config%output%directory = default_output_directory(input)
         end if
@@ -106,6 +130,79 @@ contains
         text = path//': &'//group//': '//trim(msg)
         if (ios == iostat_end) text = text//" (is the closing '/' of the group missing?)"
     end function read_failure
+
+    !> Override one variable of `config` with `setting`, 'group%variable=value': read as the
+    !> record '&group variable = value /', quotes added around a text value given without.
+    subroutine apply_setting(setting, config, stat)
+        character(len=*), intent(in) :: setting
+        type(config_t), intent(inout) :: config
+        type(status_t), intent(inout) :: stat
+        character(len=:), allocatable :: label, group, variable, value, assignment
+        type(text_t), allocatable :: pieces(:)
+        character(len=MSG_LEN) :: msg
+        integer :: equals, percent, ios
+
+        label = '--set '//setting
+        equals = index(setting, '=')
+        percent = index(setting(:max(equals - 1, 0)), '%')
+        if (percent <= 1 .or. equals <= percent + 1) then
+            call malformed()
+            return
+        end if
+        group = lowercase(trim(adjustl(setting(:percent - 1))))
+        variable = trim(adjustl(setting(percent + 1:equals - 1)))
+        value = trim(adjustl(setting(equals + 1:)))
+        if (len(value) == 0) then
+            call malformed()
+            return
+        end if
+        if (.not. any(KNOWN_GROUPS == group)) then
+            call stat%fail(STATUS_BAD_INPUT, label//': unknown namelist group &'//group &
+                           //' (known groups: '//group_list(KNOWN_GROUPS)//')')
+            return
+        end if
+        if (is_text_variable(group, variable) .and. index('"'//"'", value(1:1)) == 0) then
+            value = '"'//doubled_quotes(value)//'"'
+        end if
+        assignment = variable//' = '//value
+        if (index('"'//"'", value(1:1)) == 0 .and. scan(value, '/&$!') > 0) then
+            ! They would end the record early or start a comment: part of the value lost.
+            call stat%fail(STATUS_BAD_INPUT, label//': &'//group//': '//assignment &
+                           //": expected one value, without '/', '&', '$' or '!'")
+            return
+        end if
+        pieces = split_assignments(assignment)
+        if (size(pieces) /= 1) then
+            call stat%fail(STATUS_BAD_INPUT, label//': &'//group//': '//variable &
+                           //': expected one variable per --set')
+            return
+        end if
+        msg = ''
+        call read_record(group, '&'//group//' '//assignment//' /', config, ios, msg)
+        if (ios /= 0) then
+            call stat%fail(STATUS_BAD_INPUT, label//': &'//group//': '//assignment//': ' &
+                           //trim(msg)//expectation(group, assignment))
+        end if
+
+    contains
+
+        subroutine malformed()
+            call stat%fail(STATUS_BAD_INPUT, label//': expected group%variable=value (such ' &
+                           //'as analysis%lambda=2.5)')
+        end subroutine malformed
+
+        !> `text` with each double quote doubled, as a double-quoted namelist value needs.
+        pure function doubled_quotes(text) result(escaped)
+            character(len=*), intent(in) :: text
+            character(len=:), allocatable :: escaped
+            integer :: k
+            escaped = ''
+            do k = 1, len(text)
+                escaped = escaped//text(k:k)
+                if (text(k:k) == '"') escaped = escaped//'"'
+            end do
+        end function doubled_quotes
+    end subroutine apply_setting
 
     ! -------------------------------------------------------------------------- paths
 

@@ -27,12 +27,16 @@ contains
         type(config_t) :: d
         character(len=*), parameter :: NL = new_line('a')
 
-        text = 'Usage: nceig INPUT.nml | --help | --version'//NL//NL &
+        text = 'Usage: nceig INPUT.nml | --help | --version'//NL &
+               //'       nceig INPUT.nml --set group%variable=value [--set ...]'//NL//NL &
                //'Finds the critical interface parameters of the normal compliance friction' &
                //NL//'model: the eigenvalues mu of K phi = mu B phi for the plane-strain body' &
                //NL//'described by the namelist file INPUT.nml. Every variable is optional;' &
                //NL//'defaults are shown. Names are case-insensitive. Results go to the' &
-               //NL//'output directory: summary.json, eigenvalues.csv, mode_NNN.vtu.'//NL//NL
+               //NL//'output directory: summary.json, eigenvalues.csv, mode_NNN.vtu.'//NL//NL &
+               //'--set group%variable=value overrides one variable of INPUT.nml, with the' &
+               //NL//'same checks (--set analysis%lambda=2.5 --set mesh%element=q2; names need' &
+               //NL//'no quotes). A path given so is relative to the working directory.'//NL//NL
         text = text//'&mesh'//NL &
                //entry('source', quoted(d%mesh%source), 'one of '//one_of(MESH_SOURCES)) &
                //entry('file', quoted(d%mesh%file), "Gmsh .msh (source = 'gmsh'), relative" &

@@ -8,7 +8,7 @@ module input_records
     use strings, only: lowercase, normalized_list, NAME_LEN, LIST_LEN
     implicit none
     private
-    public :: read_record, expectation, reader_variables, typed_variables
+    public :: read_record, expectation, reader_variables, typed_variables, is_text_variable
     public :: KNOWN_GROUPS
 
     !> Namelist groups, in the order they are read, validated and documented.
@@ -118,6 +118,19 @@ contains
                      VARIABLE_TYPES(i)(space + 1:index(VARIABLE_TYPES(i), ':') - 1)]
         end do
     end function typed_variables
+
+    !> Whether `variable` of `group` holds text (a name, path or list of names), whose value
+    !> the namelist reads only between quotes: --set adds them when they are left out.
+    pure logical function is_text_variable(group, variable)
+        character(len=*), intent(in) :: group, variable
+        character(len=:), allocatable :: entry
+        integer :: i
+        is_text_variable = .false.
+        entry = trim(group)//' '//lowercase(trim(adjustl(variable)))//':a quoted'
+        do i = 1, size(VARIABLE_TYPES)
+            if (index(VARIABLE_TYPES(i), entry) == 1) is_text_variable = .true.
+        end do
+    end function is_text_variable
 
     ! Each reader copies the current values into locals named like the namelist variables,
     ! reads the record from the internal file `record`, and only on success copies them

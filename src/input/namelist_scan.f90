@@ -10,7 +10,8 @@ module namelist_scan
     use iso_fortran_env, only: iostat_end
     implicit none
     private
-    public :: group_text_t, text_t, scan_groups, group_body, has_group, split_assignments
+    public :: group_text_t, text_t, scan_groups, group_body, has_group, split_assignments, &
+              group_list
 
     integer, parameter :: MSG_LEN = 1024     !! iomsg buffers
     character(len=*), parameter :: NAME_CHARS = &
