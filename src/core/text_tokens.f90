@@ -25,6 +25,7 @@ contains
         call read_ints(line, pos, values, integers_at)
     end function integers_at
 
+    !> size(values) integers from `pos` on, as read_int reads each; not ok at the first miss.
     pure subroutine read_ints(line, pos, values, ok)
         character(len=*), intent(in) :: line
         integer, intent(inout) :: pos
@@ -191,6 +192,7 @@ contains
         end do
     end subroutine skip_tokens
 
+    !> Move `pos` to the next non-blank character, or past the end of the line.
     pure subroutine skip_blanks(line, pos)
         character(len=*), intent(in) :: line
         integer, intent(inout) :: pos

@@ -16,6 +16,7 @@ module element_types
 
 contains
 
+    !> Nodes of one cell of ELEMENT_* `element`; 0 for an unknown code.
     pure integer function element_nodes_per_cell(element)
         integer, intent(in) :: element
         select case (element)
@@ -27,6 +28,7 @@ contains
         end select
     end function element_nodes_per_cell
 
+    !> Nodes of one edge (2 or 3); 0 for an unknown code.
     pure integer function element_nodes_per_edge(element)
         integer, intent(in) :: element
         select case (element)
@@ -48,6 +50,7 @@ contains
         end select
     end function element_from_name
 
+    !> 'p1', 'q1', 'p2' or 'q2' of an ELEMENT_* code; '??' for any other.
     pure function element_name(element) result(name)
         integer, intent(in) :: element
         character(len=2) :: name

@@ -187,6 +187,7 @@ contains
         end do
     end function group_body
 
+    !> Whether the file has group `name`: an absent group keeps its defaults.
     pure logical function has_group(groups, name)
         type(group_text_t), intent(in) :: groups(:)
         character(len=*), intent(in) :: name
