@@ -7,7 +7,8 @@ program bench_mesh_refine
     use iso_fortran_env, only: output_unit, error_unit
     use kinds, only: wp
     use status, only: status_t
-    use mesh, only: mesh_t, ELEMENT_P1, ELEMENT_P2
+    use mesh, only: mesh_t
+    use element_types, only: ELEMENT_P1, ELEMENT_P2
     use mesh_structured, only: structured_rectangle
     use mesh_refine, only: refinable_mesh_t, build_refinable_mesh
     use gmsh_writer, only: write_gmsh

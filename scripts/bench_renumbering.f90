@@ -10,7 +10,8 @@ program bench_renumbering
     use iso_fortran_env, only: output_unit, error_unit
     use kinds, only: wp, i8
     use status, only: status_t
-    use mesh, only: mesh_t, element_name
+    use mesh, only: mesh_t
+    use element_types, only: element_name
     use mesh_gmsh, only: read_gmsh
     use mesh_renumber, only: renumber_nodes, node_bandwidth, RENUMBER_NONE, RENUMBER_METIS
     use dof_map, only: dof_map_t, build_dof_map

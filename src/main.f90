@@ -10,7 +10,9 @@ program nceig
     use timer, only: wall_time, timings_t, PHASE_ASSEMBLY
     use strings, only: to_string
     use run_config, only: config_t
-    use input_config, only: read_input, help_text
+    use input_config, only: read_input
+    use command_line, only: command_t, read_command_line
+    use input_help, only: help_text
     use problem, only: problem_t, build_problem
     use analysis_base, only: analysis_t, run_analysis
     use analysis_registry, only: new_analysis
@@ -22,29 +24,22 @@ program nceig
     character(len=:), allocatable :: note
     type(timings_t) :: timings
     type(status_t) :: stat
-    character(len=:), allocatable :: argument
+    type(command_t) :: command
     real(wp) :: start, phase
-    integer :: length
 
-    if (command_argument_count() /= 1) then
-        write (error_unit, '(a)') 'nceig: expected one argument: nceig INPUT.nml | --help | '// &
-            '--version'
-        call exit_with(STATUS_BAD_INPUT)
-    end if
-    call get_command_argument(1, length=length)
-    allocate (character(len=length) :: argument)
-    call get_command_argument(1, argument)
-    select case (argument)
-    case ('--help', '-h')
+    call read_command_line(command, stat)
+    call stop_on_failure(stat)
+    select case (command%action)
+    case ('help')
         write (output_unit, '(a)') help_text()
         call exit_with(0)
-    case ('--version', '-V')
+    case ('version')
         write (output_unit, '(a)') 'nceig '//NCEIG_VERSION
         call exit_with(0)
     end select
 
     start = wall_time()
-    call read_input(argument, config, stat)
+    call read_input(command%input, config, stat, command%settings)
     call stop_on_failure(stat)
 
     call new_analysis(trim(config%analysis%kind), analysis)
@@ -71,7 +66,7 @@ program nceig
     if (len(note) > 0) write (output_unit, '(a)') note
     call stop_on_failure(stat)
     ! gfortran 12 keeps main-program allocatables in a frame gone before LeakSanitizer looks
-    deallocate (argument)
+    deallocate (command%action, command%input, command%settings)
     deallocate (analysis, note)
 
 contains

@@ -4,7 +4,8 @@
 !> One copy here, so a fix reaches every test that uses them.
 module fixtures
     use kinds, only: wp
-    use mesh, only: mesh_t, ELEMENT_P1
+    use mesh, only: mesh_t
+    use element_types, only: ELEMENT_P1
     use csr_matrix, only: csr_matrix_t
     use eigen_analysis, only: eigen_result_t
     implicit none

@@ -2,7 +2,8 @@
 !> MSH 4.1 and MSH 2.2 files of a structured mesh, for the tests of the Gmsh reader (the
 !> reader's round trip and the seeds of its fuzz test).
 module msh_writer
-    use mesh, only: mesh_t, ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2
+    use mesh, only: mesh_t
+    use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2
     use strings, only: to_string
     implicit none
     private

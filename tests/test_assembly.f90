@@ -5,13 +5,16 @@
 program test_assembly
     use kinds, only: wp
     use status, only: status_t, STATUS_MESH, STATUS_BAD_INPUT
-    use mesh, only: mesh_t, ELEMENT_P1, ELEMENT_P2, ELEMENT_Q2, element_name
+    use mesh, only: mesh_t
+    use element_types, only: ELEMENT_P1, ELEMENT_P2, ELEMENT_Q2, element_name, &
+                             element_nodes_per_cell
     use mesh_structured, only: structured_rectangle
     use dof_map, only: dof_map_t, build_dof_map, cell_dofs
     use assembly, only: assemble_stiffness
     use csr_matrix, only: csr_matrix_t
     use elasticity, only: element_stiffness, plane_strain_matrix, lame_coefficients, &
-                          jacobian_at
+                          stiffness_rule
+    use cell_geometry, only: jacobian_at
     use quadrature, only: quadrature_rule_t, line_rule, triangle_rule, quad_rule
     use sparse_cholesky, only: cholesky_t
     use shape_functions, only: evaluate_shape, evaluate_line_shape, MAX_NODES

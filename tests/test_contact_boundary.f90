@@ -6,7 +6,8 @@ program test_contact_boundary
     use status, only: status_t, STATUS_MESH
     use testing, only: test_suite_t
     use fixtures, only: single_triangle
-    use mesh, only: mesh_t, ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2
+    use mesh, only: mesh_t
+    use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2
     use mesh_structured, only: structured_rectangle
     use dof_map, only: dof_map_t, build_dof_map
     use contact_boundary, only: contact_t, build_contact, assemble_b, edge_mass

@@ -7,7 +7,8 @@ program test_critical_lambda
     use status, only: status_t
     use testing, only: test_suite_t
     use fixtures, only: single_triangle
-    use mesh, only: mesh_t, ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2
+    use mesh, only: mesh_t
+    use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2
     use mesh_structured, only: structured_rectangle
     use dof_map, only: dof_map_t, build_dof_map
     use assembly, only: assemble_stiffness
@@ -19,8 +20,7 @@ program test_critical_lambda
     use lapack_interfaces, only: dgeev
     use critical_lambda, only: thresholds_t, pencil_thresholds, lowest_positive_mu, &
                                confirm_thresholds, SIDE_PLUS, SIDE_MINUS
-    use run_config, only: sweep_config_t
-    use input_config, only: sweep_lambdas
+    use run_config, only: sweep_config_t, sweep_lambdas
     implicit none
 
 

@@ -6,7 +6,8 @@ program test_dense_eigen
     use status, only: status_t
     use testing, only: test_suite_t
     use fixtures, only: single_triangle, csr_to_dense
-    use mesh, only: mesh_t, ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2
+    use mesh, only: mesh_t
+    use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2
     use mesh_structured, only: structured_rectangle
     use dof_map, only: dof_map_t, build_dof_map
     use assembly, only: assemble_stiffness

@@ -2,7 +2,8 @@
 !> Free-dof numbering: Dirichlet parts fix whole nodes, the rest are numbered node by node.
 program test_dof_map
     use status, only: status_t, STATUS_BAD_INPUT
-    use mesh, only: mesh_t, ELEMENT_P1, ELEMENT_Q2
+    use mesh, only: mesh_t
+    use element_types, only: ELEMENT_P1, ELEMENT_Q2
     use mesh_structured, only: structured_rectangle
     use dof_map, only: dof_map_t, build_dof_map, cell_dofs
     use kinds, only: wp

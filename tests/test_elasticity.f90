@@ -3,8 +3,8 @@
 !> rigid-body modes and rank on distorted elements, and the inverted-cell report.
 program test_elasticity
     use kinds, only: wp
-    use mesh, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, element_nodes_per_cell, &
-                    element_name
+    use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, &
+                             element_nodes_per_cell, element_name
     use elasticity, only: plane_strain_matrix, lame_coefficients, element_stiffness, &
                           ELEMENT_OK, ELEMENT_INVERTED, ELEMENT_BAD_ARGUMENT
     use testing, only: test_suite_t

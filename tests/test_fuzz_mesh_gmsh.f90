@@ -14,8 +14,9 @@
 program test_fuzz_mesh_gmsh
     use kinds, only: wp, i8
     use status, only: status_t
-    use mesh, only: mesh_t, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, element_nodes_per_cell, &
-                    element_nodes_per_edge
+    use mesh, only: mesh_t
+    use element_types, only: ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, element_nodes_per_cell, &
+                             element_nodes_per_edge
     use mesh_structured, only: structured_rectangle
     use mesh_gmsh, only: read_gmsh
     use strings, only: to_string

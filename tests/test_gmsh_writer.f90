@@ -6,7 +6,8 @@
 program test_gmsh_writer
     use kinds, only: wp
     use status, only: status_t, STATUS_BAD_INPUT, STATUS_IO
-    use mesh, only: mesh_t, ELEMENT_P1, ELEMENT_P2, ELEMENT_Q2, element_name
+    use mesh, only: mesh_t
+    use element_types, only: ELEMENT_P1, ELEMENT_P2, ELEMENT_Q2, element_name
     use mesh_structured, only: structured_rectangle
     use mesh_refine, only: refinable_mesh_t, build_refinable_mesh
     use mesh_gmsh, only: read_gmsh

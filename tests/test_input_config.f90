@@ -4,9 +4,10 @@
 program test_input_config
     use kinds, only: wp
     use status, only: status_t, STATUS_BAD_INPUT
-    use run_config, only: config_t, NAME_LEN
-    use input_config, only: read_input, split_names, lowercase, help_text, &
-                            default_output_directory, resolve_relative
+    use run_config, only: config_t
+    use strings, only: NAME_LEN, split_names, lowercase
+    use input_config, only: read_input, default_output_directory, resolve_relative
+    use input_help, only: help_text
     use testing, only: test_suite_t
     implicit none
     type(test_suite_t) :: t

@@ -6,7 +6,8 @@
 program test_mesh_gmsh
     use kinds, only: wp
     use status, only: status_t, STATUS_MESH, STATUS_BAD_INPUT
-    use mesh, only: mesh_t, ELEMENT_P1, ELEMENT_Q2, element_name
+    use mesh, only: mesh_t
+    use element_types, only: ELEMENT_P1, ELEMENT_Q2, element_name
     use mesh_structured, only: structured_rectangle
     use mesh_gmsh, only: read_gmsh
     use mesh_renumber, only: node_order, node_bandwidth, renumber_nodes, RENUMBER_NONE, &

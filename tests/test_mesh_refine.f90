@@ -7,7 +7,8 @@
 program test_mesh_refine
     use kinds, only: wp, PI
     use status, only: status_t, STATUS_BAD_INPUT, STATUS_MESH
-    use mesh, only: mesh_t, ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, element_name
+    use mesh, only: mesh_t
+    use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, element_name
     use mesh_structured, only: structured_rectangle, PART_BOTTOM, PART_RIGHT, PART_TOP, &
                                PART_LEFT
     use mesh_refine, only: refinable_mesh_t, build_refinable_mesh

@@ -4,7 +4,8 @@
 program test_mesh_structured
     use kinds, only: wp
     use status, only: status_t, STATUS_BAD_INPUT
-    use mesh, only: mesh_t, ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, element_name
+    use mesh, only: mesh_t
+    use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, element_name
     use mesh_structured, only: structured_rectangle
     use testing, only: test_suite_t
     implicit none

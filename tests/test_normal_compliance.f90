@@ -6,7 +6,8 @@ program test_normal_compliance
     use kinds, only: wp
     use status, only: status_t
     use testing, only: test_suite_t
-    use mesh, only: mesh_t, ELEMENT_P1, ELEMENT_Q2, element_name
+    use mesh, only: mesh_t
+    use element_types, only: ELEMENT_P1, ELEMENT_Q2, element_name
     use mesh_structured, only: structured_rectangle
     use dof_map, only: dof_map_t, build_dof_map, node_dofs
     use assembly, only: assemble_stiffness

@@ -3,7 +3,7 @@
 !> nodal (Kronecker delta), sum to one, and their gradients match finite differences.
 program test_quadrature
     use kinds, only: wp
-    use mesh, only: ELEMENT_P1, ELEMENT_Q2, element_nodes_per_cell, element_name
+    use element_types, only: ELEMENT_P1, ELEMENT_Q2, element_nodes_per_cell, element_name
     use quadrature, only: quadrature_rule_t, triangle_rule, quad_rule, line_rule
     use shape_functions, only: evaluate_shape, evaluate_line_shape, reference_nodes, MAX_NODES
     use testing, only: test_suite_t

@@ -9,7 +9,7 @@ program test_singular_stiffness
     use testing, only: test_suite_t
     use timer, only: timings_t
     use run_config, only: config_t
-    use mesh, only: ELEMENT_P1, ELEMENT_Q2
+    use element_types, only: ELEMENT_P1, ELEMENT_Q2
     use mesh_structured, only: structured_rectangle
     use problem, only: problem_t
     use eigen_analysis, only: eigen_result_t, solve_eigen

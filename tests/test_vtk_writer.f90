@@ -10,7 +10,8 @@ program test_vtk_writer
     use iso_fortran_env, only: int8, int32, int64
     use kinds, only: wp, i8
     use status, only: status_t, STATUS_INTERNAL, STATUS_IO
-    use mesh, only: mesh_t, ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2
+    use mesh, only: mesh_t
+    use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2
     use mesh_structured, only: structured_rectangle
     use vtk_writer, only: write_vtu, vtk_cell_type, vtk_node_order, machine_byte_order, &
                           VTK_BINARY, VTK_ASCII

@@ -9,7 +9,7 @@ module eigen_analysis
     use real_format, only: real_to_text
     use run_config, only: config_t
     use problem, only: problem_t
-    use mesh, only: element_name
+    use element_types, only: element_name
     use csr_matrix, only: csr_matrix_t
     use sparse_cholesky, only: cholesky_t
     use contact_reduction, only: factor_stiffness

@@ -20,7 +20,7 @@ module eigen_run
     use csv_writer, only: csv_writer_t
     use vtk_writer, only: write_vtu
     use matrix_market, only: write_matrix_market
-    use mesh, only: element_name
+    use element_types, only: element_name
     use blas_info, only: blas_in_use
     implicit none
     private

@@ -4,9 +4,10 @@
 module problem
     use kinds, only: wp
     use status, only: status_t, STATUS_BAD_INPUT
-    use run_config, only: config_t, NAME_LEN
-    use input_config, only: split_names
-    use mesh, only: mesh_t, element_from_name
+    use run_config, only: config_t
+    use strings, only: NAME_LEN, split_names
+    use mesh, only: mesh_t
+    use element_types, only: element_from_name
     use mesh_structured, only: structured_rectangle
     use mesh_gmsh, only: read_gmsh
     use dof_map, only: dof_map_t, build_dof_map

@@ -14,8 +14,7 @@ module threshold_analysis
     use timer, only: wall_time, timings_t, PHASE_ASSEMBLY, PHASE_REDUCTION
     use strings, only: to_string, seconds_text
     use real_format, only: real_to_text
-    use run_config, only: config_t
-    use input_config, only: sweep_lambdas
+    use run_config, only: config_t, sweep_lambdas
     use problem, only: problem_t
     use sparse_cholesky, only: cholesky_t
     use contact_boundary, only: assemble_b

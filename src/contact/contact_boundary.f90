@@ -6,7 +6,8 @@
 module contact_boundary
     use kinds, only: wp
     use status, only: status_t, STATUS_BAD_INPUT, STATUS_MESH
-    use mesh, only: mesh_t, element_nodes_per_edge
+    use mesh, only: mesh_t
+    use element_types, only: element_nodes_per_edge
     use dof_map, only: dof_map_t
     use csr_matrix, only: csr_matrix_t, csr_from_element_dofs
     use strings, only: to_string

@@ -1,13 +1,16 @@
 ! SPDX-License-Identifier: MIT
 !> Everything a run needs from its input file, validated, with the documented defaults.
-!> One component type per namelist group; `input_config` fills it from the file.
+!> One component type per namelist group; `input_config` fills it from the file. Functions
+!> of a record that the analyses need (sweep_lambdas) live here, beside the record.
 module run_config
     use kinds, only: wp
+    use strings, only: NAME_LEN, LIST_LEN
+    use ieee_arithmetic, only: ieee_is_finite
     implicit none
     private
+    public :: sweep_lambdas, count_set_lambdas, lambda_is_set
+    public :: NAME_LEN, LIST_LEN   !! of strings, for the users of the records
 
-    integer, parameter, public :: NAME_LEN = 64     !! element, solver, analysis names
-    integer, parameter, public :: LIST_LEN = 512    !! space-separated lists of side names
     integer, parameter, public :: PATH_LEN = 4096
 
     type, public :: mesh_config_t
@@ -30,7 +33,9 @@ module run_config
     end type material_config_t
 
     type, public :: analysis_config_t
-        character(len=NAME_LEN) :: kind = 'eigen'   !! 'eigen' | 'threshold' | 'branch' | 'solve'
+        !> one of input_validation's ACCEPTED_ANALYSES: 'eigen', 'threshold', 'lambda_sweep',
+        !> 'branch', 'solve'
+        character(len=NAME_LEN) :: kind = 'eigen'
         real(wp) :: lambda = 5.0_wp
     end type analysis_config_t
 
@@ -106,4 +111,54 @@ module run_config
         type(branch_config_t) :: branch
         type(solve_config_t) :: solve
     end type config_t
+
+contains
+
+    !> The lambdas of a validated &sweep: the explicit list if any, else the range, evenly
+    !> spaced ('linear') or in geometric progression ('log', one sign), ends included exactly.
+    pure function sweep_lambdas(c) result(lambdas)
+        type(sweep_config_t), intent(in) :: c
+        real(wp), allocatable :: lambdas(:)
+        real(wp) :: ratio
+        integer :: n, i
+
+        n = count_set_lambdas(c)
+        if (n > 0) then
+            lambdas = c%lambdas(1:n)
+            return
+        end if
+        n = c%n_lambda
+        allocate (lambdas(n))
+        if (c%spacing == 'log') then
+            ratio = c%lambda_max/c%lambda_min   ! > 0: one sign
+            do i = 1, n
+                lambdas(i) = c%lambda_min*ratio**(real(i - 1, wp)/real(n - 1, wp))
+            end do
+        else
+            do i = 1, n
+                lambdas(i) = c%lambda_min + (c%lambda_max - c%lambda_min)* &
+                             (real(i - 1, wp)/real(n - 1, wp))
+            end do
+        end if
+        lambdas(1) = c%lambda_min
+        lambdas(n) = c%lambda_max
+    end function sweep_lambdas
+
+    !> Number of leading entries of &sweep lambdas that were set.
+    pure integer function count_set_lambdas(c)
+        type(sweep_config_t), intent(in) :: c
+        count_set_lambdas = 0
+        do while (count_set_lambdas < size(c%lambdas))
+            if (.not. lambda_is_set(c%lambdas(count_set_lambdas + 1))) exit
+            count_set_lambdas = count_set_lambdas + 1
+        end do
+    end function count_set_lambdas
+
+    !> An entry of &sweep lambdas differs from the unset mark huge(); NaN and infinities
+    !> count as set so that validation rejects them (and no ordered comparison sees a NaN).
+    elemental logical function lambda_is_set(x)
+        real(wp), intent(in) :: x
+        lambda_is_set = .not. ieee_is_finite(x)
+        if (.not. lambda_is_set) lambda_is_set = x < huge(1.0_wp)
+    end function lambda_is_set
 end module run_config

@@ -1,11 +1,22 @@
 ! SPDX-License-Identifier: MIT
-!> Number-to-text conversions for messages, file names and the stdout summaries. Every
-!> module uses these rather than a local twin, so a count or a time reads the same everywhere.
+!> Number-to-text conversions for messages, file names and the stdout summaries, and the
+!> handling of names (case, blank-separated lists) shared by the input file, the Gmsh reader
+!> and the Matrix Market reader. Every module uses these rather than a local twin, so a
+!> count or a time reads the same everywhere and a name is compared the same way everywhere.
 module strings
     use kinds, only: wp, i8
     implicit none
     private
     public :: to_string, zero_padded, short_real_text, seconds_text
+    public :: lowercase, split_names, split_words, count_names, normalized_list
+    public :: quoted, one_of
+    public :: NAME_LEN, LIST_LEN
+
+    !> Names of elements, solvers, analyses and boundary parts (input file and mesh alike),
+    !> so that a part name read from a mesh always fits the variable that names it.
+    integer, parameter :: NAME_LEN = 64
+    integer, parameter :: LIST_LEN = 512    !! blank-separated lists of names
+    character(len=*), parameter :: BLANKS = ' '//achar(9)   !! separators in name lists
 
     interface to_string
         module procedure integer_to_string, long_integer_to_string, real_to_string
@@ -76,4 +87,113 @@ contains
         text = trim(buffer)
         if (text(1:1) == '.') text = '0'//text
     end function seconds_text
+
+    !> `text` with ASCII capitals turned to small letters.
+    elemental function lowercase(text) result(lower)
+        character(len=*), intent(in) :: text
+        character(len=len(text)) :: lower
+        integer :: i, code
+        lower = text
+        do i = 1, len(text)
+            code = iachar(text(i:i))
+            if (code >= iachar('A') .and. code <= iachar('Z')) then
+                lower(i:i) = achar(code - iachar('A') + iachar('a'))
+            end if
+        end do
+    end function lowercase
+
+    !> The blank-separated names of `list`, in order, each at most NAME_LEN characters
+    !> (longer ones are cut; read_input rejects them). gfortran 12 -O3 falsely warns of an
+    !> uninitialised descriptor when the result is the first value of an allocatable:
+    !> allocate that empty beforehand.
+    pure function split_names(list) result(names)
+        character(len=*), intent(in) :: list
+        character(len=NAME_LEN), allocatable :: names(:)
+        character(len=LIST_LEN), allocatable :: words(:)
+        integer :: i
+        call split_words(list, words)
+        allocate (names(size(words)))
+        do i = 1, size(words)
+            names(i) = words(i)(:NAME_LEN)
+        end do
+    end function split_names
+
+    !> The blank-separated words of `list`, uncut (lists are at most LIST_LEN long).
+    !> A subroutine with a fixed length: a function result of length len(list) crashes
+    !> gfortran 12, and assigning a function result draws false -Wuninitialized at -O3.
+    pure subroutine split_words(list, words)
+        character(len=*), intent(in) :: list
+        character(len=LIST_LEN), allocatable, intent(out) :: words(:)
+        integer :: i, n_words
+        logical :: in_word
+
+        n_words = 0
+        in_word = .false.
+        do i = 1, len(list)
+            if (index(BLANKS, list(i:i)) > 0) then
+                in_word = .false.
+            else if (.not. in_word) then
+                in_word = .true.
+                n_words = n_words + 1
+            end if
+        end do
+        allocate (words(n_words))
+        words = ''
+        n_words = 0
+        in_word = .false.
+        do i = 1, len(list)
+            if (index(BLANKS, list(i:i)) > 0) then
+                in_word = .false.
+                cycle
+            else if (.not. in_word) then
+                in_word = .true.
+                n_words = n_words + 1
+            end if
+            words(n_words) = trim(words(n_words))//list(i:i)
+        end do
+    end subroutine split_words
+
+    !> Number of blank-separated names in `list`.
+    pure integer function count_names(list)
+        character(len=*), intent(in) :: list
+        character(len=LIST_LEN), allocatable :: words(:)
+        call split_words(list, words)
+        count_names = size(words)
+    end function count_names
+
+    !> `list` lowercased, its names separated by single blanks.
+    pure function normalized_list(list) result(normal)
+        character(len=*), intent(in) :: list
+        character(len=len(list)) :: normal
+        character(len=LIST_LEN), allocatable :: words(:)
+        integer :: i
+        call split_words(lowercase(list), words)
+        normal = ''
+        do i = 1, size(words)
+            if (i == 1) then
+                normal = words(i)
+            else
+                normal = trim(normal)//' '//words(i)
+            end if
+        end do
+    end function normalized_list
+
+    !> `text` trimmed, in single quotes: how a name is shown in messages and help.
+    pure function quoted(text) result(q)
+        character(len=*), intent(in) :: text
+        character(len=:), allocatable :: q
+        q = "'"//trim(text)//"'"
+    end function quoted
+
+    !> "'a', 'b', 'c'": the accepted values of a choice, for messages and help.
+    pure function one_of(choices) result(text)
+        character(len=*), intent(in) :: choices(:)
+        character(len=:), allocatable :: text
+        integer :: i
+        text = ''
+        do i = 1, size(choices)
+            if (i > 1) text = text//', '
+            text = text//quoted(choices(i))
+        end do
+    end function one_of
 end module strings

@@ -4,7 +4,8 @@
 module assembly
     use kinds, only: wp, N_DIM
     use status, only: status_t, STATUS_BAD_INPUT, STATUS_MESH, STATUS_INTERNAL
-    use mesh, only: mesh_t, element_nodes_per_cell
+    use mesh, only: mesh_t
+    use element_types, only: element_nodes_per_cell
     use dof_map, only: dof_map_t, cell_dofs
     use csr_matrix, only: csr_matrix_t, csr_from_element_dofs
     use strings, only: to_string, short_real_text

@@ -3,23 +3,21 @@
 !> bilinear form a(u, v) = int sigma(u) : eps(v).
 module elasticity
     use kinds, only: wp, N_DIM
-    use mesh, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, element_nodes_per_cell
+    use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, &
+                             element_nodes_per_cell
     use quadrature, only: quadrature_rule_t, triangle_rule, quad_rule
     use shape_functions, only: evaluate_shape, reference_nodes, MAX_NODES
+    use cell_geometry, only: det_range, orientation_of, CELL_ANTICLOCKWISE
     implicit none
     private
-    public :: plane_strain_matrix, lame_coefficients, element_stiffness, stiffness_rule, &
-              jacobian_at
+    public :: plane_strain_matrix, lame_coefficients, element_stiffness, stiffness_rule
     public :: ELEMENT_OK, ELEMENT_INVERTED, ELEMENT_BAD_ARGUMENT
 
     ! Outcomes of element_stiffness; the caller, which knows the cell number, words them.
     integer, parameter :: ELEMENT_OK = 0
-    integer, parameter :: ELEMENT_INVERTED = 1       !! det J <= 0 (or negligible): see below
+    !> det J <= 0, or negligible by cell_geometry's test (the Gmsh reader's too)
+    integer, parameter :: ELEMENT_INVERTED = 1
     integer, parameter :: ELEMENT_BAD_ARGUMENT = 2   !! unknown element or wrong array shapes
-
-    ! det J is called degenerate below this fraction of (cell diameter)^2: a sliver so thin
-    ! that its stiffness is dominated by round-off is as unusable as an inverted cell.
-    real(wp), parameter :: DEGENERATE_FRACTION = 64.0_wp*epsilon(1.0_wp)
 
 contains
 
@@ -55,21 +53,6 @@ contains
         end select
     end function stiffness_rule
 
-    !> Jacobian matrix J(i, j) = d x_i / d xi_j of the map from the reference element and
-    !> its determinant, at reference point `xi`, for the cell with node coordinates `xy`.
-    pure subroutine jacobian_at(element, xy, xi, jacobian, det)
-        integer, intent(in) :: element
-        real(wp), intent(in) :: xy(:, :)   !! (2, nodes per cell)
-        real(wp), intent(in) :: xi(2)
-        real(wp), intent(out) :: jacobian(2, 2), det
-        real(wp) :: values(MAX_NODES), gradients(2, MAX_NODES)
-        integer :: n
-        n = size(xy, 2)
-        call evaluate_shape(element, xi, values, gradients)
-        jacobian = matmul(xy, transpose(gradients(:, 1:n)))
-        det = jacobian(1, 1)*jacobian(2, 2) - jacobian(1, 2)*jacobian(2, 1)
-    end subroutine jacobian_at
-
     !> Element stiffness matrix in dof order (u_x1, u_y1, u_x2, u_y2, ...), integrated with
     !> stiffness_rule(element). `info` is ELEMENT_OK, or ELEMENT_INVERTED when det J is
     !> non-positive or negligible at a node or quadrature point (an inverted or degenerate
@@ -85,7 +68,8 @@ contains
         type(quadrature_rule_t) :: rule
         real(wp) :: values(MAX_NODES), ref_gradients(2, MAX_NODES), grad(2, MAX_NODES)
         real(wp) :: ref_nodes(2, MAX_NODES), jacobian(2, 2), inverse_t(2, 2), det
-        real(wp) :: smallest, diameter2, lame_l, shear_g, c_normal, c_lame, c_shear
+        real(wp) :: smallest, largest, node_min, node_max, lame_l, shear_g, c_normal, c_lame, &
+                    c_shear
         real(wp) :: ax, ay, bx, by
         integer :: n, a, b, q
 
@@ -102,26 +86,15 @@ contains
         ! det J at the quadrature points and, unless J is constant (P1), at the nodes too: a
         ! bilinear quadrilateral with a re-entrant corner can have det J > 0 at every Gauss
         ! point, and for Q1 det J is linear in (xi, eta), so its minimum is at a corner.
-        smallest = huge(1.0_wp)
+        call det_range(element, xy, rule%points(:, 1:rule%n_points), smallest, largest)
         if (element /= ELEMENT_P1) then
             call reference_nodes(element, ref_nodes)
-            do a = 1, n
-                call jacobian_at(element, xy, ref_nodes(:, a), jacobian, det)
-                smallest = min(smallest, det)
-            end do
+            call det_range(element, xy, ref_nodes(:, 1:n), node_min, node_max)
+            smallest = min(node_min, smallest)
+            largest = max(node_max, largest)
         end if
-        do q = 1, rule%n_points
-            call jacobian_at(element, xy, rule%points(:, q), jacobian, det)
-            smallest = min(smallest, det)
-        end do
-        diameter2 = 0.0_wp
-        do a = 1, n
-            do b = a + 1, n
-                diameter2 = max(diameter2, sum((xy(:, a) - xy(:, b))**2))
-            end do
-        end do
         if (present(min_det)) min_det = smallest
-        if (.not. smallest > DEGENERATE_FRACTION*diameter2) then
+        if (orientation_of(smallest, largest, xy) /= CELL_ANTICLOCKWISE) then
             info = ELEMENT_INVERTED
             return
         end if

@@ -5,11 +5,13 @@
 module loads
     use kinds, only: wp, N_DIM
     use status, only: status_t, STATUS_MESH
-    use mesh, only: mesh_t, element_nodes_per_edge, element_nodes_per_cell, ELEMENT_P1, &
-                    ELEMENT_P2
+    use mesh, only: mesh_t
+    use element_types, only: element_nodes_per_edge, element_nodes_per_cell, ELEMENT_P1, &
+                             ELEMENT_P2
     use quadrature, only: quadrature_rule_t, line_rule
     use shape_functions, only: evaluate_shape, evaluate_line_shape, MAX_NODES
-    use elasticity, only: stiffness_rule, jacobian_at
+    use elasticity, only: stiffness_rule
+    use cell_geometry, only: jacobian_at
     use strings, only: to_string
     use dof_map, only: node_dofs
     implicit none

@@ -6,7 +6,7 @@ module csv_table
     use kinds, only: wp
     use status, only: status_t, STATUS_BAD_INPUT
     use strings, only: to_string
-    use input_config, only: read_line
+    use text_file, only: read_line
     use ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use iso_fortran_env, only: iostat_end
     implicit none

@@ -12,8 +12,9 @@ module gmsh_writer
     use kinds, only: wp
     use status, only: status_t, STATUS_BAD_INPUT, STATUS_IO
     use strings, only: to_string
-    use mesh, only: mesh_t, ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, &
-                    element_nodes_per_cell, element_nodes_per_edge
+    use mesh, only: mesh_t
+    use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, &
+                             element_nodes_per_cell, element_nodes_per_edge
     use filesystem, only: rename_file, remove_file
     implicit none
     private

@@ -5,9 +5,8 @@ module matrix_market
     use kinds, only: wp
     use status, only: status_t, STATUS_IO, STATUS_BAD_INPUT
     use csr_matrix, only: csr_matrix_t
-    use strings, only: to_string
+    use strings, only: to_string, lowercase
     use sorting, only: sort_index
-    use input_config, only: lowercase
     implicit none
     private
     public :: write_matrix_market, read_matrix_market

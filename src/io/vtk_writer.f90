@@ -10,8 +10,9 @@ module vtk_writer
     use kinds, only: wp, i8, N_DIM
     use status, only: status_t, STATUS_IO, STATUS_INTERNAL
     use strings, only: to_string
-    use mesh, only: mesh_t, element_nodes_per_cell, ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, &
-                    ELEMENT_Q2
+    use mesh, only: mesh_t
+    use element_types, only: element_nodes_per_cell, ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, &
+                             ELEMENT_Q2
     implicit none
     private
     public :: write_vtu, vtk_cell_type, vtk_node_order, machine_byte_order

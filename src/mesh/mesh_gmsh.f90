@@ -14,13 +14,15 @@
 module mesh_gmsh
     use kinds, only: wp, i8
     use status, only: status_t, STATUS_MESH
-    use mesh, only: mesh_t, ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, &
-                    element_nodes_per_cell
+    use mesh, only: mesh_t
+    use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, &
+                             element_nodes_per_cell
     use mesh_renumber, only: renumber_nodes, RENUMBER_RCM
-    use shape_functions, only: evaluate_shape, reference_nodes, MAX_NODES
-    use strings, only: to_string
+    use cell_geometry, only: cell_orientation, CELL_DEGENERATE, CELL_FOLDED
+    use strings, only: to_string, lowercase, NAME_LEN
     use sorting, only: sort_index
-    use input_config, only: lowercase
+    use text_tokens, only: integers_at, read_ints, read_int, read_reals, skip_tokens, &
+                           skip_blanks
     implicit none
     private
     public :: read_gmsh, gmsh_type_name
@@ -28,17 +30,11 @@ module mesh_gmsh
     ! Gmsh element type numbers (MSH file format documentation, section "Node ordering").
     integer, parameter :: GMSH_LINE2 = 1, GMSH_TRIANGLE3 = 2, GMSH_QUAD4 = 3, &
                           GMSH_LINE3 = 8, GMSH_TRIANGLE6 = 9, GMSH_QUAD9 = 10, GMSH_POINT = 15
-    integer, parameter :: NAME_LEN = 64      !! as mesh_t%part_names
     integer, parameter :: MAX_CELL_NODES = 9
-    ! det J at a node below this fraction of (cell diameter)^2 is "zero": the threshold the
-    ! assembly (elasticity.f90) uses, so that a cell accepted here is accepted there.
-    real(wp), parameter :: DEGENERATE_FRACTION = 64.0_wp*epsilon(1.0_wp)
     ! z of a 2D mesh is written as 0 by Gmsh; allow round-off of a rotated plane geometry.
     real(wp), parameter :: PLANAR_TOL = 1.0e-10_wp
-    integer, parameter :: DEGENERATE = 0, FOLDED = 2   !! cell_orientation besides +-1
-    ! Coordinates must be below 1e100 in magnitude: far beyond any length in metres, and the
-    ! reader's products of coordinate differences (Jacobians, squared diameters) stay finite.
-    integer, parameter :: MAX_DECIMAL_EXPONENT = 99
+    ! Coordinates are below 1e100 in magnitude (text_tokens' MAX_DECIMAL_EXPONENT): far beyond
+    ! any length in metres, and products of coordinate differences (Jacobians) stay finite.
     character(len=*), parameter :: REAL_HINT = '(decimal numbers below 1e100 in magnitude)'
     character(len=*), parameter :: FORMAT_HINT = 'write ASCII with gmsh -format msh41 ' &
                                                  //'(or -format msh22)'
@@ -782,195 +778,6 @@ contains
         end if
     end subroutine read_counts
 
-    !> True when `line` starts with size(values) integers, stored in `values`.
-    logical function integers_at(line, values)
-        character(len=*), intent(in) :: line
-        integer, intent(out) :: values(:)
-        integer :: pos
-        pos = 1
-        call read_ints(line, pos, values, integers_at)
-    end function integers_at
-
-    pure subroutine read_ints(line, pos, values, ok)
-        character(len=*), intent(in) :: line
-        integer, intent(inout) :: pos
-        integer, intent(out) :: values(:)
-        logical, intent(out) :: ok
-        integer :: i
-        ok = .true.
-        values = 0
-        do i = 1, size(values)
-            call read_int(line, pos, values(i), ok)
-            if (.not. ok) return
-        end do
-    end subroutine read_ints
-
-    !> The integer starting at or after `pos` (blanks skipped); `pos` moves past it. Not ok
-    !> when there is none, or it is followed by something other than a blank, or overflows.
-    !> Hand-written because list-directed reads dominated the reading time of large files.
-    pure subroutine read_int(line, pos, value, ok)
-        character(len=*), intent(in) :: line
-        integer, intent(inout) :: pos
-        integer, intent(out) :: value
-        logical, intent(out) :: ok
-        integer(i8) :: accumulated
-        integer :: digit, n_digits
-        logical :: negative
-        ok = .false.
-        value = 0
-        call skip_blanks(line, pos)
-        if (pos > len(line)) return
-        negative = line(pos:pos) == '-'
-        if (negative .or. line(pos:pos) == '+') pos = pos + 1
-        accumulated = 0
-        n_digits = 0
-        do while (pos <= len(line))
-            digit = iachar(line(pos:pos)) - iachar('0')
-            if (digit < 0 .or. digit > 9) exit
-            accumulated = 10*accumulated + digit
-            if (accumulated > huge(value)) return
-            n_digits = n_digits + 1
-            pos = pos + 1
-        end do
-        if (n_digits == 0) return
-        if (pos <= len(line)) then
-            if (.not. is_blank(line(pos:pos))) return
-        end if
-        value = int(accumulated)
-        if (negative) value = -value
-        ok = .true.
-    end subroutine read_int
-
-    !> size(values) reals from the blank-separated tokens at or after `pos` (moved past
-    !> them); what follows on the line is not read (the parametric coordinates of MSH 4.1).
-    !> Not ok unless each token is a decimal number ('-1.5', '2e-3') below 1e100 in
-    !> magnitude: a list-directed read alone would accept NaN and Infinity, leave values
-    !> unset on ',' and '/', repeat them on '3*1', and trap on an overflowing '1e999'.
-    subroutine read_reals(line, pos, values, ok)
-        character(len=*), intent(in) :: line
-        integer, intent(inout) :: pos
-        real(wp), intent(out) :: values(:)
-        logical, intent(out) :: ok
-        integer :: first, i, ios
-        values = 0.0_wp
-        call skip_blanks(line, pos)
-        first = pos
-        do i = 1, size(values)
-            call skip_decimal(line, pos, ok)
-            if (.not. ok) return
-        end do
-        ! The tokens are checked: one list-directed read of them all is safe, and fast.
-        read (line(first:pos - 1), *, iostat=ios) values
-        ok = ios == 0
-    end subroutine read_reals
-
-    !> Move `pos` past one token [+-]digits[.digits][(e|E|d|D)[+-]digits] (the mantissa may
-    !> also be '.digits' or 'digits.') whose value is below 10**(MAX_DECIMAL_EXPONENT + 1)
-    !> in magnitude; not ok otherwise.
-    pure subroutine skip_decimal(line, pos, ok)
-        character(len=*), intent(in) :: line
-        integer, intent(inout) :: pos
-        logical, intent(out) :: ok
-        integer, parameter :: NONE = huge(1), EXPONENT_CAP = 100000
-        integer :: n_digits, n_integer, leading, exponent, n_exponent_digits
-        logical :: negative_exponent
-
-        ok = .false.
-        call skip_blanks(line, pos)
-        if (pos > len(line)) return
-        if (line(pos:pos) == '-' .or. line(pos:pos) == '+') pos = pos + 1
-        ! leading: decimal exponent of the first non-zero digit, counted from the end of
-        ! the integer part while in it (NONE while only zeros were seen).
-        leading = NONE
-        n_digits = 0
-        do while (pos <= len(line))
-            if (.not. is_digit(line(pos:pos))) exit
-            n_digits = n_digits + 1
-            if (leading == NONE .and. line(pos:pos) /= '0') leading = -n_digits
-            pos = pos + 1
-        end do
-        n_integer = n_digits
-        if (leading /= NONE) leading = leading + n_integer   ! 0 for '5', 1 for '12'
-        if (pos <= len(line)) then
-            if (line(pos:pos) == '.') then
-                pos = pos + 1
-                do while (pos <= len(line))
-                    if (.not. is_digit(line(pos:pos))) exit
-                    n_digits = n_digits + 1
-                    if (leading == NONE .and. line(pos:pos) /= '0') &
-                        leading = n_integer - n_digits             ! -1 for '0.5'
-                    pos = pos + 1
-                end do
-            end if
-        end if
-        if (n_digits == 0) return
-        exponent = 0
-        if (pos <= len(line)) then
-            if (index('eEdD', line(pos:pos)) > 0) then
-                pos = pos + 1
-                if (pos > len(line)) return
-                negative_exponent = line(pos:pos) == '-'
-                if (negative_exponent .or. line(pos:pos) == '+') pos = pos + 1
-                n_exponent_digits = 0
-                do while (pos <= len(line))
-                    if (.not. is_digit(line(pos:pos))) exit
-                    ! Capped: only whether it passes the bound matters.
-                    exponent = min(10*exponent + iachar(line(pos:pos)) - iachar('0'), &
-                                   EXPONENT_CAP)
-                    n_exponent_digits = n_exponent_digits + 1
-                    pos = pos + 1
-                end do
-                if (n_exponent_digits == 0) return
-                if (negative_exponent) exponent = -exponent
-            end if
-        end if
-        if (pos <= len(line)) then
-            if (.not. is_blank(line(pos:pos))) return
-        end if
-        ok = leading == NONE
-        if (.not. ok) ok = leading + exponent <= MAX_DECIMAL_EXPONENT
-    end subroutine skip_decimal
-
-    elemental logical function is_digit(c)
-        character, intent(in) :: c
-        is_digit = c >= '0' .and. c <= '9'
-    end function is_digit
-
-    !> Move `pos` past `n` blank-separated tokens of any kind.
-    pure subroutine skip_tokens(line, pos, n, ok)
-        character(len=*), intent(in) :: line
-        integer, intent(inout) :: pos
-        integer, intent(in) :: n
-        logical, intent(out) :: ok
-        integer :: i
-        ok = .true.
-        do i = 1, n
-            call skip_blanks(line, pos)
-            if (pos > len(line)) then
-                ok = .false.
-                return
-            end if
-            do while (pos <= len(line))
-                if (is_blank(line(pos:pos))) exit
-                pos = pos + 1
-            end do
-        end do
-    end subroutine skip_tokens
-
-    pure subroutine skip_blanks(line, pos)
-        character(len=*), intent(in) :: line
-        integer, intent(inout) :: pos
-        do while (pos <= len(line))
-            if (.not. is_blank(line(pos:pos))) exit
-            pos = pos + 1
-        end do
-    end subroutine skip_blanks
-
-    elemental logical function is_blank(c)
-        character, intent(in) :: c
-        is_blank = c == ' ' .or. c == achar(9) .or. c == achar(13)
-    end function is_blank
-
     ! ------------------------------------------------------------------ checks and mesh
 
     !> The checked mesh from what the file said.
@@ -1230,10 +1037,11 @@ contains
         end subroutine check_planar
     end subroutine build_mesh
 
-    !> Check every cell's Jacobian at its nodes and orient the cells anticlockwise: a
-    !> surface (entity) whose cells are all clockwise is reoriented; a cell whose
-    !> orientation differs from the others of its surface is inverted, one with a vanishing
-    !> or sign-changing Jacobian degenerate or folded.
+    !> Check every cell's Jacobian at its nodes (cell_geometry: the test element_stiffness
+    !> applies, so that a cell accepted here is accepted there) and orient the cells
+    !> anticlockwise: a surface (entity) whose cells are all clockwise is reoriented; a cell
+    !> whose orientation differs from the others of its surface is inverted, one with a
+    !> vanishing or sign-changing Jacobian degenerate or folded.
     subroutine orient_cells(path, entity, m, n_reoriented, stat)
         character(len=*), intent(in) :: path
         integer, intent(in) :: entity(:)
@@ -1252,9 +1060,9 @@ contains
         s = 0
         do c = 1, m%n_cells()
             orientation(c) = cell_orientation(m%element, m%coords(:, m%cells(:, c)))
-            if (orientation(c) == DEGENERATE .or. orientation(c) == FOLDED) then
+            if (orientation(c) == CELL_DEGENERATE .or. orientation(c) == CELL_FOLDED) then
                 problem = 'degenerate: zero area (its corners are collinear or coincide)'
-                if (orientation(c) == FOLDED) then
+                if (orientation(c) == CELL_FOLDED) then
                     problem = 'inverted or degenerate: its Jacobian determinant vanishes or ' &
                               //'changes sign at a node (a folded or flat cell'
                     if (n > 4) problem = problem//', or misplaced mid-edge nodes'
@@ -1305,45 +1113,6 @@ contains
             n_reoriented = n_reoriented + 1
         end do
     end subroutine orient_cells
-
-    !> +1 (anticlockwise) or -1 (clockwise) when det J has one sign, clear of zero, at every
-    !> node of the cell; else DEGENERATE (det J ~ 0 everywhere) or FOLDED.
-    pure function cell_orientation(element, xy) result(orientation)
-        integer, intent(in) :: element
-        real(wp), intent(in) :: xy(:, :)
-        integer :: orientation
-        real(wp) :: ref_nodes(2, MAX_NODES), values(MAX_NODES), gradients(2, MAX_NODES)
-        real(wp) :: jacobian(2, 2), det, det_min, det_max, diameter2, tol
-        integer :: a, b, n
-
-        n = size(xy, 2)
-        call reference_nodes(element, ref_nodes)
-        det_min = huge(1.0_wp)
-        det_max = -huge(1.0_wp)
-        do a = 1, n
-            call evaluate_shape(element, ref_nodes(:, a), values, gradients)
-            jacobian = matmul(xy, transpose(gradients(:, 1:n)))
-            det = jacobian(1, 1)*jacobian(2, 2) - jacobian(1, 2)*jacobian(2, 1)
-            det_min = min(det_min, det)
-            det_max = max(det_max, det)
-        end do
-        diameter2 = 0.0_wp
-        do a = 1, n
-            do b = a + 1, n
-                diameter2 = max(diameter2, sum((xy(:, a) - xy(:, b))**2))
-            end do
-        end do
-        tol = DEGENERATE_FRACTION*diameter2
-        if (det_min > tol) then
-            orientation = 1
-        else if (det_max < -tol) then
-            orientation = -1
-        else if (max(abs(det_min), abs(det_max)) <= tol) then
-            orientation = DEGENERATE
-        else
-            orientation = FOLDED
-        end if
-    end function cell_orientation
 
     !> Node order that turns a clockwise cell anticlockwise: corners reversed after the
     !> first, mid-edge nodes following their edges.

@@ -20,7 +20,8 @@ module mesh_refine
     use kinds, only: wp
     use status, only: status_t, STATUS_BAD_INPUT, STATUS_MESH
     use strings, only: to_string, short_real_text
-    use mesh, only: mesh_t, ELEMENT_P1, ELEMENT_P2, element_name
+    use mesh, only: mesh_t
+    use element_types, only: ELEMENT_P1, ELEMENT_P2, element_name
     implicit none
     private
     public :: refinable_mesh_t, build_refinable_mesh

@@ -5,8 +5,9 @@ module mesh_structured
     use kinds, only: wp, i8
     use status, only: status_t, STATUS_BAD_INPUT
     use strings, only: to_string, short_real_text
-    use mesh, only: mesh_t, ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, &
-                    element_nodes_per_cell, element_nodes_per_edge
+    use mesh, only: mesh_t
+    use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, &
+                             element_nodes_per_cell, element_nodes_per_edge
     implicit none
     private
     public :: structured_rectangle

@@ -5,7 +5,7 @@
 !> the segment [-1, 1] with the end nodes at -1 and +1 and the mid node at 0.
 module shape_functions
     use kinds, only: wp
-    use mesh, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2
+    use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2
     implicit none
     private
     public :: evaluate_shape, evaluate_line_shape, reference_nodes, MAX_NODES

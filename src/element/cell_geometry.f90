@@ -1,0 +1,104 @@
+! SPDX-License-Identifier: MIT
+!> The geometry of one cell: the Jacobian of its map from the reference element, and the
+!> one test of when a cell is too flat or inverted to use. The Gmsh reader (which can name
+!> the file line) and element_stiffness (which must not integrate such a cell) both apply
+!> it, so that a cell the reader accepts is one the assembly accepts.
+module cell_geometry
+    use kinds, only: wp
+    use shape_functions, only: evaluate_shape, reference_nodes, MAX_NODES
+    implicit none
+    private
+    public :: jacobian_at, det_range, negligible_det, orientation_of, cell_orientation
+    public :: DEGENERATE_FRACTION, CELL_ANTICLOCKWISE, CELL_CLOCKWISE, CELL_DEGENERATE, &
+              CELL_FOLDED
+
+    !> det J is negligible at or below this fraction of (cell diameter)^2: a sliver so thin
+    !> that its stiffness is dominated by round-off is as unusable as an inverted cell.
+    real(wp), parameter :: DEGENERATE_FRACTION = 64.0_wp*epsilon(1.0_wp)
+
+    ! Outcomes of orientation_of: det J of one sign, clear of zero, at every point; det J
+    ! negligible at every point (collinear or coinciding corners); or neither (det J changes
+    ! sign or vanishes somewhere: a folded cell, or misplaced mid-edge nodes).
+    integer, parameter :: CELL_ANTICLOCKWISE = 1
+    integer, parameter :: CELL_CLOCKWISE = -1
+    integer, parameter :: CELL_DEGENERATE = 0
+    integer, parameter :: CELL_FOLDED = 2
+
+contains
+
+    !> Jacobian matrix J(i, j) = d x_i / d xi_j of the map from the reference element and
+    !> its determinant, at reference point `xi`, for the cell with node coordinates `xy`.
+    pure subroutine jacobian_at(element, xy, xi, jacobian, det)
+        integer, intent(in) :: element
+        real(wp), intent(in) :: xy(:, :)   !! (2, nodes per cell)
+        real(wp), intent(in) :: xi(2)
+        real(wp), intent(out) :: jacobian(2, 2), det
+        real(wp) :: values(MAX_NODES), gradients(2, MAX_NODES)
+        integer :: n
+        n = size(xy, 2)
+        call evaluate_shape(element, xi, values, gradients)
+        jacobian = matmul(xy, transpose(gradients(:, 1:n)))
+        det = jacobian(1, 1)*jacobian(2, 2) - jacobian(1, 2)*jacobian(2, 1)
+    end subroutine jacobian_at
+
+    !> Smallest and largest det J of cell `xy` at the reference points `points` (2, :),
+    !> taken in order (the order of min/max decides which NaN, if any, is seen).
+    pure subroutine det_range(element, xy, points, det_min, det_max)
+        integer, intent(in) :: element
+        real(wp), intent(in) :: xy(:, :)       !! (2, nodes per cell)
+        real(wp), intent(in) :: points(:, :)   !! (2, n_points), reference coordinates
+        real(wp), intent(out) :: det_min, det_max
+        real(wp) :: jacobian(2, 2), det
+        integer :: q
+        det_min = huge(1.0_wp)
+        det_max = -huge(1.0_wp)
+        do q = 1, size(points, 2)
+            call jacobian_at(element, xy, points(:, q), jacobian, det)
+            det_min = min(det_min, det)
+            det_max = max(det_max, det)
+        end do
+    end subroutine det_range
+
+    !> The |det J| at or below which cell `xy` counts as degenerate: DEGENERATE_FRACTION
+    !> times its squared diameter (largest node distance), so the test is scale-free.
+    pure real(wp) function negligible_det(xy)
+        real(wp), intent(in) :: xy(:, :)   !! (2, nodes per cell)
+        real(wp) :: diameter2
+        integer :: a, b
+        diameter2 = 0.0_wp
+        do a = 1, size(xy, 2)
+            do b = a + 1, size(xy, 2)
+                diameter2 = max(diameter2, sum((xy(:, a) - xy(:, b))**2))
+            end do
+        end do
+        negligible_det = DEGENERATE_FRACTION*diameter2
+    end function negligible_det
+
+    !> CELL_* of a cell whose det J ranges over [det_min, det_max] at the points checked,
+    !> against negligible_det(xy). Only CELL_ANTICLOCKWISE is a usable cell as it stands.
+    pure integer function orientation_of(det_min, det_max, xy)
+        real(wp), intent(in) :: det_min, det_max
+        real(wp), intent(in) :: xy(:, :)   !! (2, nodes per cell)
+        real(wp) :: tol
+        tol = negligible_det(xy)
+        if (det_min > tol) then
+            orientation_of = CELL_ANTICLOCKWISE
+        else if (det_max < -tol) then
+            orientation_of = CELL_CLOCKWISE
+        else if (max(abs(det_min), abs(det_max)) <= tol) then
+            orientation_of = CELL_DEGENERATE
+        else
+            orientation_of = CELL_FOLDED
+        end if
+    end function orientation_of
+
+    !> CELL_* of cell `xy` from det J at its nodes: where a mesh file's cells are checked.
+    pure integer function cell_orientation(element, xy)
+        integer, intent(in) :: element
+        real(wp), intent(in) :: xy(:, :)   !! (2, nodes per cell)
+        real(wp) :: ref_nodes(2, MAX_NODES), det_min, det_max
+        call reference_nodes(element, ref_nodes)
+        call det_range(element, xy, ref_nodes(:, 1:size(xy, 2)), det_min, det_max)
+        cell_orientation = orientation_of(det_min, det_max, xy)
+    end function cell_orientation
+end module cell_geometry

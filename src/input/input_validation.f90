@@ -1,0 +1,361 @@
+! SPDX-License-Identifier: MIT
+!> The rules an input must meet once read, checked in one place (validate_config) so that
+!> values from any source (file, command line) are judged alike; and the accepted values
+!> of each choice, which the help text shows. A broken rule gives STATUS_BAD_INPUT with
+!> one message 'path: &group: variable = value: expected ...'.
+module input_validation
+    use kinds, only: wp
+    use status, only: status_t, STATUS_BAD_INPUT
+    use run_config, only: config_t, mesh_config_t, material_config_t, analysis_config_t, &
+                          eigen_config_t, output_config_t, branch_config_t, solve_config_t, &
+                          sweep_config_t, count_set_lambdas, lambda_is_set
+    use strings, only: to_string, split_words, count_names, quoted, one_of, NAME_LEN, LIST_LEN
+    use real_format, only: real_to_text
+    use ieee_arithmetic, only: ieee_is_finite
+    implicit none
+    private
+    public :: validate_config
+    public :: MESH_SOURCES, ELEMENT_NAMES, DIAGONALS, RECTANGLE_SIDES, ACCEPTED_ANALYSES, &
+              ACCEPTED_SOLVERS, MAX_CELLS_PER_SIDE, SWEEP_SPACINGS, MAX_SWEEP_POINTS, &
+              VTK_FORMATS, SOLVE_DATA, SOLVE_STARTS
+
+    character(len=*), parameter :: MESH_SOURCES(*) = [character(len=9) :: 'rectangle', 'gmsh']
+    character(len=*), parameter :: ELEMENT_NAMES(*) = [character(len=2) :: &
+                                   'p1', 'q1', 'p2', 'q2']
+    character(len=*), parameter :: DIAGONALS(*) = [character(len=5) :: 'right', 'left']
+    character(len=*), parameter :: RECTANGLE_SIDES(*) = [character(len=6) :: &
+                                   'top', 'bottom', 'left', 'right']
+    !> Analyses this build can run; each new analysis adds its name here.
+    character(len=*), parameter :: ACCEPTED_ANALYSES(*) = [character(len=12) :: 'eigen', &
+                                   'threshold', 'lambda_sweep', 'branch', 'solve']
+    !> Eigensolvers this build offers.
+    character(len=*), parameter :: ACCEPTED_SOLVERS(*) = [character(len=6) :: 'dense', &
+                                                          'arpack', 'auto']
+    integer, parameter :: MAX_CELLS_PER_SIDE = 1000000
+    character(len=*), parameter :: SWEEP_SPACINGS(*) = [character(len=6) :: 'linear', 'log']
+    integer, parameter :: MAX_SWEEP_POINTS = 100000   !! n_lambda of a &sweep range
+    !> &output vtk_format: the encodings of vtk_writer (VTK_BINARY, VTK_ASCII).
+    character(len=*), parameter :: VTK_FORMATS(*) = [character(len=6) :: 'binary', 'ascii']
+    !> &solve data: loads of the input, or the data of SPEC section 5 at the critical point.
+    character(len=*), parameter :: SOLVE_DATA(*) = [character(len=6) :: 'given', 'branch']
+    !> &solve start: the starting guesses of the Newton iteration.
+    character(len=*), parameter :: SOLVE_STARTS(*) = [character(len=6) :: &
+                                   'zero', 'branch', 'random', 'mode']
+
+contains
+
+    !> Check every group of `config`, in the order of the groups, up to the first broken
+    !> rule; `path` (the input file) starts the message.
+    subroutine validate_config(config, path, stat)
+        type(config_t), intent(in) :: config
+        character(len=*), intent(in) :: path
+        type(status_t), intent(inout) :: stat
+        call validate_mesh(config%mesh, path, stat)
+        if (stat%ok()) call validate_material(config%material, path, stat)
+        if (stat%ok()) call validate_analysis(config%analysis, path, stat)
+        if (stat%ok()) call validate_eigen(config%eigen, path, stat)
+        if (stat%ok()) call validate_output(config%output, path, stat)
+        if (stat%ok()) call validate_sweep(config%sweep, path, stat)
+        if (stat%ok()) call validate_branch(config%branch, path, stat)
+        if (stat%ok()) call validate_solve(config%solve, path, stat)
+    end subroutine validate_config
+
+    subroutine validate_mesh(c, path, stat)
+        type(mesh_config_t), intent(in) :: c
+        character(len=*), intent(in) :: path
+        type(status_t), intent(inout) :: stat
+        character(len=*), parameter :: LIST_VARIABLES(3) = [character(len=9) :: &
+                                       'dirichlet', 'neumann', 'contact']
+        character(len=LIST_LEN) :: lists(3)
+        character(len=LIST_LEN), allocatable :: names(:), seen(:)
+        integer, allocatable :: seen_in(:)
+        integer :: k, i, j
+
+        if (.not. any(MESH_SOURCES == c%source)) then
+            call reject('source', quoted(c%source), 'one of '//one_of(MESH_SOURCES))
+        else if (c%source == 'gmsh' .and. len_trim(c%file) == 0) then
+            call reject('file', quoted(c%file), &
+                        "the path of a Gmsh .msh file when source = 'gmsh'")
+        else if (.not. positive_finite(c%width)) then
+            call reject('width', real_to_text(c%width), 'a finite number > 0')
+        else if (.not. positive_finite(c%height)) then
+            call reject('height', real_to_text(c%height), 'a finite number > 0')
+        else if (c%nx < 1 .or. c%nx > MAX_CELLS_PER_SIDE) then
+            call reject('nx', to_string(c%nx), &
+                        'an integer from 1 to '//to_string(MAX_CELLS_PER_SIDE))
+        else if (c%ny < 1 .or. c%ny > MAX_CELLS_PER_SIDE) then
+            call reject('ny', to_string(c%ny), &
+                        'an integer from 1 to '//to_string(MAX_CELLS_PER_SIDE))
+        else if (.not. any(ELEMENT_NAMES == c%element)) then
+            call reject('element', quoted(c%element), 'one of '//one_of(ELEMENT_NAMES))
+        else if (.not. any(DIAGONALS == c%diagonal)) then
+            call reject('diagonal', quoted(c%diagonal), 'one of '//one_of(DIAGONALS))
+        end if
+        if (.not. stat%ok()) return
+
+        lists = [c%dirichlet, c%neumann, c%contact]
+        do k = 1, 3
+            call split_words(lists(k), names)
+            do i = 1, size(names)
+                if (len_trim(names(i)) > NAME_LEN) then
+                    call reject(trim(LIST_VARIABLES(k)), quoted(lists(k)), 'names of at most ' &
+                                //to_string(NAME_LEN)//' characters')
+                else if (c%source == 'rectangle' .and. &
+                         .not. any(RECTANGLE_SIDES == names(i))) then
+                    call reject(trim(LIST_VARIABLES(k)), quoted(lists(k)), 'sides among ' &
+                                //one_of(RECTANGLE_SIDES)//" ('"//trim(names(i)) &
+                                //"' is not a side of the rectangle)")
+                end if
+                if (.not. stat%ok()) return
+            end do
+        end do
+        if (count_names(c%dirichlet) == 0) then
+            call reject('dirichlet', quoted(c%dirichlet), &
+                        'at least one side or group name (without a Dirichlet boundary K would ' &
+                        //'be singular)')
+            return
+        end if
+        if (count_names(c%contact) /= 1) then
+            call reject('contact', quoted(c%contact), 'exactly one side or group name ' &
+                        //'(the contact boundary is one straight segment)')
+            return
+        end if
+
+        allocate (seen(0), seen_in(0))
+        do k = 1, 3
+            call split_words(lists(k), names)
+            do i = 1, size(names)
+                do j = 1, size(seen)
+                    if (seen(j) /= names(i)) cycle
+                    if (seen_in(j) == k) then
+                        call reject(trim(LIST_VARIABLES(k)), quoted(lists(k)), &
+                                    "each name once ('"//trim(names(i))//"' is named twice)")
+                    else
+                        call reject(trim(LIST_VARIABLES(k)), quoted(lists(k)), &
+                                    'each name in only one of dirichlet, neumann, contact (' &
+                                    //quoted(names(i))//' is also in ' &
+                                    //trim(LIST_VARIABLES(seen_in(j)))//')')
+                    end if
+                    return
+                end do
+                seen = [character(len=LIST_LEN) :: seen, names(i)]
+                seen_in = [seen_in, k]
+            end do
+        end do
+
+    contains
+
+        subroutine reject(variable, value, expected)
+            character(len=*), intent(in) :: variable, value, expected
+            call fail_value(stat, path, 'mesh', variable, value, expected)
+        end subroutine reject
+    end subroutine validate_mesh
+
+    subroutine validate_material(c, path, stat)
+        type(material_config_t), intent(in) :: c
+        character(len=*), intent(in) :: path
+        type(status_t), intent(inout) :: stat
+        logical :: poisson_ok
+
+        poisson_ok = ieee_is_finite(c%poisson)
+        if (poisson_ok) poisson_ok = c%poisson > -1.0_wp .and. c%poisson < 0.5_wp
+        if (.not. positive_finite(c%young)) then
+            call fail_value(stat, path, 'material', 'young', real_to_text(c%young), &
+                            'a finite number > 0')
+        else if (.not. poisson_ok) then
+            call fail_value(stat, path, 'material', 'poisson', real_to_text(c%poisson), &
+                            '-1 < poisson < 0.5 (0.5 is incompressible, which this ' &
+                            //'displacement formulation cannot represent)')
+        end if
+    end subroutine validate_material
+
+    subroutine validate_analysis(c, path, stat)
+        type(analysis_config_t), intent(in) :: c
+        character(len=*), intent(in) :: path
+        type(status_t), intent(inout) :: stat
+
+        if (.not. any(ACCEPTED_ANALYSES == c%kind)) then
+            call fail_value(stat, path, 'analysis', 'kind', quoted(c%kind), &
+                            'one of '//one_of(ACCEPTED_ANALYSES))
+        else if (.not. ieee_is_finite(c%lambda)) then
+            call fail_value(stat, path, 'analysis', 'lambda', real_to_text(c%lambda), &
+                            'a finite number')
+        end if
+    end subroutine validate_analysis
+
+    subroutine validate_eigen(c, path, stat)
+        type(eigen_config_t), intent(in) :: c
+        character(len=*), intent(in) :: path
+        type(status_t), intent(inout) :: stat
+        logical :: tol_ok
+
+        tol_ok = ieee_is_finite(c%tol)
+        if (tol_ok) tol_ok = c%tol >= 0.0_wp .and. c%tol < 1.0_wp
+        if (.not. any(ACCEPTED_SOLVERS == c%solver)) then
+            call reject('solver', quoted(c%solver), 'one of '//one_of(ACCEPTED_SOLVERS))
+        else if (c%nev < 1) then
+            call reject('nev', to_string(c%nev), 'an integer >= 1')
+        else if (.not. ieee_is_finite(c%target)) then
+            call reject('target', real_to_text(c%target), 'a finite number')
+        else if (.not. tol_ok) then
+            call reject('tol', real_to_text(c%tol), 'a number in [0, 1) (0: machine precision)')
+        else if (c%maxit < 1) then
+            call reject('maxit', to_string(c%maxit), 'an integer >= 1')
+        else if (c%ncv /= 0 .and. c%ncv < c%nev + 2) then
+            call reject('ncv', to_string(c%ncv), '0 (automatic) or at least nev + 2 = ' &
+                        //to_string(c%nev + 2))
+        else if (c%dense_max_contact < 1) then
+            call reject('dense_max_contact', to_string(c%dense_max_contact), 'an integer >= 1')
+        end if
+
+    contains
+
+        subroutine reject(variable, value, expected)
+            character(len=*), intent(in) :: variable, value, expected
+            call fail_value(stat, path, 'eigen', variable, value, expected)
+        end subroutine reject
+    end subroutine validate_eigen
+
+    subroutine validate_output(c, path, stat)
+        type(output_config_t), intent(in) :: c
+        character(len=*), intent(in) :: path
+        type(status_t), intent(inout) :: stat
+
+        if (c%modes < 0) then
+            call fail_value(stat, path, 'output', 'modes', to_string(c%modes), 'an integer >= 0')
+        else if (.not. any(VTK_FORMATS == c%vtk_format)) then
+            call fail_value(stat, path, 'output', 'vtk_format', quoted(c%vtk_format), &
+                            'one of '//one_of(VTK_FORMATS))
+        end if
+    end subroutine validate_output
+
+    !> The list, when given, must be a prefix of finite values (unset entries are huge()).
+    !> A range needs lambda_min < lambda_max, and for 'log' one sign and no zero.
+    subroutine validate_sweep(c, path, stat)
+        type(sweep_config_t), intent(in) :: c
+        character(len=*), intent(in) :: path
+        type(status_t), intent(inout) :: stat
+        integer :: n_list, i
+
+        n_list = count_set_lambdas(c)
+        do i = 1, size(c%lambdas)
+            if (i <= n_list) then
+                if (.not. ieee_is_finite(c%lambdas(i))) then
+                    call reject('lambdas('//to_string(i)//')', real_to_text(c%lambdas(i)), &
+                                'a finite number')
+                    return
+                end if
+            else if (lambda_is_set(c%lambdas(i))) then
+                call reject('lambdas('//to_string(i)//')', real_to_text(c%lambdas(i)), &
+                            'consecutive entries from lambdas(1) (lambdas('//to_string(i - 1) &
+                            //') is unset)')
+                return
+            end if
+        end do
+        if (n_list > 0) return
+
+        if (.not. ieee_is_finite(c%lambda_min)) then
+            call reject('lambda_min', real_to_text(c%lambda_min), 'a finite number')
+        else if (.not. ieee_is_finite(c%lambda_max)) then
+            call reject('lambda_max', real_to_text(c%lambda_max), 'a finite number')
+        else if (.not. c%lambda_max > c%lambda_min) then
+            call reject('lambda_max', real_to_text(c%lambda_max), 'a number > lambda_min = ' &
+                        //real_to_text(c%lambda_min))
+        else if (c%n_lambda < 2 .or. c%n_lambda > MAX_SWEEP_POINTS) then
+            call reject('n_lambda', to_string(c%n_lambda), 'an integer from 2 to ' &
+                        //to_string(MAX_SWEEP_POINTS))
+        else if (.not. any(SWEEP_SPACINGS == c%spacing)) then
+            call reject('spacing', quoted(c%spacing), 'one of '//one_of(SWEEP_SPACINGS))
+        else if (c%spacing == 'log' .and. .not. (c%lambda_min > 0.0_wp .or. &
+                                                 c%lambda_max < 0.0_wp)) then
+            call reject('lambda_min', real_to_text(c%lambda_min), "lambda_min and lambda_max" &
+                        //" of one sign, both nonzero, with spacing = 'log' (lambda_max = " &
+                        //real_to_text(c%lambda_max)//')')
+        end if
+
+    contains
+
+        subroutine reject(variable, value, expected)
+            character(len=*), intent(in) :: variable, value, expected
+            call fail_value(stat, path, 'sweep', variable, value, expected)
+        end subroutine reject
+    end subroutine validate_sweep
+
+    subroutine validate_branch(c, path, stat)
+        type(branch_config_t), intent(in) :: c
+        character(len=*), intent(in) :: path
+        type(status_t), intent(inout) :: stat
+
+        if (.not. positive_finite(c%alpha)) then
+            call fail_value(stat, path, 'branch', 'alpha', real_to_text(c%alpha), &
+                            'a finite number > 0 (u_n of U on the contact boundary)')
+        else if (.not. positive_finite(c%beta)) then
+            call fail_value(stat, path, 'branch', 'beta', real_to_text(c%beta), &
+                            'a finite number > 0 (|u_t| of U on the contact boundary)')
+        else if (c%n_delta < 1) then
+            call fail_value(stat, path, 'branch', 'n_delta', to_string(c%n_delta), &
+                            'an integer >= 1')
+        else if (c%write_members < 0) then
+            call fail_value(stat, path, 'branch', 'write_members', to_string(c%write_members), &
+                            'an integer >= 0')
+        end if
+    end subroutine validate_branch
+
+    subroutine validate_solve(c, path, stat)
+        type(solve_config_t), intent(in) :: c
+        character(len=*), intent(in) :: path
+        type(status_t), intent(inout) :: stat
+        logical :: tol_ok
+
+        tol_ok = ieee_is_finite(c%tol)
+        if (tol_ok) tol_ok = c%tol > 0.0_wp .and. c%tol < 1.0_wp
+        if (.not. any(SOLVE_DATA == c%data)) then
+            call reject('data', quoted(c%data), 'one of '//one_of(SOLVE_DATA))
+        else if (.not. positive_finite(c%c_n)) then
+            call reject('c_n', real_to_text(c%c_n), 'a finite number > 0')
+        else if (.not. positive_finite(c%c_t)) then
+            call reject('c_t', real_to_text(c%c_t), 'a finite number > 0')
+        else if (.not. positive_finite(c%critical_factor)) then
+            call reject('critical_factor', real_to_text(c%critical_factor), 'a finite number > 0')
+        else if (.not. all(ieee_is_finite([c%f1, c%f2, c%t1, c%t2, c%u_d1, c%u_d2]))) then
+            call reject('f1, f2, t1, t2, u_d1, u_d2', real_to_text(c%f1)//', ' &
+                        //real_to_text(c%f2)//', '//real_to_text(c%t1)//', ' &
+                        //real_to_text(c%t2)//', '//real_to_text(c%u_d1)//', ' &
+                        //real_to_text(c%u_d2), 'finite numbers')
+        else if (.not. any(SOLVE_STARTS == c%start)) then
+            call reject('start', quoted(c%start), 'one of '//one_of(SOLVE_STARTS))
+        else if (.not. ieee_is_finite(c%start_delta)) then
+            call reject('start_delta', real_to_text(c%start_delta), 'a finite number')
+        else if (.not. ieee_is_finite(c%start_scale)) then
+            call reject('start_scale', real_to_text(c%start_scale), 'a finite number')
+        else if (.not. ieee_is_finite(c%start_noise)) then
+            call reject('start_noise', real_to_text(c%start_noise), 'a finite number')
+        else if (.not. tol_ok) then
+            call reject('tol', real_to_text(c%tol), 'a number with 0 < tol < 1')
+        else if (c%max_iterations < 1) then
+            call reject('max_iterations', to_string(c%max_iterations), 'an integer >= 1')
+        end if
+
+    contains
+
+        subroutine reject(variable, value, expected)
+            character(len=*), intent(in) :: variable, value, expected
+            call fail_value(stat, path, 'solve', variable, value, expected)
+        end subroutine reject
+    end subroutine validate_solve
+
+    !> The one message format of a rejected value.
+    subroutine fail_value(stat, path, group, variable, value, expected)
+        type(status_t), intent(inout) :: stat
+        character(len=*), intent(in) :: path, group, variable, value, expected
+        call stat%fail(STATUS_BAD_INPUT, path//': &'//group//': '//variable//' = '//value &
+                       //': expected '//expected)
+    end subroutine fail_value
+
+    !> Tested before any comparison: an ordered comparison with NaN traps in debug builds.
+    elemental logical function positive_finite(x)
+        real(wp), intent(in) :: x
+        positive_finite = ieee_is_finite(x)
+        if (positive_finite) positive_finite = x > 0.0_wp
+    end function positive_finite
+end module input_validation
