@@ -30,7 +30,7 @@ sizes=("$@")
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-key() { grep -o "\"$2\": *[^,}]*" "$1" | sed 's/^[^:]*: *//' || true; }
+key() { jq -r --arg key "$2" '.[$key] // empty' "$1"; }   # a summary.json value
 median() { tr ' ' '\n' | grep -v '^$' | sort -g | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
 
 echo "# nceig $("$nceig" --version | cut -d' ' -f2), $(nproc) cores, solver = $solver," \

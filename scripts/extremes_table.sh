@@ -10,7 +10,7 @@ nceig=${1:-$root/build/nceig}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-value() { { grep -o "\"$1\": [^,]*" "$work/out/summary.json" || echo ": null"; } | head -1 | sed "s/.*: //"; }
+value() { jq -r --arg key "$1" '.[$key] | tostring' "$work/out/summary.json"; }   # null if absent
 short() { [[ $1 == null ]] && echo '-' || awk -v x="$1" 'BEGIN { printf "%.3g", x }'; }
 
 # solve NAME MESH MATERIAL ANALYSIS: one run into $work/out

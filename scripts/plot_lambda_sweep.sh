@@ -17,9 +17,10 @@ for f in "$csv" "$summary"; do
     [[ -r $f ]] || { echo "$0: $f: not found (run nceig with kind = 'lambda_sweep')" >&2; exit 2; }
 done
 command -v gnuplot >/dev/null || { echo "$0: gnuplot is not installed" >&2; exit 3; }
+command -v jq >/dev/null || { echo "$0: jq is not installed (it reads summary.json)" >&2; exit 3; }
 
-# "key": value, on its own line in the summary (nceig writes one member per line)
-value() { sed -n "s/^ *\"$1\": *\"\{0,1\}\([^\",]*\)\"\{0,1\},\{0,1\}$/\1/p" "$summary"; }
+# The value of a key of summary.json, read as JSON ('' for null or absent).
+value() { jq -r --arg key "$1" '.[$key] // empty' "$summary"; }
 plus=$(value lambda_critical_plus)
 minus=$(value lambda_critical_minus)
 spacing=$(value sweep_spacing)

@@ -78,65 +78,6 @@ parse_family() {
 
 run_name() { local family=${1//:/-}; printf '%s_n%04d' "$family" "$2"; }
 
-# ------------------------------------------------------------------------- namelist editing
-
-# Rewrite one namelist group of a file: drop the assignments to the (lowercase) names in DROP
-# and insert INSERT before the group's closing '/' (or append the group when absent). Quotes
-# and '!' comments are respected, so values like 'a/b.msh' or '/' in comments are safe.
-edit_group() {  # file group "name name ..." "insert text"
-    awk -v group="$2" -v drop=" $3 " -v insert="$4" '
-        { text = text $0 "\n" }
-        END {
-            n = length(text); out = ""; inside = 0; found = 0; dropping = 0; i = 1
-            while (i <= n) {
-                c = substr(text, i, 1)
-                if (c == "\047" || c == "\"") {            # a quoted string, kept whole
-                    j = i + 1
-                    while (j <= n && substr(text, j, 1) != c) j++
-                    piece = substr(text, i, j - i + 1); i = j + 1
-                    if (!(inside && dropping)) out = out piece
-                    continue
-                }
-                if (c == "!") {                             # comment to the end of the line
-                    j = i
-                    while (j <= n && substr(text, j, 1) != "\n") j++
-                    out = out substr(text, i, j - i); i = j
-                    continue
-                }
-                if (c == "\n") { out = out c; i++; continue }
-                if (!inside && c == "&") {
-                    j = i + 1
-                    while (j <= n && substr(text, j, 1) ~ /[A-Za-z0-9_]/) j++
-                    name = tolower(substr(text, i + 1, j - i - 1))
-                    out = out substr(text, i, j - i); i = j
-                    if (name == group) { inside = 1; found = 1; dropping = 0 }
-                    continue
-                }
-                if (inside && (c == "/" || (c == "&" && tolower(substr(text, i, 4)) == "&end"))) {
-                    out = out " " insert " "
-                    inside = 0; dropping = 0
-                    out = out c; i++
-                    continue
-                }
-                if (inside && c ~ /[A-Za-z_]/) {            # a name, if "=" follows
-                    j = i
-                    while (j <= n && substr(text, j, 1) ~ /[A-Za-z0-9_%]/) j++
-                    name = tolower(substr(text, i, j - i))
-                    k = j
-                    while (k <= n && substr(text, k, 1) ~ /[ \t]/) k++
-                    if (substr(text, k, 1) == "=") dropping = index(drop, " " name " ") > 0
-                    if (!dropping) out = out substr(text, i, j - i)
-                    i = j
-                    continue
-                }
-                if (!(inside && dropping)) out = out c
-                i++
-            }
-            if (!found) out = out "&" group " " insert " /\n"
-            printf "%s", out
-        }' "$1" >"$1.edit" && mv "$1.edit" "$1"
-}
-
 # ------------------------------------------------------------------------- one run
 
 # --run OUTDIR FAMILY N: make the input from OUTDIR/template.nml, run nceig under
@@ -153,6 +94,7 @@ run_one() {
         return 0
     fi
     nceig=$(find_nceig) || exit 2
+    command -v jq >/dev/null 2>&1 || die "jq not found: it reads summary.json (Debian package jq)"
     rm -rf "$dir"
     mkdir -p "$dir" || die "cannot create $dir"
     printf 'family=%s\nelement=%s\nmesh=%s\nn=%s\n' "$family" "$element" "$mesh" "$n" \
@@ -160,7 +102,9 @@ run_one() {
     input="$dir/input.nml"
     cp "$outdir/template.nml" "$input"
 
-    local mesh_vars
+    # The template stays as it is; the mesh and the output folder of this run are
+    # command-line overrides, checked by nceig like the file's own values.
+    local -a settings
     if [[ $mesh == delaunay ]]; then
         local order=1
         [[ $element == p2 ]] && order=2
@@ -175,28 +119,30 @@ run_one() {
             t1=$(date +%s.%N)
             mesh_s=$(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.3f", b - a }')
         fi
-        mesh_vars="source = 'gmsh', file = '$(cd "$dir" && pwd)/mesh.msh', element = '$element'"
+        settings=(--set mesh%source=gmsh --set "mesh%file=$(cd "$dir" && pwd)/mesh.msh"
+                  --set "mesh%element=$element")
     else
-        mesh_vars="source = 'rectangle', nx = $n, ny = $n, element = '$element'"
-        [[ -n $mesh && $mesh != quad ]] && mesh_vars+=", diagonal = '$mesh'"
+        settings=(--set mesh%source=rectangle --set "mesh%nx=$n" --set "mesh%ny=$n"
+                  --set "mesh%element=$element")
+        [[ -n $mesh && $mesh != quad ]] && settings+=(--set "mesh%diagonal=$mesh")
     fi
+    settings+=(--set "output%directory=$(cd "$dir" && pwd)/output")
     echo "$mesh_s" >"$dir/mesh_time"
     if [[ -f $dir/status ]]; then
         echo "FAILED  $family N=$n: $(cut -d' ' -f2- "$dir/status")"
         return 1
     fi
-    local drop="source file nx ny element"
-    [[ -n $mesh && $mesh != quad && $mesh != delaunay ]] && drop+=" diagonal"
-    edit_group "$input" mesh "$drop" "$mesh_vars"
-    edit_group "$input" output "directory" "directory = '$(cd "$dir" && pwd)/output'"
+    printf 'nceig input.nml' >"$dir/command"
+    printf " '%s'" "${settings[@]}" >>"$dir/command"
+    echo >>"$dir/command"
 
     if [[ -x /usr/bin/time ]]; then
-        /usr/bin/time -f '%e %M' -o "$dir/time.txt" "$nceig" "$input" \
+        /usr/bin/time -f '%e %M' -o "$dir/time.txt" "$nceig" "$input" "${settings[@]}" \
             >"$dir/stdout.log" 2>"$dir/stderr.log"
         rc=$?
     else  # no peak memory without GNU time (Debian package 'time')
         t0=$(date +%s.%N)
-        "$nceig" "$input" >"$dir/stdout.log" 2>"$dir/stderr.log"
+        "$nceig" "$input" "${settings[@]}" >"$dir/stdout.log" 2>"$dir/stderr.log"
         rc=$?
         t1=$(date +%s.%N)
         awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.2f\n", b - a }' >"$dir/time.txt"
@@ -215,9 +161,9 @@ run_one() {
     return 1
 }
 
-# Value of "key" in our flat, one-member-per-line summary.json ('' for null or absent).
+# Value of "key" in a summary.json, read as JSON ('' for null or absent).
 json_value() {
-    sed -n "s/^ *\"$2\": *\\(.*\\)\$/\\1/p" "$1" | head -n 1 | sed 's/,$//; s/^"//; s/"$//; s/^null$//'
+    jq -r --arg key "$2" '.[$key] // empty' "$1"
 }
 
 # ------------------------------------------------------------------------- collection
@@ -237,6 +183,7 @@ collect() {
 
     nceig=$(find_nceig) || exit 2
     extrapolate=$(find_extrapolate "$nceig") || exit 2
+    command -v jq >/dev/null 2>&1 || die "jq not found: it reads summary.json (Debian package jq)"
     local ok=1
     if "$extrapolate" "$outdir/results.csv" >"$tmp/extrapolation.csv"; then
         mv "$tmp/extrapolation.csv" "$outdir/extrapolation.csv"
