@@ -49,9 +49,11 @@ program nceig
         call exit_with(STATUS_BAD_INPUT)
     end if
 
-    timings%listener => print_progress
-    call print_progress('nceig '//NCEIG_VERSION//': '//config%input_file//' ('// &
-                        trim(config%analysis%kind)//'), started')
+    if (config%output%progress) then
+        timings%listener => print_progress
+        call print_progress('nceig '//NCEIG_VERSION//': '//config%input_file//' ('// &
+                            trim(config%analysis%kind)//'), started')
+    end if
     phase = wall_time()
     call build_problem(config, prob, stat, analysis%needs_all_dofs)
     call stop_on_failure(stat)

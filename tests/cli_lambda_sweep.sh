@@ -45,7 +45,7 @@ check 'sweep csv: slip sign -sgn(lambda)' '[[ $(tail -n +2 "$csv" | cut -d, -f4 
 check 'sweep mu at lambda = 5 equals the eigen solver'"'"'s lowest positive mu' 'awk -v a="$(sed -n 2p "$csv" | cut -d, -f2)" -v b="$(json "$work/list/summary.json" lowest_positive_mu)" "BEGIN { d = a - b; if (d < 0) d = -d; exit !(d <= 1e-12 * b) }"'
 check 'sweep summary has the thresholds and sweep keys' 'for k in lambda_critical_plus lambda_critical_minus sweep_file sweep_n_lambda sweep_spacing time_sweep_s; do grep -q "\"$k\":" "$work/list/summary.json" || exit 1; done'
 check 'sweep summary: spacing list, 4 lambdas, 3 with a mu' '[[ $(json "$work/list/summary.json" sweep_spacing) == list && $(json "$work/list/summary.json" sweep_n_lambda) == 4 && $(json "$work/list/summary.json" sweep_n_with_positive_mu) == 3 ]]'
-check 'plot = .false.: no png, no note' '[[ ! -e "$work/list/lambda_sweep.png" ]] && ! grep -q "plot " "$work/stdout"'
+check 'plot = .false.: no png, no note' '[[ ! -e "$work/list/lambda_sweep.png" ]] && ! grep -q "^  plot " "$work/stdout"'
 
 cat >"$work/range.nml" <<NML
 &mesh nx = 4, ny = 4, element = 'q1' /

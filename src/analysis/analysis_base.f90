@@ -48,7 +48,7 @@ module analysis_base
         !> Every file of the analysis but summary.json, each at stage%path(name).
         subroutine write_interface(this, stage, config, prob, stat)
             import :: analysis_t, output_stage_t, config_t, problem_t, status_t
-            class(analysis_t), intent(in) :: this
+            class(analysis_t), intent(inout) :: this
             type(output_stage_t), intent(inout) :: stage
             type(config_t), intent(in) :: config
             type(problem_t), intent(in) :: prob

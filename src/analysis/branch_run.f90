@@ -43,7 +43,7 @@ contains
 
     !> eigenvalues.csv, branch.csv and the members asked for as branch_NNN.vtu.
     subroutine branch_run_write_files(this, stage, config, prob, stat)
-        class(branch_run_t), intent(in) :: this
+        class(branch_run_t), intent(inout) :: this
         type(output_stage_t), intent(inout) :: stage
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: prob

@@ -20,7 +20,8 @@ module eigen_run
     use csv_writer, only: csv_writer_t
     use vtk_writer, only: write_vtu
     use matrix_market, only: write_matrix_market
-    use element_types, only: element_name
+    use element_types, only: element_name, element_corners
+    use mode_plot, only: plot_mode
     use blas_info, only: blas_in_use
     implicit none
     private
@@ -29,6 +30,7 @@ module eigen_run
 
     type, extends(analysis_t), public :: eigen_run_t
         type(eigen_result_t) :: res
+        character(len=:), allocatable :: plot_note   !! where mode_001.png is, or why not
     contains
         procedure :: solve => eigen_run_solve
         procedure :: write_files => eigen_run_write_files
@@ -48,12 +50,12 @@ contains
     end subroutine eigen_run_solve
 
     subroutine eigen_run_write_files(this, stage, config, prob, stat)
-        class(eigen_run_t), intent(in) :: this
+        class(eigen_run_t), intent(inout) :: this
         type(output_stage_t), intent(inout) :: stage
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: prob
         type(status_t), intent(out) :: stat
-        call write_eigen_files(stage, config, prob, this%res, stat)
+        call write_eigen_files(stage, config, prob, this%res, stat, this%plot_note)
     end subroutine eigen_run_write_files
 
     function eigen_run_summary(this, config, prob) result(summary)
@@ -69,7 +71,7 @@ contains
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: prob
         character(len=:), allocatable :: text
-        text = summary_lines(config, prob, this%res, this%timings)
+        text = summary_lines(config, prob, this%res, this%timings, this%plot_note)
     end function eigen_run_report
 
     !> summary.json of an eigen run; other analyses add their own keys to it.
@@ -228,11 +230,12 @@ contains
     end subroutine write_modes
 
     !> The human summary: mesh, sizes, the headline eigenvalue and the time of each phase.
-    function summary_lines(config, prob, res, timings) result(text)
+    function summary_lines(config, prob, res, timings, plot_note) result(text)
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: prob
         type(eigen_result_t), intent(in) :: res
         type(timings_t), intent(in) :: timings
+        character(len=*), intent(in), optional :: plot_note   !! from write_eigen_files
         character(len=:), allocatable :: text
         character(len=*), parameter :: NL = new_line('a')
         integer :: lowest, i
@@ -264,6 +267,9 @@ contains
             ', output '//seconds_text(timings%output)// &
             ', total '//seconds_text(timings%total)//NL// &
             '  output      '//trim(config%output%directory)
+        if (present(plot_note)) then
+            if (len(plot_note) > 0) text = text//NL//'  mode plot   '//plot_note
+        end if
         if (allocated(res%warnings)) then
             do i = 1, size(res%warnings)
                 text = text//NL//'warning: '//trim(res%warnings(i))
@@ -271,14 +277,16 @@ contains
         end if
     end function summary_lines
 
-    !> eigenvalues.csv, mode_NNN.vtu and K.mtx, B.mtx as &output asks, into `stage`: the
-    !> files of an eigen run, which the threshold and sweep runs write too.
-    subroutine write_eigen_files(stage, config, prob, res, stat)
+    !> eigenvalues.csv, mode_NNN.vtu and K.mtx, B.mtx as &output asks, and mode_001.png, into
+    !> `stage`: the files of an eigen run, which the threshold and sweep runs write too.
+    !> `plot_note`: where the picture is, why it is missing, or '' when none was asked for.
+    subroutine write_eigen_files(stage, config, prob, res, stat, plot_note)
         type(output_stage_t), intent(inout) :: stage
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: prob
         type(eigen_result_t), intent(in) :: res
         type(status_t), intent(out) :: stat
+        character(len=:), allocatable, intent(out), optional :: plot_note
         call write_eigenvalues_csv(stage%path('eigenvalues.csv'), res%spec, stat)
         if (stat%ok() .and. config%output%vtk) call write_modes(stage, prob, res%spec, &
             config%output%modes, trim(config%output%vtk_format), stat)
@@ -286,5 +294,29 @@ contains
             call write_matrix_market(stage%path('K.mtx'), prob%k, stat)
             if (stat%ok()) call write_matrix_market(stage%path('B.mtx'), res%b, stat)
         end if
+        if (.not. present(plot_note)) return
+        plot_note = ''
+        if (stat%ok() .and. config%output%plot .and. config%output%modes > 0 .and. &
+            size(res%spec%vectors, 2) > 0) call draw_first_mode(stage, config, prob, res, plot_note)
     end subroutine write_eigen_files
+
+    !> mode_001.png of the first mode (its real part), joined to the set when drawn.
+    subroutine draw_first_mode(stage, config, prob, res, note)
+        type(output_stage_t), intent(inout) :: stage
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(in) :: prob
+        type(eigen_result_t), intent(in) :: res
+        character(len=:), allocatable, intent(out) :: note
+        character(len=*), parameter :: PNG = 'mode_001.png'
+        character(len=:), allocatable :: png_path
+        logical :: drawn
+
+        call plot_mode(stage%scratch(PNG), stage%scratch('.mode_001.gp'), 'mode 1: mu = '// &
+            real_to_text(real(res%spec%mu(1), wp))//', lambda = '//real_to_text(res%lambda), &
+            prob%mesh%coords, prob%mesh%cells, element_corners(prob%mesh%element), &
+            prob%dofs%nodal_field(real(res%spec%vectors(:, 1), wp)), drawn, note)
+        if (.not. drawn) return
+        png_path = stage%path(PNG)   ! registered: part of the committed set
+        note = trim(config%output%directory)//'/'//PNG
+    end subroutine draw_first_mode
 end module eigen_run

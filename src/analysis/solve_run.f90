@@ -45,7 +45,7 @@ contains
     end subroutine solve_run_solve
 
     subroutine solve_run_write_files(this, stage, config, prob, stat)
-        class(solve_run_t), intent(in) :: this
+        class(solve_run_t), intent(inout) :: this
         type(output_stage_t), intent(inout) :: stage
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: prob

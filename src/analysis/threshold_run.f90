@@ -32,6 +32,7 @@ module threshold_run
     type, extends(analysis_t), public :: threshold_run_t
         logical :: with_sweep = .false.
         type(threshold_result_t) :: res
+        character(len=:), allocatable :: plot_note   !! mode_001.png: where, or why not
         logical :: plot = .false.                       !! draw lambda_sweep.png when done
         character(len=:), allocatable :: directory      !! the output directory, for the plot
     contains
@@ -56,12 +57,12 @@ contains
     end subroutine threshold_run_solve
 
     subroutine threshold_run_write_files(this, stage, config, prob, stat)
-        class(threshold_run_t), intent(in) :: this
+        class(threshold_run_t), intent(inout) :: this
         type(output_stage_t), intent(inout) :: stage
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: prob
         type(status_t), intent(out) :: stat
-        call write_eigen_files(stage, config, prob, this%res%eigen, stat)
+        call write_eigen_files(stage, config, prob, this%res%eigen, stat, this%plot_note)
         if (stat%ok() .and. allocated(this%res%sweep%lambda)) then
             call write_sweep_csv(stage%path(SWEEP_FILE), this%res%sweep, stat)
         end if
@@ -82,7 +83,7 @@ contains
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: prob
         character(len=:), allocatable :: text
-        text = threshold_summary_lines(config, prob, this%res, this%timings)
+        text = threshold_summary_lines(config, prob, this%res, this%timings, this%plot_note)
     end function threshold_run_report
 
     !> The sweep's plot reads the committed lambda_sweep.csv and summary.json; drawing it is
@@ -178,17 +179,18 @@ contains
     end subroutine write_sweep_csv
 
     !> The eigen summary, then the thresholds with their confirmations and the sweep.
-    function threshold_summary_lines(config, prob, res, timings) result(text)
+    function threshold_summary_lines(config, prob, res, timings, plot_note) result(text)
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: prob
         type(threshold_result_t), intent(in) :: res
         type(timings_t), intent(in) :: timings
+        character(len=*), intent(in) :: plot_note
         character(len=:), allocatable :: text
         character(len=*), parameter :: NL = new_line('a')
         character(len=*), parameter :: LABELS(2) = [character(len=7) :: 'lambda+', 'lambda-']
         integer :: side
 
-        text = summary_lines(config, prob, res%eigen, timings)
+        text = summary_lines(config, prob, res%eigen, timings, plot_note)
         associate (thr => res%thresholds)
             do side = SIDE_PLUS, SIDE_MINUS
                 text = text//NL//'  '//LABELS(side)//'     '

@@ -59,6 +59,8 @@ module run_config
         logical :: matrices = .false.               !! write K.mtx and B.mtx
         !> 'binary': raw appended data, 26-32 times faster to write than 'ascii' (README).
         character(len=8) :: vtk_format = 'binary'
+        logical :: plot = .true.                    !! draw mode_001.png (gnuplot)
+        logical :: progress = .true.                !! a line on stdout as each phase ends
     end type output_config_t
 
     integer, parameter, public :: MAX_SWEEP_LAMBDAS = 1000   !! length of &sweep lambdas

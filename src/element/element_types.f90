@@ -5,6 +5,7 @@ module element_types
     implicit none
     private
     public :: element_nodes_per_cell, element_nodes_per_edge, element_from_name, element_name
+    public :: element_corners
     public :: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2
 
     ! Node order inside a cell follows Gmsh: corners anticlockwise, then mid-edge nodes
@@ -29,6 +30,15 @@ contains
     end function element_nodes_per_cell
 
     !> Nodes of one edge (2 or 3); 0 for an unknown code.
+    !> Vertices of the cell (the first nodes of a cell, anticlockwise): 3 or 4.
+    pure integer function element_corners(element)
+        integer, intent(in) :: element
+        select case (element)
+        case (ELEMENT_Q1, ELEMENT_Q2); element_corners = 4
+        case default; element_corners = 3
+        end select
+    end function element_corners
+
     pure integer function element_nodes_per_edge(element)
         integer, intent(in) :: element
         select case (element)

@@ -84,7 +84,11 @@ contains
                //entry('matrices', logical_text(d%output%matrices), &
                        'write K.mtx and B.mtx (Matrix Market)') &
                //entry('vtk_format', quoted(d%output%vtk_format), one_of(VTK_FORMATS) &
-                       //" ('binary': raw appended data; 'ascii': text)")
+                       //" ('binary': raw appended data; 'ascii': text)") &
+               //entry('plot', logical_text(d%output%plot), 'draw mode_001.png with gnuplot' &
+                       //' (the first mode on the deformed mesh)') &
+               //entry('progress', logical_text(d%output%progress), 'a line on stdout as' &
+                       //' each phase ends (.false.: the final summary only)')
         text = text//"&sweep  (kind = 'lambda_sweep': lowest positive mu against lambda)"//NL &
                //entry('lambda_min', real_to_text(d%sweep%lambda_min), 'first lambda of the' &
                        //' range (either sign)') &

@@ -29,7 +29,8 @@ module input_records
         'eigen maxit:an integer', 'eigen ncv:an integer', 'eigen dense_max_contact:an integer', &
         'output directory:a quoted path', 'output vtk:.true. or .false.', &
         'output modes:an integer', 'output matrices:.true. or .false.', &
-        'output vtk_format:a quoted name', &
+        'output vtk_format:a quoted name', 'output plot:.true. or .false.', &
+        'output progress:.true. or .false.', &
         'sweep lambda_min:a real number', 'sweep lambda_max:a real number', &
         'sweep n_lambda:an integer', 'sweep spacing:a quoted name', &
         'sweep lambdas:a list of real numbers', 'sweep plot:.true. or .false.', &
@@ -268,16 +269,18 @@ contains
         character(len=*), intent(inout) :: msg
         integer, intent(in), optional :: listing_unit
         character(len=PATH_LEN) :: directory
-        logical :: vtk, matrices
+        logical :: vtk, matrices, plot, progress
         integer :: modes
         character(len=len(config%output%vtk_format)) :: vtk_format
-        namelist /output/ directory, vtk, modes, matrices, vtk_format
+        namelist /output/ directory, vtk, modes, matrices, vtk_format, plot, progress
 
         directory = config%output%directory
         vtk = config%output%vtk
         modes = config%output%modes
         matrices = config%output%matrices
         vtk_format = config%output%vtk_format
+        plot = config%output%plot
+        progress = config%output%progress
         if (present(listing_unit)) then
             write (listing_unit, nml=output, iostat=ios, iomsg=msg)
             return
@@ -289,6 +292,8 @@ contains
         config%output%modes = modes
         config%output%matrices = matrices
         config%output%vtk_format = lowercase(adjustl(vtk_format))
+        config%output%plot = plot
+        config%output%progress = progress
     end subroutine output_record
 
     !> One '&sweep ... /' record into config%sweep (unchanged if it fails).

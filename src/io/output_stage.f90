@@ -31,6 +31,7 @@ module output_stage
         procedure :: commit => output_stage_commit
         procedure :: abort => output_stage_abort
         procedure :: file_names => output_stage_file_names
+        procedure :: scratch => output_stage_scratch
     end type output_stage_t
 
 contains
@@ -158,6 +159,16 @@ contains
         call remove_directory(this%staging)
         this%active = .false.
     end subroutine output_stage_commit
+
+    !> Where to put a scratch file while staging (a plot script, a picture not yet known to
+    !> be drawn): in the staging folder, NOT part of the set; remove it before the commit, or
+    !> register it with path() once it is complete.
+    function output_stage_scratch(this, name) result(file_path)
+        class(output_stage_t), intent(in) :: this
+        character(len=*), intent(in) :: name
+        character(len=:), allocatable :: file_path
+        file_path = this%staging//'/'//trim(name)
+    end function output_stage_scratch
 
     !> The names registered so far, in order (one per element, blank-padded to `length`).
     pure function output_stage_file_names(this, length) result(names)
