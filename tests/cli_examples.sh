@@ -6,9 +6,11 @@
 # Tolerances, from what can legitimately differ between two runs:
 #   - eigenvalues, thresholds, compliances, delta_max: 1e-10 relative. The runs are
 #     deterministic; what may change between machines is the BLAS kernel and so the
-#     rounding, which the solvers turn into relative errors of about condition x eps
-#     (conditions below 20 on these scenes, README "Measured limits"): 1e-10 is far above
-#     that and far below any change of model or mesh (1e-4 and more).
+#     rounding of the factor of K, which forming the contact blocks of K^-1 amplifies by
+#     about cond(K): E = 2 instead of 1 (the same problem up to an exact factor 2, but a
+#     factor rounded differently) moves mu by 2.5e-13 on 32 x 32 and 3.4e-12 on 128 x 128
+#     (docs/model.md). 1e-10 keeps a margin of 30 over that and is far below any change
+#     of model or mesh (1e-4 and more).
 #   - integers, booleans and strings: exactly.
 #   - branch_delta (solve at a critical point): 1e-6 relative. There the solution is not
 #     isolated, so the member reached is chosen by the iteration from its start, not by the
