@@ -16,6 +16,7 @@ program nceig
     use problem, only: problem_t, build_problem
     use analysis_base, only: analysis_t, run_analysis
     use analysis_registry, only: new_analysis
+    use console, only: print_progress
     implicit none
 
     type(config_t) :: config
@@ -72,14 +73,6 @@ program nceig
     deallocate (analysis, note)
 
 contains
-
-    !> A progress line on stdout at once: runs of minutes must not look hung, and a log
-    !> file shows how far a killed run got.
-    subroutine print_progress(line)
-        character(len=*), intent(in) :: line
-        write (output_unit, '(a)') line
-        flush (output_unit)
-    end subroutine print_progress
 
     !> One line on standard error and a non-zero exit: 2 for bad input, the status code else.
     subroutine stop_on_failure(stat)

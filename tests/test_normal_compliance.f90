@@ -63,8 +63,8 @@ contains
         end do
         call assemble_all_dofs(m, 1.0_wp, 0.3_wp, m%part_index('bottom'), all_dofs, k_all, &
                                all_contact, stat)
-        call build_compliance(k_all, all_contact, dofs, k, 0.7_wp, 0.4_wp, load, prescribed, &
-                              cp, stat)
+        call build_compliance(k_all, all_contact, dofs, 0.7_wp, 0.4_wp, load, prescribed, cp, &
+                              stat)
         call t%check(name//': problem set up', stat%ok())
         allocate (h_plus(dofs%n_free), h_minus(dofs%n_free), jv(dofs%n_free), h0(dofs%n_free))
         allocate (states(cp%contact%p()), states_plus(cp%contact%p()), &

@@ -191,8 +191,8 @@ contains
                                        load, stat)
         if (stat%ok()) call assemble_all_dofs(m, YOUNG, POISSON, 1, all_dofs, k_all, &
                                               all_contact, stat)
-        if (stat%ok()) call build_compliance(k_all, all_contact, dofs, k, c_n, c_t, load, &
-                                             CLAMPED, cp, stat)
+        if (stat%ok()) call build_compliance(k_all, all_contact, dofs, c_n, c_t, load, CLAMPED, &
+                                             cp, stat)
     end subroutine single_element_problem
 
     !> SPEC section 5 data at the critical c_n: starting guesses U + delta_0 phi + noise that

@@ -18,12 +18,17 @@ contains
     subroutine new_analysis(kind, analysis)
         character(len=*), intent(in) :: kind
         class(analysis_t), allocatable, intent(out) :: analysis
+        type(threshold_run_t) :: sweep
         select case (kind)
         case ('eigen'); allocate (eigen_run_t :: analysis)
-        case ('threshold'); allocate (analysis, source=threshold_run_t(with_sweep=.false.))
-        case ('lambda_sweep'); allocate (analysis, source=threshold_run_t(with_sweep=.true.))
-        case ('branch'); allocate (analysis, source=branch_run_t(needs_all_dofs=.true.))
-        case ('solve'); allocate (analysis, source=solve_run_t(needs_all_dofs=.true.))
+        case ('threshold'); allocate (threshold_run_t :: analysis)
+        case ('lambda_sweep')
+            sweep%with_sweep = .true.
+            allocate (analysis, source=sweep)
+        case ('branch'); allocate (branch_run_t :: analysis)
+        case ('solve'); allocate (solve_run_t :: analysis)
         end select
+        ! The compliance problem needs K and Gamma_C on all dofs (non-zero Dirichlet data).
+        if (any(kind == [character(len=6) :: 'branch', 'solve'])) analysis%needs_all_dofs = .true.
     end subroutine new_analysis
 end module analysis_registry

@@ -136,7 +136,7 @@ contains
         call edge_loads(prob%mesh, loaded, [0.0_wp, 0.0_wp], base_stress(crit%lambda, crit%mu, &
                         crit%alpha, prob%young, prob%poisson), load, stat)
         if (.not. stat%ok()) return
-        call build_compliance(prob%k_all, prob%all_contact, prob%dofs, prob%k, factor*crit%mu, &
+        call build_compliance(prob%k_all, prob%all_contact, prob%dofs, factor*crit%mu, &
             critical_c_t(factor*crit%mu, crit%lambda), load, crit%u_base, cp, stat)
     end subroutine branch_compliance
 
@@ -155,9 +155,9 @@ contains
 
         p = cp%contact%p()
         allocate (un_u(p), un_v(p), ut_u(p), ut_v(p), mn_u(p), mn_v(p))
-        u = cp%expand(x_base)
-        allocate (v(size(u)), source=0.0_wp)
-        v(cp%free_to_all) = phi
+        allocate (u(size(cp%prescribed)), v(size(cp%prescribed)))
+        u(:) = cp%expand(x_base)
+        v(:) = cp%dofs%expand(phi)   ! zero on the prescribed dofs
         call cp%contact%gather(cp%contact%normal, u, un_u)
         call cp%contact%gather(cp%contact%normal, v, un_v)
         call cp%contact%gather(cp%contact%tangent, u, ut_u)

@@ -59,9 +59,10 @@ contains
             if (.not. (stat%ok() .and. config%output%vtk)) return
             x_base = res%critical%u_base(res%cp%free_to_all)
             members = member_indices(size(res%deltas), config%branch%write_members)
+            allocate (u(size(res%cp%prescribed)))
             do j = 1, size(members)
                 i = members(j)
-                u = res%cp%expand(x_base + res%deltas(i)*res%critical%phi)
+                u(:) = res%cp%expand(x_base + res%deltas(i)*res%critical%phi)
                 call write_vtu(stage%path('branch_'//zero_padded(i, 3)//'.vtu'), prob%mesh, &
                     ['displacement'], reshape(u, [N_DIM, prob%mesh%n_nodes(), 1]), &
                     trim(config%output%vtk_format), stat)

@@ -60,7 +60,7 @@ contains
         scale = cp%load_norm
         if (.not. scale > 0.0_wp) scale = 1.0_wp
         allocate (h(size(x)), h_trial(size(x)), dx(size(x)), x_trial(size(x)))
-        diagonal = stiffness_diagonal(cp%k_free)
+        diagonal = stiffness_diagonal(cp%free_stiffness())
         call cp%residual(x, h)
         e = norm_inf(h)/scale
         report%residual = [e]

@@ -76,8 +76,8 @@ contains
                 do node = 1, prob%mesh%n_nodes()
                     prescribed(node_dofs(node)) = [c%u_d1, c%u_d2]
                 end do
-                call build_compliance(prob%k_all, prob%all_contact, prob%dofs, prob%k, c%c_n, &
-                                      c%c_t, load, prescribed, res%cp, stat)
+                call build_compliance(prob%k_all, prob%all_contact, prob%dofs, c%c_n, c%c_t, &
+                                      load, prescribed, res%cp, stat)
             end if
             if (.not. stat%ok()) return
 

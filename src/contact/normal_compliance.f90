@@ -36,7 +36,6 @@ module normal_compliance
 
     type, public :: compliance_t
         type(csr_matrix_t) :: k_all              !! K on all dofs, numbered 2 (node - 1) + c
-        type(csr_matrix_t) :: k_free             !! K on the free dofs (the Jacobian's pattern)
         type(contact_t) :: contact               !! Gamma_C, all its nodes, all-dof numbering
         type(dof_map_t) :: dofs                  !! the free dofs x lives on
         integer, allocatable :: free_to_all(:)   !! (n_free) all-dof number of each free dof
@@ -50,6 +49,7 @@ module normal_compliance
     contains
         procedure :: n_free => compliance_n_free
         procedure :: expand => compliance_expand
+        procedure :: free_stiffness => compliance_free_stiffness
         procedure :: residual => compliance_residual
         procedure :: relative_residual => compliance_relative_residual
         procedure :: jacobian => compliance_jacobian
@@ -69,13 +69,11 @@ contains
         end select
     end function state_name
 
-    !> Set up the problem from K and Gamma_C on all dofs (k_all, all_contact) and on the free
-    !> dofs (`dofs` numbers them, `k_free` is K on them, the Jacobian's pattern): `load` holds
-    !> the consistent nodal forces on all dofs and `prescribed` the displacement on all dofs
-    !> (only its prescribed entries are used).
-    subroutine build_compliance(k_all, all_contact, dofs, k_free, c_n, c_t, load, prescribed, &
-                                cp, stat)
-        type(csr_matrix_t), intent(in) :: k_all, k_free
+    !> Set up the problem from K and Gamma_C on all dofs (k_all, all_contact), `dofs` numbering
+    !> the free ones: `load` holds the consistent nodal forces on all dofs and `prescribed` the
+    !> displacement on all dofs (only its prescribed entries are used).
+    subroutine build_compliance(k_all, all_contact, dofs, c_n, c_t, load, prescribed, cp, stat)
+        type(csr_matrix_t), intent(in) :: k_all
         type(contact_t), intent(in) :: all_contact
         type(dof_map_t), intent(in) :: dofs
         real(wp), intent(in) :: c_n, c_t
@@ -87,7 +85,6 @@ contains
 
         cp%k_all = k_all
         cp%contact = all_contact
-        cp%k_free = k_free
         cp%c_n = c_n
         cp%c_t = c_t
         cp%load = load
@@ -135,6 +132,14 @@ contains
         real(wp) :: u(size(this%prescribed))
         u = this%dofs%expand(x, this%prescribed)
     end function compliance_expand
+
+    !> K on the free dofs, the Jacobian's pattern: restricted from K on all dofs when needed
+    !> rather than kept as a second copy of K.
+    function compliance_free_stiffness(this) result(k_free)
+        class(compliance_t), intent(in) :: this
+        type(csr_matrix_t) :: k_free
+        k_free = this%k_all%restrict(reshape(this%dofs%free_dof, [size(this%dofs%free_dof)]))
+    end function compliance_free_stiffness
 
     !> H(x) (see the module), and optionally the state of every contact node (prescribed
     !> nodes are reported as separated: no law applies there).
@@ -200,8 +205,11 @@ contains
         integer :: p
 
         p = this%contact%p()
-        allocate (r(size(this%prescribed)), u_n(p), u_t(p), p_n(p), bound(p))
-        u = this%expand(x)
+        ! u allocated, then filled: reallocation on assignment from this function result
+        ! made UBSan see overflowing bounds arithmetic
+        allocate (r(size(this%prescribed)), u(size(this%prescribed)), u_n(p), u_t(p), p_n(p), &
+                  bound(p))
+        u(:) = this%expand(x)
         call this%k_all%matvec(u, r)
         r = r - this%load
         call this%contact%gather(this%contact%normal, u, u_n)
@@ -238,8 +246,10 @@ contains
         real(wp), allocatable :: r(:), u_n(:), u_t(:), p_n(:), bound(:), row_n(:), row_t(:)
         real(wp) :: s, z, sign_q
         integer :: a, b, k, ix, iy, first_x, first_y, length, state
+        type(csr_matrix_t) :: k_free
 
-        jac = this%k_free
+        k_free = this%free_stiffness()
+        jac = k_free
         call contact_terms(this, x, r, u_n, u_t, p_n, bound)
         do a = 1, this%contact%p()
             if (this%contact_free(1, a) == 0) cycle
@@ -255,8 +265,8 @@ contains
                 return
             end if
             associate (n => this%contact%normal, t => this%contact%tangent, &
-                       vx => this%k_free%val(first_x:first_x + length - 1), &
-                       vy => this%k_free%val(first_y:first_y + length - 1))
+                       vx => k_free%val(first_x:first_x + length - 1), &
+                       vy => k_free%val(first_y:first_y + length - 1))
                 row_n = n(1)*vx + n(2)*vy
                 row_t = -(t(1)*vx + t(2)*vy)   ! dS
                 s = -dot_product(t, r(this%contact%dofs(:, a)))

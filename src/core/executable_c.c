@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* The path of the running executable, from /proc/self/exe (Linux): an installed nceig finds
  * its helper scripts relative to itself, wherever the prefix was moved. */
+#define _DEFAULT_SOURCE   /* readlink under -std=c11 */
 #include <unistd.h>
 
 /* Fills path (NUL-terminated) and returns its length, or 0 when it cannot be read. */

@@ -147,7 +147,10 @@ contains
         call flexibility_blocks(this%l_tail, this%slot, this%normal, this%tangent, kt_nn, &
                                 kt_nt, stat)
         if (.not. stat%ok()) return
-        a = reduced_matrix(kt_nn, kt_nt, this%mass, this%lambda)
+        ! allocated first: reallocation on assignment would read the undefined bounds that
+        ! intent(out) leaves (UBSan saw their arithmetic overflow)
+        allocate (a(this%p, this%p))
+        a(:, :) = reduced_matrix(kt_nn, kt_nt, this%mass, this%lambda)
     end subroutine operator_dense_a
 
     !> out = A y = N K^-1 (lambda T' - N') M y, through two triangular solves with L_c.

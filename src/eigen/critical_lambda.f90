@@ -139,7 +139,8 @@ contains
         mu = 0.0_wp
         found = .false.
         n_positive = 0
-        a = blocks%matrix(lambda)
+        allocate (a(p, p))   ! then filled: see dense_eigen on reallocation on assignment
+        a(:, :) = blocks%matrix(lambda)
         allocate (wr(p), wi(p))
         call dgeev('N', 'N', p, a, p, wr, wi, vl, 1, vr, 1, query, -1, info)
         allocate (work(max(1, int(query(1)))))

@@ -47,11 +47,13 @@ contains
         start = wall_time()
         if (present(kt_nn_given) .and. present(kt_nt_given)) then
             kt_nt = kt_nt_given   ! kept for the lambda sensitivity below
-            a = reduced_matrix(kt_nn_given, kt_nt, contact%mass, lambda)
+            allocate (a(p, p))
+            a(:, :) = reduced_matrix(kt_nn_given, kt_nt, contact%mass, lambda)
         else
             call contact_flexibility(chol, contact, kt_nn, kt_nt, stat)
             if (.not. stat%ok()) return
-            a = reduced_matrix(kt_nn, kt_nt, contact%mass, lambda)
+            allocate (a(p, p))
+            a(:, :) = reduced_matrix(kt_nn, kt_nt, contact%mass, lambda)
             deallocate (kt_nn)
         end if
         if (present(reduction_seconds)) reduction_seconds = wall_time() - start
