@@ -13,6 +13,7 @@ module compliance_output
     use run_config, only: config_t
     use problem, only: problem_t
     use output_stage, only: output_stage_t
+    use filesystem, only: close_output
     use json_writer, only: json_object_t
     use vtk_writer, only: write_vtu
     use results_output, only: eigen_summary_json, write_eigenvalues_csv, commit_with_summary, &
@@ -110,7 +111,7 @@ contains
             write (unit, '(a)', iostat=ios, iomsg=msg) to_string(i)//','// &
                 real_to_text(res%deltas(i))//','//real_to_text(res%residuals(i))
         end do
-        if (ios == 0) close (unit, iostat=ios, iomsg=msg)
+        if (ios == 0) call close_output(unit, path, ios, msg)
         if (ios /= 0) call stat%fail(STATUS_IO, path//': cannot write: '//trim(msg))
     end subroutine write_branch_csv
 
@@ -237,7 +238,7 @@ contains
                 real_to_text(res%report%residual(k))//','//real_to_text(res%report%step(k))// &
                 ','//real_to_text(res%report%shift(k))
         end do
-        if (ios == 0) close (unit, iostat=ios, iomsg=msg)
+        if (ios == 0) call close_output(unit, path, ios, msg)
         if (ios /= 0) call stat%fail(STATUS_IO, path//': cannot write: '//trim(msg))
     end subroutine write_newton_csv
 
@@ -266,7 +267,7 @@ contains
                 real_to_text(u_t(a))//','//real_to_text(p_n(a))//','//real_to_text(s_t(a))// &
                 ','//real_to_text(bound(a))//','//state_name(res%states(a))
         end do
-        if (ios == 0) close (unit, iostat=ios, iomsg=msg)
+        if (ios == 0) call close_output(unit, path, ios, msg)
         if (ios /= 0) call stat%fail(STATUS_IO, path//': cannot write: '//trim(msg))
     end subroutine write_states_csv
 

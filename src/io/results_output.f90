@@ -14,6 +14,7 @@ module results_output
     use eigen_analysis, only: eigen_result_t
     use spectrum, only: spectrum_t, kind_name, KIND_COMPLEX
     use output_stage, only: output_stage_t
+    use filesystem, only: close_output
     use json_writer, only: json_object_t
     use vtk_writer, only: write_vtu
     use matrix_market, only: write_matrix_market
@@ -160,7 +161,7 @@ contains
                 ','//kind_name(spec%kind(i))//','//real_to_text(spec%residual(i))//','// &
                 condition
         end do
-        if (ios == 0) close (unit, iostat=ios, iomsg=msg)
+        if (ios == 0) call close_output(unit, path, ios, msg)
         if (ios /= 0) call stat%fail(STATUS_IO, path//': cannot write: '//trim(msg))
     end subroutine write_eigenvalues_csv
 

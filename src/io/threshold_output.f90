@@ -13,6 +13,7 @@ module threshold_output
     use threshold_analysis, only: threshold_result_t, sweep_curve_t
     use critical_lambda, only: thresholds_t, SIDE_PLUS, SIDE_MINUS, CONFIRM_OFFSET
     use output_stage, only: output_stage_t
+    use filesystem, only: close_output
     use json_writer, only: json_object_t
     use results_output, only: eigen_summary_json, summary_lines, write_eigen_files, slip_sign, &
                               commit_with_summary
@@ -136,7 +137,7 @@ contains
                 values//','//to_string(slip_sign(curve%lambda(i)))//','// &
                 to_string(curve%n_positive(i))
         end do
-        if (ios == 0) close (unit, iostat=ios, iomsg=msg)
+        if (ios == 0) call close_output(unit, path, ios, msg)
         if (ios /= 0) call stat%fail(STATUS_IO, path//': cannot write: '//trim(msg))
     end subroutine write_sweep_csv
 
