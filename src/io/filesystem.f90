@@ -12,7 +12,7 @@ module filesystem
     private
     public :: make_directories, rename_file, remove_file, remove_directory, file_exists, &
               is_directory, process_id, is_real_directory, process_gone, list_directory
-    public :: close_output, sync_path, replace_directory, make_link, copy_mode, remove_tree, &
+    public :: close_output, sync_path, sync_filesystem, replace_directory, make_link, copy_mode, remove_tree, &
               lock_file, unlock_file, real_path, cleanup_on_signal, hold_signals, &
               end_cleanup_on_signal
     integer, parameter, public :: MAX_NAME_LEN = 255   !! NAME_MAX of Linux file systems
@@ -124,6 +124,12 @@ module filesystem
             integer(c_long_long), intent(out) :: actual
             integer(c_int) :: status           ! 0, -1 (errno), -2 (size differs)
         end function c_check_written
+
+        function c_sync_filesystem(path) bind(C, name='nceig_sync_filesystem') result(status)
+            import :: c_int, c_char
+            character(kind=c_char), intent(in) :: path(*)
+            integer(c_int) :: status
+        end function c_sync_filesystem
 
         function c_sync_path(path) bind(C, name='nceig_sync_path') result(status)
             import :: c_int, c_char
@@ -262,10 +268,11 @@ contains
         end if
     end function short
 
-    !> Close `unit`, an output just written to `path`, and check what the disk holds: as many
-    !> bytes as were written (INQUIRE SIZE, taken before the close), and an fsync that
-    !> succeeded. libgfortran 12 drops a failed write(2) (ENOSPC, EIO) when it flushes its
-    !> buffer, even at CLOSE, so the iostat of WRITE and CLOSE cannot be trusted alone.
+    !> Close `unit`, an output just written to `path`, and check that the file holds as many
+    !> bytes as were written (INQUIRE SIZE, taken before the close). libgfortran 12 drops a
+    !> failed write(2) (ENOSPC, EIO) when it flushes its buffer, even at CLOSE, so the iostat
+    !> of WRITE and CLOSE cannot be trusted alone. Errors found only when the data go to the
+    !> disk are reported by sync_filesystem, before the commit.
     !> `ios` is 0 on success, else non-zero with `msg` saying why, as an iostat would.
     subroutine close_output(unit, path, ios, msg)
         integer, intent(in) :: unit
@@ -293,6 +300,16 @@ contains
                 ' bytes written (disk full?)'
         end if
     end subroutine close_output
+
+    !> Write the file system holding `path` to disk (syncfs on Linux); fails with STATUS_IO
+    !> when the system reports a write error there.
+    subroutine sync_filesystem(path, stat)
+        character(len=*), intent(in) :: path
+        type(status_t), intent(out) :: stat
+        if (c_sync_filesystem(c_path(path)) /= 0) &
+            call stat%fail(STATUS_IO, 'cannot write '//short(path)//' to disk: ' &
+                           //error_text(c_errno()))
+    end subroutine sync_filesystem
 
     !> fsync the file or directory `path` (a directory: to make the renames in it durable).
     subroutine sync_path(path, stat)
