@@ -22,9 +22,10 @@ cat >"$work/long.nml" <<NML
 NML
 "$nceig" "$work/long.nml" >/dev/null 2>"$work/stderr"
 rc=$?
-echo "      $(cut -c1-200 "$work/stderr")"
+echo "      $(grep "^nceig: " "$work/stderr" | cut -c1-200)"
 check 'a 4229-character path: exit status 4' '[[ $rc -eq 4 ]]'
-check 'a 4229-character path: one stderr line' '[[ $(wc -l <"$work/stderr") -eq 1 ]]'
+# (a Debug build adds gfortran's warning that the namelist read truncated the path)
+check 'a 4229-character path: one stderr line of nceig' '[[ $(grep -c "^nceig: " "$work/stderr") -eq 1 ]]'
 check 'a 4229-character path: no directory left' '[[ ! -e "$work/long" ]]'
 
 out="$work/out"
