@@ -90,6 +90,7 @@ program test_output_stage
     call remove_directory(dir//'/plots')
 
     call check_stale_staging()
+    call check_without_swap()
 
     ! A regular file where a parent directory should be; a path too long: nothing is left.
     call write_text('stage_out/plain', 'not a directory')
@@ -183,4 +184,33 @@ contains
         call remove_tree(live)
         call remove_directory(odd)
     end subroutine check_stale_staging
+
+    !> Where the file system cannot swap (NFS), the old directory is set aside for a moment:
+    !> same result. A run killed in that moment leaves no directory and the old set aside;
+    !> the next run puts it back before anything else.
+    subroutine check_without_swap()
+        character(len=*), parameter :: ASIDE = 'stage_out/.run.nceig-old-999999999'
+        stage%exchange = .false.
+        call stage%begin(dir, stat)
+        call write_text(stage%path('a.txt'), 'set aside a')
+        call write_text(stage%path('summary.json'), '  "files": ["a.txt"],')
+        call stage%commit(stat)
+        call t%check('without swap: commit succeeds', stat%ok())
+        call t%check('without swap: the new set is in place', &
+                     first_line(dir//'/a.txt') == 'set aside a')
+        call t%check('without swap: the user''s file is kept', &
+                     first_line(dir//'/notes.txt') == 'mine')
+        call t%check('without swap: the old set is removed', &
+                     .not. file_exists('stage_out/.run.nceig-old-'//trim(pid)))
+        stage%exchange = .true.
+
+        call make_directories(ASIDE, stat)
+        call write_text(ASIDE//'/a.txt', 'old a')
+        call remove_tree(dir)
+        call stage%begin(dir, stat)
+        call t%check('killed while set aside: the next run puts the old set back', &
+                     first_line(dir//'/a.txt') == 'old a')
+        call t%check('killed while set aside: no aside folder left', .not. file_exists(ASIDE))
+        call stage%abort()
+    end subroutine check_without_swap
 end program test_output_stage

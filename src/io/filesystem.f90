@@ -12,8 +12,8 @@ module filesystem
     private
     public :: make_directories, rename_file, remove_file, remove_directory, file_exists, &
               is_directory, process_id, is_real_directory, process_gone, list_directory
-    public :: close_output, sync_path, sync_filesystem, replace_directory, make_link, copy_mode, remove_tree, &
-              lock_file, unlock_file, real_path, cleanup_on_signal, hold_signals, &
+    public :: close_output, sync_path, sync_filesystem, replace_directory, make_link, &
+              copy_mode, remove_tree, lock_file, unlock_file, real_path, cleanup_on_signal, hold_signals, &
               end_cleanup_on_signal
     integer, parameter, public :: MAX_NAME_LEN = 255   !! NAME_MAX of Linux file systems
 
@@ -137,11 +137,12 @@ module filesystem
             integer(c_int) :: status
         end function c_sync_path
 
-        function c_replace_directory(from, to) bind(C, name='nceig_replace_directory') &
-                result(status)
+        function c_replace_directory(from, to, aside, exchange) &
+                bind(C, name='nceig_replace_directory') result(status)
             import :: c_int, c_char
-            character(kind=c_char), intent(in) :: from(*), to(*)
-            integer(c_int) :: status           ! 1 swapped, 0 renamed, -1 (errno)
+            character(kind=c_char), intent(in) :: from(*), to(*), aside(*)
+            integer(c_int), value :: exchange  ! 0: do not try RENAME_EXCHANGE
+            integer(c_int) :: status           ! 1 swapped, 2 set aside, 0 renamed, -1 (errno)
         end function c_replace_directory
 
         function c_link(from, to) bind(C, name='nceig_link') result(status)
@@ -319,18 +320,32 @@ contains
             call stat%fail(STATUS_IO, 'cannot sync '//short(path)//': '//error_text(c_errno()))
     end subroutine sync_path
 
-    !> Put directory `from` at `to` in one atomic step: when `to` exists, the two are swapped
-    !> (Linux renameat2 RENAME_EXCHANGE), and `from` then names the old directory; else
-    !> `from` is renamed. `swapped` tells which.
-    subroutine replace_directory(from, to, swapped, stat)
-        character(len=*), intent(in) :: from, to
-        logical, intent(out) :: swapped
+    !> Put directory `from` at `to`. When `to` exists, the two are swapped in one atomic
+    !> step (Linux renameat2 RENAME_EXCHANGE) and `old` is `from`, which now names the old
+    !> directory; where the file system cannot swap (NFS: EINVAL), or when `exchange` is
+    !> false (tests), `to` is renamed `aside` first, then `from` renamed `to`: `old` is
+    !> `aside`. When `to` did not exist, `from` is renamed and `old` is ''.
+    subroutine replace_directory(from, to, aside, old, stat, exchange)
+        character(len=*), intent(in) :: from, to, aside
+        character(len=:), allocatable, intent(out) :: old
         type(status_t), intent(out) :: stat
-        integer(c_int) :: status
-        status = c_replace_directory(c_path(from), c_path(to))
-        swapped = status == 1
-        if (status < 0) call stat%fail(STATUS_IO, 'cannot put '//short(from)//' in place of ' &
-                                       //short(to)//': '//error_text(c_errno()))
+        logical, intent(in), optional :: exchange
+        integer(c_int) :: status, try_exchange
+        try_exchange = 1
+        if (present(exchange)) try_exchange = merge(1, 0, exchange)
+        status = c_replace_directory(c_path(from), c_path(to), c_path(aside), try_exchange)
+        select case (status)
+        case (1)
+            old = from
+        case (2)
+            old = aside
+        case (0)
+            old = ''
+        case default
+            old = ''
+            call stat%fail(STATUS_IO, 'cannot put '//short(from)//' in place of '//short(to) &
+                           //': '//error_text(c_errno()))
+        end select
     end subroutine replace_directory
 
     !> Make `to` another name (hard link) of the file `from`.

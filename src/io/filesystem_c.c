@@ -119,23 +119,36 @@ int nceig_sync_path(const char *path)
     return status;
 }
 
-/* Put directory `from` where `to` is, in one step: swapped with `to` when that exists
-   (renameat2 RENAME_EXCHANGE, so a reader of `to` sees the old or the new directory, never
-   none), a plain rename otherwise. 1 when swapped, 0 when renamed, -1 with errno. */
-int nceig_replace_directory(const char *from, const char *to)
+/* Put directory `from` where `to` is. When `to` exists they are swapped in one step
+   (renameat2 RENAME_EXCHANGE: a reader of `to` sees the old or the new directory, never
+   none); where the file system cannot (NFS, some FUSE: EINVAL), or when `exchange` is 0,
+   `to` is first renamed `aside` and `from` then renamed `to`, a moment without `to`.
+   Returns 1 when swapped (`from` now names the old directory), 2 when set aside (`aside`
+   names it), 0 when `to` did not exist, -1 with errno (nothing moved). */
+int nceig_replace_directory(const char *from, const char *to, const char *aside, int exchange)
 {
     struct stat info;
+    int saved;
     if (lstat(to, &info) != 0) {
         if (errno != ENOENT) return -1;
         if (rename(from, to) == 0) return 0;
         if (errno != EEXIST && errno != ENOTEMPTY) return -1;
-        /* made meanwhile: swap it after all */
+        /* made meanwhile: replace it after all */
     }
 #ifdef RENAME_EXCHANGE
-    if (renameat2(AT_FDCWD, from, AT_FDCWD, to, RENAME_EXCHANGE) == 0) return 1;
+    if (exchange) {
+        if (renameat2(AT_FDCWD, from, AT_FDCWD, to, RENAME_EXCHANGE) == 0) return 1;
+        if (errno != EINVAL && errno != ENOSYS && errno != ENOTSUP && errno != EOPNOTSUPP)
+            return -1;
+    }
 #else
-    errno = ENOSYS;
+    (void)exchange;
 #endif
+    if (rename(to, aside) != 0) return -1;
+    if (rename(from, to) == 0) return 2;
+    saved = errno;
+    (void)rename(aside, to);
+    errno = saved;
     return -1;
 }
 

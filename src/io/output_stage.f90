@@ -15,7 +15,7 @@
 !> that way: the commit then fails (STATUS_IO), and the previous set stays.
 module output_stage
     use status, only: status_t, STATUS_IO
-    use filesystem, only: make_directories, remove_file, remove_directory, &
+    use filesystem, only: make_directories, rename_file, remove_directory, &
                           process_id, process_gone, is_real_directory, is_directory, &
                           file_exists, list_directory, MAX_NAME_LEN, sync_path, &
                           replace_directory, make_link, copy_mode, remove_tree, lock_file, &
@@ -28,6 +28,8 @@ module output_stage
 
     character(len=*), parameter :: STAGING_SUFFIX = '.nceig-staging-'
     character(len=*), parameter :: LOCK_SUFFIX = '.nceig-lock'
+    !> Where the old directory goes where the file system cannot swap (see commit).
+    character(len=*), parameter :: ASIDE_SUFFIX = '.nceig-old-'
     !> Staging folders inside the output directory, of nceig before 0.2: dropped with the set.
     character(len=*), parameter :: OLD_STAGING_PREFIX = '.nceig-partial-'
     !> Written into the directory after the commit (sweep_plot), hence never listed in files.
@@ -46,9 +48,11 @@ module output_stage
         character(len=:), allocatable :: parent      !! its parent, where staging and lock go
         character(len=:), allocatable :: base        !! its last component
         character(len=:), allocatable :: staging     !! <parent>/.<base>.nceig-staging-<pid>
+        character(len=:), allocatable :: aside       !! <parent>/.<base>.nceig-old-<pid>
         type(staged_name_t), allocatable :: names(:) !! files registered through path()
         integer :: created_levels = 0                !! parents of `directory` begin made
         logical :: active = .false.                  !! between begin and commit/abort
+        logical :: exchange = .true.                 !! false: never swap (tests the fallback)
     contains
         procedure :: begin => output_stage_begin
         procedure :: path => output_stage_path
@@ -111,9 +115,11 @@ contains
             call stat%fail(STATUS_IO, 'output directory '//this%directory//': '//stat%message)
             return
         end if
+        call remove_stale_staging(this%parent, '.'//this%base//ASIDE_SUFFIX, this%directory)
         call remove_stale_staging(this%parent, '.'//this%base//STAGING_SUFFIX)
         write (pid_text, '(i0)') process_id()
         this%staging = join(this%parent, '.'//this%base//STAGING_SUFFIX//trim(pid_text))
+        this%aside = join(this%parent, '.'//this%base//ASIDE_SUFFIX//trim(pid_text))
         call make_directories(this%staging, stat)
         if (stat%ok()) call cleanup_on_signal(this%staging, this%created_levels, stat)
         if (.not. stat%ok()) then
@@ -132,8 +138,13 @@ contains
     !> stale (we have not made ours yet); those of live processes, other names, and links
     !> are left alone. Best effort: what cannot be removed stays. Process identifiers are
     !> those of this machine: see README (Nothing lost) about shared output directories.
-    subroutine remove_stale_staging(parent, prefix)
+    !> With `restore`: the folders are old sets set aside by a commit without swap (see
+    !> output_stage_commit); one killed before it put the new set in place leaves no
+    !> `restore` directory, and its old set goes back there.
+    subroutine remove_stale_staging(parent, prefix, restore)
         character(len=*), intent(in) :: parent, prefix
+        character(len=*), intent(in), optional :: restore
+        type(status_t) :: stat
         character(len=MAX_NAME_LEN), allocatable :: names(:)
         character(len=:), allocatable :: folder, digits
         integer :: i, pid
@@ -153,6 +164,12 @@ contains
             folder = join(parent, trim(names(i)))
             ! Not through a link: its target is not ours to empty.
             if (.not. is_real_directory(folder)) cycle
+            if (present(restore)) then
+                if (.not. file_exists(restore)) then
+                    call rename_file(folder, restore, stat)
+                    if (stat%ok()) cycle
+                end if
+            end if
             call remove_tree(folder)
         end do
     end subroutine remove_stale_staging
@@ -174,7 +191,10 @@ contains
     end function output_stage_path
 
     !> Put the staged set in place of the output directory in one step, and remove the old
-    !> set. Every file was checked at its close (close_output); here the file system is
+    !> set. Where the file system cannot swap directories (NFS), the old directory is
+    !> renamed aside (<parent>/.<base>.nceig-old-<pid>) just before the staging folder takes
+    !> its name: for that moment the directory is missing, never mixed; a run killed then
+    !> leaves the old set aside, and the next run puts it back. Every file was checked at its close (close_output); here the file system is
     !> written to disk (syncfs: write errors found late fail the commit), then, holding the
     !> directory's lock: the other files of the old
     !> directory are linked into the staging folder (see the module header), the folders
@@ -185,8 +205,9 @@ contains
         class(output_stage_t), intent(inout) :: this
         type(status_t), intent(out) :: stat
         type(status_t) :: sync_stat
+        character(len=:), allocatable :: old
         integer :: lock
-        logical :: swapped, linked
+        logical :: linked
 
         if (.not. this%active) then
             call stat%fail(STATUS_IO, 'output stage: commit without begin')
@@ -209,16 +230,17 @@ contains
             ! the links are entries of the staging folder made after the sync
             if (stat%ok() .and. linked) call sync_path(this%staging, stat)
         end if
-        if (stat%ok()) call replace_directory(this%staging, this%directory, swapped, stat)
+        if (stat%ok()) call replace_directory(this%staging, this%directory, this%aside, old, &
+                                              stat, this%exchange)
         if (.not. stat%ok()) then
             call unlock_file(lock)
             call this%abort()
             return
         end if
         ! From here the new set is in place: a failure to sync or to remove the old set
-        ! (now at the staging path) loses nothing; a later run removes a leftover folder.
+        ! (now at the staging or aside path) loses nothing; a later run removes a leftover.
         call sync_path(this%parent, sync_stat)
-        if (swapped) call remove_tree(this%staging)
+        if (len(old) > 0) call remove_tree(old)
         call unlock_file(lock)
         this%active = .false.
         this%created_levels = 0
