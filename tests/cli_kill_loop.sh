@@ -87,7 +87,8 @@ check 'every kill left a complete previous or new set' '[[ $n_broken -eq 0 ]]'
 check 'some kills came before the commit' '[[ $n_old -ge 1 ]]'
 
 # Kills aimed at the commit: as soon as summary.json, the last file, is in the staging
-# folder (before 0.2: <out>/.nceig-partial-<pid>/, now <parent>/.<out>.nceig-staging-<pid>/).
+# folder (before the directory swap <out>/.nceig-partial-<pid>/, now
+# <parent>/.<out>.nceig-staging-<pid>/).
 n_aimed=0 n_lost=0
 for ((i = 1; i <= tries / 2; i++)); do
     previous=$state

@@ -13,8 +13,8 @@ module filesystem
     public :: make_directories, rename_file, remove_file, remove_directory, file_exists, &
               is_directory, process_id, is_real_directory, process_gone, list_directory
     public :: close_output, sync_path, sync_filesystem, replace_directory, make_link, &
-              copy_mode, remove_tree, lock_file, unlock_file, real_path, cleanup_on_signal, hold_signals, &
-              end_cleanup_on_signal
+              copy_mode, remove_tree, lock_file, unlock_file, real_path
+    public :: cleanup_on_signal, hold_signals, end_cleanup_on_signal
     integer, parameter, public :: MAX_NAME_LEN = 255   !! NAME_MAX of Linux file systems
 
     integer(c_int), parameter :: DIRECTORY_MODE = int(o'777', c_int)  !! the umask trims it

@@ -18,10 +18,9 @@ module output_stage
     use filesystem, only: make_directories, rename_file, remove_directory, &
                           process_id, process_gone, is_real_directory, is_directory, &
                           file_exists, list_directory, MAX_NAME_LEN, sync_path, &
-                          replace_directory, make_link, copy_mode, remove_tree, lock_file, &
-                          sync_filesystem, &
-                          unlock_file, real_path, cleanup_on_signal, hold_signals, &
-                          end_cleanup_on_signal
+                          sync_filesystem, replace_directory, make_link, copy_mode, &
+                          remove_tree, lock_file, unlock_file, real_path, cleanup_on_signal, &
+                          hold_signals, end_cleanup_on_signal
     use input_config, only: read_line
     implicit none
     private
@@ -30,7 +29,8 @@ module output_stage
     character(len=*), parameter :: LOCK_SUFFIX = '.nceig-lock'
     !> Where the old directory goes where the file system cannot swap (see commit).
     character(len=*), parameter :: ASIDE_SUFFIX = '.nceig-old-'
-    !> Staging folders inside the output directory, of nceig before 0.2: dropped with the set.
+    !> Staging folders inside the output directory, of nceig before the directory swap:
+    !> dropped with the set.
     character(len=*), parameter :: OLD_STAGING_PREFIX = '.nceig-partial-'
     !> Written into the directory after the commit (sweep_plot), hence never listed in files.
     character(len=*), parameter :: AFTER_COMMIT_FILE = 'lambda_sweep.png'
@@ -194,11 +194,12 @@ contains
     !> set. Where the file system cannot swap directories (NFS), the old directory is
     !> renamed aside (<parent>/.<base>.nceig-old-<pid>) just before the staging folder takes
     !> its name: for that moment the directory is missing, never mixed; a run killed then
-    !> leaves the old set aside, and the next run puts it back. Every file was checked at its close (close_output); here the file system is
-    !> written to disk (syncfs: write errors found late fail the commit), then, holding the
-    !> directory's lock: the other files of the old
-    !> directory are linked into the staging folder (see the module header), the folders
-    !> are swapped, the parent synced, and the old set removed. SIGTERM and SIGINT wait for
+    !> leaves the old set aside, and the next run puts it back.
+    !> Every file was checked at its close (close_output); here the file system is written
+    !> to disk (syncfs: write errors found late fail the commit), then, holding the
+    !> directory's lock: the other files of the old directory are linked into the staging
+    !> folder (see the module header), the folders are swapped, the parent synced, and the
+    !> old set removed. SIGTERM and SIGINT wait for
     !> the end of the commit. On failure the staged files are deleted, the previous set stays
     !> as it was, and STATUS_IO names the file or directory.
     subroutine output_stage_commit(this, stat)
@@ -240,7 +241,10 @@ contains
         ! From here the new set is in place: a failure to sync or to remove the old set
         ! (now at the staging or aside path) loses nothing; a later run removes a leftover.
         call sync_path(this%parent, sync_stat)
-        if (len(old) > 0) call remove_tree(old)
+        if (len(old) > 0) then
+            call rescue_late_files(this, old)
+            call remove_tree(old)
+        end if
         call unlock_file(lock)
         this%active = .false.
         this%created_levels = 0
@@ -259,7 +263,7 @@ contains
         integer :: i
 
         linked = .false.
-        old_set = listed_files(join(this%directory, SUMMARY_FILE))
+        call read_listed_files(join(this%directory, SUMMARY_FILE), old_set)
         call list_directory(this%directory, entries)
         do i = 1, size(entries)
             name = trim(entries(i))
@@ -278,11 +282,35 @@ contains
         end do
     end subroutine carry_over
 
+    !> Move back into the output directory what the user put into the old one after
+    !> carry_over linked its files (the lock binds nceig runs only): entries of the old
+    !> directory `old` that are neither of the old set nor in the new directory.
+    subroutine rescue_late_files(this, old)
+        type(output_stage_t), intent(in) :: this
+        character(len=*), intent(in) :: old
+        character(len=MAX_NAME_LEN), allocatable :: entries(:)
+        type(staged_name_t), allocatable :: old_set(:)
+        type(status_t) :: stat
+        character(len=:), allocatable :: name
+        integer :: i
+
+        call read_listed_files(join(old, SUMMARY_FILE), old_set)
+        call list_directory(old, entries)
+        do i = 1, size(entries)
+            name = trim(entries(i))
+            if (name == SUMMARY_FILE .or. name == AFTER_COMMIT_FILE) cycle
+            if (index(name, OLD_STAGING_PREFIX) == 1) cycle
+            if (is_listed(name, old_set)) cycle
+            if (file_exists(join(this%directory, name))) cycle
+            call rename_file(join(old, name), join(this%directory, name), stat)
+        end do
+    end subroutine rescue_late_files
+
     !> The names in the "files" member of summary.json `path` (as json_writer writes it: on
     !> one line); none when the file is missing or has no such line.
-    function listed_files(path) result(names)
+    subroutine read_listed_files(path, names)
         character(len=*), intent(in) :: path
-        type(staged_name_t), allocatable :: names(:)
+        type(staged_name_t), allocatable, intent(out) :: names(:)
         character(len=*), parameter :: KEY = '"files": ['
         character(len=:), allocatable :: line
         character(len=512) :: msg
@@ -308,7 +336,7 @@ contains
             exit
         end do
         close (unit, iostat=ios)
-    end function listed_files
+    end subroutine read_listed_files
 
     !> Grown by hand: gfortran 12 leaks the allocatable components of the temporaries of
     !> [names, staged_name_t(name)] (LeakSanitizer).
