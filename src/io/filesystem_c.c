@@ -294,6 +294,14 @@ static void on_signal(int signal_number)
 {
     int saved = errno;
     int i;
+    /* A thread of OpenMP or BLAS got it: hand it to the main thread (whose thread id is the
+       process id), which writes the staging folder, so that the removal does not race with
+       a file being created there. */
+    if (syscall(SYS_gettid) != (long)getpid()) {
+        (void)syscall(SYS_tgkill, (long)getpid(), (long)getpid(), (long)signal_number);
+        errno = saved;
+        return;
+    }
     if (holding) {
         pending = signal_number;
         errno = saved;

@@ -110,19 +110,23 @@ contains
                 return
             end if
         end if
-        call make_directories(this%parent, stat, this%created_levels)
-        if (.not. stat%ok()) then
-            call stat%fail(STATUS_IO, 'output directory '//this%directory//': '//stat%message)
-            return
-        end if
-        call remove_stale_staging(this%parent, '.'//this%base//ASIDE_SUFFIX, this%directory)
-        call remove_stale_staging(this%parent, '.'//this%base//STAGING_SUFFIX)
         write (pid_text, '(i0)') process_id()
         this%staging = join(this%parent, '.'//this%base//STAGING_SUFFIX//trim(pid_text))
         this%aside = join(this%parent, '.'//this%base//ASIDE_SUFFIX//trim(pid_text))
-        call make_directories(this%staging, stat)
-        if (stat%ok()) call cleanup_on_signal(this%staging, this%created_levels, stat)
+        ! Armed before anything is made, so that no signal finds it unregistered.
+        call cleanup_on_signal(this%staging, 0, stat)
+        if (stat%ok()) call make_directories(this%parent, stat, this%created_levels)
         if (.not. stat%ok()) then
+            call end_cleanup_on_signal()
+            call stat%fail(STATUS_IO, 'output directory '//this%directory//': '//stat%message)
+            return
+        end if
+        call cleanup_on_signal(this%staging, this%created_levels, stat)
+        call remove_stale_staging(this%parent, '.'//this%base//ASIDE_SUFFIX, this%directory)
+        call remove_stale_staging(this%parent, '.'//this%base//STAGING_SUFFIX)
+        if (stat%ok()) call make_directories(this%staging, stat)
+        if (.not. stat%ok()) then
+            call end_cleanup_on_signal()
             call remove_directory(this%staging)
             call remove_created_parents(this)
             call stat%fail(STATUS_IO, 'output directory '//this%directory// &
