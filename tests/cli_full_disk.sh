@@ -3,6 +3,7 @@
 # Nothing lost on a full disk: on a 200 KB tmpfs holding a previous complete set, a run whose
 # outputs do not fit must exit 4 with one stderr line naming the file that did not fit, and
 # leave the previous set byte for byte, with no staging folder and the space given back.
+# The mount point itself, which cannot be renamed, works as an output directory (in place).
 # Needs to mount a tmpfs (root); otherwise skipped (exit 77) with the reason.
 # Usage: cli_full_disk.sh NCEIG SOURCE_DIR
 set -u
@@ -33,6 +34,23 @@ nml big 60 5 3
 nml big_ascii 60 5 3 ", vtk_format = 'ascii'"
 nml matrices 60 5 1 ", vtk = .false., matrices = .true."
 nml other 6 4 3
+
+# The mount point itself cannot be renamed: it is committed in place, file by file.
+cat >"$work/mount_point.nml" <<NML
+&mesh nx = 6, ny = 6 /
+&output directory = '$disk', modes = 3 /
+NML
+"$nceig" "$work/mount_point.nml" >/dev/null 2>"$work/stderr"
+rc=$?
+sed -i 's/modes = 3/modes = 2/' "$work/mount_point.nml"
+"$nceig" "$work/mount_point.nml" >/dev/null 2>>"$work/stderr"
+rc=$((rc + $?))
+check 'the mount point as output directory: two runs succeed' '[[ $rc -eq 0 && ! -s "$work/stderr" ]]'
+check 'the mount point as output directory: it holds the second set, whole' \
+    '[[ $(set_state "$disk" "$disk") == "ref 0" && ! -e "$disk/mode_003.vtu" ]]'
+check 'the mount point as output directory: no staging folder left' \
+    '[[ -z $(ls -A "$disk" | grep nceig-partial) ]]'
+rm -rf "${disk:?}"/* "$disk"/.nceig-*
 
 "$nceig" "$work/small.nml" >/dev/null 2>&1
 check 'a small run fits' '[[ -s "$out/summary.json" ]]'

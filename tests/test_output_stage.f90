@@ -91,6 +91,7 @@ program test_output_stage
 
     call check_stale_staging()
     call check_without_swap()
+    call check_in_place()
 
     ! A regular file where a parent directory should be; a path too long: nothing is left.
     call write_text('stage_out/plain', 'not a directory')
@@ -110,8 +111,6 @@ program test_output_stage
     call stage%begin('stage_out/q1/q2/run', stat)
     call stage%abort()
     call t%check('abort removes the parents begin made', .not. file_exists('stage_out/q1'))
-    call stage%begin('.', stat)
-    call t%check('''.'' cannot be replaced: STATUS_IO', stat%code == STATUS_IO)
     call stage%commit(stat)
     call t%check('commit without begin fails', .not. stat%ok())
 
@@ -213,4 +212,33 @@ contains
         call t%check('killed while set aside: no aside folder left', .not. file_exists(ASIDE))
         call stage%abort()
     end subroutine check_without_swap
+
+    !> A directory that cannot be renamed ('.' here; a mount point, an unwritable parent)
+    !> is committed in place, file by file, summary.json last: the same set in the end.
+    subroutine check_in_place()
+        character(len=*), parameter :: HERE = 'stage_out/here/.'
+        call make_directories(HERE//'/plots', stat)
+        call write_text(HERE//'/notes.txt', 'mine')
+        call stage%begin(HERE, stat)
+        call t%check('in place: begin succeeds', stat%ok())
+        call t%check('in place: staging inside the directory', &
+                     is_directory(HERE//'/.nceig-partial-'//trim(pid)))
+        call write_text(stage%path('a.txt'), 'first a')
+        call write_text(stage%path('b.txt'), 'first b')
+        call write_text(stage%path('summary.json'), '  "files": ["a.txt", "b.txt"],')
+        call stage%commit(stat)
+        call t%check('in place: commit succeeds', stat%ok())
+        call stage%begin(HERE, stat)
+        call write_text(stage%path('a.txt'), 'second a')
+        call write_text(stage%path('summary.json'), '  "files": ["a.txt"],')
+        call stage%commit(stat)
+        call t%check('in place: the new file is in', first_line(HERE//'/a.txt') == 'second a')
+        call t%check('in place: the old set''s other file is gone', &
+                     .not. file_exists(HERE//'/b.txt'))
+        call t%check('in place: the user''s file and folder stay', &
+                     first_line(HERE//'/notes.txt') == 'mine')
+        call t%check('in place: the user''s folder stays', is_directory(HERE//'/plots'))
+        call t%check('in place: no staging folder left', &
+                     .not. file_exists(HERE//'/.nceig-partial-'//trim(pid)))
+    end subroutine check_in_place
 end program test_output_stage

@@ -13,13 +13,14 @@ module filesystem
     public :: make_directories, rename_file, remove_file, remove_directory, file_exists, &
               is_directory, process_id, is_real_directory, process_gone, list_directory
     public :: close_output, sync_path, sync_filesystem, replace_directory, make_link, &
-              copy_mode, remove_tree, lock_file, unlock_file, real_path
+              copy_mode, remove_tree, lock_file, unlock_file, real_path, can_replace
     public :: cleanup_on_signal, hold_signals, end_cleanup_on_signal
     integer, parameter, public :: MAX_NAME_LEN = 255   !! NAME_MAX of Linux file systems
 
     integer(c_int), parameter :: DIRECTORY_MODE = int(o'777', c_int)  !! the umask trims it
     integer(c_int), parameter :: ACCESS_EXISTS = 0_c_int              !! F_OK of <unistd.h>
     integer, parameter :: EIO = 5   !! errno of <errno.h>: the iostat of a short file
+    integer, parameter :: EBUSY = 16, EXDEV = 18   !! errno (Linux) of renaming a mount point
     integer, parameter :: MAX_PATH_LEN = 4096   !! PATH_MAX of Linux
 
     interface
@@ -144,6 +145,12 @@ module filesystem
             integer(c_int), value :: exchange  ! 0: do not try RENAME_EXCHANGE
             integer(c_int) :: status           ! 1 swapped, 2 set aside, 0 renamed, -1 (errno)
         end function c_replace_directory
+
+        function c_can_replace(path, parent) bind(C, name='nceig_can_replace') result(answer)
+            import :: c_int, c_char
+            character(kind=c_char), intent(in) :: path(*), parent(*)
+            integer(c_int) :: answer
+        end function c_can_replace
 
         function c_link(from, to) bind(C, name='nceig_link') result(status)
             import :: c_int, c_char
@@ -330,7 +337,8 @@ contains
         character(len=:), allocatable, intent(out) :: old
         type(status_t), intent(out) :: stat
         logical, intent(in), optional :: exchange
-        integer(c_int) :: status, try_exchange
+        integer(c_int) :: status, try_exchange, errnum
+        character(len=:), allocatable :: hint
         try_exchange = 1
         if (present(exchange)) try_exchange = merge(1, 0, exchange)
         status = c_replace_directory(c_path(from), c_path(to), c_path(aside), try_exchange)
@@ -343,10 +351,21 @@ contains
             old = ''
         case default
             old = ''
+            errnum = c_errno()
+            hint = ''
+            if (errnum == EBUSY .or. errnum == EXDEV) &
+                hint = ' (a mount point? name a directory inside it)'
             call stat%fail(STATUS_IO, 'cannot put '//short(from)//' in place of '//short(to) &
-                           //': '//error_text(c_errno()))
+                           //': '//error_text(errnum)//hint)
         end select
     end subroutine replace_directory
+
+    !> True when directory `path` can be replaced by a rename in `parent`: not a mount point
+    !> nor '/', and `parent` writable.
+    logical function can_replace(path, parent)
+        character(len=*), intent(in) :: path, parent
+        can_replace = c_can_replace(c_path(path), c_path(parent)) /= 0
+    end function can_replace
 
     !> Make `to` another name (hard link) of the file `from`.
     subroutine make_link(from, to, stat)

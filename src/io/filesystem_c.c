@@ -152,6 +152,16 @@ int nceig_replace_directory(const char *from, const char *to, const char *aside,
     return -1;
 }
 
+/* 1 when directory `path` can be replaced by renaming in `parent`: both on one file system
+   (not a mount point), `path` not `parent` itself ('/'), and `parent` writable by us. */
+int nceig_can_replace(const char *path, const char *parent)
+{
+    struct stat own, up;
+    if (lstat(path, &own) != 0 || stat(parent, &up) != 0) return 0;
+    if (own.st_dev != up.st_dev || own.st_ino == up.st_ino) return 0;
+    return access(parent, W_OK | X_OK) == 0;
+}
+
 /* Make `to` a new name (hard link) of file `from`; a symbolic link is linked, not followed. */
 int nceig_link(const char *from, const char *to) { return link(from, to); }
 

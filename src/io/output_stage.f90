@@ -13,9 +13,17 @@
 !> (the user's notes, files of runs older than that) is kept, as a hard link in the new
 !> directory, unless the new set has a file of that name. A subdirectory cannot be carried
 !> that way: the commit then fails (STATUS_IO), and the previous set stays.
+!>
+!> An existing directory that cannot be replaced by a rename (a mount point, '.', a parent
+!> we may not write) is committed in place instead: staged in
+!> `<directory>/.nceig-partial-<pid>`, then, under the lock `<directory>/.nceig-lock`,
+!> the old summary.json is deleted, the files renamed in one by one, the old set's other
+!> files deleted, and summary.json renamed in last. Each rename is atomic, the set is not:
+!> a commit cut short leaves no summary.json (the mark of an incomplete set).
 module output_stage
     use status, only: status_t, STATUS_IO
-    use filesystem, only: make_directories, rename_file, remove_directory, &
+    use filesystem, only: make_directories, rename_file, remove_directory, remove_file, &
+                          can_replace, &
                           process_id, process_gone, is_real_directory, is_directory, &
                           file_exists, list_directory, MAX_NAME_LEN, sync_path, &
                           sync_filesystem, replace_directory, make_link, copy_mode, &
@@ -29,9 +37,10 @@ module output_stage
     character(len=*), parameter :: LOCK_SUFFIX = '.nceig-lock'
     !> Where the old directory goes where the file system cannot swap (see commit).
     character(len=*), parameter :: ASIDE_SUFFIX = '.nceig-old-'
-    !> Staging folders inside the output directory, of nceig before the directory swap:
-    !> dropped with the set.
-    character(len=*), parameter :: OLD_STAGING_PREFIX = '.nceig-partial-'
+    !> Staging folders inside the output directory: of a commit in place, or of nceig before
+    !> the directory swap (dropped with the set).
+    character(len=*), parameter :: IN_PLACE_PREFIX = '.nceig-partial-'
+    character(len=*), parameter :: IN_PLACE_LOCK = '.nceig-lock'
     !> Written into the directory after the commit (sweep_plot), hence never listed in files.
     character(len=*), parameter :: AFTER_COMMIT_FILE = 'lambda_sweep.png'
     character(len=*), parameter :: SUMMARY_FILE = 'summary.json'
@@ -53,6 +62,7 @@ module output_stage
         integer :: created_levels = 0                !! parents of `directory` begin made
         logical :: active = .false.                  !! between begin and commit/abort
         logical :: exchange = .true.                 !! false: never swap (tests the fallback)
+        logical :: in_place = .false.                !! commit file by file (see the header)
     contains
         procedure :: begin => output_stage_begin
         procedure :: path => output_stage_path
@@ -63,12 +73,12 @@ module output_stage
 
 contains
 
-    !> Create the parents of `directory` if missing and an empty staging folder next to it,
-    !> after removing the staging folders that runs killed earlier left there (see
-    !> remove_stale_staging). `directory` itself appears only at commit. A link to a
-    !> directory is followed: the directory it names is replaced. Fails with STATUS_IO
-    !> naming the directory when it cannot be created or written, or is '.', '..' or '/',
-    !> which cannot be replaced; then nothing was created.
+    !> Create the parents of `directory` if missing and an empty staging folder next to it
+    !> (inside it for a commit in place), after removing the staging folders that runs
+    !> killed earlier left there (see remove_stale_staging). `directory` itself appears only
+    !> at commit. A link to a directory is followed: the directory it names is replaced.
+    !> Fails with STATUS_IO naming the directory when it cannot be created or written; then
+    !> nothing was created.
     subroutine output_stage_begin(this, directory, stat)
         class(output_stage_t), intent(inout) :: this
         character(len=*), intent(in) :: directory
@@ -97,33 +107,41 @@ contains
         else
             this%parent = this%directory(:slash - 1)
         end if
-        if (this%base == '' .or. this%base == '.' .or. this%base == '..') then
-            call stat%fail(STATUS_IO, 'output directory '//this%directory//': nceig replaces' &
-                           //' its output directory as a whole; name one, not ''.'', ''..''' &
-                           //' or ''/''')
-            return
-        end if
         if (file_exists(this%directory)) then
             if (.not. is_directory(this%directory)) then
                 call stat%fail(STATUS_IO, 'output directory '//this%directory// &
                                ': a file of that name is in the way')
                 return
             end if
+            this%in_place = this%base == '' .or. this%base == '.' .or. this%base == '..'
+            if (.not. this%in_place) &
+                this%in_place = .not. can_replace(this%directory, this%parent)
+        else
+            this%in_place = .false.
         end if
         write (pid_text, '(i0)') process_id()
-        this%staging = join(this%parent, '.'//this%base//STAGING_SUFFIX//trim(pid_text))
+        if (this%in_place) then
+            this%staging = join(this%directory, IN_PLACE_PREFIX//trim(pid_text))
+        else
+            this%staging = join(this%parent, '.'//this%base//STAGING_SUFFIX//trim(pid_text))
+        end if
         this%aside = join(this%parent, '.'//this%base//ASIDE_SUFFIX//trim(pid_text))
         ! Armed before anything is made, so that no signal finds it unregistered.
         call cleanup_on_signal(this%staging, 0, stat)
-        if (stat%ok()) call make_directories(this%parent, stat, this%created_levels)
+        if (stat%ok() .and. .not. this%in_place) &
+            call make_directories(this%parent, stat, this%created_levels)
         if (.not. stat%ok()) then
             call end_cleanup_on_signal()
             call stat%fail(STATUS_IO, 'output directory '//this%directory//': '//stat%message)
             return
         end if
         call cleanup_on_signal(this%staging, this%created_levels, stat)
-        call remove_stale_staging(this%parent, '.'//this%base//ASIDE_SUFFIX, this%directory)
-        call remove_stale_staging(this%parent, '.'//this%base//STAGING_SUFFIX)
+        if (this%in_place) then
+            call remove_stale_staging(this%directory, IN_PLACE_PREFIX)
+        else
+            call remove_stale_staging(this%parent, '.'//this%base//ASIDE_SUFFIX, this%directory)
+            call remove_stale_staging(this%parent, '.'//this%base//STAGING_SUFFIX)
+        end if
         if (stat%ok()) call make_directories(this%staging, stat)
         if (.not. stat%ok()) then
             call end_cleanup_on_signal()
@@ -224,9 +242,26 @@ contains
             call this%abort()
             return
         end if
-        call lock_file(join(this%parent, '.'//this%base//LOCK_SUFFIX), lock, stat)
+        if (this%in_place) then
+            call lock_file(join(this%directory, IN_PLACE_LOCK), lock, stat)
+        else
+            call lock_file(join(this%parent, '.'//this%base//LOCK_SUFFIX), lock, stat)
+        end if
         if (.not. stat%ok()) then
             call this%abort()
+            return
+        end if
+        if (this%in_place) then
+            call commit_in_place(this, stat)
+            call unlock_file(lock)
+            if (.not. stat%ok()) then
+                call this%abort()
+                return
+            end if
+            call remove_tree(this%staging)
+            call sync_path(this%directory, sync_stat)
+            this%active = .false.
+            call end_cleanup_on_signal()
             return
         end if
         if (is_real_directory(this%directory)) then
@@ -255,6 +290,35 @@ contains
         call end_cleanup_on_signal()
     end subroutine output_stage_commit
 
+    !> The commit in place (see the module header): the old summary.json goes first, the new
+    !> one comes last; between them the new files replace the old set's.
+    subroutine commit_in_place(this, stat)
+        type(output_stage_t), intent(in) :: this
+        type(status_t), intent(out) :: stat
+        type(staged_name_t), allocatable :: old_set(:)
+        integer :: i
+
+        call read_listed_files(join(this%directory, SUMMARY_FILE), old_set)
+        call remove_file(join(this%directory, SUMMARY_FILE))
+        do i = 1, size(this%names)
+            if (this%names(i)%name == SUMMARY_FILE) cycle
+            call rename_file(join(this%staging, this%names(i)%name), &
+                             join(this%directory, this%names(i)%name), stat)
+            if (.not. stat%ok()) return
+        end do
+        do i = 1, size(old_set)
+            if (old_set(i)%name == SUMMARY_FILE) cycle
+            if (is_listed(old_set(i)%name, this%names)) cycle
+            ! only plain names: summary.json is data, not a licence to delete elsewhere
+            if (index(old_set(i)%name, '/') > 0 .or. old_set(i)%name == '..') cycle
+            call remove_file(join(this%directory, old_set(i)%name))
+        end do
+        call remove_file(join(this%directory, AFTER_COMMIT_FILE))
+        if (is_listed(SUMMARY_FILE, this%names)) &
+            call rename_file(join(this%staging, SUMMARY_FILE), &
+                             join(this%directory, SUMMARY_FILE), stat)
+    end subroutine commit_in_place
+
     !> Link into the staging folder each entry of the output directory that is neither in
     !> the old set nor in the new one, so that the swap keeps it. A subdirectory fails.
     subroutine carry_over(this, linked, stat)
@@ -272,7 +336,7 @@ contains
         do i = 1, size(entries)
             name = trim(entries(i))
             if (name == SUMMARY_FILE .or. name == AFTER_COMMIT_FILE) cycle
-            if (index(name, OLD_STAGING_PREFIX) == 1) cycle
+            if (index(name, IN_PLACE_PREFIX) == 1) cycle
             if (is_listed(name, old_set) .or. is_listed(name, this%names)) cycle
             if (is_real_directory(join(this%directory, name))) then
                 call stat%fail(STATUS_IO, 'output directory '//this%directory//' holds the ' &
@@ -303,7 +367,7 @@ contains
         do i = 1, size(entries)
             name = trim(entries(i))
             if (name == SUMMARY_FILE .or. name == AFTER_COMMIT_FILE) cycle
-            if (index(name, OLD_STAGING_PREFIX) == 1) cycle
+            if (index(name, IN_PLACE_PREFIX) == 1) cycle
             if (is_listed(name, old_set)) cycle
             if (file_exists(join(this%directory, name))) cycle
             call rename_file(join(old, name), join(this%directory, name), stat)
