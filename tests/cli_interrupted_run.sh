@@ -3,7 +3,8 @@
 # Nothing lost: a run killed (SIGKILL, no chance to clean up) at several moments, into a
 # directory holding a previous complete result, must leave that result as it was, or, if
 # the kill came after the commit, the new complete result; never a visible partial file
-# nor a summary.json next to files of another set.
+# nor a summary.json next to files of another set. (tests/cli_kill_loop.sh kills many more
+# runs, at random moments and aimed at the commit.)
 # Usage: cli_interrupted_run.sh NCEIG SOURCE_DIR
 set -u
 nceig=$1
@@ -51,38 +52,40 @@ for delay in 0.1 0.4 0.8 1.2; do
 done
 echo "      $n_killed of 4 runs were still running when killed"
 check 'at least one run was killed mid-way' '[[ $n_killed -ge 1 ]]'
-check 'the killed runs left only hidden staging folders' \
-    '[[ -z $(cd "$out" && ls -A | grep -v "^\.nceig-partial-" | grep -v -x -F "$(cd "$work/before" && ls)") ]]'
+check 'the killed runs left nothing in the output directory' \
+    '[[ -z $(cd "$out" && ls -A | grep -v -x -F "$(cd "$work/before" && ls)") ]]'
+check 'the killed runs left only hidden staging folders next to it' \
+    '[[ -z $(cd "$work" && ls -A | grep -v -x -e "out" -e "before" -e "first.nml" -e "big.nml" -e ".out.nceig-lock" -e ".out.nceig-staging-[0-9]*") ]]'
 
 
 # The next run into the directory removes the staging folders of killed runs (their
-# processes are gone), but not that of a live process (this shell, as if it were a run in
-# progress), nor what a stale-looking name links to (pid 999999999 exceeds any pid_max).
-# Each run's begin already removes the folders of the runs killed before it, and a kill
-# rarely falls into the short write phase, so one more killed process gets a staging
-# folder as a run's would look when killed while writing.
+# processes are gone; they sit next to the directory, <parent>/.<name>.nceig-staging-<pid>),
+# but not that of a live process (this shell, as if it were a run in progress), nor what a
+# stale-looking name links to (pid 999999999 exceeds any pid_max). Each run's begin already
+# removes the folders of the runs killed before it, so one more killed process gets a
+# staging folder as a run's would look when killed while writing.
 sleep 30 &
 victim=$!
-mkdir "$out/.nceig-partial-$victim"
-echo 'partial' >"$out/.nceig-partial-$victim/mode_001.vtu"
+mkdir "$work/.out.nceig-staging-$victim"
+echo 'partial' >"$work/.out.nceig-staging-$victim/mode_001.vtu"
 kill -KILL "$victim"
 wait "$victim" 2>/dev/null
-stale=$(cd "$out" && ls -A | grep '^\.nceig-partial-' | tr '\n' ' ')
+stale=$(cd "$work" && ls -A | grep '^\.out\.nceig-staging-' | tr '\n' ' ')
 echo "      staging folders of killed processes: $stale"
-mkdir "$out/.nceig-partial-$$"
-echo 'being written' >"$out/.nceig-partial-$$/mode_001.vtu"
+mkdir "$work/.out.nceig-staging-$$"
+echo 'being written' >"$work/.out.nceig-staging-$$/mode_001.vtu"
 mkdir "$work/elsewhere"
 echo 'not ours' >"$work/elsewhere/keep.txt"
-ln -s "$work/elsewhere" "$out/.nceig-partial-999999999"
+ln -s "$work/elsewhere" "$work/.out.nceig-staging-999999999"
 "$nceig" "$work/first.nml" >/dev/null 2>&1
 check 'the next run completes' '[[ -s "$out/summary.json" ]]'
 check 'the next run removed every staging folder of a killed run' \
-    'for f in $stale; do [[ ! -e "$out/$f" ]] || exit 1; done'
+    '( for f in $stale; do [[ ! -e "$work/$f" ]] || exit 1; done )'
 check 'the next run kept the staging folder of a live process' \
-    '[[ $(cat "$out/.nceig-partial-$$/mode_001.vtu") == "being written" ]]'
+    '[[ $(cat "$work/.out.nceig-staging-$$/mode_001.vtu") == "being written" ]]'
 check 'the next run did not follow a link named like a staging folder' \
-    '[[ -L "$out/.nceig-partial-999999999" && $(cat "$work/elsewhere/keep.txt") == "not ours" ]]'
+    '[[ -L "$work/.out.nceig-staging-999999999" && $(cat "$work/elsewhere/keep.txt") == "not ours" ]]'
 check 'the next run left no staging folder of its own' \
-    '[[ $(cd "$out" && ls -A | grep -c "^\.nceig-partial-") -eq 2 ]]'
+    '[[ $(cd "$work" && ls -A | grep -c "^\.out\.nceig-staging-") -eq 2 ]]'
 
 cli_end

@@ -62,7 +62,7 @@ if command -v gnuplot >/dev/null; then
 else
     check 'no gnuplot: a note, no png, success' 'grep -q "plot .*not drawn" "$work/stdout" && [[ ! -e "$work/range/lambda_sweep.png" ]]'
 fi
-check 'no staging folder left' '[[ -z $(ls -A "$work/range" | grep nceig-partial) ]]'
+check 'no staging folder left' '[[ -z $(ls -A "$work" | grep nceig-staging) ]]'
 
 bad() {  # name, &sweep body, expected words in the message
     local want=$3

@@ -1,44 +1,54 @@
 ! SPDX-License-Identifier: MIT
-!> Staged output: files appear in the directory only at commit, abort leaves nothing, begin
-!> removes the staging folders of dead runs only, and a directory that cannot be created is
-!> reported as STATUS_IO.
+!> Staged output: the set appears in the directory only at commit, as one directory swap;
+!> abort and failures leave the previous set and nothing else; the user's files survive a
+!> swap; begin removes the staging folders of dead runs only; a directory that cannot be
+!> created is reported as STATUS_IO and leaves no directory behind.
 program test_output_stage
     use status, only: status_t, STATUS_IO
     use output_stage, only: output_stage_t
     use filesystem, only: file_exists, is_directory, process_id, make_directories, &
                           remove_file, remove_directory, process_gone, list_directory, &
-                          MAX_NAME_LEN
+                          remove_tree, close_output, MAX_NAME_LEN
     use testing, only: test_suite_t
     implicit none
     type(test_suite_t) :: t
     type(output_stage_t) :: stage
     type(status_t) :: stat
-    character(len=:), allocatable :: dir, staging, a_path, b_path
+    character(len=:), allocatable :: dir, staging, a_path, b_path, long_name, committed_a
     character(len=16) :: pid
+    character(len=256) :: msg
+    integer :: created, unit, ios
 
     t%name = 'test_output_stage'
     write (pid, '(i0)') process_id()
     dir = 'stage_out/run'
-    staging = dir//'/.nceig-partial-'//trim(pid)
-    call clean()
+    staging = 'stage_out/.run.nceig-staging-'//trim(pid)
+    call remove_tree('stage_out')
 
-    call make_directories('stage_out/a/b/c', stat)
+    call make_directories('stage_out/a/b/c', stat, created)
     call t%check('make_directories succeeds', stat%ok())
     call t%check('make_directories creates parents', is_directory('stage_out/a/b/c'))
-    call make_directories('stage_out/a/b/c', stat)
-    call t%check('make_directories accepts an existing directory', stat%ok())
+    call t%check('make_directories counts what it made', created == 4)
+    call make_directories('stage_out/a/b/c', stat, created)
+    call t%check('make_directories accepts an existing directory', stat%ok() .and. created == 0)
+    long_name = repeat('n', 300)
+    call make_directories('stage_out/m1/m2/'//long_name//'/z', stat)
+    call t%check('make_directories: a name too long fails', stat%code == STATUS_IO)
+    call t%check('make_directories: a failure removes what it made', &
+                 .not. file_exists('stage_out/m1'))
+    call t%check('make_directories: a failure keeps what existed', is_directory('stage_out'))
 
     ! begin / path / commit: nothing visible before commit, everything after.
     call stage%begin(dir, stat)
     call t%check('begin succeeds', stat%ok())
-    call t%check('begin creates the directory and its parent', is_directory(dir))
-    call t%check('staging folder exists during the run', is_directory(staging))
+    call t%check('begin does not create the directory itself', .not. file_exists(dir))
+    call t%check('staging folder next to the directory', is_directory(staging))
     a_path = stage%path('a.txt')
     b_path = stage%path('b.txt')
     call t%check('path points into the staging folder', a_path == staging//'/a.txt')
     call write_text(a_path, 'new a')
     call write_text(b_path, 'new b')
-    call t%check('staged file not yet in the directory', .not. file_exists(dir//'/a.txt'))
+    call write_text(stage%path('summary.json'), '  "files": ["a.txt", "b.txt"],')
     call stage%commit(stat)
     call t%check('commit succeeds', stat%ok())
     call t%check('a.txt committed', file_exists(dir//'/a.txt'))
@@ -46,11 +56,16 @@ program test_output_stage
     call t%check('content committed', first_line(dir//'/a.txt') == 'new a')
     call t%check('staging folder removed', .not. file_exists(staging))
 
-    ! A second run replaces older files; abort keeps the old ones and leaves no staging.
+    ! A second run replaces the set: its files, the user's files, not the older set's.
+    call write_text(dir//'/notes.txt', 'mine')
     call stage%begin(dir, stat)
     call write_text(stage%path('a.txt'), 'newer a')
+    call write_text(stage%path('summary.json'), '  "files": ["a.txt"],')
     call stage%commit(stat)
     call t%check('commit replaces an older file', first_line(dir//'/a.txt') == 'newer a')
+    call t%check('the older set''s other file is gone', .not. file_exists(dir//'/b.txt'))
+    call t%check('the user''s file is kept', first_line(dir//'/notes.txt') == 'mine')
+    call t%check('no staging folder after a swap', .not. file_exists(staging))
 
     call stage%begin(dir, stat)
     call write_text(stage%path('a.txt'), 'aborted a')
@@ -62,16 +77,32 @@ program test_output_stage
     call stage%abort()
     call t%check('abort twice is harmless', .not. file_exists(staging))
 
-    call check_stale_staging()
+    ! A folder of the user's cannot be carried over: the commit fails, nothing changes.
+    call make_directories(dir//'/plots', stat)
+    call stage%begin(dir, stat)
+    call write_text(stage%path('a.txt'), 'refused a')
+    call stage%commit(stat)
+    call t%check('a foreign folder: STATUS_IO', stat%code == STATUS_IO)
+    if (allocated(stat%message)) print '(a)', '      '//stat%message
+    call t%check('a foreign folder: the set is unchanged', first_line(dir//'/a.txt') == 'newer a')
+    call t%check('a foreign folder: the folder stays', is_directory(dir//'/plots'))
+    call t%check('a foreign folder: no staging folder left', .not. file_exists(staging))
+    call remove_directory(dir//'/plots')
 
-    ! A regular file where a parent directory should be.
+    call check_stale_staging()
+    call check_without_swap()
+    call check_in_place()
+
+    ! A regular file where a parent directory should be; a path too long: nothing is left.
+    committed_a = first_line(dir//'/a.txt')
     call write_text('stage_out/plain', 'not a directory')
-    call stage%begin('stage_out/plain/sub', stat)
+    call stage%begin('stage_out/plain/sub/run', stat)
     call t%check('directory under a file: STATUS_IO', stat%code == STATUS_IO)
     call t%check('directory under a file: message names it', allocated(stat%message))
     if (allocated(stat%message)) then
         print '(a)', '      '//stat%message
-        call t%check('message names the directory', index(stat%message, 'stage_out/plain/sub') > 0)
+        call t%check('message names the directory', &
+                     index(stat%message, 'stage_out/plain/sub/run') > 0)
     end if
     ! The failed begin left the stage inactive, still holding the staging path of the run
     ! before: abort must then touch nothing on disk. A folder at that path stands for
@@ -80,22 +111,32 @@ program test_output_stage
     call stage%abort()
     call t%check('abort after a failed begin keeps the file in the way', &
                  first_line('stage_out/plain') == 'not a directory')
-    call t%check('abort after a failed begin keeps the committed a.txt', &
-                 first_line(dir//'/a.txt') == 'newer a')
-    call t%check('abort after a failed begin keeps the committed b.txt', &
-                 first_line(dir//'/b.txt') == 'new b')
+    call t%check('abort after a failed begin keeps the committed set', &
+                 first_line(dir//'/a.txt') == committed_a .and. len(committed_a) > 0)
     call t%check('abort after a failed begin leaves the earlier staging path alone', &
                  is_directory(staging))
     call t%check('abort after a failed begin creates nothing under the file', &
                  .not. file_exists('stage_out/plain/sub'))
     call remove_directory(staging)
+    call stage%begin('stage_out/p1/p2/'//long_name//'/run', stat)
+    call t%check('a name too long: STATUS_IO', stat%code == STATUS_IO)
+    call t%check('a name too long: no directory left', .not. file_exists('stage_out/p1'))
+    call stage%begin('stage_out/q1/q2/run', stat)
+    call stage%abort()
+    call t%check('abort removes the parents begin made', .not. file_exists('stage_out/q1'))
     call stage%commit(stat)
     call t%check('commit without begin fails', .not. stat%ok())
 
-    call clean()
+    ! close_output: a complete file passes.
+    open (newunit=unit, file='stage_out/closed.txt', status='replace', action='write')
+    write (unit, '(a)') 'twelve bytes'
+    call close_output(unit, 'stage_out/closed.txt', ios, msg)
+    call t%check('close_output of a complete file: ios = 0', ios == 0)
+
+    call remove_tree('stage_out')
     ! gfortran 12 keeps main-program allocatables in a frame gone before LeakSanitizer
     ! looks: free them here so a sanitizer build reports only real leaks.
-    deallocate (dir, staging, a_path, b_path)
+    deallocate (dir, staging, a_path, b_path, long_name)
     call t%report()
 
 contains
@@ -123,12 +164,12 @@ contains
     !> 999999999 exceeds any Linux pid_max, 4194304) and one of our own pid (a dead run's);
     !> it keeps that of a live process (pid 1, init) and names that are not a pid.
     subroutine check_stale_staging()
-        character(len=*), parameter :: PREFIX = '/.nceig-partial-'
+        character(len=*), parameter :: PREFIX = 'stage_out/.run.nceig-staging-'
         character(len=MAX_NAME_LEN), allocatable :: names(:)
         character(len=:), allocatable :: dead, live, odd
-        dead = dir//PREFIX//'999999999'
-        live = dir//PREFIX//'1'
-        odd = dir//PREFIX//'12ab'
+        dead = PREFIX//'999999999'
+        live = PREFIX//'1'
+        odd = PREFIX//'12ab'
         call t%check('pid 999999999 is gone', process_gone(999999999))
         call t%check('pid 1 (init) is not gone', .not. process_gone(1))
         call t%check('our own pid is not gone', .not. process_gone(process_id()))
@@ -152,24 +193,65 @@ contains
         call t%check('our pid''s leftover folder reused', is_directory(staging))
         call t%check('our pid''s leftover emptied', .not. file_exists(staging//'/old.txt'))
         call stage%abort()
-        call remove_file(live//'/mode_001.vtu')
-        call remove_directory(live)
+        call remove_tree(live)
         call remove_directory(odd)
     end subroutine check_stale_staging
 
-    !> Leave the build folder as found (best effort; every name we might have made).
-    subroutine clean()
-        call remove_file(dir//'/a.txt')
-        call remove_file(dir//'/b.txt')
-        call remove_file(dir//'/c.txt')
-        call remove_file(staging//'/a.txt')
-        call remove_file(staging//'/c.txt')
-        call remove_directory(staging)
-        call remove_directory(dir)
-        call remove_file('stage_out/plain')
-        call remove_directory('stage_out/a/b/c')
-        call remove_directory('stage_out/a/b')
-        call remove_directory('stage_out/a')
-        call remove_directory('stage_out')
-    end subroutine clean
+    !> Where the file system cannot swap (NFS), the old directory is set aside for a moment:
+    !> same result. A run killed in that moment leaves no directory and the old set aside;
+    !> the next run puts it back before anything else.
+    subroutine check_without_swap()
+        character(len=*), parameter :: ASIDE = 'stage_out/.run.nceig-old-999999999'
+        stage%exchange = .false.
+        call stage%begin(dir, stat)
+        call write_text(stage%path('a.txt'), 'set aside a')
+        call write_text(stage%path('summary.json'), '  "files": ["a.txt"],')
+        call stage%commit(stat)
+        call t%check('without swap: commit succeeds', stat%ok())
+        call t%check('without swap: the new set is in place', &
+                     first_line(dir//'/a.txt') == 'set aside a')
+        call t%check('without swap: the user''s file is kept', &
+                     first_line(dir//'/notes.txt') == 'mine')
+        call t%check('without swap: the old set is removed', &
+                     .not. file_exists('stage_out/.run.nceig-old-'//trim(pid)))
+        stage%exchange = .true.
+
+        call make_directories(ASIDE, stat)
+        call write_text(ASIDE//'/a.txt', 'old a')
+        call remove_tree(dir)
+        call stage%begin(dir, stat)
+        call t%check('killed while set aside: the next run puts the old set back', &
+                     first_line(dir//'/a.txt') == 'old a')
+        call t%check('killed while set aside: no aside folder left', .not. file_exists(ASIDE))
+        call stage%abort()
+    end subroutine check_without_swap
+
+    !> A directory that cannot be renamed ('.' here; a mount point, an unwritable parent)
+    !> is committed in place, file by file, summary.json last: the same set in the end.
+    subroutine check_in_place()
+        character(len=*), parameter :: HERE = 'stage_out/here/.'
+        call make_directories(HERE//'/plots', stat)
+        call write_text(HERE//'/notes.txt', 'mine')
+        call stage%begin(HERE, stat)
+        call t%check('in place: begin succeeds', stat%ok())
+        call t%check('in place: staging inside the directory', &
+                     is_directory(HERE//'/.nceig-partial-'//trim(pid)))
+        call write_text(stage%path('a.txt'), 'first a')
+        call write_text(stage%path('b.txt'), 'first b')
+        call write_text(stage%path('summary.json'), '  "files": ["a.txt", "b.txt"],')
+        call stage%commit(stat)
+        call t%check('in place: commit succeeds', stat%ok())
+        call stage%begin(HERE, stat)
+        call write_text(stage%path('a.txt'), 'second a')
+        call write_text(stage%path('summary.json'), '  "files": ["a.txt"],')
+        call stage%commit(stat)
+        call t%check('in place: the new file is in', first_line(HERE//'/a.txt') == 'second a')
+        call t%check('in place: the old set''s other file is gone', &
+                     .not. file_exists(HERE//'/b.txt'))
+        call t%check('in place: the user''s file and folder stay', &
+                     first_line(HERE//'/notes.txt') == 'mine')
+        call t%check('in place: the user''s folder stays', is_directory(HERE//'/plots'))
+        call t%check('in place: no staging folder left', &
+                     .not. file_exists(HERE//'/.nceig-partial-'//trim(pid)))
+    end subroutine check_in_place
 end program test_output_stage

@@ -4,6 +4,7 @@
 !> so a writer loop needs no error test per line and no failure goes unnoticed.
 module csv_writer
     use status, only: status_t, STATUS_IO
+    use filesystem, only: close_output
     implicit none
     private
 
@@ -53,7 +54,12 @@ contains
         integer :: ios
         character(len=MSG_LEN) :: msg
         if (this%unit /= -1) then
-            close (this%unit, iostat=ios, iomsg=msg)
+            if (this%ios == 0) then
+                ! checks that the whole file reached the disk: see close_output
+                call close_output(this%unit, this%path, ios, msg)
+            else
+                close (this%unit, iostat=ios)
+            end if
             if (this%ios == 0 .and. ios /= 0) then
                 this%ios = ios
                 this%msg = msg

@@ -15,7 +15,7 @@ module gmsh_writer
     use mesh, only: mesh_t
     use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, &
                              element_nodes_per_cell, element_nodes_per_edge
-    use filesystem, only: rename_file, remove_file
+    use filesystem, only: rename_file, remove_file, close_output
     implicit none
     private
     public :: write_gmsh
@@ -56,7 +56,7 @@ contains
             if (ios /= 0) then
                 close (unit, iostat=ignored)
             else
-                close (unit, iostat=ios, iomsg=msg)
+                call close_output(unit, partial, ios, msg)
             end if
         end if
         if (ios /= 0) then

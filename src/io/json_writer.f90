@@ -6,6 +6,7 @@ module json_writer
     use status, only: status_t, STATUS_IO
     use real_format, only: real_to_text
     use ieee_arithmetic, only: ieee_is_finite
+    use filesystem, only: close_output
     implicit none
     private
 
@@ -153,8 +154,8 @@ contains
             close (unit, iostat=ios)
             return
         end if
-        close (unit, iostat=ios, iomsg=msg)
-        if (ios /= 0) call stat%fail(STATUS_IO, trim(path)//': cannot close: '//trim(msg))
+        call close_output(unit, path, ios, msg)
+        if (ios /= 0) call stat%fail(STATUS_IO, trim(path)//': cannot write JSON: '//trim(msg))
     end subroutine json_object_write
 
     subroutine add_member(object, key, value)

@@ -7,6 +7,7 @@ module matrix_market
     use csr_matrix, only: csr_matrix_t
     use strings, only: to_string, lowercase
     use sorting, only: sort_index
+    use filesystem, only: close_output
     implicit none
     private
     public :: write_matrix_market, read_matrix_market
@@ -48,8 +49,8 @@ contains
             close (unit, iostat=io)
             return
         end if
-        close (unit, iostat=io, iomsg=message)
-        if (io /= 0) call stat%fail(STATUS_IO, 'matrix_market: cannot close '//path//': '// &
+        call close_output(unit, path, io, message)
+        if (io /= 0) call stat%fail(STATUS_IO, 'matrix_market: cannot write '//path//': '// &
                                     trim(message))
     end subroutine write_matrix_market
 

@@ -10,6 +10,7 @@ module vtk_writer
     use kinds, only: wp, i8, N_DIM
     use status, only: status_t, STATUS_IO, STATUS_INTERNAL
     use strings, only: to_string
+    use filesystem, only: close_output
     use mesh, only: mesh_t
     use element_types, only: element_nodes_per_cell, ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, &
                              ELEMENT_Q2
@@ -77,7 +78,7 @@ contains
             if (ios /= 0) then
                 close (unit, iostat=ignored)
             else
-                close (unit, iostat=ios, iomsg=msg)
+                call close_output(unit, path, ios, msg)
             end if
         end if
         ! A partial file is left for the output stage (or the caller) to remove.

@@ -1,0 +1,70 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# What a run does to its output directory and around it: a failed run creates nothing (a
+# 4229-character path, too long for the system, leaves no directory); a run replaces the
+# previous set as a whole (the older run's extra mode files go), keeps the user's files,
+# and refuses to replace a directory holding a folder of the user's.
+# Usage: cli_output_directory.sh NCEIG SOURCE_DIR
+set -u
+nceig=$1
+source "$2/tests/output_sets.bash"
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+passed=0 failed=0
+check() { if eval "$2"; then passed=$((passed + 1)); echo "PASS  $1"; else failed=$((failed + 1)); echo "FAIL  $1"; fi; }
+
+long="$work/long"
+while ((${#long} < 4229)); do long="$long/abcdefghi"; done
+long=${long:0:4229}
+cat >"$work/long.nml" <<NML
+&mesh nx = 6, ny = 6 /
+&output directory = '$long' /
+NML
+"$nceig" "$work/long.nml" >/dev/null 2>"$work/stderr"
+rc=$?
+echo "      $(grep "^nceig: " "$work/stderr" | cut -c1-200)"
+check 'a 4229-character path: exit status 4' '[[ $rc -eq 4 ]]'
+# (a Debug build adds gfortran's warning that the namelist read truncated the path)
+check 'a 4229-character path: one stderr line of nceig' '[[ $(grep -c "^nceig: " "$work/stderr") -eq 1 ]]'
+check 'a 4229-character path: no directory left' '[[ ! -e "$work/long" ]]'
+
+out="$work/out"
+nml() {   # nml NAME LAMBDA MODES
+    cat >"$work/$1.nml" <<NML
+&mesh nx = 6, ny = 6 /
+&analysis lambda = $2 /
+&output directory = '$out', modes = $3, plot = .false. /
+NML
+}
+nml three 5 3
+nml two 4 2
+"$nceig" "$work/three.nml" >/dev/null 2>&1
+echo 'my notes' >"$out/notes.txt"
+ln -s notes.txt "$out/notes.link"
+chmod 750 "$out"
+"$nceig" "$work/two.nml" >/dev/null 2>&1
+check 'the older set'\''s extra mode file is gone' '[[ ! -e "$out/mode_003.vtu" ]]'
+check 'the new set is whole' '[[ $(listed_files "$out" | tr "\n" " ") == "eigenvalues.csv mode_001.vtu mode_002.vtu summary.json " ]]'
+check 'the user'\''s file is kept' '[[ $(cat "$out/notes.txt") == "my notes" ]]'
+check 'the user'\''s link is kept' '[[ -L "$out/notes.link" && $(cat "$out/notes.link") == "my notes" ]]'
+check 'the directory keeps its permissions' '[[ $(stat -c %a "$out") == 750 ]]'
+
+mkdir "$out/plots"
+cp "$out/summary.json" "$work/summary.before"
+"$nceig" "$work/three.nml" >/dev/null 2>"$work/stderr"
+rc=$?
+echo "      $(cat "$work/stderr")"
+check 'a folder of the user'\''s: exit status 4 naming it' '[[ $rc -eq 4 ]] && grep -q plots "$work/stderr"'
+check 'a folder of the user'\''s: the previous set stays' 'cmp -s "$out/summary.json" "$work/summary.before" && [[ -d "$out/plots" ]]'
+check 'no staging folder left' '[[ -z $(ls -A "$work" | grep nceig-staging) ]]'
+
+# A link to the output directory: the directory it names is replaced, the link stays.
+rmdir "$out/plots"
+mkdir "$work/real"
+ln -s real "$work/linked"
+sed "s|'$out'|'$work/linked'|" "$work/three.nml" >"$work/linked.nml"
+"$nceig" "$work/linked.nml" >/dev/null 2>&1
+check 'a link to the directory stays a link' '[[ -L "$work/linked" && -s "$work/real/summary.json" ]]'
+
+echo "cli_output_directory: $passed passed, $failed failed"
+[[ $failed -eq 0 ]]
