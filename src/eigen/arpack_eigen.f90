@@ -18,7 +18,8 @@
 module arpack_eigen
     use kinds, only: wp
     use status, only: status_t, STATUS_SOLVER, STATUS_BAD_INPUT
-    use strings, only: to_string
+    use strings, only: to_string, short => short_real_text
+    use real_format, only: real_to_text
     use csr_matrix, only: csr_matrix_t
     use sparse_cholesky, only: cholesky_t
     use contact_boundary, only: contact_t
@@ -57,12 +58,25 @@ module arpack_eigen
     !> apart (neighbouring eigenvalues of the reference scene differ by more than 1e-3).
     real(wp), parameter :: AGREE_TOL = 1.0e-8_wp
 
+    !> Largest |sigma| ||A||_inf accepted for a target sigma. mu = sigma + 1/nu cancels: an
+    !> eigenvalue mu comes back with an absolute error of about eps |sigma|, i.e. a relative
+    !> error eps |sigma| / |mu| <= eps |sigma| ||A|| (every |mu| >= 1 / ||A||, as
+    !> |theta| <= ||A||), and the nu = 1/(mu - sigma) of the low eigenvalues crowd within a
+    !> relative eps |sigma| ||A|| of each other, where ARPACK cannot tell them apart. 1e6
+    !> keeps both below 2.2e-10, well inside AGREE_TOL; beyond it (e.g. target = 1e15 on the
+    !> reference scene) the answers were wrong in every digit with a certificate that held.
+    real(wp), parameter, public :: TARGET_RANGE = 1.0e6_wp
+
     type, public :: arpack_options_t
         integer :: nev = 6               !! eigenvalues per run (first attempt)
         integer :: ncv = 0               !! Krylov dimension, 0: max(2 nev + 1, 20)
         integer :: maxit = 1000          !! restarts per run
         real(wp) :: tol = 0.0_wp         !! relative residual tolerance, 0: machine epsilon
         real(wp) :: target = 0.0_wp      !! shift sigma; 0: no shift
+        !> For messages: the problem solved is the input one with mu divided by
+        !> 2^unit_exponent (problem_t), and `target_input` is &eigen target as given.
+        integer :: unit_exponent = 0
+        real(wp) :: target_input = 0.0_wp
     end type arpack_options_t
 
     !> The reduced operator on the contact nodes: theta-mode y -> A y (sigma = 0) or
@@ -99,13 +113,18 @@ module arpack_eigen
 contains
 
     !> Build the reduced operator from a factor of K whose last 2p pivots are the contact
-    !> dofs (see node_ordering), and factor I - sigma A when sigma /= 0.
-    subroutine operator_setup(this, chol, contact, lambda, sigma, stat)
+    !> dofs (see node_ordering), and factor I - sigma A when sigma /= 0, after checking
+    !> |sigma| ||A|| <= TARGET_RANGE (STATUS_BAD_INPUT naming &eigen target otherwise).
+    subroutine operator_setup(this, chol, contact, lambda, sigma, stat, target_input, &
+                              unit_exponent)
         class(contact_operator_t), intent(inout) :: this
         type(cholesky_t), intent(in) :: chol
         type(contact_t), intent(in) :: contact
         real(wp), intent(in) :: lambda, sigma
         type(status_t), intent(out) :: stat
+        real(wp), intent(in) :: target_input      !! sigma as the input gave it (messages)
+        integer, intent(in) :: unit_exponent      !! input mu = 2^unit_exponent mu here
+        real(wp) :: a_norm
         integer :: a, info
 
         this%p = contact%p()
@@ -120,6 +139,16 @@ contains
 
         call this%dense_a(this%a, stat)
         if (.not. stat%ok()) return
+        a_norm = maxval(sum(abs(this%a), dim=2))
+        if (abs(sigma)*a_norm > TARGET_RANGE) then
+            ! one line naming the variable; the caller adds the input file
+            call stat%fail(STATUS_BAD_INPUT, '&eigen: target = '// &
+                real_to_text(target_input)//': expected |target| <= '// &
+                short(scale(TARGET_RANGE/a_norm, unit_exponent))// &
+                ' (1e6 / ||A||, the scale of the spectrum here: further out, mu = target '// &
+                '+ 1/nu cancels and loses more than 6 of the 16 digits)')
+            return
+        end if
         ! LU of I - sigma A, kept in place of A (A itself is applied through L_c)
         this%a = -sigma*this%a
         do a = 1, this%p
@@ -265,7 +294,8 @@ contains
                 'ARPACK needs at least 3 (nev + 2 <= ncv <= p); use solver = ''dense''')
             return
         end if
-        call op%setup(chol, contact, lambda, options%target, stat)
+        call op%setup(chol, contact, lambda, options%target, stat, options%target_input, &
+                      options%unit_exponent)
         if (.not. stat%ok()) return
 
         call certified_search(op, options, run, mu, confirmed, found_before, n_operator, stat)
