@@ -3,7 +3,9 @@
 !> the solver the input asks for, with the phase timings of SPEC section 7.
 module eigen_analysis
     use kinds, only: wp
-    use status, only: status_t
+    use status, only: status_t, STATUS_BAD_INPUT
+    use strings, only: to_string
+    use real_format, only: real_to_text
     use timer, only: wall_time, timings_t
     use run_config, only: config_t
     use problem, only: problem_t
@@ -19,6 +21,7 @@ module eigen_analysis
     implicit none
     private
     public :: eigen_result_t, solve_eigen, choose_solver, eigen_with_factor, solver_name
+    public :: to_input_units
     public :: SOLVER_DENSE, SOLVER_ARPACK
 
     !> The eigensolver a run used (&eigen solver = 'auto' resolves to one of them).
@@ -105,10 +108,16 @@ contains
         start = wall_time()
         certificate = ''
         if (res%solver == SOLVER_ARPACK) then
+            ! the target in the units of prob%k (exact); clamped where that overflows, which
+            ! is far outside the accepted range anyway (arpack_eigen: TARGET_RANGE)
             options = arpack_options_t(nev=config%eigen%nev, ncv=config%eigen%ncv, &
-                maxit=config%eigen%maxit, tol=config%eigen%tol, target=config%eigen%target)
+                maxit=config%eigen%maxit, tol=config%eigen%tol, &
+                target=in_units(config%eigen%target, -prob%mu_exponent()), &
+                unit_exponent=prob%mu_exponent(), target_input=config%eigen%target)
             call arpack_spectrum(prob%k, res%b, chol, prob%contact, res%lambda, options, n_keep, &
                                  res%spec, certificate, stat)
+            if (stat%code == STATUS_BAD_INPUT) stat%message = config%input_file//': '// &
+                                                              stat%message
             if (.not. stat%ok()) return
             timings%eigen = timings%eigen + (wall_time() - start)
         else
@@ -124,8 +133,71 @@ contains
             timings%reduction = timings%reduction + reduction_seconds
             timings%eigen = timings%eigen + (wall_time() - start - reduction_seconds)
         end if
+        call to_input_units(config, prob, res%spec%mu, stat)
+        if (.not. stat%ok()) return
         res%warnings = accuracy_warnings(res%spec, element_name(prob%mesh%element), prob%poisson)
         if (len(certificate) > 0) res%warnings = [character(len=WARNING_LEN) :: certificate, &
                                                   res%warnings]
     end subroutine eigen_with_factor
+
+    !> x 2^e, clamped to +-huge where that overflows.
+    elemental real(wp) function in_units(x, e)
+        real(wp), intent(in) :: x
+        integer, intent(in) :: e
+        in_units = x
+        if (.not. abs(x) > 0.0_wp) return
+        if (exponent(x) + e > maxexponent(x)) then
+            in_units = sign(huge(x), x)
+        else
+            in_units = scale(x, e)
+        end if
+    end function in_units
+
+    !> Eigenvalues of (prob%k, B(prob%contact)) to those of the input problem: x
+    !> 2^prob%mu_exponent(), exactly. Fails (STATUS_BAD_INPUT, naming &material young or the
+    !> mesh size, whichever pushes further) when an |mu| would leave the normal binary64
+    !> range [tiny, huge] = [2.2e-308, 1.8e308]: overflow, or digits lost to underflow.
+    subroutine to_input_units(config, prob, mu, stat)
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(in) :: prob
+        complex(wp), intent(inout) :: mu(:)
+        type(status_t), intent(out) :: stat
+        integer :: e, i, worst, worst_exponent
+        character(len=:), allocatable :: what
+
+        e = prob%mu_exponent()
+        if (e == 0 .or. size(mu) == 0) return
+        worst = 0
+        worst_exponent = 0
+        do i = 1, size(mu)
+            if (.not. abs(mu(i)) > 0.0_wp) cycle
+            associate (x => exponent(abs(mu(i))) + e)
+                if (x > maxexponent(1.0_wp) .or. x < minexponent(1.0_wp)) then
+                    if (worst == 0 .or. abs(x) > abs(worst_exponent)) then
+                        worst = i
+                        worst_exponent = x
+                    end if
+                end if
+            end associate
+        end do
+        if (worst > 0) then
+            if (abs(prob%young_exponent) >= abs(prob%length_exponent)) then
+                what = '&material: young = '//real_to_text(prob%young)
+            else if (config%mesh%source == 'rectangle') then
+                what = '&mesh: width = '//real_to_text(config%mesh%width)//', height = '// &
+                       real_to_text(config%mesh%height)
+            else
+                what = '&mesh: the mesh in '//trim(config%mesh%file)//' (size 2^'// &
+                       to_string(prob%length_exponent)//')'
+            end if
+            call stat%fail(STATUS_BAD_INPUT, config%input_file//': '//what// &
+                ': an eigenvalue mu would be about 1e'//to_string(floor(log10(abs( &
+                mu(worst))) + real(e, wp)*log10(2.0_wp)))//' (mu scales like young / size), '// &
+                'outside the 2.2e-308 to 1.8e308 that binary64 holds to full precision')
+            return
+        end if
+        do i = 1, size(mu)
+            mu(i) = cmplx(scale(real(mu(i), wp), e), scale(aimag(mu(i)), e), wp)
+        end do
+    end subroutine to_input_units
 end module eigen_analysis

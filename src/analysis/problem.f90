@@ -15,7 +15,7 @@ module problem
     use csr_matrix, only: csr_matrix_t
     implicit none
     private
-    public :: problem_t, build_problem, assemble_all_dofs
+    public :: problem_t, build_problem, assemble_all_dofs, unit_exponent
 
     type, public :: problem_t
         type(mesh_t) :: mesh
@@ -31,18 +31,30 @@ module problem
         integer :: contact_part = 0
         real(wp) :: young = 0.0_wp
         real(wp) :: poisson = 0.0_wp
+        !> Units of k and contact (eigen analyses, see build_problem): k is K / 2^young_exponent
+        !> and contact%mass is M / 2^length_exponent, so the eigenvalues mu of k, B(contact)
+        !> are those of K, B divided by 2^mu_exponent(). 0, 0 for 'branch' and 'solve'.
+        integer :: young_exponent = 0
+        integer :: length_exponent = 0
+    contains
+        procedure :: mu_exponent => problem_mu_exponent
     end type problem_t
 
 contains
 
     !> Mesh the domain, resolve the boundary part names, number the free dofs, collect the
     !> contact boundary and assemble K; `with_all_dofs` also keeps K and Gamma_C on all dofs.
+    !> Without `with_all_dofs` (the eigen analyses) K and Gamma_C are in units of E and of the
+    !> mesh size (powers of two: young_exponent, length_exponent); prob%mesh keeps the input
+    !> coordinates.
     subroutine build_problem(config, prob, stat, with_all_dofs)
         type(config_t), intent(in) :: config
         type(problem_t), intent(out) :: prob
         type(status_t), intent(out) :: stat
         logical, intent(in), optional :: with_all_dofs   !! default false
         integer, allocatable :: contact_parts(:)
+        real(wp), allocatable :: physical_coords(:, :)
+        logical :: all_dofs
 
         select case (config%mesh%source)
         case ('rectangle')
@@ -70,19 +82,32 @@ contains
         prob%poisson = config%material%poisson
         call build_dof_map(prob%mesh, prob%dirichlet_parts, prob%dofs, stat)
         if (.not. stat%ok()) return
+        all_dofs = .false.
+        if (present(with_all_dofs)) all_dofs = with_all_dofs
+        if (.not. all_dofs) then
+            ! The eigenproblem in units where E and the mesh size are in [1, 2): mu scales
+            ! exactly like E / size (2D: K does not change with the size, M grows with it),
+            ! and a change of unit by a power of two is exact, so the scaled problem is the
+            ! input problem itself, while the products of the assembly (det J ~ size^2,
+            ! entries ~ E) and of the solvers stay far from overflow and underflow.
+            prob%young_exponent = unit_exponent(prob%young)
+            prob%length_exponent = unit_exponent(maxval(abs(prob%mesh%coords)))
+            physical_coords = prob%mesh%coords
+            prob%mesh%coords = scale(prob%mesh%coords, -prob%length_exponent)
+        end if
         call build_contact(prob%mesh, prob%contact_part, prob%dofs, prob%contact, stat)
         if (.not. stat%ok()) then
             ! A mesh-file message already names the file and line.
             if (.not. allocated(prob%mesh%file)) &
                 stat%message = config%input_file//': &mesh: contact: '//stat%message
+            if (allocated(physical_coords)) call move_alloc(physical_coords, prob%mesh%coords)
             return
         end if
-        if (.not. present(with_all_dofs)) then
-            call assemble_stiffness(prob%mesh, prob%dofs, prob%young, prob%poisson, prob%k, stat)
-            return
-        end if
-        if (.not. with_all_dofs) then
-            call assemble_stiffness(prob%mesh, prob%dofs, prob%young, prob%poisson, prob%k, stat)
+        if (.not. all_dofs) then
+            call assemble_stiffness(prob%mesh, prob%dofs, &
+                                    scale(prob%young, -prob%young_exponent), prob%poisson, &
+                                    prob%k, stat)
+            call move_alloc(physical_coords, prob%mesh%coords)
             return
         end if
         call assemble_all_dofs(prob%mesh, prob%young, prob%poisson, prob%contact_part, &
@@ -140,6 +165,19 @@ contains
             end do
         end function join
     end subroutine build_problem
+
+    !> e such that x / 2^e is in [1, 2) (x > 0; a subnormal x too): the unit of x.
+    elemental integer function unit_exponent(x)
+        real(wp), intent(in) :: x
+        unit_exponent = 0
+        if (x > 0.0_wp) unit_exponent = exponent(x) - 1
+    end function unit_exponent
+
+    !> mu of the physical problem = 2^mu_exponent x mu of (k, B(contact)).
+    pure integer function problem_mu_exponent(this)
+        class(problem_t), intent(in) :: this
+        problem_mu_exponent = this%young_exponent - this%length_exponent
+    end function problem_mu_exponent
 
     !> K and the contact boundary on all dofs (none prescribed), in the node-major numbering
     !> of dof_map::all_dof: what the compliance problem with Dirichlet data needs.
