@@ -8,7 +8,7 @@ module eigen_analysis
     use real_format, only: real_to_text
     use timer, only: wall_time, timings_t
     use run_config, only: config_t
-    use problem, only: problem_t
+    use problem, only: problem_t, explain_singular_k
     use mesh, only: element_name
     use csr_matrix, only: csr_matrix_t
     use sparse_cholesky, only: cholesky_t
@@ -82,6 +82,7 @@ contains
         res%solver = choose_solver(config%eigen%solver, prob%contact%p(), &
                                    config%eigen%dense_max_contact)
         call factor_stiffness(prob%k, prob%mesh, prob%dofs, prob%contact, chol, timings, stat)
+        call explain_singular_k(config, stat)
         if (.not. stat%ok()) return
         call eigen_with_factor(config, prob, chol, res, timings, stat)
         call chol%free()
@@ -166,7 +167,7 @@ contains
         character(len=:), allocatable :: what
 
         e = prob%mu_exponent()
-        if (e == 0 .or. size(mu) == 0) return
+        if (size(mu) == 0) return
         worst = 0
         worst_exponent = 0
         do i = 1, size(mu)
@@ -181,7 +182,12 @@ contains
             end associate
         end do
         if (worst > 0) then
-            if (abs(prob%young_exponent) >= abs(prob%length_exponent)) then
+            ! the input pushing furthest: E/size, or lambda (mu ~ 1/lambda for large |lambda|)
+            if (abs(config%analysis%lambda) > 1.0_wp .and. worst_exponent < 0 .and. &
+                exponent(config%analysis%lambda) > max(-prob%young_exponent, &
+                                                       prob%length_exponent)) then
+                what = '&analysis: lambda = '//real_to_text(config%analysis%lambda)
+            else if (abs(prob%young_exponent) >= abs(prob%length_exponent)) then
                 what = '&material: young = '//real_to_text(prob%young)
             else if (config%mesh%source == 'rectangle') then
                 what = '&mesh: width = '//real_to_text(config%mesh%width)//', height = '// &
@@ -192,7 +198,8 @@ contains
             end if
             call stat%fail(STATUS_BAD_INPUT, config%input_file//': '//what// &
                 ': an eigenvalue mu would be about 1e'//to_string(floor(log10(abs( &
-                mu(worst))) + real(e, wp)*log10(2.0_wp)))//' (mu scales like young / size), '// &
+                mu(worst))) + real(e, wp)*log10(2.0_wp)))//' (mu scales like young / size, '// &
+                'and like 1 / lambda for large |lambda|), '// &
                 'outside the 2.2e-308 to 1.8e308 that binary64 holds to full precision')
             return
         end if

@@ -3,7 +3,9 @@
 !> contact boundary and the stiffness matrix K on the free dofs.
 module problem
     use kinds, only: wp
-    use status, only: status_t, STATUS_BAD_INPUT
+    use status, only: status_t, STATUS_BAD_INPUT, STATUS_SINGULAR
+    use strings, only: to_string, short => short_real_text
+    use real_format, only: real_to_text
     use run_config, only: config_t, NAME_LEN
     use input_config, only: split_names
     use mesh, only: mesh_t, element_from_name
@@ -15,7 +17,17 @@ module problem
     use csr_matrix, only: csr_matrix_t
     implicit none
     private
-    public :: problem_t, build_problem, assemble_all_dofs, unit_exponent
+    public :: problem_t, build_problem, assemble_all_dofs, unit_exponent, explain_singular_k
+    public :: SINGULAR_LAME_RATIO, SINGULAR_ASPECT_RATIO
+
+    !> A K that CHOLMOD finds numerically singular is blamed on &material poisson from this
+    !> L/G = 2 nu / (1 - 2 nu): K's pivots then span a factor L/G at least (the volumetric
+    !> stiffness L against the shear G), and CHOLMOD gives up at a pivot ratio of 1e3 eps;
+    !> seen at L/G = 5e12 (nu = 0.4999999999999) while 5e11 still solves to round-off.
+    real(wp), parameter :: SINGULAR_LAME_RATIO = 1.0e10_wp
+    !> ... and on the rectangle's cell shape from this aspect ratio: cond(K) grows like its
+    !> square; seen singular at 1e6, backward errors of 1e-8 (warned) at 1e4.
+    real(wp), parameter :: SINGULAR_ASPECT_RATIO = 1.0e4_wp
 
     type, public :: problem_t
         type(mesh_t) :: mesh
@@ -165,6 +177,44 @@ contains
             end do
         end function join
     end subroutine build_problem
+
+    !> When `stat` says K is singular (STATUS_SINGULAR) and the input explains it, one line
+    !> naming that input instead (STATUS_BAD_INPUT): poisson so near 0.5, or rectangle cells
+    !> so elongated, that K is singular in binary64 although not in exact arithmetic.
+    subroutine explain_singular_k(config, stat)
+        type(config_t), intent(in) :: config
+        type(status_t), intent(inout) :: stat
+        character(len=:), allocatable :: detail
+        real(wp) :: lame_ratio, aspect
+        integer :: at
+
+        if (stat%code /= STATUS_SINGULAR) return
+        detail = ''
+        at = index(stat%message, '(CHOLMOD')
+        if (at > 0) detail = ' '//stat%message(at:)
+        associate (nu => config%material%poisson)
+            lame_ratio = 2.0_wp*nu/(1.0_wp - 2.0_wp*nu)
+        end associate
+        if (lame_ratio >= SINGULAR_LAME_RATIO) then
+            call stat%fail(STATUS_BAD_INPUT, config%input_file//': &material: poisson = '// &
+                real_to_text(config%material%poisson)//': so close to 0.5 that L/G = 2 nu / '// &
+                '(1 - 2 nu) = '//short(lame_ratio)//' makes K numerically singular'//detail// &
+                '; expected L/G below '//short(SINGULAR_LAME_RATIO)//' (poisson <= 0.49999999995)')
+            return
+        end if
+        if (config%mesh%source /= 'rectangle') return
+        aspect = (config%mesh%width/config%mesh%nx)/(config%mesh%height/config%mesh%ny)
+        aspect = max(aspect, 1.0_wp/aspect)
+        if (aspect >= SINGULAR_ASPECT_RATIO) then
+            call stat%fail(STATUS_BAD_INPUT, config%input_file//': &mesh: width = '// &
+                real_to_text(config%mesh%width)//', height = '// &
+                real_to_text(config%mesh%height)//', nx = '//to_string(config%mesh%nx)// &
+                ', ny = '//to_string(config%mesh%ny)//': cells of aspect ratio '// &
+                short(aspect)//' make K numerically singular (its condition grows like the '// &
+                'square)'//detail//'; expected (width / nx) / (height / ny) within a factor '// &
+                short(SINGULAR_ASPECT_RATIO)//' of 1')
+        end if
+    end subroutine explain_singular_k
 
     !> e such that x / 2^e is in [1, 2) (x > 0; a subnormal x too): the unit of x.
     elemental integer function unit_exponent(x)

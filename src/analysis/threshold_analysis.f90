@@ -14,14 +14,15 @@ module threshold_analysis
     use timer, only: wall_time, timings_t
     use run_config, only: config_t
     use input_config, only: sweep_lambdas
-    use problem, only: problem_t
+    use problem, only: problem_t, explain_singular_k
     use sparse_cholesky, only: cholesky_t
     use contact_boundary, only: assemble_b
     use contact_reduction, only: factor_stiffness, contact_flexibility, reduced_blocks_t
     use arpack_eigen, only: arpack_options_t, arpack_lowest_positive
     use critical_lambda, only: thresholds_t, pencil_thresholds, confirm_thresholds, &
                                lowest_positive_mu, SIDE_PLUS, SIDE_MINUS
-    use eigen_analysis, only: eigen_result_t, choose_solver, eigen_with_factor, SOLVER_ARPACK
+    use eigen_analysis, only: eigen_result_t, choose_solver, eigen_with_factor, SOLVER_ARPACK, &
+                              to_input_units
     implicit none
     private
     public :: threshold_result_t, solve_thresholds
@@ -72,6 +73,7 @@ contains
         timings%assembly = timings%assembly + (wall_time() - start)
 
         call factor_stiffness(prob%k, prob%mesh, prob%dofs, prob%contact, chol, timings, stat)
+        call explain_singular_k(config, stat)
         if (.not. stat%ok()) return
 
         start = wall_time()
@@ -95,6 +97,10 @@ contains
         ! mu, which only the complete spectrum shows, and just outside the wanted mu is huge,
         ! deep in the spectrum; dgeev without vectors is O(p^3) with a small constant.
         call confirm_thresholds(blocks, res%thresholds, stat)
+        if (.not. stat%ok()) return
+        ! mu of the confirmations, in the units of prob%k, to the input's (lambda has none)
+        call real_to_input_units(res%thresholds%mu_outside, stat)
+        if (stat%ok()) call real_to_input_units(res%thresholds%mu_inside, stat)
         if (.not. stat%ok()) return
         res%time_threshold = wall_time() - start
         if (.not. with_sweep) return
@@ -127,7 +133,20 @@ contains
                 res%sweep%n_dense = res%sweep%n_dense + 1
             end if
         end do
+        call real_to_input_units(res%sweep%mu, stat)
+        if (.not. stat%ok()) return
         res%time_sweep = wall_time() - start
+
+    contains
+
+        subroutine real_to_input_units(mu, stat)
+            real(wp), intent(inout) :: mu(:)
+            type(status_t), intent(out) :: stat
+            complex(wp) :: values(size(mu))
+            values = cmplx(mu, 0.0_wp, wp)
+            call to_input_units(config, prob, values, stat)
+            if (stat%ok()) mu = real(values, wp)
+        end subroutine real_to_input_units
     end subroutine solve_thresholds
 
     !> lambda- <= lambda <= lambda+, a missing threshold counting as infinitely far.

@@ -85,6 +85,9 @@ module arpack_eigen
         integer :: p = 0
         real(wp) :: sigma = 0.0_wp
         real(wp) :: lambda = 0.0_wp
+        !> The operator is built on A / lambda_scale (a power of two ~ |lambda| when
+        !> |lambda| > 1, else 1): A ~ lambda overflowed ARPACK's norms from |lambda| ~ 1e160
+        real(wp) :: lambda_scale = 1.0_wp
         real(wp) :: normal(2) = 0.0_wp, tangent(2) = 0.0_wp
         real(wp), allocatable :: l_tail(:, :)   !! (2p, 2p) trailing block of the factor
         integer, allocatable :: slot(:, :)      !! (2, p) row in l_tail of contact dof (c, a)
@@ -98,6 +101,7 @@ module arpack_eigen
         procedure :: apply_a => operator_apply_a
         procedure :: apply => operator_apply
         procedure :: dense_a => operator_dense_a
+        procedure :: mu_of => operator_mu_of
     end type contact_operator_t
 
     !> One ARPACK run's result: the converged Ritz values nu of the operator and their
@@ -130,6 +134,7 @@ contains
         this%p = contact%p()
         this%lambda = lambda
         this%sigma = sigma
+        if (abs(lambda) > 1.0_wp) this%lambda_scale = set_exponent(1.0_wp, exponent(lambda))
         this%normal = contact%normal
         this%tangent = contact%tangent
         this%mass = contact%mass
@@ -139,18 +144,18 @@ contains
 
         call this%dense_a(this%a, stat)
         if (.not. stat%ok()) return
-        a_norm = maxval(sum(abs(this%a), dim=2))
-        if (abs(sigma)*a_norm > TARGET_RANGE) then
+        a_norm = maxval(sum(abs(this%a), dim=2))   ! of A / lambda_scale
+        if (abs(sigma)*a_norm > TARGET_RANGE/this%lambda_scale) then
             ! one line naming the variable; the caller adds the input file
             call stat%fail(STATUS_BAD_INPUT, '&eigen: target = '// &
                 real_to_text(target_input)//': expected |target| <= '// &
-                short(scale(TARGET_RANGE/a_norm, unit_exponent))// &
+                short(scale(TARGET_RANGE/a_norm/this%lambda_scale, unit_exponent))// &
                 ' (1e6 / ||A||, the scale of the spectrum here: further out, mu = target '// &
                 '+ 1/nu cancels and loses more than 6 of the 16 digits)')
             return
         end if
         ! LU of I - sigma A, kept in place of A (A itself is applied through L_c)
-        this%a = -sigma*this%a
+        this%a = -(sigma*this%lambda_scale)*this%a
         do a = 1, this%p
             this%a(a, a) = this%a(a, a) + 1.0_wp
         end do
@@ -176,10 +181,20 @@ contains
         call flexibility_blocks(this%l_tail, this%slot, this%normal, this%tangent, kt_nn, &
                                 kt_nt, stat)
         if (.not. stat%ok()) return
-        a = reduced_matrix(kt_nn, kt_nt, this%mass, this%lambda)
+        a = reduced_matrix(kt_nn/this%lambda_scale, kt_nt, this%mass, &
+                           this%lambda/this%lambda_scale)
     end subroutine operator_dense_a
 
-    !> out = A y = N K^-1 (lambda T' - N') M y, through two triangular solves with L_c.
+    !> mu of an eigenvalue nu of the operator: A y = theta y with nu = (theta / lambda_scale)
+    !> / (1 - sigma theta), i.e. mu = 1 / theta = sigma + 1 / (lambda_scale nu).
+    elemental complex(wp) function operator_mu_of(this, nu) result(mu)
+        class(contact_operator_t), intent(in) :: this
+        complex(wp), intent(in) :: nu
+        mu = this%sigma + (1.0_wp/nu)/this%lambda_scale
+    end function operator_mu_of
+
+    !> out = A y / lambda_scale = N K^-1 (lambda T' - N') M y / lambda_scale, through two
+    !> triangular solves with L_c.
     subroutine operator_apply_a(this, y, out)
         class(contact_operator_t), intent(in) :: this
         real(wp), intent(in) :: y(:)
@@ -194,7 +209,8 @@ contains
         call this%mass%matvec(y, my)
         z = 0.0_wp
         do a = 1, this%p
-            z(this%slot(:, a)) = (this%lambda*this%tangent - this%normal)*my(a)
+            z(this%slot(:, a)) = (this%lambda/this%lambda_scale*this%tangent - &
+                                  this%normal/this%lambda_scale)*my(a)
         end do
         call dtrsv('L', 'N', 'N', 2*this%p, this%l_tail, 2*this%p, z, 1)
         call dtrsv('L', 'T', 'N', 2*this%p, this%l_tail, 2*this%p, z, 1)
@@ -203,7 +219,7 @@ contains
         end do
     end subroutine operator_apply_a
 
-    !> ARPACK's OP: A (sigma = 0) or (I - sigma A)^-1 A.
+    !> ARPACK's OP: A (sigma = 0) or (I - sigma A)^-1 A, divided by lambda_scale.
     subroutine operator_apply(this, y, out)
         class(contact_operator_t), intent(in) :: this
         real(wp), intent(in) :: y(:)
@@ -306,7 +322,7 @@ contains
             if (p <= DENSE_FALLBACK_MAX) then
                 call dense_ritz(op, options%nev, run, stat)
                 if (.not. stat%ok()) return
-                mu = options%target + 1.0_wp/run%nu
+                mu = op%mu_of(run%nu)
             else
                 radius = 0.0_wp
                 if (size(mu) > 0) radius = maxval(abs(mu - options%target))
@@ -357,7 +373,7 @@ contains
             call run_arpack(op, nev, options, attempt, run, stat)
             if (.not. stat%ok()) return
             n_operator = n_operator + run%n_operator
-            mu = options%target + 1.0_wp/run%nu
+            mu = op%mu_of(run%nu)
             call certify_lowest(mu, run%is_real, options%target, .false., outcome, lowest)
             ! with info = 1 (maxit) only some wanted values converged: nearer ones may be
             ! missing, so the disc argument does not hold
@@ -447,9 +463,9 @@ contains
         nu = cmplx(wr, wi, wp)
         keep = abs(nu) > 0.0_wp
         is_real = .not. (abs(wi) > 0.0_wp)
-        where (keep) nu = nu/(1.0_wp - op%sigma*nu)
+        where (keep) nu = nu/(1.0_wp - (op%sigma*op%lambda_scale)*nu)
         allocate (mu(p), source=(0.0_wp, 0.0_wp))
-        where (keep) mu = op%sigma + 1.0_wp/nu
+        where (keep) mu = op%mu_of(nu)
         call certify_lowest(mu, is_real .and. keep, op%sigma, .true., outcome, lowest)
         ! the n_report largest |nu|, the lowest positive mu, and the partners of pairs
         allocate (chosen(p), source=.false.)

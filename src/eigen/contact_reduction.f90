@@ -227,7 +227,15 @@ contains
 
         n_ev = size(mu)
         n_free = k%n()
-        direction = lambda*contact%tangent - contact%normal
+        ! lambda t - n up to a factor, which only scales phi: divided by 2^e ~ |lambda| (a
+        ! power of two: exact) when |lambda| > 1, so that phi and B phi (~ lambda^2) cannot
+        ! overflow in the backward error; it gave Infinity from |lambda| ~ 1e155
+        if (abs(lambda) > 1.0_wp) then
+            direction = scale(lambda, 1 - exponent(lambda))*contact%tangent - &
+                        scale(1.0_wp, 1 - exponent(lambda))*contact%normal
+        else
+            direction = lambda*contact%tangent - contact%normal
+        end if
         k_norm = k%norm_inf()
         b_norm = b%norm_inf()
         allocate (residual(n_ev), vectors(n_free, min(n_keep, n_ev)))

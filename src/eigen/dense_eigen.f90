@@ -40,18 +40,24 @@ contains
                                  vr(:, :), scale(:), rconde(:), rcondv(:), work(:), condition(:)
         integer, allocatable :: iwork(:), order(:), kinds(:), keep(:)
         complex(wp), allocatable :: theta(:), mu(:), y(:, :)
-        real(wp) :: abnrm, query(1), start
+        real(wp) :: abnrm, query(1), start, lambda_scale
         integer :: p, ilo, ihi, info, j, i, n_ev
 
         p = contact%p()
         start = wall_time()
+        ! For |lambda| > 1 the eigenproblem of A / 2^e = (lambda / 2^e Kt_nt - Kt_nn / 2^e) M,
+        ! 2^e the power of two with |lambda| / 2^e in [1, 2): exact, eigenvalues theta / 2^e;
+        ! lambda Kt_nt would overflow from |lambda| ~ 1e308, where mu ~ 1 / lambda is fine
+        lambda_scale = 1.0_wp
+        if (abs(lambda) > 1.0_wp) lambda_scale = set_exponent(1.0_wp, exponent(lambda))
         if (present(kt_nn_given) .and. present(kt_nt_given)) then
             kt_nt = kt_nt_given   ! kept for the lambda sensitivity below
-            a = reduced_matrix(kt_nn_given, kt_nt, contact%mass, lambda)
+            a = reduced_matrix(kt_nn_given/lambda_scale, kt_nt, contact%mass, &
+                               lambda/lambda_scale)
         else
             call contact_flexibility(chol, contact, kt_nn, kt_nt, stat)
             if (.not. stat%ok()) return
-            a = reduced_matrix(kt_nn, kt_nt, contact%mass, lambda)
+            a = reduced_matrix(kt_nn/lambda_scale, kt_nt, contact%mass, lambda/lambda_scale)
             deallocate (kt_nn)
         end if
         if (present(reduction_seconds)) reduction_seconds = wall_time() - start
@@ -69,7 +75,8 @@ contains
         end if
         deallocate (a, work)
 
-        ! theta = 1/mu. theta = 0 (mu infinite) happens only exactly at a critical lambda.
+        ! theta = 1/mu (here divided by lambda_scale). theta = 0 (mu infinite) happens only
+        ! exactly at a critical lambda.
         theta = cmplx(wr, wi, wp)
         keep = pack([(j, j=1, p)], abs(theta) > 0.0_wp)
         n_ev = size(keep)
@@ -77,8 +84,9 @@ contains
         allocate (condition(p), source=-1.0_wp)
         do j = 1, p
             if (abs(theta(j)) > 0.0_wp) then
-                mu(j) = 1.0_wp/theta(j)
-                if (.not. (abs(wi(j)) > 0.0_wp)) mu(j) = cmplx(1.0_wp/wr(j), 0.0_wp, wp)
+                mu(j) = (1.0_wp/theta(j))/lambda_scale
+                if (.not. (abs(wi(j)) > 0.0_wp)) mu(j) = cmplx((1.0_wp/wr(j))/lambda_scale, &
+                                                               0.0_wp, wp)
                 ! relative condition of theta (hence of mu = 1/theta) on the balanced matrix
                 condition(j) = abnrm/(rconde(j)*abs(theta(j)))
             end if
@@ -134,7 +142,7 @@ contains
             call contact%mass%matvec(vr(:, j), mass_x)
             y_dot_x = dot_product(vl(:, j), vr(:, j))
             lambda_sensitivity = huge(1.0_wp)   ! a defective (double) eigenvalue
-            if (abs(y_dot_x) > 0.0_wp) lambda_sensitivity = abs(lambda)* &
+            if (abs(y_dot_x) > 0.0_wp) lambda_sensitivity = abs(lambda/lambda_scale)* &
                 abs(dot_product(vl(:, j), matmul(kt_nt, mass_x)))/(abs(y_dot_x)*abs(theta(j)))
         end function lambda_sensitivity
     end subroutine dense_spectrum
