@@ -20,6 +20,7 @@ module eigen_run
     use csv_writer, only: csv_writer_t
     use vtk_writer, only: write_vtu
     use matrix_market, only: write_matrix_market
+    use csr_matrix, only: csr_matrix_t
     use mesh, only: element_name
     implicit none
     private
@@ -273,12 +274,24 @@ contains
         type(problem_t), intent(in) :: prob
         type(eigen_result_t), intent(in) :: res
         type(status_t), intent(out) :: stat
+        type(csr_matrix_t) :: physical
         call write_eigenvalues_csv(stage%path('eigenvalues.csv'), res%spec, stat)
         if (stat%ok() .and. config%output%vtk) call write_modes(stage, prob, res%spec, &
             config%output%modes, trim(config%output%vtk_format), stat)
-        if (stat%ok() .and. config%output%matrices) then
+        if (.not. stat%ok() .or. .not. config%output%matrices) return
+        if (prob%young_exponent == 0 .and. prob%length_exponent == 0) then
             call write_matrix_market(stage%path('K.mtx'), prob%k, stat)
             if (stat%ok()) call write_matrix_market(stage%path('B.mtx'), res%b, stat)
+        else
+            ! K and B of the input problem: prob%k and res%b are in units of E and of the mesh
+            ! size (powers of two, so this is exact; beyond the binary64 range Infinity)
+            physical = prob%k
+            physical%val = scale(physical%val, prob%young_exponent)
+            call write_matrix_market(stage%path('K.mtx'), physical, stat)
+            if (.not. stat%ok()) return
+            physical = res%b
+            physical%val = scale(physical%val, prob%length_exponent)
+            call write_matrix_market(stage%path('B.mtx'), physical, stat)
         end if
     end subroutine write_eigen_files
 end module eigen_run
