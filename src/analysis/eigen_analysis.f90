@@ -197,8 +197,8 @@ contains
                        to_string(prob%length_exponent)//')'
             end if
             call stat%fail(STATUS_BAD_INPUT, config%input_file//': '//what// &
-                ': an eigenvalue mu would be about 1e'//to_string(floor(log10(abs( &
-                mu(worst))) + real(e, wp)*log10(2.0_wp)))//' (mu scales like young / size, '// &
+                ': an eigenvalue mu would be about '//decimal_text(log10(abs(mu(worst))) + &
+                real(e, wp)*log10(2.0_wp))//' (mu scales like young / size, '// &
                 'and like 1 / lambda for large |lambda|), '// &
                 'outside the 2.2e-308 to 1.8e308 that binary64 holds to full precision')
             return
@@ -206,5 +206,24 @@ contains
         do i = 1, size(mu)
             mu(i) = cmplx(scale(real(mu(i), wp), e), scale(aimag(mu(i)), e), wp)
         end do
+
+    contains
+
+        !> 10^x as 'm.me+n' text, for values beyond the binary64 range.
+        function decimal_text(x) result(text)
+            real(wp), intent(in) :: x
+            character(len=:), allocatable :: text
+            character(len=8) :: mantissa
+            real(wp) :: m
+            integer :: power
+            power = floor(x)
+            m = 10.0_wp**(x - power)
+            if (m >= 9.95_wp) then   ! would print as 10.0
+                m = 1.0_wp
+                power = power + 1
+            end if
+            write (mantissa, '(f3.1)') m
+            text = trim(mantissa)//'e'//to_string(power)
+        end function decimal_text
     end subroutine to_input_units
 end module eigen_analysis
