@@ -28,6 +28,21 @@ refused young_1e-310 'material: young' "&material young = 1e-310 /"
 refused poisson 'material: poisson' "&material poisson = 0.49999999999999 /"
 refused width_1e-12 'mesh: width' "&mesh width = 1e-12 /"
 refused lambda_1.7e308 'analysis: lambda' "&analysis lambda = 1.7e308 /"
+refused sweep_1.7e308 'sweep: lambda' "&analysis kind = 'lambda_sweep' /" \
+    "&sweep lambdas = 5, 1.7e308, plot = .false. /"
+# 'branch' and 'solve' work in the input's units, within a documented window
+refused branch_young 'material: young' "&analysis kind = 'branch' /" "&material young = 1e308 /"
+refused solve_young 'material: young' "&analysis kind = 'solve' /" "&material young = 1e-310 /"
+
+# a sweep through huge lambdas: lambda mu at its limit (dense: 2.26352067807345... on 8 x 8)
+printf '%s\n' "&analysis kind = 'lambda_sweep' /" "&sweep lambdas = 1e300, 1e160, 5, plot = .false. /" \
+    "&output directory = '$work/sweep', vtk = .false. /" >"$work/sweep.nml"
+"$nceig" "$work/sweep.nml" >"$work/sweep.out" 2>"$work/sweep.err"; rc=$?
+check 'sweep through lambda = 1e300 runs' '[[ $rc -eq 0 && ! -s "$work/sweep.err" ]]'
+for lambda in 1.0e300 1.0e160; do
+    lm=$(awk -F, -v l=$lambda '$1 == l { printf "%.17g", $2 * l }' "$work/sweep/lambda_sweep.csv")
+    check "sweep: lambda mu at lambda = $lambda is the limit ($lm)" 'close "$lm" 2.2635206780734572 1e-13'
+done
 
 # E = 2^30 and size 2^-20: mu = 2^50 mu(1), K.mtx = 2^30 K(1), B.mtx = 2^-20 B(1)
 for name in unit scaled; do

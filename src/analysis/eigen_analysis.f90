@@ -158,13 +158,16 @@ contains
     !> 2^prob%mu_exponent(), exactly. Fails (STATUS_BAD_INPUT, naming &material young or the
     !> mesh size, whichever pushes further) when an |mu| would leave the normal binary64
     !> range [tiny, huge] = [2.2e-308, 1.8e308]: overflow, or digits lost to underflow.
-    subroutine to_input_units(config, prob, mu, stat)
+    subroutine to_input_units(config, prob, mu, stat, sweep_lambda)
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: prob
         complex(wp), intent(inout) :: mu(:)
         type(status_t), intent(out) :: stat
+        !> the largest |lambda| of a sweep, when mu are its points (default: &analysis lambda)
+        real(wp), intent(in), optional :: sweep_lambda
         integer :: e, i, worst, worst_exponent
-        character(len=:), allocatable :: what
+        character(len=:), allocatable :: what, lambda_name
+        real(wp) :: lambda
 
         e = prob%mu_exponent()
         if (size(mu) == 0) return
@@ -183,10 +186,16 @@ contains
         end do
         if (worst > 0) then
             ! the input pushing furthest: E/size, or lambda (mu ~ 1/lambda for large |lambda|)
-            if (abs(config%analysis%lambda) > 1.0_wp .and. worst_exponent < 0 .and. &
-                exponent(config%analysis%lambda) > max(-prob%young_exponent, &
-                                                       prob%length_exponent)) then
-                what = '&analysis: lambda = '//real_to_text(config%analysis%lambda)
+            lambda = config%analysis%lambda
+            lambda_name = '&analysis: lambda = '
+            if (present(sweep_lambda)) then
+                lambda = sweep_lambda
+                lambda_name = '&sweep: lambda = '
+            end if
+            if (abs(lambda) > 1.0_wp .and. worst_exponent < 0 .and. &
+                exponent(lambda) > max(-prob%young_exponent, prob%length_exponent)) then
+                what = lambda_name//real_to_text(lambda)//' (a point of the sweep)'
+                if (.not. present(sweep_lambda)) what = lambda_name//real_to_text(lambda)
             else if (abs(prob%young_exponent) >= abs(prob%length_exponent)) then
                 what = '&material: young = '//real_to_text(prob%young)
             else if (config%mesh%source == 'rectangle') then

@@ -28,6 +28,11 @@ module problem
     !> ... and on the rectangle's cell shape from this aspect ratio: cond(K) grows like its
     !> square; seen singular at 1e6, backward errors of 1e-8 (warned) at 1e4.
     real(wp), parameter :: SINGULAR_ASPECT_RATIO = 1.0e4_wp
+    !> 'branch' and 'solve' work in the input's units (their loads, displacements and
+    !> compliances have units): E and the mesh size stay within these powers of ten, so that
+    !> the products of assembly and residuals (E / h^2 x h^2, squared norms) stay in binary64.
+    real(wp), parameter :: UNSCALED_YOUNG_RANGE = 1.0e100_wp
+    real(wp), parameter :: UNSCALED_SIZE_RANGE = 1.0e50_wp
 
     type, public :: problem_t
         type(mesh_t) :: mesh
@@ -66,6 +71,7 @@ contains
         logical, intent(in), optional :: with_all_dofs   !! default false
         integer, allocatable :: contact_parts(:)
         real(wp), allocatable :: physical_coords(:, :)
+        real(wp) :: size_of_mesh
         logical :: all_dofs
 
         select case (config%mesh%source)
@@ -115,7 +121,25 @@ contains
             if (allocated(physical_coords)) call move_alloc(physical_coords, prob%mesh%coords)
             return
         end if
-        if (.not. all_dofs) then
+        if (all_dofs) then
+            size_of_mesh = maxval(abs(prob%mesh%coords))
+            if (prob%young > UNSCALED_YOUNG_RANGE .or. &
+                prob%young < 1.0_wp/UNSCALED_YOUNG_RANGE) then
+                call stat%fail(STATUS_BAD_INPUT, config%input_file//': &material: young = '// &
+                    real_to_text(prob%young)//': expected 1e-100 <= young <= 1e100 for '// &
+                    'analysis '''//trim(config%analysis%kind)//''', which works in the '// &
+                    'input''s units (the eigen analyses rescale E away)')
+                return
+            end if
+            if (size_of_mesh > UNSCALED_SIZE_RANGE .or. &
+                size_of_mesh < 1.0_wp/UNSCALED_SIZE_RANGE) then
+                call stat%fail(STATUS_BAD_INPUT, config%input_file//': &mesh: the largest '// &
+                    '|coordinate| is '//short(size_of_mesh)//': expected 1e-50 to 1e50 '// &
+                    'for analysis '''//trim(config%analysis%kind)//''', which works in the '// &
+                    'input''s units (the eigen analyses scale the size away)')
+                return
+            end if
+        else
             call assemble_stiffness(prob%mesh, prob%dofs, &
                                     scale(prob%young, -prob%young_exponent), prob%poisson, &
                                     prob%k, stat)

@@ -17,7 +17,8 @@ module threshold_analysis
     use problem, only: problem_t, explain_singular_k
     use sparse_cholesky, only: cholesky_t
     use contact_boundary, only: assemble_b
-    use contact_reduction, only: factor_stiffness, contact_flexibility, reduced_blocks_t
+    use contact_reduction, only: factor_stiffness, contact_flexibility, reduced_blocks_t, &
+                                 lambda_unit
     use arpack_eigen, only: arpack_options_t, arpack_lowest_positive
     use critical_lambda, only: thresholds_t, pencil_thresholds, confirm_thresholds, &
                                lowest_positive_mu, SIDE_PLUS, SIDE_MINUS
@@ -122,6 +123,8 @@ contains
                                             res%sweep%mu(i), res%sweep%found(i), certified, &
                                             n_operator, stat)
                 if (.not. stat%ok()) return
+                ! blocks%matrix is A / lambda_unit: mu = 1 / (lambda_unit theta)
+                res%sweep%mu(i) = res%sweep%mu(i)/lambda_unit(res%sweep%lambda(i))
             end if
             if (certified) then
                 res%sweep%n_positive(i) = -1
@@ -133,18 +136,19 @@ contains
                 res%sweep%n_dense = res%sweep%n_dense + 1
             end if
         end do
-        call real_to_input_units(res%sweep%mu, stat)
+        call real_to_input_units(res%sweep%mu, stat, maxval(abs(res%sweep%lambda)))
         if (.not. stat%ok()) return
         res%time_sweep = wall_time() - start
 
     contains
 
-        subroutine real_to_input_units(mu, stat)
+        subroutine real_to_input_units(mu, stat, sweep_lambda)
             real(wp), intent(inout) :: mu(:)
             type(status_t), intent(out) :: stat
+            real(wp), intent(in), optional :: sweep_lambda
             complex(wp) :: values(size(mu))
             values = cmplx(mu, 0.0_wp, wp)
-            call to_input_units(config, prob, values, stat)
+            call to_input_units(config, prob, values, stat, sweep_lambda)
             if (stat%ok()) mu = real(values, wp)
         end subroutine real_to_input_units
     end subroutine solve_thresholds

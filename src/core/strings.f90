@@ -67,7 +67,8 @@ contains
         ! 3-digit exponent needs e3, or the 'E' is dropped ('1.49+284')
         ! (NaN first: an ordered comparison with it traps in debug builds)
         wide = .false.
-        if (.not. ieee_is_nan(x)) wide = abs(x) >= 1.0e98_wp .or. (abs(x) > 0.0_wp .and. abs(x) < 1.0e-98_wp)
+        if (.not. ieee_is_nan(x)) wide = abs(x) >= 1.0e98_wp .or. &
+                                         (abs(x) > 0.0_wp .and. abs(x) < 1.0e-98_wp)
         if (wide) then
             write (edit, '(a, i0, a, i0, a)') '(es', d + 8, '.', d, 'e3)'
         else

@@ -27,7 +27,7 @@ module arpack_eigen
     use lapack_interfaces, only: dtrsv, dgetrf, dgetrs, dgeev, dgemm, lapack_info_message, &
                                  lapack_eigenvector
     use contact_reduction, only: contact_tail, flexibility_blocks, lift_eigenvectors, &
-                                 reduced_matrix
+                                 reduced_matrix, lambda_unit
     use arpack_interfaces, only: dnaupd, dneupd, arpack_info_message
     implicit none
     private
@@ -134,7 +134,7 @@ contains
         this%p = contact%p()
         this%lambda = lambda
         this%sigma = sigma
-        if (abs(lambda) > 1.0_wp) this%lambda_scale = set_exponent(1.0_wp, exponent(lambda))
+        this%lambda_scale = lambda_unit(lambda)
         this%normal = contact%normal
         this%tangent = contact%tangent
         this%mass = contact%mass

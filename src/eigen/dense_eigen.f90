@@ -12,7 +12,8 @@ module dense_eigen
     use csr_matrix, only: csr_matrix_t
     use sparse_cholesky, only: cholesky_t
     use contact_boundary, only: contact_t
-    use contact_reduction, only: contact_flexibility, lift_eigenvectors, reduced_matrix
+    use contact_reduction, only: contact_flexibility, lift_eigenvectors, reduced_matrix, &
+                                 lambda_unit
     use spectrum, only: spectrum_t, order_eigenvalues, KIND_POSITIVE, KIND_COMPLEX
     use lapack_interfaces, only: dgeevx, lapack_info_message, lapack_eigenvector
     implicit none
@@ -45,11 +46,8 @@ contains
 
         p = contact%p()
         start = wall_time()
-        ! For |lambda| > 1 the eigenproblem of A / 2^e = (lambda / 2^e Kt_nt - Kt_nn / 2^e) M,
-        ! 2^e the power of two with |lambda| / 2^e in [1, 2): exact, eigenvalues theta / 2^e;
-        ! lambda Kt_nt would overflow from |lambda| ~ 1e308, where mu ~ 1 / lambda is fine
-        lambda_scale = 1.0_wp
-        if (abs(lambda) > 1.0_wp) lambda_scale = set_exponent(1.0_wp, exponent(lambda))
+        ! A / lambda_unit (contact_reduction): eigenvalues theta / lambda_unit
+        lambda_scale = lambda_unit(lambda)
         if (present(kt_nn_given) .and. present(kt_nt_given)) then
             kt_nt = kt_nt_given   ! kept for the lambda sensitivity below
             a = reduced_matrix(kt_nn_given/lambda_scale, kt_nt, contact%mass, &
