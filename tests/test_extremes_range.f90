@@ -198,6 +198,16 @@ contains
             write (what, '(a, es9.1e3)') 'target =', REFUSED(i)
             call check_refused(t, trim(what), stat, '&eigen: target = ')
         end do
+        ! the range scales with the spectrum: E = 1e-300 moves it to 6.5e-296
+        c%material%young = 1.0e-300_wp
+        c%eigen%target = 1.0e-296_wp
+        call run(c, res, stat)
+        call t%check('E = 1e-300, target = 1e-296: solved, certified', stat%ok())
+        if (stat%ok()) call t%check_close('E = 1e-300, target = 1e-296: 1e-300 x dense mu', &
+            real(res%spec%mu(1), wp), 1.0e-300_wp*real(dense%spec%mu(1), wp), rel_tol=1.0e-8_wp)
+        c%eigen%target = 1.0e10_wp   ! 1e10 / 2^-997 overflows: clamped, then refused
+        call run(c, res, stat)
+        call check_refused(t, 'E = 1e-300, target = 1e10', stat, '&eigen: target = ')
     end subroutine arpack_targets
 
     !> K singular in binary64 only because of one input: that input is named, not the

@@ -144,12 +144,14 @@ contains
 
         call this%dense_a(this%a, stat)
         if (.not. stat%ok()) return
-        a_norm = maxval(sum(abs(this%a), dim=2))   ! of A / lambda_scale
-        if (abs(sigma)*a_norm > TARGET_RANGE/this%lambda_scale) then
+        ! |sigma| ||A|| > TARGET_RANGE, this%a being A / lambda_scale; written as quotients,
+        ! which cannot overflow (sigma may be clamped to huge, see eigen_analysis)
+        a_norm = maxval(sum(abs(this%a), dim=2))
+        if (abs(sigma) > (TARGET_RANGE/a_norm)/this%lambda_scale) then
             ! one line naming the variable; the caller adds the input file
             call stat%fail(STATUS_BAD_INPUT, '&eigen: target = '// &
                 real_to_text(target_input)//': expected |target| <= '// &
-                short(scale(TARGET_RANGE/a_norm/this%lambda_scale, unit_exponent))// &
+                short(scale((TARGET_RANGE/a_norm)/this%lambda_scale, unit_exponent))// &
                 ' (1e6 / ||A||, the scale of the spectrum here: further out, mu = target '// &
                 '+ 1/nu cancels and loses more than 6 of the 16 digits)')
             return
