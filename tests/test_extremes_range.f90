@@ -233,6 +233,11 @@ contains
         call t%check('width = 1e-6: blames the aspect ratio', &
                      index(stat%message, 'aspect ratio') > 0)
         c = scene()
+        c%mesh%width = 1.0e-300_wp
+        c%mesh%height = 1.0e300_wp
+        call run(c, res, stat)
+        call check_refused(t, 'width = 1e-300, height = 1e300', stat, '&mesh: coordinates ')
+        c = scene()
         c%material%young = 1.0e308_wp
         call run(c, res, stat)
         call check_refused(t, 'young = 1e308', stat, '&material: young = ')

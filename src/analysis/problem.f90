@@ -112,6 +112,17 @@ contains
             prob%length_exponent = unit_exponent(maxval(abs(prob%mesh%coords)))
             physical_coords = prob%mesh%coords
             prob%mesh%coords = scale(prob%mesh%coords, -prob%length_exponent)
+            ! a coordinate more than ~600 decades below the largest (width = 1e-300 with
+            ! height = 1e300) leaves the normal range in any one unit
+            if (any(abs(physical_coords) > 0.0_wp .and. &
+                    abs(prob%mesh%coords) < tiny(1.0_wp))) then
+                call stat%fail(STATUS_BAD_INPUT, config%input_file//': &mesh: coordinates '// &
+                    'from '//short(minval(abs(physical_coords), abs(physical_coords) > 0.0_wp)) &
+                    //' to '//short(maxval(abs(physical_coords)))//' in magnitude: more than '// &
+                    'the 2.2e-308 to 1.8e308 of binary64 can hold in one unit of length')
+                call move_alloc(physical_coords, prob%mesh%coords)
+                return
+            end if
         end if
         call build_contact(prob%mesh, prob%contact_part, prob%dofs, prob%contact, stat)
         if (.not. stat%ok()) then
@@ -209,7 +220,7 @@ contains
         type(config_t), intent(in) :: config
         type(status_t), intent(inout) :: stat
         character(len=:), allocatable :: detail
-        real(wp) :: lame_ratio, aspect
+        real(wp) :: lame_ratio, aspect   !! aspect: log10 of the cells' aspect ratio
         integer :: at
 
         if (stat%code /= STATUS_SINGULAR) return
@@ -227,16 +238,17 @@ contains
             return
         end if
         if (config%mesh%source /= 'rectangle') return
-        aspect = (config%mesh%width/config%mesh%nx)/(config%mesh%height/config%mesh%ny)
-        aspect = max(aspect, 1.0_wp/aspect)
-        if (aspect >= SINGULAR_ASPECT_RATIO) then
+        ! log10 of the aspect ratio: the ratio can overflow (width = 1e-300, height = 1e300)
+        aspect = abs(log10(config%mesh%width/config%mesh%nx) - &
+                     log10(config%mesh%height/config%mesh%ny))
+        if (aspect >= log10(SINGULAR_ASPECT_RATIO)) then
             call stat%fail(STATUS_BAD_INPUT, config%input_file//': &mesh: width = '// &
                 real_to_text(config%mesh%width)//', height = '// &
                 real_to_text(config%mesh%height)//', nx = '//to_string(config%mesh%nx)// &
-                ', ny = '//to_string(config%mesh%ny)//': cells of aspect ratio '// &
-                short(aspect)//' make K numerically singular (its condition grows like the '// &
-                'square)'//detail//'; expected (width / nx) / (height / ny) within a factor '// &
-                short(SINGULAR_ASPECT_RATIO)//' of 1')
+                ', ny = '//to_string(config%mesh%ny)//': cells of aspect ratio 1e'// &
+                to_string(nint(aspect))//' make K numerically singular (its condition grows '// &
+                'like the square)'//detail//'; expected (width / nx) / (height / ny) within '// &
+                'a factor '//short(SINGULAR_ASPECT_RATIO)//' of 1')
         end if
     end subroutine explain_singular_k
 
