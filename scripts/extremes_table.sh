@@ -55,14 +55,14 @@ echo '| case | lowest positive mu | condition | backward error | max backward er
 echo '|---|---|---|---|---|---|---|'
 ref="nx = 8, ny = 8"
 row 'reference, 8 x 8 p1' "$ref" "" ""
-for young in 1e-6 1e9; do row "E = $young" "$ref" "young = $young" ""; done
-for size in 1e-3 1e3; do row "size $size" "$ref, width = $size, height = $size" "" ""; done
+for young in 1e-6 1e9 1e-300 1e300; do row "E = $young" "$ref" "young = $young" ""; done
+for size in 1e-3 1e3 1e-300 1e300; do row "size $size" "$ref, width = $size, height = $size" "" ""; done
 for nu in 0 0.49 0.4999 0.499999; do
     for element in p1 q1 q2; do
         row "nu = $nu, $element" "$ref, element = '$element'" "poisson = $nu" ""
     done
 done
-for lambda in 1e4 1e8 -1e8; do row "lambda = $lambda" "$ref" "" "lambda = $lambda"; done
+for lambda in 1e4 1e8 -1e8 1e160 1e300; do row "lambda = $lambda" "$ref" "" "lambda = $lambda"; done
 plus=$(threshold 0 5)
 minus=$(threshold 0 -5)
 for lc in "$plus" "$minus"; do

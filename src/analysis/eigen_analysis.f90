@@ -3,12 +3,12 @@
 !> the solver the input asks for, with the phase timings of SPEC section 7.
 module eigen_analysis
     use kinds, only: wp
-    use status, only: status_t
+    use status, only: status_t, STATUS_BAD_INPUT
     use timer, only: wall_time, timings_t, PHASE_ASSEMBLY, PHASE_REDUCTION, PHASE_EIGEN
     use strings, only: to_string
     use real_format, only: real_to_text
     use run_config, only: config_t
-    use problem, only: problem_t
+    use problem, only: problem_t, explain_singular_k
     use element_types, only: element_name
     use csr_matrix, only: csr_matrix_t
     use sparse_cholesky, only: cholesky_t
@@ -21,6 +21,7 @@ module eigen_analysis
     implicit none
     private
     public :: eigen_result_t, solve_eigen, choose_solver, eigen_with_factor, solver_name
+    public :: to_input_units
     public :: SOLVER_DENSE, SOLVER_ARPACK
 
     !> The eigensolver a run used (&eigen solver = 'auto' resolves to one of them).
@@ -82,6 +83,7 @@ contains
         res%solver = choose_solver(config%eigen%solver, prob%contact%p(), &
                                    config%eigen%dense_max_contact)
         call factor_stiffness(prob%k, prob%mesh, prob%dofs, prob%contact, chol, timings, stat)
+        call explain_singular_k(config, stat)
         if (.not. stat%ok()) return
         call eigen_with_factor(config, prob, chol, res, timings, stat)
         call chol%free()
@@ -108,10 +110,16 @@ contains
         start = wall_time()
         certificate = ''
         if (res%solver == SOLVER_ARPACK) then
+            ! the target in the units of prob%k (exact); clamped where that overflows, which
+            ! is far outside the accepted range anyway (arpack_eigen: TARGET_RANGE)
             options = arpack_options_t(nev=config%eigen%nev, ncv=config%eigen%ncv, &
-                maxit=config%eigen%maxit, tol=config%eigen%tol, target=config%eigen%target)
+                maxit=config%eigen%maxit, tol=config%eigen%tol, &
+                target=in_units(config%eigen%target, -prob%mu_exponent()), &
+                unit_exponent=prob%mu_exponent(), target_input=config%eigen%target)
             call arpack_spectrum(prob%k, res%b, chol, prob%contact, res%lambda, options, n_keep, &
                                  res%spec, certificate, stat)
+            if (stat%code == STATUS_BAD_INPUT) stat%message = config%input_file//': '// &
+                                                              stat%message
             if (.not. stat%ok()) return
             call timings%add(PHASE_EIGEN, wall_time() - start, ': arpack, '// &
                              to_string(res%spec%n())//' eigenvalues')
@@ -131,8 +139,105 @@ contains
             call timings%add(PHASE_EIGEN, wall_time() - start - reduction_seconds, ': dense, '// &
                              to_string(res%spec%n())//' eigenvalues')
         end if
+        call to_input_units(config, prob, res%spec%mu, stat)
+        if (.not. stat%ok()) return
         res%warnings = accuracy_warnings(res%spec, element_name(prob%mesh%element), prob%poisson)
         if (len(certificate) > 0) res%warnings = [character(len=WARNING_LEN) :: certificate, &
                                                   res%warnings]
     end subroutine eigen_with_factor
+
+    !> x 2^e, clamped to +-huge where that overflows.
+    elemental real(wp) function in_units(x, e)
+        real(wp), intent(in) :: x
+        integer, intent(in) :: e
+        in_units = x
+        if (.not. abs(x) > 0.0_wp) return
+        if (exponent(x) + e > maxexponent(x)) then
+            in_units = sign(huge(x), x)
+        else
+            in_units = scale(x, e)
+        end if
+    end function in_units
+
+    !> Eigenvalues of (prob%k, B(prob%contact)) to those of the input problem: x
+    !> 2^prob%mu_exponent(), exactly. Fails (STATUS_BAD_INPUT, naming &material young or the
+    !> mesh size, whichever pushes further) when an |mu| would leave the normal binary64
+    !> range [tiny, huge] = [2.2e-308, 1.8e308]: overflow, or digits lost to underflow.
+    subroutine to_input_units(config, prob, mu, stat, sweep_lambda)
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(in) :: prob
+        complex(wp), intent(inout) :: mu(:)
+        type(status_t), intent(out) :: stat
+        !> the largest |lambda| of a sweep, when mu are its points (default: &analysis lambda)
+        real(wp), intent(in), optional :: sweep_lambda
+        integer :: e, i, worst, worst_exponent
+        character(len=:), allocatable :: what, lambda_name
+        real(wp) :: lambda
+
+        e = prob%mu_exponent()
+        if (size(mu) == 0) return
+        worst = 0
+        worst_exponent = 0
+        do i = 1, size(mu)
+            if (.not. abs(mu(i)) > 0.0_wp) cycle
+            associate (x => exponent(abs(mu(i))) + e)
+                if (x > maxexponent(1.0_wp) .or. x < minexponent(1.0_wp)) then
+                    if (worst == 0 .or. abs(x) > abs(worst_exponent)) then
+                        worst = i
+                        worst_exponent = x
+                    end if
+                end if
+            end associate
+        end do
+        if (worst > 0) then
+            ! the input pushing furthest: E/size, or lambda (mu ~ 1/lambda for large |lambda|)
+            lambda = config%analysis%lambda
+            lambda_name = '&analysis: lambda = '
+            if (present(sweep_lambda)) then
+                lambda = sweep_lambda
+                lambda_name = '&sweep: lambda = '
+            end if
+            if (abs(lambda) > 1.0_wp .and. worst_exponent < 0 .and. &
+                exponent(lambda) > max(-prob%young_exponent, prob%length_exponent)) then
+                what = lambda_name//real_to_text(lambda)//' (a point of the sweep)'
+                if (.not. present(sweep_lambda)) what = lambda_name//real_to_text(lambda)
+            else if (abs(prob%young_exponent) >= abs(prob%length_exponent)) then
+                what = '&material: young = '//real_to_text(prob%young)
+            else if (config%mesh%source == 'rectangle') then
+                what = '&mesh: width = '//real_to_text(config%mesh%width)//', height = '// &
+                       real_to_text(config%mesh%height)
+            else
+                what = '&mesh: the mesh in '//trim(config%mesh%file)//' (size 2^'// &
+                       to_string(prob%length_exponent)//')'
+            end if
+            call stat%fail(STATUS_BAD_INPUT, config%input_file//': '//what// &
+                ': an eigenvalue mu would be about '//decimal_text(log10(abs(mu(worst))) + &
+                real(e, wp)*log10(2.0_wp))//' (mu scales like young / size, '// &
+                'and like 1 / lambda for large |lambda|), '// &
+                'outside the 2.2e-308 to 1.8e308 that binary64 holds to full precision')
+            return
+        end if
+        do i = 1, size(mu)
+            mu(i) = cmplx(scale(real(mu(i), wp), e), scale(aimag(mu(i)), e), wp)
+        end do
+
+    contains
+
+        !> 10^x as 'm.me+n' text, for values beyond the binary64 range.
+        function decimal_text(x) result(text)
+            real(wp), intent(in) :: x
+            character(len=:), allocatable :: text
+            character(len=8) :: mantissa
+            real(wp) :: m
+            integer :: power
+            power = floor(x)
+            m = 10.0_wp**(x - power)
+            if (m >= 9.95_wp) then   ! would print as 10.0
+                m = 1.0_wp
+                power = power + 1
+            end if
+            write (mantissa, '(f3.1)') m
+            text = trim(mantissa)//'e'//to_string(power)
+        end function decimal_text
+    end subroutine to_input_units
 end module eigen_analysis

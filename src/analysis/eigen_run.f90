@@ -24,6 +24,7 @@ module eigen_run
     use element_types, only: element_name, element_corners
     use mode_plot, only: plot_mode
     use blas_info, only: blas_in_use
+    use csr_matrix, only: csr_matrix_t
     implicit none
     private
     public :: eigen_summary_json, no_eigen_summary_json, summary_lines, write_eigenvalues_csv, write_modes, &
@@ -291,15 +292,34 @@ contains
         call write_eigenvalues_csv(stage%path('eigenvalues.csv'), res%spec, stat)
         if (stat%ok() .and. config%output%vtk) call write_modes(stage, prob, res%spec, &
             config%output%modes, trim(config%output%vtk_format), stat)
-        if (stat%ok() .and. config%output%matrices) then
-            call write_matrix_market(stage%path('K.mtx'), prob%k, stat)
-            if (stat%ok()) call write_matrix_market(stage%path('B.mtx'), res%b, stat)
-        end if
+        if (stat%ok() .and. config%output%matrices) call write_matrices(stage, prob, res, stat)
         if (.not. present(plot_note)) return
         plot_note = ''
         if (stat%ok() .and. config%output%plot .and. config%output%modes > 0 .and. &
             size(res%spec%vectors, 2) > 0) call draw_first_mode(stage, config, prob, res, plot_note)
     end subroutine write_eigen_files
+
+    !> K.mtx and B.mtx of the input problem: prob%k and res%b are in units of E and of the mesh
+    !> size (powers of two, so scaling back is exact; beyond the binary64 range Infinity).
+    subroutine write_matrices(stage, prob, res, stat)
+        type(output_stage_t), intent(inout) :: stage
+        type(problem_t), intent(in) :: prob
+        type(eigen_result_t), intent(in) :: res
+        type(status_t), intent(out) :: stat
+        type(csr_matrix_t) :: physical
+        if (prob%young_exponent == 0 .and. prob%length_exponent == 0) then
+            call write_matrix_market(stage%path('K.mtx'), prob%k, stat)
+            if (stat%ok()) call write_matrix_market(stage%path('B.mtx'), res%b, stat)
+            return
+        end if
+        physical = prob%k
+        physical%val = scale(physical%val, prob%young_exponent)
+        call write_matrix_market(stage%path('K.mtx'), physical, stat)
+        if (.not. stat%ok()) return
+        physical = res%b
+        physical%val = scale(physical%val, prob%length_exponent)
+        call write_matrix_market(stage%path('B.mtx'), physical, stat)
+    end subroutine write_matrices
 
     !> mode_001.png of the first mode (its real part), joined to the set when drawn.
     subroutine draw_first_mode(stage, config, prob, res, note)

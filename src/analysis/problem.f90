@@ -3,9 +3,10 @@
 !> contact boundary and the stiffness matrix K on the free dofs.
 module problem
     use kinds, only: wp
-    use status, only: status_t, STATUS_BAD_INPUT
+    use status, only: status_t, STATUS_BAD_INPUT, STATUS_SINGULAR
+    use strings, only: NAME_LEN, split_names, to_string, short => short_real_text
+    use real_format, only: real_to_text
     use run_config, only: config_t
-    use strings, only: NAME_LEN, split_names
     use mesh, only: mesh_t
     use element_types, only: element_from_name
     use mesh_structured, only: structured_rectangle
@@ -16,7 +17,22 @@ module problem
     use csr_matrix, only: csr_matrix_t
     implicit none
     private
-    public :: problem_t, build_problem, assemble_all_dofs
+    public :: problem_t, build_problem, assemble_all_dofs, unit_exponent, explain_singular_k
+    public :: SINGULAR_LAME_RATIO, SINGULAR_ASPECT_RATIO
+
+    !> A K that CHOLMOD finds numerically singular is blamed on &material poisson from this
+    !> L/G = 2 nu / (1 - 2 nu): K's pivots then span a factor L/G at least (the volumetric
+    !> stiffness L against the shear G), and CHOLMOD gives up at a pivot ratio of 1e3 eps;
+    !> seen at L/G = 5e12 (nu = 0.4999999999999) while 5e11 still solves to round-off.
+    real(wp), parameter :: SINGULAR_LAME_RATIO = 1.0e10_wp
+    !> ... and on the rectangle's cell shape from this aspect ratio: cond(K) grows like its
+    !> square; seen singular at 1e6, backward errors of 1e-8 (warned) at 1e4.
+    real(wp), parameter :: SINGULAR_ASPECT_RATIO = 1.0e4_wp
+    !> 'branch' and 'solve' work in the input's units (their loads, displacements and
+    !> compliances have units): E and the mesh size stay within these powers of ten, so that
+    !> the products of assembly and residuals (E / h^2 x h^2, squared norms) stay in binary64.
+    real(wp), parameter :: UNSCALED_YOUNG_RANGE = 1.0e100_wp
+    real(wp), parameter :: UNSCALED_SIZE_RANGE = 1.0e50_wp
 
     type, public :: problem_t
         type(mesh_t) :: mesh
@@ -32,18 +48,31 @@ module problem
         integer :: contact_part = 0
         real(wp) :: young = 0.0_wp
         real(wp) :: poisson = 0.0_wp
+        !> Units of k and contact (eigen analyses, see build_problem): k is K / 2^young_exponent
+        !> and contact%mass is M / 2^length_exponent, so the eigenvalues mu of k, B(contact)
+        !> are those of K, B divided by 2^mu_exponent(). 0, 0 for 'branch' and 'solve'.
+        integer :: young_exponent = 0
+        integer :: length_exponent = 0
+    contains
+        procedure :: mu_exponent => problem_mu_exponent
     end type problem_t
 
 contains
 
     !> Mesh the domain, resolve the boundary part names, number the free dofs, collect the
     !> contact boundary and assemble K; `with_all_dofs` also keeps K and Gamma_C on all dofs.
+    !> Without `with_all_dofs` (the eigen analyses) K and Gamma_C are in units of E and of the
+    !> mesh size (powers of two: young_exponent, length_exponent); prob%mesh keeps the input
+    !> coordinates.
     subroutine build_problem(config, prob, stat, with_all_dofs)
         type(config_t), intent(in) :: config
         type(problem_t), intent(out) :: prob
         type(status_t), intent(out) :: stat
         logical, intent(in), optional :: with_all_dofs   !! default false
         integer, allocatable :: contact_parts(:)
+        real(wp), allocatable :: physical_coords(:, :)
+        real(wp) :: size_of_mesh
+        logical :: all_dofs
 
         select case (config%mesh%source)
         case ('rectangle')
@@ -71,19 +100,61 @@ contains
         prob%poisson = config%material%poisson
         call build_dof_map(prob%mesh, prob%dirichlet_parts, prob%dofs, stat)
         if (.not. stat%ok()) return
+        all_dofs = .false.
+        if (present(with_all_dofs)) all_dofs = with_all_dofs
+        if (.not. all_dofs) then
+            ! The eigenproblem in units where E and the mesh size are in [1, 2): mu scales
+            ! exactly like E / size (2D: K does not change with the size, M grows with it),
+            ! and a change of unit by a power of two is exact, so the scaled problem is the
+            ! input problem itself, while the products of the assembly (det J ~ size^2,
+            ! entries ~ E) and of the solvers stay far from overflow and underflow.
+            prob%young_exponent = unit_exponent(prob%young)
+            prob%length_exponent = unit_exponent(maxval(abs(prob%mesh%coords)))
+            physical_coords = prob%mesh%coords
+            prob%mesh%coords = scale(prob%mesh%coords, -prob%length_exponent)
+            ! a coordinate more than ~600 decades below the largest (width = 1e-300 with
+            ! height = 1e300) leaves the normal range in any one unit
+            if (any(abs(physical_coords) > 0.0_wp .and. &
+                    abs(prob%mesh%coords) < tiny(1.0_wp))) then
+                call stat%fail(STATUS_BAD_INPUT, config%input_file//': &mesh: coordinates '// &
+                    'from '//short(minval(abs(physical_coords), abs(physical_coords) > 0.0_wp)) &
+                    //' to '//short(maxval(abs(physical_coords)))//' in magnitude: more than '// &
+                    'the 2.2e-308 to 1.8e308 of binary64 can hold in one unit of length')
+                call move_alloc(physical_coords, prob%mesh%coords)
+                return
+            end if
+        end if
         call build_contact(prob%mesh, prob%contact_part, prob%dofs, prob%contact, stat)
         if (.not. stat%ok()) then
             ! A mesh-file message already names the file and line.
             if (.not. allocated(prob%mesh%file)) &
                 stat%message = config%input_file//': &mesh: contact: '//stat%message
+            if (allocated(physical_coords)) call move_alloc(physical_coords, prob%mesh%coords)
             return
         end if
-        if (.not. present(with_all_dofs)) then
-            call assemble_stiffness(prob%mesh, prob%dofs, prob%young, prob%poisson, prob%k, stat)
-            return
-        end if
-        if (.not. with_all_dofs) then
-            call assemble_stiffness(prob%mesh, prob%dofs, prob%young, prob%poisson, prob%k, stat)
+        if (all_dofs) then
+            size_of_mesh = maxval(abs(prob%mesh%coords))
+            if (prob%young > UNSCALED_YOUNG_RANGE .or. &
+                prob%young < 1.0_wp/UNSCALED_YOUNG_RANGE) then
+                call stat%fail(STATUS_BAD_INPUT, config%input_file//': &material: young = '// &
+                    real_to_text(prob%young)//': expected 1e-100 <= young <= 1e100 for '// &
+                    'analysis '''//trim(config%analysis%kind)//''', which works in the '// &
+                    'input''s units (the eigen analyses rescale E away)')
+                return
+            end if
+            if (size_of_mesh > UNSCALED_SIZE_RANGE .or. &
+                size_of_mesh < 1.0_wp/UNSCALED_SIZE_RANGE) then
+                call stat%fail(STATUS_BAD_INPUT, config%input_file//': &mesh: the largest '// &
+                    '|coordinate| is '//short(size_of_mesh)//': expected 1e-50 to 1e50 '// &
+                    'for analysis '''//trim(config%analysis%kind)//''', which works in the '// &
+                    'input''s units (the eigen analyses scale the size away)')
+                return
+            end if
+        else
+            call assemble_stiffness(prob%mesh, prob%dofs, &
+                                    scale(prob%young, -prob%young_exponent), prob%poisson, &
+                                    prob%k, stat)
+            call move_alloc(physical_coords, prob%mesh%coords)
             return
         end if
         call assemble_all_dofs(prob%mesh, prob%young, prob%poisson, prob%contact_part, &
@@ -141,6 +212,58 @@ contains
             end do
         end function join
     end subroutine build_problem
+
+    !> When `stat` says K is singular (STATUS_SINGULAR) and the input explains it, one line
+    !> naming that input instead (STATUS_BAD_INPUT): poisson so near 0.5, or rectangle cells
+    !> so elongated, that K is singular in binary64 although not in exact arithmetic.
+    subroutine explain_singular_k(config, stat)
+        type(config_t), intent(in) :: config
+        type(status_t), intent(inout) :: stat
+        character(len=:), allocatable :: detail
+        real(wp) :: lame_ratio, aspect   !! aspect: log10 of the cells' aspect ratio
+        integer :: at
+
+        if (stat%code /= STATUS_SINGULAR) return
+        detail = ''
+        at = index(stat%message, '(CHOLMOD')
+        if (at > 0) detail = ' '//stat%message(at:)
+        associate (nu => config%material%poisson)
+            lame_ratio = 2.0_wp*nu/(1.0_wp - 2.0_wp*nu)
+        end associate
+        if (lame_ratio >= SINGULAR_LAME_RATIO) then
+            call stat%fail(STATUS_BAD_INPUT, config%input_file//': &material: poisson = '// &
+                real_to_text(config%material%poisson)//': so close to 0.5 that L/G = 2 nu / '// &
+                '(1 - 2 nu) = '//short(lame_ratio)//' makes K numerically singular'//detail// &
+                '; expected L/G below '//short(SINGULAR_LAME_RATIO)//' (poisson <= 0.49999999995)')
+            return
+        end if
+        if (config%mesh%source /= 'rectangle') return
+        ! log10 of the aspect ratio: the ratio can overflow (width = 1e-300, height = 1e300)
+        aspect = abs(log10(config%mesh%width/config%mesh%nx) - &
+                     log10(config%mesh%height/config%mesh%ny))
+        if (aspect >= log10(SINGULAR_ASPECT_RATIO)) then
+            call stat%fail(STATUS_BAD_INPUT, config%input_file//': &mesh: width = '// &
+                real_to_text(config%mesh%width)//', height = '// &
+                real_to_text(config%mesh%height)//', nx = '//to_string(config%mesh%nx)// &
+                ', ny = '//to_string(config%mesh%ny)//': cells of aspect ratio 1e'// &
+                to_string(nint(aspect))//' make K numerically singular (its condition grows '// &
+                'like the square)'//detail//'; expected (width / nx) / (height / ny) within '// &
+                'a factor '//short(SINGULAR_ASPECT_RATIO)//' of 1')
+        end if
+    end subroutine explain_singular_k
+
+    !> e such that x / 2^e is in [1, 2) (x > 0; a subnormal x too): the unit of x.
+    elemental integer function unit_exponent(x)
+        real(wp), intent(in) :: x
+        unit_exponent = 0
+        if (x > 0.0_wp) unit_exponent = exponent(x) - 1
+    end function unit_exponent
+
+    !> mu of the physical problem = 2^mu_exponent x mu of (k, B(contact)).
+    pure integer function problem_mu_exponent(this)
+        class(problem_t), intent(in) :: this
+        problem_mu_exponent = this%young_exponent - this%length_exponent
+    end function problem_mu_exponent
 
     !> K and the contact boundary on all dofs (none prescribed), in the node-major numbering
     !> of dof_map::all_dof: what the compliance problem with Dirichlet data needs.

@@ -15,14 +15,16 @@ module threshold_analysis
     use strings, only: to_string, seconds_text
     use real_format, only: real_to_text
     use run_config, only: config_t, sweep_lambdas
-    use problem, only: problem_t
+    use problem, only: problem_t, explain_singular_k
     use sparse_cholesky, only: cholesky_t
     use contact_boundary, only: assemble_b
-    use contact_reduction, only: factor_stiffness, contact_flexibility, reduced_blocks_t
+    use contact_reduction, only: factor_stiffness, contact_flexibility, reduced_blocks_t, &
+                                 lambda_unit
     use arpack_eigen, only: arpack_options_t, arpack_lowest_positive
     use critical_lambda, only: thresholds_t, pencil_thresholds, confirm_thresholds, &
                                lowest_positive_mu, SIDE_PLUS, SIDE_MINUS
-    use eigen_analysis, only: eigen_result_t, choose_solver, eigen_with_factor, SOLVER_ARPACK
+    use eigen_analysis, only: eigen_result_t, choose_solver, eigen_with_factor, SOLVER_ARPACK, &
+                              to_input_units
     implicit none
     private
     public :: threshold_result_t, solve_thresholds
@@ -74,6 +76,7 @@ contains
                          real_to_text(res%eigen%lambda))
 
         call factor_stiffness(prob%k, prob%mesh, prob%dofs, prob%contact, chol, timings, stat)
+        call explain_singular_k(config, stat)
         if (.not. stat%ok()) return
 
         start = wall_time()
@@ -99,6 +102,10 @@ contains
         ! deep in the spectrum; dgeev without vectors is O(p^3) with a small constant.
         call confirm_thresholds(blocks, res%thresholds, stat)
         if (.not. stat%ok()) return
+        ! mu of the confirmations, in the units of prob%k, to the input's (lambda has none)
+        call real_to_input_units(res%thresholds%mu_outside, stat)
+        if (stat%ok()) call real_to_input_units(res%thresholds%mu_inside, stat)
+        if (.not. stat%ok()) return
         res%time_threshold = wall_time() - start
         call timings%note('thresholds '//seconds_text(res%time_threshold)//' s')
         if (.not. with_sweep) return
@@ -121,6 +128,8 @@ contains
                                             res%sweep%mu(i), res%sweep%found(i), certified, &
                                             n_operator, stat)
                 if (.not. stat%ok()) return
+                ! blocks%matrix is A / lambda_unit: mu = 1 / (lambda_unit theta)
+                res%sweep%mu(i) = res%sweep%mu(i)/lambda_unit(res%sweep%lambda(i))
             end if
             if (certified) then
                 res%sweep%n_positive(i) = -1
@@ -132,9 +141,23 @@ contains
                 res%sweep%n_dense = res%sweep%n_dense + 1
             end if
         end do
+        call real_to_input_units(res%sweep%mu, stat, maxval(abs(res%sweep%lambda)))
+        if (.not. stat%ok()) return
         res%time_sweep = wall_time() - start
         call timings%note('sweep      '//seconds_text(res%time_sweep)//' s: '// &
                           to_string(size(res%sweep%lambda))//' lambdas')
+
+    contains
+
+        subroutine real_to_input_units(mu, stat, sweep_lambda)
+            real(wp), intent(inout) :: mu(:)
+            type(status_t), intent(out) :: stat
+            real(wp), intent(in), optional :: sweep_lambda
+            complex(wp) :: values(size(mu))
+            values = cmplx(mu, 0.0_wp, wp)
+            call to_input_units(config, prob, values, stat, sweep_lambda)
+            if (stat%ok()) mu = real(values, wp)
+        end subroutine real_to_input_units
     end subroutine solve_thresholds
 
     !> lambda- <= lambda <= lambda+, a missing threshold counting as infinitely far.

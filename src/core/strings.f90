@@ -5,6 +5,7 @@
 !> count or a time reads the same everywhere and a name is compared the same way everywhere.
 module strings
     use kinds, only: wp, i8
+    use ieee_arithmetic, only: ieee_is_nan
     implicit none
     private
     public :: to_string, zero_padded, short_real_text, seconds_text
@@ -70,10 +71,20 @@ contains
         character(len=48) :: buffer
         character(len=16) :: edit
         integer :: d
+        logical :: wide
         d = 2
         if (present(digits)) d = digits
-        ! es(d+7).d is the narrowest field that holds a sign and a 2-digit exponent.
-        write (edit, '(a, i0, a, i0, a)') '(es', d + 7, '.', d, ')'
+        ! es(d+7).d is the narrowest field that holds a sign and a 2-digit exponent; a
+        ! 3-digit exponent needs e3, or the 'E' is dropped ('1.49+284')
+        ! (NaN first: an ordered comparison with it traps in debug builds)
+        wide = .false.
+        if (.not. ieee_is_nan(x)) wide = abs(x) >= 1.0e98_wp .or. &
+                                         (abs(x) > 0.0_wp .and. abs(x) < 1.0e-98_wp)
+        if (wide) then
+            write (edit, '(a, i0, a, i0, a)') '(es', d + 8, '.', d, 'e3)'
+        else
+            write (edit, '(a, i0, a, i0, a)') '(es', d + 7, '.', d, ')'
+        end if
         write (buffer, edit) x
         text = trim(adjustl(buffer))
     end function short_real_text

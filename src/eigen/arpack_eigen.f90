@@ -18,7 +18,8 @@
 module arpack_eigen
     use kinds, only: wp
     use status, only: status_t, STATUS_SOLVER, STATUS_BAD_INPUT
-    use strings, only: to_string
+    use strings, only: to_string, short => short_real_text
+    use real_format, only: real_to_text
     use csr_matrix, only: csr_matrix_t
     use sparse_cholesky, only: cholesky_t
     use contact_boundary, only: contact_t
@@ -26,7 +27,7 @@ module arpack_eigen
     use lapack_interfaces, only: dtrsv, dgetrf, dgetrs, dgeev, dgemm, lapack_info_message, &
                                  lapack_eigenvector
     use contact_reduction, only: contact_tail, flexibility_blocks, lift_eigenvectors, &
-                                 reduced_matrix
+                                 reduced_matrix, lambda_unit
     use arpack_interfaces, only: dnaupd, dneupd, arpack_info_message
     implicit none
     private
@@ -57,12 +58,25 @@ module arpack_eigen
     !> apart (neighbouring eigenvalues of the reference scene differ by more than 1e-3).
     real(wp), parameter :: AGREE_TOL = 1.0e-8_wp
 
+    !> Largest |sigma| ||A||_inf accepted for a target sigma. mu = sigma + 1/nu cancels: an
+    !> eigenvalue mu comes back with an absolute error of about eps |sigma|, i.e. a relative
+    !> error eps |sigma| / |mu| <= eps |sigma| ||A|| (every |mu| >= 1 / ||A||, as
+    !> |theta| <= ||A||), and the nu = 1/(mu - sigma) of the low eigenvalues crowd within a
+    !> relative eps |sigma| ||A|| of each other, where ARPACK cannot tell them apart. 1e6
+    !> keeps both below 2.2e-10, well inside AGREE_TOL; beyond it (e.g. target = 1e15 on the
+    !> reference scene) the answers were wrong in every digit with a certificate that held.
+    real(wp), parameter, public :: TARGET_RANGE = 1.0e6_wp
+
     type, public :: arpack_options_t
         integer :: nev = 6               !! eigenvalues per run (first attempt)
         integer :: ncv = 0               !! Krylov dimension, 0: max(2 nev + 1, 20)
         integer :: maxit = 1000          !! restarts per run
         real(wp) :: tol = 0.0_wp         !! relative residual tolerance, 0: machine epsilon
         real(wp) :: target = 0.0_wp      !! shift sigma; 0: no shift
+        !> For messages: the problem solved is the input one with mu divided by
+        !> 2^unit_exponent (problem_t), and `target_input` is &eigen target as given.
+        integer :: unit_exponent = 0
+        real(wp) :: target_input = 0.0_wp
     end type arpack_options_t
 
     !> The reduced operator on the contact nodes: theta-mode y -> A y (sigma = 0) or
@@ -71,6 +85,9 @@ module arpack_eigen
         integer :: p = 0
         real(wp) :: sigma = 0.0_wp
         real(wp) :: lambda = 0.0_wp
+        !> The operator is built on A / lambda_scale (a power of two ~ |lambda| when
+        !> |lambda| > 1, else 1): A ~ lambda overflowed ARPACK's norms from |lambda| ~ 1e160
+        real(wp) :: lambda_scale = 1.0_wp
         real(wp) :: normal(2) = 0.0_wp, tangent(2) = 0.0_wp
         real(wp), allocatable :: l_tail(:, :)   !! (2p, 2p) trailing block of the factor
         integer, allocatable :: slot(:, :)      !! (2, p) row in l_tail of contact dof (c, a)
@@ -84,6 +101,7 @@ module arpack_eigen
         procedure :: apply_a => operator_apply_a
         procedure :: apply => operator_apply
         procedure :: dense_a => operator_dense_a
+        procedure :: mu_of => operator_mu_of
     end type contact_operator_t
 
     !> One ARPACK run's result: the converged Ritz values nu of the operator and their
@@ -99,18 +117,24 @@ module arpack_eigen
 contains
 
     !> Build the reduced operator from a factor of K whose last 2p pivots are the contact
-    !> dofs (see node_ordering), and factor I - sigma A when sigma /= 0.
-    subroutine operator_setup(this, chol, contact, lambda, sigma, stat)
+    !> dofs (see node_ordering), and factor I - sigma A when sigma /= 0, after checking
+    !> |sigma| ||A|| <= TARGET_RANGE (STATUS_BAD_INPUT naming &eigen target otherwise).
+    subroutine operator_setup(this, chol, contact, lambda, sigma, stat, target_input, &
+                              unit_exponent)
         class(contact_operator_t), intent(inout) :: this
         type(cholesky_t), intent(in) :: chol
         type(contact_t), intent(in) :: contact
         real(wp), intent(in) :: lambda, sigma
         type(status_t), intent(out) :: stat
+        real(wp), intent(in) :: target_input      !! sigma as the input gave it (messages)
+        integer, intent(in) :: unit_exponent      !! input mu = 2^unit_exponent mu here
+        real(wp) :: a_norm
         integer :: a, info
 
         this%p = contact%p()
         this%lambda = lambda
         this%sigma = sigma
+        this%lambda_scale = lambda_unit(lambda)
         this%normal = contact%normal
         this%tangent = contact%tangent
         this%mass = contact%mass
@@ -120,8 +144,20 @@ contains
 
         call this%dense_a(this%a, stat)
         if (.not. stat%ok()) return
+        ! |sigma| ||A|| > TARGET_RANGE, this%a being A / lambda_scale; written as quotients,
+        ! which cannot overflow (sigma may be clamped to huge, see eigen_analysis)
+        a_norm = maxval(sum(abs(this%a), dim=2))
+        if (abs(sigma) > (TARGET_RANGE/a_norm)/this%lambda_scale) then
+            ! one line naming the variable; the caller adds the input file
+            call stat%fail(STATUS_BAD_INPUT, '&eigen: target = '// &
+                real_to_text(target_input)//': expected |target| <= '// &
+                short(scale((TARGET_RANGE/a_norm)/this%lambda_scale, unit_exponent))// &
+                ' (1e6 / ||A||, the scale of the spectrum here: further out, mu = target '// &
+                '+ 1/nu cancels and loses more than 6 of the 16 digits)')
+            return
+        end if
         ! LU of I - sigma A, kept in place of A (A itself is applied through L_c)
-        this%a = -sigma*this%a
+        this%a = -(sigma*this%lambda_scale)*this%a
         do a = 1, this%p
             this%a(a, a) = this%a(a, a) + 1.0_wp
         end do
@@ -150,10 +186,20 @@ contains
         ! allocated first: reallocation on assignment would read the undefined bounds that
         ! intent(out) leaves (UBSan saw their arithmetic overflow)
         allocate (a(this%p, this%p))
-        a(:, :) = reduced_matrix(kt_nn, kt_nt, this%mass, this%lambda)
+        a(:, :) = reduced_matrix(kt_nn/this%lambda_scale, kt_nt, this%mass, &
+                                 this%lambda/this%lambda_scale)
     end subroutine operator_dense_a
 
-    !> out = A y = N K^-1 (lambda T' - N') M y, through two triangular solves with L_c.
+    !> mu of an eigenvalue nu of the operator: A y = theta y with nu = (theta / lambda_scale)
+    !> / (1 - sigma theta), i.e. mu = 1 / theta = sigma + 1 / (lambda_scale nu).
+    elemental complex(wp) function operator_mu_of(this, nu) result(mu)
+        class(contact_operator_t), intent(in) :: this
+        complex(wp), intent(in) :: nu
+        mu = this%sigma + (1.0_wp/nu)/this%lambda_scale
+    end function operator_mu_of
+
+    !> out = A y / lambda_scale = N K^-1 (lambda T' - N') M y / lambda_scale, through two
+    !> triangular solves with L_c.
     subroutine operator_apply_a(this, y, out)
         class(contact_operator_t), intent(in) :: this
         real(wp), intent(in) :: y(:)
@@ -168,7 +214,8 @@ contains
         call this%mass%matvec(y, my)
         z = 0.0_wp
         do a = 1, this%p
-            z(this%slot(:, a)) = (this%lambda*this%tangent - this%normal)*my(a)
+            z(this%slot(:, a)) = (this%lambda/this%lambda_scale*this%tangent - &
+                                  this%normal/this%lambda_scale)*my(a)
         end do
         call dtrsv('L', 'N', 'N', 2*this%p, this%l_tail, 2*this%p, z, 1)
         call dtrsv('L', 'T', 'N', 2*this%p, this%l_tail, 2*this%p, z, 1)
@@ -177,7 +224,7 @@ contains
         end do
     end subroutine operator_apply_a
 
-    !> ARPACK's OP: A (sigma = 0) or (I - sigma A)^-1 A.
+    !> ARPACK's OP: A (sigma = 0) or (I - sigma A)^-1 A, divided by lambda_scale.
     subroutine operator_apply(this, y, out)
         class(contact_operator_t), intent(in) :: this
         real(wp), intent(in) :: y(:)
@@ -268,7 +315,8 @@ contains
                 'ARPACK needs at least 3 (nev + 2 <= ncv <= p); use solver = ''dense''')
             return
         end if
-        call op%setup(chol, contact, lambda, options%target, stat)
+        call op%setup(chol, contact, lambda, options%target, stat, options%target_input, &
+                      options%unit_exponent)
         if (.not. stat%ok()) return
 
         call certified_search(op, options, run, mu, confirmed, found_before, n_operator, stat)
@@ -279,7 +327,7 @@ contains
             if (p <= DENSE_FALLBACK_MAX) then
                 call dense_ritz(op, options%nev, run, stat)
                 if (.not. stat%ok()) return
-                mu = options%target + 1.0_wp/run%nu
+                mu = op%mu_of(run%nu)
             else
                 radius = 0.0_wp
                 if (size(mu) > 0) radius = maxval(abs(mu - options%target))
@@ -330,7 +378,7 @@ contains
             call run_arpack(op, nev, options, attempt, run, stat)
             if (.not. stat%ok()) return
             n_operator = n_operator + run%n_operator
-            mu = options%target + 1.0_wp/run%nu
+            mu = op%mu_of(run%nu)
             call certify_lowest(mu, run%is_real, options%target, .false., outcome, lowest)
             ! with info = 1 (maxit) only some wanted values converged: nearer ones may be
             ! missing, so the disc argument does not hold
@@ -420,9 +468,9 @@ contains
         nu = cmplx(wr, wi, wp)
         keep = abs(nu) > 0.0_wp
         is_real = .not. (abs(wi) > 0.0_wp)
-        where (keep) nu = nu/(1.0_wp - op%sigma*nu)
+        where (keep) nu = nu/(1.0_wp - (op%sigma*op%lambda_scale)*nu)
         allocate (mu(p), source=(0.0_wp, 0.0_wp))
-        where (keep) mu = op%sigma + 1.0_wp/nu
+        where (keep) mu = op%mu_of(nu)
         call certify_lowest(mu, is_real .and. keep, op%sigma, .true., outcome, lowest)
         ! the n_report largest |nu|, the lowest positive mu, and the partners of pairs
         allocate (chosen(p), source=.false.)

@@ -25,7 +25,7 @@ module contact_reduction
     implicit none
     private
     public :: factor_stiffness, contact_tail, flexibility_blocks, contact_flexibility, &
-              lift_eigenvectors, lift_block_columns, reduced_matrix
+              lift_eigenvectors, lift_block_columns, reduced_matrix, lambda_unit
 
     !> Columns per multi-right-hand-side solve of the lift: up to 64 keeps CHOLMOD's
     !> supernodal solve in BLAS-3 (each solve streams the whole factor), but one n x block
@@ -64,12 +64,24 @@ contains
         end do
     end function reduced_matrix
 
-    !> A(lambda) of these blocks (see reduced_matrix).
+    !> A power of two 2^c with |lambda| / 2^c in [1, 2) when |lambda| > 1, else 1. The
+    !> solvers work on A / lambda_unit and (lambda t - n) / lambda_unit, exact rescalings that
+    !> only divide the eigenvalues theta and the vectors phi by it: lambda Kt_nt overflows from
+    !> |lambda| ~ 1e308 and B phi (~ lambda^2) from 1e155, where mu ~ 1/lambda is fine.
+    elemental real(wp) function lambda_unit(lambda)
+        real(wp), intent(in) :: lambda
+        lambda_unit = 1.0_wp
+        if (abs(lambda) > 1.0_wp) lambda_unit = set_exponent(1.0_wp, exponent(lambda))
+    end function lambda_unit
+
+    !> A(lambda) / lambda_unit(lambda) of these blocks (see reduced_matrix): its eigenvalues
+    !> are theta / lambda_unit, i.e. mu = 1 / (lambda_unit theta).
     pure function reduced_blocks_matrix(this, lambda) result(a)
         class(reduced_blocks_t), intent(in) :: this
         real(wp), intent(in) :: lambda
         real(wp) :: a(size(this%kt_nn, 1), size(this%kt_nn, 2))
-        a = reduced_matrix(this%kt_nn, this%kt_nt, this%mass, lambda)
+        a = reduced_matrix(this%kt_nn/lambda_unit(lambda), this%kt_nt, this%mass, &
+                           lambda/lambda_unit(lambda))
     end function reduced_blocks_matrix
 
     !> Factor K for the eigenproblem, whatever the solver and analysis: METIS nested
@@ -228,7 +240,11 @@ contains
 
         n_ev = size(mu)
         n_free = k%n()
-        direction = lambda*contact%tangent - contact%normal
+        ! lambda t - n up to a factor, which only scales phi: divided by lambda_unit, so that
+        ! phi and B phi (~ lambda^2) cannot overflow in the backward error (they gave
+        ! Infinity from |lambda| ~ 1e155)
+        direction = lambda/lambda_unit(lambda)*contact%tangent - &
+                    contact%normal/lambda_unit(lambda)
         k_norm = k%norm_inf()
         b_norm = b%norm_inf()
         allocate (residual(n_ev), vectors(n_free, min(n_keep, n_ev)))

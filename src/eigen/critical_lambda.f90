@@ -17,7 +17,7 @@ module critical_lambda
     use kinds, only: wp
     use status, only: status_t, STATUS_SOLVER
     use lapack_interfaces, only: dggev, dgeev, lapack_info_message
-    use contact_reduction, only: reduced_blocks_t
+    use contact_reduction, only: reduced_blocks_t, lambda_unit
     implicit none
     private
     public :: thresholds_t, pencil_thresholds, lowest_positive_mu, confirm_thresholds
@@ -159,7 +159,7 @@ contains
         end do
         if (n_positive > 0) then
             found = .true.
-            mu = 1.0_wp/theta_max
+            mu = (1.0_wp/theta_max)/lambda_unit(lambda)   ! blocks%matrix is A / lambda_unit
         end if
     end subroutine lowest_positive_mu
 

@@ -12,7 +12,8 @@ module dense_eigen
     use csr_matrix, only: csr_matrix_t
     use sparse_cholesky, only: cholesky_t
     use contact_boundary, only: contact_t
-    use contact_reduction, only: contact_flexibility, lift_eigenvectors, reduced_matrix
+    use contact_reduction, only: contact_flexibility, lift_eigenvectors, reduced_matrix, &
+                                 lambda_unit
     use spectrum, only: spectrum_t, order_eigenvalues, KIND_POSITIVE, KIND_COMPLEX
     use lapack_interfaces, only: dgeevx, lapack_info_message, lapack_eigenvector
     implicit none
@@ -40,20 +41,23 @@ contains
                                  vr(:, :), scale(:), rconde(:), rcondv(:), work(:), condition(:)
         integer, allocatable :: iwork(:), order(:), kinds(:), keep(:)
         complex(wp), allocatable :: theta(:), mu(:), y(:, :)
-        real(wp) :: abnrm, query(1), start
+        real(wp) :: abnrm, query(1), start, lambda_scale
         integer :: p, ilo, ihi, info, j, i, n_ev
 
         p = contact%p()
         start = wall_time()
+        ! A / lambda_unit (contact_reduction): eigenvalues theta / lambda_unit
+        lambda_scale = lambda_unit(lambda)
         if (present(kt_nn_given) .and. present(kt_nt_given)) then
             kt_nt = kt_nt_given   ! kept for the lambda sensitivity below
             allocate (a(p, p))
-            a(:, :) = reduced_matrix(kt_nn_given, kt_nt, contact%mass, lambda)
+            a(:, :) = reduced_matrix(kt_nn_given/lambda_scale, kt_nt, contact%mass, &
+                                     lambda/lambda_scale)
         else
             call contact_flexibility(chol, contact, kt_nn, kt_nt, stat)
             if (.not. stat%ok()) return
             allocate (a(p, p))
-            a(:, :) = reduced_matrix(kt_nn, kt_nt, contact%mass, lambda)
+            a(:, :) = reduced_matrix(kt_nn/lambda_scale, kt_nt, contact%mass, lambda/lambda_scale)
             deallocate (kt_nn)
         end if
         if (present(reduction_seconds)) reduction_seconds = wall_time() - start
@@ -71,7 +75,8 @@ contains
         end if
         deallocate (a, work)
 
-        ! theta = 1/mu. theta = 0 (mu infinite) happens only exactly at a critical lambda.
+        ! theta = 1/mu (here divided by lambda_scale). theta = 0 (mu infinite) happens only
+        ! exactly at a critical lambda.
         theta = cmplx(wr, wi, wp)
         keep = pack([(j, j=1, p)], abs(theta) > 0.0_wp)
         n_ev = size(keep)
@@ -79,8 +84,9 @@ contains
         allocate (condition(p), source=-1.0_wp)
         do j = 1, p
             if (abs(theta(j)) > 0.0_wp) then
-                mu(j) = 1.0_wp/theta(j)
-                if (.not. (abs(wi(j)) > 0.0_wp)) mu(j) = cmplx(1.0_wp/wr(j), 0.0_wp, wp)
+                mu(j) = (1.0_wp/theta(j))/lambda_scale
+                if (.not. (abs(wi(j)) > 0.0_wp)) mu(j) = cmplx((1.0_wp/wr(j))/lambda_scale, &
+                                                               0.0_wp, wp)
                 ! relative condition of theta (hence of mu = 1/theta) on the balanced matrix
                 condition(j) = abnrm/(rconde(j)*abs(theta(j)))
             end if
@@ -136,7 +142,7 @@ contains
             call contact%mass%matvec(vr(:, j), mass_x)
             y_dot_x = dot_product(vl(:, j), vr(:, j))
             lambda_sensitivity = huge(1.0_wp)   ! a defective (double) eigenvalue
-            if (abs(y_dot_x) > 0.0_wp) lambda_sensitivity = abs(lambda)* &
+            if (abs(y_dot_x) > 0.0_wp) lambda_sensitivity = abs(lambda/lambda_scale)* &
                 abs(dot_product(vl(:, j), matmul(kt_nt, mass_x)))/(abs(y_dot_x)*abs(theta(j)))
         end function lambda_sensitivity
     end subroutine dense_spectrum

@@ -1,0 +1,71 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# Extreme inputs through the command line: a value the arithmetic cannot hold ends with exit
+# status 2 and one stderr line naming the input file, the group and the variable, and no
+# output; an extreme but valid input gives the scaled answer, and K.mtx, B.mtx of the input
+# problem (the solver works in units of E and size). Usage: cli_extremes.sh NCEIG SOURCE_DIR
+set -u
+nceig=$1
+source "$(dirname "$0")/lib/cli_common.sh"
+cli_begin cli_extremes
+
+# refused NAME 'GROUP: VARIABLE' NAMELIST...: exit 2, one line naming file, group, variable
+refused() {
+    local name=$1 names=$2
+    shift 2
+    printf '%s\n' "$@" "&output directory = '$work/$name' /" >"$work/$name.nml"
+    "$nceig" "$work/$name.nml" >"$work/$name.out" 2>"$work/$name.err"; rc=$?
+    check "$name: exit status 2 ($rc)" '[[ $rc -eq 2 ]]'
+    check "$name: one stderr line naming the file and &$names" \
+        '[[ $(wc -l <"$work/$name.err") -eq 1 ]] && grep -qF "$work/$name.nml: &$names = " "$work/$name.err"'
+    check "$name: no output directory" '[[ ! -e "$work/$name/summary.json" ]]'
+}
+
+refused target_1e15 'eigen: target' "&mesh nx = 40, ny = 8 /" "&eigen solver = 'arpack', target = 1e15 /"
+refused target_1e300 'eigen: target' "&mesh nx = 40, ny = 8 /" "&eigen solver = 'arpack', target = 1e300 /"
+refused young_1e308 'material: young' "&material young = 1e308 /"
+refused young_1e-310 'material: young' "&material young = 1e-310 /"
+refused poisson 'material: poisson' "&material poisson = 0.49999999999999 /"
+refused width_1e-12 'mesh: width' "&mesh width = 1e-12 /"
+refused lambda_1.7e308 'analysis: lambda' "&analysis lambda = 1.7e308 /"
+refused sweep_1.7e308 'sweep: lambda' "&analysis kind = 'lambda_sweep' /" \
+    "&sweep lambdas = 5, 1.7e308, plot = .false. /"
+# 'branch' and 'solve' work in the input's units, within a documented window
+refused branch_young 'material: young' "&analysis kind = 'branch' /" "&material young = 1e308 /"
+refused solve_young 'material: young' "&analysis kind = 'solve' /" "&material young = 1e-310 /"
+
+# a sweep through huge lambdas: lambda mu at its limit (dense: 2.26352067807345... on 8 x 8)
+printf '%s\n' "&analysis kind = 'lambda_sweep' /" "&sweep lambdas = 1e300, 1e160, 5, plot = .false. /" \
+    "&output directory = '$work/sweep', vtk = .false. /" >"$work/sweep.nml"
+"$nceig" "$work/sweep.nml" >"$work/sweep.out" 2>"$work/sweep.err"; rc=$?
+check 'sweep through lambda = 1e300 runs' '[[ $rc -eq 0 && ! -s "$work/sweep.err" ]]'
+for lambda in 1.0e300 1.0e160; do
+    lm=$(awk -F, -v l=$lambda '$1 == l { printf "%.17g", $2 * l }' "$work/sweep/lambda_sweep.csv")
+    check "sweep: lambda mu at lambda = $lambda is the limit ($lm)" 'close "$lm" 2.2635206780734572 1e-13'
+done
+
+# E = 2^30 and size 2^-20: mu = 2^50 mu(1), K.mtx = 2^30 K(1), B.mtx = 2^-20 B(1)
+for name in unit scaled; do
+    if [[ $name == scaled ]]; then
+        groups="&mesh nx = 4, ny = 4, width = 9.5367431640625e-07, height = 9.5367431640625e-07 /
+&material young = 1073741824.0 /"
+    else
+        groups="&mesh nx = 4, ny = 4 /"
+    fi
+    printf '%s\n' "$groups" "&output directory = '$work/$name', matrices = .true., vtk = .false. /" \
+        >"$work/$name.nml"
+    "$nceig" "$work/$name.nml" >"$work/$name.out" 2>"$work/$name.err"; rc=$?
+    check "$name runs" '[[ $rc -eq 0 && ! -s "$work/$name.err" ]]'
+done
+a=$(json "$work/scaled/summary.json" lowest_positive_mu) b=$(json "$work/unit/summary.json" lowest_positive_mu)
+check "mu(2^30, 2^-20) = 2^50 mu(1) ($a, $b)" 'close "$a" "$(awk -v b="$b" "BEGIN { printf \"%.17g\", b * 2^50 }")" 1e-15'
+check 'same backward error (relative)' \
+    '[[ $(json "$work/scaled/summary.json" max_residual) == $(json "$work/unit/summary.json" max_residual) ]]'
+ratio() {  # FILE: the largest |value| of a Matrix Market file of $work/scaled over $work/unit
+    awk '!/^%/ && NF == 3 && n++ { v = $3 < 0 ? -$3 : $3; if (v > m) m = v } END { printf "%.17g", m }' "$1"
+}
+ks=$(ratio "$work/scaled/K.mtx") ku=$(ratio "$work/unit/K.mtx")
+check "K.mtx of the input problem: 2^30 K(1) ($ks, $ku)" 'close "$ks" "$(awk -v k="$ku" "BEGIN { printf \"%.17g\", k * 2^30 }")" 1e-15'
+bs=$(ratio "$work/scaled/B.mtx") bu=$(ratio "$work/unit/B.mtx")
+check "B.mtx of the input problem: 2^-20 B(1) ($bs, $bu)" 'close "$bs" "$(awk -v b="$bu" "BEGIN { printf \"%.17g\", b * 2^-20 }")" 1e-15'
+cli_end
