@@ -148,7 +148,10 @@ contains
             call summary%add_real('lowest_positive_mu', mu)
             call summary%add_real('critical_c_n', mu)
             call summary%add_real('critical_c_t', critical_c_t(mu, res%lambda))
-            call summary%add_real('lowest_positive_condition', res%spec%condition(lowest))
+            ! ARPACK gives no condition number (-1 inside): null, never a number to misread
+            call summary%add_real_or_null('lowest_positive_condition', &
+                                          res%spec%condition(lowest), &
+                                          res%spec%condition(lowest) >= 0.0_wp)
             call summary%add_real('lowest_positive_residual', res%spec%residual(lowest))
         else
             do i = 1, size(LOWEST_KEYS)
