@@ -17,6 +17,7 @@ for type in Release Debug Asan; do
     [[ $type != Asan ]] || labels=(-L 'unit|cli')
     echo "== ctest ($type${labels:+, labels unit and cli})"
     ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 \
+    LSAN_OPTIONS=suppressions="$root/tests/lsan.supp":print_suppressions=0 \
         ctest --test-dir "$folder" --output-on-failure -j "$(nproc)" "${labels[@]}" || status=1
 done
 echo "== run_tests.sh: $((SECONDS - start)) s"

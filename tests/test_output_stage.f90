@@ -136,7 +136,7 @@ program test_output_stage
     call remove_tree('stage_out')
     ! gfortran 12 keeps main-program allocatables in a frame gone before LeakSanitizer
     ! looks: free them here so a sanitizer build reports only real leaks.
-    deallocate (dir, staging, a_path, b_path, long_name)
+    deallocate (dir, staging, a_path, b_path, long_name, committed_a)
     call t%report()
 
 contains

@@ -296,7 +296,12 @@ contains
             return
         end if
         close (unit, iostat=ios, iomsg=msg)
-        if (ios /= 0) return
+        if (ios /= 0) then
+            ! libgfortran keeps a unit whose final flush failed (ENOSPC) connected: a second
+            ! close frees it (closing an unconnected unit is a no-op)
+            close (unit, iostat=status)
+            return
+        end if
         status = c_check_written(c_path(path), expected, actual)
         if (status == -1) then
             ios = c_errno()
