@@ -9,6 +9,7 @@ module problem
     use mesh, only: mesh_t, element_from_name
     use mesh_structured, only: structured_rectangle
     use mesh_gmsh, only: read_gmsh
+    use mesh_check, only: check_mesh
     use dof_map, only: dof_map_t, build_dof_map
     use assembly, only: assemble_stiffness
     use contact_boundary, only: contact_t, build_contact
@@ -65,6 +66,12 @@ contains
         call resolve_parts('contact', config%mesh%contact, contact_parts, stat)
         if (.not. stat%ok()) return
         prob%contact_part = contact_parts(1)
+        call check_mesh(prob%mesh, prob%dirichlet_parts, prob%neumann_parts, contact_parts, stat)
+        if (.not. stat%ok()) then
+            if (.not. allocated(prob%mesh%file)) &
+                stat%message = config%input_file//': &mesh: '//stat%message
+            return
+        end if
 
         prob%young = config%material%young
         prob%poisson = config%material%poisson
