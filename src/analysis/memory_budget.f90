@@ -56,8 +56,8 @@ contains
         call stat%fail(STATUS_BAD_INPUT, config%input_file//': &mesh: '//source// &
             ': the contact boundary has p = '//to_string(p)//' nodes; its dense blocks ('// &
             to_string(PEAK_DENSE_BLOCKS)//' p x p doubles) need an estimated '// &
-            gigabytes(needed)//' GB, more than the '//gigabytes(real(limit, wp))//' GB this machine ' &
-            //'has available (MemAvailable, /proc/meminfo); expected fewer nodes on the ' &
+            gigabytes(needed)//' GB, more than the '//gigabytes(real(limit, wp))// &
+            ' GB this machine has available (MemAvailable, /proc/meminfo); expected fewer nodes on the ' &
             //'contact boundary (at most about '//to_string(largest_p(limit))//')')
     end subroutine check_contact_memory
 

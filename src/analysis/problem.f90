@@ -50,6 +50,7 @@ contains
             call structured_rectangle(config%mesh%width, config%mesh%height, config%mesh%nx, &
                 config%mesh%ny, element_from_name(config%mesh%element), config%mesh%diagonal, &
                 prob%mesh, stat)
+            if (.not. stat%ok()) stat%message = config%input_file//': &mesh: '//stat%message
         case ('gmsh')
             ! The element type comes from the file; &mesh element is not used.
             call read_gmsh(trim(config%mesh%file), prob%mesh, stat)

@@ -216,33 +216,30 @@ contains
         type(status_t), intent(inout) :: stat
         integer :: e, first, last, a, b, per_edge
         real(wp) :: extent
-        character(len=:), allocatable :: what
 
         extent = max(maxval(m%coords(1, :)) - minval(m%coords(1, :)), &
                      maxval(m%coords(2, :)) - minval(m%coords(2, :)))
         per_edge = element_nodes_per_edge(m%element)
         do e = 1, size(m%edge_part)
             if (.not. any(parts == m%edge_part(e))) cycle
-            what = edge_place(m, e)//'this edge of the boundary group '''// &
-                trim(m%part_names(m%edge_part(e)))//''' (&mesh '//variable//') '
             a = m%edges(1, e)
             b = m%edges(2, e)
             if (a == b .or. norm2(m%coords(:, b) - m%coords(:, a)) <= LENGTH_TOL*extent) then
-                call stat%fail(STATUS_MESH, what//'is degenerate: its ends '// &
+                call stat%fail(STATUS_MESH, what(e)//'is degenerate: its ends '// &
                     point_text(m, a)//' and '//point_text(m, b)//' coincide; expected an ' &
                     //'edge of positive length')
                 return
             end if
             first = find_pair(inc, min(a, b), max(a, b))
             if (first == 0) then
-                call stat%fail(STATUS_MESH, what//'from '//point_text(m, a)//' to '// &
+                call stat%fail(STATUS_MESH, what(e)//'from '//point_text(m, a)//' to '// &
                     point_text(m, b)//' is the side of no cell; expected a boundary edge ' &
                     //'of the mesh')
                 return
             end if
             last = pair_end(inc, first)
             if (last > first) then
-                call stat%fail(STATUS_MESH, what//'from '//point_text(m, a)//' to '// &
+                call stat%fail(STATUS_MESH, what(e)//'from '//point_text(m, a)//' to '// &
                     point_text(m, b)//' lies inside the body, between '// &
                     cell_name(m, inc%cell_of(inc%item(first)))//' and '// &
                     cell_name(m, inc%cell_of(inc%item(last)))//'; expected a boundary edge')
@@ -250,7 +247,7 @@ contains
             end if
             if (per_edge == 3) then
                 if (m%edges(3, e) /= mid_node(m, inc%item(first), inc)) then
-                    call stat%fail(STATUS_MESH, what//'from '//point_text(m, a)//' to '// &
+                    call stat%fail(STATUS_MESH, what(e)//'from '//point_text(m, a)//' to '// &
                         point_text(m, b)//' has another mid node than its cell ('// &
                         cell_name(m, inc%cell_of(inc%item(first)))//'); expected the ' &
                         //'cell''s mid-edge node')
@@ -258,6 +255,16 @@ contains
                 end if
             end if
         end do
+
+    contains
+
+        !> 'file:line: this edge of the boundary group 'name' (&mesh variable) '
+        function what(e) result(text)
+            integer, intent(in) :: e
+            character(len=:), allocatable :: text
+            text = edge_place(m, e)//'this edge of the boundary group '''// &
+                trim(m%part_names(m%edge_part(e)))//''' (&mesh '//variable//') '
+        end function what
     end subroutine check_groups
 
     !> One piece: all cells in one tree of the union-find forest.

@@ -14,6 +14,8 @@ module mesh_structured
 
     !> Index of each side in `part_names` of a structured mesh.
     integer, parameter :: PART_BOTTOM = 1, PART_RIGHT = 2, PART_TOP = 3, PART_LEFT = 4
+    !> Dofs are numbered with default integers.
+    integer, parameter :: MAX_DOFS = huge(1)
     character(len=*), parameter :: SIDE_NAMES(4) = ['bottom', 'right ', 'top   ', 'left  ']
 
 contains
@@ -32,7 +34,7 @@ contains
         character(len=*), intent(in) :: diagonal
         type(mesh_t), intent(out) :: m
         type(status_t), intent(out) :: stat
-        integer :: step, n_grid_x, n_grid_y, i, j, e, cell
+        integer :: step, n_grid_x, n_grid_y, i, j, e, cell, ierr
         logical :: triangles, quadratic, right_diagonal
         integer(i8) :: n_nodes_wide
 
@@ -74,17 +76,31 @@ contains
         step = merge(2, 1, quadratic)
         ! Node numbers are default integers: refuse grids whose count would overflow them
         ! (or whose dof count, twice as large, would) before any arithmetic wraps round.
+        ! No file name here: the caller puts the input file and &mesh in front.
         n_nodes_wide = (step*int(nx, i8) + 1)*(step*int(ny, i8) + 1)
-        if (2*n_nodes_wide > int(huge(1), i8)) then
-            call stat%fail(STATUS_BAD_INPUT, 'structured mesh: '//to_string(nx)//' x '// &
-                           to_string(ny)//' cells give too many nodes for default integers')
+        if (2*n_nodes_wide > int(MAX_DOFS, i8)) then
+            call stat%fail(STATUS_BAD_INPUT, 'nx = '//to_string(nx)//', ny = '// &
+                to_string(ny)//': the '//trim(merge('quadratic', 'linear   ', quadratic))// &
+                ' grid has '//to_string(n_nodes_wide)//' nodes, '//to_string(2*n_nodes_wide) &
+                //' dofs; expected at most '//to_string(MAX_DOFS)//' dofs (default ' &
+                //'integers), i.e. '//trim(merge('(2 nx + 1) (2 ny + 1)', &
+                '(nx + 1) (ny + 1)    ', quadratic))//' <= '//to_string(ishft(MAX_DOFS, -1)))
             return
         end if
         n_grid_x = step*nx + 1
         n_grid_y = step*ny + 1
 
         m%element = element
-        allocate (m%coords(2, n_grid_x*n_grid_y))
+        allocate (m%coords(2, n_grid_x*n_grid_y), &
+                  m%cells(element_nodes_per_cell(element), merge(2, 1, triangles)*nx*ny), &
+                  m%edges(element_nodes_per_edge(element), 2*(nx + ny)), &
+                  m%edge_part(2*(nx + ny)), stat=ierr)
+        if (ierr /= 0) then
+            call stat%fail(STATUS_BAD_INPUT, 'nx = '//to_string(nx)//', ny = '// &
+                to_string(ny)//': cannot allocate the mesh of '//to_string(n_nodes_wide)// &
+                ' nodes: out of memory; expected a smaller grid')
+            return
+        end if
         do j = 0, n_grid_y - 1
             do i = 0, n_grid_x - 1
                 ! width*(i/n) is exactly width at i = n, so the sides are straight lines.
@@ -93,7 +109,6 @@ contains
             end do
         end do
 
-        allocate (m%cells(element_nodes_per_cell(element), merge(2, 1, triangles)*nx*ny))
         cell = 0
         do j = 0, ny - 1
             do i = 0, nx - 1
@@ -101,8 +116,6 @@ contains
             end do
         end do
 
-        allocate (m%edges(element_nodes_per_edge(element), 2*(nx + ny)))
-        allocate (m%edge_part(2*(nx + ny)))
         allocate (m%part_names(size(SIDE_NAMES)))
         m%part_names = SIDE_NAMES
         e = 0
