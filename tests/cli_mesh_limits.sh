@@ -46,7 +46,7 @@ refused 'thin strip nx = 200000: refused with the memory estimate' 2 10 \
     'in.nml: &mesh: nx = 200000, ny = 1' 'p = 200001' 'estimated 3200.0 GB' 'MemAvailable'
 
 run "nx = 1000000, ny = 1"
-refused 'nx = 1000000, ny = 1 (the largest documented): refused in seconds' 2 15 \
+refused 'nx = 1000000, ny = 1 (the largest documented): refused in seconds' 2 20 \
     'in.nml: &mesh: nx = 1000000, ny = 1' 'estimated 80000.2 GB'
 
 # Two unit-height quadrangles side by side whose common side is two pairs of nodes (3, 7 at
