@@ -123,7 +123,11 @@ contains
         end if
         m = 2*contact%p()
         call chol%trailing_block(m, l_tail, rows, stat)
-        if (.not. stat%ok()) return
+        if (.not. stat%ok()) then
+            stat%message = 'contact blocks (p = '//to_string(contact%p())//' contact nodes): '// &
+                           stat%message
+            return
+        end if
         allocate (position(max(maxval(rows), maxval(contact%dofs))), source=0)
         position(rows) = [(c, c=1, m)]
         allocate (slot(2, contact%p()))

@@ -11,7 +11,7 @@
 !> by the higher one within each bucket: O(n) for meshes of bounded node degree.
 module mesh_check
     use kinds, only: wp
-    use status, only: status_t, STATUS_MESH
+    use status, only: status_t, STATUS_MESH, STATUS_SOLVER
     use strings, only: to_string
     use sorting, only: sort_by_key
     use mesh, only: mesh_t, ELEMENT_P1, ELEMENT_P2, element_nodes_per_edge
@@ -401,7 +401,7 @@ contains
     subroutine out_of_memory(stat, n)
         type(status_t), intent(inout) :: stat
         integer, intent(in) :: n
-        call stat%fail(STATUS_MESH, 'mesh check: cannot allocate arrays of '// &
+        call stat%fail(STATUS_SOLVER, 'mesh check: cannot allocate arrays of '// &
             to_string(n)//' entries: out of memory')
     end subroutine out_of_memory
 end module mesh_check

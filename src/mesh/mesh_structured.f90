@@ -3,10 +3,10 @@
 !> quadrilateral or split into two triangles along one diagonal.
 module mesh_structured
     use kinds, only: wp, i8
-    use status, only: status_t, STATUS_BAD_INPUT
+    use status, only: status_t, STATUS_BAD_INPUT, STATUS_SOLVER
     use strings, only: to_string, short_real_text
     use mesh, only: mesh_t, ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, &
-                    element_nodes_per_cell, element_nodes_per_edge
+                    element_nodes_per_cell, element_nodes_per_edge, element_name
     implicit none
     private
     public :: structured_rectangle
@@ -16,6 +16,10 @@ module mesh_structured
     integer, parameter :: PART_BOTTOM = 1, PART_RIGHT = 2, PART_TOP = 3, PART_LEFT = 4
     !> Dofs are numbered with default integers.
     integer, parameter :: MAX_DOFS = huge(1)
+    !> Nonzeros of K per node in the interior of a grid (P1, Q1, P2, Q2): 4 per neighbour,
+    !> self included (P1 7, Q1 9; P2 vertex 19 and mid-edge 9, i.e. 11.5 per node; Q2 vertex
+    !> 25, mid-edge 15, centre 9, i.e. 16).
+    integer(i8), parameter :: NNZ_PER_NODE(4) = [28_i8, 36_i8, 46_i8, 64_i8]
     character(len=*), parameter :: SIDE_NAMES(4) = ['bottom', 'right ', 'top   ', 'left  ']
 
 contains
@@ -87,6 +91,17 @@ contains
                 '(nx + 1) (ny + 1)    ', quadratic))//' <= '//to_string(ishft(MAX_DOFS, -1)))
             return
         end if
+        ! The positions in K (CSR row starts) are default integers too: 4 entries per pair of
+        ! nodes sharing a cell, NNZ_PER_NODE on average in the interior (an upper bound).
+        if (NNZ_PER_NODE(element)*n_nodes_wide > int(MAX_DOFS, i8)) then
+            call stat%fail(STATUS_BAD_INPUT, 'nx = '//to_string(nx)//', ny = '// &
+                to_string(ny)//': the stiffness matrix of this '//element_name(element)// &
+                ' grid of '//to_string(n_nodes_wide)//' nodes would have about '// &
+                to_string(NNZ_PER_NODE(element)*n_nodes_wide)//' nonzeros; expected at most ' &
+                //to_string(MAX_DOFS)//' (default integers), i.e. at most '// &
+                to_string(int(MAX_DOFS, i8)/NNZ_PER_NODE(element))//' nodes')
+            return
+        end if
         n_grid_x = step*nx + 1
         n_grid_y = step*ny + 1
 
@@ -96,7 +111,7 @@ contains
                   m%edges(element_nodes_per_edge(element), 2*(nx + ny)), &
                   m%edge_part(2*(nx + ny)), stat=ierr)
         if (ierr /= 0) then
-            call stat%fail(STATUS_BAD_INPUT, 'nx = '//to_string(nx)//', ny = '// &
+            call stat%fail(STATUS_SOLVER, 'nx = '//to_string(nx)//', ny = '// &
                 to_string(ny)//': cannot allocate the mesh of '//to_string(n_nodes_wide)// &
                 ' nodes: out of memory; expected a smaller grid')
             return
