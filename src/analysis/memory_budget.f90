@@ -57,8 +57,8 @@ contains
             ': the contact boundary has p = '//to_string(p)//' nodes; its dense blocks ('// &
             to_string(PEAK_DENSE_BLOCKS)//' p x p doubles) need an estimated '// &
             gigabytes(needed)//' GB, more than the '//gigabytes(real(limit, wp))// &
-            ' GB this machine has available (MemAvailable, /proc/meminfo); expected fewer nodes on the ' &
-            //'contact boundary (at most about '//to_string(largest_p(limit))//')')
+            ' GB this machine has available (MemAvailable, /proc/meminfo); expected fewer ' &
+            //'nodes on the contact boundary (at most about '//to_string(largest_p(limit))//')')
     end subroutine check_contact_memory
 
     !> The largest p whose blocks fit in `bytes`.
