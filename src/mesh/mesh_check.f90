@@ -217,6 +217,7 @@ contains
         integer :: e, first, last, a, b, per_edge
         real(wp) :: extent
 
+        if (.not. allocated(m%edge_part) .or. size(parts) == 0) return
         extent = max(maxval(m%coords(1, :)) - minval(m%coords(1, :)), &
                      maxval(m%coords(2, :)) - minval(m%coords(2, :)))
         per_edge = element_nodes_per_edge(m%element)
