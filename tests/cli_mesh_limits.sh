@@ -43,11 +43,11 @@ refused 'nx = ny = 46341: the input file, &mesh, nx and ny and the limit' 2 5 \
 
 run "nx = 200000, ny = 1"
 refused 'thin strip nx = 200000: refused with the memory estimate' 2 10 \
-    'in.nml: &mesh: nx = 200000, ny = 1' 'p = 200001' 'estimated 3200.0 GB' 'MemAvailable'
+    'in.nml: &mesh: nx = 200000, ny = 1' 'p = 200001' '(8 p x p doubles) need an estimated 2560.0 GB' 'MemAvailable'
 
 run "nx = 1000000, ny = 1"
 refused 'nx = 1000000, ny = 1 (the largest documented): refused in seconds' 2 20 \
-    'in.nml: &mesh: nx = 1000000, ny = 1' 'estimated 80000.2 GB'
+    'in.nml: &mesh: nx = 1000000, ny = 1' 'estimated 64000.1 GB'
 
 # Two unit-height quadrangles side by side whose common side is two pairs of nodes (3, 7 at
 # x = 0.5): each half is held by the top, but the body is two pieces.

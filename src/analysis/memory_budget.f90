@@ -10,30 +10,45 @@ module memory_budget
     use system_memory, only: available_memory_bytes
     implicit none
     private
-    public :: contact_blocks_bytes, check_contact_memory
+    public :: contact_blocks_bytes, check_contact_memory, contact_peak_blocks
 
-    !> Dense p x p arrays alive at once at the peak of every eigen analysis (contact_reduction:
-    !> flexibility_blocks): the trailing 2p x 2p block L_c of the factor of K (4) and its
-    !> inverse S^-1 (4), then Kt_nn and Kt_nt (1 each). ARPACK keeps L_c while forming them
-    !> (same peak); later stages (dgeevx: A, VL, VR and Kt_nt; dggev for the thresholds: two
-    !> copies of the blocks and VR) hold at most 7.
-    integer, parameter :: PEAK_DENSE_BLOCKS = 10
+    !> Dense p x p arrays alive at once at the peak (the trailing block of the factor is
+    !> zeroed in full by the shim, so all of it is resident). Forming Kt_nn and Kt_nt
+    !> (contact_reduction: flexibility_blocks): the 2p x 2p trailing block L_c of the factor
+    !> of K (4), its inverse S^-1 (4), Kt_nn and Kt_nt (1 each); ARPACK with a shift forms
+    !> them too, while holding its own L_c (which flexibility_blocks borrows: same 10). Later
+    !> stages hold less (dgeevx: A, VL, VR and Kt_nt; dggev for the thresholds: the blocks,
+    !> two copies and VR; lifting: a second L_c).
+    integer, parameter :: PEAK_BLOCKS_FORMED = 10
+    !> ARPACK without a shift never forms them: its operator's L_c (4) and the second L_c of
+    !> lift_eigenvectors (4). (Its dense fallback forms them, but only for p <= 4000, where
+    !> 10 p^2 doubles are 1.3 GB.) Measured: nx = 10000, ny = 1, p = 10001: peak RSS 6.28 GB
+    !> against 6.40 GB estimated.
+    integer, parameter :: PEAK_BLOCKS_ARPACK = 8
 
 contains
 
-    !> Bytes of the dense contact blocks for p contact nodes: PEAK_DENSE_BLOCKS p^2 doubles
-    !> (real: 80 p^2 overflows 64-bit integers from p = 3.4e8).
-    pure real(wp) function contact_blocks_bytes(p)
-        integer, intent(in) :: p
-        contact_blocks_bytes = PEAK_DENSE_BLOCKS*8.0_wp*real(p, wp)**2
+    !> Dense p x p arrays at the peak: 8 for ARPACK without a shift, else 10 (see above).
+    pure integer function contact_peak_blocks(arpack_unshifted)
+        logical, intent(in) :: arpack_unshifted
+        contact_peak_blocks = merge(PEAK_BLOCKS_ARPACK, PEAK_BLOCKS_FORMED, arpack_unshifted)
+    end function contact_peak_blocks
+
+    !> Bytes of `blocks` dense p x p arrays of doubles (real: 80 p^2 overflows 64-bit
+    !> integers from p = 3.4e8).
+    pure real(wp) function contact_blocks_bytes(p, blocks)
+        integer, intent(in) :: p, blocks
+        contact_blocks_bytes = blocks*8.0_wp*real(p, wp)**2
     end function contact_blocks_bytes
 
-    !> STATUS_BAD_INPUT when the contact blocks of the problem's p contact nodes need more
-    !> than `available` bytes (default: available_memory_bytes(); a negative value skips the
-    !> check), naming nx and ny or the mesh file, the estimate and the memory available.
-    subroutine check_contact_memory(config, p, stat, available)
+    !> STATUS_BAD_INPUT when `blocks` (contact_peak_blocks) dense p x p arrays of the
+    !> problem's p contact nodes need more than `available` bytes (default:
+    !> available_memory_bytes(); a negative value skips the check), naming nx and ny or the
+    !> mesh file, the estimate and the memory available.
+    subroutine check_contact_memory(config, p, blocks, stat, available)
         type(config_t), intent(in) :: config
         integer, intent(in) :: p                       !! contact nodes
+        integer, intent(in) :: blocks
         type(status_t), intent(out) :: stat
         integer(i8), intent(in), optional :: available   !! bytes
         integer(i8) :: limit
@@ -46,7 +61,7 @@ contains
             limit = available_memory_bytes()
         end if
         if (limit < 0) return
-        needed = contact_blocks_bytes(p)
+        needed = contact_blocks_bytes(p, blocks)
         if (needed <= real(limit, wp)) return
         if (trim(config%mesh%source) == 'gmsh') then
             source = 'file = '''//trim(config%mesh%file)//''''
@@ -55,17 +70,18 @@ contains
         end if
         call stat%fail(STATUS_BAD_INPUT, config%input_file//': &mesh: '//source// &
             ': the contact boundary has p = '//to_string(p)//' nodes; its dense blocks ('// &
-            to_string(PEAK_DENSE_BLOCKS)//' p x p doubles) need an estimated '// &
+            to_string(blocks)//' p x p doubles) need an estimated '// &
             gigabytes(needed)//' GB, more than the '//gigabytes(real(limit, wp))// &
             ' GB this machine has available (MemAvailable, /proc/meminfo); expected fewer ' &
-            //'nodes on the contact boundary (at most about '//to_string(largest_p(limit))//')')
-    end subroutine check_contact_memory
+            //'nodes on the contact boundary (at most about '//to_string(largest_p())//')')
 
-    !> The largest p whose blocks fit in `bytes`.
-    pure integer function largest_p(bytes)
-        integer(i8), intent(in) :: bytes
-        largest_p = int(sqrt(real(bytes, wp)/(8.0_wp*PEAK_DENSE_BLOCKS)))
-    end function largest_p
+    contains
+
+        !> The largest p whose blocks fit in the memory available.
+        integer function largest_p()
+            largest_p = int(sqrt(real(limit, wp)/(8.0_wp*blocks)))
+        end function largest_p
+    end subroutine check_contact_memory
 
     !> Bytes as GB (1e9) with one decimal: '32.0'.
     function gigabytes(bytes) result(text)
