@@ -211,6 +211,13 @@ contains
         call structured_rectangle(1.0_wp, 1.0_wp, 100000, 100000, ELEMENT_Q2, 'right', m, stat)
         call t%check('a grid overflowing default integers is bad input', &
                      stat%code == STATUS_BAD_INPUT)
+        call structured_rectangle(1.0_wp, 1.0_wp, 46341, 46341, ELEMENT_P1, 'right', m, stat)
+        call t%check('46341 x 46341: names nx, ny and the limit', &
+                     index(stat%message, 'nx = 46341, ny = 46341: ') == 1 .and. &
+                     index(stat%message, '(nx + 1) (ny + 1) <= 1073741823') > 0)
+        call structured_rectangle(1.0_wp, 1.0_wp, 8800, 8800, ELEMENT_P1, 'right', m, stat)
+        call t%check('8800 x 8800 p1: nnz(K) would overflow default integers', &
+                     stat%code == STATUS_BAD_INPUT .and. index(stat%message, 'nonzeros') > 0)
     end subroutine check_bad_input
 
     pure function sort3(v) result(s)

@@ -13,6 +13,7 @@ module eigen_analysis
     use csr_matrix, only: csr_matrix_t
     use sparse_cholesky, only: cholesky_t
     use contact_reduction, only: factor_stiffness
+    use memory_budget, only: check_contact_memory, contact_peak_blocks
     use contact_boundary, only: assemble_b
     use spectrum, only: spectrum_t
     use dense_eigen, only: dense_spectrum
@@ -82,6 +83,9 @@ contains
 
         res%solver = choose_solver(config%eigen%solver, prob%contact%p(), &
                                    config%eigen%dense_max_contact)
+        call check_contact_memory(config, prob%contact%p(), contact_peak_blocks( &
+            res%solver == SOLVER_ARPACK .and. .not. abs(config%eigen%target) > 0.0_wp), stat)
+        if (.not. stat%ok()) return
         call factor_stiffness(prob%k, prob%mesh, prob%dofs, prob%contact, chol, timings, stat)
         call explain_singular_k(config, stat)
         if (.not. stat%ok()) return

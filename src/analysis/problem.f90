@@ -11,6 +11,7 @@ module problem
     use element_types, only: element_from_name
     use mesh_structured, only: structured_rectangle
     use mesh_gmsh, only: read_gmsh
+    use mesh_check, only: check_mesh
     use dof_map, only: dof_map_t, build_dof_map
     use assembly, only: assemble_stiffness
     use contact_boundary, only: contact_t, build_contact
@@ -79,6 +80,7 @@ contains
             call structured_rectangle(config%mesh%width, config%mesh%height, config%mesh%nx, &
                 config%mesh%ny, element_from_name(config%mesh%element), config%mesh%diagonal, &
                 prob%mesh, stat)
+            if (.not. stat%ok()) stat%message = config%input_file//': &mesh: '//stat%message
         case ('gmsh')
             ! The element type comes from the file; &mesh element is not used.
             call read_gmsh(trim(config%mesh%file), prob%mesh, stat)
@@ -95,6 +97,12 @@ contains
         call resolve_parts('contact', config%mesh%contact, contact_parts, stat)
         if (.not. stat%ok()) return
         prob%contact_part = contact_parts(1)
+        call check_mesh(prob%mesh, prob%dirichlet_parts, prob%neumann_parts, contact_parts, stat)
+        if (.not. stat%ok()) then
+            if (.not. allocated(prob%mesh%file)) &
+                stat%message = config%input_file//': &mesh: '//stat%message
+            return
+        end if
 
         prob%young = config%material%young
         prob%poisson = config%material%poisson

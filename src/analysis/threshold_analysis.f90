@@ -20,6 +20,7 @@ module threshold_analysis
     use contact_boundary, only: assemble_b
     use contact_reduction, only: factor_stiffness, contact_flexibility, reduced_blocks_t, &
                                  lambda_unit
+    use memory_budget, only: check_contact_memory, contact_peak_blocks
     use arpack_eigen, only: arpack_options_t, arpack_lowest_positive
     use critical_lambda, only: thresholds_t, pencil_thresholds, confirm_thresholds, &
                                lowest_positive_mu, SIDE_PLUS, SIDE_MINUS
@@ -75,6 +76,9 @@ contains
         call timings%add(PHASE_ASSEMBLY, wall_time() - start, ': B for lambda = '// &
                          real_to_text(res%eigen%lambda))
 
+        ! the thresholds always form Kt_nn and Kt_nt
+        call check_contact_memory(config, prob%contact%p(), contact_peak_blocks(.false.), stat)
+        if (.not. stat%ok()) return
         call factor_stiffness(prob%k, prob%mesh, prob%dofs, prob%contact, chol, timings, stat)
         call explain_singular_k(config, stat)
         if (.not. stat%ok()) return

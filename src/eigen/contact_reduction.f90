@@ -136,7 +136,11 @@ contains
         end if
         m = 2*contact%p()
         call chol%trailing_block(m, l_tail, rows, stat)
-        if (.not. stat%ok()) return
+        if (.not. stat%ok()) then
+            stat%message = 'contact blocks (p = '//to_string(contact%p())//' contact nodes): '// &
+                           stat%message
+            return
+        end if
         allocate (position(max(maxval(rows), maxval(contact%dofs))), source=0)
         position(rows) = [(c, c=1, m)]
         allocate (slot(2, contact%p()))
@@ -159,11 +163,15 @@ contains
         real(wp), allocatable, intent(out) :: kt_nn(:, :), kt_nt(:, :)
         type(status_t), intent(out) :: stat
         real(wp), allocatable :: s_inv(:, :), column_n(:), column_t(:)
-        integer :: m, p, a, b, j, info
+        integer :: m, p, a, b, j, info, ierr
 
         m = size(l_tail, 1)
         p = size(slot, 2)
-        allocate (s_inv, source=l_tail)
+        allocate (s_inv, source=l_tail, stat=ierr)
+        if (ierr /= 0) then
+            call out_of_memory('the inverse of the 2p x 2p block')
+            return
+        end if
         call dpotri('L', m, s_inv, m, info)
         if (info /= 0) then
             call stat%fail(STATUS_SOLVER, 'contact blocks: dpotri on the trailing block of '// &
@@ -173,7 +181,11 @@ contains
         do j = 1, m   ! dpotri fills the lower triangle only
             s_inv(j, j + 1:m) = s_inv(j + 1:m, j)
         end do
-        allocate (kt_nn(p, p), kt_nt(p, p), column_n(m), column_t(m))
+        allocate (kt_nn(p, p), kt_nt(p, p), column_n(m), column_t(m), stat=ierr)
+        if (ierr /= 0) then
+            call out_of_memory('Kt_nn and Kt_nt')
+            return
+        end if
         do b = 1, p
             ! S^-1 n_b and S^-1 t_b: the contact loads of unit normal / tangential force at b
             column_n = normal(1)*s_inv(:, slot(1, b)) + normal(2)*s_inv(:, slot(2, b))
@@ -187,6 +199,14 @@ contains
         do b = 1, p
             kt_nn(b + 1:p, b) = kt_nn(b, b + 1:p)
         end do
+
+    contains
+
+        subroutine out_of_memory(what)
+            character(len=*), intent(in) :: what
+            call stat%fail(STATUS_SOLVER, 'contact blocks: cannot allocate '//what// &
+                           ' (p = '//to_string(p)//' contact nodes): out of memory')
+        end subroutine out_of_memory
     end subroutine flexibility_blocks
 
     !> Kt_nn and Kt_nt (p x p) from a factor made by factor_stiffness.

@@ -16,6 +16,7 @@
 module critical_lambda
     use kinds, only: wp
     use status, only: status_t, STATUS_SOLVER
+    use strings, only: to_string
     use lapack_interfaces, only: dggev, dgeev, lapack_info_message
     use contact_reduction, only: reduced_blocks_t, lambda_unit
     implicit none
@@ -68,13 +69,18 @@ contains
         real(wp), allocatable :: a(:, :), b(:, :), alphar(:), alphai(:), beta(:), vr(:, :), &
                                  work(:)
         real(wp) :: vl(1, 1), query(1), norm_nn, norm_nt, lambda
-        integer :: p, info, j, best(2), side
+        integer :: p, info, j, best(2), side, ierr
 
         p = size(kt_nn, 1)
         ! sourced allocation: assigning to an unallocated array draws false -Wuninitialized
-        allocate (a, source=kt_nn)
-        allocate (b, source=kt_nt)
-        allocate (alphar(p), alphai(p), beta(p), vr(p, p))
+        allocate (a, source=kt_nn, stat=ierr)
+        if (ierr == 0) allocate (b, source=kt_nt, stat=ierr)
+        if (ierr == 0) allocate (alphar(p), alphai(p), beta(p), vr(p, p), stat=ierr)
+        if (ierr /= 0) then
+            call stat%fail(STATUS_SOLVER, 'critical lambda: cannot allocate the p x p pencil '// &
+                           '(p = '//to_string(p)//' contact nodes): out of memory')
+            return
+        end if
         call dggev('N', 'V', p, a, p, b, p, alphar, alphai, beta, vl, 1, vr, p, query, -1, info)
         allocate (work(max(1, int(query(1)))))
         call dggev('N', 'V', p, a, p, b, p, alphar, alphai, beta, vl, 1, vr, p, work, &

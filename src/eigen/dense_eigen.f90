@@ -8,6 +8,7 @@
 module dense_eigen
     use kinds, only: wp
     use timer, only: wall_time
+    use strings, only: to_string
     use status, only: status_t, STATUS_SOLVER
     use csr_matrix, only: csr_matrix_t
     use sparse_cholesky, only: cholesky_t
@@ -42,7 +43,7 @@ contains
         integer, allocatable :: iwork(:), order(:), kinds(:), keep(:)
         complex(wp), allocatable :: theta(:), mu(:), y(:, :)
         real(wp) :: abnrm, query(1), start, lambda_scale
-        integer :: p, ilo, ihi, info, j, i, n_ev
+        integer :: p, ilo, ihi, info, j, i, n_ev, ierr
 
         p = contact%p()
         start = wall_time()
@@ -62,7 +63,13 @@ contains
         end if
         if (present(reduction_seconds)) reduction_seconds = wall_time() - start
 
-        allocate (wr(p), wi(p), vl(p, p), vr(p, p), scale(p), rconde(p), rcondv(p))
+        allocate (wr(p), wi(p), vl(p, p), vr(p, p), scale(p), rconde(p), rcondv(p), stat=ierr)
+        if (ierr /= 0) then
+            call stat%fail(STATUS_SOLVER, 'dense eigensolver: cannot allocate the '// &
+                           'eigenvectors of the p x p problem (p = '//to_string(p)// &
+                           '): out of memory')
+            return
+        end if
         allocate (iwork(max(1, 2*p - 2)))
         call dgeevx('B', 'V', 'V', 'E', p, a, p, wr, wi, vl, p, vr, p, ilo, ihi, scale, abnrm, &
                     rconde, rcondv, query, -1, iwork, info)

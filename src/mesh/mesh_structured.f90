@@ -3,11 +3,11 @@
 !> quadrilateral or split into two triangles along one diagonal.
 module mesh_structured
     use kinds, only: wp, i8
-    use status, only: status_t, STATUS_BAD_INPUT
+    use status, only: status_t, STATUS_BAD_INPUT, STATUS_SOLVER
     use strings, only: to_string, short_real_text
     use mesh, only: mesh_t
     use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, &
-                             element_nodes_per_cell, element_nodes_per_edge
+                             element_nodes_per_cell, element_nodes_per_edge, element_name
     implicit none
     private
     public :: structured_rectangle
@@ -15,6 +15,12 @@ module mesh_structured
 
     !> Index of each side in `part_names` of a structured mesh.
     integer, parameter :: PART_BOTTOM = 1, PART_RIGHT = 2, PART_TOP = 3, PART_LEFT = 4
+    !> Dofs are numbered with default integers.
+    integer, parameter :: MAX_DOFS = huge(1)
+    !> Nonzeros of K per node in the interior of a grid (P1, Q1, P2, Q2): 4 per neighbour,
+    !> self included (P1 7, Q1 9; P2 vertex 19 and mid-edge 9, i.e. 11.5 per node; Q2 vertex
+    !> 25, mid-edge 15, centre 9, i.e. 16).
+    integer(i8), parameter :: NNZ_PER_NODE(4) = [28_i8, 36_i8, 46_i8, 64_i8]
     character(len=*), parameter :: SIDE_NAMES(4) = ['bottom', 'right ', 'top   ', 'left  ']
 
 contains
@@ -33,7 +39,7 @@ contains
         character(len=*), intent(in) :: diagonal
         type(mesh_t), intent(out) :: m
         type(status_t), intent(out) :: stat
-        integer :: step, n_grid_x, n_grid_y, i, j, e, cell
+        integer :: step, n_grid_x, n_grid_y, i, j, e, cell, ierr
         logical :: triangles, quadratic, right_diagonal
         integer(i8) :: n_nodes_wide
 
@@ -75,17 +81,42 @@ contains
         step = merge(2, 1, quadratic)
         ! Node numbers are default integers: refuse grids whose count would overflow them
         ! (or whose dof count, twice as large, would) before any arithmetic wraps round.
+        ! No file name here: the caller puts the input file and &mesh in front.
         n_nodes_wide = (step*int(nx, i8) + 1)*(step*int(ny, i8) + 1)
-        if (2*n_nodes_wide > int(huge(1), i8)) then
-            call stat%fail(STATUS_BAD_INPUT, 'structured mesh: '//to_string(nx)//' x '// &
-                           to_string(ny)//' cells give too many nodes for default integers')
+        if (2*n_nodes_wide > int(MAX_DOFS, i8)) then
+            call stat%fail(STATUS_BAD_INPUT, 'nx = '//to_string(nx)//', ny = '// &
+                to_string(ny)//': the '//trim(merge('quadratic', 'linear   ', quadratic))// &
+                ' grid has '//to_string(n_nodes_wide)//' nodes, '//to_string(2*n_nodes_wide) &
+                //' dofs; expected at most '//to_string(MAX_DOFS)//' dofs (default ' &
+                //'integers), i.e. '//trim(merge('(2 nx + 1) (2 ny + 1)', &
+                '(nx + 1) (ny + 1)    ', quadratic))//' <= '//to_string(ishft(MAX_DOFS, -1)))
+            return
+        end if
+        ! The positions in K (CSR row starts) are default integers too: 4 entries per pair of
+        ! nodes sharing a cell, NNZ_PER_NODE on average in the interior (an upper bound).
+        if (NNZ_PER_NODE(element)*n_nodes_wide > int(MAX_DOFS, i8)) then
+            call stat%fail(STATUS_BAD_INPUT, 'nx = '//to_string(nx)//', ny = '// &
+                to_string(ny)//': the stiffness matrix of this '//element_name(element)// &
+                ' grid of '//to_string(n_nodes_wide)//' nodes would have about '// &
+                to_string(NNZ_PER_NODE(element)*n_nodes_wide)//' nonzeros; expected at most ' &
+                //to_string(MAX_DOFS)//' (default integers), i.e. at most '// &
+                to_string(int(MAX_DOFS, i8)/NNZ_PER_NODE(element))//' nodes')
             return
         end if
         n_grid_x = step*nx + 1
         n_grid_y = step*ny + 1
 
         m%element = element
-        allocate (m%coords(2, n_grid_x*n_grid_y))
+        allocate (m%coords(2, n_grid_x*n_grid_y), &
+                  m%cells(element_nodes_per_cell(element), merge(2, 1, triangles)*nx*ny), &
+                  m%edges(element_nodes_per_edge(element), 2*(nx + ny)), &
+                  m%edge_part(2*(nx + ny)), stat=ierr)
+        if (ierr /= 0) then
+            call stat%fail(STATUS_SOLVER, 'nx = '//to_string(nx)//', ny = '// &
+                to_string(ny)//': cannot allocate the mesh of '//to_string(n_nodes_wide)// &
+                ' nodes: out of memory; expected a smaller grid')
+            return
+        end if
         do j = 0, n_grid_y - 1
             do i = 0, n_grid_x - 1
                 ! width*(i/n) is exactly width at i = n, so the sides are straight lines.
@@ -94,7 +125,6 @@ contains
             end do
         end do
 
-        allocate (m%cells(element_nodes_per_cell(element), merge(2, 1, triangles)*nx*ny))
         cell = 0
         do j = 0, ny - 1
             do i = 0, nx - 1
@@ -102,8 +132,6 @@ contains
             end do
         end do
 
-        allocate (m%edges(element_nodes_per_edge(element), 2*(nx + ny)))
-        allocate (m%edge_part(2*(nx + ny)))
         allocate (m%part_names(size(SIDE_NAMES)))
         m%part_names = SIDE_NAMES
         e = 0

@@ -293,7 +293,7 @@ contains
         integer, allocatable, intent(out) :: rows(:)
         type(status_t), intent(out) :: stat
         integer(c_int), allocatable :: rows0(:)
-        integer :: code
+        integer :: code, ierr
         if (.not. c_associated(this%handle)) then
             call stat%fail(STATUS_BAD_INPUT, &
                 'sparse_cholesky: trailing_block called before a successful factorization')
@@ -304,7 +304,12 @@ contains
                            to_string(m)//' for n = '//to_string(this%n))
             return
         end if
-        allocate (l_tail(m, m), rows0(m))
+        allocate (l_tail(m, m), rows0(m), stat=ierr)
+        if (ierr /= 0) then
+            call stat%fail(STATUS_SOLVER, 'sparse_cholesky: trailing_block: cannot allocate '// &
+                           'the '//to_string(m)//' x '//to_string(m)//' block: out of memory')
+            return
+        end if
         code = nceig_cholmod_trailing(this%handle, int(m, c_int), l_tail, rows0)
         if (code /= SHIM_OK) then
             call stat%fail(status_code(code), cholmod_status_message(code))

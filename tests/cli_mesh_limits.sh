@@ -1,0 +1,102 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# Meshes nceig must refuse with one line naming the input (or mesh file and line), fast and
+# without a backtrace: a grid whose dof count overflows default integers (nx = ny = 46341);
+# thin strips whose dense contact blocks exceed the machine's memory (nx = 200000 and
+# 1000000, ny = 1: refused in seconds, with the estimate); a Gmsh mesh cut in two by a crack
+# (duplicated nodes along x = 0.5), which used to end in an internal Cholesky message; and,
+# under ulimit -v, an allocation that fails after the estimate passed (exit 5, one line).
+# Usage: cli_mesh_limits.sh NCEIG SOURCE_DIR
+set -u
+nceig=$1
+source "$(dirname "$0")/lib/cli_common.sh"
+cli_begin cli_mesh_limits
+cd "$work"
+
+# refused NAME STATUS SECONDS WORD...: the last run ($rc, $seconds, err) ended with STATUS
+# within SECONDS, one stderr line containing every WORD, and no output directory.
+refused() {
+    local name=$1 status=$2 limit=$3 ok=1
+    shift 3
+    [[ $rc -eq $status ]] || ok=0
+    [[ $(wc -l <err) -eq 1 ]] || ok=0
+    (( seconds <= limit )) || ok=0
+    for word in "$@"; do grep -q -F -- "$word" err || ok=0; done
+    [[ ! -e out ]] || ok=0
+    check "$name" '[[ $ok -eq 1 ]]'
+    echo "      rc=$rc ${seconds}s: $(head -c 400 err)"
+}
+
+# run TEXT: the &mesh body TEXT, run nceig on it; sets rc and seconds.
+run() {
+    printf '&mesh %s /\n&output directory = "out" /\n' "$1" >in.nml
+    rm -rf out
+    SECONDS=0
+    "$nceig" in.nml >stdout 2>err
+    rc=$?
+    seconds=$SECONDS
+}
+
+run "nx = 46341, ny = 46341"
+refused 'nx = ny = 46341: the input file, &mesh, nx and ny and the limit' 2 5 \
+    'in.nml: &mesh: nx = 46341, ny = 46341' '(nx + 1) (ny + 1) <= 1073741823'
+
+run "nx = 200000, ny = 1"
+refused 'thin strip nx = 200000: refused with the memory estimate' 2 10 \
+    'in.nml: &mesh: nx = 200000, ny = 1' 'p = 200001' '(8 p x p doubles) need an estimated 2560.0 GB' 'MemAvailable'
+
+run "nx = 1000000, ny = 1"
+refused 'nx = 1000000, ny = 1 (the largest documented): refused in seconds' 2 20 \
+    'in.nml: &mesh: nx = 1000000, ny = 1' 'estimated 64000.1 GB'
+
+# Two unit-height quadrangles side by side whose common side is two pairs of nodes (3, 7 at
+# x = 0.5): each half is held by the top, but the body is two pieces.
+cat >crack.msh <<'MSH'
+$MeshFormat
+2.2 0 8
+$EndMeshFormat
+$PhysicalNames
+4
+1 1 "bottom"
+1 2 "right"
+1 3 "top"
+1 4 "left"
+$EndPhysicalNames
+$Nodes
+8
+1 0 0 0
+2 0.5 0 0
+3 0.5 1 0
+4 0 1 0
+5 0.5 0 0
+6 1 0 0
+7 0.5 1 0
+8 1 1 0
+$EndNodes
+$Elements
+8
+1 1 2 1 1 1 2
+2 1 2 1 1 5 6
+3 1 2 2 2 6 8
+4 1 2 3 3 8 7
+5 1 2 3 3 3 4
+6 1 2 4 4 4 1
+7 3 2 5 1 1 2 3 4
+8 3 2 5 1 5 6 8 7
+$EndElements
+MSH
+run "source = 'gmsh', file = 'crack.msh'"
+refused 'a crack (duplicated nodes): the mesh file, the line, not connected' 3 5 \
+    'crack.msh:31: the mesh is not connected: it falls into 2 pieces'
+
+# An allocation failure after the estimate passed (here: a 700 MB address space) is one
+# line and exit status 5, not a backtrace.
+printf '&mesh nx = 5000, ny = 1 /\n&output directory = "out" /\n' >in.nml
+rm -rf out
+SECONDS=0
+(ulimit -v 700000 && exec "$nceig" in.nml) >stdout 2>err
+rc=$?
+seconds=$SECONDS
+refused 'out of memory under ulimit -v: one line, exit status 5' 5 20 'out of memory'
+
+cli_end

@@ -1,0 +1,75 @@
+! SPDX-License-Identifier: MIT
+!> The memory guard of the dense contact blocks: the estimate (10 or 8 p^2 doubles), the refusal
+!> naming nx and ny (or the mesh file), the estimate and the memory available, and the
+!> reading of MemAvailable (else MemTotal) from a meminfo file.
+program test_memory_budget
+    use kinds, only: wp, i8
+    use status, only: status_t, STATUS_BAD_INPUT
+    use run_config, only: config_t
+    use memory_budget, only: contact_blocks_bytes, check_contact_memory, contact_peak_blocks
+    use system_memory, only: available_memory_bytes
+    use testing, only: test_suite_t
+    implicit none
+
+    type(test_suite_t) :: t
+    type(config_t) :: config
+    type(status_t) :: stat
+    integer(i8) :: here
+
+    t%name = 'test_memory_budget'
+    call t%check('10 blocks when Kt_nn and Kt_nt are formed, 8 for ARPACK unshifted', &
+                 contact_peak_blocks(.false.) == 10 .and. contact_peak_blocks(.true.) == 8)
+    call t%check_close('estimate: 80 p^2 bytes', contact_blocks_bytes(10001, 10), &
+                       80.0_wp*10001.0_wp**2, 1.0e-15_wp)
+
+    config%input_file = 'strip.nml'
+    config%mesh%source = 'rectangle'
+    config%mesh%nx = 20000
+    config%mesh%ny = 1
+    call check_contact_memory(config, 20001, 10, stat, available=16_i8*1024_i8**3)
+    call t%check('thin strip over the budget: bad input', stat%code == STATUS_BAD_INPUT)
+    if (.not. stat%ok()) then
+        print '(a)', '      '//stat%message
+        call t%check('names the input, &mesh, nx and ny', &
+                     index(stat%message, 'strip.nml: &mesh: nx = 20000, ny = 1: ') == 1)
+        call t%check('gives p, the estimate and the memory available', &
+                     index(stat%message, 'p = 20001') > 0 .and. &
+                     index(stat%message, 'estimated 32.0 GB') > 0 .and. &
+                     index(stat%message, 'than the 17.2 GB') > 0)
+    end if
+    call check_contact_memory(config, 2001, 10, stat, available=16_i8*1024_i8**3)
+    call t%check('p = 2001 (320 MB) fits in 16 GiB', stat%ok())
+    call check_contact_memory(config, 20001, 10, stat, available=-1_i8)
+    call t%check('no memory figure (not Linux): no check', stat%ok())
+
+    config%mesh%source = 'gmsh'
+    config%mesh%file = 'meshes/long.msh'
+    call check_contact_memory(config, 50000, 8, stat, available=1024_i8**3)
+    call t%check('a Gmsh mesh: names the file', &
+                 index(stat%message, 'strip.nml: &mesh: file = ''meshes/long.msh'': ') == 1)
+
+    call write_meminfo('meminfo_new', [character(len=40) :: 'MemTotal:       32000000 kB', &
+                       'MemFree:         1000000 kB', 'MemAvailable:   20000000 kB'])
+    call t%check('MemAvailable read, in bytes', &
+                 available_memory_bytes('meminfo_new') == 20000000_i8*1024)
+    call write_meminfo('meminfo_old', [character(len=40) :: 'MemTotal:       32000000 kB', &
+                       'MemFree:         1000000 kB'])
+    call t%check('without MemAvailable: MemTotal', &
+                 available_memory_bytes('meminfo_old') == 32000000_i8*1024)
+    call t%check('no such file: -1', available_memory_bytes('no/such/meminfo') == -1)
+    here = available_memory_bytes()
+    call t%check('this machine reports a positive figure or none', here > 0 .or. here == -1)
+    call t%report()
+
+contains
+
+    subroutine write_meminfo(path, lines)
+        character(len=*), intent(in) :: path, lines(:)
+        integer :: unit, i
+        open (newunit=unit, file=path, status='replace', action='write')
+        do i = 1, size(lines)
+            write (unit, '(a)') trim(lines(i))
+        end do
+        close (unit)
+    end subroutine write_meminfo
+end program test_memory_budget
