@@ -3,16 +3,17 @@
 # Draw OUTDIR/lambda_sweep.png from OUTDIR/lambda_sweep.csv and OUTDIR/summary.json of an
 # nceig run with kind = 'lambda_sweep': critical c_n and c_t against lambda on log y axes,
 # the thresholds lambda+ and lambda- as dashed vertical lines. A 'log' sweep (one sign) is
-# drawn against |lambda| on a log axis. Needs gnuplot (Debian gnuplot-nox: pngcairo).
-# Usage: plot_lambda_sweep.sh OUTDIR
+# drawn against |lambda| on a log axis. Needs gnuplot (Debian gnuplot-nox: pngcairo) and jq.
+# Usage: plot_lambda_sweep.sh OUTDIR [SUMMARY]   (SUMMARY: the summary.json to read, by
+# default OUTDIR's; nceig passes its own while the set is still being staged)
 set -euo pipefail
-if [[ $# -ne 1 ]]; then
-    echo "usage: $0 OUTDIR  (an nceig lambda_sweep output folder)" >&2
+if [[ $# -lt 1 || $# -gt 2 ]]; then
+    echo "usage: $0 OUTDIR [SUMMARY]  (an nceig lambda_sweep output folder)" >&2
     exit 2
 fi
 dir=$1
 csv="$dir/lambda_sweep.csv"
-summary="$dir/summary.json"
+summary=${2:-$dir/summary.json}
 for f in "$csv" "$summary"; do
     [[ -r $f ]] || { echo "$0: $f: not found (run nceig with kind = 'lambda_sweep')" >&2; exit 2; }
 done

@@ -22,7 +22,6 @@ program nceig
     type(config_t) :: config
     type(problem_t) :: prob
     class(analysis_t), allocatable :: analysis
-    character(len=:), allocatable :: note
     type(timings_t) :: timings
     type(status_t) :: stat
     type(command_t) :: command
@@ -65,12 +64,10 @@ program nceig
     call run_analysis(analysis, config, prob, start, timings, stat)
     call stop_on_failure(stat)
     write (output_unit, '(a)') analysis%report(config, prob)
-    call analysis%finish(note, stat)
-    if (len(note) > 0) write (output_unit, '(a)') note
-    call stop_on_failure(stat)
+    call stop_on_failure(analysis%verdict)
     ! gfortran 12 keeps main-program allocatables in a frame gone before LeakSanitizer looks
     deallocate (command%action, command%input, command%settings)
-    deallocate (analysis, note)
+    deallocate (analysis)
 
 contains
 

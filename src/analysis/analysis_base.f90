@@ -31,7 +31,6 @@ module analysis_base
         procedure(write_interface), deferred :: write_files
         procedure(summary_interface), deferred :: summary
         procedure(report_interface), deferred :: report
-        procedure :: finish => analysis_finish
     end type analysis_t
 
     abstract interface
@@ -110,14 +109,4 @@ contains
         end if
         if (.not. stat%ok()) call stage%abort()
     end subroutine run_analysis
-
-    !> After the outputs are committed and the report printed: lines to print (`note`, empty
-    !> for none) and the verdict of the run.
-    subroutine analysis_finish(this, note, stat)
-        class(analysis_t), intent(inout) :: this
-        character(len=:), allocatable, intent(out) :: note
-        type(status_t), intent(out) :: stat
-        note = ''
-        stat = this%verdict
-    end subroutine analysis_finish
 end module analysis_base

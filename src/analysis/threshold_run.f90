@@ -20,6 +20,7 @@ module threshold_run
     use json_writer, only: json_object_t
     use csv_writer, only: csv_writer_t
     use sweep_plot, only: plot_lambda_sweep
+    use filesystem, only: remove_file
     implicit none
     private
     public :: write_sweep_csv
@@ -34,14 +35,12 @@ module threshold_run
         logical :: with_sweep = .false.
         type(threshold_result_t) :: res
         character(len=:), allocatable :: plot_note   !! mode_001.png: where, or why not
-        logical :: plot = .false.                       !! draw lambda_sweep.png when done
-        character(len=:), allocatable :: directory      !! the output directory, for the plot
+        character(len=:), allocatable :: sweep_note  !! lambda_sweep.png: where, or why not
     contains
         procedure :: solve => threshold_run_solve
         procedure :: write_files => threshold_run_write_files
         procedure :: summary => threshold_run_summary
         procedure :: report => threshold_run_report
-        procedure :: finish => threshold_run_finish
     end type threshold_run_t
 
 contains
@@ -52,8 +51,6 @@ contains
         type(problem_t), intent(in) :: prob
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
-        this%plot = this%with_sweep .and. config%sweep%plot
-        this%directory = trim(config%output%directory)
         call solve_thresholds(config, prob, this%with_sweep, this%res, timings, stat)
     end subroutine threshold_run_solve
 
@@ -67,7 +64,33 @@ contains
         if (stat%ok() .and. allocated(this%res%sweep%lambda)) then
             call write_sweep_csv(stage%path(SWEEP_FILE), this%res%sweep, stat)
         end if
+        if (stat%ok() .and. allocated(this%res%sweep%lambda) .and. config%sweep%plot) &
+            call draw_sweep(this, stage, config, prob, stat)
     end subroutine threshold_run_write_files
+
+    !> lambda_sweep.png into the staging folder, so that it joins the set: the plot script
+    !> reads the curve and a summary.json made now for it (a scratch file, not the set's).
+    subroutine draw_sweep(this, stage, config, prob, stat)
+        class(threshold_run_t), intent(inout) :: this
+        type(output_stage_t), intent(inout) :: stage
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(in) :: prob
+        type(status_t), intent(out) :: stat
+        character(len=*), parameter :: PNG = 'lambda_sweep.png'
+        character(len=:), allocatable :: summary_path, png_path
+        type(json_object_t) :: summary
+        logical :: drawn
+
+        summary_path = stage%scratch('.sweep-summary.json')
+        summary = this%summary(config, prob)
+        call summary%write(summary_path, stat)
+        if (.not. stat%ok()) return
+        call plot_lambda_sweep(stage%folder(), summary_path, drawn, this%sweep_note)
+        call remove_file(summary_path)
+        if (.not. drawn) return
+        png_path = stage%path(PNG)   ! registered: part of the committed set
+        this%sweep_note = trim(config%output%directory)//'/'//PNG
+    end subroutine draw_sweep
 
     function threshold_run_summary(this, config, prob) result(summary)
         class(threshold_run_t), intent(in) :: this
@@ -85,21 +108,10 @@ contains
         type(problem_t), intent(in) :: prob
         character(len=:), allocatable :: text
         text = threshold_summary_lines(config, prob, this%res, this%timings, this%plot_note)
+        if (allocated(this%sweep_note)) text = text//new_line('a')//'  plot        '// &
+                                                this%sweep_note
     end function threshold_run_report
 
-    !> The sweep's plot reads the committed lambda_sweep.csv and summary.json; drawing it is
-    !> optional, so its outcome is a note, never a failure.
-    subroutine threshold_run_finish(this, note, stat)
-        class(threshold_run_t), intent(inout) :: this
-        character(len=:), allocatable, intent(out) :: note
-        type(status_t), intent(out) :: stat
-        character(len=:), allocatable :: plot_note
-        note = ''
-        stat = this%verdict
-        if (.not. this%plot) return
-        call plot_lambda_sweep(this%directory, plot_note)
-        note = '  plot        '//plot_note
-    end subroutine threshold_run_finish
 
     !> lambda_critical_plus/minus (null where none), the backward error of each on the pencil,
     !> the pencil's eigenvalue counts, and the confirming solves on each side.

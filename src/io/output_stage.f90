@@ -70,6 +70,7 @@ module output_stage
         procedure :: abort => output_stage_abort
         procedure :: file_names => output_stage_file_names
         procedure :: scratch => output_stage_scratch
+        procedure :: folder => output_stage_folder
     end type output_stage_t
 
 contains
@@ -290,6 +291,13 @@ contains
         this%created_levels = 0
         call end_cleanup_on_signal()
     end subroutine output_stage_commit
+
+    !> The staging folder itself (for a tool that writes its file there, e.g. a plot).
+    function output_stage_folder(this) result(folder)
+        class(output_stage_t), intent(in) :: this
+        character(len=:), allocatable :: folder
+        folder = this%staging
+    end function output_stage_folder
 
     !> Where to put a scratch file while staging (a plot script, a picture not yet known to
     !> be drawn): in the staging folder, NOT part of the set; remove it before the commit, or
