@@ -71,25 +71,10 @@ contains
         type(status_t), intent(out) :: stat
         logical, intent(in), optional :: with_all_dofs   !! default false
         integer, allocatable :: contact_parts(:)
-        real(wp), allocatable :: physical_coords(:, :)
-        real(wp) :: size_of_mesh
         logical :: all_dofs
 
-        select case (config%mesh%source)
-        case ('rectangle')
-            call structured_rectangle(config%mesh%width, config%mesh%height, config%mesh%nx, &
-                config%mesh%ny, element_from_name(config%mesh%element), config%mesh%diagonal, &
-                prob%mesh, stat)
-            if (.not. stat%ok()) stat%message = config%input_file//': &mesh: '//stat%message
-        case ('gmsh')
-            ! The element type comes from the file; &mesh element is not used.
-            call read_gmsh(trim(config%mesh%file), prob%mesh, stat)
-        case default
-            call stat%fail(STATUS_BAD_INPUT, config%input_file//': &mesh: source = '''// &
-                trim(config%mesh%source)//''': expected ''rectangle'' or ''gmsh''')
-        end select
+        call make_mesh(stat)
         if (.not. stat%ok()) return
-
         call resolve_parts('dirichlet', config%mesh%dirichlet, prob%dirichlet_parts, stat)
         if (.not. stat%ok()) return
         call resolve_parts('neumann', config%mesh%neumann, prob%neumann_parts, stat)
@@ -103,19 +88,57 @@ contains
                 stat%message = config%input_file//': &mesh: '//stat%message
             return
         end if
-
         prob%young = config%material%young
         prob%poisson = config%material%poisson
         call build_dof_map(prob%mesh, prob%dirichlet_parts, prob%dofs, stat)
         if (.not. stat%ok()) return
+
         all_dofs = .false.
         if (present(with_all_dofs)) all_dofs = with_all_dofs
-        if (.not. all_dofs) then
-            ! The eigenproblem in units where E and the mesh size are in [1, 2): mu scales
-            ! exactly like E / size (2D: K does not change with the size, M grows with it),
-            ! and a change of unit by a power of two is exact, so the scaled problem is the
-            ! input problem itself, while the products of the assembly (det J ~ size^2,
-            ! entries ~ E) and of the solvers stay far from overflow and underflow.
+        if (all_dofs) then
+            call all_dof_system(stat)
+        else
+            call unit_system(stat)
+        end if
+
+    contains
+
+        !> The mesh of &mesh source: the rectangle generator or a Gmsh file.
+        subroutine make_mesh(stat)
+            type(status_t), intent(out) :: stat
+            select case (config%mesh%source)
+            case ('rectangle')
+                call structured_rectangle(config%mesh%width, config%mesh%height, &
+                    config%mesh%nx, config%mesh%ny, element_from_name(config%mesh%element), &
+                    config%mesh%diagonal, prob%mesh, stat)
+                if (.not. stat%ok()) stat%message = config%input_file//': &mesh: '//stat%message
+            case ('gmsh')
+                ! The element type comes from the file; &mesh element is not used.
+                call read_gmsh(trim(config%mesh%file), prob%mesh, stat)
+            case default
+                call stat%fail(STATUS_BAD_INPUT, config%input_file//': &mesh: source = '''// &
+                    trim(config%mesh%source)//''': expected ''rectangle'' or ''gmsh''')
+            end select
+        end subroutine make_mesh
+
+        !> Gamma_C on the free dofs; the message of a generated mesh names the input file (a
+        !> mesh-file message already names the file and line).
+        subroutine free_contact(stat)
+            type(status_t), intent(out) :: stat
+            call build_contact(prob%mesh, prob%contact_part, prob%dofs, prob%contact, stat)
+            if (.not. stat%ok() .and. .not. allocated(prob%mesh%file)) &
+                stat%message = config%input_file//': &mesh: contact: '//stat%message
+        end subroutine free_contact
+
+        !> The eigen analyses: K and Gamma_C in units where E and the mesh size are in [1, 2).
+        !> mu scales exactly like E / size (2D: K does not change with the size, M grows with
+        !> it), and a change of unit by a power of two is exact, so the scaled problem is the
+        !> input problem itself, while the products of the assembly (det J ~ size^2, entries
+        !> ~ E) and of the solvers stay far from overflow and underflow. prob%mesh keeps the
+        !> input coordinates.
+        subroutine unit_system(stat)
+            type(status_t), intent(out) :: stat
+            real(wp), allocatable :: physical_coords(:, :)
             prob%young_exponent = unit_exponent(prob%young)
             prob%length_exponent = unit_exponent(maxval(abs(prob%mesh%coords)))
             physical_coords = prob%mesh%coords
@@ -128,19 +151,22 @@ contains
                     'from '//short(minval(abs(physical_coords), abs(physical_coords) > 0.0_wp)) &
                     //' to '//short(maxval(abs(physical_coords)))//' in magnitude: more than '// &
                     'the 2.2e-308 to 1.8e308 of binary64 can hold in one unit of length')
-                call move_alloc(physical_coords, prob%mesh%coords)
-                return
+            else
+                call free_contact(stat)
+                if (stat%ok()) call assemble_stiffness(prob%mesh, prob%dofs, &
+                    scale(prob%young, -prob%young_exponent), prob%poisson, prob%k, stat)
             end if
-        end if
-        call build_contact(prob%mesh, prob%contact_part, prob%dofs, prob%contact, stat)
-        if (.not. stat%ok()) then
-            ! A mesh-file message already names the file and line.
-            if (.not. allocated(prob%mesh%file)) &
-                stat%message = config%input_file//': &mesh: contact: '//stat%message
-            if (allocated(physical_coords)) call move_alloc(physical_coords, prob%mesh%coords)
-            return
-        end if
-        if (all_dofs) then
+            call move_alloc(physical_coords, prob%mesh%coords)
+        end subroutine unit_system
+
+        !> 'branch' and 'solve': the input's units (their loads and displacements have units),
+        !> within a range of E and of the size the arithmetic holds; K assembled once on all
+        !> dofs with Gamma_C, and K on the free dofs its restriction.
+        subroutine all_dof_system(stat)
+            type(status_t), intent(out) :: stat
+            real(wp) :: size_of_mesh
+            call free_contact(stat)
+            if (.not. stat%ok()) return
             size_of_mesh = maxval(abs(prob%mesh%coords))
             if (prob%young > UNSCALED_YOUNG_RANGE .or. &
                 prob%young < 1.0_wp/UNSCALED_YOUNG_RANGE) then
@@ -158,18 +184,10 @@ contains
                     'input''s units (the eigen analyses scale the size away)')
                 return
             end if
-        else
-            call assemble_stiffness(prob%mesh, prob%dofs, &
-                                    scale(prob%young, -prob%young_exponent), prob%poisson, &
-                                    prob%k, stat)
-            call move_alloc(physical_coords, prob%mesh%coords)
-            return
-        end if
-        call assemble_all_dofs(prob%mesh, prob%young, prob%poisson, prob%contact_part, &
-                               prob%all_dofs, prob%k_all, prob%all_contact, stat)
-        if (stat%ok()) prob%k = prob%k_all%restrict(free_numbers(prob%dofs))
-
-    contains
+            call assemble_all_dofs(prob%mesh, prob%young, prob%poisson, prob%contact_part, &
+                                   prob%all_dofs, prob%k_all, prob%all_contact, stat)
+            if (stat%ok()) prob%k = prob%k_all%restrict(free_numbers(prob%dofs))
+        end subroutine all_dof_system
 
         !> The free number of every dof in the numbering of all dofs (0 where prescribed).
         pure function free_numbers(dofs) result(numbers)
