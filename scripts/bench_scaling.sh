@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
-# Scaling table of the reference scene (SPEC section 6: unit square, P1 'right' N x N,
+# Scaling table of the reference scene (model.md section 10: unit square, P1 'right' N x N,
 # lambda = 5).
 # Usage: scripts/bench_scaling.sh [--solver S] [--analysis A] [REPEATS] [N ...]
 #   S: 'auto' (default: ARPACK beyond dense_max_contact contact nodes), 'dense' or 'arpack';

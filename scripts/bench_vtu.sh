@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
-# Cost of mode_001.vtu in each &output vtk_format on the reference scene (SPEC section 6:
+# Cost of mode_001.vtu in each &output vtk_format on the reference scene (model.md section 10:
 # unit square, P1 'right' N x N, lambda = 5, one mode): the output phase (time_output_s of
 # summary.json: eigenvalues.csv + mode_001.vtu + summary.json) and the .vtu file size.
 # A run with vtk = .false. gives the output phase without the .vtu.

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
-# The bad-input catalogue of SPEC section 7: every namelist variable out of range, unknown
+# The bad-input catalogue of docs/outputs.md: every namelist variable out of range, unknown
 # groups and variables, wrong types, unknown names, a side used twice, no Dirichlet boundary,
 # a missing, unreadable, truncated or garbage input file; a missing, directory, truncated,
 # garbage or binary mesh file, unknown physical groups, a bent contact group; an output

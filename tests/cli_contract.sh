@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
-# The command-line contract of SPEC section 7 on a small reference scene: --help, --version,
+# The command-line contract of docs/outputs.md on a small reference scene: --help, --version,
 # the output files and their headers, and bad input giving one stderr line, a non-zero exit
 # and no output. Usage: cli_contract.sh NCEIG SOURCE_DIR
 set -u

@@ -76,7 +76,7 @@ mkdir -p shipped && cd shipped
 "$nceig" "$source_dir/input/delaunay.nml" >log 2>&1; rc=$?
 check 'input/delaunay.nml runs' '[[ $rc -eq 0 && -s output/delaunay/summary.json ]]'
 "$nceig" "$source_dir/input/single_element.nml" >log 2>&1
-# SPEC section 4 with l = 2, lambda = -5, L = 15/26, G = 5/13: mu = 105/208.
+# model.md section 8 with l = 2, lambda = -5, L = 15/26, G = 5/13: mu = 105/208.
 check 'input/single_element.nml gives 105/208' \
     'close "$(json output/single_element/summary.json lowest_positive_mu)" 0.50480769230769230 1e-13'
 cd "$work"

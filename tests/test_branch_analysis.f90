@@ -1,5 +1,5 @@
 ! SPDX-License-Identifier: MIT
-!> SPEC section 5 on the discrete problem: U and U + delta phi solve the FULL frictional law to
+!> model.md section 9 on the discrete problem: U and U + delta phi solve the FULL frictional law to
 !> round-off for |delta| <= delta_max, and clearly do not beyond the sign change; the
 !> geometry and eigenvalue preconditions fail with clear messages.
 program test_branch_analysis

@@ -25,7 +25,7 @@ program test_contact_boundary
 
 contains
 
-    !> SPEC section 4: with B, C fixed only A is free on Gamma_C = [A, B]; M = l/3, n = (0,-1),
+    !> model.md section 8: with B, C fixed only A is free on Gamma_C = [A, B]; M = l/3, n = (0,-1),
     !> t = (-1,0), and B has the single column of u_n: B(x, y) = (lambda t_x - n_x) M n_y.
     subroutine single_element_mass_and_b(t)
         type(test_suite_t), intent(inout) :: t

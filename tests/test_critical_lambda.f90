@@ -37,7 +37,7 @@ program test_critical_lambda
 
 contains
 
-    !> SPEC section 4: mu = -6 G (L + 2G) / ((L (lambda + 1) + G (lambda + 3)) l) has its pole
+    !> model.md section 8: mu = -6 G (L + 2G) / ((L (lambda + 1) + G (lambda + 3)) l) has its pole
     !> at lambda = -(L + 3G)/(L + G), and is positive only beyond it: one negative threshold,
     !> no positive one. With p = 1 the pencil is 1 x 1 (lambda = Kt_nn / Kt_nt), so round-off
     !> alone separates the result from the closed form: 1e-13 relative.

@@ -1,5 +1,5 @@
 ! SPDX-License-Identifier: MIT
-!> The dense reduced solver against mathematics: the single element of SPEC section 4 in
+!> The dense reduced solver against mathematics: the single element of model.md section 8 in
 !> closed form, an independent dense QZ solve of the full pencil, scaling laws and residuals.
 program test_dense_eigen
     use kinds, only: wp
@@ -34,7 +34,7 @@ program test_dense_eigen
 
 contains
 
-    !> SPEC section 4: mu = -6 G (L + 2G) / ((L (lambda + 1) + G (lambda + 3)) l) for the one
+    !> model.md section 8: mu = -6 G (L + 2G) / ((L (lambda + 1) + G (lambda + 3)) l) for the one
     !> triangle A, B, C with B, C fixed and Gamma_C = [A, B]. The reduction is exact algebra on
     !> a 2 x 2 system, so round-off is the only error: 1e-12 relative.
     subroutine single_element_closed_form(t)
@@ -172,7 +172,7 @@ contains
                            real(scaled%mu(1), wp), real(base%mu(1), wp)/25.0_wp, 1.0e-11_wp)
     end subroutine eigenvalues_scale_with_inverse_size
 
-    !> Output order of SPEC section 7, and backward errors at round-off level: the chain
+    !> Output order of docs/outputs.md, and backward errors at round-off level: the chain
     !> (Cholesky, dgeevx, one more solve) is backward stable, so eta ~ n eps; 1e-12 allows it.
     subroutine output_order_and_residuals(t)
         type(test_suite_t), intent(inout) :: t

@@ -1,5 +1,5 @@
 ! SPDX-License-Identifier: MIT
-!> Hooke's law and element stiffness matrices: the single element of SPEC section 4, symmetry,
+!> Hooke's law and element stiffness matrices: the single element of model.md section 8, symmetry,
 !> rigid-body modes and rank on distorted elements, and the inverted-cell report.
 program test_elasticity
     use kinds, only: wp
@@ -21,7 +21,7 @@ program test_elasticity
         end subroutine dsyev
     end interface
 
-    ! E = 1, nu = 0.3 give the reference scene's L = 15/26, G = 5/13 (SPEC section 6).
+    ! E = 1, nu = 0.3 give the reference scene's L = 15/26, G = 5/13 (model.md section 10).
     real(wp), parameter :: YOUNG = 1.0_wp, POISSON = 0.3_wp
     real(wp), parameter :: LAME_L = 15.0_wp/26.0_wp, SHEAR_G = 5.0_wp/13.0_wp
     type(test_suite_t) :: t
@@ -54,7 +54,7 @@ contains
     !> P1 triangle A = (0,0), B = (l,0), C = (0,l). grad N_A = (-1/l, -1/l), area l^2/2, so
     !> the (A, A) block of area B_A^T D B_A is 1/2 [[L+3G, L+G], [L+G, L+3G]] in (x, y): the
     !> xx entry is area ((L+2G)/l^2 + G/l^2), the xy entry area (L/l^2 + G/l^2). With
-    !> u_n = -u_y, u_t = -u_x the (u_n, u_t) block of SPEC section 4 is the same matrix.
+    !> u_n = -u_y, u_t = -u_x the (u_n, u_t) block of model.md section 8 is the same matrix.
     !> Independent of l: stiffness scales as l^0 in 2D.
     subroutine check_single_element()
         real(wp), parameter :: SIZES(3) = [1.0_wp, 0.01_wp, 100.0_wp]

@@ -314,7 +314,7 @@ contains
                      index(stat%message, new_line('a')) == 0)
     end subroutine check_refused
 
-    !> The reference scene of SPEC section 6 on 8 x 8 cells, dense solver, no output.
+    !> The reference scene of model.md section 10 on 8 x 8 cells, dense solver, no output.
     type(config_t) function scene() result(c)
         c%input_file = 'test_extremes_range'
         c%mesh%nx = 8

@@ -30,7 +30,7 @@ program test_extremes_scaling
 
 contains
 
-    !> The reference scene (SPEC section 6) on a small mesh: accurate and warning-free.
+    !> The reference scene (model.md section 10) on a small mesh: accurate and warning-free.
     subroutine reference_scene_has_no_warning(t)
         type(test_suite_t), intent(inout) :: t
         type(eigen_result_t) :: res
@@ -227,7 +227,7 @@ contains
         if (c%mesh%element == 'p2' .or. c%mesh%element == 'q2') count_nonzero = 2*c%mesh%nx + 1
     end function count_nonzero
 
-    !> The reference scene of SPEC section 6 on 8 x 8 cells, no output.
+    !> The reference scene of model.md section 10 on 8 x 8 cells, no output.
     type(config_t) function scene() result(c)
         c%input_file = 'test_extremes_scaling'
         c%mesh%nx = 8

@@ -1,8 +1,8 @@
 ! SPDX-License-Identifier: MIT
 !> Extremes suite (CTest label 'extremes'): lambda within 1e-6 relative of a threshold, on
 !> both sides. Thresholds are the real eigenvalues nearest zero of Kt_nn x = lambda Kt_nt x
-!> (SPEC section 3), computed here independently with contact_flexibility and LAPACK dggev;
-!> for the single element of SPEC section 4 in closed form, -(L + 3G)/(L + G).
+!> (model.md sections 4-7), computed here independently with contact_flexibility and LAPACK dggev;
+!> for the single element of model.md section 8 in closed form, -(L + 3G)/(L + G).
 program test_extremes_threshold
     use kinds, only: wp
     use status, only: status_t
@@ -181,7 +181,7 @@ contains
         end if
     end subroutine solve
 
-    !> SPEC section 4: A = (0,0), B = (l,0), C = (0,l); [A,B] contact, [B,C] fixed.
+    !> model.md section 8: A = (0,0), B = (l,0), C = (0,l); [A,B] contact, [B,C] fixed.
     subroutine single_triangle(l, young, poisson, prob)
         real(wp), intent(in) :: l, young, poisson
         type(problem_t), intent(out) :: prob

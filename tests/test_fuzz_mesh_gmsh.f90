@@ -27,7 +27,7 @@ program test_fuzz_mesh_gmsh
 
     ! 500 mutants per seed file: 2500 without gmsh, 4000 with (three Delaunay seeds); about
     ! 2 s in the Debug build, 5 s under the sanitizers. Runs of 40 000 mutants with other
-    ! seeds and up to 5 mutations each were clean too (see README).
+    ! seeds and up to 5 mutations each were clean too (see docs/testing.md).
     integer, parameter :: MUTANTS_PER_SEED = 500
     integer, parameter :: MAX_MUTATIONS = 3          !! per mutant, at least 1
     integer(i8), parameter :: BASE_SEED = 20240808_i8

@@ -1,7 +1,7 @@
 ! SPDX-License-Identifier: MIT
 !> The Gmsh reader: structured grids written here as MSH 4.1 and MSH 2.2 read back to the
 !> same mesh and give the eigenvalues of the rectangle generator (P1, Q1, P2, Q2); clockwise
-!> files are reoriented; the single element of SPEC section 4 read from its .msh matches the
+!> files are reoriented; the single element of model.md section 8 read from its .msh matches the
 !> closed form; each bad file fails with STATUS_MESH naming the file and the line.
 program test_mesh_gmsh
     use kinds, only: wp
@@ -103,7 +103,7 @@ contains
                      same_spectrum(result41%spec%mu, result_cw%spec%mu, 0.0_wp))
     end subroutine check_structured
 
-    !> SPEC section 4 from input/single_element.nml and its .msh (l = 2): the single
+    !> model.md section 8 from input/single_element.nml and its .msh (l = 2): the single
     !> eigenvalue is mu = -6 G (L + 2G) / ((L (lambda + 1) + G (lambda + 3)) l).
     subroutine check_single_element()
         type(config_t) :: config

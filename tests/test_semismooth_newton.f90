@@ -1,7 +1,7 @@
 ! SPDX-License-Identifier: MIT
 !> The semismooth Newton solver against mathematics: quadratic convergence on regular
-!> problems, the single-element family of SPEC section 4 (every solution found lies on it,
-!> and different guesses find different members), the branch of SPEC section 5 seen by the
+!> problems, the single-element family of model.md section 8 (every solution found lies on it,
+!> and different guesses find different members), the branch of model.md section 9 seen by the
 !> solver at the critical point and a unique solution away from it, and the failure report.
 program test_semismooth_newton
     use kinds, only: wp
@@ -85,7 +85,7 @@ contains
         end do
     end subroutine quadratic_convergence
 
-    !> SPEC section 4: one P1 triangle A = (0,0), B = (l,0), C = (0,l), B and C fixed, traction
+    !> model.md section 8: one P1 triangle A = (0,0), B = (l,0), C = (0,l), B and C fixed, traction
     !> (F1, F2) on [A, C]. With c_n = mu, c_t = mu |lambda| (lambda = -10: slip sign +1) and
     !> F2 = (L+G)/(L+3G) F1, F1 < 0, the solutions form the segment U_t in [0, -l F1/(L+3G)],
     !> U_n = (-3 l F1 - 3 (L+3G) U_t) / (3 (L+G) + 2 c_t l): the open family of slipping
@@ -171,7 +171,7 @@ contains
         end if
     end function start_guess
 
-    !> The triangle of SPEC section 4 with side l, traction (f1, f2) on [A, C].
+    !> The triangle of model.md section 8 with side l, traction (f1, f2) on [A, C].
     subroutine single_element_problem(l, f1, f2, c_n, c_t, cp, stat)
         real(wp), intent(in) :: l, f1, f2, c_n, c_t
         type(compliance_t), intent(out) :: cp
@@ -195,7 +195,7 @@ contains
                                              cp, stat)
     end subroutine single_element_problem
 
-    !> SPEC section 5 data at the critical c_n: starting guesses U + delta_0 phi + noise that
+    !> model.md section 9 data at the critical c_n: starting guesses U + delta_0 phi + noise that
     !> stay in the slipping region converge to solutions on the line U + delta phi (distance
     !> from it at the level of the tolerance times the condition, 1e-8 asserted) with
     !> different deltas. At 0.8 times the critical parameters the solution is unique: the same

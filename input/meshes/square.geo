@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The reference scene of SPEC section 6: the unit square, with the physical groups that
+// The reference scene of model.md section 10: the unit square, with the physical groups that
 // input/delaunay.nml names. Gmsh's Delaunay algorithm; the element size h comes from the
 // command line (the point sizes below are larger than any h used), for instance
 //   gmsh input/meshes/square.geo -2 -clmax 0.0625 -format msh41 -o square.msh

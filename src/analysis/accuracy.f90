@@ -1,7 +1,7 @@
 ! SPDX-License-Identifier: MIT
 !> Warnings for results that lost accuracy, each with its reason, for summary.json
 !> (`warnings`) and the stdout summary (`warning:` lines). The bounds and their
-!> justification are in the README section "Accuracy and warnings".
+!> justification are in docs/accuracy.md, "Warnings".
 module accuracy
     use kinds, only: wp
     use strings, only: to_string, short => short_real_text

@@ -1,5 +1,5 @@
 ! SPDX-License-Identifier: MIT
-!> analysis = 'branch' (SPEC section 5): at the critical parameters c_n = mu, c_t = mu |lambda|
+!> analysis = 'branch' (model.md section 9): at the critical parameters c_n = mu, c_t = mu |lambda|
 !> of the lowest positive eigenpair (mu, phi), the linear field U with u_n = alpha and
 !> |u_t| = beta on Gamma_C solves the discrete frictional problem, and so does U + delta phi
 !> for every |delta| <= delta_max. The residual of the full stick/slip law is evaluated along
@@ -62,8 +62,9 @@ contains
         if (norm2(prob%contact%normal - [0.0_wp, -1.0_wp]) > NORMAL_TOL) then
             call stat%fail(STATUS_BAD_INPUT, config%input_file//': &mesh: contact = '''// &
                 trim(config%mesh%contact)//''': analysis '''//trim(config%analysis%kind)// &
-                ''' needs Gamma_C along the x1-axis with outward normal (0, -1) (SPEC '// &
-                'section 5); this one has normal ('//real_to_text(prob%contact%normal(1))// &
+                ''' needs Gamma_C along the x1-axis with outward normal (0, -1) (docs/'// &
+                'model.md, section 9); this one has normal ('// &
+                real_to_text(prob%contact%normal(1))// &
                 ', '//real_to_text(prob%contact%normal(2))//')')
             return
         end if
@@ -117,7 +118,7 @@ contains
         stress(2, 1) = stress(1, 2)
     end function base_stress
 
-    !> The problem of SPEC section 5 with c_n = factor mu, c_t = factor mu |lambda|: U on
+    !> The problem of model.md section 9 with c_n = factor mu, c_t = factor mu |lambda|: U on
     !> Gamma_D, sigma(U) n on every other edge but Gamma_C (sides named nowhere included: U
     !> solves the problem only if they carry its traction too), no body force.
     subroutine branch_compliance(prob, crit, factor, cp, stat)

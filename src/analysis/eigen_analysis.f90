@@ -1,6 +1,6 @@
 ! SPDX-License-Identifier: MIT
 !> analysis = 'eigen': the boundary eigenproblem K phi = mu B phi for one lambda, solved by
-!> the solver the input asks for, with the phase timings of SPEC section 7.
+!> the solver the input asks for, with the phase timings of docs/outputs.md.
 module eigen_analysis
     use kinds, only: wp
     use status, only: status_t, STATUS_BAD_INPUT

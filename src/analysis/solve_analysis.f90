@@ -1,7 +1,7 @@
 ! SPDX-License-Identifier: MIT
-!> analysis = 'solve': the discrete frictional normal-compliance problem (SPEC section 2,
+!> analysis = 'solve': the discrete frictional normal-compliance problem (model.md section 3,
 !> m_n = m_t = 1) for the data of &solve, by the semismooth Newton method, with the state of
-!> every contact node. With data = 'branch' the data are those of SPEC section 5 and the
+!> every contact node. With data = 'branch' the data are those of model.md section 9 and the
 !> solution is located on the line U + delta phi (its delta and its distance from the line).
 module solve_analysis
     use kinds, only: wp, i8, N_DIM

@@ -85,7 +85,7 @@ contains
         type(timings_t), intent(in) :: timings
         type(json_object_t) :: summary
 
-        ! The keys every summary.json has (SPEC section 7): from the eigen solve when the run
+        ! The keys every summary.json has (docs/outputs.md): from the eigen solve when the run
         ! needed the critical eigenpair, null where no eigenproblem was solved.
         if (res%has_critical) then
             summary = eigen_summary_json(config, prob, res%critical%eig, timings)

@@ -1,5 +1,5 @@
 ! SPDX-License-Identifier: MIT
-!> analysis = 'threshold' and 'lambda_sweep': the critical lambdas (SPEC section 3) and the
+!> analysis = 'threshold' and 'lambda_sweep': the critical lambdas (model.md sections 4-7) and the
 !> curve lambda -> lowest positive mu, from ONE factorization of K and ONE formation of the
 !> contact blocks Kt_nn, Kt_nt. B depends on lambda only through the reduced matrix
 !> (lambda Kt_nt - Kt_nn) M, so every further lambda costs one p x p eigen-solve: dense

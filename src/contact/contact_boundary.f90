@@ -2,7 +2,7 @@
 !> The contact boundary Gamma_C: one straight segment, its outward normal n and tangent
 !> t = (n2, -n1), the free nodes on it, their boundary mass matrix M, and the operators
 !> N, T that take the normal and tangential components of a free-dof vector at those nodes.
-!> B of SPEC section 3 is (lambda T^T - N^T) M N.
+!> B of model.md sections 4-7 is (lambda T^T - N^T) M N.
 module contact_boundary
     use kinds, only: wp
     use status, only: status_t, STATUS_BAD_INPUT, STATUS_MESH

@@ -1,5 +1,5 @@
 ! SPDX-License-Identifier: MIT
-!> The discrete frictional normal-compliance problem (SPEC section 2, m_n = m_t = 1) as a
+!> The discrete frictional normal-compliance problem (model.md section 3, m_n = m_t = 1) as a
 !> non-smooth system H(x) = 0 on the free dofs x, with its generalized (Clarke) Jacobian.
 !>
 !> Contact terms: with M the consistent mass matrix of Gamma_C on ALL its nodes (prescribed
@@ -16,7 +16,7 @@
 !> whose x row holds the normal equilibrium n.(K u - f)_a + P_a and whose y row holds the
 !> friction residual S_a - proj(S_a + rho_a u_t(a)) with S_a = -t.(K u - f)_a (the tangential
 !> force the foundation must supply). Where every node slips with sign s and u_n > 0, H = 0 is
-!> the slipping problem K u + c_n N^T M N u + s c_t T^T M N u = f of SPEC section 2.
+!> the slipping problem K u + c_n N^T M N u + s c_t T^T M N u = f of model.md section 3.
 module normal_compliance
     use kinds, only: wp, N_DIM
     use status, only: status_t, STATUS_INTERNAL

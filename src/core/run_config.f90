@@ -48,7 +48,7 @@ module run_config
         integer :: ncv = 0            !! Krylov dimension (0: chosen from nev)
         !> 'auto' uses dense up to this many contact nodes: both solvers share the factor of
         !> K, and up to here the dense solver's extra eigen + output time (1-4 ms) is within
-        !> the run-to-run noise (README, "Choosing the solver")
+        !> the run-to-run noise (docs/numerics.md, "Choosing the solver")
         integer :: dense_max_contact = 24
     end type eigen_config_t
 
@@ -57,7 +57,8 @@ module run_config
         logical :: vtk = .true.
         integer :: modes = 1                        !! how many modes go to mode_NNN.vtu
         logical :: matrices = .false.               !! write K.mtx and B.mtx
-        !> 'binary': raw appended data, 26-32 times faster to write than 'ascii' (README).
+        !> 'binary': raw appended data, 26-32 times faster to write than 'ascii'
+        !> (docs/performance.md).
         character(len=8) :: vtk_format = 'binary'
         logical :: plot = .true.                    !! draw mode_001.png (gnuplot)
         logical :: progress = .true.                !! a line on stdout as each phase ends
@@ -76,7 +77,7 @@ module run_config
         real(wp) :: lambdas(MAX_SWEEP_LAMBDAS) = huge(1.0_wp)
         logical :: plot = .true.                        !! run scripts/plot_lambda_sweep.sh
     end type sweep_config_t
-    !> analysis = 'branch' (SPEC section 5): the base solution U and the members U + delta phi.
+    !> analysis = 'branch' (model.md section 9): the base solution U and the members U + delta phi.
     type, public :: branch_config_t
         real(wp) :: alpha = 0.1_wp        !! u_n of U on Gamma_C, > 0
         real(wp) :: beta = 0.1_wp         !! |u_t| of U on Gamma_C, > 0
@@ -86,7 +87,7 @@ module run_config
 
     !> analysis = 'solve': the frictional normal-compliance problem (m_n = m_t = 1).
     type, public :: solve_config_t
-        character(len=NAME_LEN) :: data = 'given'   !! 'given' | 'branch' (SPEC section 5 data)
+        character(len=NAME_LEN) :: data = 'given'   !! 'given' | 'branch' (model.md section 9 data)
         real(wp) :: c_n = 1.0_wp                    !! normal compliance ('given' data)
         real(wp) :: c_t = 1.0_wp                    !! tangential compliance ('given' data)
         real(wp) :: critical_factor = 1.0_wp        !! 'branch' data: c = factor * critical

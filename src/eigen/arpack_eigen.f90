@@ -3,7 +3,7 @@
 !> reverse communication, standard mode bmat = 'I'), and the search for the lowest positive
 !> real one without knowing where it is.
 !>
-!> Operator. B = X' M N with X' = lambda T' - N' (SPEC section 3) has rank p, so the nonzero
+!> Operator. B = X' M N with X' = lambda T' - N' (model.md sections 4-7) has rank p, so the nonzero
 !> eigenvalues theta = 1/mu of OP = K^-1 B are those of the p x p operator
 !> A = N K^-1 X' M, with the same eigenvectors y = N phi and phi = K^-1 X' M y. With the
 !> contact dofs ordered last in the Cholesky factor P K P' = L L', the trailing 2p x 2p
@@ -285,7 +285,7 @@ contains
     !> eigenvectors of the first `n_keep` and the backward error of every pair on (K, B).
     !> `chol` is the factor of K with the contact dofs last. `warning` is empty when the
     !> lowest positive eigenvalue (or its absence) is certified, and says why not otherwise.
-    !> Strategy (README, "How it computes"): ARPACK on nev eigenvalues nearest the target;
+    !> Strategy (docs/numerics.md, "ARPACK solver"): ARPACK on nev eigenvalues nearest the target;
     !> a certified answer is confirmed by a second run from another start vector; nev
     !> doubles while undecided; past p/4 (or if runs keep disagreeing) all p eigenvalues of
     !> the reduced matrix are computed densely, which decides every case.

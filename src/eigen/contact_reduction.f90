@@ -1,6 +1,6 @@
 ! SPDX-License-Identifier: MIT
 !> What both eigensolvers share on the way from K phi = mu B phi to the p contact nodes and
-!> back (SPEC section 3): the Cholesky factor of K with the contact dofs pivoted last, the
+!> back (model.md sections 4-7): the Cholesky factor of K with the contact dofs pivoted last, the
 !> contact blocks Kt_nn = N K^-1 N' and Kt_nt = N K^-1 T' read off its trailing block, and
 !> the lift of reduced eigenvectors y to full ones phi = K^-1 (lambda T' - N') M y with the
 !> backward error of every pair on (K, B).
@@ -49,8 +49,8 @@ module contact_reduction
 contains
 
     !> A = (lambda Kt_nt - Kt_nn) M, the reduced p x p matrix whose eigenvalues are theta =
-    !> 1/mu (SPEC section 3): the one place it is formed. M is sparse (a band along Gamma_C),
-    !> so the product costs O(p^2) per lambda, not O(p^3).
+    !> 1/mu (docs/model.md, section 6): the one place it is formed. M is sparse (a band along
+    !> Gamma_C), so the product costs O(p^2) per lambda, not O(p^3).
     pure function reduced_matrix(kt_nn, kt_nt, mass, lambda) result(a)
         real(wp), intent(in) :: kt_nn(:, :), kt_nt(:, :)   !! (p, p)
         type(csr_matrix_t), intent(in) :: mass

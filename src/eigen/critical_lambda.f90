@@ -1,5 +1,5 @@
 ! SPDX-License-Identifier: MIT
-!> The critical lambda of SPEC section 3, computed directly: a positive mu appears when an
+!> The critical lambda of model.md sections 4-7, computed directly: a positive mu appears when an
 !> eigenvalue theta = 1/mu of (lambda Kt_nt - Kt_nn) M crosses zero, i.e. when
 !> det(lambda Kt_nt - Kt_nn) = 0 (M is SPD), so the thresholds are the real eigenvalues of the
 !> pencil Kt_nn x = lambda Kt_nt x nearest to zero on each side. Also the cheap p x p

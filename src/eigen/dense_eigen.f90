@@ -1,6 +1,6 @@
 ! SPDX-License-Identifier: MIT
 !> The dense solver: all p nonzero eigenvalues of K phi = mu B phi through the reduced p x p
-!> problem (lambda Kt_nt - Kt_nn) M y = (1/mu) y of SPEC section 3, with LAPACK dgeevx for
+!> problem (lambda Kt_nt - Kt_nn) M y = (1/mu) y of model.md sections 4-7, with LAPACK dgeevx for
 !> eigenvalues, eigenvectors and condition numbers, then the full eigenvectors
 !> phi = mu K^-1 B phi and their backward errors on the sparse pencil. Kt_nn and Kt_nt come
 !> from the trailing block of the factor of K (contact_reduction, re-exported here as
@@ -128,7 +128,7 @@ contains
         deallocate (vl, kt_nt)
 
         ! The reduced eigenvectors in output order (see lapack_eigenvector); lifting
-        ! them to phi = K^-1 (lambda T' - N') M y (= phi / mu of SPEC section 3: same mode)
+        ! them to phi = K^-1 (lambda T' - N') M y (= phi / mu of model.md sections 4-7: same mode)
         ! in column blocks keeps memory at O(n x block + p^2).
         allocate (y(p, n_ev))
         do i = 1, n_ev

@@ -1,6 +1,6 @@
 ! SPDX-License-Identifier: MIT
 !> The computed eigenvalues mu of K phi = mu B phi, whatever solver found them: their kind,
-!> backward errors and condition numbers, in the output order of SPEC section 7 (positive
+!> backward errors and condition numbers, in the output order of docs/outputs.md (positive
 !> real ascending, negative real by modulus, complex by modulus), and the full eigenvectors
 !> of the first few.
 module spectrum

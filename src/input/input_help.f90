@@ -52,8 +52,8 @@ contains
                        //': triangle diagonals rise to the right or left') &
                //entry('dirichlet', quoted(d%mesh%dirichlet), 'fixed sides (' &
                        //one_of(RECTANGLE_SIDES)//') or Gmsh groups') &
-               //entry('neumann', quoted(d%mesh%neumann), 'traction-free sides; sides named' &
-                       //' nowhere are traction-free too') &
+               //entry('neumann', quoted(d%mesh%neumann), 'loaded sides (&solve t1, t2;' &
+                       //' traction-free in the eigenproblem); sides named nowhere are free') &
                //entry('contact', quoted(d%mesh%contact), 'the one side or group in contact')
         text = text//'&material'//NL &
                //entry('young', real_to_text(d%material%young), 'Young''s modulus E > 0') &
@@ -102,7 +102,7 @@ contains
                        to_string(MAX_SWEEP_LAMBDAS)//'), replaces the range') &
                //entry('plot', logical_text(d%sweep%plot), 'draw lambda_sweep.png with' &
                        //' gnuplot when it is installed')
-        text = text//'&branch      (kind = ''branch'': U + delta phi, SPEC section 5)'//NL &
+        text = text//'&branch      (kind = ''branch'': U + delta phi, docs/model.md 9)'//NL &
                //entry('alpha', real_to_text(d%branch%alpha), 'u_n of U on Gamma_C, > 0') &
                //entry('beta', real_to_text(d%branch%beta), '|u_t| of U on Gamma_C, > 0') &
                //entry('n_delta', to_string(d%branch%n_delta), 'deltas evenly spaced in' &

@@ -36,7 +36,7 @@ module input_validation
     integer, parameter :: MAX_SWEEP_POINTS = 100000   !! n_lambda of a &sweep range
     !> &output vtk_format: the encodings of vtk_writer (VTK_BINARY, VTK_ASCII).
     character(len=*), parameter :: VTK_FORMATS(*) = [character(len=6) :: 'binary', 'ascii']
-    !> &solve data: loads of the input, or the data of SPEC section 5 at the critical point.
+    !> &solve data: loads of the input, or the data of model.md section 9 at the critical point.
     character(len=*), parameter :: SOLVE_DATA(*) = [character(len=6) :: 'given', 'branch']
     !> &solve start: the starting guesses of the Newton iteration.
     character(len=*), parameter :: SOLVE_STARTS(*) = [character(len=6) :: &

@@ -161,7 +161,7 @@ contains
     !> its new set, or the old set it was removing). A folder named after our own pid is also
     !> stale (we have not made ours yet); those of live processes, other names, and links
     !> are left alone. Best effort: what cannot be removed stays. Process identifiers are
-    !> those of this machine: see README (Nothing lost) about shared output directories.
+    !> those of this machine: see docs/reliability.md about shared output directories.
     !> With `restore`: the folders are old sets set aside by a commit without swap (see
     !> output_stage_commit); one killed before it put the new set in place leaves no
     !> `restore` directory, and its old set goes back there.

@@ -86,7 +86,7 @@ contains
         call build_mesh(f, raw, m, reoriented, stat)
         if (.not. stat%ok()) return
         if (present(n_reoriented)) n_reoriented = reoriented
-        ! RCM rather than METIS: see README (Gmsh meshes) for the measurements.
+        ! RCM rather than METIS: see docs/meshes.md (Gmsh input) for the measurements.
         method = RENUMBER_RCM
         if (present(renumber)) method = renumber
         call renumber_nodes(m, method, stat)
