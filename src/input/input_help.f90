@@ -52,8 +52,8 @@ contains
                        //': triangle diagonals rise to the right or left') &
                //entry('dirichlet', quoted(d%mesh%dirichlet), 'fixed sides (' &
                        //one_of(RECTANGLE_SIDES)//') or Gmsh groups') &
-               //entry('neumann', quoted(d%mesh%neumann), 'sides loaded by &solve t1, t2' &
-                       //' (free in eigen runs); sides named nowhere are free') &
+               //entry('neumann', quoted(d%mesh%neumann), 'loaded by &solve t1, t2 (free in' &
+                       //' eigen runs); unnamed sides are free') &
                //entry('contact', quoted(d%mesh%contact), 'the one side or group in contact')
         text = text//'&material'//NL &
                //entry('young', real_to_text(d%material%young), 'Young''s modulus E > 0') &
