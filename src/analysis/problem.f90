@@ -4,7 +4,7 @@
 module problem
     use kinds, only: wp
     use status, only: status_t, STATUS_BAD_INPUT, STATUS_SINGULAR
-    use strings, only: NAME_LEN, split_names, to_string, short => short_real_text
+    use strings, only: NAME_LEN, split_names, to_string, short => short_real_text, joined
     use real_format, only: real_to_text
     use run_config, only: config_t
     use mesh, only: mesh_t
@@ -210,7 +210,7 @@ contains
             do i = 1, size(names)
                 parts(i) = prob%mesh%part_index(trim(names(i)))
                 if (parts(i) == 0) then
-                    known = join(prob%mesh%part_names)
+                    known = joined(prob%mesh%part_names)
                     if (allocated(prob%mesh%file)) then
                         ! A Gmsh file: the parts are its 1D physical groups.
                         call stat%fail(STATUS_BAD_INPUT, config%input_file//': &mesh: '// &
@@ -227,16 +227,6 @@ contains
             end do
         end subroutine resolve_parts
 
-        pure function join(words) result(text)
-            character(len=*), intent(in) :: words(:)
-            character(len=:), allocatable :: text
-            integer :: i
-            text = ''
-            do i = 1, size(words)
-                text = text//trim(words(i))
-                if (i < size(words)) text = text//', '
-            end do
-        end function join
     end subroutine build_problem
 
     !> When `stat` says K is singular (STATUS_SINGULAR) and the input explains it, one line

@@ -3,6 +3,7 @@
 !> factorization by a factor of about 5 (reference BLAS against OpenBLAS).
 module blas_info
     use iso_c_binding, only: c_char, c_int, c_null_char
+    use strings, only: from_c_chars
     implicit none
     private
     public :: blas_in_use
@@ -30,23 +31,16 @@ contains
         character(kind=c_char) :: library_c(TEXT_CAPACITY), config_c(TEXT_CAPACITY)
         integer(c_int) :: threads_c
         call nceig_blas_info(library_c, TEXT_CAPACITY, config_c, TEXT_CAPACITY, threads_c)
-        library = from_c(library_c)
-        config = from_c(config_c)
+        library = from_c_chars(library_c, index_of_nul(library_c))
+        config = from_c_chars(config_c, index_of_nul(config_c))
         threads = int(threads_c)
     end subroutine blas_in_use
 
-    pure function from_c(text) result(s)
+    !> The length of a NUL-terminated C string.
+    pure integer function index_of_nul(text)
         character(kind=c_char), intent(in) :: text(:)
-        character(len=:), allocatable :: s
-        integer :: i, n
-        n = 0
-        do i = 1, size(text)
-            if (text(i) == c_null_char) exit
-            n = i
-        end do
-        allocate (character(len=n) :: s)
-        do i = 1, n
-            s(i:i) = text(i)
-        end do
-    end function from_c
+        index_of_nul = findloc(text, c_null_char, dim=1) - 1
+        if (index_of_nul < 0) index_of_nul = size(text)
+    end function index_of_nul
+
 end module blas_info

@@ -4,6 +4,7 @@
 module executable
     use iso_c_binding, only: c_char, c_int
     use version, only: NCEIG_SCRIPTS_DIR
+    use strings, only: from_c_chars
     implicit none
     private
     public :: executable_path, scripts_directory
@@ -28,12 +29,7 @@ contains
     function executable_path() result(path)
         character(len=:), allocatable :: path
         character(kind=c_char) :: buffer(PATH_CAPACITY)
-        integer :: length, i
-        length = nceig_executable_path(buffer, PATH_CAPACITY)
-        allocate (character(len=length) :: path)
-        do i = 1, length
-            path(i:i) = buffer(i)
-        end do
+        path = from_c_chars(buffer, nceig_executable_path(buffer, PATH_CAPACITY))
     end function executable_path
 
     !> The folder of the helper scripts: the installed one when the executable sits in an

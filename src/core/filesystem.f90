@@ -8,6 +8,7 @@ module filesystem
     use iso_c_binding, only: c_int, c_char, c_size_t, c_ptr, c_null_char, c_f_pointer, &
                              c_associated, c_long_long
     use status, only: status_t, STATUS_IO
+    use strings, only: from_c_chars
     implicit none
     private
     public :: make_directories, rename_file, remove_file, remove_directory, file_exists, &
@@ -415,16 +416,13 @@ contains
         character(len=*), intent(in) :: path
         character(len=:), allocatable :: resolved
         character(kind=c_char) :: buffer(MAX_PATH_LEN)
-        integer :: length, i
+        integer :: length
         length = int(c_real_path(c_path(path), buffer, int(MAX_PATH_LEN, c_int)))
         if (length < 0) then
             resolved = trim(path)
             return
         end if
-        allocate (character(len=length) :: resolved)
-        do i = 1, length
-            resolved(i:i) = buffer(i)
-        end do
+        resolved = from_c_chars(buffer, length)
     end function real_path
 
     !> Until end_cleanup_on_signal, SIGTERM, SIGINT and SIGHUP remove the staging folder

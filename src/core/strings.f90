@@ -10,7 +10,7 @@ module strings
     private
     public :: to_string, zero_padded, short_real_text, seconds_text
     public :: lowercase, split_names, split_words, count_names, normalized_list
-    public :: quoted, one_of
+    public :: quoted, one_of, joined, from_c_chars
     public :: NAME_LEN, LIST_LEN
 
     !> Names of elements, solvers, analyses and boundary parts (input file and mesh alike),
@@ -200,11 +200,34 @@ contains
     pure function one_of(choices) result(text)
         character(len=*), intent(in) :: choices(:)
         character(len=:), allocatable :: text
+        text = joined(choices, before="'", after="'")
+    end function one_of
+
+    !> The words, trimmed, each between `before` and `after`, separated by ', ':
+    !> "a, b, c" for messages listing names.
+    pure function joined(words, before, after) result(text)
+        character(len=*), intent(in) :: words(:)
+        character(len=*), intent(in), optional :: before, after
+        character(len=:), allocatable :: text
         integer :: i
         text = ''
-        do i = 1, size(choices)
+        do i = 1, size(words)
             if (i > 1) text = text//', '
-            text = text//quoted(choices(i))
+            if (present(before)) text = text//before
+            text = text//trim(words(i))
+            if (present(after)) text = text//after
         end do
-    end function one_of
+    end function joined
+
+    !> The first `length` characters of a C character array as a Fortran string.
+    pure function from_c_chars(chars, length) result(text)
+        character(len=1), intent(in) :: chars(:)
+        integer, intent(in) :: length
+        character(len=:), allocatable :: text
+        integer :: i
+        allocate (character(len=max(0, length)) :: text)
+        do i = 1, length
+            text(i:i) = chars(i)
+        end do
+    end function from_c_chars
 end module strings

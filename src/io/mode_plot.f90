@@ -7,6 +7,7 @@ module mode_plot
     use kinds, only: wp
     use strings, only: to_string, short_real_text
     use filesystem, only: remove_file
+    use gnuplot, only: gnuplot_available
     implicit none
     private
     public :: plot_mode, MAX_PLOT_CELLS
@@ -38,9 +39,7 @@ contains
                    to_string(MAX_PLOT_CELLS)//'); open the mode''s VTU file in ParaView'
             return
         end if
-        call execute_command_line('command -v gnuplot >/dev/null 2>&1', &
-                                  exitstat=exit_status, cmdstat=command_status)
-        if (command_status /= 0 .or. exit_status /= 0) then
+        if (.not. gnuplot_available()) then
             note = 'not drawn: gnuplot is not installed (the VTU files hold the modes)'
             return
         end if

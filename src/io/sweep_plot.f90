@@ -6,6 +6,7 @@
 module sweep_plot
     use executable, only: scripts_directory
     use filesystem, only: file_exists
+    use gnuplot, only: gnuplot_available
     implicit none
     private
     public :: plot_lambda_sweep
@@ -32,9 +33,7 @@ contains
             note = 'not drawn: '//plot_script//' is missing'
             return
         end if
-        call execute_command_line('command -v gnuplot >/dev/null 2>&1', &
-                                  exitstat=exit_status, cmdstat=command_status)
-        if (command_status /= 0 .or. exit_status /= 0) then
+        if (.not. gnuplot_available()) then
             note = 'not drawn: gnuplot is not installed (the CSV holds the curve)'
             return
         end if
