@@ -91,12 +91,18 @@ refused 'a crack (duplicated nodes): the mesh file, the line, not connected' 3 5
 
 # An allocation failure after the estimate passed (here: a 700 MB address space) is one
 # line and exit status 5, not a backtrace.
-printf '&mesh nx = 5000, ny = 1 /\n&output directory = "out" /\n' >in.nml
-rm -rf out
-SECONDS=0
-(ulimit -v 700000 && exec "$nceig" in.nml) >stdout 2>err
-rc=$?
-seconds=$SECONDS
-refused 'out of memory under ulimit -v: one line, exit status 5' 5 20 'out of memory'
+# AddressSanitizer reserves terabytes of address space at start: under ulimit -v a sanitized
+# nceig cannot even start, so that build skips this one case.
+if ldd "$nceig" 2>/dev/null | grep -q libasan; then
+    echo "SKIP  out of memory under ulimit -v: a sanitizer build cannot run under ulimit -v"
+else
+    printf '&mesh nx = 5000, ny = 1 /\n&output directory = "out" /\n' >in.nml
+    rm -rf out
+    SECONDS=0
+    (ulimit -v 700000 && exec "$nceig" in.nml) >stdout 2>err
+    rc=$?
+    seconds=$SECONDS
+    refused 'out of memory under ulimit -v: one line, exit status 5' 5 20 'out of memory'
+fi
 
 cli_end
