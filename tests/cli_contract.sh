@@ -25,7 +25,7 @@ for f in summary.json eigenvalues.csv mode_001.vtu mode_002.vtu K.mtx B.mtx; do
     check "writes $f" '[[ -s "$work/out/$f" ]]'
 done
 check 'no staging folder left' '[[ -z $(ls -A "$work" | grep nceig-staging) ]]'
-check 'eigenvalues.csv header' '[[ $(head -1 "$work/out/eigenvalues.csv") == "index,re,im,kind,residual,condition" ]]'
+check 'eigenvalues.csv header' '[[ $(head -1 "$work/out/eigenvalues.csv") == "index,re,im,kind,residual,condition,error_estimate" ]]'
 check 'summary.json has the contract keys' 'for k in analysis lambda element n_nodes n_dofs n_contact solver lowest_positive_mu critical_c_n critical_c_t slip_sign n_eigenvalues max_residual time_assembly_s time_factor_s time_eigen_s time_total_s; do grep -q "\"$k\":" "$work/out/summary.json" || exit 1; done'
 check 'stdout names the critical c_n' 'grep -q "critical c_n" "$work/stdout"'
 check 'K.mtx is Matrix Market' 'head -1 "$work/out/K.mtx" | grep -q "^%%MatrixMarket matrix coordinate real general"'
