@@ -216,14 +216,17 @@ contains
         call csv%close(stat)
     end subroutine write_eigenvalues_csv
 
-    !> mode_001.vtu ...: displacement (real part) and, for complex modes, displacement_imag.
-    subroutine write_modes(stage, prob, spec, n_modes, vtk_format, stat)
+    !> mode_001.vtu ...: displacement (real part) and, for complex modes, displacement_imag;
+    !> the mode of the lowest positive mu gets the cell data error_indicator when `error`
+    !> holds its estimate (eta_K relative to mu, see error_estimate).
+    subroutine write_modes(stage, prob, spec, n_modes, vtk_format, stat, error)
         type(output_stage_t), intent(inout) :: stage
         type(problem_t), intent(in) :: prob
         type(spectrum_t), intent(in) :: spec
         integer, intent(in) :: n_modes
         character(len=*), intent(in) :: vtk_format   !! VTK_BINARY or VTK_ASCII
         type(status_t), intent(out) :: stat
+        type(error_estimate_t), intent(in), optional :: error
         character(len=*), parameter :: FIELD_NAMES(2) = [character(len=17) :: &
                                                           'displacement', 'displacement_imag']
         real(wp), allocatable :: fields(:, :, :)
@@ -238,11 +241,28 @@ contains
                 allocate (fields(2, n_nodes, 1))
             end if
             fields(:, :, 1) = prob%dofs%nodal_field(real(spec%vectors(:, i), wp))
-            call write_vtu(stage%path('mode_'//zero_padded(i, 3)//'.vtu'), prob%mesh, &
-                           FIELD_NAMES(1:size(fields, 3)), fields, vtk_format, stat)
+            if (with_indicators(i)) then
+                call write_vtu(stage%path('mode_'//zero_padded(i, 3)//'.vtu'), prob%mesh, &
+                               FIELD_NAMES(1:size(fields, 3)), fields, vtk_format, stat, &
+                               ['error_indicator'], reshape(error%indicators, &
+                                                            [size(error%indicators), 1]))
+            else
+                call write_vtu(stage%path('mode_'//zero_padded(i, 3)//'.vtu'), prob%mesh, &
+                               FIELD_NAMES(1:size(fields, 3)), fields, vtk_format, stat)
+            end if
             deallocate (fields)
             if (.not. stat%ok()) return
         end do
+
+    contains
+
+        logical function with_indicators(mode)
+            integer, intent(in) :: mode
+            with_indicators = .false.
+            if (.not. present(error)) return
+            with_indicators = error%computed .and. mode == spec%lowest_positive()
+            if (with_indicators) with_indicators = size(error%indicators) == prob%mesh%n_cells()
+        end function with_indicators
     end subroutine write_modes
 
     !> The human summary: mesh, sizes, the headline eigenvalue and the time of each phase.
@@ -308,7 +328,7 @@ contains
         character(len=:), allocatable, intent(out), optional :: plot_note
         call write_eigenvalues_csv(stage%path('eigenvalues.csv'), res%spec, stat, res%error)
         if (stat%ok() .and. config%output%vtk) call write_modes(stage, prob, res%spec, &
-            config%output%modes, trim(config%output%vtk_format), stat)
+            config%output%modes, trim(config%output%vtk_format), stat, res%error)
         if (stat%ok() .and. config%output%matrices) call write_matrices(stage, prob, res, stat)
         if (.not. present(plot_note)) return
         plot_note = ''
