@@ -67,13 +67,15 @@ contains
 
     !> Assemble B for `lambda`, factor K (factor_stiffness: contact dofs last, which both
     !> solvers read the contact blocks from), and compute the spectrum.
-    subroutine solve_eigen(config, prob, lambda, res, timings, stat)
+    subroutine solve_eigen(config, prob, lambda, res, timings, stat, with_error_estimate)
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: prob
         real(wp), intent(in) :: lambda
         type(eigen_result_t), intent(out) :: res
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
+        !> also res%error (add_error_estimate); default false: only analysis 'eigen' asks
+        logical, intent(in), optional :: with_error_estimate
         type(cholesky_t) :: chol
         real(wp) :: start
 
@@ -94,7 +96,8 @@ contains
         if (.not. stat%ok()) return
         call eigen_with_factor(config, prob, chol, res, timings, stat)
         call chol%free()
-        if (stat%ok()) call add_error_estimate(prob, res, timings)
+        if (.not. (stat%ok() .and. present(with_error_estimate))) return
+        if (with_error_estimate) call add_error_estimate(prob, res, timings)
     end subroutine solve_eigen
 
     !> res%error for the lowest positive mu (error_estimate): computed where the element has

@@ -49,7 +49,8 @@ contains
         type(problem_t), intent(in) :: prob
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
-        call solve_eigen(config, prob, config%analysis%lambda, this%res, timings, stat)
+        call solve_eigen(config, prob, config%analysis%lambda, this%res, timings, stat, &
+                         with_error_estimate=.true.)
     end subroutine eigen_run_solve
 
     subroutine eigen_run_write_files(this, stage, config, prob, stat)
