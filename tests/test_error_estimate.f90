@@ -190,7 +190,8 @@ contains
         call t%check('single triangle: mu_h is the closed form', &
                      abs(mu - expected) <= 1.0e-12_wp*expected)
         call t%check('single triangle: estimate computed, = (mu+ - mu_h) / mu_h', &
-                     est%computed .and. abs(est%relative - (est%mu_enriched - mu)/mu) <= 1.0e-12_wp)
+                     est%computed .and. &
+                     abs(est%relative - (est%mu_enriched - mu)/mu) <= 1.0e-12_wp)
         call t%check('single triangle: one indicator, = |estimate|', size(est%indicators) == 1 &
                      .and. abs(est%indicators(1) - abs(est%relative)) <= 1.0e-12_wp)
     end subroutine single_triangle_estimate
