@@ -124,6 +124,32 @@ program test_vtk_writer
         call check_element(ELEMENTS(k), VTK_CODES(k))
     end do
 
+    ! Cell data (the error indicators): both encodings give back the values written, and
+    ! the point arrays after them still read right.
+    call write_vtu('cells.vtu', m, NAMES(1:1), fields(:, :, 1:1), VTK_ASCII, stat, &
+                   ['error_indicator'], reshape([0.125_wp, 1.0e-300_wp], [2, 1]))
+    call t%check('ascii write with cell data succeeds', stat%ok())
+    text = file_text('cells.vtu', ' ')
+    call t%check('ascii: CellData marks the scalars', &
+                 index(text, '<CellData Scalars="error_indicator">') > 0)
+    call read_text_reals('Name="error_indicator"', text_values(1:2))
+    call t%check('ascii: cell values as written', &
+                 all(abs(text_values(1:2) - [0.125_wp, 1.0e-300_wp]) <= 0.0_wp))
+    call write_vtu('cells_binary.vtu', m, NAMES(1:1), fields(:, :, 1:1), VTK_BINARY, stat, &
+                   ['error_indicator'], reshape([0.125_wp, 1.0e-300_wp], [2, 1]))
+    call t%check('binary write with cell data succeeds', stat%ok())
+    call read_binary_reals('cells_binary.vtu', 'Name="error_indicator"', binary_values(1:2))
+    call t%check('binary: cell values as written', &
+                 all(abs(binary_values(1:2) - [0.125_wp, 1.0e-300_wp]) <= 0.0_wp))
+    call read_binary_reals('cells_binary.vtu', '<Points>', binary_values)
+    call t%check('binary: points after the cell data', &
+                 all(abs(binary_values - [(m%coords(:, i), 0.0_wp, i=1, 4)]) <= 0.0_wp))
+    call t%check('binary: file ends right after the last array', &
+                 ends_after_last_array('cells_binary.vtu'))
+    call write_vtu('bad.vtu', m, NAMES(1:1), fields(:, :, 1:1), VTK_BINARY, stat, &
+                   ['error_indicator'], reshape([1.0_wp, 2.0_wp, 3.0_wp], [3, 1]))
+    call t%check('cell fields must have one value per cell', stat%code == STATUS_INTERNAL)
+
     call write_vtu('bad.vtu', m, ['a', 'b'], fields(:, :, 1:1), VTK_BINARY, stat)
     call t%check('names and fields must match', stat%code == STATUS_INTERNAL)
     call write_vtu('bad.vtu', m, NAMES, fields, 'base64', stat)

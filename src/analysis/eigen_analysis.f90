@@ -19,6 +19,7 @@ module eigen_analysis
     use dense_eigen, only: dense_spectrum
     use accuracy, only: accuracy_warnings, WARNING_LEN
     use arpack_eigen, only: arpack_spectrum, arpack_options_t
+    use error_estimate, only: error_estimate_t, estimate_lowest_error, ENRICHED_CONTACT_MAX
     implicit none
     private
     public :: eigen_result_t, solve_eigen, choose_solver, eigen_with_factor, solver_name
@@ -36,6 +37,8 @@ module eigen_analysis
         type(spectrum_t) :: spec
         !> accuracy lost or the result not certified, and why (empty when trustworthy)
         character(len=WARNING_LEN), allocatable :: warnings(:)
+        !> the estimate of the error of the lowest positive mu (analysis 'eigen' only)
+        type(error_estimate_t) :: error
     end type eigen_result_t
 
 contains
@@ -64,13 +67,15 @@ contains
 
     !> Assemble B for `lambda`, factor K (factor_stiffness: contact dofs last, which both
     !> solvers read the contact blocks from), and compute the spectrum.
-    subroutine solve_eigen(config, prob, lambda, res, timings, stat)
+    subroutine solve_eigen(config, prob, lambda, res, timings, stat, with_error_estimate)
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: prob
         real(wp), intent(in) :: lambda
         type(eigen_result_t), intent(out) :: res
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
+        !> also res%error (add_error_estimate); default false: only analysis 'eigen' asks
+        logical, intent(in), optional :: with_error_estimate
         type(cholesky_t) :: chol
         real(wp) :: start
 
@@ -91,7 +96,34 @@ contains
         if (.not. stat%ok()) return
         call eigen_with_factor(config, prob, chol, res, timings, stat)
         call chol%free()
+        if (.not. (stat%ok() .and. present(with_error_estimate))) return
+        if (with_error_estimate) call add_error_estimate(prob, res, timings)
     end subroutine solve_eigen
+
+    !> res%error for the lowest positive mu (error_estimate): computed where the element has
+    !> an enrichment (P1) and the enriched contact has at most ENRICHED_CONTACT_MAX nodes; a
+    !> failure only costs the estimate (a warning), never the run.
+    subroutine add_error_estimate(prob, res, timings)
+        type(problem_t), intent(in) :: prob
+        type(eigen_result_t), intent(inout) :: res
+        type(timings_t), intent(inout) :: timings
+        type(status_t) :: stat
+        integer :: lowest
+
+        lowest = res%spec%lowest_positive()
+        if (lowest == 0 .or. size(res%spec%vectors, 2) < lowest) return
+        ! mu in the units of prob%k (exact: a power of two)
+        call estimate_lowest_error(prob, res%lambda, &
+            scale(real(res%spec%mu(lowest), wp), -prob%mu_exponent()), &
+            real(res%spec%vectors(:, lowest), wp), ENRICHED_CONTACT_MAX, res%error, stat)
+        if (.not. stat%ok()) then
+            res%warnings = [character(len=WARNING_LEN) :: res%warnings, &
+                            'no error estimate for the lowest positive mu: '//stat%message]
+            return
+        end if
+        if (res%error%computed) call timings%add(PHASE_EIGEN, res%error%seconds, &
+            ': error estimate ('//element_name(res%error%element)//' enrichment)')
+    end subroutine add_error_estimate
 
     !> The spectrum at res%lambda (res%b assembled, res%solver chosen) from a factor of K made
     !> by factor_stiffness, which stays allocated for the caller (the threshold analysis reads

@@ -25,6 +25,7 @@ module eigen_run
     use mode_plot, only: plot_mode
     use blas_info, only: blas_in_use
     use csr_matrix, only: csr_matrix_t
+    use error_estimate, only: error_estimate_t
     implicit none
     private
     public :: eigen_summary_json, no_eigen_summary_json, summary_lines, write_eigenvalues_csv, write_modes, &
@@ -48,7 +49,8 @@ contains
         type(problem_t), intent(in) :: prob
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
-        call solve_eigen(config, prob, config%analysis%lambda, this%res, timings, stat)
+        call solve_eigen(config, prob, config%analysis%lambda, this%res, timings, stat, &
+                         with_error_estimate=.true.)
     end subroutine eigen_run_solve
 
     subroutine eigen_run_write_files(this, stage, config, prob, stat)
@@ -104,9 +106,10 @@ contains
         type(timings_t), intent(in) :: timings
         type(eigen_result_t), intent(in), optional :: res
         type(json_object_t) :: summary
-        character(len=*), parameter :: LOWEST_KEYS(5) = [character(len=25) :: &
+        character(len=*), parameter :: LOWEST_KEYS(6) = [character(len=30) :: &
             'lowest_positive_mu', 'critical_c_n', 'critical_c_t', &
-            'lowest_positive_condition', 'lowest_positive_residual']
+            'lowest_positive_condition', 'lowest_positive_residual', &
+            'lowest_positive_error_estimate']
         integer :: lowest, i, blas_threads
         real(wp) :: mu, lambda
         character(len=:), allocatable :: blas_library, blas_config
@@ -153,6 +156,9 @@ contains
                                           res%spec%condition(lowest), &
                                           res%spec%condition(lowest) >= 0.0_wp)
             call summary%add_real('lowest_positive_residual', res%spec%residual(lowest))
+            ! |mu - mu_h| / mu_h estimated (error_estimate); null where not computed
+            call summary%add_real_or_null('lowest_positive_error_estimate', &
+                                          abs(res%error%relative), res%error%computed)
         else
             do i = 1, size(LOWEST_KEYS)
                 call summary%add_null(trim(LOWEST_KEYS(i)))
@@ -185,34 +191,43 @@ contains
         end if
     end function summary_json
 
-    !> index,re,im,kind,residual,condition; an unknown condition is left empty.
-    subroutine write_eigenvalues_csv(path, spec, stat)
+    !> index,re,im,kind,residual,condition,error_estimate; an unknown condition is left
+    !> empty, and so is error_estimate but for the lowest positive mu when `error` holds it.
+    subroutine write_eigenvalues_csv(path, spec, stat, error)
         character(len=*), intent(in) :: path
         type(spectrum_t), intent(in) :: spec
         type(status_t), intent(out) :: stat
+        type(error_estimate_t), intent(in), optional :: error
         type(csv_writer_t) :: csv
-        character(len=:), allocatable :: condition
+        character(len=:), allocatable :: condition, estimate
         integer :: i
 
-        call csv%open(path, 'index,re,im,kind,residual,condition')
+        call csv%open(path, 'index,re,im,kind,residual,condition,error_estimate')
         do i = 1, spec%n()
             condition = ''
             if (spec%condition(i) >= 0.0_wp) condition = real_to_text(spec%condition(i))
+            estimate = ''
+            if (present(error) .and. i == spec%lowest_positive()) then
+                if (error%computed) estimate = real_to_text(abs(error%relative))
+            end if
             call csv%row(to_string(i)//','//real_to_text(real(spec%mu(i), wp))//','// &
                 real_to_text(aimag(spec%mu(i)))//','//kind_name(spec%kind(i))//','// &
-                real_to_text(spec%residual(i))//','//condition)
+                real_to_text(spec%residual(i))//','//condition//','//estimate)
         end do
         call csv%close(stat)
     end subroutine write_eigenvalues_csv
 
-    !> mode_001.vtu ...: displacement (real part) and, for complex modes, displacement_imag.
-    subroutine write_modes(stage, prob, spec, n_modes, vtk_format, stat)
+    !> mode_001.vtu ...: displacement (real part) and, for complex modes, displacement_imag;
+    !> the mode of the lowest positive mu gets the cell data error_indicator when `error`
+    !> holds its estimate (eta_K relative to mu, see error_estimate).
+    subroutine write_modes(stage, prob, spec, n_modes, vtk_format, stat, error)
         type(output_stage_t), intent(inout) :: stage
         type(problem_t), intent(in) :: prob
         type(spectrum_t), intent(in) :: spec
         integer, intent(in) :: n_modes
         character(len=*), intent(in) :: vtk_format   !! VTK_BINARY or VTK_ASCII
         type(status_t), intent(out) :: stat
+        type(error_estimate_t), intent(in), optional :: error
         character(len=*), parameter :: FIELD_NAMES(2) = [character(len=17) :: &
                                                           'displacement', 'displacement_imag']
         real(wp), allocatable :: fields(:, :, :)
@@ -227,11 +242,28 @@ contains
                 allocate (fields(2, n_nodes, 1))
             end if
             fields(:, :, 1) = prob%dofs%nodal_field(real(spec%vectors(:, i), wp))
-            call write_vtu(stage%path('mode_'//zero_padded(i, 3)//'.vtu'), prob%mesh, &
-                           FIELD_NAMES(1:size(fields, 3)), fields, vtk_format, stat)
+            if (with_indicators(i)) then
+                call write_vtu(stage%path('mode_'//zero_padded(i, 3)//'.vtu'), prob%mesh, &
+                               FIELD_NAMES(1:size(fields, 3)), fields, vtk_format, stat, &
+                               ['error_indicator'], reshape(error%indicators, &
+                                                            [size(error%indicators), 1]))
+            else
+                call write_vtu(stage%path('mode_'//zero_padded(i, 3)//'.vtu'), prob%mesh, &
+                               FIELD_NAMES(1:size(fields, 3)), fields, vtk_format, stat)
+            end if
             deallocate (fields)
             if (.not. stat%ok()) return
         end do
+
+    contains
+
+        logical function with_indicators(mode)
+            integer, intent(in) :: mode
+            with_indicators = .false.
+            if (.not. present(error)) return
+            with_indicators = error%computed .and. mode == spec%lowest_positive()
+            if (with_indicators) with_indicators = size(error%indicators) == prob%mesh%n_cells()
+        end function with_indicators
     end subroutine write_modes
 
     !> The human summary: mesh, sizes, the headline eigenvalue and the time of each phase.
@@ -261,6 +293,9 @@ contains
                 '  critical c_t = mu |lambda| = '//real_to_text(critical_c_t(mu, res%lambda))// &
                 ', slip sign s = '//to_string(slip_sign(res%lambda))// &
                 ' (u_t '//merge('< 0', '> 0', slip_sign(res%lambda) < 0)//' along t)'//NL
+            if (res%error%computed) text = text//'  relative error estimate of mu: '// &
+                short_real_text(abs(res%error%relative))//' ('// &
+                element_name(res%error%element)//' enrichment)'//NL
         else
             text = text//'  no positive real eigenvalue for this lambda'//NL
         end if
@@ -292,9 +327,9 @@ contains
         type(eigen_result_t), intent(in) :: res
         type(status_t), intent(out) :: stat
         character(len=:), allocatable, intent(out), optional :: plot_note
-        call write_eigenvalues_csv(stage%path('eigenvalues.csv'), res%spec, stat)
+        call write_eigenvalues_csv(stage%path('eigenvalues.csv'), res%spec, stat, res%error)
         if (stat%ok() .and. config%output%vtk) call write_modes(stage, prob, res%spec, &
-            config%output%modes, trim(config%output%vtk_format), stat)
+            config%output%modes, trim(config%output%vtk_format), stat, res%error)
         if (stat%ok() .and. config%output%matrices) call write_matrices(stage, prob, res, stat)
         if (.not. present(plot_note)) return
         plot_note = ''

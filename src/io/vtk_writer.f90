@@ -42,19 +42,37 @@ contains
     !> Write mesh `m` with the nodal vector fields `vectors(:, :, k)` called `names(k)` to
     !> the .vtu file `path` (replaced), encoded as `format` (VTK_BINARY or VTK_ASCII). The
     !> first field is marked as the active vectors. Inconsistent sizes or an unknown format
-    !> give STATUS_INTERNAL, a failed write STATUS_IO naming the file.
-    subroutine write_vtu(path, m, names, vectors, format, stat)
+    !> give STATUS_INTERNAL, a failed write STATUS_IO naming the file. Optional scalar cell
+    !> fields `cell_values(:, k)` called `cell_names(k)` go to CellData (both or neither).
+    subroutine write_vtu(path, m, names, vectors, format, stat, cell_names, cell_values)
         character(len=*), intent(in) :: path
         type(mesh_t), intent(in) :: m
         character(len=*), intent(in) :: names(:)          !! e.g. 'displacement'
         real(wp), intent(in) :: vectors(:, :, :)          !! (N_DIM, n_nodes, size(names))
         character(len=*), intent(in) :: format            !! VTK_BINARY or VTK_ASCII
         type(status_t), intent(out) :: stat
+        character(len=*), intent(in), optional :: cell_names(:)    !! e.g. 'error_indicator'
+        real(wp), intent(in), optional :: cell_values(:, :)        !! (n_cells, size(cell_names))
         character(len=1024) :: msg
+        character(len=128), allocatable :: scalar_names(:)
+        real(wp), allocatable :: scalars(:, :)
         integer :: unit, ios, ignored
 
         call check_arguments(m, names, vectors, stat)
         if (.not. stat%ok()) return
+        if (present(cell_names) .and. present(cell_values)) then
+            if (size(cell_values, 1) /= m%n_cells() .or. &
+                size(cell_values, 2) /= size(cell_names)) then
+                call stat%fail(STATUS_INTERNAL, 'write_vtu: cell fields must be (n_cells, '// &
+                               'number of names)')
+                return
+            end if
+            scalar_names = cell_names
+            scalars = cell_values
+        else
+            allocate (scalar_names(0))
+            allocate (scalars(m%n_cells(), 0))
+        end if
         select case (format)
         case (VTK_BINARY)
             call check_binary_support(stat)
@@ -71,9 +89,9 @@ contains
         end select
         if (ios == 0) then
             if (format == VTK_BINARY) then
-                call write_binary_grid(unit, m, names, vectors, ios, msg)
+                call write_binary_grid(unit, m, names, vectors, scalar_names, scalars, ios, msg)
             else
-                call write_ascii_grid(unit, m, names, vectors, ios, msg)
+                call write_ascii_grid(unit, m, names, vectors, scalar_names, scalars, ios, msg)
             end if
             if (ios /= 0) then
                 close (unit, iostat=ignored)
@@ -146,20 +164,22 @@ contains
     !> The XML with every array in the appended section, laid out as
     !> `_ n1 data1 n2 data2 ...`, each n a UInt64 byte count in the machine's byte order.
     !> Returns at the first failed write with its iostat and message.
-    subroutine write_binary_grid(unit, m, names, vectors, ios, msg)
+    subroutine write_binary_grid(unit, m, names, vectors, cell_names, cell_values, ios, msg)
         integer, intent(in) :: unit
         type(mesh_t), intent(in) :: m
-        character(len=*), intent(in) :: names(:)
-        real(wp), intent(in) :: vectors(:, :, :)
+        character(len=*), intent(in) :: names(:), cell_names(:)
+        real(wp), intent(in) :: vectors(:, :, :), cell_values(:, :)
         integer, intent(out) :: ios
         character(len=*), intent(inout) :: msg
-        integer(i8) :: bytes(size(names) + 4), offset(size(names) + 5)
+        integer(i8) :: bytes(size(names) + size(cell_names) + 4)
+        integer(i8) :: offset(size(names) + size(cell_names) + 5)
         integer(i8) :: n_nodes, n_cells, n_entries, index_bytes, data_start, position
         character(len=:), allocatable :: xml, index_type
         logical :: wide
-        integer :: k, n_fields
+        integer :: k, n_fields, n_all
 
         n_fields = size(names)
+        n_all = n_fields + size(cell_names)   ! the nodal fields, then the cell fields
         n_nodes = m%n_nodes()
         n_cells = m%n_cells()
         n_entries = int(size(m%cells, 1), i8)*n_cells
@@ -173,11 +193,13 @@ contains
             index_type = 'Int32'
             index_bytes = 4
         end if
-        ! Arrays in file order: the fields, points, connectivity, offsets, types.
-        bytes(1:n_fields + 1) = 3*REAL_BYTES*n_nodes
-        bytes(n_fields + 2) = index_bytes*n_entries
-        bytes(n_fields + 3) = index_bytes*n_cells
-        bytes(n_fields + 4) = n_cells
+        ! Arrays in file order: the fields, cell fields, points, connectivity, offsets, types.
+        bytes(1:n_fields) = 3*REAL_BYTES*n_nodes
+        bytes(n_fields + 1:n_all) = REAL_BYTES*n_cells
+        bytes(n_all + 1) = 3*REAL_BYTES*n_nodes
+        bytes(n_all + 2) = index_bytes*n_entries
+        bytes(n_all + 3) = index_bytes*n_cells
+        bytes(n_all + 4) = n_cells
         offset(1) = 0
         do k = 1, size(bytes)
             offset(k + 1) = offset(k) + HEADER_BYTES + bytes(k)
@@ -191,11 +213,19 @@ contains
             end do
             xml = xml//'      </PointData>'//LF
         end if
-        xml = xml//'      <Points>'//LF//data_array_tag('Float64', '', 3, offset(n_fields + 1)) &
+        if (n_all > n_fields) then
+            xml = xml//'      <CellData Scalars="'//xml_escaped(trim(cell_names(1)))//'">'//LF
+            do k = n_fields + 1, n_all
+                xml = xml//data_array_tag('Float64', trim(cell_names(k - n_fields)), 0, &
+                                          offset(k))//LF
+            end do
+            xml = xml//'      </CellData>'//LF
+        end if
+        xml = xml//'      <Points>'//LF//data_array_tag('Float64', '', 3, offset(n_all + 1)) &
               //LF//'      </Points>'//LF//'      <Cells>'//LF &
-              //data_array_tag(index_type, 'connectivity', 0, offset(n_fields + 2))//LF &
-              //data_array_tag(index_type, 'offsets', 0, offset(n_fields + 3))//LF &
-              //data_array_tag('UInt8', 'types', 0, offset(n_fields + 4))//LF &
+              //data_array_tag(index_type, 'connectivity', 0, offset(n_all + 2))//LF &
+              //data_array_tag(index_type, 'offsets', 0, offset(n_all + 3))//LF &
+              //data_array_tag('UInt8', 'types', 0, offset(n_all + 4))//LF &
               //'      </Cells>'//LF//'    </Piece>'//LF//'  </UnstructuredGrid>'//LF &
               //'  <AppendedData encoding="raw">'//LF//'   _'
         write (unit, iostat=ios, iomsg=msg) xml
@@ -208,11 +238,13 @@ contains
             if (ios /= 0) return
             if (k <= n_fields) then
                 call write_vector_block(unit, vectors(:, :, k), ios, msg)
-            else if (k == n_fields + 1) then
+            else if (k <= n_all) then
+                write (unit, iostat=ios, iomsg=msg) cell_values(:, k - n_fields)
+            else if (k == n_all + 1) then
                 call write_vector_block(unit, m%coords, ios, msg)
-            else if (k == n_fields + 2) then
+            else if (k == n_all + 2) then
                 call write_connectivity_block(unit, m, wide, ios, msg)
-            else if (k == n_fields + 3) then
+            else if (k == n_all + 3) then
                 call write_offsets_block(unit, size(m%cells, 1), m%n_cells(), wide, ios, msg)
             else
                 call write_types_block(unit, vtk_cell_type(m%element), m%n_cells(), ios, msg)
@@ -312,11 +344,11 @@ contains
 
     !> The XML with every value as text; returns at the first failed write with its iostat
     !> and message.
-    subroutine write_ascii_grid(unit, m, names, vectors, ios, msg)
+    subroutine write_ascii_grid(unit, m, names, vectors, cell_names, cell_values, ios, msg)
         integer, intent(in) :: unit
         type(mesh_t), intent(in) :: m
-        character(len=*), intent(in) :: names(:)
-        real(wp), intent(in) :: vectors(:, :, :)
+        character(len=*), intent(in) :: names(:), cell_names(:)
+        real(wp), intent(in) :: vectors(:, :, :), cell_values(:, :)
         integer, intent(out) :: ios
         character(len=*), intent(inout) :: msg
         integer, allocatable :: order(:)
@@ -343,6 +375,24 @@ contains
                 if (ios /= 0) return
             end do
             write (unit, '(a)', iostat=ios, iomsg=msg) '      </PointData>'
+            if (ios /= 0) return
+        end if
+        if (size(cell_names) > 0) then
+            write (unit, '(a)', iostat=ios, iomsg=msg) &
+                '      <CellData Scalars="'//xml_escaped(trim(cell_names(1)))//'">'
+            if (ios /= 0) return
+            do k = 1, size(cell_names)
+                write (unit, '(a)', iostat=ios, iomsg=msg) &
+                    data_array_tag('Float64', trim(cell_names(k)), 0, INLINE)
+                if (ios /= 0) return
+                do i = 1, m%n_cells()
+                    write (unit, REAL_FORMAT, iostat=ios, iomsg=msg) cell_values(i, k)
+                    if (ios /= 0) return
+                end do
+                write (unit, '(a)', iostat=ios, iomsg=msg) '        </DataArray>'
+                if (ios /= 0) return
+            end do
+            write (unit, '(a)', iostat=ios, iomsg=msg) '      </CellData>'
             if (ios /= 0) return
         end if
 
