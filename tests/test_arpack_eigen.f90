@@ -224,9 +224,9 @@ contains
         type(test_suite_t), intent(inout) :: t
         real(wp), parameter :: LAMBDAS(9) = [2.5_wp, 3.0_wp, 5.0_wp, 10.0_wp, 30.0_wp, &
                                              100.0_wp, -2.5_wp, -5.0_wp, -100.0_wp]
-        character(len=*), parameter :: ELEMENTS(3) = ['p1', 'p1', 'q1']
-        character(len=*), parameter :: DIAGONALS(3) = [character(len=5) :: 'right', 'left', &
-                                                                            'right']
+        character(len=*), parameter :: ELEMENTS(5) = ['p1', 'p1', 'q1', 'p3', 'p4']
+        character(len=*), parameter :: DIAGONALS(5) = [character(len=5) :: 'right', 'left', &
+                                                       'right', 'left', 'right']
         integer, parameter :: SIZES(3) = [4, 8, 20]   ! p = 5 is nearly the smallest ARPACK takes
         type(config_t) :: config
         real(wp) :: mu_dense, mu_arpack, r_dense, r_arpack
