@@ -402,7 +402,8 @@ contains
     !> the orders coincide, and this is where a difference would go. The VTK Lagrange
     !> triangle too lists corners, then the edge nodes edge by edge from corner k towards
     !> corner k+1, then the interior nodes as a triangle of degree p - 3 (P3: the centre;
-    !> P4: three nodes, next to corners 1, 2, 3): Gmsh's order up to degree 4.
+    !> P4: three nodes, next to corners 1, 2, 3; vtkHigherOrderTriangle's parametric
+    !> coordinates): Gmsh's order up to degree 4.
     pure function vtk_node_order(element) result(order)
         integer, intent(in) :: element
         integer, allocatable :: order(:)
