@@ -555,7 +555,8 @@ contains
     !> Aubin-Nitsche gives ||u - u_h||_L2 = C h^(k+1) + O(h^(k+2)): order 2 for P1/Q1, 3 for
     !> P2/Q2, 4 for P3, 5 for P4. From h = 1/8 to 1/16 the higher-order term changes the
     !> observed order by about h ~ 0.1 (it was within 0.07 when this test was written; P3
-    !> 4.06, P4 5.00 on their introduction); +-0.3 allows for that and still rejects an order lost to a wrong element (a whole order or more).
+    !> 4.06, P4 5.00 on their introduction); +-0.3 allows for that and still rejects an order
+    !> lost to a wrong element (a whole order or more).
     subroutine check_convergence(element)
         integer, intent(in) :: element
         integer, parameter :: SIZES(3) = [4, 8, 16]

@@ -1,8 +1,8 @@
 ! SPDX-License-Identifier: MIT
 !> The Gmsh reader: structured grids written here as MSH 4.1 and MSH 2.2 read back to the
 !> same mesh and give the eigenvalues of the rectangle generator (P1, Q1, P2, Q2, P3, P4);
-!> clockwise files are reoriented; the single element of SPEC section 4 read from its .msh matches the
-!> closed form; each bad file fails with STATUS_MESH naming the file and the line.
+!> clockwise files are reoriented; the single element of SPEC section 4 read from its .msh
+!> matches the closed form; each bad file fails with STATUS_MESH naming the file and the line.
 program test_mesh_gmsh
     use kinds, only: wp
     use status, only: status_t, STATUS_MESH, STATUS_BAD_INPUT
