@@ -17,8 +17,8 @@ DEFAULT_SIZES=4,8,16,32,64
 usage() {
     cat <<EOF
 usage: scripts/sweep_mesh.sh [-e FAMILIES] [-n SIZES] [-j JOBS] [-o OUTDIR] [-s] TEMPLATE.nml
-  -e FAMILIES  comma list of element[:mesh]: element p1, q1, p2, q2; mesh 'right' or 'left'
-               (structured triangles, default: the template's diagonal) or 'delaunay'
+  -e FAMILIES  comma list of element[:mesh]: element p1, q1, p2, q2, p3, p4; mesh 'right'
+               or 'left' (structured triangles, default: the template's diagonal) or 'delaunay'
                (a Gmsh mesh, triangles only); 'delaunay' alone means p1:delaunay.
                Default: $DEFAULT_FAMILIES
   -n SIZES     comma list of N, the mesh size being h = 1/N. Default: $DEFAULT_SIZES
@@ -69,7 +69,7 @@ parse_family() {
     mesh=
     [[ $family == *:* ]] && mesh=${family#*:}
     case $element in
-        p1 | p2) [[ -z $mesh || $mesh =~ ^(right|left|delaunay)$ ]] || return 0 ;;
+        p1 | p2 | p3 | p4) [[ -z $mesh || $mesh =~ ^(right|left|delaunay)$ ]] || return 0 ;;
         q1 | q2) [[ -z $mesh ]] || return 0; mesh=quad ;;
         *) return 0 ;;
     esac
@@ -106,8 +106,7 @@ run_one() {
     # command-line overrides, checked by nceig like the file's own values.
     local -a settings
     if [[ $mesh == delaunay ]]; then
-        local order=1
-        [[ $element == p2 ]] && order=2
+        local order=${element#p}
         if [[ ! -f $root/scripts/make_mesh.sh ]]; then
             echo "failed: scripts/make_mesh.sh is missing (Gmsh meshes)" >"$dir/status"
         else
@@ -443,7 +442,7 @@ IFS=, read -r -a size_list <<<"$sizes"
 ((${#family_list[@]} > 0)) || die "-e: no family given"
 ((${#size_list[@]} > 0)) || die "-n: no size given"
 for family in "${family_list[@]}"; do
-    [[ -n $(parse_family "$family") ]] || die "-e: malformed family '$family': expected element[:mesh] with element p1, q1, p2 or q2 and mesh right, left or delaunay (triangles only), or 'delaunay'"
+    [[ -n $(parse_family "$family") ]] || die "-e: malformed family '$family': expected element[:mesh] with element p1, q1, p2, q2, p3 or p4 and mesh right, left or delaunay (triangles only), or 'delaunay'"
 done
 for n in "${size_list[@]}"; do
     [[ $n =~ ^[1-9][0-9]*$ ]] || die "-n: '$n' is not a positive integer"

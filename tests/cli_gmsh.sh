@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
-# Gmsh meshes end to end: scripts/make_mesh.sh (Delaunay, order 1 and 2, MSH 4.1 and 2.2),
+# Gmsh meshes end to end: scripts/make_mesh.sh (Delaunay, order 1 to 4, MSH 4.1 and 2.2),
 # structured grids meshed by Gmsh (transfinite) against the rectangle generator for P1, Q1,
-# P2, Q2, the shipped inputs delaunay.nml and single_element.nml, and a bad mesh file on the
+# P2, Q2, P3, P4, the shipped inputs delaunay.nml and single_element.nml, and a bad mesh file on the
 # command line. Usage: cli_gmsh.sh NCEIG SOURCE_DIR. Without gmsh: one SKIP line, pass.
 set -u
 nceig=$1
@@ -23,7 +23,7 @@ run() {  # name, mesh text (the &mesh body); writes out_<name>/summary.json, <na
 }
 
 # Delaunay meshes from the shipped script, both orders and both formats.
-for order in 1 2; do
+for order in 1 2 3 4; do
     for format in msh41 msh22; do
         name=d${order}_$format
         bash "$source_dir/scripts/make_mesh.sh" 8 "$order" "$name.msh" "$format"
@@ -36,11 +36,13 @@ for order in 1 2; do
     # The same mesh in both formats: identical results.
     check "order $order: MSH 2.2 and 4.1 give the identical lowest mu" \
         '[[ $(json out_d${order}_msh41/summary.json lowest_positive_mu) == $(json out_d${order}_msh22/summary.json lowest_positive_mu) ]]'
-    check "order $order: quadratic VTU cell type" \
-        'grep -q "^ *$([[ $order == 1 ]] && echo 5 || echo 22)\( \|$\)" out_d${order}_msh41/mode_001.vtu'
+    # VTK cell types: triangle 5, quadratic triangle 22, Lagrange triangle 69.
+    case $order in 1) vtk_type=5 ;; 2) vtk_type=22 ;; *) vtk_type=69 ;; esac
+    check "order $order: VTU cell type $vtk_type" \
+        'grep -q "^ *$vtk_type\( \|$\)" out_d${order}_msh41/mode_001.vtu'
 done
-bash "$source_dir/scripts/make_mesh.sh" 8 3 x.msh 2>/dev/null; rc=$?
-check 'make_mesh.sh rejects order 3' '[[ $rc -ne 0 ]]'
+bash "$source_dir/scripts/make_mesh.sh" 8 5 x.msh 2>/dev/null; rc=$?
+check 'make_mesh.sh rejects order 5' '[[ $rc -ne 0 ]]'
 bash "$source_dir/scripts/make_mesh.sh" 2>/dev/null; rc=$?
 check 'make_mesh.sh without arguments: usage error' '[[ $rc -eq 2 ]]'
 
@@ -48,8 +50,8 @@ check 'make_mesh.sh without arguments: usage error' '[[ $rc -eq 2 ]]'
 # square from lower-left to upper-right as diagonal = 'right' does) against the generator.
 # Gmsh places the inner grid nodes to ~1e-12, so the eigenvalues agree to ~1e-11; 1e-8
 # still separates them from any other mesh of this size (which differ by 1e-3 or more).
-for element in p1 q1 p2 q2; do
-    case $element in p1|p2) recombine='' ;; *) recombine='Recombine Surface{1};' ;; esac
+for element in p1 q1 p2 q2 p3 p4; do
+    case $element in p*) recombine='' ;; *) recombine='Recombine Surface{1};' ;; esac
     order=${element#?}
     cat >grid.geo <<GEO
 Point(1) = {0, 0, 0}; Point(2) = {1, 0, 0}; Point(3) = {1, 1, 0}; Point(4) = {0, 1, 0};

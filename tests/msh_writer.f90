@@ -3,14 +3,17 @@
 !> reader's round trip and the seeds of its fuzz test).
 module msh_writer
     use mesh, only: mesh_t
-    use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2
+    use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, ELEMENT_P3, &
+                             ELEMENT_P4
     use strings, only: to_string
     implicit none
     private
     public :: write_msh41, write_msh22
 
     ! Gmsh element type codes and the body's physical tag, as the files written here use.
-    integer, parameter :: GMSH_TYPES(4) = [2, 3, 9, 10]       !! P1, Q1, P2, Q2 cells
+    integer, parameter :: GMSH_TYPES(6) = [2, 3, 9, 10, 21, 23]   !! P1, Q1, P2, Q2, P3, P4
+    !> Line types by nodes per edge: 2, 3, 4, 5.
+    integer, parameter :: GMSH_LINE_TYPES(2:5) = [1, 8, 26, 27]
     integer, parameter :: BODY_TAG = 5
     ! Node tags in the written files: sparse and not in node order, so that the reader's
     ! tag lookup (not a shortcut for 1..n) is exercised.
@@ -33,6 +36,10 @@ contains
         case (ELEMENT_Q1); order = [1, 4, 3, 2]
         case (ELEMENT_P2); order = [1, 3, 2, 6, 5, 4]
         case (ELEMENT_Q2); order = [1, 4, 3, 2, 8, 7, 6, 5, 9]
+        ! Edges reversed and in reverse order; the interior nodes next to corners 2 and 3
+        ! swap places (P4).
+        case (ELEMENT_P3); order = [1, 3, 2, 9, 8, 7, 6, 5, 4, 10]
+        case (ELEMENT_P4); order = [1, 3, 2, 12, 11, 10, 9, 8, 7, 6, 5, 4, 13, 15, 14]
         end select
     end function clockwise_order
 
@@ -68,7 +75,7 @@ contains
         n_edges = size(m%edges, 2)
         write (unit, '(a)') '5 '//to_string(n_edges + m%n_cells())//' 1 '// &
             to_string(n_edges + m%n_cells())
-        line_type = merge(8, 1, size(m%edges, 1) == 3)
+        line_type = GMSH_LINE_TYPES(size(m%edges, 1))
         tag = 0
         do part = 1, 4
             write (unit, '(a)') '1 '//to_string(part)//' '//to_string(line_type)//' '// &
@@ -107,7 +114,7 @@ contains
         end do
         n_edges = size(m%edges, 2)
         write (unit, '(a)') '$EndNodes', '$Elements', to_string(n_edges + m%n_cells())
-        line_type = merge(8, 1, size(m%edges, 1) == 3)
+        line_type = GMSH_LINE_TYPES(size(m%edges, 1))
         tag = 0
         do part = 1, 4
             do i = 1, n_edges

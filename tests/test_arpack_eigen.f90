@@ -31,9 +31,43 @@ program test_arpack_eigen
     call agrees_near_the_threshold(t)
     call target_finds_the_same_lowest(t)
     call too_few_contact_nodes(t)
+    call reference_scene_converges(t, 'p3')
+    call reference_scene_converges(t, 'p4')
     call t%report()
 
 contains
+
+    !> The reference scene at lambda = 5 with P3 or P4 on N x N squares, N = 4, 8, 16: mu
+    !> rises towards the mesh limit 0.7528436 (Richardson from the P1/P2 sweeps) and the
+    !> error falls by more than 2.5 per halving of h (about 3: the corner singularities at
+    !> the ends of the contact side, not the degree, set the rate); N = 16 is within 4e-5.
+    !> Measured: P3 0.7525593, 0.7527432, 0.7528130; P4 0.7527148, 0.7528063, 0.7528320.
+    subroutine reference_scene_converges(t, element)
+        type(test_suite_t), intent(inout) :: t
+        character(len=*), intent(in) :: element
+        real(wp), parameter :: LIMIT = 0.7528436_wp
+        integer, parameter :: SIZES(3) = [4, 8, 16]
+        type(config_t) :: config
+        real(wp) :: mu(3), r
+        character(len=:), allocatable :: warning
+        logical :: ok, all_ok
+        integer :: s
+        all_ok = .true.
+        do s = 1, size(SIZES)
+            call scene(SIZES(s), element, 'right', config)
+            call lowest(config, 'auto', 5.0_wp, mu(s), r, warning, ok)
+            all_ok = all_ok .and. ok
+        end do
+        write (*, '(a, 3f14.10)') '      '//element//' reference scene, N = 4, 8, 16: mu =', mu
+        call t%check(element//' reference scene: solves succeed', all_ok)
+        call t%check(element//' reference scene: mu rises towards the limit from below', &
+                     all(mu < LIMIT) .and. mu(2) > mu(1) .and. mu(3) > mu(2))
+        call t%check(element//' reference scene: error falls by > 2.5 per halving of h', &
+                     (LIMIT - mu(1)) > 2.5_wp*(LIMIT - mu(2)) .and. &
+                     (LIMIT - mu(2)) > 2.5_wp*(LIMIT - mu(3)))
+        call t%check(element//' reference scene: N = 16 within 4e-5 of the limit', &
+                     LIMIT - mu(3) < 4.0e-5_wp)
+    end subroutine reference_scene_converges
 
     subroutine scene(n, element, diagonal, config)
         integer, intent(in) :: n
@@ -224,9 +258,9 @@ contains
         type(test_suite_t), intent(inout) :: t
         real(wp), parameter :: LAMBDAS(9) = [2.5_wp, 3.0_wp, 5.0_wp, 10.0_wp, 30.0_wp, &
                                              100.0_wp, -2.5_wp, -5.0_wp, -100.0_wp]
-        character(len=*), parameter :: ELEMENTS(3) = ['p1', 'p1', 'q1']
-        character(len=*), parameter :: DIAGONALS(3) = [character(len=5) :: 'right', 'left', &
-                                                                            'right']
+        character(len=*), parameter :: ELEMENTS(5) = ['p1', 'p1', 'q1', 'p3', 'p4']
+        character(len=*), parameter :: DIAGONALS(5) = [character(len=5) :: 'right', 'left', &
+                                                       'right', 'left', 'right']
         integer, parameter :: SIZES(3) = [4, 8, 20]   ! p = 5 is nearly the smallest ARPACK takes
         type(config_t) :: config
         real(wp) :: mu_dense, mu_arpack, r_dense, r_arpack

@@ -1,13 +1,15 @@
 ! SPDX-License-Identifier: MIT
 !> Global stiffness assembly on structured meshes of every element type: agreement with an
 !> independent dense assembly, symmetry, rigid-body modes, positive definiteness with the top
-!> side clamped, and patch tests (linear fields exactly; quadratic fields for P2/Q2).
+!> side clamped, and patch tests (linear fields exactly; quadratic fields for P2/Q2; fields
+!> of the element's degree for P3/P4); L2 convergence of order p + 1.
 program test_assembly
     use kinds, only: wp
     use status, only: status_t, STATUS_MESH, STATUS_BAD_INPUT
     use mesh, only: mesh_t
-    use element_types, only: ELEMENT_P1, ELEMENT_P2, ELEMENT_Q2, element_name, &
-                             element_nodes_per_cell
+    use element_types, only: ELEMENT_P1, ELEMENT_P2, ELEMENT_Q2, ELEMENT_P3, ELEMENT_P4, &
+                             MAX_ELEMENT, element_name, element_nodes_per_cell, &
+                             element_degree, element_corners
     use mesh_structured, only: structured_rectangle
     use dof_map, only: dof_map_t, build_dof_map, cell_dofs
     use assembly, only: assemble_stiffness
@@ -49,13 +51,13 @@ program test_assembly
     integer :: element
 
     t%name = 'test_assembly'
-    do element = ELEMENT_P1, ELEMENT_Q2
+    do element = ELEMENT_P1, MAX_ELEMENT
         call check_free(element, 'right')
-        if (element == ELEMENT_P1 .or. element == ELEMENT_P2) call check_free(element, 'left')
+        if (element_corners(element) == 3) call check_free(element, 'left')
         call check_clamped(element)
     end do
     call check_errors()
-    do element = ELEMENT_P1, ELEMENT_Q2
+    do element = ELEMENT_P1, MAX_ELEMENT
         call check_convergence(element)
     end do
     call t%report()
@@ -150,7 +152,134 @@ contains
             call t%check('quadratic patch: K u = body + traction load everywhere'//label, &
                          maxval(abs(ku - load)) <= RESIDUAL_TOL*norm_k*maxval(abs(u)))
         end if
+        if (element == ELEMENT_P3 .or. element == ELEMENT_P4) then
+            ! A field of the element's degree p, in the space: K u equals its consistent
+            ! loads int f.N_a + int (sigma n).N_a, integrated exactly (degree 2p - 2 over
+            ! the cells, 2p - 1 along the edges).
+            u = polynomial_field(m, element_degree(element))
+            call k%matvec(u, ku)
+            load = polynomial_load(m, element_degree(element))
+            call t%check('degree-p patch: K u = body + traction load everywhere'//label, &
+                         maxval(abs(ku - load)) <= RESIDUAL_TOL*norm_k*maxval(abs(u)))
+        end if
     end subroutine check_free
+
+    !> Coefficients of the field u_i = sum_k POLY(i, k) x^ex(k) y^ey(k) over the monomials of
+    !> degree exactly p (3 or 4) plus the quadratic field QUAD, so that every degree <= p
+    !> that a wrong stiffness could miss is present.
+    subroutine polynomial_terms(p, coefficients, ex, ey)
+        integer, intent(in) :: p
+        real(wp), allocatable, intent(out) :: coefficients(:, :)
+        integer, allocatable, intent(out) :: ex(:), ey(:)
+        integer :: k
+        ex = [2, 1, 0, [(p - k, k=0, p)]]
+        ey = [0, 1, 2, [(k, k=0, p)]]
+        allocate (coefficients(2, size(ex)))
+        coefficients(1, 1:3) = QUAD(1:3)
+        coefficients(2, 1:3) = QUAD(4:6)
+        do k = 4, size(ex)
+            coefficients(:, k) = [0.3_wp + 0.11_wp*k, 0.2_wp - 0.13_wp*k]*(-1)**k
+        end do
+    end subroutine polynomial_terms
+
+    function polynomial_field(m, p) result(u)
+        type(mesh_t), intent(in) :: m
+        integer, intent(in) :: p
+        real(wp), allocatable :: u(:), coefficients(:, :)
+        integer, allocatable :: ex(:), ey(:)
+        integer :: k
+        call polynomial_terms(p, coefficients, ex, ey)
+        allocate (u(2*m%n_nodes()), source=0.0_wp)
+        do k = 1, size(ex)
+            u(1::2) = u(1::2) + coefficients(1, k)*m%coords(1, :)**ex(k)*m%coords(2, :)**ey(k)
+            u(2::2) = u(2::2) + coefficients(2, k)*m%coords(1, :)**ex(k)*m%coords(2, :)**ey(k)
+        end do
+    end function polynomial_field
+
+    !> Gradient g(i, j) = d u_i / d x_j and second derivatives h(i, j, l) = d2 u_i / dx_j dx_l
+    !> of the polynomial field at x.
+    subroutine polynomial_derivatives(p, x, g, h)
+        integer, intent(in) :: p
+        real(wp), intent(in) :: x(2)
+        real(wp), intent(out) :: g(2, 2), h(2, 2, 2)
+        real(wp), allocatable :: coefficients(:, :)
+        integer, allocatable :: ex(:), ey(:)
+        integer :: k
+        call polynomial_terms(p, coefficients, ex, ey)
+        g = 0.0_wp
+        h = 0.0_wp
+        do k = 1, size(ex)
+            associate (i => ex(k), j => ey(k), c => coefficients(:, k))
+                g(:, 1) = g(:, 1) + c*i*power(x(1), i - 1)*power(x(2), j)
+                g(:, 2) = g(:, 2) + c*j*power(x(1), i)*power(x(2), j - 1)
+                h(:, 1, 1) = h(:, 1, 1) + c*i*(i - 1)*power(x(1), i - 2)*power(x(2), j)
+                h(:, 1, 2) = h(:, 1, 2) + c*i*j*power(x(1), i - 1)*power(x(2), j - 1)
+                h(:, 2, 2) = h(:, 2, 2) + c*j*(j - 1)*power(x(1), i)*power(x(2), j - 2)
+            end associate
+        end do
+        h(:, 2, 1) = h(:, 1, 2)
+    end subroutine polynomial_derivatives
+
+    !> x^n, 0 for n < 0 (where the factor in front vanishes anyway).
+    pure real(wp) function power(x, n)
+        real(wp), intent(in) :: x
+        integer, intent(in) :: n
+        power = 0.0_wp
+        if (n >= 0) power = x**n
+    end function power
+
+    !> int f.N_a over the cells (f = -div sigma, degree p - 2; rule of degree 8) plus
+    !> int (sigma n).N_a over the boundary edges (5-point Gauss, exact to degree 9).
+    function polynomial_load(m, p) result(load)
+        type(mesh_t), intent(in) :: m
+        integer, intent(in) :: p
+        real(wp), allocatable :: load(:)
+        type(quadrature_rule_t) :: rule
+        real(wp) :: values(MAX_NODES), gradients(2, MAX_NODES), jacobian(2, 2), det, x(2), &
+                    g(2, 2), h(2, 2, 2), f(2), stress(3), traction(2), n(2), length, &
+                    line_values(5), derivatives(5), lame_l, shear_g
+        integer :: cell, q, a, node, e, per_cell, per_edge
+        call lame_coefficients(YOUNG, POISSON, lame_l, shear_g)
+        allocate (load(2*m%n_nodes()), source=0.0_wp)
+        per_cell = size(m%cells, 1)
+        rule = triangle_rule(8)
+        do cell = 1, m%n_cells()
+            do q = 1, rule%n_points
+                call evaluate_shape(m%element, rule%points(:, q), values, gradients)
+                call jacobian_at(m%element, m%coords(:, m%cells(:, cell)), rule%points(:, q), &
+                                 jacobian, det)
+                x = matmul(m%coords(:, m%cells(:, cell)), values(:per_cell))
+                call polynomial_derivatives(p, x, g, h)
+                ! div sigma = (L + G) grad div u + G lap u
+                f = -((lame_l + shear_g)*[h(1, 1, 1) + h(2, 2, 1), h(1, 1, 2) + h(2, 2, 2)] &
+                      + shear_g*(h(:, 1, 1) + h(:, 2, 2)))
+                do a = 1, per_cell
+                    node = m%cells(a, cell)
+                    load(2*node - 1:2*node) = load(2*node - 1:2*node) + &
+                                              rule%weights(q)*det*values(a)*f
+                end do
+            end do
+        end do
+        per_edge = size(m%edges, 1)
+        rule = line_rule(5)
+        do e = 1, size(m%edges, 2)
+            n = side_normal(m%part_names(m%edge_part(e)))
+            length = norm2(m%coords(:, m%edges(2, e)) - m%coords(:, m%edges(1, e)))
+            do q = 1, rule%n_points
+                call evaluate_line_shape(per_edge, rule%points(1, q), line_values, derivatives)
+                x = matmul(m%coords(:, m%edges(:, e)), line_values(:per_edge))
+                call polynomial_derivatives(p, x, g, h)
+                stress = matmul(plane_strain_matrix(YOUNG, POISSON), &
+                                [g(1, 1), g(2, 2), g(1, 2) + g(2, 1)])
+                traction = [stress(1)*n(1) + stress(3)*n(2), stress(3)*n(1) + stress(2)*n(2)]
+                do a = 1, per_edge
+                    node = m%edges(a, e)
+                    load(2*node - 1:2*node) = load(2*node - 1:2*node) + &
+                        rule%weights(q)*0.5_wp*length*line_values(a)*traction
+                end do
+            end do
+        end do
+    end function polynomial_load
 
     !> Top side clamped: the rigid modes are gone and K is positive definite.
     subroutine check_clamped(element)
@@ -164,7 +293,7 @@ contains
         character(len=:), allocatable :: label
 
         label = ' ('//element_name(element)//')'
-        step = merge(2, 1, element == ELEMENT_P2 .or. element == ELEMENT_Q2)
+        step = element_degree(element)
         call structured_rectangle(WIDTH, HEIGHT, NX, NY, element, 'right', m, stat)
         call build_dof_map(m, [m%part_index('top')], dofs, stat)
         call t%check('top clamped: 2 (nodes - top row) free dofs'//label, &
@@ -295,11 +424,13 @@ contains
 
     !> Consistent nodal forces of the constant traction sigma(u) n of the linear field:
     !> int N_a ds over a straight edge of length h is h/2 for each end of a 2-node edge,
-    !> and h/6, h/6, 2h/3 (Simpson) for the ends and mid node of a 3-node edge.
+    !> and h/6, h/6, 2h/3 (Simpson) for the ends and mid node of a 3-node edge; Simpson's 3/8
+    !> rule (h/8 at the ends, 3h/8 inside) for 4 nodes and Boole's rule (7h/90 at the ends,
+    !> 32h/90, 12h/90, 32h/90 inside) for 5.
     function linear_traction_load(m) result(load)
         type(mesh_t), intent(in) :: m
         real(wp), allocatable :: load(:)
-        real(wp) :: stress(3), traction(2), n(2), h, weights(3)
+        real(wp) :: stress(3), traction(2), n(2), h, weights(5)
         integer :: e, a, node
         allocate (load(2*m%n_nodes()), source=0.0_wp)
         stress = matmul(plane_strain_matrix(YOUNG, POISSON), [LIN(2), LIN(6), LIN(3) + LIN(5)])
@@ -307,11 +438,12 @@ contains
             n = side_normal(m%part_names(m%edge_part(e)))
             traction = [stress(1)*n(1) + stress(3)*n(2), stress(3)*n(1) + stress(2)*n(2)]
             h = norm2(m%coords(:, m%edges(2, e)) - m%coords(:, m%edges(1, e)))
-            if (size(m%edges, 1) == 2) then
-                weights(1:2) = [0.5_wp, 0.5_wp]
-            else
-                weights = [1.0_wp, 1.0_wp, 4.0_wp]/6.0_wp
-            end if
+            select case (size(m%edges, 1))
+            case (2); weights(1:2) = [0.5_wp, 0.5_wp]
+            case (3); weights(1:3) = [1.0_wp, 1.0_wp, 4.0_wp]/6.0_wp
+            case (4); weights(1:4) = [1.0_wp, 1.0_wp, 3.0_wp, 3.0_wp]/8.0_wp
+            case (5); weights(1:5) = [7.0_wp, 7.0_wp, 32.0_wp, 12.0_wp, 32.0_wp]/90.0_wp
+            end select
             do a = 1, size(m%edges, 1)
                 node = m%edges(a, e)
                 load(2*node - 1:2*node) = load(2*node - 1:2*node) + weights(a)*h*traction
@@ -421,9 +553,10 @@ contains
     !> u = (sin(pi x) sin(pi y), sin(pi x) cos(pi y)), Dirichlet data (its interpolant) on the
     !> whole boundary and the body force f = -div sigma(u). On a convex domain with smooth u,
     !> Aubin-Nitsche gives ||u - u_h||_L2 = C h^(k+1) + O(h^(k+2)): order 2 for P1/Q1, 3 for
-    !> P2/Q2. From h = 1/8 to 1/16 the higher-order term changes the observed order by about
-    !> h ~ 0.1 (it was within 0.07 when this test was written); +-0.3 allows for that and
-    !> still rejects an order lost to a wrong element (a whole order or more).
+    !> P2/Q2, 4 for P3, 5 for P4. From h = 1/8 to 1/16 the higher-order term changes the
+    !> observed order by about h ~ 0.1 (it was within 0.07 when this test was written; P3
+    !> 4.06, P4 5.00 on their introduction); +-0.3 allows for that and still rejects an order
+    !> lost to a wrong element (a whole order or more).
     subroutine check_convergence(element)
         integer, intent(in) :: element
         integer, parameter :: SIZES(3) = [4, 8, 16]
@@ -435,7 +568,7 @@ contains
         do i = 1, size(SIZES)
             errors(i) = manufactured_l2_error(element, SIZES(i))
         end do
-        expected = merge(3.0_wp, 2.0_wp, element == ELEMENT_P2 .or. element == ELEMENT_Q2)
+        expected = real(element_degree(element) + 1, wp)
         observed = log(errors(2)/errors(3))/log(2.0_wp)
         write (*, '(a, 3es11.3, a, f6.3)') '      L2 errors'//label//':', errors, &
             '  observed order', observed
@@ -450,7 +583,8 @@ contains
         integer, intent(in) :: element, n
         real(wp) :: error
         ! Degree 5 on triangles, 4 x 4 Gauss on quadrilaterals: the load and the error
-        ! integrals are then accurate to O(h^6), far below the errors measured.
+        ! integrals are then accurate to O(h^6), far below the errors measured; degree 8 for
+        ! P3 and P4 (O(h^9) against errors of O(h^4), O(h^5)).
         type(quadrature_rule_t) :: rule
         type(mesh_t) :: m
         type(dof_map_t) :: all_free, inner
@@ -469,7 +603,9 @@ contains
         call assemble_stiffness(m, all_free, YOUNG, POISSON, k_all, stat)
         if (stat%ok()) call assemble_stiffness(m, inner, YOUNG, POISSON, k_inner, stat)
         if (.not. stat%ok()) return
-        if (element == ELEMENT_P1 .or. element == ELEMENT_P2) then
+        if (element == ELEMENT_P3 .or. element == ELEMENT_P4) then
+            rule = triangle_rule(8)
+        else if (element == ELEMENT_P1 .or. element == ELEMENT_P2) then
             rule = triangle_rule(5)
         else
             rule = quad_rule(4)

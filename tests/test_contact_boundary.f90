@@ -7,7 +7,8 @@ program test_contact_boundary
     use testing, only: test_suite_t
     use fixtures, only: single_triangle
     use mesh, only: mesh_t
-    use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2
+    use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, ELEMENT_P3, &
+                             ELEMENT_P4, element_degree
     use mesh_structured, only: structured_rectangle
     use dof_map, only: dof_map_t, build_dof_map
     use contact_boundary, only: contact_t, build_contact, assemble_b, edge_mass
@@ -87,17 +88,19 @@ contains
     end subroutine normals_point_out_of_every_side
 
     !> The consistent mass matrix integrates products of the edge shape functions exactly:
-    !> 1^T M 1 = length and x^T M 1 = int x ds, for linear and quadratic edges.
+    !> 1^T M 1 = length and x^T M 1 = int x ds, for edges of every degree, and for cubic and
+    !> quartic edges (x^p)^T M (x^p) = int x^(2p) ds, the highest degree M must integrate.
     subroutine mass_integrates_constants_and_linears(t)
         type(test_suite_t), intent(inout) :: t
-        integer, parameter :: ELEMENTS(4) = [ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2]
+        integer, parameter :: ELEMENTS(6) = [ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, &
+                                             ELEMENT_P3, ELEMENT_P4]
         real(wp), parameter :: WIDTH = 3.0_wp
         type(mesh_t) :: m
         type(dof_map_t) :: dofs
         type(contact_t) :: contact
         type(status_t) :: stat
         real(wp), allocatable :: ones(:), x(:), m_ones(:)
-        integer :: e
+        integer :: e, p
         do e = 1, size(ELEMENTS)
             call structured_rectangle(WIDTH, 1.0_wp, 5, 2, ELEMENTS(e), 'left', m, stat)
             call build_dof_map(m, [m%part_index('top')], dofs, stat)
@@ -113,6 +116,14 @@ contains
             call t%check('nodes ordered along t, element '//char(48 + e), &
                 all(dot_product(contact%tangent, [1.0_wp, 0.0_wp])* &
                     (x(2:) - x(:size(x) - 1)) > 0.0_wp))
+            p = element_degree(ELEMENTS(e))
+            if (p >= 3) then
+                call contact%mass%matvec(x**p, m_ones)
+                call t%check_close('(x^p)^T M x^p = int x^(2p) ds, element '//char(48 + e), &
+                    dot_product(x**p, m_ones), WIDTH**(2*p + 1)/(2*p + 1), 1.0e-13_wp)
+                call t%check('p = degree nx + 1, element '//char(48 + e), &
+                             contact%p() == p*5 + 1)
+            end if
             deallocate (ones, m_ones)
         end do
         call t%check_close('quadratic edge mass: total h', sum(edge_mass(3, 2.0_wp)), 2.0_wp, &

@@ -7,7 +7,7 @@ program test_dense_eigen
     use testing, only: test_suite_t
     use fixtures, only: single_triangle, csr_to_dense
     use mesh, only: mesh_t
-    use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2
+    use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_P3
     use mesh_structured, only: structured_rectangle
     use dof_map, only: dof_map_t, build_dof_map
     use assembly, only: assemble_stiffness
@@ -213,8 +213,10 @@ contains
     !> relative to the largest entry (seen: 1e-15 to 1e-14); 1e-12 leaves a factor 5.
     subroutine trailing_block_matches_forward_solves(t)
         type(test_suite_t), intent(inout) :: t
-        integer, parameter :: ELEMENTS(4) = [ELEMENT_P1, ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2]
-        character(len=5), parameter :: DIAGONALS(4) = ['right', 'left ', 'right', 'right']
+        integer, parameter :: ELEMENTS(5) = [ELEMENT_P1, ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, &
+                                             ELEMENT_P3]
+        character(len=5), parameter :: DIAGONALS(5) = ['right', 'left ', 'right', 'right', &
+                                                       'right']
         type(mesh_t) :: m
         type(dof_map_t) :: dofs
         type(contact_t) :: contact

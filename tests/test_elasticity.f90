@@ -3,8 +3,10 @@
 !> rigid-body modes and rank on distorted elements, and the inverted-cell report.
 program test_elasticity
     use kinds, only: wp
-    use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, &
-                             element_nodes_per_cell, element_name
+    use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, ELEMENT_P3, &
+                             ELEMENT_P4, MAX_ELEMENT, element_nodes_per_cell, element_name, &
+                             element_corners
+    use shape_functions, only: reference_nodes, MAX_NODES
     use elasticity, only: plane_strain_matrix, lame_coefficients, element_stiffness, &
                           ELEMENT_OK, ELEMENT_INVERTED, ELEMENT_BAD_ARGUMENT
     use testing, only: test_suite_t
@@ -30,7 +32,7 @@ program test_elasticity
     t%name = 'test_elasticity'
     call check_lame()
     call check_single_element()
-    do element = ELEMENT_P1, ELEMENT_Q2
+    do element = ELEMENT_P1, MAX_ELEMENT
         call check_distorted(element)
     end do
     call check_bad_cells()
@@ -83,7 +85,7 @@ contains
     subroutine check_distorted(element)
         integer, intent(in) :: element
         real(wp), allocatable :: xy(:, :), ke(:, :), modes(:, :), work(:), eigenvalues(:)
-        real(wp) :: residual, scale, largest
+        real(wp) :: residual, scale, largest, ref_nodes(2, MAX_NODES)
         integer :: n, n_corners, info, i, n_zero
         character(len=:), allocatable :: label
 
@@ -91,14 +93,23 @@ contains
         n = element_nodes_per_cell(element)
         allocate (xy(2, n), ke(2*n, 2*n), modes(2*n, 3), eigenvalues(2*n), work(64*n))
         select case (element)
-        case (ELEMENT_P1, ELEMENT_P2)
+        case (ELEMENT_P1, ELEMENT_P2, ELEMENT_P3, ELEMENT_P4)
             xy(:, 1:3) = reshape([0.1_wp, 0.2_wp, 1.3_wp, 0.4_wp, 0.5_wp, 1.1_wp], [2, 3])
         case (ELEMENT_Q1, ELEMENT_Q2)
             xy(:, 1:4) = reshape([0.0_wp, 0.0_wp, 2.0_wp, 0.1_wp, 1.7_wp, 1.5_wp, &
                                   -0.2_wp, 1.0_wp], [2, 4])
         end select
-        n_corners = merge(3, 4, element == ELEMENT_P1 .or. element == ELEMENT_P2)
-        if (n > n_corners) then
+        n_corners = element_corners(element)
+        if (element == ELEMENT_P3 .or. element == ELEMENT_P4) then
+            ! Nodes of the straight triangle (the affine image of the reference nodes), then
+            ! the first edge node pushed off its side: a curved, isoparametric cell.
+            call reference_nodes(element, ref_nodes)
+            do i = 4, n
+                xy(:, i) = xy(:, 1) + ref_nodes(1, i)*(xy(:, 2) - xy(:, 1)) + &
+                           ref_nodes(2, i)*(xy(:, 3) - xy(:, 1))
+            end do
+            xy(:, 4) = xy(:, 4) + [0.03_wp, -0.05_wp]
+        else if (n > n_corners) then
             ! Mid-edge nodes at the chord midpoints, then the first pushed off its chord: a
             ! curved side, so the map is truly non-affine.
             do i = 1, n_corners

@@ -171,7 +171,7 @@ contains
             all(abs(prob%mesh%coords(:, prob%mesh%cells(:, cell)) - 0.5_wp) >= 0.5_wp, dim=1)))
     end subroutine indicators_bound_the_estimate
 
-    !> The single triangle (SPEC section 4) at lambda = -10, where its one mu is positive:
+    !> The single triangle (model.md section 8) at lambda = -10, where its one mu is positive:
     !> mu_h is the closed form, and its estimate is computed with the P2 triangle (one cell).
     subroutine single_triangle_estimate(t)
         type(test_suite_t), intent(inout) :: t

@@ -7,7 +7,7 @@ program test_gmsh_writer
     use kinds, only: wp
     use status, only: status_t, STATUS_BAD_INPUT, STATUS_IO
     use mesh, only: mesh_t
-    use element_types, only: ELEMENT_P1, ELEMENT_P2, ELEMENT_Q2, element_name
+    use element_types, only: ELEMENT_P1, ELEMENT_P2, ELEMENT_P3, MAX_ELEMENT, element_name
     use mesh_structured, only: structured_rectangle
     use mesh_refine, only: refinable_mesh_t, build_refinable_mesh
     use mesh_gmsh, only: read_gmsh
@@ -23,11 +23,12 @@ program test_gmsh_writer
     integer :: element
 
     t%name = 'test_gmsh_writer'
-    do element = ELEMENT_P1, ELEMENT_Q2
+    do element = ELEMENT_P1, MAX_ELEMENT
         call check_structured(element)
     end do
     call check_refined(ELEMENT_P1)
     call check_refined(ELEMENT_P2)
+    call check_refined(ELEMENT_P3)
     call check_errors()
     call t%report()
 

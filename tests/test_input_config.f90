@@ -85,7 +85,7 @@ program test_input_config
     call expect_rejected('height NaN', '&mesh height = NaN /', '&mesh', 'height')
     call expect_rejected('source unknown', "&mesh source = 'disc' /", '&mesh', 'source')
     call expect_rejected('gmsh without file', "&mesh source = 'gmsh' /", '&mesh', 'file')
-    call expect_rejected('element p3', "&mesh element = 'p3' /", '&mesh', "element = 'p3'")
+    call expect_rejected('element p5', "&mesh element = 'p5' /", '&mesh', "element = 'p5'")
     call expect_rejected('diagonal', "&mesh diagonal = 'up' /", '&mesh', 'diagonal')
     call expect_rejected('not a side', "&mesh neumann = 'left front' /", '&mesh', 'front')
     call expect_rejected('two contact sides', "&mesh contact = 'bottom top' /", '&mesh', &

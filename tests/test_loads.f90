@@ -6,7 +6,8 @@ program test_loads
     use status, only: status_t
     use testing, only: test_suite_t
     use mesh, only: mesh_t
-    use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, element_name
+    use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, ELEMENT_P3, &
+                             ELEMENT_P4, element_name
     use mesh_structured, only: structured_rectangle
     use dof_map, only: dof_map_t, build_dof_map
     use assembly, only: assemble_stiffness
@@ -37,7 +38,8 @@ contains
     !> of terms bounded by ||K|| ||U||: 100 eps of that covers the row length (<= 50 terms).
     subroutine patch_test_linear_field(t)
         type(test_suite_t), intent(inout) :: t
-        integer, parameter :: ELEMENTS(4) = [ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2]
+        integer, parameter :: ELEMENTS(6) = [ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, &
+                                             ELEMENT_P3, ELEMENT_P4]
         real(wp), parameter :: YOUNG = 2.5_wp, POISSON = 0.27_wp
         real(wp), parameter :: GRAD(2, 2) = reshape([0.3_wp, -0.7_wp, 1.1_wp, 0.4_wp], [2, 2])
         type(mesh_t) :: m
@@ -78,7 +80,7 @@ contains
     !> pressure sigma = -p I pushes inward on every side (outward normals).
     subroutine traction_resultants(t)
         type(test_suite_t), intent(inout) :: t
-        integer, parameter :: ELEMENTS(2) = [ELEMENT_P1, ELEMENT_Q2]
+        integer, parameter :: ELEMENTS(4) = [ELEMENT_P1, ELEMENT_Q2, ELEMENT_P3, ELEMENT_P4]
         real(wp), parameter :: WIDTH = 3.0_wp, HEIGHT = 0.5_wp, P = 2.0_wp
         type(mesh_t) :: m
         type(status_t) :: stat
@@ -112,7 +114,8 @@ contains
     !> sum_a F_a = f |Omega| and sum_a x_a F_a = f int x (the shape functions reproduce x).
     subroutine body_force_resultant_and_moment(t)
         type(test_suite_t), intent(inout) :: t
-        integer, parameter :: ELEMENTS(4) = [ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2]
+        integer, parameter :: ELEMENTS(6) = [ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, &
+                                             ELEMENT_P3, ELEMENT_P4]
         real(wp), parameter :: WIDTH = 2.0_wp, HEIGHT = 1.5_wp, FORCE(2) = [0.5_wp, -2.0_wp]
         type(mesh_t) :: m
         type(status_t) :: stat

@@ -1,14 +1,15 @@
 ! SPDX-License-Identifier: MIT
-!> The mesh checks: the structured meshes (P1 both diagonals, Q1, P2, Q2) and the meshes of
-!> input/meshes pass; Gmsh files written from altered grids are refused with the file, the
-!> line and what is wrong: a duplicated cell, an overlapping cell, a contact group on an
-!> interior line, a zero-length contact edge, a group edge that is no side of a cell, a crack
-!> (duplicated nodes: two pieces); a generated mesh with an unused node is refused too.
+!> The mesh checks: the structured meshes (P1 both diagonals, Q1, P2, Q2, P3, P4) and the
+!> meshes of input/meshes pass; Gmsh files written from altered grids are refused with the
+!> file, the line and what is wrong: a duplicated cell, an overlapping cell, a contact group
+!> on an interior line, a zero-length contact edge, a group edge that is no side of a cell, a
+!> crack (duplicated nodes: two pieces); a generated mesh with an unused node is refused too,
+!> and non-conforming P3 edge nodes.
 program test_mesh_check
     use kinds, only: wp
     use status, only: status_t, STATUS_MESH
     use mesh, only: mesh_t
-    use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_Q2, element_name
+    use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P3, MAX_ELEMENT, element_name
     use mesh_structured, only: structured_rectangle, PART_BOTTOM, PART_TOP
     use mesh_gmsh, only: read_gmsh
     use mesh_check, only: check_mesh
@@ -28,9 +29,38 @@ program test_mesh_check
     call check_edge_of_no_cell()
     call check_crack()
     call check_unused_node()
+    call check_nonconforming_cubic()
     call t%report()
 
 contains
+
+    !> P3: a cell whose inner node on a shared side is a copy of its neighbour's (same place,
+    !> another number) is not conforming; a boundary edge listing another inner node than its
+    !> cell is refused too.
+    subroutine check_nonconforming_cubic()
+        type(mesh_t) :: m
+        type(status_t) :: stat
+        real(wp), allocatable :: coords(:, :)
+        integer :: n
+        call structured_rectangle(1.0_wp, 1.0_wp, 2, 2, ELEMENT_P3, 'right', m, stat)
+        n = m%n_nodes()
+        ! Cell 1 (corners 1, 2, 3 of the first square) meets cell 2 along its diagonal, its
+        ! side 3 from corner 3 to corner 1: nodes 8 and 9.
+        call move_alloc(m%coords, coords)
+        allocate (m%coords(2, n + 1))
+        m%coords(:, 1:n) = coords
+        m%coords(:, n + 1) = coords(:, m%cells(8, 1))
+        m%cells(8, 1) = n + 1
+        call check_mesh(m, [PART_TOP], [2, 4], [PART_BOTTOM], stat)
+        call t%check('P3: a copied inner node on a shared side is refused', &
+                     stat%code == STATUS_MESH .and. index(stat%message, 'edge nodes') > 0)
+        if (stat%ok()) return
+        call structured_rectangle(1.0_wp, 1.0_wp, 2, 2, ELEMENT_P3, 'right', m, stat)
+        m%edges(3, 1) = m%cells(10, 1)
+        call check_mesh(m, [PART_TOP], [2, 4], [PART_BOTTOM], stat)
+        call t%check('P3: a boundary edge with another inner node than its cell is refused', &
+                     stat%code == STATUS_MESH .and. index(stat%message, 'inner nodes') > 0)
+    end subroutine check_nonconforming_cubic
 
     subroutine check_reference_meshes()
         type(mesh_t) :: m
@@ -40,7 +70,7 @@ contains
         character(len=:), allocatable :: source_dir
         integer :: i, length
 
-        do element = ELEMENT_P1, ELEMENT_Q2
+        do element = ELEMENT_P1, MAX_ELEMENT
             call structured_rectangle(1.5_wp, 1.0_wp, 5, 3, element, 'right', m, stat)
             call check_mesh(m, [PART_TOP], [2, 4], [PART_BOTTOM], stat)
             call t%check('structured '//element_name(element)//' passes', stat%ok())

@@ -1,13 +1,13 @@
 ! SPDX-License-Identifier: MIT
 !> The Gmsh reader: structured grids written here as MSH 4.1 and MSH 2.2 read back to the
-!> same mesh and give the eigenvalues of the rectangle generator (P1, Q1, P2, Q2); clockwise
-!> files are reoriented; the single element of model.md section 8 read from its .msh matches the
-!> closed form; each bad file fails with STATUS_MESH naming the file and the line.
+!> same mesh and give the eigenvalues of the rectangle generator (P1, Q1, P2, Q2, P3, P4);
+!> clockwise files are reoriented; the single element of model.md section 8 read from its .msh
+!> matches the closed form; each bad file fails with STATUS_MESH naming the file and the line.
 program test_mesh_gmsh
     use kinds, only: wp
     use status, only: status_t, STATUS_MESH, STATUS_BAD_INPUT
     use mesh, only: mesh_t
-    use element_types, only: ELEMENT_P1, ELEMENT_Q2, element_name
+    use element_types, only: ELEMENT_P1, MAX_ELEMENT, element_name
     use mesh_structured, only: structured_rectangle
     use mesh_gmsh, only: read_gmsh
     use mesh_renumber, only: node_order, node_bandwidth, renumber_nodes, RENUMBER_NONE, &
@@ -27,7 +27,7 @@ program test_mesh_gmsh
     integer :: element
 
     t%name = 'test_mesh_gmsh'
-    do element = ELEMENT_P1, ELEMENT_Q2
+    do element = ELEMENT_P1, MAX_ELEMENT
         call check_structured(element)
     end do
     call check_single_element()

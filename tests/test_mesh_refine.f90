@@ -8,7 +8,9 @@ program test_mesh_refine
     use kinds, only: wp, PI
     use status, only: status_t, STATUS_BAD_INPUT, STATUS_MESH
     use mesh, only: mesh_t
-    use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, element_name
+    use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_P3, ELEMENT_P4, &
+                             element_name
+    use mesh_check, only: check_mesh
     use mesh_structured, only: structured_rectangle, PART_BOTTOM, PART_RIGHT, PART_TOP, &
                                PART_LEFT
     use mesh_refine, only: refinable_mesh_t, build_refinable_mesh
@@ -40,6 +42,8 @@ program test_mesh_refine
     call check_to_mesh()
     call check_assembly(ELEMENT_P1)
     call check_assembly(ELEMENT_P2)
+    call check_assembly(ELEMENT_P3)
+    call check_assembly(ELEMENT_P4)
     call check_contact_segment()
     call check_errors()
     call t%report()
@@ -333,6 +337,11 @@ contains
             call r%refine([smallest_at_origin(r)], stat)
         end do
         call r%to_mesh(element, fine, stat)
+        call t%check('to_mesh succeeds'//label, stat%ok())
+        ! conforming cells (shared edges share their nodes), boundary edges with their cell's
+        ! edge nodes
+        call check_mesh(fine, [1, 2], [3], [4], stat)
+        call t%check('refined mesh passes the mesh checks'//label, stat%ok())
         call build_dof_map(fine, [integer ::], dofs, stat)
         call assemble_stiffness(fine, dofs, 2.5_wp, 0.3_wp, k, stat)
         call t%check('assembly on the refined mesh succeeds'//label, stat%ok())

@@ -5,7 +5,10 @@ program test_mesh_structured
     use kinds, only: wp
     use status, only: status_t, STATUS_BAD_INPUT
     use mesh, only: mesh_t
-    use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, element_name
+    use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, MAX_ELEMENT, &
+                             element_name, element_degree, element_corners, &
+                             element_nodes_per_cell
+    use shape_functions, only: reference_nodes, MAX_NODES
     use mesh_structured, only: structured_rectangle
     use testing, only: test_suite_t
     implicit none
@@ -19,9 +22,9 @@ program test_mesh_structured
     integer :: element
 
     t%name = 'test_mesh_structured'
-    do element = ELEMENT_P1, ELEMENT_Q2
+    do element = ELEMENT_P1, MAX_ELEMENT
         call check_mesh(element, 'right')
-        if (element == ELEMENT_P1 .or. element == ELEMENT_P2) then
+        if (element_corners(element) == 3) then
             call check_mesh(element, 'left')
             call check_mirror(element)
         end if
@@ -38,7 +41,7 @@ contains
         type(status_t) :: stat
         character(len=:), allocatable :: label
         integer :: step, n_corners, expected_cells, cell, k, side, e
-        real(wp) :: area, total_area, smallest_area, mid(2), x, y
+        real(wp) :: area, total_area, smallest_area, mid(2), x, y, ref_nodes(2, MAX_NODES)
         logical :: mids_ok, side_ok
         integer, parameter :: SIDE_COUNT(4) = [NX, NY, NX, NY]
         character(len=6), parameter :: NAMES(4) = ['bottom', 'right ', 'top   ', 'left  ']
@@ -49,8 +52,8 @@ contains
         if (.not. stat%ok()) return
         call t%check('element code recorded'//label, m%element == element)
 
-        step = merge(2, 1, element == ELEMENT_P2 .or. element == ELEMENT_Q2)
-        n_corners = merge(3, 4, element == ELEMENT_P1 .or. element == ELEMENT_P2)
+        step = element_degree(element)
+        n_corners = element_corners(element)
         expected_cells = merge(2, 1, n_corners == 3)*NX*NY
         call t%check('node count (s nx + 1)(s ny + 1)'//label, &
                      m%n_nodes() == (step*NX + 1)*(step*NY + 1))
@@ -91,6 +94,20 @@ contains
                 mids_ok = mids_ok .and. maxval(abs(mid - 0.25_wp*sum(m%coords(:, &
                     m%cells(1:4, cell)), dim=2))) <= GEOMETRY_TOL*WIDTH
             end if
+            if (step > 2) then
+                ! Cubic and quartic triangles: every node at the affine image of its
+                ! reference position.
+                call reference_nodes(element, ref_nodes)
+                associate (c1 => m%coords(:, m%cells(1, cell)), &
+                           c2 => m%coords(:, m%cells(2, cell)), &
+                           c3 => m%coords(:, m%cells(3, cell)))
+                    do k = 4, element_nodes_per_cell(element)
+                        mid = c1 + ref_nodes(1, k)*(c2 - c1) + ref_nodes(2, k)*(c3 - c1)
+                        mids_ok = mids_ok .and. maxval(abs(m%coords(:, m%cells(k, cell)) - &
+                                                           mid)) <= GEOMETRY_TOL*WIDTH
+                    end do
+                end associate
+            end if
             total_area = total_area + area
             smallest_area = min(smallest_area, area)
         end do
@@ -99,8 +116,7 @@ contains
                      WIDTH*HEIGHT/expected_cells) <= GEOMETRY_TOL*WIDTH*HEIGHT)
         call t%check_close('total area = width height'//label, total_area, WIDTH*HEIGHT, &
                            GEOMETRY_TOL)
-        if (step == 2) call t%check('mid-edge and centre nodes at the midpoints'//label, &
-                                    mids_ok)
+        if (step >= 2) call t%check('edge and interior nodes in place'//label, mids_ok)
 
         call t%check('four parts named bottom, right, top, left'//label, &
                      size(m%part_names) == 4 .and. all(m%part_names == NAMES))
@@ -161,7 +177,7 @@ contains
         label = ' ('//element_name(element)//')'
         call structured_rectangle(WIDTH, HEIGHT, NX, NY, element, 'right', right, stat)
         call structured_rectangle(WIDTH, HEIGHT, NX, NY, element, 'left', left, stat)
-        step = merge(2, 1, element == ELEMENT_P2)
+        step = element_degree(element)
         n_grid_x = step*NX + 1
         n_grid_y = step*NY + 1
         ! image(node of left) = node of right at the mirrored position, found from the

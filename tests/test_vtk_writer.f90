@@ -11,7 +11,8 @@ program test_vtk_writer
     use kinds, only: wp, i8
     use status, only: status_t, STATUS_INTERNAL, STATUS_IO
     use mesh, only: mesh_t
-    use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2
+    use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, ELEMENT_P3, &
+                             ELEMENT_P4
     use mesh_structured, only: structured_rectangle
     use vtk_writer, only: write_vtu, vtk_cell_type, vtk_node_order, machine_byte_order, &
                           VTK_BINARY, VTK_ASCII
@@ -27,8 +28,10 @@ program test_vtk_writer
     character(len=:), allocatable :: text, xml
     character(len=17), parameter :: NAMES(2) = [character(len=17) :: 'displacement', &
                                                  'displacement_imag']
-    integer, parameter :: ELEMENTS(4) = [ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2]
-    integer, parameter :: VTK_CODES(4) = [5, 9, 22, 28]   !! VTK's vtkCellType.h
+    integer, parameter :: ELEMENTS(6) = [ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, &
+                                         ELEMENT_P3, ELEMENT_P4]
+    !> VTK's vtkCellType.h: P3 and P4 as VTK_LAGRANGE_TRIANGLE
+    integer, parameter :: VTK_CODES(6) = [5, 9, 22, 28, 69, 69]
     character(len=*), parameter :: REAL_ARRAYS(3) = [character(len=19) :: &
         'Name="displacement"', 'Name="displacement_', '<Points>']
     character(len=*), parameter :: INT_ARRAYS(3) = [character(len=19) :: &

@@ -7,7 +7,9 @@ module contact_boundary
     use kinds, only: wp
     use status, only: status_t, STATUS_BAD_INPUT, STATUS_MESH
     use mesh, only: mesh_t
-    use element_types, only: element_nodes_per_edge
+    use element_types, only: element_nodes_per_edge, element_corners
+    use quadrature, only: quadrature_rule_t, line_rule
+    use shape_functions, only: evaluate_line_shape, MAX_EDGE_NODES
     use dof_map, only: dof_map_t
     use csr_matrix, only: csr_matrix_t, csr_from_element_dofs
     use strings, only: to_string
@@ -77,16 +79,33 @@ contains
         end do
     end function contact_mass_dense
 
-    !> Consistent 1D mass matrix of a straight edge of length h; node order: ends, then mid.
+    !> Consistent 1D mass matrix of a straight edge of length h with equally spaced nodes;
+    !> node order: ends, then the inner nodes from the first end. Closed forms for 2 and 3
+    !> nodes; for 4 (cubic) and 5 (quartic) nodes, Gauss with as many points as nodes, exact
+    !> for the products N_a N_b of degree 2(n - 1) <= 2n - 1.
     pure function edge_mass(nodes_per_edge, h) result(me)
         integer, intent(in) :: nodes_per_edge
         real(wp), intent(in) :: h
         real(wp) :: me(nodes_per_edge, nodes_per_edge)
+        type(quadrature_rule_t) :: rule
+        real(wp) :: values(MAX_EDGE_NODES), derivatives(MAX_EDGE_NODES)
+        integer :: q, a
         if (nodes_per_edge == 2) then
             me = h/6.0_wp*reshape([2.0_wp, 1.0_wp, 1.0_wp, 2.0_wp], [2, 2])
-        else
+        else if (nodes_per_edge == 3) then
             me = h/30.0_wp*reshape([4.0_wp, -1.0_wp, 2.0_wp, -1.0_wp, 4.0_wp, 2.0_wp, &
                                     2.0_wp, 2.0_wp, 16.0_wp], [3, 3])
+        else
+            me = 0.0_wp
+            rule = line_rule(nodes_per_edge)
+            do q = 1, rule%n_points
+                call evaluate_line_shape(nodes_per_edge, rule%points(1, q), values, derivatives)
+                do a = 1, nodes_per_edge
+                    ! ds = (h/2) d(reference s)
+                    me(:, a) = me(:, a) + 0.5_wp*h*rule%weights(q)*values(a)* &
+                               values(1:nodes_per_edge)
+                end do
+            end do
         end if
     end function edge_mass
 
@@ -101,7 +120,7 @@ contains
         type(status_t), intent(out) :: stat
         integer, allocatable :: edge_list(:), local(:), edge_local(:, :), order(:), on_edge(:)
         real(wp), allocatable :: position(:)
-        real(wp) :: start(2), finish(2), direction(2), offset, s_min, s_max, inner(2)
+        real(wp) :: start(2), finish(2), direction(2), offset, s_min, s_max, inner(2), fraction
         integer :: e, i, a, node, n_edges, per_edge, p
         character(len=:), allocatable :: name
 
@@ -141,22 +160,32 @@ contains
                 return
             end if
         end do
-        ! The quadratic edge mass matrix is that of a straight edge with its mid node in the
-        ! middle (an affine map); Gmsh and the rectangle generator place it there.
-        if (per_edge == 3) then
-            do i = 1, n_edges
+        ! The edge mass matrix of higher order is that of a straight edge with its inner nodes
+        ! equally spaced (an affine map); Gmsh and the rectangle generator place them so.
+        do i = 1, n_edges
+            do a = 3, per_edge
                 associate (ends => m%coords(:, m%edges(1:2, edge_list(i))), &
-                           middle => m%coords(:, m%edges(3, edge_list(i))))
-                    if (norm2(middle - 0.5_wp*(ends(:, 1) + ends(:, 2))) > &
-                        STRAIGHT_TOL*contact%length) then
-                        call stat%fail(STATUS_MESH, place_of(edge_list(i))// &
-                            'contact boundary '''//name//''': the mid node of this edge is ' &
-                            //'not at its middle; expected straight quadratic edges')
+                           inner_xy => m%coords(:, m%edges(a, edge_list(i))))
+                    fraction = real(a - 2, wp)/real(per_edge - 1, wp)
+                    if (norm2(inner_xy - ((1.0_wp - fraction)*ends(:, 1) + fraction*ends(:, 2))) &
+                        > STRAIGHT_TOL*contact%length) then
+                        if (per_edge == 3) then
+                            call stat%fail(STATUS_MESH, place_of(edge_list(i))// &
+                                'contact boundary '''//name//''': the mid node of this edge ' &
+                                //'is not at its middle; expected straight quadratic edges')
+                        else
+                            call stat%fail(STATUS_MESH, place_of(edge_list(i))// &
+                                'contact boundary '''//name//''': inner node '// &
+                                to_string(a - 2)//' of this edge is not at '// &
+                                to_string(a - 2)//'/'//to_string(per_edge - 1)// &
+                                ' of its length; expected straight edges with equally ' &
+                                //'spaced nodes')
+                        end if
                         return
                     end if
                 end associate
             end do
-        end if
+        end do
         ! One segment, not several pieces of a line: the edge lengths must add up to its span.
         if (abs(sum([(edge_length(edge_list(i)), i=1, n_edges)]) - contact%length) > &
             STRAIGHT_TOL*n_edges*contact%length) then
@@ -235,7 +264,7 @@ contains
             integer, intent(in) :: edge
             real(wp) :: point(2)
             integer :: c, corners
-            corners = merge(3, 4, size(m%cells, 1) == 3 .or. size(m%cells, 1) == 6)
+            corners = element_corners(m%element)
             point = start
             do c = 1, size(m%cells, 2)
                 if (any(m%cells(1:corners, c) == m%edges(1, edge)) .and. &

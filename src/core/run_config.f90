@@ -20,7 +20,7 @@ module run_config
         real(wp) :: height = 1.0_wp
         integer :: nx = 8
         integer :: ny = 8
-        character(len=NAME_LEN) :: element = 'p1'         !! 'p1' | 'q1' | 'p2' | 'q2'
+        character(len=NAME_LEN) :: element = 'p1'   !! 'p1' | 'q1' | 'p2' | 'q2' | 'p3' | 'p4'
         character(len=NAME_LEN) :: diagonal = 'right'     !! 'right' | 'left' (p1, p2)
         character(len=LIST_LEN) :: dirichlet = 'top'
         character(len=LIST_LEN) :: neumann = 'left right'

@@ -8,7 +8,7 @@ module quadrature
     private
     public :: triangle_rule, quad_rule, line_rule, MAX_POINTS
 
-    integer, parameter :: MAX_POINTS = 16   !! 4 x 4 Gauss-Legendre, the largest rule
+    integer, parameter :: MAX_POINTS = 25   !! 5 x 5 collapsed Gauss, the largest rule
 
     !> Points and weights of one rule; only the first `n_points` entries are meaningful.
     type, public :: quadrature_rule_t
@@ -35,8 +35,11 @@ module quadrature
 contains
 
     !> The smallest stored rule on the reference triangle integrating every polynomial of
-    !> total degree <= `degree` exactly (degree 1: 1 point, 2: 3, 3-4: 6, 5: 7). A degree
-    !> above 5 gives an empty rule (n_points = 0), which callers must treat as an error.
+    !> total degree <= `degree` exactly (degree 1: 1 point, 2: 3, 3-4: 6, 5: 7, 6: 16, 7-8:
+    !> 25). A degree above 8 gives an empty rule (n_points = 0), which callers must treat as
+    !> an error. Degrees 6 to 8 (the loads of P3 and P4, the stiffness of P4) use the
+    !> collapsed (Duffy) product of n-point Gauss-Legendre rules, n = 4 or 5: a few more
+    !> points than Dunavant's tables (12, 16), but every weight and point in closed form.
     pure function triangle_rule(degree) result(rule)
         integer, intent(in) :: degree
         type(quadrature_rule_t) :: rule
@@ -60,12 +63,34 @@ contains
             rule%weights(1) = 0.5_wp*9.0_wp/40.0_wp
             call add_orbit(rule, 2, R5_A1, 0.5_wp*R5_W1)
             call add_orbit(rule, 5, R5_A2, 0.5_wp*R5_W2)
+        case (6)
+            rule = collapsed_rule(4)
+        case (7:8)
+            rule = collapsed_rule(5)
         case default
             rule%n_points = 0
         end select
     end function triangle_rule
 
-    !> Tensor Gauss-Legendre rule with `n` points per direction on [-1, 1]^2 (1 <= n <= 4;
+    !> The square rule quad_rule(n) mapped onto the reference triangle by the collapse
+    !> (u, v) -> (x, y) = ((1 + u)(1 - v)/4, (1 + v)/2), Jacobian (1 - v)/8: a polynomial of
+    !> total degree d becomes one of degree d in u and d + 1 in v, so the rule is exact for
+    !> d <= 2n - 2. Points stay inside the triangle, weights positive.
+    pure function collapsed_rule(n) result(rule)
+        integer, intent(in) :: n
+        type(quadrature_rule_t) :: rule
+        integer :: q
+        real(wp) :: u, v
+        rule = quad_rule(n)
+        do q = 1, rule%n_points
+            u = rule%points(1, q)
+            v = rule%points(2, q)
+            rule%points(:, q) = [0.25_wp*(1.0_wp + u)*(1.0_wp - v), 0.5_wp*(1.0_wp + v)]
+            rule%weights(q) = rule%weights(q)*0.125_wp*(1.0_wp - v)
+        end do
+    end function collapsed_rule
+
+    !> Tensor Gauss-Legendre rule with `n` points per direction on [-1, 1]^2 (1 <= n <= 5;
     !> exact for degree <= 2n - 1 in each variable). Other n give an empty rule.
     pure function quad_rule(n) result(rule)
         integer, intent(in) :: n
@@ -83,7 +108,7 @@ contains
         end do
     end function quad_rule
 
-    !> Gauss-Legendre rule with `n` points on [-1, 1] (1 <= n <= 4; exact for degree
+    !> Gauss-Legendre rule with `n` points on [-1, 1] (1 <= n <= 5; exact for degree
     !> <= 2n - 1), stored in row 1 of `points`. Other n give an empty rule.
     pure function line_rule(n) result(rule)
         integer, intent(in) :: n
@@ -107,6 +132,14 @@ contains
             rule%points(1, 1:4) = [-b, -a, a, b]
             rule%weights(1:4) = [18.0_wp - sqrt(30.0_wp), 18.0_wp + sqrt(30.0_wp), &
                                  18.0_wp + sqrt(30.0_wp), 18.0_wp - sqrt(30.0_wp)]/36.0_wp
+        case (5)
+            a = sqrt(5.0_wp - 2.0_wp*sqrt(10.0_wp/7.0_wp))/3.0_wp
+            b = sqrt(5.0_wp + 2.0_wp*sqrt(10.0_wp/7.0_wp))/3.0_wp
+            rule%points(1, 1:5) = [-b, -a, 0.0_wp, a, b]
+            rule%weights(1:5) = [322.0_wp - 13.0_wp*sqrt(70.0_wp), &
+                                 322.0_wp + 13.0_wp*sqrt(70.0_wp), 512.0_wp, &
+                                 322.0_wp + 13.0_wp*sqrt(70.0_wp), &
+                                 322.0_wp - 13.0_wp*sqrt(70.0_wp)]/900.0_wp
         case default
             rule%n_points = 0
             return

@@ -3,14 +3,15 @@
 !> bilinear form a(u, v) = int sigma(u) : eps(v).
 module elasticity
     use kinds, only: wp, N_DIM
-    use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, &
-                             element_nodes_per_cell
+    use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, ELEMENT_P3, &
+                             ELEMENT_P4, element_nodes_per_cell
     use quadrature, only: quadrature_rule_t, triangle_rule, quad_rule
     use shape_functions, only: evaluate_shape, reference_nodes, MAX_NODES
     use cell_geometry, only: det_range, orientation_of, CELL_ANTICLOCKWISE
     implicit none
     private
-    public :: plane_strain_matrix, lame_coefficients, element_stiffness, stiffness_rule
+    public :: plane_strain_matrix, lame_coefficients, element_stiffness, stiffness_rule, &
+              load_rule
     public :: ELEMENT_OK, ELEMENT_INVERTED, ELEMENT_BAD_ARGUMENT
 
     ! Outcomes of element_stiffness; the caller, which knows the cell number, words them.
@@ -40,8 +41,9 @@ contains
     end subroutine lame_coefficients
 
     !> The quadrature rule element_stiffness uses: exact for affine cells (straight-sided
-    !> triangles, parallelograms), where the integrand is a polynomial. P1: 1 point (degree
-    !> 0), P2: degree 2, Q1: 2 x 2 Gauss, Q2: 3 x 3 Gauss. Empty for an unknown element.
+    !> triangles, parallelograms), where the integrand is a polynomial of degree 2(p - 1). P1:
+    !> 1 point (degree 0), P2: degree 2, P3: degree 4 (6 points), P4: degree 6, Q1: 2 x 2
+    !> Gauss, Q2: 3 x 3 Gauss. Empty for an unknown element.
     pure function stiffness_rule(element) result(rule)
         integer, intent(in) :: element
         type(quadrature_rule_t) :: rule
@@ -50,8 +52,24 @@ contains
         case (ELEMENT_P2); rule = triangle_rule(2)
         case (ELEMENT_Q1); rule = quad_rule(2)
         case (ELEMENT_Q2); rule = quad_rule(3)
+        case (ELEMENT_P3); rule = triangle_rule(4)
+        case (ELEMENT_P4); rule = triangle_rule(6)
         end select
     end function stiffness_rule
+
+    !> The quadrature rule of the body-force loads: the stiffness rule, which is exact for
+    !> N_a on affine cells (degree p <= 2(p - 1) from P2 on), except for the cubic and quartic
+    !> triangles, which take a rule exact to degree 2p (6 for P3, 8 for P4): exact for N_a
+    !> times a linear density, and for a mass-type product N_a N_b.
+    pure function load_rule(element) result(rule)
+        integer, intent(in) :: element
+        type(quadrature_rule_t) :: rule
+        select case (element)
+        case (ELEMENT_P3); rule = triangle_rule(6)
+        case (ELEMENT_P4); rule = triangle_rule(8)
+        case default; rule = stiffness_rule(element)
+        end select
+    end function load_rule
 
     !> Element stiffness matrix in dof order (u_x1, u_y1, u_x2, u_y2, ...), integrated with
     !> stiffness_rule(element). `info` is ELEMENT_OK, or ELEMENT_INVERTED when det J is

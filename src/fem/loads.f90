@@ -6,11 +6,10 @@ module loads
     use kinds, only: wp, N_DIM
     use status, only: status_t, STATUS_MESH
     use mesh, only: mesh_t
-    use element_types, only: element_nodes_per_edge, element_nodes_per_cell, ELEMENT_P1, &
-                             ELEMENT_P2
+    use element_types, only: element_nodes_per_edge, element_nodes_per_cell, element_corners
     use quadrature, only: quadrature_rule_t, line_rule
-    use shape_functions, only: evaluate_shape, evaluate_line_shape, MAX_NODES
-    use elasticity, only: stiffness_rule
+    use shape_functions, only: evaluate_shape, evaluate_line_shape, MAX_NODES, MAX_EDGE_NODES
+    use elasticity, only: load_rule
     use cell_geometry, only: jacobian_at
     use strings, only: to_string
     use dof_map, only: node_dofs
@@ -18,16 +17,18 @@ module loads
     private
     public :: edge_loads, body_force_loads
 
-    !> Gauss points per edge: exact for the quadratic edge functions times the degree-1 length
-    !> element of a curved P2 edge, and for a traction linear in the outward normal.
-    integer, parameter :: EDGE_POINTS = 3
+    !> Gauss points per edge: at least 3, exact for the quadratic edge functions times the
+    !> degree-1 length element of a curved P2 edge, and for a traction linear in the outward
+    !> normal; p + 1 for degree p >= 3 (exact to degree 2p + 1 on a straight edge).
+    integer, parameter :: MIN_EDGE_POINTS = 3
 
 contains
 
     !> f += int_edge N_a (traction + stress n) ds over every boundary edge whose part is marked
     !> in `in_part`, with n the outward unit normal: a constant traction vector plus the
     !> traction of a constant stress tensor (sigma(U) n for a linear field U). Integrated with
-    !> the edge shape functions, so P1/Q1 (2 nodes per edge) and P2/Q2 (3) are all exact.
+    !> the edge shape functions, so P1/Q1 (2 nodes per edge), P2/Q2 (3), P3 (4) and P4 (5)
+    !> are all exact on straight edges.
     subroutine edge_loads(m, in_part, traction, stress, f, stat)
         type(mesh_t), intent(in) :: m
         logical, intent(in) :: in_part(:)          !! (n_parts) parts that carry the load
@@ -36,13 +37,14 @@ contains
         real(wp), intent(inout) :: f(:)            !! (2 n_nodes)
         type(status_t), intent(out) :: stat
         type(quadrature_rule_t) :: rule
-        real(wp) :: values(3), derivatives(3), xy(N_DIM, 3), dx(N_DIM), normal(N_DIM), &
+        real(wp) :: values(MAX_EDGE_NODES), derivatives(MAX_EDGE_NODES), &
+                    xy(N_DIM, MAX_EDGE_NODES), dx(N_DIM), normal(N_DIM), &
                     inner(N_DIM), chord_normal(N_DIM), orientation, length_element, load(N_DIM)
         real(wp), allocatable :: inner_points(:, :)
         integer :: e, q, a, per_edge
 
         per_edge = element_nodes_per_edge(m%element)
-        rule = line_rule(EDGE_POINTS)
+        rule = line_rule(max(MIN_EDGE_POINTS, per_edge))
         call edge_inner_points(m, inner_points, stat)
         if (.not. stat%ok()) return
         do e = 1, size(m%edge_part)
@@ -67,7 +69,7 @@ contains
         end do
     end subroutine edge_loads
 
-    !> f += int_Omega N_a force dx for a constant body force, with the stiffness quadrature
+    !> f += int_Omega N_a force dx for a constant body force, with elasticity's load_rule
     !> (exact for the shape functions on affine cells).
     subroutine body_force_loads(m, force, f)
         type(mesh_t), intent(in) :: m
@@ -79,7 +81,7 @@ contains
 
         if (.not. any(abs(force) > 0.0_wp)) return
         n = element_nodes_per_cell(m%element)
-        rule = stiffness_rule(m%element)
+        rule = load_rule(m%element)
         do cell = 1, m%n_cells()
             do q = 1, rule%n_points
                 call evaluate_shape(m%element, rule%points(:, q), values, gradients)
@@ -103,8 +105,7 @@ contains
         integer :: corners, cell, k, node, e, slot, c
         logical :: found
 
-        corners = 4
-        if (m%element == ELEMENT_P1 .or. m%element == ELEMENT_P2) corners = 3
+        corners = element_corners(m%element)
         allocate (first(m%n_nodes() + 1), source=0)
         do cell = 1, m%n_cells()
             do k = 1, corners

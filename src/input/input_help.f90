@@ -46,8 +46,9 @@ contains
                //entry('nx', to_string(d%mesh%nx), 'cells along x (1 to ' &
                        //to_string(MAX_CELLS_PER_SIDE)//')') &
                //entry('ny', to_string(d%mesh%ny), 'cells along y') &
-               //entry('element', quoted(d%mesh%element), one_of(ELEMENT_NAMES) &
-                       //' (rectangle; a Gmsh file sets its own)') &
+               //entry('element', quoted(d%mesh%element), one_of(ELEMENT_NAMES)) &
+               //repeat(' ', HELP_COLUMN + 2) &
+               //'(p3, p4: cubic, quartic triangles; rectangle; Gmsh sets its own)'//NL &
                //entry('diagonal', quoted(d%mesh%diagonal), one_of(DIAGONALS) &
                        //': triangle diagonals rise to the right or left') &
                //entry('dirichlet', quoted(d%mesh%dirichlet), 'fixed sides (' &

@@ -21,7 +21,7 @@ module input_validation
 
     character(len=*), parameter :: MESH_SOURCES(*) = [character(len=9) :: 'rectangle', 'gmsh']
     character(len=*), parameter :: ELEMENT_NAMES(*) = [character(len=2) :: &
-                                   'p1', 'q1', 'p2', 'q2']
+                                   'p1', 'q1', 'p2', 'q2', 'p3', 'p4']
     character(len=*), parameter :: DIAGONALS(*) = [character(len=5) :: 'right', 'left']
     character(len=*), parameter :: RECTANGLE_SIDES(*) = [character(len=6) :: &
                                    'top', 'bottom', 'left', 'right']

@@ -13,8 +13,8 @@ module gmsh_writer
     use status, only: status_t, STATUS_BAD_INPUT, STATUS_IO
     use strings, only: to_string
     use mesh, only: mesh_t
-    use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, &
-                             element_nodes_per_cell, element_nodes_per_edge
+    use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, ELEMENT_P3, &
+                             ELEMENT_P4, element_nodes_per_cell, element_nodes_per_edge
     use filesystem, only: rename_file, remove_file, close_output
     implicit none
     private
@@ -22,7 +22,11 @@ module gmsh_writer
 
     ! Gmsh element type numbers (MSH file format documentation, section "Node ordering").
     integer, parameter :: GMSH_LINE2 = 1, GMSH_TRIANGLE3 = 2, GMSH_QUAD4 = 3, &
-                          GMSH_LINE3 = 8, GMSH_TRIANGLE6 = 9, GMSH_QUAD9 = 10
+                          GMSH_LINE3 = 8, GMSH_TRIANGLE6 = 9, GMSH_QUAD9 = 10, &
+                          GMSH_TRIANGLE10 = 21, GMSH_TRIANGLE15 = 23, GMSH_LINE4 = 26, &
+                          GMSH_LINE5 = 27
+    !> Line type by nodes per edge (2 to 5).
+    integer, parameter :: GMSH_LINE(2:5) = [GMSH_LINE2, GMSH_LINE3, GMSH_LINE4, GMSH_LINE5]
     integer, parameter :: CURVE_DIM = 1, SURFACE_DIM = 2
     integer, parameter :: SURFACE_TAG = 1            !! the one surface entity
     character(len=*), parameter :: BODY_NAME = 'body'
@@ -125,8 +129,10 @@ contains
         case (ELEMENT_Q1); cell_type = GMSH_QUAD4
         case (ELEMENT_P2); cell_type = GMSH_TRIANGLE6
         case (ELEMENT_Q2); cell_type = GMSH_QUAD9
+        case (ELEMENT_P3); cell_type = GMSH_TRIANGLE10
+        case (ELEMENT_P4); cell_type = GMSH_TRIANGLE15
         end select
-        edge_type = merge(GMSH_LINE3, GMSH_LINE2, element_nodes_per_edge(m%element) == 3)
+        edge_type = GMSH_LINE(element_nodes_per_edge(m%element))
 
         write (unit, '(a)', iostat=ios, iomsg=msg) '$MeshFormat', '4.1 0 8', '$EndMeshFormat', &
             '$PhysicalNames', to_string(n_parts + 1)

@@ -13,17 +13,22 @@ module vtk_writer
     use filesystem, only: close_output
     use mesh, only: mesh_t
     use element_types, only: element_nodes_per_cell, ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, &
-                             ELEMENT_Q2
+                             ELEMENT_Q2, ELEMENT_P3, ELEMENT_P4
     implicit none
     private
     public :: write_vtu, vtk_cell_type, vtk_node_order, machine_byte_order
     public :: VTK_TRIANGLE, VTK_QUAD, VTK_QUADRATIC_TRIANGLE, VTK_BIQUADRATIC_QUAD
+    public :: VTK_LAGRANGE_TRIANGLE
     public :: VTK_BINARY, VTK_ASCII
 
     integer, parameter :: VTK_TRIANGLE = 5
     integer, parameter :: VTK_QUAD = 9
     integer, parameter :: VTK_QUADRATIC_TRIANGLE = 22
     integer, parameter :: VTK_BIQUADRATIC_QUAD = 28
+    !> Arbitrary-order Lagrange triangle (VTK 8.1, ParaView 5.5 on); its order follows from its
+    !> node count (10: cubic, 15: quartic). Written as one cell, not split into linear
+    !> sub-triangles, so that ParaView interpolates (and tessellates) the field as computed.
+    integer, parameter :: VTK_LAGRANGE_TRIANGLE = 69
     character(len=*), parameter :: VTK_BINARY = 'binary'   !! raw appended data
     character(len=*), parameter :: VTK_ASCII = 'ascii'     !! every value as text
     integer, parameter :: VALUES_PER_LINE = 16   !! offsets and types, to keep lines short
@@ -437,13 +442,18 @@ contains
         case (ELEMENT_Q1); vtk_cell_type = VTK_QUAD
         case (ELEMENT_P2); vtk_cell_type = VTK_QUADRATIC_TRIANGLE
         case (ELEMENT_Q2); vtk_cell_type = VTK_BIQUADRATIC_QUAD
+        case (ELEMENT_P3, ELEMENT_P4); vtk_cell_type = VTK_LAGRANGE_TRIANGLE
         case default; vtk_cell_type = 0
         end select
     end function vtk_cell_type
 
     !> Position in our (Gmsh) cell of each VTK cell node. Both number corners anticlockwise,
     !> then mid-edge nodes with edge k from corner k to corner k+1, then the Q2 centre; so
-    !> the orders coincide, and this is where a difference would go.
+    !> the orders coincide, and this is where a difference would go. The VTK Lagrange
+    !> triangle too lists corners, then the edge nodes edge by edge from corner k towards
+    !> corner k+1, then the interior nodes as a triangle of degree p - 3 (P3: the centre;
+    !> P4: three nodes, next to corners 1, 2, 3; vtkHigherOrderTriangle's parametric
+    !> coordinates): Gmsh's order up to degree 4.
     pure function vtk_node_order(element) result(order)
         integer, intent(in) :: element
         integer, allocatable :: order(:)

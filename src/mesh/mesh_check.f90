@@ -183,11 +183,12 @@ contains
                         '; expected the two cells of an edge on opposite sides of it')
                     return
                 end if
-                if (mid_node(m, k1, inc) /= mid_node(m, k2, inc)) then
+                if (.not. same_side_nodes(m, k1, k2, inc)) then
                     call stat%fail(STATUS_MESH, cell_place(m, c2)//'this cell and '// &
                         cell_name(m, c1)//' share the corners of the edge from '// &
                         point_text(m, inc%low(k1))//' to '//point_text(m, inc%high(k1))// &
-                        ' but not its mid node; expected conforming cells')
+                        ' but not its '//trim(merge('mid node  ', 'edge nodes', &
+                        size(m%edges, 1) <= 3))//'; expected conforming cells')
                     return
                 end if
                 call join(parent, c1, c2)
@@ -246,7 +247,15 @@ contains
                     cell_name(m, inc%cell_of(inc%item(last)))//'; expected a boundary edge')
                 return
             end if
-            if (per_edge == 3) then
+            if (per_edge > 3) then
+                if (.not. same_inner_nodes(m, e, inc%item(first), inc)) then
+                    call stat%fail(STATUS_MESH, what(e)//'from '//point_text(m, a)//' to '// &
+                        point_text(m, b)//' has other inner nodes than its cell ('// &
+                        cell_name(m, inc%cell_of(inc%item(first)))//'); expected the ' &
+                        //'cell''s edge nodes')
+                    return
+                end if
+            else if (per_edge == 3) then
                 if (m%edges(3, e) /= mid_node(m, inc%item(first), inc)) then
                     call stat%fail(STATUS_MESH, what(e)//'from '//point_text(m, a)//' to '// &
                         point_text(m, b)//' has another mid node than its cell ('// &
@@ -306,6 +315,40 @@ contains
         if (size(m%cells, 1) > n_corners(m)) &
             mid_node = m%cells(n_corners(m) + inc%side_of(k), inc%cell_of(k))
     end function mid_node
+
+    !> Whether cell edges k1 and k2 have the same nodes inside (in either order).
+    pure logical function same_side_nodes(m, k1, k2, inc)
+        type(mesh_t), intent(in) :: m
+        integer, intent(in) :: k1, k2
+        type(incidence_t), intent(in) :: inc
+        integer :: inner, first1, first2, t
+        inner = element_nodes_per_edge(m%element) - 2
+        same_side_nodes = .true.
+        if (inner < 1) return
+        first1 = n_corners(m) + (inc%side_of(k1) - 1)*inner
+        first2 = n_corners(m) + (inc%side_of(k2) - 1)*inner
+        do t = 1, inner
+            same_side_nodes = same_side_nodes .and. &
+                any(m%cells(first1 + 1:first1 + inner, inc%cell_of(k1)) == &
+                    m%cells(first2 + t, inc%cell_of(k2)))
+        end do
+    end function same_side_nodes
+
+    !> Whether boundary edge `e` has the inner nodes (in either order) of cell edge k, for
+    !> elements with p - 1 > 1 nodes inside each edge.
+    pure logical function same_inner_nodes(m, e, k, inc)
+        type(mesh_t), intent(in) :: m
+        integer, intent(in) :: e, k
+        type(incidence_t), intent(in) :: inc
+        integer :: inner, first, t
+        inner = size(m%edges, 1) - 2
+        first = n_corners(m) + (inc%side_of(k) - 1)*inner
+        same_inner_nodes = .true.
+        do t = 1, inner
+            same_inner_nodes = same_inner_nodes .and. &
+                any(m%cells(first + 1:first + inner, inc%cell_of(k)) == m%edges(2 + t, e))
+        end do
+    end function same_inner_nodes
 
     !> Last position in inc%item of the corner pair that starts at position `first`.
     pure integer function pair_end(inc, first)

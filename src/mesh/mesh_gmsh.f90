@@ -1,10 +1,11 @@
 ! SPDX-License-Identifier: MIT
 !> Gmsh meshes: MSH 4.1 and MSH 2.2 ASCII files into a `mesh_t`.
 !>
-!> Body cells are all 2D elements (3- and 6-node triangles, 4- and 9-node quadrangles, one
-!> type per mesh); boundary parts are the 1D physical groups, named by $PhysicalNames
-!> (lowercased, as the input file's names are) or, when unnamed, by their number; each 2- or
-!> 3-node line element of a group becomes a boundary edge of that part (an element in several
+!> Body cells are all 2D elements (3-, 6-, 10- and 15-node triangles, 4- and 9-node
+!> quadrangles, one type per mesh); boundary parts are the 1D physical groups, named by
+!> $PhysicalNames (lowercased, as the input file's names are) or, when unnamed, by their
+!> number; each 2- to 5-node line element of a group becomes a boundary edge of that part
+!> (an element in several
 !> groups is an edge of each). Points and lines outside physical groups are ignored; 3D
 !> elements are rejected. The reader checks what the assembly cannot report with a file
 !> line: undefined nodes, mixed element orders or shapes, inverted and degenerate cells. A
@@ -15,8 +16,9 @@ module mesh_gmsh
     use kinds, only: wp, i8
     use status, only: status_t, STATUS_MESH
     use mesh, only: mesh_t
-    use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, &
-                             element_nodes_per_cell
+    use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, ELEMENT_P3, &
+                             ELEMENT_P4, element_nodes_per_cell, element_nodes_per_edge, &
+                             triangle_lattice
     use mesh_renumber, only: renumber_nodes, RENUMBER_RCM
     use cell_geometry, only: cell_orientation, CELL_DEGENERATE, CELL_FOLDED
     use strings, only: to_string, lowercase, NAME_LEN
@@ -29,8 +31,10 @@ module mesh_gmsh
 
     ! Gmsh element type numbers (MSH file format documentation, section "Node ordering").
     integer, parameter :: GMSH_LINE2 = 1, GMSH_TRIANGLE3 = 2, GMSH_QUAD4 = 3, &
-                          GMSH_LINE3 = 8, GMSH_TRIANGLE6 = 9, GMSH_QUAD9 = 10, GMSH_POINT = 15
-    integer, parameter :: MAX_CELL_NODES = 9
+                          GMSH_LINE3 = 8, GMSH_TRIANGLE6 = 9, GMSH_QUAD9 = 10, GMSH_POINT = 15, &
+                          GMSH_TRIANGLE10 = 21, GMSH_TRIANGLE15 = 23, GMSH_LINE4 = 26, &
+                          GMSH_LINE5 = 27
+    integer, parameter :: MAX_CELL_NODES = 15, MAX_LINE_NODES = 5
     ! z of a 2D mesh is written as 0 by Gmsh; allow round-off of a rotated plane geometry.
     real(wp), parameter :: PLANAR_TOL = 1.0e-10_wp
     ! Coordinates are below 1e100 in magnitude (text_tokens' MAX_DECIMAL_EXPONENT): far beyond
@@ -655,10 +659,14 @@ contains
         case (GMSH_TRIANGLE6); dim = 2; n_nodes = 6
         case (GMSH_QUAD4); dim = 2; n_nodes = 4
         case (GMSH_QUAD9); dim = 2; n_nodes = 9
+        case (GMSH_LINE4); dim = 1; n_nodes = 4
+        case (GMSH_LINE5); dim = 1; n_nodes = 5
+        case (GMSH_TRIANGLE10); dim = 2; n_nodes = 10
+        case (GMSH_TRIANGLE15); dim = 2; n_nodes = 15
         case default
             call fail_here(f, stat, 'unsupported element type '//to_string(type)//' ('// &
-                gmsh_type_name(type)//'); expected 3- or 6-node triangles, 4- or 9-node ' &
-                //'quadrangles, 2- or 3-node lines, points')
+                gmsh_type_name(type)//'); expected 3-, 6-, 10- or 15-node triangles, 4- or ' &
+                //'9-node quadrangles, 2- to 5-node lines, points')
         end select
     end subroutine check_type
 
@@ -680,10 +688,15 @@ contains
         case (11); name = '10-node tetrahedron: a 3D mesh'
         case (GMSH_POINT); name = 'point'
         case (16); name = '8-node serendipity quadrangle: set Mesh.SecondOrderIncomplete = 0'
-        case (20, 21); name = 'cubic triangle: use -order 1 or 2'
-        case (26); name = '4-node line: use -order 1 or 2'
-        case (36); name = 'cubic quadrangle: use -order 1 or 2'
-        case default; name = 'not a 2D element of order 1 or 2'
+        case (20); name = '9-node cubic triangle: set Mesh.SecondOrderIncomplete = 0'
+        case (GMSH_TRIANGLE10); name = '10-node triangle'
+        case (GMSH_TRIANGLE15); name = '15-node triangle'
+        case (GMSH_LINE4); name = '4-node line'
+        case (GMSH_LINE5); name = '5-node line'
+        case (22); name = '12-node quartic triangle: set Mesh.SecondOrderIncomplete = 0'
+        case (36); name = 'cubic quadrangle: use -order 1 or 2 for quadrangles'
+        case (37); name = 'quartic quadrangle: use -order 1 or 2 for quadrangles'
+        case default; name = 'not a 2D element of order 1 to 4'
         end select
     end function gmsh_type_name
 
@@ -727,7 +740,7 @@ contains
         type(status_t), intent(inout) :: stat
         integer :: alloc_status
         allocate (raw%cell_type(n), raw%cell_nodes(MAX_CELL_NODES, n), raw%cell_entity(n), &
-                  raw%cell_line(n), raw%edge_type(n), raw%edge_nodes(3, n), &
+                  raw%cell_line(n), raw%edge_type(n), raw%edge_nodes(MAX_LINE_NODES, n), &
                   raw%edge_group(n), raw%edge_line(n), stat=alloc_status)
         if (alloc_status /= 0) then
             call fail_here(f, stat, 'out of memory for the '//to_string(n)// &
@@ -791,7 +804,7 @@ contains
         integer, allocatable :: cells(:, :), edges(:, :), edge_part(:), edge_line(:)
         integer, allocatable :: part_tag(:)
         integer :: n_cell_nodes, n_edge_nodes, c, e, a, node, n_used, i, part, element, n_kept
-        integer :: line_nodes(3)
+        integer :: line_nodes(MAX_LINE_NODES)
         logical :: tags_are_positions
         logical, allocatable :: in_part(:)
         character(len=:), allocatable :: place
@@ -807,7 +820,7 @@ contains
         ! One cell type: the first cell's.
         element = element_of_type(raw%cell_type(1))
         n_cell_nodes = element_nodes_per_cell(element)
-        n_edge_nodes = merge(3, 2, element == ELEMENT_P2 .or. element == ELEMENT_Q2)
+        n_edge_nodes = element_nodes_per_edge(element)
         do c = 2, raw%n_cells
             if (raw%cell_type(c) == raw%cell_type(1)) cycle
             place = f%path//':'//to_string(raw%cell_line(c))//': '
@@ -815,7 +828,7 @@ contains
                 call stat%fail(STATUS_MESH, place//'mixed element orders: a '// &
                     gmsh_type_name(raw%cell_type(c))//' after '// &
                     gmsh_type_name(raw%cell_type(1))//'s (line '// &
-                    to_string(raw%cell_line(1))//'); expected one order (gmsh -order 1 or 2)')
+                    to_string(raw%cell_line(1))//'); expected one order (gmsh -order 1 to 4)')
             else
                 call stat%fail(STATUS_MESH, place//'mixed cell shapes: a '// &
                     gmsh_type_name(raw%cell_type(c))//' after '// &
@@ -1115,11 +1128,20 @@ contains
     end subroutine orient_cells
 
     !> Node order that turns a clockwise cell anticlockwise: corners reversed after the
-    !> first, mid-edge nodes following their edges.
+    !> first, mid-edge nodes following their edges. For cubic and quartic triangles, the node
+    !> at lattice index (i1, i3, i2) takes the place of the one at (i1, i2, i3).
     pure function reoriented_order(element) result(order)
         integer, intent(in) :: element
         integer :: order(element_nodes_per_cell(element))
+        integer :: lattice(3, MAX_CELL_NODES), a, b
         select case (element)
+        case (ELEMENT_P3, ELEMENT_P4)
+            call triangle_lattice(element, lattice)
+            do a = 1, size(order)
+                do b = 1, size(order)
+                    if (all(lattice(:, b) == lattice([1, 3, 2], a))) order(a) = b
+                end do
+            end do
         case (ELEMENT_P1); order = [1, 3, 2]
         case (ELEMENT_Q1); order = [1, 4, 3, 2]
         case (ELEMENT_P2); order = [1, 3, 2, 6, 5, 4]
@@ -1134,6 +1156,8 @@ contains
         case (GMSH_QUAD4); element_of_type = ELEMENT_Q1
         case (GMSH_TRIANGLE6); element_of_type = ELEMENT_P2
         case (GMSH_QUAD9); element_of_type = ELEMENT_Q2
+        case (GMSH_TRIANGLE10); element_of_type = ELEMENT_P3
+        case (GMSH_TRIANGLE15); element_of_type = ELEMENT_P4
         case default; element_of_type = 0
         end select
     end function element_of_type
@@ -1142,6 +1166,8 @@ contains
         integer, intent(in) :: type
         select case (type)
         case (GMSH_LINE3, GMSH_TRIANGLE6, GMSH_QUAD9); order_of = 2
+        case (GMSH_LINE4, GMSH_TRIANGLE10); order_of = 3
+        case (GMSH_LINE5, GMSH_TRIANGLE15); order_of = 4
         case default; order_of = 1
         end select
     end function order_of

@@ -21,7 +21,9 @@ module mesh_refine
     use status, only: status_t, STATUS_BAD_INPUT, STATUS_MESH
     use strings, only: to_string, short_real_text
     use mesh, only: mesh_t
-    use element_types, only: ELEMENT_P1, ELEMENT_P2, element_name
+    use element_types, only: ELEMENT_P1, ELEMENT_P2, ELEMENT_P3, ELEMENT_P4, element_name, &
+                             element_corners, element_degree, element_nodes_per_cell, &
+                             triangle_lattice
     implicit none
     private
     public :: refinable_mesh_t, build_refinable_mesh
@@ -78,8 +80,8 @@ contains
         if (allocated(this%cells)) refinable_mesh_n_cells = size(this%cells, 2)
     end function refinable_mesh_n_cells
 
-    !> The refinable vertex mesh of the P1 or P2 triangle mesh `m`: its cell corners (in node
-    !> order; P2 mid-edge nodes are dropped, so curved P2 edges become straight), its boundary
+    !> The refinable vertex mesh of the P1 to P4 triangle mesh `m`: its cell corners (in node
+    !> order; other nodes are dropped, so curved edges become straight), its boundary
     !> edges and parts. Each cell's refinement edge is its longest edge (the first of equal
     !> ones), the usual initial choice: it makes neighbours across a longest edge bisect the
     !> same edge, which keeps the closure of the first steps short. Fails with
@@ -94,8 +96,9 @@ contains
         integer :: node, c, e, n_vertices, corners(N_CORNERS), longest
         real(wp) :: length2(N_CORNERS), twice_area
 
-        if (m%element /= ELEMENT_P1 .and. m%element /= ELEMENT_P2) then
-            call stat%fail(STATUS_BAD_INPUT, 'mesh refinement: needs triangles (p1 or p2), '// &
+        if (element_corners(m%element) /= N_CORNERS .or. &
+            element_nodes_per_cell(m%element) == 0) then
+            call stat%fail(STATUS_BAD_INPUT, 'mesh refinement: needs triangles (p1 to p4), '// &
                            'got '//element_name(m%element)//' cells')
             return
         end if
@@ -319,23 +322,27 @@ contains
         end subroutine add_cell
     end subroutine refinable_mesh_refine
 
-    !> The mesh as a `mesh_t` of `element` ELEMENT_P1 or ELEMENT_P2: vertices first, then (P2)
-    !> one node per edge at its exact midpoint, numbered in the edge table's order. Boundary
-    !> edges keep their order and parts; a P2 edge lists its mid node third, as mesh_t does.
-    !> Fails with STATUS_BAD_INPUT for any other element.
+    !> The mesh as a `mesh_t` of `element` ELEMENT_P1 to ELEMENT_P4 (degree p): vertices
+    !> first, then p - 1 nodes per edge equally spaced from the edge's first end (P2: its
+    !> exact midpoint), numbered in the edge table's order, then (P3, P4) the interior nodes of
+    !> each cell at their lattice points. Boundary edges keep their order and parts and list
+    !> their inner nodes after the ends, from the first end on, as mesh_t does. Fails with
+    !> STATUS_BAD_INPUT for any other element.
     subroutine refinable_mesh_to_mesh(this, element, m, stat)
         class(refinable_mesh_t), intent(in) :: this
         integer, intent(in) :: element
         type(mesh_t), intent(out) :: m
         type(status_t), intent(out) :: stat
         type(edge_table_t) :: table
-        integer :: e, c, k, n_vertices
-        ! Gmsh order: mid node k joins corners k and k+1, the side opposite corner k+2.
+        integer :: e, c, k, t, a, n_vertices, p, inner, n_inner, first_inner, lattice(3, 15)
+        integer :: from, to
+        ! Gmsh order: side k joins corners k and k+1, the side opposite corner k+2.
         integer, parameter :: OPPOSITE(N_CORNERS) = [3, 1, 2]
 
-        if (element /= ELEMENT_P1 .and. element /= ELEMENT_P2) then
-            call stat%fail(STATUS_BAD_INPUT, 'mesh refinement: output element must be p1 or ' &
-                           //'p2, got '//element_name(element))
+        if (element /= ELEMENT_P1 .and. element /= ELEMENT_P2 .and. element /= ELEMENT_P3 &
+            .and. element /= ELEMENT_P4) then
+            call stat%fail(STATUS_BAD_INPUT, 'mesh refinement: output element must be p1 to ' &
+                           //'p4, got '//element_name(element))
             return
         end if
         m%element = element
@@ -348,26 +355,60 @@ contains
             return
         end if
 
+        p = element_degree(element)
+        inner = p - 1                              ! nodes inside an edge
+        n_inner = (p - 1)*(p - 2)/2                ! nodes inside a cell
         n_vertices = this%n_vertices()
         call build_edge_table(this%cells, n_vertices, table)
-        allocate (m%coords(2, n_vertices + table%n_edges))
+        first_inner = n_vertices + inner*table%n_edges
+        allocate (m%coords(2, first_inner + n_inner*this%n_cells()))
         m%coords(:, :n_vertices) = this%coords
         do e = 1, table%n_edges
-            m%coords(:, n_vertices + e) = 0.5_wp*(this%coords(:, table%ends(1, e)) + &
-                                                  this%coords(:, table%ends(2, e)))
+            do t = 1, inner
+                m%coords(:, n_vertices + inner*(e - 1) + t) = &
+                    (real(p - t, wp)*this%coords(:, table%ends(1, e)) + &
+                     real(t, wp)*this%coords(:, table%ends(2, e)))/real(p, wp)
+            end do
         end do
-        allocate (m%cells(2*N_CORNERS, this%n_cells()))
+        call triangle_lattice(element, lattice)
+        allocate (m%cells(element_nodes_per_cell(element), this%n_cells()))
         do c = 1, this%n_cells()
             m%cells(1:N_CORNERS, c) = this%cells(:, c)
             do k = 1, N_CORNERS
-                m%cells(N_CORNERS + k, c) = n_vertices + table%cell_edge(OPPOSITE(k), c)
+                e = table%cell_edge(OPPOSITE(k), c)
+                do t = 1, inner
+                    m%cells(N_CORNERS + inner*(k - 1) + t, c) = &
+                        edge_node(e, this%cells(k, c), t)
+                end do
+            end do
+            do a = 1, n_inner
+                m%cells(N_CORNERS + 3*inner + a, c) = first_inner + n_inner*(c - 1) + a
+                m%coords(:, first_inner + n_inner*(c - 1) + a) = &
+                    matmul(this%coords(:, this%cells(:, c)), &
+                           real(lattice(:, N_CORNERS + 3*inner + a), wp))/real(p, wp)
             end do
         end do
-        allocate (m%edges(3, size(this%edges, 2)))
+        allocate (m%edges(p + 1, size(this%edges, 2)))
         do e = 1, size(this%edges, 2)
-            m%edges(1:2, e) = this%edges(:, e)
-            m%edges(3, e) = n_vertices + edge_number(table, this%edges(1, e), this%edges(2, e))
+            from = this%edges(1, e)
+            to = this%edges(2, e)
+            m%edges(1:2, e) = [from, to]
+            do t = 1, inner
+                m%edges(2 + t, e) = edge_node(edge_number(table, from, to), from, t)
+            end do
         end do
+
+    contains
+
+        !> Node t of the inner nodes of table edge `edge`, counted from its end `start`.
+        integer function edge_node(edge, start, t)
+            integer, intent(in) :: edge, start, t
+            if (table%ends(1, edge) == start) then
+                edge_node = n_vertices + inner*(edge - 1) + t
+            else
+                edge_node = n_vertices + inner*(edge - 1) + (p - t)
+            end if
+        end function edge_node
     end subroutine refinable_mesh_to_mesh
 
     ! ------------------------------------------------------------------------ edge table

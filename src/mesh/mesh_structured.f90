@@ -6,8 +6,10 @@ module mesh_structured
     use status, only: status_t, STATUS_BAD_INPUT, STATUS_SOLVER
     use strings, only: to_string, short_real_text
     use mesh, only: mesh_t
-    use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, &
-                             element_nodes_per_cell, element_nodes_per_edge, element_name
+    use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, ELEMENT_P3, &
+                             ELEMENT_P4, MAX_ELEMENT, element_nodes_per_cell, &
+                             element_nodes_per_edge, element_name, element_degree, &
+                             triangle_lattice
     implicit none
     private
     public :: structured_rectangle
@@ -17,10 +19,12 @@ module mesh_structured
     integer, parameter :: PART_BOTTOM = 1, PART_RIGHT = 2, PART_TOP = 3, PART_LEFT = 4
     !> Dofs are numbered with default integers.
     integer, parameter :: MAX_DOFS = huge(1)
-    !> Nonzeros of K per node in the interior of a grid (P1, Q1, P2, Q2): 4 per neighbour,
-    !> self included (P1 7, Q1 9; P2 vertex 19 and mid-edge 9, i.e. 11.5 per node; Q2 vertex
-    !> 25, mid-edge 15, centre 9, i.e. 16).
-    integer(i8), parameter :: NNZ_PER_NODE(4) = [28_i8, 36_i8, 46_i8, 64_i8]
+    !> Nonzeros of K per node in the interior of a grid (P1, Q1, P2, Q2, P3, P4): 4 per
+    !> neighbour, self included (P1 7, Q1 9; P2 vertex 19 and mid-edge 9, i.e. 11.5 per node;
+    !> Q2 vertex 25, mid-edge 15, centre 9, i.e. 16; P3 vertex 37, edge 16, centre 10, i.e. 17
+    !> over the 9 nodes of a square; P4 vertex 61, edge 25, interior 15, i.e. 23.5 over 16).
+    integer(i8), parameter :: NNZ_PER_NODE(MAX_ELEMENT) = [28_i8, 36_i8, 46_i8, 64_i8, 68_i8, &
+                                                           94_i8]
     character(len=*), parameter :: SIDE_NAMES(4) = ['bottom', 'right ', 'top   ', 'left  ']
 
 contains
@@ -28,14 +32,14 @@ contains
     !> Mesh of [0, width] x [0, height] with nx x ny cells of type `element` (ELEMENT_*).
     !> `diagonal` is 'right' (squares split from lower-left to upper-right) or 'left' (from
     !> lower-right to upper-left); quadrilateral meshes ignore it. Nodes lie on a grid of
-    !> (s nx + 1) x (s ny + 1) points, s = 1 for linear and 2 for quadratic elements, numbered
-    !> row by row from the bottom so that the bandwidth stays near 2 s nx. Boundary edges go
+    !> (s nx + 1) x (s ny + 1) points, s the degree of the element (1 to 4), numbered row by
+    !> row from the bottom so that the bandwidth stays near 2 s nx. Boundary edges go
     !> anticlockwise round the rectangle (body on their left) and belong to the parts
     !> 'bottom', 'right', 'top', 'left' (PART_* indices).
     subroutine structured_rectangle(width, height, nx, ny, element, diagonal, m, stat)
         real(wp), intent(in) :: width, height   !! metres, > 0
         integer, intent(in) :: nx, ny           !! cells along x and y, >= 1
-        integer, intent(in) :: element          !! ELEMENT_P1, _Q1, _P2 or _Q2
+        integer, intent(in) :: element          !! ELEMENT_P1, _Q1, _P2, _Q2, _P3 or _P4
         character(len=*), intent(in) :: diagonal
         type(mesh_t), intent(out) :: m
         type(status_t), intent(out) :: stat
@@ -59,7 +63,7 @@ contains
             return
         end if
         select case (element)
-        case (ELEMENT_P1, ELEMENT_P2); triangles = .true.
+        case (ELEMENT_P1, ELEMENT_P2, ELEMENT_P3, ELEMENT_P4); triangles = .true.
         case (ELEMENT_Q1, ELEMENT_Q2); triangles = .false.
         case default
             call stat%fail(STATUS_BAD_INPUT, 'structured mesh: unknown element code '// &
@@ -77,19 +81,19 @@ contains
                 return
             end select
         end if
-        quadratic = element == ELEMENT_P2 .or. element == ELEMENT_Q2
-        step = merge(2, 1, quadratic)
+        step = element_degree(element)
+        quadratic = step > 1
         ! Node numbers are default integers: refuse grids whose count would overflow them
         ! (or whose dof count, twice as large, would) before any arithmetic wraps round.
         ! No file name here: the caller puts the input file and &mesh in front.
         n_nodes_wide = (step*int(nx, i8) + 1)*(step*int(ny, i8) + 1)
         if (2*n_nodes_wide > int(MAX_DOFS, i8)) then
             call stat%fail(STATUS_BAD_INPUT, 'nx = '//to_string(nx)//', ny = '// &
-                to_string(ny)//': the '//trim(merge('quadratic', 'linear   ', quadratic))// &
+                to_string(ny)//': the '//trim(grid_name(step))// &
                 ' grid has '//to_string(n_nodes_wide)//' nodes, '//to_string(2*n_nodes_wide) &
                 //' dofs; expected at most '//to_string(MAX_DOFS)//' dofs (default ' &
-                //'integers), i.e. '//trim(merge('(2 nx + 1) (2 ny + 1)', &
-                '(nx + 1) (ny + 1)    ', quadratic))//' <= '//to_string(ishft(MAX_DOFS, -1)))
+                //'integers), i.e. '//trim(grid_size(step))//' <= '// &
+                to_string(ishft(MAX_DOFS, -1)))
             return
         end if
         ! The positions in K (CSR row starts) are default integers too: 4 entries per pair of
@@ -176,12 +180,22 @@ contains
         end subroutine fill_square
 
         !> Append a cell given its corner grid points; mid-edge and centre nodes of quadratic
-        !> elements are the grid points halfway between, in Gmsh order.
+        !> elements are the grid points halfway between, in Gmsh order; the other nodes of a
+        !> cubic or quartic triangle are the grid points at its barycentric lattice.
         subroutine add_cell(corner)
             integer, intent(in) :: corner(:, :)
-            integer :: k, n_corners, middle(2)
+            integer :: k, n_corners, middle(2), lattice(3, 15), point(2)
             n_corners = size(corner, 2)
             cell = cell + 1
+            if (element == ELEMENT_P3 .or. element == ELEMENT_P4) then
+                ! corner coordinates are multiples of step: the lattice points are integers
+                call triangle_lattice(element, lattice)
+                do k = 1, element_nodes_per_cell(element)
+                    point = matmul(corner, lattice(:, k))/step
+                    m%cells(k, cell) = node(point(1), point(2))
+                end do
+                return
+            end if
             do k = 1, n_corners
                 m%cells(k, cell) = node(corner(1, k), corner(2, k))
             end do
@@ -198,11 +212,35 @@ contains
 
         subroutine add_edge(i1, j1, i2, j2, part)
             integer, intent(in) :: i1, j1, i2, j2, part
+            integer :: t
             e = e + 1
             m%edges(1, e) = node(i1, j1)
             m%edges(2, e) = node(i2, j2)
-            if (quadratic) m%edges(3, e) = node((i1 + i2)/2, (j1 + j2)/2)
+            ! inner nodes from the first end, at t/step of the edge
+            do t = 1, step - 1
+                m%edges(2 + t, e) = node(((step - t)*i1 + t*i2)/step, ((step - t)*j1 + t*j2)/step)
+            end do
             m%edge_part(e) = part
         end subroutine add_edge
     end subroutine structured_rectangle
+
+    !> 'linear', 'quadratic', ... grid of an element of degree p, for messages.
+    pure function grid_name(p) result(name)
+        integer, intent(in) :: p
+        character(len=9) :: name
+        character(len=9), parameter :: NAMES(4) = ['linear   ', 'quadratic', 'cubic    ', &
+                                                   'quartic  ']
+        name = NAMES(max(1, min(p, 4)))
+    end function grid_name
+
+    !> The node count of the grid of an element of degree p, as a formula, for messages.
+    pure function grid_size(p) result(text)
+        integer, intent(in) :: p
+        character(len=:), allocatable :: text
+        if (p == 1) then
+            text = '(nx + 1) (ny + 1)'
+        else
+            text = '('//to_string(p)//' nx + 1) ('//to_string(p)//' ny + 1)'
+        end if
+    end function grid_size
 end module mesh_structured
