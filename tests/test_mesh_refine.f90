@@ -22,6 +22,9 @@ program test_mesh_refine
     use strings, only: to_string
     use testing, only: test_suite_t
     use fixtures, only: single_triangle
+    use timer, only: timings_t
+    use sparse_cholesky, only: cholesky_t
+    use contact_reduction, only: factor_stiffness, contact_flexibility
     implicit none
 
     real(wp), parameter :: WIDTH = 2.0_wp, HEIGHT = 1.5_wp
@@ -45,6 +48,7 @@ program test_mesh_refine
     call check_assembly(ELEMENT_P3)
     call check_assembly(ELEMENT_P4)
     call check_contact_segment()
+    call check_contact_last_factor()
     call check_errors()
     call t%report()
 
@@ -622,4 +626,42 @@ contains
             u(2::2) = m%coords(1, :)
         end select
     end function rigid_mode
+
+    !> Bisected meshes factor with the contact dofs last: the contact blocks of K^-1 are read
+    !> off the trailing block of the factor, so its ordering must keep them there (on the
+    !> single triangle bisected twice, a contact node's free neighbours are all on Gamma_C).
+    subroutine check_contact_last_factor()
+        type(mesh_t) :: m, fine
+        type(refinable_mesh_t) :: r
+        type(dof_map_t) :: dofs
+        type(contact_t) :: contact
+        type(csr_matrix_t) :: k
+        type(cholesky_t) :: chol
+        type(timings_t) :: timings
+        type(status_t) :: stat
+        real(wp), allocatable :: kt_nn(:, :), kt_nt(:, :)
+        integer :: level, i
+        logical :: ok
+
+        call single_triangle(1.0_wp, m)
+        call build_refinable_mesh(m, r, stat)
+        ok = stat%ok()
+        do level = 1, 6
+            call r%refine([(i, i=1, r%n_cells())], stat)
+            ok = ok .and. stat%ok()
+            call r%to_mesh(ELEMENT_P1, fine, stat)
+            if (stat%ok()) call build_dof_map(fine, [fine%part_index('fixed')], dofs, stat)
+            if (stat%ok()) call build_contact(fine, fine%part_index('contact'), dofs, contact, &
+                                              stat)
+            if (stat%ok()) call assemble_stiffness(fine, dofs, 1.0_wp, 0.3_wp, k, stat)
+            if (stat%ok()) call factor_stiffness(k, fine, dofs, contact, chol, timings, stat)
+            if (stat%ok()) call contact_flexibility(chol, contact, kt_nn, kt_nt, stat)
+            call chol%free()
+            if (.not. stat%ok()) print '(a)', '      level '//to_string(level)//': '// &
+                                              stat%message
+            ok = ok .and. stat%ok()
+        end do
+        call t%check('contact-last factor and contact blocks on a triangle bisected 1-6 times', &
+                     ok)
+    end subroutine check_contact_last_factor
 end program test_mesh_refine

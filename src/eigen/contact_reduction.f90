@@ -105,7 +105,8 @@ contains
         if (.not. stat%ok()) return
         call timings%add(PHASE_ORDERING, wall_time() - start, ': METIS, contact nodes last')
         start = wall_time()
-        call chol%factor(k, stat, ordering=ORDERING_GIVEN, permutation=permutation)
+        call chol%factor(k, stat, ordering=ORDERING_GIVEN, permutation=permutation, &
+                         keep_last=2*contact%p())
         if (stat%code == STATUS_SINGULAR) then
             stat%message = 'the stiffness matrix K is singular: is there a Dirichlet boundary ' &
                 //'that stops every rigid motion? ('//stat%message//')'

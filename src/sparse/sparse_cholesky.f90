@@ -62,14 +62,16 @@ module sparse_cholesky
     end type cholesky_t
 
     interface
-        function nceig_cholmod_factor(n, row_start0, col0, val, ordering, perm0, handle, info) &
-                bind(C, name='nceig_cholmod_factor') result(code)
+        function nceig_cholmod_factor(n, row_start0, col0, val, ordering, perm0, keep_last, &
+                                      handle, info) bind(C, name='nceig_cholmod_factor') &
+                result(code)
             import :: c_int, c_double, c_ptr
             integer(c_int), value :: n
             integer(c_int), intent(in) :: row_start0(*), col0(*)   ! 0-based copies
             real(c_double), intent(in) :: val(*)
             integer(c_int), value :: ordering
             type(c_ptr), value :: perm0                            ! const int *, may be NULL
+            integer(c_int), value :: keep_last                     ! last pivots kept last
             type(c_ptr), intent(out) :: handle                     ! void **
             real(c_double), intent(out) :: info(*)
             integer(c_int) :: code
@@ -126,17 +128,20 @@ contains
     !> Analyse and factorize the symmetric positive definite matrix `a` (full pattern, only
     !> its upper triangle is read). A previous factor is freed first. `ordering` is one of
     !> the ORDERING_* constants (default ORDERING_DEFAULT); ORDERING_GIVEN needs
-    !> `permutation`, 1-based: row/column permutation(k) of A becomes the k-th pivot.
-    subroutine cholesky_factor(this, a, stat, ordering, permutation)
+    !> `permutation`, 1-based: row/column permutation(k) of A becomes the k-th pivot; with
+    !> `keep_last` its last keep_last pivots stay the factor's last (CHOLMOD may otherwise
+    !> reorder within its elimination tree), so that trailing_block(keep_last) holds them.
+    subroutine cholesky_factor(this, a, stat, ordering, permutation, keep_last)
         class(cholesky_t), intent(inout) :: this
         type(csr_matrix_t), intent(in) :: a
         type(status_t), intent(out) :: stat
         integer, intent(in), optional :: ordering
         integer, intent(in), optional :: permutation(:)
+        integer, intent(in), optional :: keep_last
         integer(c_int), allocatable :: row_start0(:), col0(:)
         integer(c_int), allocatable, target :: perm0(:)
         type(c_ptr) :: perm_address
-        integer :: chosen, code, n
+        integer :: chosen, code, n, tail
         character(len=32) :: text
 
         call this%free()
@@ -172,8 +177,11 @@ contains
         ! CHOLMOD wants 0-based indices; the caller's CSR stays as it is.
         row_start0 = int(a%row_start - 1, c_int)
         col0 = int(a%col - 1, c_int)
+        tail = 0
+        if (present(keep_last)) tail = max(0, min(keep_last, n))
         code = nceig_cholmod_factor(int(n, c_int), row_start0, col0, a%val, &
-                                    int(chosen, c_int), perm_address, this%handle, this%info)
+                                    int(chosen, c_int), perm_address, int(tail, c_int), &
+                                    this%handle, this%info)
         if (code /= SHIM_OK) then
             this%handle = c_null_ptr
             call stat%fail(status_code(code), cholmod_status_message(code, &
