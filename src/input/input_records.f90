@@ -9,6 +9,7 @@ module input_records
     implicit none
     private
     public :: read_record, expectation, reader_variables, typed_variables, is_text_variable
+    public :: expected_value, text_capacity
     public :: KNOWN_GROUPS
 
     !> Namelist groups, in the order they are read, validated and documented.
@@ -132,6 +133,41 @@ contains
             if (index(VARIABLE_TYPES(i), entry) == 1) is_text_variable = .true.
         end do
     end function is_text_variable
+
+    !> What `variable` of `group` expects ('a real number', 'a quoted path', ...), as in
+    !> VARIABLE_TYPES; '' for a variable the group does not have.
+    pure function expected_value(group, variable) result(text)
+        character(len=*), intent(in) :: group, variable
+        character(len=:), allocatable :: text
+        character(len=:), allocatable :: entry
+        integer :: i
+        text = ''
+        entry = trim(group)//' '//lowercase(trim(adjustl(variable)))//':'
+        do i = 1, size(VARIABLE_TYPES)
+            if (index(VARIABLE_TYPES(i), entry) == 1) then
+                text = trim(VARIABLE_TYPES(i)(len(entry) + 1:))
+                return
+            end if
+        end do
+    end function expected_value
+
+    !> Characters the text variable `variable` of `group` holds (0 for one that is not
+    !> text): the namelist read silently cuts a longer value, so it is refused before.
+    pure integer function text_capacity(group, variable)
+        character(len=*), intent(in) :: group, variable
+        type(config_t) :: defaults
+        text_capacity = 0
+        select case (expected_value(group, variable))
+        case ('a quoted path')
+            text_capacity = PATH_LEN
+        case ('a quoted list of names')
+            text_capacity = LIST_LEN
+        case ('a quoted name')
+            text_capacity = NAME_LEN
+            if (trim(group) == 'output' .and. lowercase(trim(adjustl(variable))) == &
+                'vtk_format') text_capacity = len(defaults%output%vtk_format)
+        end select
+    end function text_capacity
 
     ! Each reader copies the current values into locals named like the namelist variables,
     ! reads the record from the internal file `record`, and only on success copies them
