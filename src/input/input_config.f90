@@ -186,12 +186,16 @@ contains
     pure function assigned_name(assignment) result(name)
         character(len=*), intent(in) :: assignment
         character(len=:), allocatable :: name
-        integer :: i, equals
+        integer :: i, n, equals
         equals = index(assignment, '=')
-        name = ''
-        do i = 1, max(equals - 1, 0)
-            if (assignment(i:i) /= ' ') name = name//lowercase(assignment(i:i))
+        allocate (character(len=max(equals - 1, 0)) :: name)
+        n = 0
+        do i = 1, equals - 1   ! filled in place: name//c per character is quadratic
+            if (assignment(i:i) == ' ') cycle
+            n = n + 1
+            name(n:n) = lowercase(assignment(i:i))
         end do
+        name = name(:n)
     end function assigned_name
 
     !> Refuse in `assignment` of `group` (`place` starts the message) what the runtime
@@ -479,12 +483,17 @@ contains
         pure function doubled_quotes(text) result(escaped)
             character(len=*), intent(in) :: text
             character(len=:), allocatable :: escaped
-            integer :: k
-            escaped = ''
+            integer :: k, n
+            allocate (character(len=2*len(text)) :: escaped)
+            n = 0
             do k = 1, len(text)
-                escaped = escaped//text(k:k)
-                if (text(k:k) == '"') escaped = escaped//'"'
+                n = n + 1
+                escaped(n:n) = text(k:k)
+                if (text(k:k) /= '"') cycle
+                n = n + 1
+                escaped(n:n) = '"'
             end do
+            escaped = escaped(:n)
         end function doubled_quotes
     end subroutine apply_setting
 
