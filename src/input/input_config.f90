@@ -22,6 +22,9 @@ module input_config
     integer, parameter :: MSG_LEN = 1024     !! iomsg buffers
     integer, parameter :: MSG_SHOWN_LEN = 200   !! of a runtime message in ours
     integer, parameter :: MESSAGE_LEN = 1000    !! of a whole message (about 12 lines of 80)
+    !> Assignments in one group: every variable once and each of the 1000 lambdas(k) alone
+    !> stay below it; it bounds the check for repeated variables (quadratic).
+    integer, parameter :: MAX_ASSIGNMENTS = 2000
     integer, parameter :: PATH_SHOWN_LEN = 256  !! of a file name in a message
 
 contains
@@ -163,10 +166,20 @@ contains
         integer, intent(in) :: starts(:)
         type(status_t), intent(inout) :: stat
         type(text_t), allocatable :: names(:)
-        integer :: i, j
+        integer :: i, j, paren
+        if (size(pieces) > MAX_ASSIGNMENTS) then
+            call stat%fail(STATUS_BAD_INPUT, path//': line '//to_string(group%line)//': &' &
+                           //group%name//': '//to_string(size(pieces))//' assignments: ' &
+                           //'expected at most '//to_string(MAX_ASSIGNMENTS)//' in one group')
+            return
+        end if
         allocate (names(size(pieces)))
         do i = 1, size(pieces)
             names(i)%text = assigned_name(pieces(i)%text)
+            paren = index(names(i)%text, '(')
+            if (paren == 0) paren = len(names(i)%text) + 1
+            ! An unknown variable: the read names it with the variables the group knows.
+            if (len(expected_value(group%name, names(i)%text(:paren - 1))) == 0) return
             do j = 1, i - 1
                 if (names(j)%text /= names(i)%text) cycle
                 call stat%fail(STATUS_BAD_INPUT, path//': line ' &
