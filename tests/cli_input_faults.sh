@@ -41,23 +41,25 @@ blanks=$(printf '%600s' '')
 # --- item 5: nothing cut without a word
 nml "$work/list.nml" "&mesh dirichlet = 'top${blanks}left' /"
 refused 'item 5: a list past 512 characters' 2 "$work/list.nml" -- \
-    'list.nml: line 1: &mesh: dirichlet' 'at most 512 characters'
+    'list.nml: &mesh: line 1: dirichlet' 'at most 512 characters'
 nml "$work/bogus.nml" "&mesh dirichlet = 'top${blanks}bogus' /"
 refused 'item 5: the cut part is not dropped unseen' 2 "$work/bogus.nml" -- \
-    '&mesh: dirichlet' 'at most 512'
+    '&mesh: line 1: dirichlet' 'at most 512'
 nml "$work/name.nml" "&analysis kind = 'eigen$(printf '%70s' '')x' /"
-refused 'item 5: a name past 64 characters' 2 "$work/name.nml" -- '&analysis: kind' \
+refused 'item 5: a name past 64 characters' 2 "$work/name.nml" -- '&analysis: line 1: kind' \
     'at most 64'
 long=$(printf 'd%.0s' $(seq 4229))
 printf "&output directory = '%s' /\n" "$work/$long" >"$work/path.nml"
-refused 'item 5: a path past 4096 characters' 2 "$work/path.nml" -- '&output: directory' \
+refused 'item 5: a path past 4096 characters' 2 "$work/path.nml" -- '&output: line 1: directory' \
     'at most 4096'
 nml "$work/good.nml" "&mesh nx = 4, ny = 2 /"
-refused 'item 5: the same through --set' 2 "$work/good.nml" --set "mesh%neumann=left${blanks}right" \
+refused 'item 5: the same through --set' 2 "$work/good.nml" \
+    --set "mesh%neumann=left${blanks}right" \
     -- '--set' '&mesh: neumann' 'at most 512'
 
 # --- item 8: linear, bounded, any kind of file
-python3 -c "print(\"&mesh dirichlet = '\" + 'x' * 200000 + \"' /\")" >"$work/wide.nml" 2>/dev/null ||
+python3 -c "print(\"&mesh dirichlet = '\" + 'x' * 200000 + \"' /\")" \
+    >"$work/wide.nml" 2>/dev/null ||
     { printf "&mesh dirichlet = '"; head -c 200000 /dev/zero | tr '\0' x; printf "' /\n"; } \
         >"$work/wide.nml"
 start=$(date +%s%N)
@@ -81,27 +83,28 @@ refused 'item 10: control bytes are not echoed' 2 "$work/control.nml" -- "to?p?[
 nml "$work/nul.nml" "&mesh contact = 'bot"
 printf "\0tom' /\n" >>"$work/nul.nml"
 timeout 20 "$nceig" "$work/nul.nml" >/dev/null 2>"$work/err"
-check 'item 10: no NUL byte on stderr' '[[ $(tr -d "\0" <"$work/err" | wc -c) -eq $(wc -c <"$work/err") ]]'
+check 'item 10: no NUL byte on stderr' \
+    '[[ $(tr -d "\0" <"$work/err" | wc -c) -eq $(wc -c <"$work/err") ]]'
 nml "$work/huge.nml" "&mesh source = '$(printf 'y%.0s' $(seq 3000))' /"
 refused 'item 10: a long echoed value is capped' 2 "$work/huge.nml" -- '...'
 check 'item 10: ... the line stays short' '[[ $(wc -c <"$work/err") -lt 400 ]]'
 nml "$work/lambdas.nml" "&analysis kind = 'lambda_sweep' /
 &sweep lambdas = $(printf '1.0, %.0s' $(seq 1001)) /"
-refused 'item 10: more than 1000 lambdas' 2 "$work/lambdas.nml" -- '&sweep: lambdas' \
+refused 'item 10: more than 1000 lambdas' 2 "$work/lambdas.nml" -- '&sweep: line 2: lambdas' \
     'at most 1000 values'
 printf "&mesh nx = 2 /\n&output directory = '%s', vtk = .trash. /\n" "$out" >"$work/trash.nml"
-refused 'item 10: vtk = .trash. is not a logical' 2 "$work/trash.nml" -- 'line 2' \
-    '&output: vtk = .trash.' '.true. or .false.'
+refused 'item 10: vtk = .trash. is not a logical' 2 "$work/trash.nml" -- \
+    '&output: line 2: vtk = .trash.' '.true. or .false.'
 refused 'item 10: ... nor through --set' 2 "$work/good.nml" --set 'output%vtk=.trash.' -- \
     '--set' '.true. or .false.'
 nml "$work/twice.nml" "&mesh nx = 4,
    nx = 6 /"
-refused 'item 10: a variable given twice' 2 "$work/twice.nml" -- 'line 2' '&mesh: nx' \
+refused 'item 10: a variable given twice' 2 "$work/twice.nml" -- '&mesh: line 2: nx' \
     'given twice (first on line 1)'
 nml "$work/number.nml" "&material
    young = 1.0e /"
 refused 'item 10: an unreadable number names the variable and the line' 2 \
-    "$work/number.nml" -- 'number.nml: line 2' '&material: young = 1.0e' 'a real number'
+    "$work/number.nml" -- 'number.nml: &material: line 2: young = 1.0e' 'a real number'
 touch "$work/in_the_way"
 printf "&mesh nx = 4, ny = 2 /\n&output directory = '%s', plot = .false. /\n" \
     "$work/in_the_way/sub/out" >"$work/exit4.nml"

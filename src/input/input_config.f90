@@ -146,9 +146,9 @@ contains
             msg = ''
             call read_record(group, '&'//group//' '//pieces(i)%text//' /', scratch, ios, msg)
             if (ios /= 0) then
-                call stat%fail(STATUS_BAD_INPUT, path//': line ' &
-                               //to_string(body_line(groups(g), starts(i)))//': &'//group &
-                               //': '//printable(pieces(i)%text)//': ' &
+                call stat%fail(STATUS_BAD_INPUT, path//': &'//group//': line ' &
+                               //to_string(body_line(groups(g), starts(i)))//': ' &
+                               //printable(pieces(i)%text)//': ' &
                                //printable(trim(msg), MSG_SHOWN_LEN) &
                                //expectation(group, pieces(i)%text))
                 exit
@@ -168,8 +168,9 @@ contains
         type(text_t), allocatable :: names(:)
         integer :: i, j, paren
         if (size(pieces) > MAX_ASSIGNMENTS) then
-            call stat%fail(STATUS_BAD_INPUT, path//': line '//to_string(group%line)//': &' &
-                           //group%name//': '//to_string(size(pieces))//' assignments: ' &
+            call stat%fail(STATUS_BAD_INPUT, path//': &'//group%name//': line ' &
+                           //to_string(group%line)//': '//to_string(size(pieces)) &
+                           //' assignments: ' &
                            //'expected at most '//to_string(MAX_ASSIGNMENTS)//' in one group')
             return
         end if
@@ -182,15 +183,15 @@ contains
             if (len(expected_value(group%name, names(i)%text(:paren - 1))) == 0) return
             do j = 1, i - 1
                 if (names(j)%text /= names(i)%text) cycle
-                call stat%fail(STATUS_BAD_INPUT, path//': line ' &
-                               //to_string(body_line(group, starts(i)))//': &'//group%name &
-                               //': '//printable(names(i)%text)//' is given twice (first on ' &
+                call stat%fail(STATUS_BAD_INPUT, path//': &'//group%name//': line ' &
+                               //to_string(body_line(group, starts(i)))//': ' &
+                               //printable(names(i)%text)//' is given twice (first on ' &
                                //'line '//to_string(body_line(group, starts(j))) &
                                //'): expected each variable once')
                 return
             end do
-            call check_assignment(path//': line '//to_string(body_line(group, starts(i))), &
-                                  group%name, pieces(i)%text, stat)
+            call check_assignment(path, group%name, pieces(i)%text, stat, &
+                                  'line '//to_string(body_line(group, starts(i)))//': ')
             if (.not. stat%ok()) return
         end do
     end subroutine check_group
@@ -215,9 +216,10 @@ contains
     !> would read wrongly without a word: a text longer than its variable (cut), a logical
     !> other than .true./.false./t/f/.t./.f. (gfortran reads '.trash.' as true), a number
     !> it cannot read (some it skips: 'young = 1.0x'), more than MAX_SWEEP_LAMBDAS lambdas.
-    subroutine check_assignment(place, group, assignment, stat)
+    subroutine check_assignment(place, group, assignment, stat, line)
         character(len=*), intent(in) :: place, group, assignment
         type(status_t), intent(inout) :: stat
+        character(len=*), intent(in), optional :: line   !! 'line N: ', for a file
         character(len=:), allocatable :: name, variable, value, expected, content
         integer :: equals, paren, capacity, n_values
         logical :: good
@@ -265,7 +267,10 @@ contains
 
         subroutine refuse(what)
             character(len=*), intent(in) :: what
-            call stat%fail(STATUS_BAD_INPUT, place//': &'//group//': '//printable(name) &
+            character(len=:), allocatable :: where
+            where = ''
+            if (present(line)) where = line
+            call stat%fail(STATUS_BAD_INPUT, place//': &'//group//': '//where//printable(name) &
                            //' = '//printable(value)//': expected '//what)
         end subroutine refuse
     end subroutine check_assignment
@@ -454,7 +459,8 @@ contains
             return
         end if
         if (.not. any(KNOWN_GROUPS == group)) then
-            call stat%fail(STATUS_BAD_INPUT, label//': unknown namelist group &'//printable(group) &
+            call stat%fail(STATUS_BAD_INPUT, label//': unknown namelist group &' &
+                           //printable(group) &
                            //' (known groups: '//group_list(KNOWN_GROUPS)//')')
             return
         end if
