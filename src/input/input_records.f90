@@ -6,6 +6,8 @@ module input_records
     use kinds, only: wp
     use run_config, only: config_t, MAX_SWEEP_LAMBDAS, PATH_LEN
     use strings, only: lowercase, normalized_list, NAME_LEN, LIST_LEN
+    use ieee_exceptions, only: ieee_status_type, ieee_get_status, ieee_set_status, &
+                               ieee_set_halting_mode, ieee_support_halting, ieee_overflow
     implicit none
     private
     public :: read_record, expectation, reader_variables, typed_variables, is_text_variable
@@ -58,6 +60,13 @@ contains
         integer, intent(out) :: ios
         character(len=*), intent(inout) :: msg
         integer, intent(in), optional :: listing_unit
+        type(ieee_status_type) :: saved
+        ! '1e999' overflows inside the runtime's strtod: in a build that traps overflow
+        ! (Debug) that is a crash, so the read runs without; the value becomes Inf and
+        ! validation refuses it as not finite. Flags and modes are restored after.
+        call ieee_get_status(saved)
+        if (ieee_support_halting(ieee_overflow)) call ieee_set_halting_mode(ieee_overflow, &
+                                                                            .false.)
         select case (group)
         case ('mesh'); call mesh_record(record, config, ios, msg, listing_unit)
         case ('material'); call material_record(record, config, ios, msg, listing_unit)
@@ -71,6 +80,7 @@ contains
             ios = -1
             msg = 'no namelist group &'//group
         end select
+        call ieee_set_status(saved)
     end subroutine read_record
 
     !> The variables of group `group` as its namelist declares them, lowercased, in order:
