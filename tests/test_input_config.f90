@@ -123,6 +123,13 @@ program test_input_config
     call expect_rejected('unknown group', '&meshh nx = 3 /', '&meshh', '&material')
     call expect_rejected('group twice', '&mesh nx = 3 / &mesh ny = 3 /', '&mesh', 'twice')
     call expect_rejected('missing slash', '&mesh nx = 3', '&mesh', "'/'")
+    ! Overflow inside the runtime's number read trapped in Debug (found by the fuzz test).
+    call expect_rejected('overflowing real', '&branch beta = 0.1e999 /', '&branch', 'finite')
+    call expect_rejected('unreadable real', '&material young = 1.0e /', '&material', &
+                         'line 1: young = 1.0e')
+    call expect_rejected('logical not .true./.false.', '&output vtk = .trash. /', '&output', &
+                         '.trash.')
+    call expect_rejected('variable twice', '&mesh nx = 4, nx = 6 /', '&mesh', 'given twice')
 
     ! One line per message: main prints it on one line of standard error.
     call write_file('bad.nml', [character(len=40) :: '&mesh', "dirichlet = ''", '/'])

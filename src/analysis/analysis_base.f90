@@ -95,7 +95,11 @@ contains
         if (.not. stat%ok()) return
         start = wall_time()
         call stage%begin(trim(config%output%directory), stat)
-        if (.not. stat%ok()) return
+        if (.not. stat%ok()) then
+            ! output_stage knows the directory, not the input file that named it.
+            call stat%fail(stat%code, config%input_file//': &output directory: '//stat%message)
+            return
+        end if
         call this%write_files(stage, config, prob, stat)
         if (stat%ok()) then
             call timings%add(PHASE_OUTPUT, wall_time() - start, ': '//trim(config%output%directory))

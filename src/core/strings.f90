@@ -10,14 +10,15 @@ module strings
     private
     public :: to_string, zero_padded, short_real_text, seconds_text
     public :: lowercase, split_names, split_words, count_names, normalized_list
-    public :: quoted, one_of, joined, from_c_chars
-    public :: NAME_LEN, LIST_LEN
+    public :: quoted, one_of, joined, from_c_chars, printable
+    public :: NAME_LEN, LIST_LEN, SHOWN_LEN
 
     !> Names of elements, solvers, analyses and boundary parts (input file and mesh alike),
     !> so that a part name read from a mesh always fits the variable that names it.
     integer, parameter :: NAME_LEN = 64
     integer, parameter :: LIST_LEN = 512    !! blank-separated lists of names
     character(len=*), parameter :: BLANKS = ' '//achar(9)   !! separators in name lists
+    integer, parameter :: SHOWN_LEN = 80    !! characters of a value echoed in a message
 
     interface to_string
         module procedure integer_to_string, long_integer_to_string, real_to_string
@@ -230,4 +231,28 @@ contains
             text(i:i) = chars(i)
         end do
     end function from_c_chars
+
+    !> `text` fit for a one-line message: control bytes (NUL, line feed, escape, ...) become
+    !> '?', so that none reaches a terminal or a log; beyond `max_len` characters (SHOWN_LEN
+    !> unless given) it is cut and ends in '...', so that a huge value is named, not dumped.
+    pure function printable(text, max_len) result(shown)
+        character(len=*), intent(in) :: text
+        integer, intent(in), optional :: max_len
+        character(len=:), allocatable :: shown
+        integer :: limit, n, i, code
+        limit = SHOWN_LEN
+        if (present(max_len)) limit = max(max_len, 4)
+        n = len(text)
+        if (n > limit) n = limit - 3
+        allocate (character(len=n) :: shown)
+        do i = 1, n
+            code = iachar(text(i:i))
+            if (code < 32 .or. code == 127) then
+                shown(i:i) = '?'
+            else
+                shown(i:i) = text(i:i)
+            end if
+        end do
+        if (n < len(text)) shown = shown//'...'
+    end function printable
 end module strings

@@ -5,6 +5,7 @@
 module command_line
     use status, only: status_t, STATUS_BAD_INPUT
     use namelist_scan, only: text_t
+    use strings, only: printable
     implicit none
     private
     public :: command_t, read_command_line, parse_arguments
@@ -77,12 +78,13 @@ contains
                     i = i + 2
                     cycle
                 else if (argument(1:min(1, len(argument))) == '-') then
-                    call stat%fail(STATUS_BAD_INPUT, 'unexpected option '''//argument &
+                    call stat%fail(STATUS_BAD_INPUT, 'unexpected option '''//printable(argument) &
                                    //''' with --set: expected '//SET_USAGE)
                     return
                 else if (len(command%input) > 0) then
-                    call stat%fail(STATUS_BAD_INPUT, 'two input files, '''//command%input &
-                                   //''' and '''//argument//''': expected '//SET_USAGE)
+                    call stat%fail(STATUS_BAD_INPUT, 'two input files, ''' &
+                                   //printable(command%input)//''' and ''' &
+                                   //printable(argument)//''': expected '//SET_USAGE)
                     return
                 end if
                 command%input = argument

@@ -6,9 +6,12 @@ module input_records
     use kinds, only: wp
     use run_config, only: config_t, MAX_SWEEP_LAMBDAS, PATH_LEN
     use strings, only: lowercase, normalized_list, NAME_LEN, LIST_LEN
+    use ieee_exceptions, only: ieee_status_type, ieee_get_status, ieee_set_status, &
+                               ieee_set_halting_mode, ieee_support_halting, ieee_overflow
     implicit none
     private
     public :: read_record, expectation, reader_variables, typed_variables, is_text_variable
+    public :: expected_value, text_capacity
     public :: KNOWN_GROUPS
 
     !> Namelist groups, in the order they are read, validated and documented.
@@ -57,6 +60,13 @@ contains
         integer, intent(out) :: ios
         character(len=*), intent(inout) :: msg
         integer, intent(in), optional :: listing_unit
+        type(ieee_status_type) :: saved
+        ! '1e999' overflows inside the runtime's strtod: in a build that traps overflow
+        ! (Debug) that is a crash, so the read runs without; the value becomes Inf and
+        ! validation refuses it as not finite. Flags and modes are restored after.
+        call ieee_get_status(saved)
+        if (ieee_support_halting(ieee_overflow)) call ieee_set_halting_mode(ieee_overflow, &
+                                                                            .false.)
         select case (group)
         case ('mesh'); call mesh_record(record, config, ios, msg, listing_unit)
         case ('material'); call material_record(record, config, ios, msg, listing_unit)
@@ -70,6 +80,7 @@ contains
             ios = -1
             msg = 'no namelist group &'//group
         end select
+        call ieee_set_status(saved)
     end subroutine read_record
 
     !> The variables of group `group` as its namelist declares them, lowercased, in order:
@@ -132,6 +143,41 @@ contains
             if (index(VARIABLE_TYPES(i), entry) == 1) is_text_variable = .true.
         end do
     end function is_text_variable
+
+    !> What `variable` of `group` expects ('a real number', 'a quoted path', ...), as in
+    !> VARIABLE_TYPES; '' for a variable the group does not have.
+    pure function expected_value(group, variable) result(text)
+        character(len=*), intent(in) :: group, variable
+        character(len=:), allocatable :: text
+        character(len=:), allocatable :: entry
+        integer :: i
+        text = ''
+        entry = trim(group)//' '//lowercase(trim(adjustl(variable)))//':'
+        do i = 1, size(VARIABLE_TYPES)
+            if (index(VARIABLE_TYPES(i), entry) == 1) then
+                text = trim(VARIABLE_TYPES(i)(len(entry) + 1:))
+                return
+            end if
+        end do
+    end function expected_value
+
+    !> Characters the text variable `variable` of `group` holds (0 for one that is not
+    !> text): the namelist read silently cuts a longer value, so it is refused before.
+    pure integer function text_capacity(group, variable)
+        character(len=*), intent(in) :: group, variable
+        type(config_t) :: defaults
+        text_capacity = 0
+        select case (expected_value(group, variable))
+        case ('a quoted path')
+            text_capacity = PATH_LEN
+        case ('a quoted list of names')
+            text_capacity = LIST_LEN
+        case ('a quoted name')
+            text_capacity = NAME_LEN
+            if (trim(group) == 'output' .and. lowercase(trim(adjustl(variable))) == &
+                'vtk_format') text_capacity = len(defaults%output%vtk_format)
+        end select
+    end function text_capacity
 
     ! Each reader copies the current values into locals named like the namelist variables,
     ! reads the record from the internal file `record`, and only on success copies them
