@@ -296,6 +296,8 @@ contains
             if (res%error%computed) text = text//'  relative error estimate of mu: '// &
                 short_real_text(abs(res%error%relative))//' ('// &
                 element_name(res%error%element)//' enrichment)'//NL
+            if (allocated(res%error%skipped)) text = text//'  relative error estimate of mu: '// &
+                res%error%skipped//NL
         else
             text = text//'  no positive real eigenvalue for this lambda'//NL
         end if

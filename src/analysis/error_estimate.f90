@@ -59,6 +59,8 @@ module error_estimate
         real(wp), allocatable :: indicators(:)   !! (n_cells) eta_K, relative to mu_h
         integer :: element = 0                   !! the enriched element (ELEMENT_P2 for P1)
         real(wp) :: seconds = 0.0_wp             !! wall time of the estimate
+        !> why it was not computed when &eigen estimate decided so ('' otherwise)
+        character(len=:), allocatable :: skipped
     end type error_estimate_t
 
 contains

@@ -50,6 +50,9 @@ module run_config
         !> K, and up to here the dense solver's extra eigen + output time (1-4 ms) is within
         !> the run-to-run noise (docs/numerics.md, "Choosing the solver")
         integer :: dense_max_contact = 24
+        !> error estimate of the lowest positive mu: 'auto' (up to ESTIMATE_AUTO_MAX_DOFS free
+        !> dofs: it costs a few times the solve), 'on', 'off'
+        character(len=NAME_LEN) :: estimate = 'auto'
     end type eigen_config_t
 
     type, public :: output_config_t

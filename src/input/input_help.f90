@@ -10,7 +10,7 @@ module input_help
     use input_validation, only: MESH_SOURCES, ELEMENT_NAMES, DIAGONALS, RECTANGLE_SIDES, &
                                 ACCEPTED_ANALYSES, ACCEPTED_SOLVERS, MAX_CELLS_PER_SIDE, &
                                 SWEEP_SPACINGS, MAX_SWEEP_POINTS, VTK_FORMATS, SOLVE_DATA, &
-                                SOLVE_STARTS
+                                SOLVE_STARTS, ESTIMATE_MODES
     implicit none
     private
     public :: help_text
@@ -76,7 +76,9 @@ contains
                //entry('ncv', to_string(d%eigen%ncv), 'Krylov dimension, 0 or >= nev + 2' &
                        //' (0: chosen from nev)') &
                //entry('dense_max_contact', to_string(d%eigen%dense_max_contact), &
-                       "'auto' picks 'dense' up to this many contact nodes, else 'arpack'")
+                       "'auto' picks 'dense' up to this many contact nodes, else 'arpack'") &
+               //entry('estimate', quoted(d%eigen%estimate), one_of(ESTIMATE_MODES)// &
+                       ": error estimate of mu ('auto': P1, <= 40000 dofs)")
         text = text//'&output'//NL &
                //entry('directory', quoted(d%output%directory), "'' means output/<input" &
                        //' file stem> (from the working directory)') &

@@ -30,6 +30,7 @@ module input_records
         'analysis lambda:a real number', 'eigen solver:a quoted name', &
         'eigen nev:an integer', 'eigen target:a real number', 'eigen tol:a real number', &
         'eigen maxit:an integer', 'eigen ncv:an integer', 'eigen dense_max_contact:an integer', &
+        'eigen estimate:a quoted name', &
         'output directory:a quoted path', 'output vtk:.true. or .false.', &
         'output modes:an integer', 'output matrices:.true. or .false.', &
         'output vtk_format:a quoted name', 'output plot:.true. or .false.', &
@@ -280,10 +281,10 @@ contains
         integer, intent(out) :: ios
         character(len=*), intent(inout) :: msg
         integer, intent(in), optional :: listing_unit
-        character(len=NAME_LEN) :: solver
+        character(len=NAME_LEN) :: solver, estimate
         integer :: nev, maxit, ncv, dense_max_contact
         real(wp) :: target, tol
-        namelist /eigen/ solver, nev, target, tol, maxit, ncv, dense_max_contact
+        namelist /eigen/ solver, nev, target, tol, maxit, ncv, dense_max_contact, estimate
 
         solver = config%eigen%solver
         nev = config%eigen%nev
@@ -292,6 +293,7 @@ contains
         maxit = config%eigen%maxit
         ncv = config%eigen%ncv
         dense_max_contact = config%eigen%dense_max_contact
+        estimate = config%eigen%estimate
         if (present(listing_unit)) then
             write (listing_unit, nml=eigen, iostat=ios, iomsg=msg)
             return
@@ -305,6 +307,7 @@ contains
         config%eigen%maxit = maxit
         config%eigen%ncv = ncv
         config%eigen%dense_max_contact = dense_max_contact
+        config%eigen%estimate = lowercase(adjustl(estimate))
     end subroutine eigen_record
 
     !> One '&output ... /' record into config%output (unchanged if it fails).

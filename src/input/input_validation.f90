@@ -18,7 +18,7 @@ module input_validation
     public :: validate_config
     public :: MESH_SOURCES, ELEMENT_NAMES, DIAGONALS, RECTANGLE_SIDES, ACCEPTED_ANALYSES, &
               ACCEPTED_SOLVERS, MAX_CELLS_PER_SIDE, SWEEP_SPACINGS, MAX_SWEEP_POINTS, &
-              VTK_FORMATS, SOLVE_DATA, SOLVE_STARTS
+              VTK_FORMATS, SOLVE_DATA, SOLVE_STARTS, ESTIMATE_MODES
 
     character(len=*), parameter :: MESH_SOURCES(*) = [character(len=9) :: 'rectangle', 'gmsh']
     character(len=*), parameter :: ELEMENT_NAMES(*) = [character(len=2) :: &
@@ -32,6 +32,8 @@ module input_validation
     !> Eigensolvers this build offers.
     character(len=*), parameter :: ACCEPTED_SOLVERS(*) = [character(len=6) :: 'dense', &
                                                           'arpack', 'auto']
+    !> &eigen estimate: when the error estimate of the lowest positive mu is computed.
+    character(len=*), parameter :: ESTIMATE_MODES(*) = [character(len=4) :: 'auto', 'on', 'off']
     integer, parameter :: MAX_CELLS_PER_SIDE = 1000000
     character(len=*), parameter :: SWEEP_SPACINGS(*) = [character(len=6) :: 'linear', 'log']
     integer, parameter :: MAX_SWEEP_POINTS = 100000   !! n_lambda of a &sweep range
@@ -207,6 +209,8 @@ contains
                         //to_string(c%nev + 2))
         else if (c%dense_max_contact < 1) then
             call reject('dense_max_contact', to_string(c%dense_max_contact), 'an integer >= 1')
+        else if (.not. any(ESTIMATE_MODES == c%estimate)) then
+            call reject('estimate', quoted(c%estimate), 'one of '//one_of(ESTIMATE_MODES))
         end if
 
     contains
