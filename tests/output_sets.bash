@@ -14,7 +14,7 @@ listed_files() {
 # missing", "a mix" (the listed files are no reference's set), "unlisted files".
 # Hidden names (dot files) are not part of a set.
 set_state() {
-    local dir=$1 ref listed present lambda k=0 ok f match=-1
+    local dir=$1 ref listed present lambda k=0 ok f match=-1 differing=''
     shift
     if [[ ! -f $dir/summary.json ]]; then echo "broken: no summary.json"; return; fi
     listed=$(listed_files "$dir" | sort)
@@ -29,13 +29,16 @@ set_state() {
         if [[ $ok == 1 ]]; then
             for f in $listed; do
                 [[ $f == summary.json ]] && continue
-                cmp -s "$dir/$f" "$ref/$f" || { ok=0; break; }
+                cmp -s "$dir/$f" "$ref/$f" || { ok=0; differing+=" $f"; break; }
             done
         fi
         if [[ $ok == 1 ]]; then match=$k; break; fi
         k=$((k + 1))
     done
-    if [[ $match -lt 0 ]]; then echo "broken: a mix: no reference's set ($lambda)"; return; fi
+    if [[ $match -lt 0 ]]; then
+        echo "broken: a mix: no reference's set ($lambda; differing from the references:$differing)"
+        return
+    fi
     present=$(cd "$dir" && ls | sort)
     if [[ "$listed" != "$present" ]]; then
         echo "broken: unlisted files: $(comm -13 <(echo "$listed") <(echo "$present") | head -3 | tr '\n' ' ')..."
