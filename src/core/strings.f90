@@ -10,8 +10,13 @@ module strings
     private
     public :: to_string, zero_padded, short_real_text, seconds_text
     public :: lowercase, split_names, split_words, count_names, normalized_list
-    public :: quoted, one_of, joined, from_c_chars, printable
+    public :: quoted, one_of, joined, from_c_chars, printable, append_text
     public :: NAME_LEN, LIST_LEN, SHOWN_LEN
+
+    !> A piece of text, for arrays of strings of different lengths.
+    type, public :: text_t
+        character(len=:), allocatable :: text
+    end type text_t
 
     !> Names of elements, solvers, analyses and boundary parts (input file and mesh alike),
     !> so that a part name read from a mesh always fits the variable that names it.
@@ -219,6 +224,21 @@ contains
             if (present(after)) text = text//after
         end do
     end function joined
+
+    !> texts = [texts, text_t(text)], grown by hand: gfortran 12 leaks the allocatable
+    !> components of the array constructor's temporaries (LeakSanitizer).
+    pure subroutine append_text(texts, text)
+        type(text_t), allocatable, intent(inout) :: texts(:)
+        character(len=*), intent(in) :: text
+        type(text_t), allocatable :: grown(:)
+        integer :: i
+        allocate (grown(size(texts) + 1))
+        do i = 1, size(texts)
+            call move_alloc(texts(i)%text, grown(i)%text)
+        end do
+        grown(size(grown))%text = text
+        call move_alloc(grown, texts)
+    end subroutine append_text
 
     !> The first `length` characters of a C character array as a Fortran string.
     pure function from_c_chars(chars, length) result(text)

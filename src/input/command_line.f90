@@ -4,8 +4,7 @@
 !> its rules are tested; the program only acts on the result.
 module command_line
     use status, only: status_t, STATUS_BAD_INPUT
-    use namelist_scan, only: text_t
-    use strings, only: printable
+    use strings, only: text_t, append_text, printable
     implicit none
     private
     public :: command_t, read_command_line, parse_arguments
@@ -74,7 +73,7 @@ contains
                         call stat%fail(STATUS_BAD_INPUT, '--set needs a value: '//SET_USAGE)
                         return
                     end if
-                    call append(command%settings, arguments(i + 1)%text)
+                    call append_text(command%settings, arguments(i + 1)%text)
                     i = i + 2
                     cycle
                 else if (argument(1:min(1, len(argument))) == '-') then
@@ -97,17 +96,4 @@ contains
         end if
     end subroutine parse_arguments
 
-    !> texts = [texts, text_t(text)], without the constructor's leaking temporaries.
-    subroutine append(texts, text)
-        type(text_t), allocatable, intent(inout) :: texts(:)
-        character(len=*), intent(in) :: text
-        type(text_t), allocatable :: grown(:)
-        integer :: i
-        allocate (grown(size(texts) + 1))
-        do i = 1, size(texts)
-            call move_alloc(texts(i)%text, grown(i)%text)
-        end do
-        grown(size(grown))%text = text
-        call move_alloc(grown, texts)
-    end subroutine append
 end module command_line

@@ -5,7 +5,7 @@
 !> can be retried one assignment at a time to name the culprit.
 module namelist_scan
     use status, only: status_t, STATUS_BAD_INPUT
-    use strings, only: to_string, lowercase, printable
+    use strings, only: to_string, lowercase, printable, text_t
     use text_file, only: read_line, TOO_LONG
     use iso_fortran_env, only: iostat_end
     implicit none
@@ -29,11 +29,6 @@ module namelist_scan
         integer :: line = 0                     !! line of the '&name'
         integer, allocatable :: line_offsets(:) !! where the body's later lines start
     end type group_text_t
-
-    !> A piece of text, for arrays of strings of different lengths.
-    type :: text_t
-        character(len=:), allocatable :: text
-    end type text_t
 
 contains
 

@@ -30,6 +30,7 @@ module output_stage
                           remove_tree, lock_file, unlock_file, real_path, cleanup_on_signal, &
                           hold_signals, end_cleanup_on_signal
     use text_file, only: read_line
+    use strings, only: text_t, append_text
     implicit none
     private
 
@@ -46,9 +47,6 @@ module output_stage
     character(len=*), parameter :: SUMMARY_FILE = 'summary.json'
 
     !> A file name registered through `path`.
-    type :: staged_name_t
-        character(len=:), allocatable :: name
-    end type staged_name_t
 
     !> One staging area. Use: begin, write each file to path(name), then commit, or abort
     !> on any failure. Register the summary (summary.json) last: it lists the others.
@@ -58,7 +56,7 @@ module output_stage
         character(len=:), allocatable :: base        !! its last component
         character(len=:), allocatable :: staging     !! <parent>/.<base>.nceig-staging-<pid>
         character(len=:), allocatable :: aside       !! <parent>/.<base>.nceig-old-<pid>
-        type(staged_name_t), allocatable :: names(:) !! files registered through path()
+        type(text_t), allocatable :: names(:) !! files registered through path()
         integer :: created_levels = 0                !! parents of `directory` begin made
         logical :: active = .false.                  !! between begin and commit/abort
         logical :: exchange = .true.                 !! false: never swap (tests the fallback)
@@ -211,7 +209,7 @@ contains
             return
         end if
         file_path = this%staging//'/'//trim(name)
-        if (.not. is_listed(trim(name), this%names)) call append_name(this%names, trim(name))
+        if (.not. is_listed(trim(name), this%names)) call append_text(this%names, trim(name))
     end function output_stage_path
 
     !> Put the staged set in place of the output directory in one step, and remove the old
@@ -314,23 +312,23 @@ contains
     subroutine commit_in_place(this, stat)
         type(output_stage_t), intent(in) :: this
         type(status_t), intent(out) :: stat
-        type(staged_name_t), allocatable :: old_set(:)
+        type(text_t), allocatable :: old_set(:)
         integer :: i
 
         call read_listed_files(join(this%directory, SUMMARY_FILE), old_set)
         call remove_file(join(this%directory, SUMMARY_FILE))
         do i = 1, size(this%names)
-            if (this%names(i)%name == SUMMARY_FILE) cycle
-            call rename_file(join(this%staging, this%names(i)%name), &
-                             join(this%directory, this%names(i)%name), stat)
+            if (this%names(i)%text == SUMMARY_FILE) cycle
+            call rename_file(join(this%staging, this%names(i)%text), &
+                             join(this%directory, this%names(i)%text), stat)
             if (.not. stat%ok()) return
         end do
         do i = 1, size(old_set)
-            if (old_set(i)%name == SUMMARY_FILE) cycle
-            if (is_listed(old_set(i)%name, this%names)) cycle
+            if (old_set(i)%text == SUMMARY_FILE) cycle
+            if (is_listed(old_set(i)%text, this%names)) cycle
             ! only plain names: summary.json is data, not a licence to delete elsewhere
-            if (index(old_set(i)%name, '/') > 0 .or. old_set(i)%name == '..') cycle
-            call remove_file(join(this%directory, old_set(i)%name))
+            if (index(old_set(i)%text, '/') > 0 .or. old_set(i)%text == '..') cycle
+            call remove_file(join(this%directory, old_set(i)%text))
         end do
         call remove_file(join(this%directory, AFTER_COMMIT_FILE))
         if (is_listed(SUMMARY_FILE, this%names)) &
@@ -345,7 +343,7 @@ contains
         logical, intent(out) :: linked   !! whether any entry was linked
         type(status_t), intent(out) :: stat
         character(len=MAX_NAME_LEN), allocatable :: entries(:)
-        type(staged_name_t), allocatable :: old_set(:)
+        type(text_t), allocatable :: old_set(:)
         character(len=:), allocatable :: name
         integer :: i
 
@@ -376,7 +374,7 @@ contains
         type(output_stage_t), intent(in) :: this
         character(len=*), intent(in) :: old
         character(len=MAX_NAME_LEN), allocatable :: entries(:)
-        type(staged_name_t), allocatable :: old_set(:)
+        type(text_t), allocatable :: old_set(:)
         type(status_t) :: stat
         character(len=:), allocatable :: name
         integer :: i
@@ -397,7 +395,7 @@ contains
     !> one line); none when the file is missing or has no such line.
     subroutine read_listed_files(path, names)
         character(len=*), intent(in) :: path
-        type(staged_name_t), allocatable, intent(out) :: names(:)
+        type(text_t), allocatable, intent(out) :: names(:)
         character(len=*), parameter :: KEY = '"files": ['
         character(len=:), allocatable :: line
         character(len=512) :: msg
@@ -417,7 +415,7 @@ contains
                 if (first == 0) exit
                 last = index(line(first + 1:), '"')
                 if (last == 0) exit
-                call append_name(names, line(first + 1:first + last - 1))
+                call append_text(names, line(first + 1:first + last - 1))
                 line = line(first + last + 1:)
             end do
             exit
@@ -425,28 +423,14 @@ contains
         close (unit, iostat=ios)
     end subroutine read_listed_files
 
-    !> Grown by hand: gfortran 12 leaks the allocatable components of the temporaries of
-    !> [names, staged_name_t(name)] (LeakSanitizer).
-    subroutine append_name(names, name)
-        type(staged_name_t), allocatable, intent(inout) :: names(:)
-        character(len=*), intent(in) :: name
-        type(staged_name_t), allocatable :: grown(:)
-        integer :: i
-        allocate (grown(size(names) + 1))
-        do i = 1, size(names)
-            call move_alloc(names(i)%name, grown(i)%name)
-        end do
-        grown(size(grown))%name = name
-        call move_alloc(grown, names)
-    end subroutine append_name
 
     pure logical function is_listed(name, list)
         character(len=*), intent(in) :: name
-        type(staged_name_t), intent(in) :: list(:)
+        type(text_t), intent(in) :: list(:)
         integer :: i
         is_listed = .false.
         do i = 1, size(list)
-            if (list(i)%name == name) is_listed = .true.
+            if (list(i)%text == name) is_listed = .true.
         end do
     end function is_listed
 
@@ -472,7 +456,7 @@ contains
         deallocate (names)
         allocate (names(size(this%names)))
         do i = 1, size(this%names)
-            names(i) = this%names(i)%name
+            names(i) = this%names(i)%text
         end do
     end function output_stage_file_names
 
