@@ -11,12 +11,10 @@ module analysis_base
     use problem, only: problem_t
     use output_stage, only: output_stage_t
     use json_writer, only: json_object_t
+    use filesystem, only: MAX_NAME_LEN
     implicit none
     private
     public :: run_analysis
-
-    !> Length of the file names listed in summary.json (mode_NNN.vtu, lambda_sweep.csv, ...).
-    integer, parameter :: FILE_NAME_LEN = 64
 
     type, abstract, public :: analysis_t
         !> The run's verdict once its outputs are written: a solve whose Newton iteration did
@@ -107,7 +105,7 @@ contains
             this%timings = timings
             summary = this%summary(config, prob)
             summary_path = stage%path('summary.json')
-            call summary%add_string_array('files', stage%file_names(FILE_NAME_LEN))
+            call summary%add_string_array('files', stage%file_names(MAX_NAME_LEN))
             call summary%write(summary_path, stat)
             if (stat%ok()) call stage%commit(stat)
         end if

@@ -16,7 +16,6 @@ module eigen_run
     use analysis_base, only: analysis_t
     use spectrum, only: spectrum_t, kind_name, KIND_COMPLEX
     use output_stage, only: output_stage_t
-    use filesystem, only: close_output
     use json_writer, only: json_object_t
     use csv_writer, only: csv_writer_t
     use vtk_writer, only: write_vtu

@@ -16,7 +16,6 @@ module threshold_run
     use analysis_base, only: analysis_t
     use eigen_run, only: eigen_summary_json, summary_lines, write_eigen_files
     use output_stage, only: output_stage_t
-    use filesystem, only: close_output
     use json_writer, only: json_object_t
     use csv_writer, only: csv_writer_t
     use sweep_plot, only: plot_lambda_sweep

@@ -6,7 +6,7 @@
 module input_config
     use status, only: status_t, STATUS_BAD_INPUT
     use run_config, only: config_t
-    use namelist_scan, only: group_text_t, text_t, scan_groups, group_body, has_group, &
+    use namelist_scan, only: group_text_t, text_t, scan_groups, has_group, &
                              split_assignments, group_list, assignment_starts, body_line
     use input_records, only: read_record, expectation, is_text_variable, expected_value, &
                              text_capacity, KNOWN_GROUPS

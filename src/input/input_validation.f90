@@ -9,7 +9,7 @@ module input_validation
     use run_config, only: config_t, mesh_config_t, material_config_t, analysis_config_t, &
                           eigen_config_t, output_config_t, branch_config_t, solve_config_t, &
                           sweep_config_t, count_set_lambdas, lambda_is_set
-    use strings, only: to_string, split_words, count_names, quoted, one_of, printable, &
+    use strings, only: to_string, split_words, count_names, quoted, one_of, &
                        NAME_LEN, LIST_LEN
     use real_format, only: real_to_text
     use ieee_arithmetic, only: ieee_is_finite
