@@ -8,10 +8,8 @@ set -u
 nceig=$1
 source "$2/tests/output_sets.bash"
 rounds=${3:-40}
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-passed=0 failed=0
-check() { if eval "$2"; then passed=$((passed + 1)); echo "PASS  $1"; else failed=$((failed + 1)); echo "FAIL  $1"; fi; }
+source "$(dirname "$0")/lib/cli_common.sh"
+cli_begin cli_concurrent_runs
 out="$work/out"
 
 refs=()
@@ -58,5 +56,4 @@ echo "      $rounds rounds of 5 concurrent runs in $((SECONDS - start)) s: $n_ba
 check 'every run succeeds' '[[ $n_failed_runs -eq 0 ]]'
 check 'after every round the directory holds one run'\''s complete set' '[[ $n_bad -eq 0 ]]'
 
-echo "cli_concurrent_runs: $passed passed, $failed failed"
-[[ $failed -eq 0 ]]
+cli_end

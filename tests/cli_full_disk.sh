@@ -9,17 +9,15 @@
 set -u
 nceig=$1
 source "$2/tests/output_sets.bash"
-work=$(mktemp -d)
+source "$(dirname "$0")/lib/cli_common.sh"
+cli_begin cli_full_disk
 disk="$work/disk"
 mkdir "$disk"
 if ! mount -t tmpfs -o size=200k tmpfs "$disk" 2>"$work/mount.err"; then
     echo "SKIP  cannot mount a tmpfs here: $(head -1 "$work/mount.err")"
-    rm -rf "$work"
     exit 77
 fi
-trap 'umount "$disk"; rm -rf "$work"' EXIT
-passed=0 failed=0
-check() { if eval "$2"; then passed=$((passed + 1)); echo "PASS  $1"; else failed=$((failed + 1)); echo "FAIL  $1"; fi; }
+trap 'umount "$disk"; cli_remove_work' EXIT
 out="$disk/out"
 
 nml() {   # nml NAME NX LAMBDA MODES [OUTPUT OPTIONS]: an input file writing into $out
@@ -92,5 +90,4 @@ check 'a run that fits commits after the failures' \
     '[[ $(set_state "$out" "$work/ref_small") != "ref 0" && $(grep "\"lambda\":" "$out/summary.json") == *4* ]]'
 check 'and its set is whole' '[[ $(set_state "$out" "$out") == "ref 0" ]]'
 
-echo "cli_full_disk: $passed passed, $failed failed"
-[[ $failed -eq 0 ]]
+cli_end

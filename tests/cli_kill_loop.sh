@@ -10,10 +10,8 @@ set -u
 nceig=$1
 source "$2/tests/output_sets.bash"
 tries=${3:-30}
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-passed=0 failed=0
-check() { if eval "$2"; then passed=$((passed + 1)); echo "PASS  $1"; else failed=$((failed + 1)); echo "FAIL  $1"; fi; }
+source "$(dirname "$0")/lib/cli_common.sh"
+cli_begin cli_kill_loop
 out="$work/out"
 
 # Two sets that differ in every file and in their number: 61 and 40 modes (dense solver:
@@ -122,5 +120,4 @@ check 'the next run removes the staging folders of killed runs' \
     '[[ -z $(ls -A "$work" | grep nceig-staging) ]]'
 check 'and commits its set' '[[ $(set_state "$out" "$work/ref_4") == "ref 0" ]]'
 
-echo "cli_kill_loop: $passed passed, $failed failed"
-[[ $failed -eq 0 ]]
+cli_end

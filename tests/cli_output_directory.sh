@@ -9,10 +9,8 @@
 set -u
 nceig=$1
 source "$2/tests/output_sets.bash"
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-passed=0 failed=0
-check() { if eval "$2"; then passed=$((passed + 1)); echo "PASS  $1"; else failed=$((failed + 1)); echo "FAIL  $1"; fi; }
+source "$(dirname "$0")/lib/cli_common.sh"
+cli_begin cli_output_directory
 
 long="$work/long"
 while ((${#long} < 4229)); do long="$long/abcdefghi"; done
@@ -67,5 +65,4 @@ sed "s|'$out'|'$work/linked'|" "$work/three.nml" >"$work/linked.nml"
 "$nceig" "$work/linked.nml" >/dev/null 2>&1
 check 'a link to the directory stays a link' '[[ -L "$work/linked" && -s "$work/real/summary.json" ]]'
 
-echo "cli_output_directory: $passed passed, $failed failed"
-[[ $failed -eq 0 ]]
+cli_end

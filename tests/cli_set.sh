@@ -6,10 +6,8 @@
 # no output. Usage: cli_set.sh NCEIG SOURCE_DIR
 set -u
 nceig=$1
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-passed=0 failed=0
-check() { if eval "$2"; then passed=$((passed + 1)); echo "PASS  $1"; else failed=$((failed + 1)); echo "FAIL  $1"; fi; }
+source "$(dirname "$0")/lib/cli_common.sh"
+cli_begin cli_set
 
 cat >"$work/small.nml" <<NML
 &mesh nx = 4, ny = 4 /
@@ -62,5 +60,4 @@ check 'the file'"'"'s own error still names the file' '[[ $rc -eq 2 ]] && grep -
 "$nceig" "$work/broken.nml" --set mesh%nx=2 --set output%directory="$work/out" >/dev/null 2>"$work/err"; rc=$?
 check '--set can repair the file' '[[ $rc -eq 0 && -s "$work/out/summary.json" ]]'
 
-echo "cli_set: $passed passed, $failed failed"
-[[ $failed -eq 0 ]]
+cli_end

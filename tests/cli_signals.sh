@@ -8,10 +8,8 @@ set -u
 nceig=$1
 source "$2/tests/output_sets.bash"
 tries=${3:-12}
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-passed=0 failed=0
-check() { if eval "$2"; then passed=$((passed + 1)); echo "PASS  $1"; else failed=$((failed + 1)); echo "FAIL  $1"; fi; }
+source "$(dirname "$0")/lib/cli_common.sh"
+cli_begin cli_signals
 out="$work/out"
 # Job control: a background job of a script otherwise ignores SIGINT, and nceig keeps an
 # ignored signal ignored.
@@ -107,5 +105,4 @@ done
 echo "      $n_hit of 4 runs into new parents ended by SIGTERM while writing"
 check 'SIGTERM while writing into new parents leaves no directory' '[[ $n_left -eq 0 ]]'
 
-echo "cli_signals: $passed passed, $failed failed"
-[[ $failed -eq 0 ]]
+cli_end

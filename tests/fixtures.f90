@@ -1,9 +1,10 @@
 ! SPDX-License-Identifier: MIT
 !> Fixtures and views that several test programs need: the one-triangle mesh with closed
-!> forms, a CSR matrix as a dense array, a file as text, a search in a run's warnings.
+!> forms, a CSR matrix as a dense array, a file as text, a search in a run's warnings, and
+!> the fuzz tests' reproducible random stream and whole-file read and write.
 !> One copy here, so a fix reaches every test that uses them.
 module fixtures
-    use kinds, only: wp
+    use kinds, only: wp, i8
     use mesh, only: mesh_t
     use element_types, only: ELEMENT_P1
     use csr_matrix, only: csr_matrix_t
@@ -11,6 +12,12 @@ module fixtures
     implicit none
     private
     public :: single_triangle, csr_to_dense, file_text, has_warning, five_point_matrix
+    public :: uniform, read_text, write_text
+
+    !> Park-Miller minimal standard generator: the same mutants on every compiler and run.
+    type, public :: random_t
+        integer(i8) :: state = 1
+    end type random_t
 
 contains
 
@@ -97,4 +104,35 @@ contains
         a%col = a%col(1:pos - 1)
         a%val = a%val(1:pos - 1)
     end subroutine five_point_matrix
+
+    !> A uniform integer in [low, high] from the next state of `rng`.
+    integer function uniform(rng, low, high)
+        type(random_t), intent(inout) :: rng
+        integer, intent(in) :: low, high
+        rng%state = modulo(48271_i8*rng%state, 2147483647_i8)
+        uniform = low + int(modulo(rng%state, int(high - low + 1, i8)))
+    end function uniform
+
+    !> The whole file, bytes as they are.
+    subroutine read_text(path, text)
+        character(len=*), intent(in) :: path
+        character(len=:), allocatable, intent(out) :: text
+        integer :: unit, file_size
+        open (newunit=unit, file=path, access='stream', form='unformatted', status='old', &
+              action='read')
+        inquire (unit=unit, size=file_size)
+        allocate (character(len=file_size) :: text)
+        read (unit) text
+        close (unit)
+    end subroutine read_text
+
+    !> `text` as the whole file, bytes as they are.
+    subroutine write_text(path, text)
+        character(len=*), intent(in) :: path, text
+        integer :: unit
+        open (newunit=unit, file=path, access='stream', form='unformatted', &
+              status='replace', action='write')
+        write (unit) text
+        close (unit)
+    end subroutine write_text
 end module fixtures

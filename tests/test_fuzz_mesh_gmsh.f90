@@ -21,6 +21,7 @@ program test_fuzz_mesh_gmsh
     use mesh_gmsh, only: read_gmsh
     use strings, only: to_string
     use testing, only: test_suite_t
+    use fixtures, only: random_t, uniform, read_text, write_text
     use msh_writer, only: write_msh41, write_msh22
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     implicit none
@@ -51,10 +52,6 @@ program test_fuzz_mesh_gmsh
 
     !> Minimal standard generator (Park and Miller): x <- 48271 x mod (2^31 - 1). Its
     !> products stay below 2^47, so 64-bit integers never overflow; the state is local.
-    type :: random_t
-        integer(i8) :: state = 1
-    end type random_t
-
     type :: seed_file_t
         character(len=:), allocatable :: name
         character(len=:), allocatable :: text
@@ -401,34 +398,7 @@ contains
         b = c
     end subroutine swap
 
-    !> A uniform integer in [low, high] from the next state of `rng`.
-    integer function uniform(rng, low, high)
-        type(random_t), intent(inout) :: rng
-        integer, intent(in) :: low, high
-        rng%state = modulo(48271_i8*rng%state, 2147483647_i8)
-        uniform = low + int(modulo(rng%state, int(high - low + 1, i8)))
-    end function uniform
 
     ! ------------------------------------------------------------------ files
 
-    subroutine read_text(path, text)
-        character(len=*), intent(in) :: path
-        character(len=:), allocatable, intent(out) :: text
-        integer :: unit, file_size
-        open (newunit=unit, file=path, access='stream', form='unformatted', status='old', &
-              action='read')
-        inquire (unit=unit, size=file_size)
-        allocate (character(len=file_size) :: text)
-        read (unit) text
-        close (unit)
-    end subroutine read_text
-
-    subroutine write_text(path, text)
-        character(len=*), intent(in) :: path, text
-        integer :: unit
-        open (newunit=unit, file=path, access='stream', form='unformatted', &
-              status='replace', action='write')
-        write (unit) text
-        close (unit)
-    end subroutine write_text
 end program test_fuzz_mesh_gmsh

@@ -19,6 +19,7 @@ program test_fuzz_namelist
     use input_validation, only: validate_config
     use strings, only: to_string
     use testing, only: test_suite_t
+    use fixtures, only: random_t, uniform, read_text, write_text
     implicit none
 
     integer, parameter :: MUTANTS_PER_SEED = 250    !! 13 seeds: 3250 mutants
@@ -41,10 +42,6 @@ program test_fuzz_namelist
         ' lambdas(999) = 1, 2, 3 ', ' vtk = T ']
 
     !> Minimal standard generator (Park and Miller), as in test_fuzz_mesh_gmsh.
-    type :: random_t
-        integer(i8) :: state = 1
-    end type random_t
-
     type(test_suite_t) :: t
     integer :: s, n_ok, n_bad_input, n_failures
     character(len=4096) :: source_dir
@@ -175,34 +172,7 @@ contains
         end select
     end subroutine mutate
 
-    !> A uniform integer in [low, high] from the next state of `rng`.
-    integer function uniform(rng, low, high)
-        type(random_t), intent(inout) :: rng
-        integer, intent(in) :: low, high
-        rng%state = modulo(48271_i8*rng%state, 2147483647_i8)
-        uniform = low + int(modulo(rng%state, int(high - low + 1, i8)))
-    end function uniform
 
     ! ------------------------------------------------------------------------ files
 
-    subroutine read_text(path, text)
-        character(len=*), intent(in) :: path
-        character(len=:), allocatable, intent(out) :: text
-        integer :: unit, file_size
-        open (newunit=unit, file=path, access='stream', form='unformatted', status='old', &
-              action='read')
-        inquire (unit=unit, size=file_size)
-        allocate (character(len=file_size) :: text)
-        read (unit) text
-        close (unit)
-    end subroutine read_text
-
-    subroutine write_text(path, text)
-        character(len=*), intent(in) :: path, text
-        integer :: unit
-        open (newunit=unit, file=path, access='stream', form='unformatted', &
-              status='replace', action='write')
-        write (unit) text
-        close (unit)
-    end subroutine write_text
 end program test_fuzz_namelist
