@@ -14,20 +14,7 @@ source "$(dirname "$0")/lib/cli_common.sh"
 cli_begin cli_kill_loop
 out="$work/out"
 
-# Two sets that differ in every file and in their number: 61 and 40 modes (dense solver:
-# every eigenpair), about 60 files of 35 kB each.
-for k in 4 5; do
-    for target in ref_$k run_$k; do
-        cat >"$work/$target.nml" <<NML
-&mesh nx = 60, ny = 6 /
-&analysis lambda = $k /
-&eigen solver = 'dense' /
-&output directory = '$work/$target', modes = $((k == 4 ? 61 : 40)) /
-NML
-    done
-    sed -i "s|'$work/run_$k'|'$out'|" "$work/run_$k.nml"
-    "$nceig" "$work/ref_$k.nml" >/dev/null 2>&1
-done
+make_reference_sets "$nceig" "$work" "$out"
 check 'the reference runs complete' \
     '[[ $(set_state "$work/ref_4" "$work/ref_4") == "ref 0" && $(set_state "$work/ref_5" "$work/ref_5") == "ref 0" ]]'
 "$nceig" "$work/run_5.nml" >/dev/null 2>&1

@@ -15,18 +15,7 @@ out="$work/out"
 # ignored signal ignored.
 set -m
 
-for k in 4 5; do
-    for target in ref_$k run_$k; do
-        cat >"$work/$target.nml" <<NML
-&mesh nx = 60, ny = 6 /
-&analysis lambda = $k /
-&eigen solver = 'dense' /
-&output directory = '$work/$target', modes = $((k == 4 ? 61 : 40)) /
-NML
-    done
-    sed -i "s|'$work/run_$k'|'$out'|" "$work/run_$k.nml"
-    "$nceig" "$work/ref_$k.nml" >/dev/null 2>&1
-done
+make_reference_sets "$nceig" "$work" "$out"
 "$nceig" "$work/run_5.nml" >/dev/null 2>&1
 duration=999999999
 for i in 1 2 3; do

@@ -12,7 +12,7 @@ module fixtures
     implicit none
     private
     public :: single_triangle, csr_to_dense, file_text, has_warning, five_point_matrix
-    public :: uniform, read_text, write_text
+    public :: uniform, read_text, write_text, rigid_mode
 
     !> Park-Miller minimal standard generator: the same mutants on every compiler and run.
     type, public :: random_t
@@ -135,4 +135,20 @@ contains
         write (unit) text
         close (unit)
     end subroutine write_text
+
+    !> Translations along x (1) and y (2) and the infinitesimal rotation (-y, x) (3), as
+    !> vectors of the all-free system (dof 2 node - 1 is u_x, 2 node is u_y).
+    function rigid_mode(m, which) result(u)
+        type(mesh_t), intent(in) :: m
+        integer, intent(in) :: which
+        real(wp), allocatable :: u(:)
+        allocate (u(2*m%n_nodes()), source=0.0_wp)
+        select case (which)
+        case (1); u(1::2) = 1.0_wp
+        case (2); u(2::2) = 1.0_wp
+        case (3)
+            u(1::2) = -m%coords(2, :)
+            u(2::2) = m%coords(1, :)
+        end select
+    end function rigid_mode
 end module fixtures

@@ -46,3 +46,23 @@ set_state() {
     fi
     echo "ref $match"
 }
+
+# make_reference_sets NCEIG WORK OUT: two complete sets that differ in every file and in
+# their number (dense solver, every eigenpair: 61 and 40 modes, about 60 files of 35 kB):
+# WORK/ref_4 and WORK/ref_5 written now, and inputs WORK/run_4.nml, WORK/run_5.nml writing
+# the same sets into OUT.
+make_reference_sets() {
+    local nceig=$1 work=$2 out=$3 k target
+    for k in 4 5; do
+        for target in ref_$k run_$k; do
+            cat >"$work/$target.nml" <<NML
+&mesh nx = 60, ny = 6 /
+&analysis lambda = $k /
+&eigen solver = 'dense' /
+&output directory = '$work/$target', modes = $((k == 4 ? 61 : 40)) /
+NML
+        done
+        sed -i "s|'$work/run_$k'|'$out'|" "$work/run_$k.nml"
+        "$nceig" "$work/ref_$k.nml" >/dev/null 2>&1
+    done
+}

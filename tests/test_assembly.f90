@@ -21,7 +21,7 @@ program test_assembly
     use sparse_cholesky, only: cholesky_t
     use shape_functions, only: evaluate_shape, evaluate_line_shape, MAX_NODES
     use testing, only: test_suite_t
-    use fixtures, only: csr_to_dense
+    use fixtures, only: csr_to_dense, rigid_mode
     implicit none
 
     interface
@@ -385,22 +385,6 @@ contains
             end do
         end do
     end function pattern_symmetric
-
-    !> Translations along x (1) and y (2) and the infinitesimal rotation (-y, x) (3), as
-    !> vectors of the all-free system (dof 2 node - 1 is u_x, 2 node is u_y).
-    function rigid_mode(m, which) result(u)
-        type(mesh_t), intent(in) :: m
-        integer, intent(in) :: which
-        real(wp), allocatable :: u(:)
-        allocate (u(2*m%n_nodes()), source=0.0_wp)
-        select case (which)
-        case (1); u(1::2) = 1.0_wp
-        case (2); u(2::2) = 1.0_wp
-        case (3)
-            u(1::2) = -m%coords(2, :)
-            u(2::2) = m%coords(1, :)
-        end select
-    end function rigid_mode
 
     function linear_field(m) result(u)
         type(mesh_t), intent(in) :: m

@@ -21,7 +21,7 @@ program test_mesh_refine
     use sorting, only: sort_index
     use strings, only: to_string
     use testing, only: test_suite_t
-    use fixtures, only: single_triangle
+    use fixtures, only: single_triangle, rigid_mode
     use timer, only: timings_t
     use sparse_cholesky, only: cholesky_t
     use contact_reduction, only: factor_stiffness, contact_flexibility
@@ -612,20 +612,6 @@ contains
             used(m%cells(:, c)) = .true.
         end do
     end function node_used
-
-    function rigid_mode(m, which) result(u)
-        type(mesh_t), intent(in) :: m
-        integer, intent(in) :: which
-        real(wp), allocatable :: u(:)
-        allocate (u(2*m%n_nodes()), source=0.0_wp)
-        select case (which)
-        case (1); u(1::2) = 1.0_wp
-        case (2); u(2::2) = 1.0_wp
-        case (3)
-            u(1::2) = -m%coords(2, :)
-            u(2::2) = m%coords(1, :)
-        end select
-    end function rigid_mode
 
     !> Bisected meshes factor with the contact dofs last: the contact blocks of K^-1 are read
     !> off the trailing block of the factor, so its ordering must keep them there (on the
