@@ -7,20 +7,27 @@ module analysis_registry
     use threshold_run, only: threshold_run_t
     use branch_run, only: branch_run_t
     use solve_run, only: solve_run_t
+    use adapt_run, only: adapt_run_t
     implicit none
     private
     public :: new_analysis
 
 contains
 
-    !> The analysis of `kind`; an unknown kind (which the input check refuses first) leaves
-    !> `analysis` unallocated.
-    subroutine new_analysis(kind, analysis)
+    !> The analysis of `kind`, adaptive (&adapt tolerance > 0) or not; an unknown kind
+    !> (which the input check refuses first) leaves `analysis` unallocated.
+    subroutine new_analysis(kind, adaptive, analysis)
         character(len=*), intent(in) :: kind
+        logical, intent(in) :: adaptive
         class(analysis_t), allocatable, intent(out) :: analysis
         type(threshold_run_t) :: sweep
         select case (kind)
-        case ('eigen'); allocate (eigen_run_t :: analysis)
+        case ('eigen')
+            if (adaptive) then
+                allocate (adapt_run_t :: analysis)
+            else
+                allocate (eigen_run_t :: analysis)
+            end if
         case ('threshold'); allocate (threshold_run_t :: analysis)
         case ('lambda_sweep')
             sweep%with_sweep = .true.

@@ -29,7 +29,9 @@ module error_estimate
     use strings, only: to_string
     use timer, only: wall_time, timings_t
     use mesh, only: mesh_t
-    use element_types, only: ELEMENT_P1, ELEMENT_P2, element_nodes_per_cell, element_name
+    use element_types, only: ELEMENT_P1, ELEMENT_P2, ELEMENT_P3, ELEMENT_P4, &
+                             element_nodes_per_cell, element_name
+    use mesh_refine, only: refinable_mesh_t, build_refinable_mesh
     use shape_functions, only: evaluate_shape, reference_nodes, MAX_NODES
     use dof_map, only: dof_map_t, build_dof_map
     use assembly, only: assemble_stiffness
@@ -68,98 +70,32 @@ contains
     !> The element of the enriched space for `element`, or 0 where there is none yet.
     pure integer function enriched_element(element)
         integer, intent(in) :: element
-        enriched_element = 0
-        if (element == ELEMENT_P1) enriched_element = ELEMENT_P2
+        select case (element)
+        case (ELEMENT_P1); enriched_element = ELEMENT_P2
+        case (ELEMENT_P2); enriched_element = ELEMENT_P3
+        case (ELEMENT_P3); enriched_element = ELEMENT_P4
+        case default; enriched_element = 0
+        end select
     end function enriched_element
 
     !> The mesh of `m` with elements `element` on the same cells: cell c keeps its corners in
-    !> order (so cell-local prolongation needs no matching), nodes of `m` keep their numbers,
-    !> P2 mid-edge nodes follow at exact midpoints (one per distinct edge, found by bucketing
-    !> the cell sides by their lower node: O(cells)); boundary edges keep order and parts.
+    !> order, so that cell-local prolongation needs no matching; the nodes of the higher
+    !> order sit at their exact lattice points on straight sides (mesh_refine's to_mesh),
+    !> boundary edges keep their order and parts.
     subroutine enriched_mesh(m, element, m_plus, stat)
         type(mesh_t), intent(in) :: m
         integer, intent(in) :: element
         type(mesh_t), intent(out) :: m_plus
         type(status_t), intent(out) :: stat
-        integer, allocatable :: first(:), upper(:), mid(:), fill(:)
-        integer :: n, c, k, e, lo, hi, s, n_mid, slot
+        type(refinable_mesh_t) :: corners
 
-        if (m%element /= ELEMENT_P1 .or. element /= ELEMENT_P2) then
+        if (enriched_element(m%element) /= element .or. element == 0) then
             call stat%fail(STATUS_BAD_INPUT, 'error estimate: no enrichment from '// &
                            element_name(m%element)//' to '//element_name(element))
             return
         end if
-        n = m%n_nodes()
-        ! sides bucketed by their lower node
-        allocate (first(n + 2), source=0)
-        do c = 1, m%n_cells()
-            do k = 1, 3
-                lo = min(m%cells(k, c), m%cells(mod(k, 3) + 1, c))
-                first(lo + 2) = first(lo + 2) + 1
-            end do
-        end do
-        first(1) = 1
-        first(2) = 1
-        do s = 3, n + 2
-            first(s) = first(s) + first(s - 1)
-        end do
-        allocate (upper(3*m%n_cells()), mid(3*m%n_cells()), source=0)
-        allocate (fill(n + 1))
-        fill = first(2:n + 2)
-        allocate (m_plus%cells(6, m%n_cells()))
-        m_plus%cells(1:3, :) = m%cells
-        n_mid = 0
-        do c = 1, m%n_cells()
-            do k = 1, 3   ! Gmsh order: mid node 3 + k joins corners k and k + 1
-                lo = min(m%cells(k, c), m%cells(mod(k, 3) + 1, c))
-                hi = max(m%cells(k, c), m%cells(mod(k, 3) + 1, c))
-                slot = find_side(lo, hi)
-                if (slot == 0) then
-                    slot = fill(lo)
-                    fill(lo) = fill(lo) + 1
-                    upper(slot) = hi
-                    n_mid = n_mid + 1
-                    mid(slot) = n + n_mid
-                end if
-                m_plus%cells(3 + k, c) = mid(slot)
-            end do
-        end do
-        allocate (m_plus%coords(N_DIM, n + n_mid))
-        m_plus%coords(:, :n) = m%coords
-        do c = 1, m%n_cells()
-            do k = 1, 3
-                m_plus%coords(:, m_plus%cells(3 + k, c)) = 0.5_wp*(m%coords(:, m%cells(k, c)) &
-                    + m%coords(:, m%cells(mod(k, 3) + 1, c)))
-            end do
-        end do
-        allocate (m_plus%edges(3, size(m%edges, 2)))
-        do e = 1, size(m%edges, 2)
-            m_plus%edges(1:2, e) = m%edges(1:2, e)
-            slot = find_side(minval(m%edges(1:2, e)), maxval(m%edges(1:2, e)))
-            if (slot == 0) then
-                call stat%fail(STATUS_MESH, 'error estimate: boundary edge '//to_string(e)// &
-                               ' is no side of a cell')
-                return
-            end if
-            m_plus%edges(3, e) = mid(slot)
-        end do
-        m_plus%element = element
-        m_plus%edge_part = m%edge_part
-        m_plus%part_names = m%part_names
-
-    contains
-
-        integer function find_side(lo, hi)
-            integer, intent(in) :: lo, hi
-            integer :: j
-            find_side = 0
-            do j = first(lo + 1), fill(lo) - 1
-                if (upper(j) == hi) then
-                    find_side = j
-                    return
-                end if
-            end do
-        end function find_side
+        call build_refinable_mesh(m, corners, stat, keep_corner_order=.true.)
+        if (stat%ok()) call corners%to_mesh(element, m_plus, stat)
     end subroutine enriched_mesh
 
     !> The estimate for the lowest positive eigenpair (mu_h, phi_h) of `prob` at `lambda`:

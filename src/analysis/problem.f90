@@ -64,17 +64,22 @@ contains
     !> contact boundary and assemble K; `with_all_dofs` also keeps K and Gamma_C on all dofs.
     !> Without `with_all_dofs` (the eigen analyses) K and Gamma_C are in units of E and of the
     !> mesh size (powers of two: young_exponent, length_exponent); prob%mesh keeps the input
-    !> coordinates.
-    subroutine build_problem(config, prob, stat, with_all_dofs)
+    !> coordinates. `given_mesh` replaces the mesh of &mesh (a level of an adaptive loop).
+    subroutine build_problem(config, prob, stat, with_all_dofs, given_mesh)
         type(config_t), intent(in) :: config
         type(problem_t), intent(out) :: prob
         type(status_t), intent(out) :: stat
         logical, intent(in), optional :: with_all_dofs   !! default false
+        type(mesh_t), intent(in), optional :: given_mesh
         integer, allocatable :: contact_parts(:)
         logical :: all_dofs
 
-        call make_mesh(stat)
-        if (.not. stat%ok()) return
+        if (present(given_mesh)) then
+            prob%mesh = given_mesh
+        else
+            call make_mesh(stat)
+            if (.not. stat%ok()) return
+        end if
         call resolve_parts('dirichlet', config%mesh%dirichlet, prob%dirichlet_parts, stat)
         if (.not. stat%ok()) return
         call resolve_parts('neumann', config%mesh%neumann, prob%neumann_parts, stat)
@@ -141,7 +146,7 @@ contains
             real(wp), allocatable :: physical_coords(:, :)
             prob%young_exponent = unit_exponent(prob%young)
             prob%length_exponent = unit_exponent(maxval(abs(prob%mesh%coords)))
-            physical_coords = prob%mesh%coords
+            allocate (physical_coords, source=prob%mesh%coords)
             prob%mesh%coords = scale(prob%mesh%coords, -prob%length_exponent)
             ! a coordinate more than ~600 decades below the largest (width = 1e-300 with
             ! height = 1e300) leaves the normal range in any one unit

@@ -18,7 +18,7 @@ module threshold_run
     use output_stage, only: output_stage_t
     use json_writer, only: json_object_t
     use csv_writer, only: csv_writer_t
-    use sweep_plot, only: plot_lambda_sweep
+    use plot_script, only: run_plot_script
     use filesystem, only: remove_file
     implicit none
     private
@@ -84,7 +84,8 @@ contains
         summary = this%summary(config, prob)
         call summary%write(summary_path, stat)
         if (.not. stat%ok()) return
-        call plot_lambda_sweep(stage%folder(), summary_path, drawn, this%sweep_note)
+        call run_plot_script('plot_lambda_sweep.sh', stage%folder(), summary_path, drawn, &
+                             this%sweep_note)
         call remove_file(summary_path)
         if (.not. drawn) return
         png_path = stage%path(PNG)   ! registered: part of the committed set

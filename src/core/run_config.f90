@@ -106,6 +106,17 @@ module run_config
         integer :: max_iterations = 50
     end type solve_config_t
 
+    !> &adapt (analysis = 'eigen'): refine the mesh by newest-vertex bisection until the error
+    !> estimate of the lowest positive mu is at most `tolerance` (0: no adaptation).
+    type, public :: adapt_config_t
+        real(wp) :: tolerance = 0.0_wp      !! relative, 0 <= tolerance < 1; 0 is off
+        integer :: max_dofs = 1000000       !! no level solves on more free dofs than this
+        integer :: max_levels = 40          !! refinement steps after the starting mesh
+        !> Doerfler marking: refine the fewest cells whose indicators sum to at least this
+        !> fraction of the total (0 < theta <= 1; 1 refines every cell with an indicator)
+        real(wp) :: theta = 0.25_wp
+    end type adapt_config_t
+
     type, public :: config_t
         character(len=:), allocatable :: input_file   !! path as given on the command line
         type(mesh_config_t) :: mesh
@@ -116,6 +127,7 @@ module run_config
         type(sweep_config_t) :: sweep
         type(branch_config_t) :: branch
         type(solve_config_t) :: solve
+        type(adapt_config_t) :: adapt
     end type config_t
 
 contains

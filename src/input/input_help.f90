@@ -78,7 +78,7 @@ contains
                //entry('dense_max_contact', to_string(d%eigen%dense_max_contact), &
                        "'auto' picks 'dense' up to this many contact nodes, else 'arpack'") &
                //entry('estimate', quoted(d%eigen%estimate), one_of(ESTIMATE_MODES)// &
-                       ": error estimate of mu ('auto': P1, <= 40000 dofs)")
+                       ": error estimate of mu ('auto': p1 to p3, <= 40000 dofs)")
         text = text//'&output'//NL &
                //entry('directory', quoted(d%output%directory), "'' means output/<input" &
                        //' file stem> (from the working directory)') &
@@ -136,6 +136,15 @@ contains
                //entry('tol', real_to_text(d%solve%tol), '||residual|| / ||load||' &
                        //' (infinity norms) to stop at') &
                //entry('max_iterations', to_string(d%solve%max_iterations), 'Newton iterations')
+        text = text//'&adapt       (kind = ''eigen'': refine until the error estimate is met)'//NL &
+               //entry('tolerance', real_to_text(d%adapt%tolerance), 'relative error of the' &
+                       //' lowest positive mu (0: off; < 1)') &
+               //entry('max_dofs', to_string(d%adapt%max_dofs), 'no level solves on more' &
+                       //' free dofs') &
+               //entry('max_levels', to_string(d%adapt%max_levels), 'refinement steps after' &
+                       //' the starting mesh') &
+               //entry('theta', real_to_text(d%adapt%theta), 'Doerfler fraction: refine' &
+                       //' cells holding this part of the estimate')
 
     contains
 

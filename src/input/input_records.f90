@@ -17,7 +17,7 @@ module input_records
     !> Namelist groups, in the order they are read, validated and documented.
     character(len=*), parameter :: KNOWN_GROUPS(*) = [character(len=8) :: &
                                    'mesh', 'material', 'analysis', 'eigen', 'output', 'sweep', &
-                                   'branch', 'solve']
+                                   'branch', 'solve', 'adapt']
     !> 'group variable:expected value' of every namelist variable, for messages about a
     !> value the runtime could not read. New groups add their lines.
     character(len=*), parameter :: VARIABLE_TYPES(*) = [character(len=64) :: &
@@ -46,7 +46,9 @@ module input_records
         'solve u_d1:a real number', 'solve u_d2:a real number', 'solve start:a quoted name', &
         'solve start_delta:a real number', 'solve start_scale:a real number', &
         'solve start_noise:a real number', 'solve seed:an integer', 'solve tol:a real number', &
-        'solve max_iterations:an integer']
+        'solve max_iterations:an integer', &
+        'adapt tolerance:a real number', 'adapt max_dofs:an integer', &
+        'adapt max_levels:an integer', 'adapt theta:a real number']
 
     integer, parameter :: LISTING_LINE_LEN = 4*PATH_LEN   !! a line of a namelist write
 
@@ -77,6 +79,7 @@ contains
         case ('sweep'); call sweep_record(record, config, ios, msg, listing_unit)
         case ('branch'); call branch_record(record, config, ios, msg, listing_unit)
         case ('solve'); call solve_record(record, config, ios, msg, listing_unit)
+        case ('adapt'); call adapt_record(record, config, ios, msg, listing_unit)
         case default
             ios = -1
             msg = 'no namelist group &'//group
@@ -460,6 +463,33 @@ contains
         config%solve%tol = tol
         config%solve%max_iterations = max_iterations
     end subroutine solve_record
+
+    !> One '&adapt ... /' record into config%adapt (unchanged if it fails).
+    subroutine adapt_record(record, config, ios, msg, listing_unit)
+        character(len=*), intent(in) :: record
+        type(config_t), intent(inout) :: config
+        integer, intent(out) :: ios
+        character(len=*), intent(inout) :: msg
+        integer, intent(in), optional :: listing_unit
+        real(wp) :: tolerance, theta
+        integer :: max_dofs, max_levels
+        namelist /adapt/ tolerance, max_dofs, max_levels, theta
+
+        tolerance = config%adapt%tolerance
+        max_dofs = config%adapt%max_dofs
+        max_levels = config%adapt%max_levels
+        theta = config%adapt%theta
+        if (present(listing_unit)) then
+            write (listing_unit, nml=adapt, iostat=ios, iomsg=msg)
+            return
+        end if
+        read (record, nml=adapt, iostat=ios, iomsg=msg)
+        if (ios /= 0) return
+        config%adapt%tolerance = tolerance
+        config%adapt%max_dofs = max_dofs
+        config%adapt%max_levels = max_levels
+        config%adapt%theta = theta
+    end subroutine adapt_record
 
     !> What a failed assignment 'name = value' of `group` should have looked like: the
     !> type of a known variable, or the variables the group knows. The runtime's own message

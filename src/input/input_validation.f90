@@ -18,7 +18,8 @@ module input_validation
     public :: validate_config
     public :: MESH_SOURCES, ELEMENT_NAMES, DIAGONALS, RECTANGLE_SIDES, ACCEPTED_ANALYSES, &
               ACCEPTED_SOLVERS, MAX_CELLS_PER_SIDE, SWEEP_SPACINGS, MAX_SWEEP_POINTS, &
-              VTK_FORMATS, SOLVE_DATA, SOLVE_STARTS, ESTIMATE_MODES
+              VTK_FORMATS, SOLVE_DATA, SOLVE_STARTS, ESTIMATE_MODES, ADAPT_ELEMENTS, &
+              ADAPT_ANALYSES
 
     character(len=*), parameter :: MESH_SOURCES(*) = [character(len=9) :: 'rectangle', 'gmsh']
     character(len=*), parameter :: ELEMENT_NAMES(*) = [character(len=2) :: &
@@ -35,6 +36,10 @@ module input_validation
     !> &eigen estimate: when the error estimate of the lowest positive mu is computed.
     character(len=*), parameter :: ESTIMATE_MODES(*) = [character(len=4) :: 'auto', 'on', 'off']
     integer, parameter :: MAX_CELLS_PER_SIDE = 1000000
+    !> &adapt: the elements with a refinement (triangles) and an enriched space one degree
+    !> higher for the error estimate (P4 has none: no P5 here), and the analyses that adapt.
+    character(len=*), parameter :: ADAPT_ELEMENTS(*) = [character(len=2) :: 'p1', 'p2', 'p3']
+    character(len=*), parameter :: ADAPT_ANALYSES(*) = [character(len=5) :: 'eigen']
     character(len=*), parameter :: SWEEP_SPACINGS(*) = [character(len=6) :: 'linear', 'log']
     integer, parameter :: MAX_SWEEP_POINTS = 100000   !! n_lambda of a &sweep range
     !> &output vtk_format: the encodings of vtk_writer (VTK_BINARY, VTK_ASCII).
@@ -61,7 +66,56 @@ contains
         if (stat%ok()) call validate_sweep(config%sweep, path, stat)
         if (stat%ok()) call validate_branch(config%branch, path, stat)
         if (stat%ok()) call validate_solve(config%solve, path, stat)
+        if (stat%ok()) call validate_adapt(config, path, stat)
     end subroutine validate_config
+
+    !> &adapt, and what adaptation needs of the other groups: an analysis that adapts, a
+    !> rectangle of triangles with an enriched space (a Gmsh file's cells are checked when
+    !> it is read), the error estimate on.
+    subroutine validate_adapt(config, path, stat)
+        type(config_t), intent(in) :: config
+        character(len=*), intent(in) :: path
+        type(status_t), intent(inout) :: stat
+        logical :: tolerance_ok, theta_ok
+
+        associate (c => config%adapt)
+            tolerance_ok = ieee_is_finite(c%tolerance)
+            if (tolerance_ok) tolerance_ok = c%tolerance >= 0.0_wp .and. c%tolerance < 1.0_wp
+            theta_ok = ieee_is_finite(c%theta)
+            if (theta_ok) theta_ok = c%theta > 0.0_wp .and. c%theta <= 1.0_wp
+            if (.not. tolerance_ok) then
+                call reject('tolerance', real_to_text(c%tolerance), &
+                            'a relative error with 0 <= tolerance < 1 (0: no adaptation)')
+            else if (c%max_dofs < 1) then
+                call reject('max_dofs', to_string(c%max_dofs), 'an integer >= 1')
+            else if (c%max_levels < 0) then
+                call reject('max_levels', to_string(c%max_levels), 'an integer >= 0')
+            else if (.not. theta_ok) then
+                call reject('theta', real_to_text(c%theta), 'a fraction with 0 < theta <= 1')
+            end if
+            if (.not. stat%ok() .or. .not. c%tolerance > 0.0_wp) return
+        end associate
+        if (.not. any(ADAPT_ANALYSES == config%analysis%kind)) then
+            call reject('tolerance', real_to_text(config%adapt%tolerance), "0 for &analysis "// &
+                        "kind = '"//trim(config%analysis%kind)//"' (only "// &
+                        one_of(ADAPT_ANALYSES)//' adapts its mesh)')
+        else if (config%mesh%source == 'rectangle' .and. &
+                 .not. any(ADAPT_ELEMENTS == config%mesh%element)) then
+            call reject('tolerance', real_to_text(config%adapt%tolerance), "0 for &mesh "// &
+                        "element = '"//trim(config%mesh%element)//"' (adaptation refines "// &
+                        'triangles with an error estimate: one of '//one_of(ADAPT_ELEMENTS)//')')
+        else if (config%eigen%estimate == 'off') then
+            call reject('tolerance', real_to_text(config%adapt%tolerance), "0 with &eigen "// &
+                        "estimate = 'off' (adaptation is driven by the error estimate)")
+        end if
+
+    contains
+
+        subroutine reject(variable, value, expected)
+            character(len=*), intent(in) :: variable, value, expected
+            call fail_value(stat, path, 'adapt', variable, value, expected)
+        end subroutine reject
+    end subroutine validate_adapt
 
     subroutine validate_mesh(c, path, stat)
         type(mesh_config_t), intent(in) :: c

@@ -42,7 +42,8 @@ module output_stage
     !> the directory swap (dropped with the set).
     character(len=*), parameter :: IN_PLACE_PREFIX = '.nceig-partial-'
     character(len=*), parameter :: IN_PLACE_LOCK = '.nceig-lock'
-    !> Written into the directory after the commit (sweep_plot), hence never listed in files.
+    !> Earlier builds drew it into the directory after the commit, unlisted in their sets;
+    !> now it is drawn in the staging folder and listed like any file.
     character(len=*), parameter :: AFTER_COMMIT_FILE = 'lambda_sweep.png'
     character(len=*), parameter :: SUMMARY_FILE = 'summary.json'
 

@@ -87,10 +87,14 @@ contains
     !> same edge, which keeps the closure of the first steps short. Fails with
     !> STATUS_BAD_INPUT for quadrilaterals or an incomplete mesh, STATUS_MESH for a clockwise
     !> or flat cell, an edge of more than two cells or a boundary edge that is no cell side.
-    subroutine build_refinable_mesh(m, r, stat)
+    subroutine build_refinable_mesh(m, r, stat, keep_corner_order)
         type(mesh_t), intent(in) :: m
         type(refinable_mesh_t), intent(out) :: r
         type(status_t), intent(out) :: stat
+        !> keep each cell's corners in the order of `m` (default false: longest edge first).
+        !> A mesh meant for `to_mesh` only, not for `refine`: the enriched space of an error
+        !> estimate, whose cells must match those of `m` node by node.
+        logical, intent(in), optional :: keep_corner_order
         integer, allocatable :: vertex_of(:)
         type(edge_table_t) :: table
         integer :: node, c, e, n_vertices, corners(N_CORNERS), longest
@@ -140,6 +144,9 @@ contains
             length2(2) = sum((r%coords(:, corners(1)) - r%coords(:, corners(3)))**2)
             length2(3) = sum((r%coords(:, corners(2)) - r%coords(:, corners(1)))**2)
             longest = maxloc(length2, dim=1)
+            if (present(keep_corner_order)) then
+                if (keep_corner_order) longest = 1
+            end if
             ! A cyclic shift keeps the orientation and puts the longest edge opposite vertex 1.
             r%cells(:, c) = cshift(corners, longest - 1)
         end do

@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# Draw OUTDIR/adapt.png from OUTDIR/adapt.csv and OUTDIR/summary.json of an nceig run with
+# &adapt tolerance > 0: the error estimate of the lowest positive mu against the free dofs
+# (log-log, the tolerance as a dashed line) above mu against the dofs (log x), one point per
+# level. Needs gnuplot (Debian gnuplot-nox: pngcairo) and jq.
+# Usage: plot_adapt.sh OUTDIR [SUMMARY]   (SUMMARY: the summary.json to read, by default
+# OUTDIR's; nceig passes its own while the set is still being staged)
+set -euo pipefail
+if [[ $# -lt 1 || $# -gt 2 ]]; then
+    echo "usage: $0 OUTDIR [SUMMARY]  (an nceig output folder of an adaptive run)" >&2
+    exit 2
+fi
+dir=$1
+csv="$dir/adapt.csv"
+summary=${2:-$dir/summary.json}
+for f in "$csv" "$summary"; do
+    [[ -r $f ]] || { echo "$0: $f: not found (run nceig with &adapt tolerance > 0)" >&2; exit 2; }
+done
+command -v gnuplot >/dev/null || { echo "$0: gnuplot is not installed" >&2; exit 3; }
+command -v jq >/dev/null || { echo "$0: jq is not installed (it reads summary.json)" >&2; exit 3; }
+
+value() { jq -r --arg key "$1" '.[$key] // empty' "$summary"; }
+tolerance=$(value adapt_tolerance)
+title="$(value element), lambda = $(value lambda), start $(value adapt_start_dofs) dofs"
+terminal='pngcairo size 1000,800 enhanced font "sans,11"'
+gnuplot -e 'set terminal' 2>&1 | grep -q pngcairo || terminal='png size 1000,800'
+
+tmp="$dir/.adapt.png.partial"
+gnuplot <<GNUPLOT
+set terminal $terminal
+set output '$tmp'
+set datafile separator ','
+# mu and the estimate are empty where a level has none: NaN there breaks the line
+cell(c) = strcol(c) eq '' ? NaN : column(c)
+set multiplot layout 2, 1 title "nceig adaptive refinement: $title" font ',13'
+set grid xtics ytics mxtics mytics lc rgb '#dddddd'
+set logscale x
+set xlabel 'free dofs'
+set logscale y
+set format y '10^{%L}'
+set key top right
+set ylabel 'relative error estimate of {/Symbol m}'
+set arrow from graph 0, first $tolerance to graph 1, first $tolerance nohead dashtype 2 lw 1.5 lc rgb '#c0392b' front
+plot '$csv' using 2:(cell(6)) skip 1 with linespoints pt 7 ps 0.6 lw 1.5 lc rgb '#1f77b4' title 'estimate', \
+     1/0 with lines dashtype 2 lw 1.5 lc rgb '#c0392b' title sprintf('tolerance %g', $tolerance)
+unset arrow
+unset logscale y
+set format y '%.10g'
+set ylabel 'lowest positive {/Symbol m} = critical c_n'
+plot '$csv' using 2:(cell(5)) skip 1 with linespoints pt 7 ps 0.6 lw 1.5 lc rgb '#2ca02c' title '{/Symbol m}'
+unset multiplot
+GNUPLOT
+mv -f "$tmp" "$dir/adapt.png"
