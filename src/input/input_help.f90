@@ -78,7 +78,7 @@ contains
                //entry('dense_max_contact', to_string(d%eigen%dense_max_contact), &
                        "'auto' picks 'dense' up to this many contact nodes, else 'arpack'") &
                //entry('estimate', quoted(d%eigen%estimate), one_of(ESTIMATE_MODES)// &
-                       ": error estimate of mu ('auto': p1 to p3, <= 40000 dofs)")
+                       ": error estimate of mu (auto: <= 40000 dofs)")
         text = text//'&output'//NL &
                //entry('directory', quoted(d%output%directory), "'' means output/<input" &
                        //' file stem> (from the working directory)') &
