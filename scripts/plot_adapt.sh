@@ -2,8 +2,8 @@
 # SPDX-License-Identifier: MIT
 # Draw OUTDIR/adapt.png from OUTDIR/adapt.csv and OUTDIR/summary.json of an nceig run with
 # &adapt tolerance > 0: the error estimate of the lowest positive mu against the free dofs
-# (log-log, the tolerance as a dashed line) above mu against the dofs (log x), one point per
-# level. Needs gnuplot (Debian gnuplot-nox: pngcairo) and jq.
+# (log-log, the tolerance as a dashed line) above mu with its error bar against the dofs
+# (log x), one point per level. Needs gnuplot (Debian gnuplot-nox: pngcairo) and jq.
 # Usage: plot_adapt.sh OUTDIR [SUMMARY]   (SUMMARY: the summary.json to read, by default
 # OUTDIR's; nceig passes its own while the set is still being staged)
 set -euo pipefail
@@ -26,6 +26,10 @@ title="$(value element), lambda = $(value lambda), start $(value adapt_start_dof
 terminal='pngcairo size 1000,800 enhanced font "sans,11"'
 gnuplot -e 'set terminal' 2>&1 | grep -q pngcairo || terminal='png size 1000,800'
 
+# the lower end of the estimate axis: a third below the smaller of the tolerance and the
+# smallest estimate, so that the tolerance line never sits on the frame
+ymin=$(awk -F, -v t="$tolerance" 'NR > 1 && $6 != "" && (m == "" || $6 < m) { m = $6 }
+    END { if (m == "" || t < m) m = t; print m / 3 }' "$csv")
 tmp="$dir/.adapt.png.partial"
 gnuplot <<GNUPLOT
 set terminal $terminal
@@ -41,14 +45,14 @@ set logscale y
 set format y '10^{%L}'
 set key top right
 set ylabel 'relative error estimate of {/Symbol m}'
-set arrow from graph 0, first $tolerance to graph 1, first $tolerance nohead dashtype 2 lw 1.5 lc rgb '#c0392b' front
+set yrange [$ymin:*]
 plot '$csv' using 2:(cell(6)) skip 1 with linespoints pt 7 ps 0.6 lw 1.5 lc rgb '#1f77b4' title 'estimate', \
-     1/0 with lines dashtype 2 lw 1.5 lc rgb '#c0392b' title sprintf('tolerance %g', $tolerance)
-unset arrow
+     $tolerance with lines dashtype 2 lw 1.5 lc rgb '#c0392b' title sprintf('tolerance %g', $tolerance)
 unset logscale y
+set yrange [*:*]
 set format y '%.10g'
 set ylabel 'lowest positive {/Symbol m} = critical c_n'
-plot '$csv' using 2:(cell(5)) skip 1 with linespoints pt 7 ps 0.6 lw 1.5 lc rgb '#2ca02c' title '{/Symbol m}'
+plot '$csv' using 2:(cell(5)):(cell(5)*cell(6)) skip 1 with yerrorlines pt 7 ps 0.6 lw 1.5 lc rgb '#2ca02c' title '{/Symbol m} {/Symbol \261} estimate'
 unset multiplot
 GNUPLOT
 mv -f "$tmp" "$dir/adapt.png"

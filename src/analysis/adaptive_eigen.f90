@@ -16,7 +16,7 @@ module adaptive_eigen
     use kinds, only: wp
     use status, only: status_t, STATUS_BAD_INPUT
     use strings, only: to_string, short_real_text
-    use timer, only: wall_time, timings_t
+    use timer, only: wall_time, timings_t, PHASE_ASSEMBLY
     use run_config, only: config_t
     use mesh, only: mesh_t
     use mesh_refine, only: refinable_mesh_t, build_refinable_mesh
@@ -70,7 +70,7 @@ contains
         type(problem_t) :: next
         integer :: level, element
         integer, allocatable :: marked(:)
-        real(wp) :: loop_start
+        real(wp) :: loop_start, level_start
 
         loop_start = wall_time()
         allocate (marked(0))   ! (gfortran 12 warns of an unallocated one at -O3)
@@ -124,11 +124,15 @@ contains
                     ' at '//to_string(out%prob%dofs%n_free)//' dofs'
                 exit
             end if
+            level_start = wall_time()
             marked = doerfler_marking(out%res%error%indicators, config%adapt%theta)
             call tree%refine(marked, stat)
             if (stat%ok()) call tree%to_mesh(element, refined, stat)
             if (stat%ok()) call build_problem(config, next, stat, given_mesh=refined)
             if (.not. stat%ok()) return
+            call timings%add(PHASE_ASSEMBLY, wall_time() - level_start, ': level '// &
+                to_string(level + 1)//', '//to_string(size(marked))//' cells marked, '// &
+                to_string(refined%n_cells())//' cells, '//to_string(next%dofs%n_free)//' dofs')
             if (next%dofs%n_free > config%adapt%max_dofs) then
                 out%outcome = 'tolerance '//short_real_text(config%adapt%tolerance)// &
                     ' not met: the next level would have '//to_string(next%dofs%n_free)// &

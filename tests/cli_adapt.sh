@@ -1,0 +1,109 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# &adapt end to end: the loop meets its tolerance and writes adapt.csv, adapt.png, the final
+# mode with its error indicators and mesh.msh, which nceig reads back to the same problem
+# and eigenvalue and can adapt further; a limit reached is exit 0 with a warning in
+# summary.json and on stdout; bad input is one stderr line naming &adapt and the variable,
+# exit 2, no output. Usage: cli_adapt.sh NCEIG SOURCE_DIR
+set -u
+nceig=$1
+source "$(dirname "$0")/lib/cli_common.sh"
+cli_begin cli_adapt
+
+# The reference scene (the rectangle's defaults) at lambda = 5, P2 from 2 x 2 squares.
+cat >"$work/adapt.nml" <<NML
+&mesh nx = 2, ny = 2, element = 'p2' /
+&analysis kind = 'eigen', lambda = 5.0 /
+&output directory = '$work/out' /
+&adapt tolerance = 1e-5 /
+NML
+"$nceig" "$work/adapt.nml" >"$work/stdout" 2>"$work/err"; rc=$?
+s=$work/out/summary.json
+check 'runs: exit 0, nothing on stderr' '[[ $rc -eq 0 && ! -s "$work/err" ]]'
+check 'summary: converged' '[[ $(json "$s" adapt_converged) == true ]]'
+check 'summary: the final estimate meets the tolerance' \
+    'awk -v e="$(json "$s" lowest_positive_error_estimate)" "BEGIN { exit !(e > 0 && e <= 1e-5) }"'
+check 'summary: no warning' 'grep -q "\"warnings\": \[\]" "$s"'
+check 'stdout: the tolerance met' 'grep -q "tolerance 1.00E-05 met at level" "$work/stdout"'
+check 'stdout: one progress line per level' \
+    '[[ $(grep -c "adapt level" "$work/stdout") -eq $(( $(json "$s" adapt_levels) + 1 )) ]]'
+csv=$work/out/adapt.csv
+check 'adapt.csv: header' \
+    '[[ $(head -n 1 "$csv") == level,n_dofs,n_contact,n_cells,mu,error_estimate,time_s ]]'
+check 'adapt.csv: one row per level, the last the summary'\''s' \
+    '[[ $(($(wc -l <"$csv") - 1)) -eq $(( $(json "$s" adapt_levels) + 1 )) &&
+        $(tail -n 1 "$csv" | cut -d, -f2) == $(json "$s" n_dofs) ]]'
+check 'adapt.csv: dofs grow, times grow' \
+    'awk -F, "NR > 2 && (\$2 <= d || \$7 < t) { bad = 1 } NR > 1 { d = \$2; t = \$7 } END { exit bad }" "$csv"'
+check 'mode_001.vtu carries the error indicators' \
+    'grep -q "Name=\"error_indicator\"" "$work/out/mode_001.vtu"'
+check 'summary lists mesh.msh and adapt.csv' \
+    'grep -q "\"mesh.msh\"" "$s" && grep -q "\"adapt.csv\"" "$s"'
+if command -v gnuplot >/dev/null && command -v jq >/dev/null; then
+    check 'adapt.png drawn and listed' \
+        '[[ -s "$work/out/adapt.png" ]] && grep -q "\"adapt.png\"" "$s"'
+fi
+
+# mesh.msh read back: the same problem and eigenvalue (another node order: round-off).
+cp "$work/out/mesh.msh" "$work/adapted.msh"
+cat >"$work/back.nml" <<NML
+&mesh source = 'gmsh', file = '$work/adapted.msh', dirichlet = 'top',
+      neumann = 'left right', contact = 'bottom' /
+&analysis kind = 'eigen', lambda = 5.0 /
+&eigen estimate = 'on' /
+&output directory = '$work/back', vtk = .false., plot = .false. /
+NML
+"$nceig" "$work/back.nml" >/dev/null 2>"$work/err"; rc=$?
+b=$work/back/summary.json
+check 'mesh.msh reads back' '[[ $rc -eq 0 && ! -s "$work/err" ]]'
+check 'read back: the same dofs and contact nodes' \
+    '[[ $(json "$b" n_dofs) == $(json "$s" n_dofs) && $(json "$b" n_contact) == $(json "$s" n_contact) ]]'
+check 'read back: the same mu (1e-12)' \
+    'close "$(json "$b" lowest_positive_mu)" "$(json "$s" lowest_positive_mu)" 1e-12'
+check 'read back: the same estimate (1e-6 of it)' \
+    'close "$(json "$b" lowest_positive_error_estimate)" "$(json "$s" lowest_positive_error_estimate)" 1e-6'
+"$nceig" "$work/back.nml" --set adapt%tolerance=3e-6 --set output%directory="$work/further" \
+    >/dev/null 2>"$work/err"; rc=$?
+check 'a Gmsh mesh adapts further' '[[ $rc -eq 0 && ! -s "$work/err" &&
+    $(json "$work/further/summary.json" adapt_converged) == true &&
+    $(json "$work/further/summary.json" adapt_start_dofs) == $(json "$s" n_dofs) ]]'
+
+# A limit: exit 0, a warning in summary.json and on stdout that names it and what was reached.
+"$nceig" "$work/adapt.nml" --set adapt%max_levels=2 --set output%directory="$work/limit" \
+    >"$work/stdout" 2>"$work/err"; rc=$?
+l=$work/limit/summary.json
+check 'max_levels reached: exit 0' '[[ $rc -eq 0 && ! -s "$work/err" ]]'
+check 'max_levels reached: not converged, 2 levels' \
+    '[[ $(json "$l" adapt_converged) == false && $(json "$l" adapt_levels) == 2 ]]'
+check 'max_levels reached: warning in summary.json' \
+    'grep -A1 "\"warnings\"" "$l" | grep -q "tolerance 1.00E-05 not met: max_levels = 2 reached"'
+check 'max_levels reached: warning on stdout' \
+    'grep -q "^warning: tolerance 1.00E-05 not met: max_levels = 2 reached with estimate" "$work/stdout"'
+
+# bad NAME WORD... -- SETTINGS: one stderr line with every WORD, exit 2, no output.
+bad() {
+    local name=$1
+    shift
+    local words=()
+    while [[ $1 != -- ]]; do words+=("$1"); shift; done
+    shift
+    rm -rf "$work/bad"
+    "$nceig" "$work/adapt.nml" --set output%directory="$work/bad" "$@" >/dev/null \
+        2>"$work/err"; local rc=$?
+    local ok=1
+    [[ $rc -eq 2 && $(wc -l <"$work/err") -eq 1 && ! -e "$work/bad" ]] || ok=0
+    for word in "${words[@]}"; do grep -q -F -- "$word" "$work/err" || ok=0; done
+    check "$name: $(cat "$work/err")" '[[ $ok -eq 1 ]]'
+}
+bad 'tolerance < 0' '&adapt' 'tolerance' -- --set adapt%tolerance=-1e-3
+bad 'tolerance >= 1' '&adapt' 'tolerance' '0 <= tolerance < 1' -- --set adapt%tolerance=1
+bad 'theta 0' '&adapt' 'theta' -- --set adapt%theta=0
+bad 'max_levels < 0' '&adapt' 'max_levels' -- --set adapt%max_levels=-1
+bad 'max_dofs below the start' '&adapt' 'max_dofs = 20' 'free dofs of the starting mesh' \
+    -- --set adapt%max_dofs=20
+bad 'another analysis' '&adapt' 'tolerance' "kind = 'threshold'" -- \
+    --set analysis%kind=threshold
+bad 'quadrilaterals' '&adapt' 'tolerance' "element = 'q2'" -- --set mesh%element=q2
+bad 'p4 (no enriched space)' '&adapt' "element = 'p4'" -- --set mesh%element=p4
+bad 'estimate off' '&adapt' "estimate = 'off'" -- --set eigen%estimate=off
+cli_end
