@@ -26,11 +26,17 @@ title="$(value element), lambda = $(value lambda), start $(value adapt_start_dof
 terminal='pngcairo size 1000,800 enhanced font "sans,11"'
 gnuplot -e 'set terminal' 2>&1 | grep -q pngcairo || terminal='png size 1000,800'
 
+if ! awk -F, 'NR > 1 && $6 != "" { found = 1 } END { exit !found }' "$csv"; then
+    echo "$0: $csv: no level has an error estimate: nothing to draw" >&2
+    exit 4
+fi
 # the lower end of the estimate axis: a third below the smaller of the tolerance and the
 # smallest estimate, so that the tolerance line never sits on the frame
 ymin=$(awk -F, -v t="$tolerance" 'NR > 1 && $6 != "" && (m == "" || $6 < m) { m = $6 }
     END { if (m == "" || t < m) m = t; print m / 3 }' "$csv")
 tmp="$dir/.adapt.png.partial"
+# a failed gnuplot leaves no partial picture behind (it would join the output set)
+trap 'rm -f "$tmp"' EXIT
 gnuplot <<GNUPLOT
 set terminal $terminal
 set output '$tmp'

@@ -59,6 +59,8 @@ else
 fi
 
 tmp="$dir/.lambda_sweep.png.partial"
+# a failed gnuplot leaves no partial picture behind (it would join the output set)
+trap 'rm -f "$tmp"' EXIT
 gnuplot <<GNUPLOT
 set terminal $terminal
 set output '$tmp'

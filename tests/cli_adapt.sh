@@ -80,6 +80,17 @@ check 'max_levels reached: warning in summary.json' \
 check 'max_levels reached: warning on stdout' \
     'grep -q "^warning: tolerance 1.00E-05 not met: max_levels = 2 reached with estimate" "$work/stdout"'
 
+# No positive mu (lambda = 1, below the threshold 1.94): nothing to adapt to, said so; the
+# set holds exactly its listed files (no picture, no leftover of one).
+"$nceig" "$work/adapt.nml" --set analysis%lambda=1 --set output%directory="$work/none" \
+    >"$work/stdout" 2>"$work/err"; rc=$?
+check 'no positive mu: exit 0, a warning' '[[ $rc -eq 0 && ! -s "$work/err" ]] &&
+    grep -q "^warning: tolerance not met: no error estimate at level 0 (no positive mu" "$work/stdout"'
+check 'no positive mu: adapt.png not drawn, said why' \
+    'grep -q "adapt plot  not drawn: no level has an error estimate" "$work/stdout"'
+check 'no positive mu: only the listed files' \
+    '[[ $(ls -A "$work/none" | sort | tr "\n" " ") == "adapt.csv eigenvalues.csv mesh.msh mode_001.png mode_001.vtu summary.json " ]]'
+
 # bad NAME WORD... -- SETTINGS: one stderr line with every WORD, exit 2, no output.
 bad() {
     local name=$1

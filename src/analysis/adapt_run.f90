@@ -59,7 +59,12 @@ contains
         if (stat%ok()) call write_adapt_csv(stage%path('adapt.csv'), this%out, stat)
         if (stat%ok()) call write_gmsh(stage%path(MESH_FILE), this%out%prob%mesh, stat)
         this%adapt_note = ''
-        if (stat%ok() .and. config%output%plot) call draw_adapt(this, stage, config, prob, stat)
+        if (.not. (stat%ok() .and. config%output%plot)) return
+        if (any(this%out%levels%estimated)) then
+            call draw_adapt(this, stage, config, prob, stat)
+        else
+            this%adapt_note = 'not drawn: no level has an error estimate'
+        end if
     end subroutine adapt_run_write_files
 
     !> adapt.png into the staging folder, from adapt.csv and a scratch summary.json.
