@@ -8,7 +8,8 @@ program test_elasticity
                              element_corners
     use shape_functions, only: reference_nodes, MAX_NODES
     use elasticity, only: plane_strain_matrix, lame_coefficients, element_stiffness, &
-                          ELEMENT_OK, ELEMENT_INVERTED, ELEMENT_BAD_ARGUMENT
+                          ELEMENT_OK, ELEMENT_INVERTED, ELEMENT_BAD_ARGUMENT, &
+                          stiffness_tables_t, stiffness_tables, element_energy
     use testing, only: test_suite_t
     implicit none
 
@@ -123,6 +124,7 @@ contains
         call t%check('distorted element: info ok'//label, info == ELEMENT_OK)
         call t%check('distorted element: ke exactly symmetric'//label, &
                      maxval(abs(ke - transpose(ke))) <= 0.0_wp)
+        call check_tables_and_energy(element, xy, ke, label)
 
         modes = 0.0_wp
         modes(1::2, 1) = 1.0_wp
@@ -148,6 +150,30 @@ contains
         call t%check('distorted element: no negative eigenvalue'//label, &
                      all(eigenvalues >= -1.0e-10_wp*largest))
     end subroutine check_distorted
+
+    !> The same matrix from precomputed stiffness tables (the same operations: bit for bit),
+    !> and element_energy(u, z) = z' ke u for two fields with no symmetry, to round-off: a
+    !> few ulps of |z| |ke| |u| per term, 1e-13 of it allowing the sums.
+    subroutine check_tables_and_energy(element, xy, ke, label)
+        integer, intent(in) :: element
+        real(wp), intent(in) :: xy(:, :), ke(:, :)
+        character(len=*), intent(in) :: label
+        real(wp) :: ke_tables(size(ke, 1), size(ke, 2)), u(size(ke, 1)), z(size(ke, 1))
+        type(stiffness_tables_t) :: tables
+        integer :: info, i
+        tables = stiffness_tables(element)
+        call element_stiffness(element, xy, YOUNG, POISSON, ke_tables, info, tables=tables)
+        call t%check('stiffness tables: the same ke bit for bit'//label, info == ELEMENT_OK &
+                     .and. maxval(abs(ke_tables - ke)) <= 0.0_wp)
+        do i = 1, size(u)
+            u(i) = sin(1.3_wp*i) + 0.1_wp*i
+            z(i) = cos(0.7_wp*i*i)
+        end do
+        call t%check('element_energy = z'' ke u'//label, &
+                     abs(element_energy(tables, xy, YOUNG, POISSON, u, z) - &
+                         dot_product(z, matmul(ke, u))) <= &
+                     1.0e-13_wp*norm2(z)*maxval(sum(abs(ke), dim=2))*norm2(u)*size(u))
+    end subroutine check_tables_and_energy
 
     subroutine check_bad_cells()
         real(wp) :: ke(6, 6), ke_q1(8, 8), min_det

@@ -8,7 +8,8 @@ module cell_geometry
     use shape_functions, only: evaluate_shape, reference_nodes, MAX_NODES
     implicit none
     private
-    public :: jacobian_at, det_range, negligible_det, orientation_of, cell_orientation
+    public :: jacobian_at, jacobian_of, det_range, det_range_of, negligible_det, &
+              orientation_of, cell_orientation
     public :: DEGENERATE_FRACTION, CELL_ANTICLOCKWISE, CELL_CLOCKWISE, CELL_DEGENERATE, &
               CELL_FOLDED
 
@@ -34,12 +35,18 @@ contains
         real(wp), intent(in) :: xi(2)
         real(wp), intent(out) :: jacobian(2, 2), det
         real(wp) :: values(MAX_NODES), gradients(2, MAX_NODES)
-        integer :: n
-        n = size(xy, 2)
         call evaluate_shape(element, xi, values, gradients)
-        jacobian = matmul(xy, transpose(gradients(:, 1:n)))
-        det = jacobian(1, 1)*jacobian(2, 2) - jacobian(1, 2)*jacobian(2, 1)
+        call jacobian_of(xy, gradients(:, 1:size(xy, 2)), jacobian, det)
     end subroutine jacobian_at
+
+    !> The same from the reference gradients of the cell's shape functions at the point.
+    pure subroutine jacobian_of(xy, gradients, jacobian, det)
+        real(wp), intent(in) :: xy(:, :)          !! (2, nodes per cell)
+        real(wp), intent(in) :: gradients(:, :)   !! (2, nodes per cell)
+        real(wp), intent(out) :: jacobian(2, 2), det
+        jacobian = matmul(xy, transpose(gradients))
+        det = jacobian(1, 1)*jacobian(2, 2) - jacobian(1, 2)*jacobian(2, 1)
+    end subroutine jacobian_of
 
     !> Smallest and largest det J of cell `xy` at the reference points `points` (2, :),
     !> taken in order (the order of min/max decides which NaN, if any, is seen).
@@ -58,6 +65,22 @@ contains
             det_max = max(det_max, det)
         end do
     end subroutine det_range
+
+    !> The same from the reference gradients (2, nodes per cell, n_points) at the points.
+    pure subroutine det_range_of(xy, gradients, det_min, det_max)
+        real(wp), intent(in) :: xy(:, :)             !! (2, nodes per cell)
+        real(wp), intent(in) :: gradients(:, :, :)
+        real(wp), intent(out) :: det_min, det_max
+        real(wp) :: jacobian(2, 2), det
+        integer :: q
+        det_min = huge(1.0_wp)
+        det_max = -huge(1.0_wp)
+        do q = 1, size(gradients, 3)
+            call jacobian_of(xy, gradients(:, :, q), jacobian, det)
+            det_min = min(det_min, det)
+            det_max = max(det_max, det)
+        end do
+    end subroutine det_range_of
 
     !> The |det J| at or below which cell `xy` counts as degenerate: DEGENERATE_FRACTION
     !> times its squared diameter (largest node distance), so the test is scale-free.

@@ -10,7 +10,8 @@ module assembly
     use csr_matrix, only: csr_matrix_t, csr_from_element_dofs
     use strings, only: to_string, short_real_text
     use sorting, only: sort_by_key
-    use elasticity, only: element_stiffness, ELEMENT_OK, ELEMENT_INVERTED
+    use elasticity, only: element_stiffness, ELEMENT_OK, ELEMENT_INVERTED, stiffness_tables_t, &
+                          stiffness_tables
     implicit none
     private
     public :: assemble_stiffness
@@ -29,6 +30,7 @@ contains
         integer, allocatable :: local_dofs(:)
         real(wp), allocatable :: ke(:, :), xy(:, :)
         real(wp) :: min_det
+        type(stiffness_tables_t) :: tables
         integer :: n_nodes, cell, info, i
 
         if (.not. (young > 0.0_wp .and. young <= huge(young))) then
@@ -57,6 +59,7 @@ contains
         end if
 
         call stiffness_pattern(m, dofs, k)
+        tables = stiffness_tables(m%element)
 
         ! Work arrays outlive the loop: a temporary per cell costs as much as a P1 matrix.
         allocate (ke(N_DIM*n_nodes, N_DIM*n_nodes), local_dofs(N_DIM*n_nodes))
@@ -66,7 +69,7 @@ contains
                 xy(:, i) = m%coords(:, m%cells(i, cell))
                 local_dofs(N_DIM*i - 1:N_DIM*i) = dofs%free_dof(:, m%cells(i, cell))
             end do
-            call element_stiffness(m%element, xy, young, poisson, ke, info, min_det)
+            call element_stiffness(m%element, xy, young, poisson, ke, info, min_det, tables)
             if (info /= ELEMENT_OK) then
                 if (info == ELEMENT_INVERTED) then
                     call stat%fail(STATUS_MESH, 'mesh: cell '//to_string(cell)// &
