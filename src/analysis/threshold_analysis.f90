@@ -24,6 +24,7 @@ module threshold_analysis
     use arpack_eigen, only: arpack_options_t, arpack_lowest_positive
     use critical_lambda, only: thresholds_t, pencil_thresholds, confirm_thresholds, &
                                lowest_positive_mu, SIDE_PLUS, SIDE_MINUS
+    use critical_set, only: critical_set_t, find_critical_set
     use eigen_analysis, only: eigen_result_t, choose_solver, eigen_with_factor, SOLVER_ARPACK, &
                               to_input_units
     implicit none
@@ -44,6 +45,8 @@ module threshold_analysis
     type, public :: threshold_result_t
         type(eigen_result_t) :: eigen            !! the spectrum at &analysis lambda
         type(thresholds_t) :: thresholds
+        !> the boundary of {lambda : a positive mu exists} over the &sweep range
+        type(critical_set_t) :: set
         type(sweep_curve_t) :: sweep             !! allocated for 'lambda_sweep' only
         real(wp) :: time_threshold = 0.0_wp      !! pencil QZ and the confirming solves, s
         real(wp) :: time_sweep = 0.0_wp          !! all the p x p solves of the sweep, s
@@ -109,6 +112,12 @@ contains
         ! mu of the confirmations, in the units of prob%k, to the input's (lambda has none)
         call real_to_input_units(res%thresholds%mu_outside, stat)
         if (stat%ok()) call real_to_input_units(res%thresholds%mu_inside, stat)
+        if (.not. stat%ok()) return
+        ! Dense too, for the same reason: the count of positive mu needs the whole spectrum.
+        call find_critical_set(blocks, sweep_lambdas(config%sweep), &
+                               res%thresholds%real_lambdas, res%set, stat)
+        if (stat%ok() .and. size(res%set%points) > 0) &
+            call real_to_input_units(res%set%points%mu_meet, stat)
         if (.not. stat%ok()) return
         res%time_threshold = wall_time() - start
         call timings%note('thresholds '//seconds_text(res%time_threshold)//' s')
