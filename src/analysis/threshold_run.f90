@@ -167,7 +167,7 @@ contains
         real(wp), allocatable :: lower(:), upper(:), pair_only(:)
         character(len=len(MECHANISM_NAMES)), allocatable :: mechanisms(:)
         character(len=8), allocatable :: directions(:)
-        integer :: i, n
+        integer :: i, n, side
 
         n = size(set%points)
         allocate (pair_only(n), mechanisms(n), directions(n))   ! then filled, see pencil_thresholds
@@ -176,6 +176,19 @@ contains
             if (set%points(i)%mechanism == MECHANISM_COMPLEX_PAIR) pair_only(i) = 1.0_wp
             mechanisms(i) = MECHANISM_NAMES(set%points(i)%mechanism)
             directions(i) = merge('appears ', 'vanishes', set%points(i)%appears)
+        end do
+        ! where a positive mu first exists going out from lambda = 0 (where none does)
+        do side = SIDE_PLUS, SIDE_MINUS
+            i = onset_point(set, side)
+            if (i > 0) then
+                call summary%add_real('lambda_onset_'//trim(SIDE_NAMES(side)), &
+                                      set%points(i)%lambda)
+                call summary%add_string('lambda_onset_'//trim(SIDE_NAMES(side))// &
+                                        '_mechanism', trim(mechanisms(i)))
+            else
+                call summary%add_null('lambda_onset_'//trim(SIDE_NAMES(side)))
+                call summary%add_null('lambda_onset_'//trim(SIDE_NAMES(side))//'_mechanism')
+            end if
         end do
         call summary%add_real('boundary_lambda_min', set%lambda_min)
         call summary%add_real('boundary_lambda_max', set%lambda_max)
@@ -193,6 +206,23 @@ contains
         call summary%add_real_array('positive_mu_intervals_upper', upper)
         call summary%add_integer('boundary_n_evaluations', set%n_evaluations)
     end subroutine add_boundary_keys
+
+    !> The index of the boundary point nearest zero on `side` (0 when none): the onset of a
+    !> positive mu as |lambda| grows from 0 on that side.
+    pure integer function onset_point(set, side)
+        type(critical_set_t), intent(in) :: set
+        integer, intent(in) :: side
+        integer :: i
+        onset_point = 0
+        do i = 1, size(set%points)
+            if ((set%points(i)%lambda > 0.0_wp) .neqv. (side == SIDE_PLUS)) cycle
+            if (onset_point == 0) then
+                onset_point = i
+            else if (abs(set%points(i)%lambda) < abs(set%points(onset_point)%lambda)) then
+                onset_point = i
+            end if
+        end do
+    end function onset_point
 
     !> The intervals of the searched range where a positive mu exists: between consecutive
     !> boundary points, and from or to the ends of the range.
