@@ -17,6 +17,11 @@ fi
 cli_begin cli_threshold_geometry
 cd "$work"
 
+run() {  # NAME: nceig on NAME.nml; NAME.log (stdout), NAME.err (stderr), $rc
+    "$nceig" "$1.nml" >"$1.log" 2>"$1.err"
+    rc=$?
+}
+
 gmsh "$source_dir/input/meshes/half_contact.geo" -2 -order 2 -clmax 0.02 -format msh41 \
     -o half.msh >gmsh.log 2>&1
 check 'gmsh meshes half_contact.geo at h = 0.02, P2' '[[ -s half.msh ]]'
@@ -26,7 +31,7 @@ cat >half.nml <<NML
 &analysis kind = 'threshold', lambda = -2.0 /
 &output directory = 'half', vtk = .false., plot = .false. /
 NML
-"$nceig" half.nml >half.log 2>half.err; rc=$?
+run half
 s=half/summary.json
 check 'partial contact: threshold runs' '[[ $rc -eq 0 && ! -s half.err ]]'
 onset=$(json $s lambda_onset_minus)
@@ -57,7 +62,7 @@ cat >sweep.nml <<NML
 &sweep lambdas = -1.5, -1.475, $below, $above, plot = .false. /
 &output directory = 'sweep', vtk = .false., plot = .false. /
 NML
-"$nceig" sweep.nml >sweep.log 2>sweep.err; rc=$?
+run sweep
 csv=sweep/lambda_sweep.csv
 check 'partial contact: sweep runs' '[[ $rc -eq 0 && ! -s sweep.err ]]'
 # mu at -1.5: 22.8 as measured (3 digits: a Gmsh version may move the nodes slightly)
@@ -73,7 +78,7 @@ cat >ref.nml <<NML
 &analysis kind = 'threshold' /
 &output directory = 'ref', vtk = .false., plot = .false. /
 NML
-"$nceig" ref.nml >ref.log 2>ref.err; rc=$?
+run ref
 s=ref/summary.json
 check 'reference: threshold runs' '[[ $rc -eq 0 && ! -s ref.err ]]'
 check 'reference: boundary = [lambda-, lambda+], both pencil' \

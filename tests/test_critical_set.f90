@@ -62,6 +62,22 @@ contains
         call scan_scene(blocks, thr, set)
     end subroutine partial_contact_scene
 
+    !> The reference scene (contact on the whole bottom, top fixed), 8 x 8 'right', scanned.
+    subroutine reference_scene(element, thr, set)
+        integer, intent(in) :: element
+        type(thresholds_t), intent(out) :: thr
+        type(critical_set_t), intent(out) :: set
+        type(mesh_t) :: m
+        type(reduced_blocks_t) :: blocks
+        type(status_t) :: stat
+        call structured_rectangle(1.0_wp, 1.0_wp, 8, 8, element, 'right', m, stat)
+        call require(stat)
+        call contact_scene(m, [m%part_index('top')], m%part_index('bottom'), 0.3_wp, blocks, &
+                           stat)
+        call require(stat)
+        call scan_scene(blocks, thr, set)
+    end subroutine reference_scene
+
     !> The pencil and the boundary points over the default &sweep range.
     subroutine scan_scene(blocks, thr, set)
         type(reduced_blocks_t), intent(in) :: blocks
@@ -188,16 +204,9 @@ contains
     !> lambda+ of the pencil, both pencil points, confirmed, a positive mu outside them.
     subroutine reference_scene_points_are_the_thresholds(t)
         type(test_suite_t), intent(inout) :: t
-        type(mesh_t) :: m
-        type(reduced_blocks_t) :: blocks
         type(thresholds_t) :: thr
         type(critical_set_t) :: set
-        type(status_t) :: stat
-        call structured_rectangle(1.0_wp, 1.0_wp, 8, 8, ELEMENT_P1, 'right', m, stat)
-        call contact_scene(m, [m%part_index('top')], m%part_index('bottom'), 0.3_wp, blocks, &
-                           stat)
-        call require(stat)
-        call scan_scene(blocks, thr, set)
+        call reference_scene(ELEMENT_P1, thr, set)
         call t%check('reference: two points', size(set%points) == 2)
         if (size(set%points) /= 2) return
         call t%check('reference: both pencil, both confirmed', &
@@ -216,17 +225,10 @@ contains
     !> as test_critical_lambda).
     subroutine quadrilaterals_give_symmetric_points(t)
         type(test_suite_t), intent(inout) :: t
-        type(mesh_t) :: m
-        type(reduced_blocks_t) :: blocks
         type(thresholds_t) :: thr
         type(critical_set_t) :: set
-        type(status_t) :: stat
         integer :: n
-        call structured_rectangle(1.0_wp, 1.0_wp, 8, 8, ELEMENT_Q1, 'right', m, stat)
-        call contact_scene(m, [m%part_index('top')], m%part_index('bottom'), 0.3_wp, blocks, &
-                           stat)
-        call require(stat)
-        call scan_scene(blocks, thr, set)
+        call reference_scene(ELEMENT_Q1, thr, set)
         n = size(set%points)
         call t%check('Q1: an even number of points, at least 2', n >= 2 .and. mod(n, 2) == 0)
         if (n < 2) return
