@@ -67,6 +67,7 @@ contains
         type(reduced_blocks_t) :: blocks
         type(arpack_options_t) :: options
         real(wp) :: start
+        real(wp), allocatable :: mu_meet(:)
         integer :: i, n_operator
         logical :: certified
 
@@ -116,9 +117,13 @@ contains
         ! Dense too, for the same reason: the count of positive mu needs the whole spectrum.
         call find_critical_set(blocks, sweep_lambdas(config%sweep), &
                                res%thresholds%real_lambdas, res%set, stat)
-        if (stat%ok() .and. size(res%set%points) > 0) &
-            call real_to_input_units(res%set%points%mu_meet, stat)
         if (.not. stat%ok()) return
+        if (size(res%set%points) > 0) then
+            mu_meet = res%set%points%mu_meet   ! a plain array: no temporary for the call
+            call real_to_input_units(mu_meet, stat)
+            if (.not. stat%ok()) return
+            res%set%points%mu_meet = mu_meet
+        end if
         res%time_threshold = wall_time() - start
         call timings%note('thresholds '//seconds_text(res%time_threshold)//' s')
         if (.not. with_sweep) return

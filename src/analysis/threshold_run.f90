@@ -164,18 +164,34 @@ contains
     subroutine add_boundary_keys(summary, set)
         type(json_object_t), intent(inout) :: summary
         type(critical_set_t), intent(in) :: set
-        real(wp), allocatable :: lower(:), upper(:), pair_only(:)
+        real(wp), allocatable :: lower(:), upper(:), lambdas(:), discriminants(:), mu_meets(:)
+        integer, allocatable :: below(:), above(:)
+        logical, allocatable :: confirmed(:)
         character(len=len(MECHANISM_NAMES)), allocatable :: mechanisms(:)
         character(len=8), allocatable :: directions(:)
         integer :: i, n, side
 
+        ! Plain arrays, filled point by point: a component of an array of derived type
+        ! passed as an array makes a temporary (a runtime warning under -fcheck=all).
         n = size(set%points)
-        allocate (pair_only(n), mechanisms(n), directions(n))   ! then filled, see pencil_thresholds
+        allocate (lambdas(n), discriminants(n), mu_meets(n), below(n), above(n), confirmed(n), &
+                  mechanisms(n), directions(n))
         do i = 1, n
-            pair_only(i) = ieee_value(1.0_wp, ieee_quiet_nan)   ! null for pencil points
-            if (set%points(i)%mechanism == MECHANISM_COMPLEX_PAIR) pair_only(i) = 1.0_wp
-            mechanisms(i) = MECHANISM_NAMES(set%points(i)%mechanism)
-            directions(i) = merge('appears ', 'vanishes', set%points(i)%appears)
+            associate (b => set%points(i))
+                lambdas(i) = b%lambda
+                below(i) = b%n_below
+                above(i) = b%n_above
+                confirmed(i) = b%confirmed
+                mechanisms(i) = MECHANISM_NAMES(b%mechanism)
+                directions(i) = merge('appears ', 'vanishes', b%appears)
+                ! null for pencil points, where no pair meets
+                discriminants(i) = ieee_value(1.0_wp, ieee_quiet_nan)
+                mu_meets(i) = discriminants(i)
+                if (b%mechanism == MECHANISM_COMPLEX_PAIR) then
+                    discriminants(i) = b%discriminant
+                    mu_meets(i) = b%mu_meet
+                end if
+            end associate
         end do
         ! where a positive mu first exists going out from lambda = 0 (where none does)
         do side = SIDE_PLUS, SIDE_MINUS
@@ -193,14 +209,14 @@ contains
         call summary%add_real('boundary_lambda_min', set%lambda_min)
         call summary%add_real('boundary_lambda_max', set%lambda_max)
         call summary%add_integer('boundary_n_points', n)
-        call summary%add_real_array('boundary_lambda', set%points%lambda)
+        call summary%add_real_array('boundary_lambda', lambdas)
         call summary%add_string_array('boundary_mechanism', mechanisms)
         call summary%add_string_array('boundary_direction', directions)
-        call summary%add_logical_array('boundary_confirmed', set%points%confirmed)
-        call summary%add_integer_array('boundary_n_positive_below', set%points%n_below)
-        call summary%add_integer_array('boundary_n_positive_above', set%points%n_above)
-        call summary%add_real_array('boundary_discriminant', pair_only*set%points%discriminant)
-        call summary%add_real_array('boundary_mu_meet', pair_only*set%points%mu_meet)
+        call summary%add_logical_array('boundary_confirmed', confirmed)
+        call summary%add_integer_array('boundary_n_positive_below', below)
+        call summary%add_integer_array('boundary_n_positive_above', above)
+        call summary%add_real_array('boundary_discriminant', discriminants)
+        call summary%add_real_array('boundary_mu_meet', mu_meets)
         call positive_intervals(set, lower, upper)
         call summary%add_real_array('positive_mu_intervals_lower', lower)
         call summary%add_real_array('positive_mu_intervals_upper', upper)
