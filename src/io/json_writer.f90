@@ -1,6 +1,7 @@
 ! SPDX-License-Identifier: MIT
-!> A flat JSON object (string, number, logical and null members), kept in insertion
-!> order and written in one go: enough for summary.json, with no JSON library to depend on.
+!> A flat JSON object (string, number, logical and null members, and arrays of them), kept in
+!> insertion order and written in one go: enough for summary.json, with no JSON library to
+!> depend on.
 module json_writer
     use kinds, only: wp, i8
     use status, only: status_t, STATUS_IO
