@@ -30,6 +30,7 @@ program test_critical_set
     t%name = 'test_critical_set'
     call partial_contact_has_a_pair_point(t)
     call count_changes_exactly_at_the_points(t)
+    call positive_at_agrees_with_the_count(t)
     call pair_point_is_a_double_eigenvalue(t)
     call reference_scene_points_are_the_thresholds(t)
     call quadrilaterals_give_symmetric_points(t)
@@ -162,6 +163,27 @@ contains
             end associate
         end do
     end subroutine count_changes_exactly_at_the_points
+
+    !> positive_at (which the sweep uses to choose ARPACK) against the count itself, on a
+    !> grid of lambdas that avoids the points (spacing 0.37, not a multiple of the scan's).
+    subroutine positive_at_agrees_with_the_count(t)
+        type(test_suite_t), intent(inout) :: t
+        type(reduced_blocks_t) :: blocks
+        type(thresholds_t) :: thr
+        type(critical_set_t) :: set
+        real(wp) :: lambda
+        logical :: agree
+        integer :: i, count
+        call partial_contact_scene(16, blocks, thr, set)
+        agree = .true.
+        do i = 0, 100
+            lambda = -19.9_wp + 0.37_wp*real(i, wp)
+            if (lambda > 20.0_wp) exit
+            count = n_positive(blocks, lambda)
+            agree = agree .and. (set%positive_at(lambda) .eqv. count > 0)
+        end do
+        call t%check('positive_at agrees with the count on a grid', agree)
+    end subroutine positive_at_agrees_with_the_count
 
     !> At a pair point A(lambda*) has a double positive eigenvalue. The discriminant d of the
     !> pair is about linear in lambda there, so 1e-6 relative away it is about 1e-6 |lambda

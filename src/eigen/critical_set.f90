@@ -57,9 +57,24 @@ module critical_set
         logical :: positive_at_min = .false.   !! a positive mu exists at lambda_min
         integer :: n_evaluations = 0           !! p x p eigen-solves used
         type(boundary_point_t), allocatable :: points(:)   !! ascending lambda
+    contains
+        procedure :: positive_at => critical_set_positive_at
     end type critical_set_t
 
 contains
+
+    !> A positive mu exists at `lambda` (in the range searched) as far as the search saw:
+    !> each boundary point below `lambda` switches the answer at lambda_min.
+    pure logical function critical_set_positive_at(this, lambda)
+        class(critical_set_t), intent(in) :: this
+        real(wp), intent(in) :: lambda
+        integer :: i, n_below
+        n_below = 0
+        do i = 1, size(this%points)
+            if (this%points(i)%lambda < lambda) n_below = n_below + 1
+        end do
+        critical_set_positive_at = this%positive_at_min .neqv. (mod(n_below, 2) == 1)
+    end function critical_set_positive_at
 
     !> The distance CONFIRM_OFFSET |lambda| of the confirming solves from a boundary point.
     elemental real(wp) function side_offset(lambda)
