@@ -38,7 +38,7 @@ scene() {
         wide3x1) echo "&mesh width = 3.0, height = 1.0, nx = 12, ny = 4, element = '$el' /
             &analysis lambda = 5.0 /" ;;
         half-contact) echo "&mesh source = 'gmsh', file = '$work/half_${el}.msh',
-            dirichlet = 'top', neumann = 'free', contact = 'contact' /
+            dirichlet = 'top', neumann = 'bottom_free right left', contact = 'contact' /
             &analysis lambda = -3.0 /" ;;
     esac
 }

@@ -1,7 +1,8 @@
 ! SPDX-License-Identifier: MIT
 !> Fixtures and views that several test programs need: the one-triangle mesh with closed
 !> forms, a CSR matrix as a dense array, a file as text, a search in a run's warnings, and
-!> the fuzz tests' reproducible random stream and whole-file read and write.
+!> the fuzz tests' reproducible random stream and whole-file read and write, and the contact
+!> blocks of a mesh for the threshold tests.
 !> One copy here, so a fix reaches every test that uses them.
 module fixtures
     use kinds, only: wp, i8
@@ -9,10 +10,17 @@ module fixtures
     use element_types, only: ELEMENT_P1
     use csr_matrix, only: csr_matrix_t
     use eigen_analysis, only: eigen_result_t
+    use status, only: status_t
+    use dof_map, only: dof_map_t, build_dof_map
+    use assembly, only: assemble_stiffness
+    use contact_boundary, only: contact_t, build_contact
+    use sparse_cholesky, only: cholesky_t
+    use contact_reduction, only: factor_stiffness, contact_flexibility, reduced_blocks_t
+    use timer, only: timings_t
     implicit none
     private
     public :: single_triangle, csr_to_dense, file_text, has_warning, five_point_matrix
-    public :: uniform, read_text, write_text, rigid_mode
+    public :: uniform, read_text, write_text, rigid_mode, contact_scene
 
     !> Park-Miller minimal standard generator: the same mutants on every compiler and run.
     type, public :: random_t
@@ -151,4 +159,51 @@ contains
             u(2::2) = m%coords(1, :)
         end select
     end function rigid_mode
+
+    !> K (E = 1), Gamma_C and the contact blocks Kt_nn, Kt_nt with M of mesh `m`. The factor
+    !> of K stays in `chol` when present (the caller frees it); `k`, `dofs` and `contact`
+    !> are returned when asked for.
+    subroutine contact_scene(m, dirichlet_parts, contact_part, poisson, blocks, stat, k, dofs, &
+                             contact, chol)
+        type(mesh_t), intent(in) :: m
+        integer, intent(in) :: dirichlet_parts(:), contact_part
+        real(wp), intent(in) :: poisson
+        type(reduced_blocks_t), intent(out) :: blocks
+        type(status_t), intent(out) :: stat
+        type(csr_matrix_t), intent(out), optional :: k
+        type(dof_map_t), intent(out), optional :: dofs
+        type(contact_t), intent(out), optional :: contact
+        type(cholesky_t), intent(inout), optional :: chol
+        type(dof_map_t) :: own_dofs
+        type(contact_t) :: own_contact
+        type(csr_matrix_t) :: own_k
+        type(cholesky_t) :: own_chol
+        type(timings_t) :: timings
+
+        call build_dof_map(m, dirichlet_parts, own_dofs, stat)
+        if (stat%ok()) call build_contact(m, contact_part, own_dofs, own_contact, stat)
+        if (stat%ok()) call assemble_stiffness(m, own_dofs, 1.0_wp, poisson, own_k, stat)
+        if (.not. stat%ok()) return
+        ! factored in place: cholesky_t owns a C handle and is finalised, so never copied
+        if (present(chol)) then
+            call blocks_from_factor(chol)
+        else
+            call blocks_from_factor(own_chol)
+            call own_chol%free()
+        end if
+        if (.not. stat%ok()) return
+        blocks%mass = own_contact%mass
+        if (present(k)) k = own_k
+        if (present(dofs)) dofs = own_dofs
+        if (present(contact)) contact = own_contact
+
+    contains
+
+        subroutine blocks_from_factor(factor)
+            type(cholesky_t), intent(inout) :: factor
+            call factor_stiffness(own_k, m, own_dofs, own_contact, factor, timings, stat)
+            if (stat%ok()) call contact_flexibility(factor, own_contact, blocks%kt_nn, &
+                                                    blocks%kt_nt, stat)
+        end subroutine blocks_from_factor
+    end subroutine contact_scene
 end module fixtures

@@ -6,7 +6,7 @@ program test_critical_lambda
     use kinds, only: wp
     use status, only: status_t
     use testing, only: test_suite_t
-    use fixtures, only: single_triangle
+    use fixtures, only: single_triangle, contact_scene
     use mesh, only: mesh_t
     use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2
     use mesh_structured, only: structured_rectangle
@@ -267,23 +267,11 @@ contains
         integer, intent(in) :: dirichlet_parts(:), contact_part
         real(wp), intent(in) :: poisson
         type(reduced_blocks_t), intent(out) :: s
-        type(dof_map_t) :: dofs
-        type(contact_t) :: contact
-        type(csr_matrix_t) :: k
-        type(cholesky_t) :: chol
-        type(timings_t) :: timings
         type(status_t) :: stat
-
-        call build_dof_map(m, dirichlet_parts, dofs, stat)
-        if (stat%ok()) call build_contact(m, contact_part, dofs, contact, stat)
-        if (stat%ok()) call assemble_stiffness(m, dofs, 1.0_wp, poisson, k, stat)
-        if (stat%ok()) call factor_stiffness(k, m, dofs, contact, chol, timings, stat)
-        if (stat%ok()) call contact_flexibility(chol, contact, s%kt_nn, s%kt_nt, stat)
-        call chol%free()
+        call contact_scene(m, dirichlet_parts, contact_part, poisson, s, stat)
         if (.not. stat%ok()) then
             call t%check('build_scene: '//stat%message, .false.)
             error stop 1
         end if
-        s%mass = contact%mass
     end subroutine build_scene
 end program test_critical_lambda

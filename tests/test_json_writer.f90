@@ -9,7 +9,7 @@ program test_json_writer
     use fixtures, only: file_text
     implicit none
     type(test_suite_t) :: t
-    type(json_object_t) :: object, numbers
+    type(json_object_t) :: object, numbers, arrays
     type(status_t) :: stat
     character(len=:), allocatable :: text, expected
     character(len=*), parameter :: NL = new_line('a')
@@ -70,6 +70,17 @@ program test_json_writer
 
     call object%write('no_such_dir/object.json', stat)
     call t%check('unwritable path fails', .not. stat%ok())
+
+    ! Arrays: each element as its scalar form, ', ' between, [] when empty.
+    call arrays%add_real_array('r', [-1.5_wp, ieee_value(1.0_wp, ieee_quiet_nan), 2.0_wp])
+    call arrays%add_integer_array('i', [2, 0, -7])
+    call arrays%add_logical_array('l', [.true., .false.])
+    call arrays%add_string_array('s', [character(len=6) :: 'pencil', 'a"b'])
+    call arrays%add_real_array('none', [real(wp) ::])
+    call t%check('arrays of reals, integers, logicals, strings, and an empty one', &
+                 arrays%to_text() == '{'//NL//'  "r": [-1.5, null, 2.0],'//NL// &
+                 '  "i": [2, 0, -7],'//NL//'  "l": [true, false],'//NL// &
+                 '  "s": ["pencil", "a\"b"],'//NL//'  "none": []'//NL//'}')
 
     ! gfortran 12 keeps main-program allocatables in a frame gone before LeakSanitizer
     ! looks: free them here so a sanitizer build reports only real leaks.

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
-// The unit square with contact on the left half of the bottom only: top fixed ("top"), the
-// right half of the bottom and both sides traction-free ("free"), contact on [0, 0.5] x {0}
-// ("contact"). A coarse start for adaptive runs (scripts/estimate_quality.sh):
-//   gmsh input/meshes/half_contact.geo -2 -clmax 0.25 -format msh41 -o half_contact.msh
-// with -order 2 or -order 3 for 6- or 10-node triangles.
+// The reference square with contact on the left half of the bottom only: the right half,
+// 'bottom_free', is traction-free like the sides. Gmsh's Delaunay algorithm; the element size
+// comes from the command line, for instance (input/half_contact.nml uses h = 1/16, order 2)
+//   gmsh input/meshes/half_contact.geo -2 -order 2 -clmax 0.0625 -format msh41 \
+//       -o input/meshes/half_contact_16.msh
 Point(1) = {0, 0, 0, 1};
 Point(2) = {0.5, 0, 0, 1};
 Point(3) = {1, 0, 0, 1};
@@ -17,6 +17,9 @@ Line(5) = {5, 1};
 Curve Loop(1) = {1, 2, 3, 4, 5};
 Plane Surface(1) = {1};
 Physical Curve("contact") = {1};
-Physical Curve("free") = {2, 3, 5};
+Physical Curve("bottom_free") = {2};
+Physical Curve("right") = {3};
 Physical Curve("top") = {4};
+Physical Curve("left") = {5};
 Physical Surface("body") = {1};
+Mesh.Algorithm = 5;   // Delaunay

@@ -23,7 +23,8 @@ module threshold_analysis
     use memory_budget, only: check_contact_memory, contact_peak_blocks
     use arpack_eigen, only: arpack_options_t, arpack_lowest_positive
     use critical_lambda, only: thresholds_t, pencil_thresholds, confirm_thresholds, &
-                               lowest_positive_mu, SIDE_PLUS, SIDE_MINUS
+                               lowest_positive_mu
+    use critical_set, only: critical_set_t, find_critical_set
     use eigen_analysis, only: eigen_result_t, choose_solver, eigen_with_factor, SOLVER_ARPACK, &
                               to_input_units
     implicit none
@@ -44,6 +45,8 @@ module threshold_analysis
     type, public :: threshold_result_t
         type(eigen_result_t) :: eigen            !! the spectrum at &analysis lambda
         type(thresholds_t) :: thresholds
+        !> the boundary of {lambda : a positive mu exists} over the &sweep range
+        type(critical_set_t) :: set
         type(sweep_curve_t) :: sweep             !! allocated for 'lambda_sweep' only
         real(wp) :: time_threshold = 0.0_wp      !! pencil QZ and the confirming solves, s
         real(wp) :: time_sweep = 0.0_wp          !! all the p x p solves of the sweep, s
@@ -64,6 +67,7 @@ contains
         type(reduced_blocks_t) :: blocks
         type(arpack_options_t) :: options
         real(wp) :: start
+        real(wp), allocatable :: mu_meet(:)
         integer :: i, n_operator
         logical :: certified
 
@@ -110,6 +114,16 @@ contains
         call real_to_input_units(res%thresholds%mu_outside, stat)
         if (stat%ok()) call real_to_input_units(res%thresholds%mu_inside, stat)
         if (.not. stat%ok()) return
+        ! Dense too, for the same reason: the count of positive mu needs the whole spectrum.
+        call find_critical_set(blocks, sweep_lambdas(config%sweep), &
+                               res%thresholds%real_lambdas, res%set, stat)
+        if (.not. stat%ok()) return
+        if (size(res%set%points) > 0) then
+            mu_meet = res%set%points%mu_meet   ! a plain array: no temporary for the call
+            call real_to_input_units(mu_meet, stat)
+            if (.not. stat%ok()) return
+            res%set%points%mu_meet = mu_meet
+        end if
         res%time_threshold = wall_time() - start
         call timings%note('thresholds '//seconds_text(res%time_threshold)//' s')
         if (.not. with_sweep) return
@@ -124,10 +138,11 @@ contains
         do i = 1, size(res%sweep%lambda)
             call timings%tick('sweep, lambda', i, size(res%sweep%lambda))
             certified = .false.
-            ! Between the thresholds a positive mu is (generically) absent, which ARPACK can
-            ! never certify (only the whole spectrum can): its attempts would be wasted.
+            ! Where the boundary search found no positive mu, ARPACK could never certify that
+            ! (only the whole spectrum can): its attempts would be wasted. A point the scan
+            ! judged wrongly is still right: ARPACK that cannot certify falls back to dgeev.
             if (res%eigen%solver == SOLVER_ARPACK .and. &
-                .not. between_thresholds(res%thresholds, res%sweep%lambda(i))) then
+                res%set%positive_at(res%sweep%lambda(i))) then
                 call arpack_lowest_positive(blocks%matrix(res%sweep%lambda(i)), options, &
                                             res%sweep%mu(i), res%sweep%found(i), certified, &
                                             n_operator, stat)
@@ -163,14 +178,4 @@ contains
             if (stat%ok()) mu = real(values, wp)
         end subroutine real_to_input_units
     end subroutine solve_thresholds
-
-    !> lambda- <= lambda <= lambda+, a missing threshold counting as infinitely far.
-    pure logical function between_thresholds(thr, lambda)
-        type(thresholds_t), intent(in) :: thr
-        real(wp), intent(in) :: lambda
-        between_thresholds = .true.
-        if (thr%found(SIDE_PLUS)) between_thresholds = lambda <= thr%lambda(SIDE_PLUS)
-        if (thr%found(SIDE_MINUS)) between_thresholds = between_thresholds .and. &
-                                                        lambda >= thr%lambda(SIDE_MINUS)
-    end function between_thresholds
 end module threshold_analysis

@@ -12,6 +12,8 @@ module threshold_run
     use problem, only: problem_t
     use threshold_analysis, only: threshold_result_t, sweep_curve_t, solve_thresholds
     use critical_lambda, only: SIDE_PLUS, SIDE_MINUS, CONFIRM_OFFSET
+    use critical_set, only: critical_set_t, MECHANISM_NAMES, MECHANISM_COMPLEX_PAIR
+    use ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use critical_point, only: slip_sign, critical_c_t
     use analysis_base, only: analysis_t
     use eigen_run, only: eigen_summary_json, summary_lines, write_eigen_files
@@ -142,13 +144,120 @@ contains
                 call summary%add_real_or_null('mu_'//s//'_inside', thr%mu_inside(side), &
                                               thr%has_mu_inside(side))
             end do
+            ! |lambda*| is the friction coefficient of the Signorini-Coulomb eigenproblem
+            ! (model.md section 7), whether or not a positive mu appears there
+            do side = SIDE_PLUS, SIDE_MINUS
+                call summary%add_real_or_null('critical_friction_coefficient_'// &
+                                              trim(SIDE_NAMES(side)), abs(thr%lambda(side)), &
+                                              thr%found(side))
+            end do
             call summary%add_real('confirm_offset', CONFIRM_OFFSET)
             call summary%add_integer('pencil_n_real', thr%n_real)
             call summary%add_integer('pencil_n_complex', thr%n_complex)
             call summary%add_integer('pencil_n_infinite', thr%n_infinite)
         end associate
+        call add_boundary_keys(summary, res%set)
         call summary%add_real('time_threshold_s', res%time_threshold)
     end subroutine add_threshold_keys
+
+    !> The boundary points of {lambda : a positive mu exists} in the searched range, one
+    !> array entry per point (ascending lambda), and the intervals they bound.
+    subroutine add_boundary_keys(summary, set)
+        type(json_object_t), intent(inout) :: summary
+        type(critical_set_t), intent(in) :: set
+        real(wp), allocatable :: lower(:), upper(:), lambdas(:), discriminants(:), mu_meets(:)
+        integer, allocatable :: below(:), above(:)
+        logical, allocatable :: confirmed(:)
+        character(len=len(MECHANISM_NAMES)), allocatable :: mechanisms(:)
+        character(len=8), allocatable :: directions(:)
+        integer :: i, n, side
+
+        ! Plain arrays, filled point by point: a component of an array of derived type
+        ! passed as an array makes a temporary (a runtime warning under -fcheck=all).
+        n = size(set%points)
+        allocate (lambdas(n), discriminants(n), mu_meets(n), below(n), above(n), confirmed(n), &
+                  mechanisms(n), directions(n))
+        do i = 1, n
+            associate (b => set%points(i))
+                lambdas(i) = b%lambda
+                below(i) = b%n_below
+                above(i) = b%n_above
+                confirmed(i) = b%confirmed
+                mechanisms(i) = MECHANISM_NAMES(b%mechanism)
+                directions(i) = merge('appears ', 'vanishes', b%appears)
+                ! null for pencil points, where no pair meets
+                discriminants(i) = ieee_value(1.0_wp, ieee_quiet_nan)
+                mu_meets(i) = discriminants(i)
+                if (b%mechanism == MECHANISM_COMPLEX_PAIR) then
+                    discriminants(i) = b%discriminant
+                    mu_meets(i) = b%mu_meet
+                end if
+            end associate
+        end do
+        ! where a positive mu first exists going out from lambda = 0 (where none does)
+        do side = SIDE_PLUS, SIDE_MINUS
+            i = onset_point(set, side)
+            if (i > 0) then
+                call summary%add_real('lambda_onset_'//trim(SIDE_NAMES(side)), &
+                                      set%points(i)%lambda)
+                call summary%add_string('lambda_onset_'//trim(SIDE_NAMES(side))// &
+                                        '_mechanism', trim(mechanisms(i)))
+            else
+                call summary%add_null('lambda_onset_'//trim(SIDE_NAMES(side)))
+                call summary%add_null('lambda_onset_'//trim(SIDE_NAMES(side))//'_mechanism')
+            end if
+        end do
+        call summary%add_real('boundary_lambda_min', set%lambda_min)
+        call summary%add_real('boundary_lambda_max', set%lambda_max)
+        call summary%add_integer('boundary_n_points', n)
+        call summary%add_real_array('boundary_lambda', lambdas)
+        call summary%add_string_array('boundary_mechanism', mechanisms)
+        call summary%add_string_array('boundary_direction', directions)
+        call summary%add_logical_array('boundary_confirmed', confirmed)
+        call summary%add_integer_array('boundary_n_positive_below', below)
+        call summary%add_integer_array('boundary_n_positive_above', above)
+        call summary%add_real_array('boundary_discriminant', discriminants)
+        call summary%add_real_array('boundary_mu_meet', mu_meets)
+        call positive_intervals(set, lower, upper)
+        call summary%add_real_array('positive_mu_intervals_lower', lower)
+        call summary%add_real_array('positive_mu_intervals_upper', upper)
+        call summary%add_integer('boundary_n_evaluations', set%n_evaluations)
+    end subroutine add_boundary_keys
+
+    !> The index of the boundary point nearest zero on `side` (0 when none): the onset of a
+    !> positive mu as |lambda| grows from 0 on that side.
+    pure integer function onset_point(set, side)
+        type(critical_set_t), intent(in) :: set
+        integer, intent(in) :: side
+        integer :: i
+        onset_point = 0
+        do i = 1, size(set%points)
+            if ((set%points(i)%lambda > 0.0_wp) .neqv. (side == SIDE_PLUS)) cycle
+            if (onset_point == 0) then
+                onset_point = i
+            else if (abs(set%points(i)%lambda) < abs(set%points(onset_point)%lambda)) then
+                onset_point = i
+            end if
+        end do
+    end function onset_point
+
+    !> The intervals of the searched range where a positive mu exists: between consecutive
+    !> boundary points, and from or to the ends of the range.
+    pure subroutine positive_intervals(set, lower, upper)
+        type(critical_set_t), intent(in) :: set
+        real(wp), allocatable, intent(out) :: lower(:), upper(:)
+        real(wp), allocatable :: ends(:)
+        integer :: n
+        ! the sequence of switches: the range start when positive there, every boundary point,
+        ! the range end when positive there; consecutive pairs are the intervals
+        allocate (ends(size(set%points)))   ! then filled: no false -Wuninitialized
+        ends(:) = set%points%lambda
+        if (set%positive_at_min) ends = [set%lambda_min, ends]
+        n = size(ends)
+        if (mod(n, 2) == 1) ends = [ends, set%lambda_max]
+        lower = ends(1::2)
+        upper = ends(2::2)
+    end subroutine positive_intervals
 
     !> What a sweep ran: its file, size, range and spacing, and how many points had a mu.
     subroutine add_sweep_keys(summary, config, res)
@@ -223,6 +332,7 @@ contains
                     mu_text(thr%has_mu_inside(side), thr%mu_inside(side))
             end do
         end associate
+        text = text//boundary_lines(res%set)
         text = text//NL//'  time [s]    thresholds '//short_real_text(res%time_threshold)
         if (allocated(res%sweep%lambda)) then
             text = text//', sweep '//short_real_text(res%time_sweep)//NL//'  sweep       '// &
@@ -242,4 +352,32 @@ contains
             if (found) s = real_to_text(mu)
         end function mu_text
     end function threshold_summary_lines
+
+    !> One line per boundary point, then the intervals with a positive mu.
+    function boundary_lines(set) result(text)
+        type(critical_set_t), intent(in) :: set
+        character(len=:), allocatable :: text
+        character(len=*), parameter :: NL = new_line('a')
+        real(wp), allocatable :: lower(:), upper(:)
+        integer :: i
+
+        text = NL//'  boundary    of {lambda : a positive mu exists} in ['// &
+            real_to_text(set%lambda_min)//', '//real_to_text(set%lambda_max)//']: '// &
+            to_string(size(set%points))//' points'
+        do i = 1, size(set%points)
+            associate (b => set%points(i))
+                text = text//NL//'              lambda = '//real_to_text(b%lambda)//' '// &
+                    trim(MECHANISM_NAMES(b%mechanism))//', positive mu '// &
+                    trim(merge('appears ', 'vanishes', b%appears))//' as lambda increases ('// &
+                    to_string(b%n_below)//' -> '//to_string(b%n_above)//'), '// &
+                    trim(merge('confirmed    ', 'NOT confirmed', b%confirmed))
+            end associate
+        end do
+        call positive_intervals(set, lower, upper)
+        text = text//NL//'              positive mu on'
+        if (size(lower) == 0) text = text//' no part of the range'
+        do i = 1, size(lower)
+            text = text//' ['//real_to_text(lower(i))//', '//real_to_text(upper(i))//']'
+        end do
+    end function boundary_lines
 end module threshold_run

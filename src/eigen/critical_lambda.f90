@@ -19,9 +19,11 @@ module critical_lambda
     use strings, only: to_string
     use lapack_interfaces, only: dggev, dgeev, lapack_info_message
     use contact_reduction, only: reduced_blocks_t, lambda_unit
+    use sorting, only: sort_index
     implicit none
     private
     public :: thresholds_t, pencil_thresholds, lowest_positive_mu, confirm_thresholds
+    public :: reduced_eigenvalues, count_positive
     public :: SIDE_PLUS, SIDE_MINUS, CONFIRM_OFFSET
 
     integer, parameter :: SIDE_PLUS = 1    !! index of lambda+ > 0 in thresholds_t arrays
@@ -45,6 +47,11 @@ module critical_lambda
         logical :: has_mu_inside(2) = .false.      !! a positive mu exists there (not expected)
         real(wp) :: mu_outside(2) = 0.0_wp         !! lowest positive mu there, if any
         real(wp) :: mu_inside(2) = 0.0_wp
+        !> every finite real pencil eigenvalue, ascending: where a real theta = 1/mu crosses 0
+        real(wp), allocatable :: real_lambdas(:)
+        !> (p, 2) the pencil eigenvector x of each side found (largest entry 1): the contact
+        !> tractions of the limit mode, model.md section 7
+        real(wp), allocatable :: vectors(:, :)
     contains
         procedure :: confirmed => thresholds_confirmed
     end type thresholds_t
@@ -92,6 +99,8 @@ contains
 
         norm_nn = maxval(sum(abs(kt_nn), dim=2))
         norm_nt = maxval(sum(abs(kt_nt), dim=2))
+        allocate (thr%real_lambdas(0), thr%vectors(p, 2))
+        thr%vectors = 0.0_wp
         best = 0
         do j = 1, p
             ! LAPACK returns an exactly zero alphai for a real eigenvalue.
@@ -106,6 +115,7 @@ contains
             end if
             thr%n_real = thr%n_real + 1
             lambda = alphar(j)/beta(j)
+            thr%real_lambdas = [thr%real_lambdas, lambda]
             ! lambda = 0 would need Kt_nn singular, which SPD excludes.
             side = SIDE_PLUS
             if (lambda < 0.0_wp) side = SIDE_MINUS
@@ -120,16 +130,48 @@ contains
             j = best(side)
             thr%found(side) = .true.
             thr%lambda(side) = alphar(j)/beta(j)
+            thr%vectors(:, side) = vr(:, j)/vr(maxloc(abs(vr(:, j)), dim=1), j)
             thr%residual(side) = maxval(abs(matmul(kt_nn, vr(:, j)) - &
                                             thr%lambda(side)*matmul(kt_nt, vr(:, j)))) / &
                 ((norm_nn + abs(thr%lambda(side))*norm_nt)*maxval(abs(vr(:, j))))
         end do
+        thr%real_lambdas = thr%real_lambdas(sort_index(thr%real_lambdas))
     end subroutine pencil_thresholds
 
+    !> The eigenvalues theta = 1/mu of the reduced problem (lambda Kt_nt - Kt_nn) M y = theta y,
+    !> divided by lambda_unit(lambda) (see reduced_blocks_matrix): dgeev, balanced, no vectors,
+    !> O(p^3) with a small constant and no sparse work.
+    subroutine reduced_eigenvalues(blocks, lambda, wr, wi, stat)
+        type(reduced_blocks_t), intent(in) :: blocks
+        real(wp), intent(in) :: lambda
+        real(wp), allocatable, intent(out) :: wr(:), wi(:)
+        type(status_t), intent(out) :: stat
+        real(wp), allocatable :: a(:, :), work(:)
+        real(wp) :: vl(1, 1), vr(1, 1), query(1)
+        integer :: p, info
+
+        p = size(blocks%kt_nn, 1)
+        allocate (a(p, p))   ! then filled: see dense_eigen on reallocation on assignment
+        a(:, :) = blocks%matrix(lambda)
+        allocate (wr(p), wi(p))
+        call dgeev('N', 'N', p, a, p, wr, wi, vl, 1, vr, 1, query, -1, info)
+        allocate (work(max(1, int(query(1)))))
+        call dgeev('N', 'N', p, a, p, wr, wi, vl, 1, vr, 1, work, size(work), info)
+        if (info /= 0) call stat%fail(STATUS_SOLVER, 'reduced problem at lambda: '// &
+                                      lapack_info_message('dgeev', info))
+    end subroutine reduced_eigenvalues
+
+    !> How many of the eigenvalues (wr, wi) of reduced_eigenvalues are positive real: LAPACK
+    !> returns an exactly zero wi for a real one, and theta below tiny would overflow 1/theta
+    !> (mu infinite, not an eigenvalue).
+    pure integer function count_positive(wr, wi)
+        real(wp), intent(in) :: wr(:), wi(:)
+        count_positive = count(abs(wi) <= 0.0_wp .and. wr > tiny(1.0_wp))
+    end function count_positive
+
     !> The lowest positive real mu of K phi = mu B_lambda phi from the reduced problem
-    !> (lambda Kt_nt - Kt_nn) M y = (1/mu) y, eigenvalues only (dgeev, balanced): O(p^3)
-    !> with a small constant, and no sparse work. `found` is false when no eigenvalue is
-    !> positive real; `n_positive` counts them.
+    !> (reduced_eigenvalues). `found` is false when no eigenvalue is positive real;
+    !> `n_positive` counts them.
     subroutine lowest_positive_mu(blocks, lambda, mu, found, n_positive, stat)
         type(reduced_blocks_t), intent(in) :: blocks
         real(wp), intent(in) :: lambda
@@ -137,35 +179,19 @@ contains
         logical, intent(out) :: found
         integer, intent(out) :: n_positive
         type(status_t), intent(out) :: stat
-        real(wp), allocatable :: a(:, :), wr(:), wi(:), work(:)
-        real(wp) :: vl(1, 1), vr(1, 1), query(1), theta_max
-        integer :: p, info, j
+        real(wp), allocatable :: wr(:), wi(:)
 
-        p = size(blocks%kt_nn, 1)
         mu = 0.0_wp
         found = .false.
         n_positive = 0
-        allocate (a(p, p))   ! then filled: see dense_eigen on reallocation on assignment
-        a(:, :) = blocks%matrix(lambda)
-        allocate (wr(p), wi(p))
-        call dgeev('N', 'N', p, a, p, wr, wi, vl, 1, vr, 1, query, -1, info)
-        allocate (work(max(1, int(query(1)))))
-        call dgeev('N', 'N', p, a, p, wr, wi, vl, 1, vr, 1, work, size(work), info)
-        if (info /= 0) then
-            call stat%fail(STATUS_SOLVER, 'reduced problem at lambda: '// &
-                           lapack_info_message('dgeev', info))
-            return
-        end if
-        theta_max = 0.0_wp
-        do j = 1, p
-            ! theta below tiny would overflow 1/theta: mu is then infinite, not an eigenvalue
-            if (abs(wi(j)) > 0.0_wp .or. .not. wr(j) > tiny(1.0_wp)) cycle
-            n_positive = n_positive + 1
-            theta_max = max(theta_max, wr(j))
-        end do
+        call reduced_eigenvalues(blocks, lambda, wr, wi, stat)
+        if (.not. stat%ok()) return
+        n_positive = count_positive(wr, wi)
         if (n_positive > 0) then
             found = .true.
-            mu = (1.0_wp/theta_max)/lambda_unit(lambda)   ! blocks%matrix is A / lambda_unit
+            ! blocks%matrix is A / lambda_unit: mu = 1 / (lambda_unit theta)
+            mu = (1.0_wp/maxval(wr, mask=abs(wi) <= 0.0_wp .and. wr > tiny(1.0_wp)))/ &
+                 lambda_unit(lambda)
         end if
     end subroutine lowest_positive_mu
 

@@ -1,10 +1,12 @@
 ! SPDX-License-Identifier: MIT
-!> A flat JSON object (string, number, logical and null members), kept in insertion
-!> order and written in one go: enough for summary.json, with no JSON library to depend on.
+!> A flat JSON object (string, number, logical and null members, and arrays of them), kept in
+!> insertion order and written in one go: enough for summary.json, with no JSON library to
+!> depend on.
 module json_writer
     use kinds, only: wp, i8
     use status, only: status_t, STATUS_IO
     use real_format, only: real_to_text
+    use strings, only: to_string
     use ieee_arithmetic, only: ieee_is_finite
     use filesystem, only: close_output
     implicit none
@@ -29,6 +31,9 @@ module json_writer
         procedure :: add_logical => json_object_add_logical
         procedure :: add_null => json_object_add_null
         procedure :: add_string_array => json_object_add_string_array
+        procedure :: add_real_array => json_object_add_real_array
+        procedure :: add_integer_array => json_object_add_integer_array
+        procedure :: add_logical_array => json_object_add_logical_array
         procedure :: to_text => json_object_to_text
         procedure :: write => json_object_write
     end type json_object_t
@@ -108,11 +113,62 @@ contains
         integer :: i
         text = '['
         do i = 1, size(values)
-            if (i > 1) text = text//', '
-            text = text//'"'//escaped(trim(values(i)))//'"'
+            call append_item(text, '"'//escaped(trim(values(i)))//'"')
         end do
         call add_member(this, key, text//']')
     end subroutine json_object_add_string_array
+
+    !> An array of reals, each as add_real writes it (null for NaN and infinities).
+    subroutine json_object_add_real_array(this, key, values)
+        class(json_object_t), intent(inout) :: this
+        character(len=*), intent(in) :: key
+        real(wp), intent(in) :: values(:)
+        character(len=:), allocatable :: text
+        integer :: i
+        text = '['
+        do i = 1, size(values)
+            if (ieee_is_finite(values(i))) then
+                call append_item(text, real_to_text(values(i)))
+            else
+                call append_item(text, 'null')
+            end if
+        end do
+        call add_member(this, key, text//']')
+    end subroutine json_object_add_real_array
+
+    subroutine json_object_add_integer_array(this, key, values)
+        class(json_object_t), intent(inout) :: this
+        character(len=*), intent(in) :: key
+        integer, intent(in) :: values(:)
+        character(len=:), allocatable :: text
+        integer :: i
+        text = '['
+        do i = 1, size(values)
+            call append_item(text, to_string(values(i)))
+        end do
+        call add_member(this, key, text//']')
+    end subroutine json_object_add_integer_array
+
+    subroutine json_object_add_logical_array(this, key, values)
+        class(json_object_t), intent(inout) :: this
+        character(len=*), intent(in) :: key
+        logical, intent(in) :: values(:)
+        character(len=:), allocatable :: text
+        integer :: i
+        text = '['
+        do i = 1, size(values)
+            call append_item(text, trim(merge('true ', 'false', values(i))))
+        end do
+        call add_member(this, key, text//']')
+    end subroutine json_object_add_logical_array
+
+    !> Append an element to an array's text that starts with '['.
+    pure subroutine append_item(text, item)
+        character(len=:), allocatable, intent(inout) :: text
+        character(len=*), intent(in) :: item
+        if (len(text) > 1) text = text//', '
+        text = text//item
+    end subroutine append_item
 
     !> The object as text: one member per line, two-space indent, no final line feed;
     !> an empty object is '{}'.

@@ -1,0 +1,374 @@
+! SPDX-License-Identifier: MIT
+!> The set of lambdas at which a positive real mu exists, over a range, and every point of its
+!> boundary with the mechanism that makes it (model.md section 7). A positive eigenvalue
+!> theta = 1/mu of the reduced matrix A(lambda) can appear or vanish in two generic ways:
+!> - 'pencil': a real theta crosses zero (mu through infinity); then det A = 0, so lambda is a
+!>   real eigenvalue of the pencil Kt_nn x = lambda Kt_nt x, known to round-off from QZ;
+!> - 'complex_pair': two real theta > 0 meet and leave the axis as a conjugate pair (or a pair
+!>   lands on it), a double eigenvalue of A(lambda); the count of positive theta jumps by 2.
+!> The count of positive theta is evaluated on a scan (the &sweep lambdas) and on both sides
+!> of every pencil eigenvalue in range; where the count goes from zero to non-zero between two
+!> points without a pencil eigenvalue between them, the point is bracketed by bisection on
+!> that count and then refined as the root of the discriminant of the meeting pair
+!> (pair_discriminant), a smooth function of lambda with a simple root, to round-off.
+!> Two boundary points closer together than the scan spacing, with no pencil eigenvalue
+!> between, can be missed (the count is the same at both ends): the scan sets the resolution.
+module critical_set
+    use kinds, only: wp
+    use status, only: status_t
+    use sorting, only: sort_index
+    use contact_reduction, only: reduced_blocks_t, lambda_unit
+    use critical_lambda, only: reduced_eigenvalues, count_positive, CONFIRM_OFFSET
+    implicit none
+    private
+    public :: find_critical_set, pair_discriminant, side_offset
+
+    integer, parameter, public :: MECHANISM_PENCIL = 1
+    integer, parameter, public :: MECHANISM_COMPLEX_PAIR = 2
+    character(len=*), parameter, public :: MECHANISM_NAMES(2) = &
+        [character(len=12) :: 'pencil', 'complex_pair']
+    !> The count bisection stops at this relative width: there the meeting pair is still
+    !> split by about sqrt(1e-10) ~ 1e-5 relative, far above dgeev's sqrt(eps) ~ 1e-8 error
+    !> for a near-double eigenvalue, so the count is still right; the discriminant does the rest.
+    real(wp), parameter :: BISECTION_WIDTH = 1.0e-10_wp
+    integer, parameter :: MAX_REFINE = 200   !! Illinois steps; about 10 are used
+
+    !> One boundary point of {lambda : a positive real mu exists}.
+    type, public :: boundary_point_t
+        real(wp) :: lambda = 0.0_wp
+        integer :: mechanism = MECHANISM_PENCIL
+        !> a positive mu exists just above lambda (it appears as lambda increases), else
+        !> just below (it vanishes as lambda increases)
+        logical :: appears = .true.
+        !> positive real eigenvalues at lambda -+ CONFIRM_OFFSET |lambda|
+        integer :: n_below = 0, n_above = 0
+        !> complex_pair: the scaled discriminant of the meeting pair at lambda -+ offset and at
+        !> lambda; mu where the pair meets (1/theta there, in the units of the blocks)
+        real(wp) :: discriminant_below = 0.0_wp, discriminant_above = 0.0_wp
+        real(wp) :: discriminant = 0.0_wp
+        real(wp) :: mu_meet = 0.0_wp
+        !> the counts just below and above differ by one from/to zero (pencil) or by two
+        !> with the discriminant changing sign (complex_pair)
+        logical :: confirmed = .false.
+    end type boundary_point_t
+
+    type, public :: critical_set_t
+        real(wp) :: lambda_min = 0.0_wp, lambda_max = 0.0_wp   !! the range searched
+        logical :: positive_at_min = .false.   !! a positive mu exists at lambda_min
+        integer :: n_evaluations = 0           !! p x p eigen-solves used
+        type(boundary_point_t), allocatable :: points(:)   !! ascending lambda
+    contains
+        procedure :: positive_at => critical_set_positive_at
+    end type critical_set_t
+
+contains
+
+    !> A positive mu exists at `lambda` (in the range searched) as far as the search saw:
+    !> each boundary point below `lambda` switches the answer at lambda_min.
+    pure logical function critical_set_positive_at(this, lambda)
+        class(critical_set_t), intent(in) :: this
+        real(wp), intent(in) :: lambda
+        integer :: i, n_below
+        n_below = 0
+        do i = 1, size(this%points)
+            if (this%points(i)%lambda < lambda) n_below = n_below + 1
+        end do
+        critical_set_positive_at = this%positive_at_min .neqv. (mod(n_below, 2) == 1)
+    end function critical_set_positive_at
+
+    !> The distance CONFIRM_OFFSET |lambda| of the confirming solves from a boundary point.
+    elemental real(wp) function side_offset(lambda)
+        real(wp), intent(in) :: lambda
+        side_offset = CONFIRM_OFFSET*abs(lambda)
+    end function side_offset
+
+    !> The boundary points of {lambda : A(lambda) has a positive real eigenvalue} in
+    !> [minval(scan), maxval(scan)], from the scan points and the pencil's real eigenvalues.
+    subroutine find_critical_set(blocks, scan, pencil_lambdas, set, stat)
+        type(reduced_blocks_t), intent(in) :: blocks
+        real(wp), intent(in) :: scan(:)             !! any order, at least one point
+        real(wp), intent(in) :: pencil_lambdas(:)   !! ascending
+        type(critical_set_t), intent(out) :: set
+        type(status_t), intent(out) :: stat
+        real(wp), allocatable :: x(:)
+        integer, allocatable :: counts(:)
+        logical, allocatable :: pencil_left(:)   !! x(i), x(i+1) bracket a pencil eigenvalue
+        type(boundary_point_t) :: point
+        integer :: i
+
+        call scan_points(scan, pencil_lambdas, x, pencil_left)
+        set%lambda_min = x(1)
+        set%lambda_max = x(size(x))
+        allocate (set%points(0), counts(size(x)))
+        do i = 1, size(x)
+            call positive_count(blocks, x(i), counts(i), set, stat)
+            if (.not. stat%ok()) return
+        end do
+        set%positive_at_min = counts(1) > 0
+        do i = 1, size(x) - 1
+            if ((counts(i) > 0) .eqv. (counts(i + 1) > 0)) cycle
+            if (pencil_left(i)) then
+                call pencil_point(blocks, pencil_lambdas, x(i), x(i + 1), point, set, stat)
+            else
+                call pair_point(blocks, x(i), x(i + 1), counts(i), counts(i + 1), point, set, &
+                                stat)
+            end if
+            if (.not. stat%ok()) return
+            set%points = [set%points, point]
+        end do
+    end subroutine find_critical_set
+
+    !> The scan sorted, with both sides lambda -+ side_offset of every pencil eigenvalue inside
+    !> it; scan points inside such a bracket are dropped, and so is a bracket that would
+    !> overlap the previous one (two pencil eigenvalues within 2e-6 relative: one point).
+    pure subroutine scan_points(scan, pencil_lambdas, x, pencil_left)
+        real(wp), intent(in) :: scan(:), pencil_lambdas(:)
+        real(wp), allocatable, intent(out) :: x(:)
+        logical, allocatable, intent(out) :: pencil_left(:)
+        real(wp), allocatable :: sorted(:), lower(:), upper(:)
+        integer :: i, j, n
+        real(wp) :: lo, hi
+        logical :: take_bracket, fits
+
+        allocate (sorted(size(scan)))   ! then filled: no false -Wuninitialized
+        sorted(:) = scan(sort_index(scan))
+        lo = sorted(1)
+        hi = sorted(size(sorted))
+        allocate (lower(size(pencil_lambdas)), upper(size(pencil_lambdas)))
+        n = 0
+        do j = 1, size(pencil_lambdas)
+            associate (below => pencil_lambdas(j) - side_offset(pencil_lambdas(j)), &
+                       above => pencil_lambdas(j) + side_offset(pencil_lambdas(j)))
+                if (.not. (below > lo .and. above < hi)) cycle
+                n = n + 1
+                lower(n) = below
+                upper(n) = above
+            end associate
+        end do
+        lower = lower(1:n)
+        upper = upper(1:n)
+        allocate (x(size(sorted) + 2*size(lower)), pencil_left(size(sorted) + 2*size(lower)))
+        pencil_left = .false.
+        n = 0
+        i = 1
+        j = 1
+        do while (i <= size(sorted) .or. j <= size(lower))
+            ! the next item in order: scan point i, or bracket j (its lower end)
+            take_bracket = j <= size(lower)
+            if (take_bracket .and. i <= size(sorted)) take_bracket = lower(j) <= sorted(i)
+            if (take_bracket) then
+                if (n == 0) then
+                    fits = .true.
+                else
+                    fits = lower(j) > x(n)
+                end if
+                if (fits) then
+                    pencil_left(n + 1) = .true.
+                    x(n + 1:n + 2) = [lower(j), upper(j)]
+                    n = n + 2
+                end if
+                j = j + 1
+            else
+                if (n == 0) then
+                    fits = .true.
+                else
+                    fits = sorted(i) > x(n)   ! not a duplicate, not inside the last bracket
+                end if
+                if (fits) then
+                    n = n + 1
+                    x(n) = sorted(i)
+                end if
+                i = i + 1
+            end if
+        end do
+        x = x(1:n)
+        pencil_left = pencil_left(1:n)
+    end subroutine scan_points
+
+    subroutine positive_count(blocks, lambda, n_positive, set, stat)
+        type(reduced_blocks_t), intent(in) :: blocks
+        real(wp), intent(in) :: lambda
+        integer, intent(out) :: n_positive
+        type(critical_set_t), intent(inout) :: set
+        type(status_t), intent(out) :: stat
+        real(wp), allocatable :: wr(:), wi(:)
+        n_positive = 0
+        call reduced_eigenvalues(blocks, lambda, wr, wi, stat)
+        if (stat%ok()) n_positive = count_positive(wr, wi)
+        set%n_evaluations = set%n_evaluations + 1
+    end subroutine positive_count
+
+    !> A pencil eigenvalue bracketed by [below, above]: the point itself is the QZ value; the
+    !> counts at the bracket ends are its confirmation (a change by one: a simple theta
+    !> crossing zero).
+    subroutine pencil_point(blocks, pencil_lambdas, below, above, point, set, stat)
+        type(reduced_blocks_t), intent(in) :: blocks
+        real(wp), intent(in) :: pencil_lambdas(:), below, above
+        type(boundary_point_t), intent(out) :: point
+        type(critical_set_t), intent(inout) :: set
+        type(status_t), intent(out) :: stat
+        point%mechanism = MECHANISM_PENCIL
+        point%lambda = pencil_lambdas(minloc(abs(pencil_lambdas - 0.5_wp*(below + above)), &
+                                             dim=1))
+        call positive_count(blocks, below, point%n_below, set, stat)
+        if (stat%ok()) call positive_count(blocks, above, point%n_above, set, stat)
+        if (.not. stat%ok()) return
+        point%appears = point%n_above > 0
+        point%confirmed = ((point%n_below > 0) .neqv. (point%n_above > 0)) .and. &
+                          abs(point%n_above - point%n_below) == 1
+    end subroutine pencil_point
+
+    !> A boundary point inside [a, b] with no pencil eigenvalue: a pair meeting the real axis.
+    !> Bisection on the count to BISECTION_WIDTH, then the Illinois variant of regula falsi on
+    !> the discriminant of the meeting pair down to adjacent floating-point numbers.
+    subroutine pair_point(blocks, a_in, b_in, count_a_in, count_b_in, point, set, stat)
+        type(reduced_blocks_t), intent(in) :: blocks
+        real(wp), intent(in) :: a_in, b_in
+        integer, intent(in) :: count_a_in, count_b_in
+        type(boundary_point_t), intent(out) :: point
+        type(critical_set_t), intent(inout) :: set
+        type(status_t), intent(out) :: stat
+        real(wp), allocatable :: wr(:), wi(:)
+        real(wp) :: a, b, m, fa, fb, fm, theta0, theta_m
+        integer :: count_a, count_b, count_m, last_kept, step
+
+        point%mechanism = MECHANISM_COMPLEX_PAIR
+        a = a_in
+        b = b_in
+        count_a = count_a_in
+        count_b = count_b_in
+        do while (b - a > BISECTION_WIDTH*max(1.0_wp, abs(a), abs(b)))
+            m = a + 0.5_wp*(b - a)
+            call positive_count(blocks, m, count_m, set, stat)
+            if (.not. stat%ok()) return
+            if ((count_m > 0) .eqv. (count_a > 0)) then
+                a = m
+                count_a = count_m
+            else
+                b = m
+                count_b = count_m
+            end if
+        end do
+        ! the pair: on the side without a positive theta, the complex pair nearest the
+        ! positive real axis; its real part is where it meets the axis, to about the bracket
+        m = merge(a, b, count_a == 0)
+        call reduced_eigenvalues(blocks, m, wr, wi, stat)
+        if (.not. stat%ok()) return
+        set%n_evaluations = set%n_evaluations + 1
+        theta0 = meeting_estimate(wr*lambda_unit(m), wi*lambda_unit(m))
+        point%lambda = a + 0.5_wp*(b - a)
+        if (.not. theta0 > 0.0_wp) return   ! no such pair: not confirmed
+        call discriminant_at(a, theta0, fa, theta_m)
+        if (stat%ok()) call discriminant_at(b, theta0, fb, theta_m)
+        if (.not. stat%ok()) return
+        if (fa*fb < 0.0_wp) then
+            last_kept = 0
+            do step = 1, MAX_REFINE
+                m = (a*fb - b*fa)/(fb - fa)
+                if (.not. (m > a .and. m < b)) m = a + 0.5_wp*(b - a)
+                call discriminant_at(m, theta0, fm, theta_m)
+                if (.not. stat%ok()) return
+                theta0 = theta_m
+                if (.not. abs(fm) > 0.0_wp) then
+                    a = m
+                    b = m
+                    exit
+                end if
+                if ((fm > 0.0_wp) .eqv. (fa > 0.0_wp)) then
+                    a = m
+                    fa = fm
+                    if (last_kept == -1) fb = 0.5_wp*fb   ! Illinois: b kept twice
+                    last_kept = -1
+                else
+                    b = m
+                    fb = fm
+                    if (last_kept == 1) fa = 0.5_wp*fa
+                    last_kept = 1
+                end if
+                if (b - a <= 2.0_wp*spacing(max(abs(a), abs(b)))) exit
+            end do
+            point%lambda = merge(a, b, abs(fa) <= abs(fb))
+        end if
+        call discriminant_at(point%lambda, theta0, point%discriminant, theta_m)
+        if (.not. stat%ok()) return
+        point%mu_meet = 1.0_wp/theta_m   ! theta_m is unscaled: see discriminant_at
+        call discriminant_at(point%lambda - side_offset(point%lambda), theta0, &
+                             point%discriminant_below, theta_m)
+        if (stat%ok()) call discriminant_at(point%lambda + side_offset(point%lambda), theta0, &
+                                            point%discriminant_above, theta_m)
+        if (stat%ok()) call positive_count(blocks, point%lambda - side_offset(point%lambda), &
+                                           point%n_below, set, stat)
+        if (stat%ok()) call positive_count(blocks, point%lambda + side_offset(point%lambda), &
+                                           point%n_above, set, stat)
+        if (.not. stat%ok()) return
+        point%appears = point%n_above > 0
+        ! real pair (discriminant > 0) on the side with positive theta, complex on the other
+        point%confirmed = ((point%n_below > 0) .neqv. (point%n_above > 0)) .and. &
+                          abs(point%n_above - point%n_below) == 2 .and. &
+                          ((point%discriminant_above > 0.0_wp) .eqv. point%appears) .and. &
+                          ((point%discriminant_below > 0.0_wp) .neqv. point%appears) .and. &
+                          point%discriminant_above*point%discriminant_below < 0.0_wp
+
+    contains
+
+        !> The eigenvalues times lambda_unit, so that theta keeps one scale across the powers
+        !> of two where lambda_unit jumps.
+        subroutine discriminant_at(lambda, theta_guess, d, theta_mean)
+            real(wp), intent(in) :: lambda, theta_guess
+            real(wp), intent(out) :: d, theta_mean
+            call reduced_eigenvalues(blocks, lambda, wr, wi, stat)
+            set%n_evaluations = set%n_evaluations + 1
+            if (stat%ok()) call pair_discriminant(wr*lambda_unit(lambda), wi*lambda_unit(lambda), &
+                                                  theta_guess, d, theta_mean)
+        end subroutine discriminant_at
+    end subroutine pair_point
+
+    !> The real part of the conjugate pair with positive real part nearest to the real axis
+    !> (smallest |Im| / |Re|); 0 when there is none.
+    pure real(wp) function meeting_estimate(wr, wi)
+        real(wp), intent(in) :: wr(:), wi(:)
+        real(wp) :: best
+        integer :: j
+        meeting_estimate = 0.0_wp
+        best = huge(1.0_wp)
+        do j = 1, size(wr)
+            if (abs(wi(j)) <= 0.0_wp .or. .not. wr(j) > 0.0_wp) cycle
+            if (abs(wi(j))/wr(j) < best) then
+                best = abs(wi(j))/wr(j)
+                meeting_estimate = wr(j)
+            end if
+        end do
+    end function meeting_estimate
+
+    !> The discriminant (theta1 - theta2)^2 / theta_mean^2 of the two eigenvalues of A nearest
+    !> `theta_guess`: positive for a real pair, negative for a conjugate pair (-4 Im^2), zero
+    !> for a double eigenvalue. As a symmetric function of the pair it is smooth in lambda
+    !> across the meeting point, and it is accurate to about eps ||A||^2 / theta^2 because the
+    !> 2 x 2 block of the real Schur form that dgeev reads it from is backward stable, even
+    !> where the two eigenvalues themselves are only accurate to sqrt(eps).
+    pure subroutine pair_discriminant(wr, wi, theta_guess, d, theta_mean)
+        real(wp), intent(in) :: wr(:), wi(:), theta_guess
+        real(wp), intent(out) :: d, theta_mean
+        real(wp) :: distance(size(wr))
+        integer :: first, second
+
+        distance = abs(cmplx(wr - theta_guess, wi, wp))
+        first = minloc(distance, dim=1)
+        if (abs(wi(first)) > 0.0_wp) then
+            theta_mean = wr(first)
+            d = -4.0_wp*(wi(first)/theta_mean)**2
+            return
+        end if
+        ! a real one: its partner is the nearest other real eigenvalue
+        distance(first) = huge(1.0_wp)
+        where (abs(wi) > 0.0_wp) distance = huge(1.0_wp)
+        second = minloc(distance, dim=1)
+        if (.not. distance(second) < huge(1.0_wp)) then   ! only one real eigenvalue
+            theta_mean = wr(first)
+            d = huge(1.0_wp)
+            return
+        end if
+        theta_mean = 0.5_wp*(wr(first) + wr(second))
+        d = ((wr(first) - wr(second))/theta_mean)**2
+    end subroutine pair_discriminant
+end module critical_set

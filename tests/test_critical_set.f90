@@ -1,0 +1,381 @@
+! SPDX-License-Identifier: MIT
+!> The boundary of {lambda : a positive mu exists} against mathematics: the count of positive
+!> eigenvalues changes exactly at the points found, a pair point is a double eigenvalue (zero
+!> discriminant), the reference scene gives its two pencil thresholds (mirror-symmetric on
+!> Q1), and at a pencil threshold the limit mode is the Signorini-Coulomb eigenmode: no
+!> normal displacement on Gamma_C and tangential nodal forces -lambda* times the normal ones.
+program test_critical_set
+    use kinds, only: wp
+    use status, only: status_t
+    use testing, only: test_suite_t
+    use fixtures, only: contact_scene
+    use mesh, only: mesh_t
+    use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2
+    use mesh_structured, only: structured_rectangle
+    use dof_map, only: dof_map_t
+    use contact_boundary, only: contact_t
+    use csr_matrix, only: csr_matrix_t
+    use sparse_cholesky, only: cholesky_t
+    use contact_reduction, only: reduced_blocks_t, lambda_unit
+    use lapack_interfaces, only: dgeev
+    use critical_lambda, only: thresholds_t, pencil_thresholds, reduced_eigenvalues, &
+                               count_positive, SIDE_PLUS, SIDE_MINUS
+    use critical_set, only: critical_set_t, find_critical_set, pair_discriminant, &
+                            MECHANISM_PENCIL, MECHANISM_COMPLEX_PAIR
+    implicit none
+
+    !> The scan of the default &sweep: -20 to 20 by 0.1.
+    integer, parameter :: N_SCAN = 401
+    type(test_suite_t) :: t
+    t%name = 'test_critical_set'
+    call partial_contact_has_a_pair_point(t)
+    call count_changes_exactly_at_the_points(t)
+    call positive_at_agrees_with_the_count(t)
+    call pair_point_is_a_double_eigenvalue(t)
+    call reference_scene_points_are_the_thresholds(t)
+    call quadrilaterals_give_symmetric_points(t)
+    call threshold_mode_is_signorini_coulomb(t)
+    call limit_of_the_modes_is_the_threshold_mode(t)
+    call t%report()
+
+contains
+
+    !> The unit square, top fixed, contact on the left half of the bottom only (the right half
+    !> becomes a traction-free part 'bottom_free'); N x N P2 'right'.
+    subroutine partial_contact_scene(n, blocks, thr, set)
+        integer, intent(in) :: n
+        type(reduced_blocks_t), intent(out) :: blocks
+        type(thresholds_t), intent(out) :: thr
+        type(critical_set_t), intent(out) :: set
+        type(mesh_t) :: m
+        type(status_t) :: stat
+        integer :: e, bottom
+
+        call structured_rectangle(1.0_wp, 1.0_wp, n, n, ELEMENT_P2, 'right', m, stat)
+        bottom = m%part_index('bottom')
+        m%part_names = [m%part_names, 'bottom_free' // repeat(' ', len(m%part_names) - 11)]
+        do e = 1, size(m%edge_part)
+            if (m%edge_part(e) /= bottom) cycle
+            if (maxval(m%coords(1, m%edges(:, e))) > 0.5_wp) m%edge_part(e) = size(m%part_names)
+        end do
+        call contact_scene(m, [m%part_index('top')], bottom, 0.3_wp, blocks, stat)
+        call require(stat)
+        call scan_scene(blocks, thr, set)
+    end subroutine partial_contact_scene
+
+    !> The reference scene (contact on the whole bottom, top fixed), 8 x 8 'right', scanned.
+    subroutine reference_scene(element, thr, set)
+        integer, intent(in) :: element
+        type(thresholds_t), intent(out) :: thr
+        type(critical_set_t), intent(out) :: set
+        type(mesh_t) :: m
+        type(reduced_blocks_t) :: blocks
+        type(status_t) :: stat
+        call structured_rectangle(1.0_wp, 1.0_wp, 8, 8, element, 'right', m, stat)
+        call require(stat)
+        call contact_scene(m, [m%part_index('top')], m%part_index('bottom'), 0.3_wp, blocks, &
+                           stat)
+        call require(stat)
+        call scan_scene(blocks, thr, set)
+    end subroutine reference_scene
+
+    !> The pencil and the boundary points over the default &sweep range.
+    subroutine scan_scene(blocks, thr, set)
+        type(reduced_blocks_t), intent(in) :: blocks
+        type(thresholds_t), intent(out) :: thr
+        type(critical_set_t), intent(out) :: set
+        type(status_t) :: stat
+        integer :: i
+        call pencil_thresholds(blocks%kt_nn, blocks%kt_nt, thr, stat)
+        call require(stat)
+        call find_critical_set(blocks, [(-20.0_wp + 0.1_wp*real(i, wp), i=0, N_SCAN - 1)], &
+                               thr%real_lambdas, set, stat)
+        call require(stat)
+    end subroutine scan_scene
+
+    subroutine require(stat)
+        type(status_t), intent(in) :: stat
+        if (stat%ok()) return
+        call t%check('scene: '//stat%message, .false.)
+        error stop 1
+    end subroutine require
+
+    integer function n_positive(blocks, lambda)
+        type(reduced_blocks_t), intent(in) :: blocks
+        real(wp), intent(in) :: lambda
+        real(wp), allocatable :: wr(:), wi(:)
+        type(status_t) :: stat
+        call reduced_eigenvalues(blocks, lambda, wr, wi, stat)
+        call require(stat)
+        n_positive = count_positive(wr, wi)
+    end function n_positive
+
+    !> With contact on half the side, a positive mu vanishes (for lambda < 0) where a complex
+    !> pair leaves the positive axis, not at the pencil eigenvalue nearest zero, which lies
+    !> inside the set (a positive mu on both sides of it, so its old check said NOT
+    !> confirmed); on the other side a pencil point remains. Every point is confirmed.
+    subroutine partial_contact_has_a_pair_point(t)
+        type(test_suite_t), intent(inout) :: t
+        type(reduced_blocks_t) :: blocks
+        type(thresholds_t) :: thr
+        type(critical_set_t) :: set
+        integer :: outside, inside
+        call partial_contact_scene(16, blocks, thr, set)
+        call t%check('partial contact: at least one point', size(set%points) >= 1)
+        call t%check('partial contact: a complex_pair point', &
+                     any(set%points%mechanism == MECHANISM_COMPLEX_PAIR))
+        call t%check('partial contact: every point confirmed', all(set%points%confirmed))
+        outside = n_positive(blocks, thr%lambda(SIDE_MINUS)*(1.0_wp + 1.0e-6_wp))
+        inside = n_positive(blocks, thr%lambda(SIDE_MINUS)*(1.0_wp - 1.0e-6_wp))
+        call t%check('partial contact: lambda- of the pencil has a positive mu on both sides', &
+                     outside > 0 .and. inside > 0)
+    end subroutine partial_contact_has_a_pair_point
+
+    !> Each point separates "a positive mu" from "none" already at 1e-9 relative distance:
+    !> the pair point is located to round-off (about 1e-14 relative, the conditioning of the
+    !> discriminant's root), the pencil point is QZ's (1e-15), so 1e-9 is far outside the
+    !> error while a point off by a bisection step of the scan (1e-1) would fail. The count
+    !> jumps by 2 at a pair point (both members of the pair) and by 1 at a pencil point.
+    subroutine count_changes_exactly_at_the_points(t)
+        type(test_suite_t), intent(inout) :: t
+        real(wp), parameter :: DISTANCE = 1.0e-9_wp
+        type(reduced_blocks_t) :: blocks
+        type(thresholds_t) :: thr
+        type(critical_set_t) :: set
+        integer :: i, below, above
+        character(len=60) :: what
+        call partial_contact_scene(16, blocks, thr, set)
+        do i = 1, size(set%points)
+            associate (b => set%points(i))
+                below = n_positive(blocks, b%lambda - DISTANCE*abs(b%lambda))
+                above = n_positive(blocks, b%lambda + DISTANCE*abs(b%lambda))
+                write (what, '(a, i0, a)') 'point ', i, ': '
+                call t%check(trim(what)//'none on one side, some on the other', &
+                             (below > 0) .neqv. (above > 0))
+                call t%check(trim(what)//'the direction reported', b%appears .eqv. above > 0)
+                if (b%mechanism == MECHANISM_PENCIL) then
+                    call t%check(trim(what)//'pencil: the count changes by 1', &
+                                 abs(above - below) == 1)
+                else
+                    call t%check(trim(what)//'complex pair: the count changes by 2', &
+                                 abs(above - below) == 2)
+                end if
+            end associate
+        end do
+    end subroutine count_changes_exactly_at_the_points
+
+    !> positive_at (which the sweep uses to choose ARPACK) against the count itself, on a
+    !> grid of lambdas that avoids the points (spacing 0.37, not a multiple of the scan's).
+    subroutine positive_at_agrees_with_the_count(t)
+        type(test_suite_t), intent(inout) :: t
+        type(reduced_blocks_t) :: blocks
+        type(thresholds_t) :: thr
+        type(critical_set_t) :: set
+        real(wp) :: lambda
+        logical :: agree
+        integer :: i, count
+        call partial_contact_scene(16, blocks, thr, set)
+        agree = .true.
+        do i = 0, 100
+            lambda = -19.9_wp + 0.37_wp*real(i, wp)
+            if (lambda > 20.0_wp) exit
+            count = n_positive(blocks, lambda)
+            agree = agree .and. (set%positive_at(lambda) .eqv. count > 0)
+        end do
+        call t%check('positive_at agrees with the count on a grid', agree)
+    end subroutine positive_at_agrees_with_the_count
+
+    !> At a pair point A(lambda*) has a double positive eigenvalue. The discriminant d of the
+    !> pair is about linear in lambda there, so 1e-6 relative away it is about 1e-6 |lambda
+    !> d'|, while at lambda* it is round-off: eps ||A||^2 / theta^2 amplified by the
+    !> conditioning, measured below 1e-12. Requiring |d(lambda*)| < 1e-4 min |d(lambda* +-
+    !> 1e-6 |lambda*|)| places the root within 1e-10 relative of lambda*, with margin over
+    !> round-off. The pair's members, computed separately, agree to about sqrt(eps) there.
+    subroutine pair_point_is_a_double_eigenvalue(t)
+        type(test_suite_t), intent(inout) :: t
+        type(reduced_blocks_t) :: blocks
+        type(thresholds_t) :: thr
+        type(critical_set_t) :: set
+        real(wp) :: d(-1:1), theta(-1:1), guess
+        real(wp), allocatable :: wr(:), wi(:)
+        type(status_t) :: stat
+        integer :: i, k
+        call partial_contact_scene(16, blocks, thr, set)
+        do i = 1, size(set%points)
+            if (set%points(i)%mechanism /= MECHANISM_COMPLEX_PAIR) cycle
+            associate (lambda => set%points(i)%lambda)
+                guess = 1.0_wp/set%points(i)%mu_meet
+                do k = -1, 1
+                    call reduced_eigenvalues(blocks, lambda + k*1.0e-6_wp*abs(lambda), wr, wi, &
+                                             stat)
+                    call require(stat)
+                    call pair_discriminant(wr*lambda_unit(lambda), wi*lambda_unit(lambda), &
+                                           guess, d(k), theta(k))
+                end do
+            end associate
+            call t%check('pair point: discriminant changes sign across it', d(-1)*d(1) < 0.0_wp)
+            call t%check('pair point: discriminant vanishes there (1e-4 of the sides)', &
+                         abs(d(0)) < 1.0e-4_wp*min(abs(d(-1)), abs(d(1))))
+            call t%check('pair point: the double eigenvalue is positive', theta(0) > 0.0_wp)
+        end do
+        call t%check('pair point: at least one checked', &
+                     any(set%points%mechanism == MECHANISM_COMPLEX_PAIR))
+    end subroutine pair_point_is_a_double_eigenvalue
+
+    !> Contact on the whole bottom (P1 'right', N = 8): the boundary is exactly lambda- and
+    !> lambda+ of the pencil, both pencil points, confirmed, a positive mu outside them.
+    subroutine reference_scene_points_are_the_thresholds(t)
+        type(test_suite_t), intent(inout) :: t
+        type(thresholds_t) :: thr
+        type(critical_set_t) :: set
+        call reference_scene(ELEMENT_P1, thr, set)
+        call t%check('reference: two points', size(set%points) == 2)
+        if (size(set%points) /= 2) return
+        call t%check('reference: both pencil, both confirmed', &
+                     all(set%points%mechanism == MECHANISM_PENCIL) .and. all(set%points%confirmed))
+        ! the very numbers of QZ: exactly equal
+        call t%check('reference: the points are lambda- and lambda+', &
+                     .not. (abs(set%points(1)%lambda - thr%lambda(SIDE_MINUS)) > 0.0_wp .or. &
+                            abs(set%points(2)%lambda - thr%lambda(SIDE_PLUS)) > 0.0_wp))
+        call t%check('reference: vanishes at lambda-, appears at lambda+', &
+                     .not. set%points(1)%appears .and. set%points(2)%appears)
+        call t%check('reference: a positive mu at both ends of the range', set%positive_at_min)
+    end subroutine reference_scene_points_are_the_thresholds
+
+    !> The Q1 square is its own mirror image (x -> 1 - x turns t into -t, lambda into -lambda):
+    !> the points come in pairs lambda, -lambda, to round-off of the pencil (1e-10 relative,
+    !> as test_critical_lambda).
+    subroutine quadrilaterals_give_symmetric_points(t)
+        type(test_suite_t), intent(inout) :: t
+        type(thresholds_t) :: thr
+        type(critical_set_t) :: set
+        integer :: n
+        call reference_scene(ELEMENT_Q1, thr, set)
+        n = size(set%points)
+        call t%check('Q1: an even number of points, at least 2', n >= 2 .and. mod(n, 2) == 0)
+        if (n < 2) return
+        call t%check('Q1: lambda_i = -lambda_(n+1-i)', &
+                     all(abs(set%points%lambda + set%points(n:1:-1)%lambda) <= &
+                         1.0e-10_wp*abs(set%points%lambda)))
+        call t%check('Q1: mirrored directions', &
+                     all(set%points%appears .neqv. set%points(n:1:-1)%appears))
+    end subroutine quadrilaterals_give_symmetric_points
+
+    !> At lambda* (1/mu = 0) the limit mode is phi = K^-1 (lambda* T' - N') x with x the
+    !> pencil eigenvector: then N phi = (lambda* Kt_nt - Kt_nn) x = 0, i.e. no normal
+    !> displacement on Gamma_C (Signorini contact, closed), and the nodal forces K phi are
+    !> -x normal and lambda* x tangential: sigma_t = -lambda* sigma_n at every contact node,
+    !> Coulomb friction with coefficient |lambda*| slipping along s = -sgn(lambda*). Checked
+    !> with the sparse K (matvec, not the factor): phi from one CHOLMOD solve has a relative
+    !> error of about eps cond(K) (~ 1e-13 at N = 8; measured 2e-15 for phi_n and 8e-16 for
+    !> the force balance), so 1e-10 of max|phi| for phi_n and 1e-10 of the largest force
+    !> leave a margin of 1000 over that estimate.
+    subroutine threshold_mode_is_signorini_coulomb(t)
+        type(test_suite_t), intent(inout) :: t
+        type(mesh_t) :: m
+        type(reduced_blocks_t) :: blocks
+        type(thresholds_t) :: thr
+        type(status_t) :: stat
+        type(csr_matrix_t) :: k
+        type(dof_map_t) :: dofs
+        type(contact_t) :: contact
+        type(cholesky_t) :: chol
+        real(wp), allocatable :: rhs(:, :), phi(:, :), force(:), f_n(:), f_t(:), rest(:)
+        logical, allocatable :: on_contact(:)
+        real(wp) :: lambda, scale
+        integer :: side
+        character(len=12) :: what
+
+        call structured_rectangle(1.0_wp, 1.0_wp, 8, 8, ELEMENT_P1, 'right', m, stat)
+        call contact_scene(m, [m%part_index('top')], m%part_index('bottom'), 0.3_wp, blocks, &
+                           stat, k=k, dofs=dofs, contact=contact, chol=chol)
+        call require(stat)
+        call pencil_thresholds(blocks%kt_nn, blocks%kt_nt, thr, stat)
+        call require(stat)
+        allocate (rhs(k%n(), 1), phi(k%n(), 1), force(k%n()), f_n(contact%p()), &
+                  f_t(contact%p()), on_contact(k%n()))
+        on_contact = .false.
+        on_contact(pack(contact%dofs, .true.)) = .true.
+        do side = SIDE_PLUS, SIDE_MINUS
+            what = merge('lambda+: ', 'lambda-: ', side == SIDE_PLUS)
+            lambda = thr%lambda(side)
+            rhs = 0.0_wp
+            call contact%scatter(lambda*contact%tangent, thr%vectors(:, side), rhs(:, 1))
+            call contact%scatter(-contact%normal, thr%vectors(:, side), rhs(:, 1))
+            call chol%solve(rhs, phi, stat)
+            call require(stat)
+            call contact%gather(contact%normal, phi(:, 1), f_n)
+            call t%check(trim(what)//' phi_n = 0 on Gamma_C (1e-10 max|phi|)', &
+                         maxval(abs(f_n)) <= 1.0e-10_wp*maxval(abs(phi)))
+            call k%matvec(phi(:, 1), force)
+            call contact%gather(contact%normal, force, f_n)
+            call contact%gather(contact%tangent, force, f_t)
+            scale = maxval(abs(force))
+            call t%check(trim(what)//' sigma_t = -lambda* sigma_n at every contact node', &
+                         maxval(abs(f_t + lambda*f_n)) <= 1.0e-10_wp*scale)
+            call t%check(trim(what)//' normal forces not all zero', &
+                         maxval(abs(f_n)) > 0.1_wp*scale/max(1.0_wp, abs(lambda)))
+            rest = pack(force, .not. on_contact)
+            call t%check(trim(what)//' no force off Gamma_C (equilibrium)', &
+                         maxval(abs(rest)) <= 1.0e-10_wp*scale)
+        end do
+        call chol%free()
+    end subroutine threshold_mode_is_signorini_coulomb
+
+    !> The mechanics approaching lambda+ from outside: the eigenvector y of the reduced
+    !> problem for the large positive mu gives contact tractions g = mu M y that turn into
+    !> the pencil eigenvector x, with the angle shrinking like the distance d: 1 - |cos| is
+    !> O(d^2), measured 1.4e-10 at d = 1e-6 and 1.3e-4 at d = 1e-3 (N = 8). The bound 1e-8
+    !> at 1e-6 keeps a margin of 70; a limit other than x would leave 1 - |cos| of order 1.
+    subroutine limit_of_the_modes_is_the_threshold_mode(t)
+        type(test_suite_t), intent(inout) :: t
+        type(mesh_t) :: m
+        type(reduced_blocks_t) :: blocks
+        type(thresholds_t) :: thr
+        type(status_t) :: stat
+        real(wp) :: gap(2)
+        real(wp), parameter :: DISTANCES(2) = [1.0e-6_wp, 1.0e-3_wp]
+        integer :: i
+
+        call structured_rectangle(1.0_wp, 1.0_wp, 8, 8, ELEMENT_P1, 'right', m, stat)
+        call contact_scene(m, [m%part_index('top')], m%part_index('bottom'), 0.3_wp, blocks, &
+                           stat)
+        call require(stat)
+        call pencil_thresholds(blocks%kt_nn, blocks%kt_nt, thr, stat)
+        call require(stat)
+        do i = 1, 2
+            gap(i) = traction_gap(blocks, thr%lambda(SIDE_PLUS)*(1.0_wp + DISTANCES(i)), &
+                                  thr%vectors(:, SIDE_PLUS))
+        end do
+        call t%check('tractions -> pencil vector: 1 - |cos| < 1e-8 at 1e-6', gap(1) < 1.0e-8_wp)
+        call t%check('tractions -> pencil vector: farther at 1e-3', gap(2) > 100.0_wp*gap(1))
+
+    end subroutine limit_of_the_modes_is_the_threshold_mode
+    !> 1 - |cos(g, x)| for g = M y, y the eigenvector of the largest positive mu at lambda.
+    real(wp) function traction_gap(blocks, lambda, x)
+        type(reduced_blocks_t), intent(in) :: blocks
+        real(wp), intent(in) :: lambda, x(:)
+        real(wp), allocatable :: a(:, :), wr(:), wi(:), vr(:, :), work(:), g(:)
+        real(wp) :: vl(1, 1), query(1)
+        integer :: p, info, j, best
+        p = size(blocks%kt_nn, 1)
+        allocate (a(p, p), wr(p), wi(p), vr(p, p), g(p))
+        a(:, :) = blocks%matrix(lambda)
+        call dgeev('N', 'V', p, a, p, wr, wi, vl, 1, vr, p, query, -1, info)
+        allocate (work(int(query(1))))
+        call dgeev('N', 'V', p, a, p, wr, wi, vl, 1, vr, p, work, size(work), info)
+        best = 0   ! the smallest positive real theta: the largest mu
+        do j = 1, p
+            if (abs(wi(j)) > 0.0_wp .or. .not. wr(j) > 0.0_wp) cycle
+            if (best == 0) then
+                best = j
+            else if (wr(j) < wr(best)) then
+                best = j
+            end if
+        end do
+        traction_gap = 1.0_wp
+        if (best == 0 .or. info /= 0) return
+        call blocks%mass%matvec(vr(:, best), g)
+        traction_gap = 1.0_wp - abs(dot_product(g, x))/(norm2(g)*norm2(x))
+    end function traction_gap
+end program test_critical_set
