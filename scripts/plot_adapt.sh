@@ -7,24 +7,10 @@
 # Usage: plot_adapt.sh OUTDIR [SUMMARY]   (SUMMARY: the summary.json to read, by default
 # OUTDIR's; nceig passes its own while the set is still being staged)
 set -euo pipefail
-if [[ $# -lt 1 || $# -gt 2 ]]; then
-    echo "usage: $0 OUTDIR [SUMMARY]  (an nceig output folder of an adaptive run)" >&2
-    exit 2
-fi
-dir=$1
-csv="$dir/adapt.csv"
-summary=${2:-$dir/summary.json}
-for f in "$csv" "$summary"; do
-    [[ -r $f ]] || { echo "$0: $f: not found (run nceig with &adapt tolerance > 0)" >&2; exit 2; }
-done
-command -v gnuplot >/dev/null || { echo "$0: gnuplot is not installed" >&2; exit 3; }
-command -v jq >/dev/null || { echo "$0: jq is not installed (it reads summary.json)" >&2; exit 3; }
-
-value() { jq -r --arg key "$1" '.[$key] // empty' "$summary"; }
+source "$(dirname "$0")/plot_common.sh"
+plot_begin adapt.csv "run nceig with &adapt tolerance > 0" "$@"
 tolerance=$(value adapt_tolerance)
 title="$(value element), lambda = $(value lambda), start $(value adapt_start_dofs) dofs"
-terminal='pngcairo size 1000,800 enhanced font "sans,11"'
-gnuplot -e 'set terminal' 2>&1 | grep -q pngcairo || terminal='png size 1000,800'
 
 if ! awk -F, 'NR > 1 && $6 != "" { found = 1 } END { exit !found }' "$csv"; then
     echo "$0: $csv: no level has an error estimate: nothing to draw" >&2
@@ -34,9 +20,6 @@ fi
 # smallest estimate, so that the tolerance line never sits on the frame
 ymin=$(awk -F, -v t="$tolerance" 'NR > 1 && $6 != "" && (m == "" || $6 < m) { m = $6 }
     END { if (m == "" || t < m) m = t; print m / 3 }' "$csv")
-tmp="$dir/.adapt.png.partial"
-# a failed gnuplot leaves no partial picture behind (it would join the output set)
-trap 'rm -f "$tmp"' EXIT
 gnuplot <<GNUPLOT
 set terminal $terminal
 set output '$tmp'
@@ -61,4 +44,4 @@ set ylabel 'lowest positive {/Symbol m} = critical c_n'
 plot '$csv' using 2:(cell(5)):(cell(5)*cell(6)) skip 1 with yerrorlines pt 7 ps 0.6 lw 1.5 lc rgb '#2ca02c' title '{/Symbol m} {/Symbol \261} estimate'
 unset multiplot
 GNUPLOT
-mv -f "$tmp" "$dir/adapt.png"
+plot_commit

@@ -7,21 +7,8 @@
 # Usage: plot_lambda_sweep.sh OUTDIR [SUMMARY]   (SUMMARY: the summary.json to read, by
 # default OUTDIR's; nceig passes its own while the set is still being staged)
 set -euo pipefail
-if [[ $# -lt 1 || $# -gt 2 ]]; then
-    echo "usage: $0 OUTDIR [SUMMARY]  (an nceig lambda_sweep output folder)" >&2
-    exit 2
-fi
-dir=$1
-csv="$dir/lambda_sweep.csv"
-summary=${2:-$dir/summary.json}
-for f in "$csv" "$summary"; do
-    [[ -r $f ]] || { echo "$0: $f: not found (run nceig with kind = 'lambda_sweep')" >&2; exit 2; }
-done
-command -v gnuplot >/dev/null || { echo "$0: gnuplot is not installed" >&2; exit 3; }
-command -v jq >/dev/null || { echo "$0: jq is not installed (it reads summary.json)" >&2; exit 3; }
-
-# The value of a key of summary.json, read as JSON ('' for null or absent).
-value() { jq -r --arg key "$1" '.[$key] // empty' "$summary"; }
+source "$(dirname "$0")/plot_common.sh"
+plot_begin lambda_sweep.csv "run nceig with kind = 'lambda_sweep'" "$@"
 plus=$(value lambda_critical_plus)
 minus=$(value lambda_critical_minus)
 spacing=$(value sweep_spacing)
@@ -37,8 +24,6 @@ xcol='($1)' xlabel='{/Symbol l}' xlog=''
 if [[ $spacing == log ]]; then
     xcol='(abs($1))' xlabel='|{/Symbol l}|' xlog='set logscale x'
 fi
-terminal='pngcairo size 1000,800 enhanced font "sans,11"'
-gnuplot -e 'set terminal' 2>&1 | grep -q pngcairo || terminal='png size 1000,800'
 
 marks=''
 mark() {  # threshold value, label, side of the line for the label (left|right)
@@ -58,9 +43,6 @@ else
     mark "$plus" '{/Symbol l}_+' right
 fi
 
-tmp="$dir/.lambda_sweep.png.partial"
-# a failed gnuplot leaves no partial picture behind (it would join the output set)
-trap 'rm -f "$tmp"' EXIT
 gnuplot <<GNUPLOT
 set terminal $terminal
 set output '$tmp'
@@ -80,4 +62,4 @@ set ylabel 'critical c_t = {/Symbol m} |{/Symbol l}|'
 plot '$csv' using $xcol:(cell(3)) skip 1 with linespoints pt 7 ps 0.4 lw 1.5 lc rgb '#2ca02c' title 'c_t'
 unset multiplot
 GNUPLOT
-mv -f "$tmp" "$dir/lambda_sweep.png"
+plot_commit

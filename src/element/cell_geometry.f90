@@ -55,15 +55,14 @@ contains
         real(wp), intent(in) :: xy(:, :)       !! (2, nodes per cell)
         real(wp), intent(in) :: points(:, :)   !! (2, n_points), reference coordinates
         real(wp), intent(out) :: det_min, det_max
-        real(wp) :: jacobian(2, 2), det
+        real(wp) :: values(MAX_NODES), gradients(2, MAX_NODES), at_points(2, size(xy, 2), &
+                                                                           size(points, 2))
         integer :: q
-        det_min = huge(1.0_wp)
-        det_max = -huge(1.0_wp)
         do q = 1, size(points, 2)
-            call jacobian_at(element, xy, points(:, q), jacobian, det)
-            det_min = min(det_min, det)
-            det_max = max(det_max, det)
+            call evaluate_shape(element, points(:, q), values, gradients)
+            at_points(:, :, q) = gradients(:, 1:size(xy, 2))
         end do
+        call det_range_of(xy, at_points, det_min, det_max)
     end subroutine det_range
 
     !> The same from the reference gradients (2, nodes per cell, n_points) at the points.

@@ -1,0 +1,35 @@
+# SPDX-License-Identifier: MIT
+# What the plot scripts (plot_lambda_sweep.sh, plot_adapt.sh) share, sourced after `set -u`:
+#     source "$(dirname "$0")/plot_common.sh"
+#     plot_begin CSV_NAME 'how to make it' "$@"   # sets dir, csv, summary, terminal, tmp
+# plot_begin checks the arguments (OUTDIR [SUMMARY]) and the tools, and arranges that the
+# partial picture $tmp is removed if the script ends early (a failed gnuplot must leave
+# nothing behind: nceig draws in its staging folder, whose files join the output set).
+# value KEY prints a key of the summary.json, read as JSON ('' for null or absent).
+
+plot_begin() {
+    local name=$1 hint=$2 picture=${1%.csv}.png
+    shift 2
+    if [[ $# -lt 1 || $# -gt 2 ]]; then
+        echo "usage: $0 OUTDIR [SUMMARY]  (an nceig output folder with $name)" >&2
+        exit 2
+    fi
+    dir=$1
+    csv="$dir/$name"
+    summary=${2:-$dir/summary.json}
+    for f in "$csv" "$summary"; do
+        [[ -r $f ]] || { echo "$0: $f: not found ($hint)" >&2; exit 2; }
+    done
+    command -v gnuplot >/dev/null || { echo "$0: gnuplot is not installed" >&2; exit 3; }
+    command -v jq >/dev/null || { echo "$0: jq is not installed (it reads summary.json)" >&2; exit 3; }
+    terminal='pngcairo size 1000,800 enhanced font "sans,11"'
+    gnuplot -e 'set terminal' 2>&1 | grep -q pngcairo || terminal='png size 1000,800'
+    picture_path="$dir/$picture"
+    tmp="$dir/.$picture.partial"
+    trap 'rm -f "$tmp"' EXIT
+}
+
+value() { jq -r --arg key "$1" '.[$key] // empty' "$summary"; }
+
+# plot_commit: the drawn picture into place, whole.
+plot_commit() { mv -f "$tmp" "$picture_path"; }
