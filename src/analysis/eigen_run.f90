@@ -11,7 +11,7 @@ module eigen_run
     use version, only: NCEIG_VERSION
     use run_config, only: config_t
     use problem, only: problem_t
-    use eigen_analysis, only: eigen_result_t, solve_eigen, solver_name
+    use eigen_analysis, only: eigen_result_t, solve_eigen, solver_name, operator_name, critical_cn
     use critical_point, only: slip_sign, critical_c_t
     use analysis_base, only: analysis_t
     use spectrum, only: spectrum_t, kind_name, KIND_COMPLEX
@@ -142,8 +142,10 @@ contains
         call summary%add_integer('n_contact', prob%contact%p())
         if (present(res)) then
             call summary%add_string('solver', solver_name(res%solver))
+            call summary%add_string('operator', operator_name(res%solver, config%eigen%operator))
         else
             call summary%add_null('solver')
+            call summary%add_null('operator')
         end if
         if (lowest > 0) then
             mu = real(res%spec%mu(lowest), wp)
@@ -162,6 +164,12 @@ contains
             do i = 1, size(LOWEST_KEYS)
                 call summary%add_null(trim(LOWEST_KEYS(i)))
             end do
+        end if
+        call summary%add_real('cn_max', config%eigen%cn_max)
+        if (present(res)) then
+            call summary%add_real_array('critical_cn', critical_cn(res%spec, config%eigen%cn_max))
+        else
+            call summary%add_real_array('critical_cn', [real(wp) ::])
         end if
         call summary%add_integer('slip_sign', slip_sign(lambda))
         if (present(res)) then

@@ -18,7 +18,7 @@ module input_validation
     public :: validate_config
     public :: MESH_SOURCES, ELEMENT_NAMES, DIAGONALS, RECTANGLE_SIDES, ACCEPTED_ANALYSES, &
               ACCEPTED_SOLVERS, MAX_CELLS_PER_SIDE, SWEEP_SPACINGS, MAX_SWEEP_POINTS, &
-              VTK_FORMATS, SOLVE_DATA, SOLVE_STARTS, ESTIMATE_MODES
+              VTK_FORMATS, SOLVE_DATA, SOLVE_STARTS, ESTIMATE_MODES, EIGEN_OPERATORS
 
     character(len=*), parameter :: MESH_SOURCES(*) = [character(len=9) :: 'rectangle', 'gmsh']
     character(len=*), parameter :: ELEMENT_NAMES(*) = [character(len=2) :: &
@@ -34,6 +34,8 @@ module input_validation
                                                           'arpack', 'auto']
     !> &eigen estimate: when the error estimate of the lowest positive mu is computed.
     character(len=*), parameter :: ESTIMATE_MODES(*) = [character(len=4) :: 'auto', 'on', 'off']
+    !> &eigen operator: what ARPACK iterates on.
+    character(len=*), parameter :: EIGEN_OPERATORS(*) = [character(len=7) :: 'reduced', 'full']
     integer, parameter :: MAX_CELLS_PER_SIDE = 1000000
     character(len=*), parameter :: SWEEP_SPACINGS(*) = [character(len=6) :: 'linear', 'log']
     integer, parameter :: MAX_SWEEP_POINTS = 100000   !! n_lambda of a &sweep range
@@ -211,6 +213,14 @@ contains
             call reject('dense_max_contact', to_string(c%dense_max_contact), 'an integer >= 1')
         else if (.not. any(ESTIMATE_MODES == c%estimate)) then
             call reject('estimate', quoted(c%estimate), 'one of '//one_of(ESTIMATE_MODES))
+        else if (.not. any(EIGEN_OPERATORS == c%operator)) then
+            call reject('operator', quoted(c%operator), 'one of '//one_of(EIGEN_OPERATORS))
+        else if (c%operator == 'full' .and. c%solver == 'dense') then
+            call reject('operator', quoted(c%operator), "'reduced' with solver = 'dense' "// &
+                        "(the full operator is an ARPACK operator)")
+        else if (.not. (ieee_is_finite(c%cn_max) .and. c%cn_max >= 0.0_wp)) then
+            call reject('cn_max', real_to_text(c%cn_max), 'a finite number >= 0 (0: only '// &
+                        'the lowest positive mu)')
         end if
 
     contains

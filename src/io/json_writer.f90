@@ -29,6 +29,7 @@ module json_writer
         procedure :: add_logical => json_object_add_logical
         procedure :: add_null => json_object_add_null
         procedure :: add_string_array => json_object_add_string_array
+        procedure :: add_real_array => json_object_add_real_array
         procedure :: to_text => json_object_to_text
         procedure :: write => json_object_write
     end type json_object_t
@@ -113,6 +114,25 @@ contains
         end do
         call add_member(this, key, text//']')
     end subroutine json_object_add_string_array
+
+    !> A list of numbers; a non-finite one is null, as add_real writes it.
+    subroutine json_object_add_real_array(this, key, values)
+        class(json_object_t), intent(inout) :: this
+        character(len=*), intent(in) :: key
+        real(wp), intent(in) :: values(:)
+        character(len=:), allocatable :: text
+        integer :: i
+        text = '['
+        do i = 1, size(values)
+            if (i > 1) text = text//', '
+            if (ieee_is_finite(values(i))) then
+                text = text//real_to_text(values(i))
+            else
+                text = text//'null'
+            end if
+        end do
+        call add_member(this, key, text//']')
+    end subroutine json_object_add_real_array
 
     !> The object as text: one member per line, two-space indent, no final line feed;
     !> an empty object is '{}'.
