@@ -176,10 +176,12 @@ contains
             call summary%add_integer('n_eigenvalues', res%spec%n())
             call summary%add_real('max_residual', res%spec%max_residual())
             call summary%add_integer('operator_applications', res%spec%n_operator)
+            call summary%add_logical('dense_decision', res%spec%dense_decision)
         else
             call summary%add_integer('n_eigenvalues', 0)
             call summary%add_null('max_residual')
             call summary%add_integer('operator_applications', 0)
+            call summary%add_null('dense_decision')
         end if
         call blas_in_use(blas_library, blas_config, blas_threads)
         call summary%add_string('blas_library', blas_library)

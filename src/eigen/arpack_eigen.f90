@@ -521,6 +521,7 @@ contains
             call fill_full_spectrum(k, b, mu, run, n_keep, spec)
         end if
         spec%n_operator = n_operator
+        spec%dense_decision = .not. confirmed .and. p <= DENSE_FALLBACK_MAX
     end subroutine arpack_spectrum
 
     !> ARPACK runs on `op` until the lowest positive real mu (and with options%cn_max every
