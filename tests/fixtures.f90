@@ -1,6 +1,7 @@
 ! SPDX-License-Identifier: MIT
 !> Fixtures and views that several test programs need: the one-triangle mesh with closed
-!> forms, a CSR matrix as a dense array, a file as text, a search in a run's warnings, and
+!> forms, the reference scene's configuration, a CSR matrix as a dense array, a file as
+!> text, a search in a run's warnings, and
 !> the fuzz tests' reproducible random stream and whole-file read and write.
 !> One copy here, so a fix reaches every test that uses them.
 module fixtures
@@ -9,10 +10,11 @@ module fixtures
     use element_types, only: ELEMENT_P1
     use csr_matrix, only: csr_matrix_t
     use eigen_analysis, only: eigen_result_t
+    use run_config, only: config_t
     implicit none
     private
     public :: single_triangle, csr_to_dense, file_text, has_warning, five_point_matrix
-    public :: uniform, read_text, write_text, rigid_mode
+    public :: uniform, read_text, write_text, rigid_mode, square_scene
 
     !> Park-Miller minimal standard generator: the same mutants on every compiler and run.
     type, public :: random_t
@@ -20,6 +22,20 @@ module fixtures
     end type random_t
 
 contains
+
+    !> The reference scene (unit square, E = 1, nu = 0.3, top fixed, bottom in contact) on
+    !> n x n cells of `element`, with two modes kept; everything else at its default.
+    subroutine square_scene(n, element, diagonal, config)
+        integer, intent(in) :: n
+        character(len=*), intent(in) :: element, diagonal
+        type(config_t), intent(out) :: config
+        config%input_file = 'test'
+        config%mesh%nx = n
+        config%mesh%ny = n
+        config%mesh%element = element
+        config%mesh%diagonal = diagonal
+        config%output%modes = 2
+    end subroutine square_scene
 
     !> The triangle A = (0,0), B = (l,0), C = (0,l): part 1 = [A,B] (contact), part 2 = [B,C]
     !> (fixed), part 3 = [C,A] (Neumann).

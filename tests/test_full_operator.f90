@@ -17,6 +17,7 @@ program test_full_operator
     use kinds, only: wp
     use status, only: status_t, STATUS_BAD_INPUT, STATUS_SINGULAR
     use testing, only: test_suite_t
+    use fixtures, only: square_scene
     use run_config, only: config_t
     use problem, only: problem_t, build_problem
     use timer, only: timings_t
@@ -352,17 +353,13 @@ contains
         end do
     end function uncertified
 
+    !> The reference scene with ARPACK (test_arpack_eigen compares it with the dense solver).
     subroutine scene(n, element, diagonal, config)
         integer, intent(in) :: n
         character(len=*), intent(in) :: element, diagonal
         type(config_t), intent(out) :: config
-        config%input_file = 'test'
-        config%mesh%nx = n
-        config%mesh%ny = n
-        config%mesh%element = element
-        config%mesh%diagonal = diagonal
+        call square_scene(n, element, diagonal, config)
         config%eigen%solver = 'arpack'
-        config%output%modes = 2
     end subroutine scene
 
     !> The eigen solve of `config` with &eigen operator = `operator` at `lambda`.

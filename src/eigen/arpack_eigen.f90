@@ -120,11 +120,11 @@ module arpack_eigen
         procedure :: setup => operator_setup
         procedure :: setup_full => operator_setup_full
         procedure :: apply_a => operator_apply_a
-        procedure :: apply_a_transpose => operator_apply_a_transpose
         procedure :: apply => operator_apply
         procedure :: dense_a => operator_dense_a
         procedure :: mu_of => operator_mu_of
         procedure :: norm_estimate => operator_norm_estimate
+        procedure :: check_target => operator_check_target
     end type contact_operator_t
 
     !> One ARPACK run's result: the converged Ritz values nu of the operator and their
@@ -171,15 +171,8 @@ contains
         ! |sigma| ||A|| > TARGET_RANGE, this%a being A / lambda_scale; written as quotients,
         ! which cannot overflow (sigma may be clamped to huge, see eigen_analysis)
         a_norm = maxval(sum(abs(this%a), dim=2))
-        if (abs(sigma) > (TARGET_RANGE/a_norm)/this%lambda_scale) then
-            ! one line naming the variable; the caller adds the input file
-            call stat%fail(STATUS_BAD_INPUT, '&eigen: target = '// &
-                real_to_text(target_input)//': expected |target| <= '// &
-                short(scale((TARGET_RANGE/a_norm)/this%lambda_scale, unit_exponent))// &
-                ' (1e6 / ||A||, the scale of the spectrum here: further out, mu = target '// &
-                '+ 1/nu cancels and loses more than 6 of the 16 digits)')
-            return
-        end if
+        call this%check_target(a_norm, target_input, unit_exponent, stat)
+        if (.not. stat%ok()) return
         ! LU of I - sigma A, kept in place of A (A itself is applied through L_c)
         this%a = -(sigma*this%lambda_scale)*this%a
         do a = 1, this%p
@@ -196,7 +189,7 @@ contains
     !> The full operator (K - sigma B)^-1 B / lambda_scale in the n free dofs. sigma = 0 uses
     !> `chol`, the factor of K (no second factorization); sigma /= 0 factors K - sigma B once
     !> with UMFPACK, after the range check of operator_setup with ||A||_inf estimated
-    !> (LAPACK dlacn2: a few products with A and A', O(p^2) each, instead of forming A).
+    !> (norm_estimate: a few sparse solves instead of forming A). Nothing of order p^2.
     subroutine operator_setup_full(this, k, b, chol, contact, lambda, sigma, stat, &
                                    target_input, unit_exponent)
         class(contact_operator_t), intent(inout) :: this
@@ -217,50 +210,77 @@ contains
         this%lambda_scale = lambda_unit(lambda)
         this%b_scaled = b
         this%b_scaled%val = b%val/this%lambda_scale
-        if (.not. (abs(sigma) > 0.0_wp)) then
-            this%chol => chol
-            return
-        end if
-        this%normal = contact%normal
-        this%tangent = contact%tangent
-        this%mass = contact%mass
-        call contact_tail(chol, contact, this%l_tail, this%slot, stat)
+        this%chol => chol
+        if (.not. (abs(sigma) > 0.0_wp)) return
+        call this%norm_estimate(contact, a_norm, stat)
         if (.not. stat%ok()) return
-        a_norm = this%norm_estimate()
-        deallocate (this%l_tail, this%slot)   ! only the estimate needed them
-        if (abs(sigma) > (TARGET_RANGE/a_norm)/this%lambda_scale) then
-            call stat%fail(STATUS_BAD_INPUT, '&eigen: target = '// &
-                real_to_text(target_input)//': expected |target| <= '// &
-                short(scale((TARGET_RANGE/a_norm)/this%lambda_scale, unit_exponent))// &
-                ' (1e6 / ||A||, the scale of the spectrum here: further out, mu = target '// &
-                '+ 1/nu cancels and loses more than 6 of the 16 digits)')
-            return
-        end if
+        call this%check_target(a_norm, target_input, unit_exponent, stat)
+        if (.not. stat%ok()) return
         call this%shifted%factor_shifted(k, b, sigma, stat)
         if (stat%ok()) return
         stat%message = 'arpack: K - sigma B for sigma = '//to_string(sigma)//': '// &
                        stat%message//' (an eigenvalue equals the target; move the target)'
     end subroutine operator_setup_full
 
-    !> ||A / lambda_scale||_inf = ||(A / lambda_scale)'||_1 estimated by LAPACK dlacn2
-    !> (Higham's estimator: a lower bound, exact in practice on these matrices).
-    real(wp) function operator_norm_estimate(this) result(estimate)
+    !> |sigma| ||A|| <= TARGET_RANGE, with a_norm = ||A / lambda_scale||_inf; written with
+    !> quotients, which cannot overflow (sigma may be clamped to huge, see eigen_analysis).
+    !> Otherwise STATUS_BAD_INPUT in one line naming the variable (the caller adds the file).
+    subroutine operator_check_target(this, a_norm, target_input, unit_exponent, stat)
         class(contact_operator_t), intent(in) :: this
-        real(wp) :: v(this%p), x(this%p), product(this%p)
+        real(wp), intent(in) :: a_norm, target_input
+        integer, intent(in) :: unit_exponent
+        type(status_t), intent(out) :: stat
+        if (.not. abs(this%sigma) > (TARGET_RANGE/a_norm)/this%lambda_scale) return
+        call stat%fail(STATUS_BAD_INPUT, '&eigen: target = '// &
+            real_to_text(target_input)//': expected |target| <= '// &
+            short(scale((TARGET_RANGE/a_norm)/this%lambda_scale, unit_exponent))// &
+            ' (1e6 / ||A||, the scale of the spectrum here: further out, mu = target '// &
+            '+ 1/nu cancels and loses more than 6 of the 16 digits)')
+    end subroutine operator_check_target
+
+    !> ||A / lambda_scale||_inf = ||(A / lambda_scale)'||_1 estimated by LAPACK dlacn2
+    !> (Higham's estimator: a lower bound, exact on the scenes measured), with A = N K^-1 X' M
+    !> and A' = M X K^-1 N' applied through solves with the sparse factor of K (this%chol):
+    !> about five, O(nnz(L)) each, where forming A costs O(p^3) and p^2 memory.
+    subroutine operator_norm_estimate(this, contact, estimate, stat)
+        class(contact_operator_t), intent(in) :: this
+        type(contact_t), intent(in) :: contact
+        real(wp), intent(out) :: estimate
+        type(status_t), intent(out) :: stat
+        real(wp) :: v(this%p), x(this%p), product(this%p), mx(this%p), direction(2)
         integer :: isgn(this%p), kase, isave(3)
+        direction = this%lambda/this%lambda_scale*contact%tangent - &
+                    contact%normal/this%lambda_scale
         estimate = 0.0_wp
         kase = 0
         do
             call dlacn2(this%p, v, x, isgn, estimate, kase, isave)
             if (kase == 0) exit
-            if (kase == 1) then
-                call this%apply_a_transpose(x, product)
-            else
-                call this%apply_a(x, product)
+            if (kase == 1) then   ! A' x = M (X K^-1 N' x)
+                call compliance(contact%normal, x, direction, mx)
+                call contact%mass%matvec(mx, product)
+            else                  ! A x = N K^-1 X' (M x)
+                call contact%mass%matvec(x, mx)
+                call compliance(direction, mx, contact%normal, product)
             end if
+            if (.not. stat%ok()) return
             x = product
         end do
-    end function operator_norm_estimate
+
+    contains
+
+        !> out(a) = row . (K^-1 z)(node a) with z(node b) = column y(b), zero elsewhere.
+        subroutine compliance(column, y, row, out)
+            real(wp), intent(in) :: column(2), y(:), row(2)
+            real(wp), intent(out) :: out(:)
+            real(wp), allocatable :: z(:, :), w(:, :)
+            allocate (z(this%n, 1), source=0.0_wp)
+            allocate (w(this%n, 1))
+            call contact%scatter(column, y, z(:, 1))
+            call this%chol%solve(z, w, stat)
+            call contact%gather(row, w(:, 1), out)
+        end subroutine compliance
+    end subroutine operator_norm_estimate
 
     !> A = (lambda Kt_nt - Kt_nn) M as a dense p x p matrix, with Kt_nn and Kt_nt formed from
     !> L_c as the dense solver forms them (contact_reduction: dpotri, O(p^3)).
@@ -316,26 +336,6 @@ contains
             out(a) = dot_product(this%normal, z(this%slot(:, a)))
         end do
     end subroutine operator_apply_a
-
-    !> out = A' y / lambda_scale = M (lambda T - N) K^-1 N' y / lambda_scale (M symmetric).
-    subroutine operator_apply_a_transpose(this, y, out)
-        class(contact_operator_t), intent(in) :: this
-        real(wp), intent(in) :: y(:)
-        real(wp), intent(out) :: out(:)
-        real(wp) :: w(this%p), z(2*this%p)
-        integer :: a
-        z = 0.0_wp
-        do a = 1, this%p
-            z(this%slot(:, a)) = this%normal*y(a)
-        end do
-        call dtrsv('L', 'N', 'N', 2*this%p, this%l_tail, 2*this%p, z, 1)
-        call dtrsv('L', 'T', 'N', 2*this%p, this%l_tail, 2*this%p, z, 1)
-        do a = 1, this%p
-            w(a) = dot_product(this%lambda/this%lambda_scale*this%tangent - &
-                               this%normal/this%lambda_scale, z(this%slot(:, a)))
-        end do
-        call this%mass%matvec(w, out)
-    end subroutine operator_apply_a_transpose
 
     !> ARPACK's OP: A (sigma = 0) or (I - sigma A)^-1 A, divided by lambda_scale; the full
     !> operator (K - sigma B)^-1 B / lambda_scale.
