@@ -286,6 +286,7 @@ contains
         character(len=*), parameter :: NL = new_line('a')
         integer :: lowest, i
         real(wp) :: mu
+        real(wp), allocatable :: critical(:)
 
         text = 'nceig '//NCEIG_VERSION//': '//config%input_file//NL// &
             '  mesh        '//trim(config%mesh%source)//', '//element_name(prob%mesh%element)// &
@@ -309,6 +310,15 @@ contains
                 res%error%skipped//NL
         else
             text = text//'  no positive real eigenvalue for this lambda'//NL
+        end if
+        if (config%eigen%cn_max > 0.0_wp) then
+            critical = critical_cn(res%spec, config%eigen%cn_max)
+            text = text//'  critical c_n in (0, '//real_to_text(config%eigen%cn_max)//']: '// &
+                to_string(size(critical))
+            do i = 1, size(critical)
+                text = text//merge(': ', ', ', i == 1)//real_to_text(critical(i))
+            end do
+            text = text//NL
         end if
         text = text//'  time [s]    assembly '//seconds_text(timings%assembly)// &
             ', ordering '//seconds_text(timings%ordering)// &
