@@ -2,8 +2,8 @@
 !> UMFPACK's fill-reducing orderings for the full operator's K - sigma B, measured on the
 !> reference scene (P1 'right', N x N, lambda = 5, sigma = 0.5): for each N given on the
 !> command line and each ordering (UMFPACK's default AMD, METIS, and CHOLMOD's choice of
-!> AMD or METIS), the median over REPEATS of the factorization time, of one solve, and
-!> nnz(L + U). Usage: bench_shifted_lu N... (scripts/bench_operator.sh builds it).
+!> AMD or METIS), without and with UMFPACK's iterative refinement, the median over REPEATS
+!> of the factorization time, of one solve, and nnz(L + U). Usage: bench_shifted_lu N... (scripts/bench_operator.sh builds it).
 program bench_shifted_lu
     use iso_fortran_env, only: output_unit, error_unit
     use kinds, only: wp
@@ -30,11 +30,17 @@ program bench_shifted_lu
     type(lu_t) :: lu
     type(status_t) :: stat
     real(wp) :: t_factor(REPEATS), t_solve(REPEATS), start
+    !> UMFPACK's iterative refinement steps per solve: none (as the full operator) and its
+    !> default
+    integer, parameter :: REFINEMENTS(2) = [0, 2]
+    integer :: refinement, i_step
     real(wp), allocatable :: rhs(:), x(:)
     integer :: i_arg, n, o, r
 
-    write (output_unit, '(a)') '|     N |    dofs | ordering | factor s | solve s |   nnz(L+U) |'
-    write (output_unit, '(a)') '|------:|--------:|----------|---------:|--------:|-----------:|'
+    write (output_unit, '(a)') '|     N |    dofs | ordering | refine | factor s | solve s |'// &
+        '   nnz(L+U) |'
+    write (output_unit, '(a)') '|------:|--------:|----------|-------:|---------:|--------:|'// &
+        '-----------:|'
     do i_arg = 1, command_argument_count()
         call get_command_argument(i_arg, argument)
         read (argument, *) n
@@ -49,10 +55,12 @@ program bench_shifted_lu
         end if
         allocate (rhs(prob%dofs%n_free), x(prob%dofs%n_free))
         rhs = 1.0_wp
+        do i_step = 1, size(REFINEMENTS)
         do o = 1, size(ORDERINGS)
+            refinement = REFINEMENTS(i_step)
             do r = 1, REPEATS
                 start = wall_time()
-                call lu%factor_shifted(prob%k, b, SIGMA, stat, ORDERINGS(o))
+                call lu%factor_shifted(prob%k, b, SIGMA, stat, ORDERINGS(o), refinement)
                 t_factor(r) = wall_time() - start
                 if (.not. stat%ok()) exit
                 start = wall_time()
@@ -63,10 +71,12 @@ program bench_shifted_lu
                 write (error_unit, '(a)') ORDERING_NAMES(o)//': '//stat%message
                 cycle
             end if
-            write (output_unit, '(a, i5, a, i7, a, a8, a, f8.3, a, f7.4, a, f10.0, a)') '| ', &
-                n, ' | ', prob%dofs%n_free, ' | ', ORDERING_NAMES(o), ' | ', median(t_factor), &
-                ' | ', median(t_solve), ' | ', lu%factor_nnz(), ' |'
+            write (output_unit, '(a, i5, a, i7, a, a8, a, i6, a, f8.3, a, f7.4, a, i10, a)') &
+                '| ', n, ' | ', prob%dofs%n_free, ' | ', ORDERING_NAMES(o), ' | ', refinement, &
+                ' | ', median(t_factor), ' | ', median(t_solve), ' | ', &
+                nint(lu%factor_nnz()), ' |'
             call lu%free()
+        end do
         end do
         deallocate (rhs, x)
     end do
