@@ -86,7 +86,7 @@ for n in "${sizes[@]}"; do
         col[ratio]="${col[ratio]:-} $(awk -v f="$(key "$work/full/summary.json" time_eigen_s)" \
             -v r="$(key "$work/reduced/summary.json" time_eigen_s)" 'BEGIN { print f / r }')"
     done
-    slepc_time=- slepc_peak=- slepc_ops=- slepc_mu=${col[reduced.mu]}
+    slepc_time=- slepc_peak=- slepc_ops=- slepc_mu=-
     if [[ $slepc == yes ]] && ((n <= slepc_max)); then
         write_input "$n" reduced .true. export
         "$nceig" "$work/export.nml" >/dev/null
@@ -106,8 +106,8 @@ for n in "${sizes[@]}"; do
     med() { echo "${col[$1]}" | median; }
     deviation=$(awk -v a="${col[full.mu]}" -v b="${col[reduced.mu]}" -v c="$slepc_mu" 'BEGIN {
         d = (a - b) / b; d = d < 0 ? -d : d
-        if (c != "none") { e = (c - b) / b; e = e < 0 ? -e : e } else e = -1
-        printf "full %.1e, slepc %s", d, (e < 0 ? "none" : sprintf("%.1e", e)) }')
+        if (c != "none" && c != "-") { e = (c - b) / b; e = e < 0 ? -e : e; c = sprintf("%.1e", e) }
+        printf "full %.1e, slepc %s", d, c }')
     printf '%5d %8d %5d | %7.3f %7.3f %7.0f %5d | %7.3f %7.3f %7.0f %5d | %5.2f | %7s %7s %5s | %s\n' \
         "$n" "$(key "$work/reduced/summary.json" n_dofs)" \
         "$(key "$work/reduced/summary.json" n_contact)" "$(med reduced.eigen)" \
