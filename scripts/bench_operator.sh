@@ -28,14 +28,8 @@ while [[ ${1:-} == --* ]]; do
     esac
     shift 2
 done
-repeats=${1:-3}
-shift || true
-sizes=("$@")
-((${#sizes[@]} > 0)) || sizes=(64 128 256 512 1024)
-[[ -x $nceig ]] || { echo "bench_operator: build first (scripts/build.sh Release)" >&2; exit 1; }
-[[ -x /usr/bin/time ]] || { echo "bench_operator: needs /usr/bin/time (package time)" >&2; exit 1; }
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
+source "$root/scripts/lib/bench_common.sh"
+bench_begin bench_operator "$@"
 
 # Debian installs SLEPc and PETSc under versioned folders; without the alternatives set,
 # slepc4py's .pth file needs them named
@@ -49,8 +43,6 @@ done
 slepc=no
 "$python" -c 'import slepc4py' 2>/dev/null && slepc=yes
 
-key() { jq -r --arg key "$2" '.[$key] // empty' "$1"; }   # a summary.json value
-median() { tr ' ' '\n' | grep -v '^$' | sort -g | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
 peak_mb() { grep 'Maximum resident' "$1" | awk '{print $NF / 1024}'; }
 
 # write_input N OPERATOR MATRICES [NAME]: the input file NAME.nml of one run, output in NAME/

@@ -809,19 +809,28 @@ contains
         integer, intent(in) :: n_keep
         type(spectrum_t), intent(out) :: spec
         type(status_t), intent(out) :: stat
-        integer, allocatable :: order(:), kinds(:)
-        integer :: n_ev
+        integer, allocatable :: order(:)
 
-        n_ev = size(mu)
-        allocate (order(n_ev), kinds(n_ev))
+        call ordered_values(mu, run, spec, order)
+        call lift_eigenvectors(k, b, chol, contact, lambda, spec%mu, run%y(:, order), n_keep, &
+                               spec%residual, spec%vectors, stat)
+    end subroutine fill_spectrum
+
+    !> spec%mu, kind and condition (unknown: -1) of a run's eigenvalues `mu` in output order,
+    !> and `order`, the permutation from the run's order to it.
+    subroutine ordered_values(mu, run, spec, order)
+        complex(wp), intent(in) :: mu(:)
+        type(ritz_t), intent(in) :: run
+        type(spectrum_t), intent(inout) :: spec
+        integer, allocatable, intent(out) :: order(:)
+        integer, allocatable :: kinds(:)
+        allocate (order(size(mu)), kinds(size(mu)))
         call order_eigenvalues(mu, run%is_real, order, kinds)
         spec%mu = mu(order)
         where (run%is_real(order)) spec%mu = real(spec%mu, wp)
         spec%kind = kinds
-        allocate (spec%condition(n_ev), source=-1.0_wp)
-        call lift_eigenvectors(k, b, chol, contact, lambda, spec%mu, run%y(:, order), n_keep, &
-                               spec%residual, spec%vectors, stat)
-    end subroutine fill_spectrum
+        allocate (spec%condition(size(mu)), source=-1.0_wp)
+    end subroutine ordered_values
 
     !> The spectrum of the final run of the full operator, in output order: ARPACK's Ritz
     !> vectors are the eigenvectors phi of the pencil; the backward error of every pair on
@@ -832,17 +841,12 @@ contains
         type(ritz_t), intent(in) :: run
         integer, intent(in) :: n_keep
         type(spectrum_t), intent(out) :: spec
-        integer, allocatable :: order(:), kinds(:)
+        integer, allocatable :: order(:)
         real(wp) :: k_norm, b_norm
         integer :: n_ev, i
 
         n_ev = size(mu)
-        allocate (order(n_ev), kinds(n_ev))
-        call order_eigenvalues(mu, run%is_real, order, kinds)
-        spec%mu = mu(order)
-        where (run%is_real(order)) spec%mu = real(spec%mu, wp)
-        spec%kind = kinds
-        allocate (spec%condition(n_ev), source=-1.0_wp)
+        call ordered_values(mu, run, spec, order)
         allocate (spec%residual(n_ev), spec%vectors(k%n(), min(n_keep, n_ev)))
         k_norm = k%norm_inf()
         b_norm = b%norm_inf()
