@@ -192,10 +192,13 @@ contains
         type(eigen_config_t), intent(in) :: c
         character(len=*), intent(in) :: path
         type(status_t), intent(inout) :: stat
-        logical :: tol_ok
+        logical :: tol_ok, cn_max_ok
 
         tol_ok = ieee_is_finite(c%tol)
         if (tol_ok) tol_ok = c%tol >= 0.0_wp .and. c%tol < 1.0_wp
+        ! compared only when finite: NaN >= 0 traps in a Debug build
+        cn_max_ok = ieee_is_finite(c%cn_max)
+        if (cn_max_ok) cn_max_ok = c%cn_max >= 0.0_wp
         if (.not. any(ACCEPTED_SOLVERS == c%solver)) then
             call reject('solver', quoted(c%solver), 'one of '//one_of(ACCEPTED_SOLVERS))
         else if (c%nev < 1) then
@@ -218,7 +221,7 @@ contains
         else if (c%operator == 'full' .and. c%solver == 'dense') then
             call reject('operator', quoted(c%operator), "'reduced' with solver = 'dense' "// &
                         "(the full operator is an ARPACK operator)")
-        else if (.not. (ieee_is_finite(c%cn_max) .and. c%cn_max >= 0.0_wp)) then
+        else if (.not. cn_max_ok) then
             call reject('cn_max', real_to_text(c%cn_max), 'a finite number >= 0 (0: only '// &
                         'the lowest positive mu)')
         end if
