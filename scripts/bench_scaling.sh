@@ -21,17 +21,8 @@ while [[ ${1:-} == --* ]]; do
     esac
     shift 2
 done
-repeats=${1:-3}
-shift || true
-sizes=("$@")
-((${#sizes[@]} > 0)) || sizes=(64 128 256 512 1024)
-[[ -x $nceig ]] || { echo "bench_scaling: build first (scripts/build.sh Release)" >&2; exit 1; }
-[[ -x /usr/bin/time ]] || { echo "bench_scaling: needs /usr/bin/time (package time)" >&2; exit 1; }
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-
-key() { jq -r --arg key "$2" '.[$key] // empty' "$1"; }   # a summary.json value
-median() { tr ' ' '\n' | grep -v '^$' | sort -g | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
+source "$root/scripts/lib/bench_common.sh"
+bench_begin bench_scaling "$@"
 
 echo "# nceig $("$nceig" --version | cut -d' ' -f2), $(nproc) cores, solver = $solver," \
     "analysis = $analysis, load at start: $(cut -d' ' -f1-3 /proc/loadavg)"

@@ -76,6 +76,10 @@ bad 'eigen tol < 0' "&eigen tol = -1e-3 /" '&eigen' tol
 bad 'eigen maxit 0' "&eigen maxit = 0 /" '&eigen' maxit
 bad 'eigen ncv too small' "&eigen nev = 6, ncv = 7 /" '&eigen' ncv
 bad 'eigen dense_max_contact 0' "&eigen dense_max_contact = 0 /" '&eigen' dense_max_contact
+bad 'eigen operator unknown' "&eigen operator = 'whole' /" '&eigen' operator "'full'"
+bad 'eigen operator full with dense' "&eigen operator = 'full', solver = 'dense' /" '&eigen' operator dense
+bad 'eigen cn_max < 0' "&eigen cn_max = -1 /" '&eigen' cn_max '>= 0'
+bad 'eigen cn_max NaN' "&eigen cn_max = NaN /" '&eigen' cn_max finite
 # the &output groups carry the directory themselves
 bad_output() {
     local name=$1 text=$2

@@ -1,8 +1,8 @@
 ! SPDX-License-Identifier: MIT
 !> Fixtures and views that several test programs need: the one-triangle mesh with closed
-!> forms, a CSR matrix as a dense array, a file as text, a search in a run's warnings, and
-!> the fuzz tests' reproducible random stream and whole-file read and write, and the contact
-!> blocks of a mesh for the threshold tests.
+!> forms, the reference scene's configuration, a CSR matrix as a dense array, a file as
+!> text, a search in a run's warnings, the fuzz tests' reproducible random stream and
+!> whole-file read and write, and the contact blocks of a mesh for the threshold tests.
 !> One copy here, so a fix reaches every test that uses them.
 module fixtures
     use kinds, only: wp, i8
@@ -11,6 +11,7 @@ module fixtures
     use csr_matrix, only: csr_matrix_t
     use eigen_analysis, only: eigen_result_t
     use status, only: status_t
+    use run_config, only: config_t
     use dof_map, only: dof_map_t, build_dof_map
     use assembly, only: assemble_stiffness
     use contact_boundary, only: contact_t, build_contact
@@ -20,7 +21,7 @@ module fixtures
     implicit none
     private
     public :: single_triangle, csr_to_dense, file_text, has_warning, five_point_matrix
-    public :: uniform, read_text, write_text, rigid_mode, contact_scene
+    public :: uniform, read_text, write_text, rigid_mode, contact_scene, square_scene
 
     !> Park-Miller minimal standard generator: the same mutants on every compiler and run.
     type, public :: random_t
@@ -28,6 +29,20 @@ module fixtures
     end type random_t
 
 contains
+
+    !> The reference scene (unit square, E = 1, nu = 0.3, top fixed, bottom in contact) on
+    !> n x n cells of `element`, with two modes kept; everything else at its default.
+    subroutine square_scene(n, element, diagonal, config)
+        integer, intent(in) :: n
+        character(len=*), intent(in) :: element, diagonal
+        type(config_t), intent(out) :: config
+        config%input_file = 'test'
+        config%mesh%nx = n
+        config%mesh%ny = n
+        config%mesh%element = element
+        config%mesh%diagonal = diagonal
+        config%output%modes = 2
+    end subroutine square_scene
 
     !> The triangle A = (0,0), B = (l,0), C = (0,l): part 1 = [A,B] (contact), part 2 = [B,C]
     !> (fixed), part 3 = [C,A] (Neumann).

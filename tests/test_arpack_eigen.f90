@@ -8,6 +8,7 @@ program test_arpack_eigen
     use kinds, only: wp
     use status, only: status_t
     use testing, only: test_suite_t
+    use fixtures, only: square_scene
     use run_config, only: config_t
     use problem, only: problem_t, build_problem
     use timer, only: timings_t
@@ -54,7 +55,7 @@ contains
         integer :: s
         all_ok = .true.
         do s = 1, size(SIZES)
-            call scene(SIZES(s), element, 'right', config)
+            call square_scene(SIZES(s), element, 'right', config)
             call lowest(config, 'auto', 5.0_wp, mu(s), r, warning, ok)
             all_ok = all_ok .and. ok
         end do
@@ -68,18 +69,6 @@ contains
         call t%check(element//' reference scene: N = 16 within 4e-5 of the limit', &
                      LIMIT - mu(3) < 4.0e-5_wp)
     end subroutine reference_scene_converges
-
-    subroutine scene(n, element, diagonal, config)
-        integer, intent(in) :: n
-        character(len=*), intent(in) :: element, diagonal
-        type(config_t), intent(out) :: config
-        config%input_file = 'test'
-        config%mesh%nx = n
-        config%mesh%ny = n
-        config%mesh%element = element
-        config%mesh%diagonal = diagonal
-        config%output%modes = 2
-    end subroutine scene
 
     !> Lowest positive mu (0 when none), backward error and warning of one solver.
     subroutine lowest(config, solver, lambda, mu, residual, warning, ok)
@@ -119,7 +108,7 @@ contains
         type(status_t) :: stat
         integer, allocatable :: perm(:), seen(:)
         integer :: n, p
-        call scene(12, 'q1', 'right', config)
+        call square_scene(12, 'q1', 'right', config)
         call build_problem(config, prob, stat)
         call nested_dissection_last(prob%mesh, prob%dofs, prob%contact%nodes, perm, stat)
         call t%check('node ordering succeeds', stat%ok())
@@ -149,7 +138,7 @@ contains
         integer, allocatable :: perm(:), rows(:)
         real(wp), allocatable :: l_tail(:, :), rhs(:, :), x(:, :), inverse(:, :)
         integer :: m, j, n
-        call scene(10, 'p1', 'left', config)
+        call square_scene(10, 'p1', 'left', config)
         call build_problem(config, prob, stat)
         call nested_dissection_last(prob%mesh, prob%dofs, prob%contact%nodes, perm, stat)
         call factor_stiffness(prob%k, prob%mesh, prob%dofs, prob%contact, chol, timings, stat)
@@ -271,7 +260,7 @@ contains
         do s = 1, size(SIZES)
             do e = 1, size(ELEMENTS)
                 do i = 1, size(LAMBDAS)
-                    call scene(SIZES(s), ELEMENTS(e), DIAGONALS(e), config)
+                    call square_scene(SIZES(s), ELEMENTS(e), DIAGONALS(e), config)
                     call lowest(config, 'dense', LAMBDAS(i), mu_dense, r_dense, warning, ok_dense)
                     call lowest(config, 'arpack', LAMBDAS(i), mu_arpack, r_arpack, warning, &
                                 ok_arpack)
@@ -311,7 +300,7 @@ contains
         integer :: e, i, side
         do e = 1, size(ELEMENTS)
             do side = 1, size(SIDES)
-                call scene(16, ELEMENTS(e), DIAGONALS(e), config)
+                call square_scene(16, ELEMENTS(e), DIAGONALS(e), config)
                 below = 0.0_wp
                 above = 5.0_wp
                 do i = 1, 14
@@ -346,7 +335,7 @@ contains
         real(wp) :: mu_plain, mu_shifted, r
         character(len=:), allocatable :: warning
         logical :: ok
-        call scene(16, 'p1', 'right', config)
+        call square_scene(16, 'p1', 'right', config)
         call lowest(config, 'arpack', 5.0_wp, mu_plain, r, warning, ok)
         config%eigen%target = 0.5_wp
         call lowest(config, 'arpack', 5.0_wp, mu_shifted, r, warning, ok)
@@ -363,7 +352,7 @@ contains
         type(eigen_result_t) :: res
         type(timings_t) :: timings
         type(status_t) :: stat
-        call scene(1, 'p1', 'right', config)
+        call square_scene(1, 'p1', 'right', config)
         config%eigen%solver = 'arpack'
         call build_problem(config, prob, stat)
         call solve_eigen(config, prob, 5.0_wp, res, timings, stat)

@@ -11,7 +11,7 @@ program test_input_records
     use input_help, only: help_text
     use testing, only: test_suite_t
     implicit none
-    integer, parameter :: N_VARIABLES = 61   !! of all groups; a new variable adds one
+    integer, parameter :: N_VARIABLES = 63   !! of all groups; a new variable adds one
     type(test_suite_t) :: t
     type(config_t) :: config
     character(len=256) :: msg

@@ -15,7 +15,7 @@ module eigen_analysis
     use contact_reduction, only: factor_stiffness
     use memory_budget, only: check_contact_memory, contact_peak_blocks
     use contact_boundary, only: assemble_b
-    use spectrum, only: spectrum_t
+    use spectrum, only: spectrum_t, KIND_POSITIVE
     use dense_eigen, only: dense_spectrum
     use accuracy, only: accuracy_warnings, WARNING_LEN
     use arpack_eigen, only: arpack_spectrum, arpack_options_t
@@ -23,6 +23,7 @@ module eigen_analysis
     implicit none
     private
     public :: eigen_result_t, solve_eigen, choose_solver, eigen_with_factor, solver_name
+    public :: operator_name, critical_cn
     public :: to_input_units
     public :: SOLVER_DENSE, SOLVER_ARPACK
 
@@ -49,18 +50,33 @@ module eigen_analysis
 contains
 
     !> The solver &eigen solver names; 'auto' means dense while the p x p dense problem is
-    !> cheap.
-    pure integer function choose_solver(requested, p, dense_max_contact) result(solver)
+    !> cheap, and ARPACK always with &eigen operator = 'full' (an ARPACK operator).
+    pure integer function choose_solver(requested, p, dense_max_contact, operator) &
+        result(solver)
         character(len=*), intent(in) :: requested
         integer, intent(in) :: p, dense_max_contact
+        character(len=*), intent(in), optional :: operator   !! &eigen operator
         solver = SOLVER_DENSE
         select case (trim(requested))
         case ('arpack')
             solver = SOLVER_ARPACK
         case ('auto')
             if (p > dense_max_contact) solver = SOLVER_ARPACK
+            if (present(operator)) then
+                if (trim(operator) == 'full') solver = SOLVER_ARPACK
+            end if
         end select
     end function choose_solver
+
+    !> 'reduced' or 'full': what the run's eigensolver worked on (the dense solver always
+    !> works on the reduced p x p matrix), as summary.json names it.
+    pure function operator_name(solver, operator) result(name)
+        integer, intent(in) :: solver
+        character(len=*), intent(in) :: operator   !! &eigen operator
+        character(len=:), allocatable :: name
+        name = 'reduced'
+        if (solver == SOLVER_ARPACK .and. trim(operator) == 'full') name = 'full'
+    end function operator_name
 
     !> 'dense' or 'arpack', as summary.json and the stdout summary name the solver.
     pure function solver_name(solver) result(name)
@@ -92,7 +108,7 @@ contains
                          real_to_text(lambda))
 
         res%solver = choose_solver(config%eigen%solver, prob%contact%p(), &
-                                   config%eigen%dense_max_contact)
+                                   config%eigen%dense_max_contact, config%eigen%operator)
         call check_contact_memory(config, prob%contact%p(), contact_peak_blocks( &
             res%solver == SOLVER_ARPACK .and. .not. abs(config%eigen%target) > 0.0_wp), stat)
         if (.not. stat%ok()) return
@@ -168,13 +184,16 @@ contains
             options = arpack_options_t(nev=config%eigen%nev, ncv=config%eigen%ncv, &
                 maxit=config%eigen%maxit, tol=config%eigen%tol, &
                 target=in_units(config%eigen%target, -prob%mu_exponent()), &
+                cn_max=in_units(config%eigen%cn_max, -prob%mu_exponent()), &
+                full=config%eigen%operator == 'full', &
                 unit_exponent=prob%mu_exponent(), target_input=config%eigen%target)
             call arpack_spectrum(prob%k, res%b, chol, prob%contact, res%lambda, options, n_keep, &
                                  res%spec, certificate, stat)
             if (stat%code == STATUS_BAD_INPUT) stat%message = config%input_file//': '// &
                                                               stat%message
             if (.not. stat%ok()) return
-            call timings%add(PHASE_EIGEN, wall_time() - start, ': arpack, '// &
+            call timings%add(PHASE_EIGEN, wall_time() - start, ': arpack on the '// &
+                             operator_name(res%solver, config%eigen%operator)//' operator, '// &
                              to_string(res%spec%n())//' eigenvalues')
         else
             reduction_seconds = 0.0_wp
@@ -198,6 +217,26 @@ contains
         if (len(certificate) > 0) res%warnings = [character(len=WARNING_LEN) :: certificate, &
                                                   res%warnings]
     end subroutine eigen_with_factor
+
+    !> The critical c_n a run reports: every positive real mu of `spec` (input units) in
+    !> (0, cn_max], ascending; with cn_max = 0 the lowest alone. Complete as certified by the
+    !> solver (both solvers hold every positive real mu up to cn_max in their spectrum).
+    pure function critical_cn(spec, cn_max) result(values)
+        type(spectrum_t), intent(in) :: spec
+        real(wp), intent(in) :: cn_max
+        real(wp), allocatable :: values(:)
+        integer :: lowest
+        allocate (values(0))
+        lowest = spec%lowest_positive()
+        if (lowest == 0) return
+        ! output order: positive real ascending first
+        if (.not. cn_max > 0.0_wp) then
+            values = [real(spec%mu(lowest), wp)]
+        else
+            values = pack(real(spec%mu, wp), spec%kind == KIND_POSITIVE .and. &
+                          real(spec%mu, wp) <= cn_max)
+        end if
+    end function critical_cn
 
     !> x 2^e, clamped to +-huge where that overflows.
     elemental real(wp) function in_units(x, e)

@@ -11,7 +11,7 @@ module eigen_run
     use version, only: NCEIG_VERSION
     use run_config, only: config_t
     use problem, only: problem_t
-    use eigen_analysis, only: eigen_result_t, solve_eigen, solver_name
+    use eigen_analysis, only: eigen_result_t, solve_eigen, solver_name, operator_name, critical_cn
     use critical_point, only: slip_sign, critical_c_t
     use analysis_base, only: analysis_t
     use spectrum, only: spectrum_t, kind_name, KIND_COMPLEX
@@ -142,8 +142,10 @@ contains
         call summary%add_integer('n_contact', prob%contact%p())
         if (present(res)) then
             call summary%add_string('solver', solver_name(res%solver))
+            call summary%add_string('operator', operator_name(res%solver, config%eigen%operator))
         else
             call summary%add_null('solver')
+            call summary%add_null('operator')
         end if
         if (lowest > 0) then
             mu = real(res%spec%mu(lowest), wp)
@@ -163,15 +165,23 @@ contains
                 call summary%add_null(trim(LOWEST_KEYS(i)))
             end do
         end if
+        call summary%add_real('cn_max', config%eigen%cn_max)
+        if (present(res)) then
+            call summary%add_real_array('critical_cn', critical_cn(res%spec, config%eigen%cn_max))
+        else
+            call summary%add_real_array('critical_cn', [real(wp) ::])
+        end if
         call summary%add_integer('slip_sign', slip_sign(lambda))
         if (present(res)) then
             call summary%add_integer('n_eigenvalues', res%spec%n())
             call summary%add_real('max_residual', res%spec%max_residual())
             call summary%add_integer('operator_applications', res%spec%n_operator)
+            call summary%add_logical('dense_decision', res%spec%dense_decision)
         else
             call summary%add_integer('n_eigenvalues', 0)
             call summary%add_null('max_residual')
             call summary%add_integer('operator_applications', 0)
+            call summary%add_null('dense_decision')
         end if
         call blas_in_use(blas_library, blas_config, blas_threads)
         call summary%add_string('blas_library', blas_library)
@@ -276,6 +286,7 @@ contains
         character(len=*), parameter :: NL = new_line('a')
         integer :: lowest, i
         real(wp) :: mu
+        real(wp), allocatable :: critical(:)
 
         text = 'nceig '//NCEIG_VERSION//': '//config%input_file//NL// &
             '  mesh        '//trim(config%mesh%source)//', '//element_name(prob%mesh%element)// &
@@ -299,6 +310,15 @@ contains
                 res%error%skipped//NL
         else
             text = text//'  no positive real eigenvalue for this lambda'//NL
+        end if
+        if (config%eigen%cn_max > 0.0_wp) then
+            critical = critical_cn(res%spec, config%eigen%cn_max)
+            text = text//'  critical c_n in (0, '//real_to_text(config%eigen%cn_max)//']: '// &
+                to_string(size(critical))
+            do i = 1, size(critical)
+                text = text//merge(': ', ', ', i == 1)//real_to_text(critical(i))
+            end do
+            text = text//NL
         end if
         text = text//'  time [s]    assembly '//seconds_text(timings%assembly)// &
             ', ordering '//seconds_text(timings%ordering)// &

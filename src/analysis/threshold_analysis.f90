@@ -76,7 +76,7 @@ contains
         logical :: certified
 
         res%eigen%solver = choose_solver(config%eigen%solver, prob%contact%p(), &
-                                         config%eigen%dense_max_contact)
+                                         config%eigen%dense_max_contact, config%eigen%operator)
         res%eigen%lambda = config%analysis%lambda
         start = wall_time()
         call assemble_b(prob%contact, prob%dofs%n_free, res%eigen%lambda, res%eigen%b, stat)

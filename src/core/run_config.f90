@@ -53,6 +53,11 @@ module run_config
         !> error estimate of the lowest positive mu: 'auto' (up to ESTIMATE_AUTO_MAX_DOFS free
         !> dofs: it costs a few times the solve), 'on', 'off'
         character(len=NAME_LEN) :: estimate = 'auto'
+        !> what ARPACK iterates on: 'reduced' (the p x p contact operator) or 'full'
+        !> ((K - target B)^-1 B in the n free dofs, one sparse LU)
+        character(len=NAME_LEN) :: operator = 'reduced'
+        !> report every positive real mu in (0, cn_max]; 0: only the lowest
+        real(wp) :: cn_max = 0.0_wp
     end type eigen_config_t
 
     type, public :: output_config_t

@@ -14,18 +14,27 @@
 !> (I - sigma A)^-1 A: a dense LU of order p replaces a sparse LU of K - sigma B, and
 !> mu = sigma + 1/nu as usual.
 !>
+!> The full operator (&eigen operator = 'full') is that OP itself in the n free dofs: one
+!> UMFPACK factorization of the non-symmetric K - sigma B (sigma /= 0), or the Cholesky
+!> factor of K for sigma = 0, and one sparse product with B per application. It costs a
+!> sparse solve per step where the reduced operator costs O(p^2), but needs nothing of
+!> order p^2 or p^3 of its own: the search, the certificate and the dense decision are the
+!> same for both.
+!>
 !> ARPACK keeps `save`d state inside dnaupd/dneupd: one solve at a time per process.
 module arpack_eigen
     use kinds, only: wp
-    use status, only: status_t, STATUS_SOLVER, STATUS_BAD_INPUT
+    use status, only: status_t, STATUS_SOLVER, STATUS_BAD_INPUT, STATUS_SINGULAR
     use strings, only: to_string, short => short_real_text
     use real_format, only: real_to_text
     use csr_matrix, only: csr_matrix_t
     use sparse_cholesky, only: cholesky_t
     use contact_boundary, only: contact_t
-    use spectrum, only: spectrum_t, order_eigenvalues
-    use lapack_interfaces, only: dtrsv, dgetrf, dgetrs, dgeev, dgemm, lapack_info_message, &
-                                 lapack_eigenvector
+    use sparse_lu, only: lu_t
+    use sorting, only: sort_index
+    use spectrum, only: spectrum_t, order_eigenvalues, backward_error, normalise_mode
+    use lapack_interfaces, only: dtrsv, dgetrf, dgetrs, dgeev, dgemm, dlacn2, &
+                                 lapack_info_message, lapack_eigenvector
     use contact_reduction, only: contact_tail, flexibility_blocks, lift_eigenvectors, &
                                  reduced_matrix, lambda_unit
     use arpack_interfaces, only: dnaupd, dneupd, arpack_info_message
@@ -33,7 +42,7 @@ module arpack_eigen
     private
     public :: arpack_options_t, contact_operator_t, arpack_spectrum, is_real_ritz
     public :: certify_lowest, CERTIFIED_FOUND, CERTIFIED_NONE, UNDECIDED
-    public :: arpack_lowest_positive
+    public :: arpack_lowest_positive, wanted_values
 
     !> Outcomes of the certificate on one ARPACK run (see certify_lowest).
     integer, parameter :: CERTIFIED_FOUND = 1   !! the lowest positive mu is in the set
@@ -73,6 +82,10 @@ module arpack_eigen
         integer :: maxit = 1000          !! restarts per run
         real(wp) :: tol = 0.0_wp         !! relative residual tolerance, 0: machine epsilon
         real(wp) :: target = 0.0_wp      !! shift sigma; 0: no shift
+        !> also every positive real mu in (0, cn_max], certified complete; 0: the lowest only
+        real(wp) :: cn_max = 0.0_wp
+        !> ARPACK on (K - sigma B)^-1 B in the n free dofs instead of the p x p reduction
+        logical :: full = .false.
         !> For messages: the problem solved is the input one with mu divided by
         !> 2^unit_exponent (problem_t), and `target_input` is &eigen target as given.
         integer :: unit_exponent = 0
@@ -83,6 +96,7 @@ module arpack_eigen
     !> shift-invert y -> (I - sigma A)^-1 A y.
     type :: contact_operator_t
         integer :: p = 0
+        integer :: n = 0                        !! ARPACK's dimension: p, or n_free when full
         real(wp) :: sigma = 0.0_wp
         real(wp) :: lambda = 0.0_wp
         !> The operator is built on A / lambda_scale (a power of two ~ |lambda| when
@@ -96,12 +110,22 @@ module arpack_eigen
         integer, allocatable :: pivots(:)
         !> `a` is A itself, given by the caller (sigma = 0): one O(p^2) product per application
         logical :: explicit = .false.
+        !> The full operator y -> (K - sigma B)^-1 (B / lambda_scale) y: B / lambda_scale,
+        !> and the LU of K - sigma B (sigma /= 0) or the caller's factor of K (sigma = 0; a
+        !> pointer, valid while the arpack_spectrum call that set it runs)
+        logical :: full = .false.
+        type(csr_matrix_t) :: b_scaled
+        type(lu_t) :: shifted
+        type(cholesky_t), pointer :: chol => null()
     contains
         procedure :: setup => operator_setup
+        procedure :: setup_full => operator_setup_full
         procedure :: apply_a => operator_apply_a
         procedure :: apply => operator_apply
         procedure :: dense_a => operator_dense_a
         procedure :: mu_of => operator_mu_of
+        procedure :: norm_estimate => operator_norm_estimate
+        procedure :: check_target => operator_check_target
     end type contact_operator_t
 
     !> One ARPACK run's result: the converged Ritz values nu of the operator and their
@@ -132,6 +156,7 @@ contains
         integer :: a, info
 
         this%p = contact%p()
+        this%n = this%p
         this%lambda = lambda
         this%sigma = sigma
         this%lambda_scale = lambda_unit(lambda)
@@ -147,15 +172,8 @@ contains
         ! |sigma| ||A|| > TARGET_RANGE, this%a being A / lambda_scale; written as quotients,
         ! which cannot overflow (sigma may be clamped to huge, see eigen_analysis)
         a_norm = maxval(sum(abs(this%a), dim=2))
-        if (abs(sigma) > (TARGET_RANGE/a_norm)/this%lambda_scale) then
-            ! one line naming the variable; the caller adds the input file
-            call stat%fail(STATUS_BAD_INPUT, '&eigen: target = '// &
-                real_to_text(target_input)//': expected |target| <= '// &
-                short(scale((TARGET_RANGE/a_norm)/this%lambda_scale, unit_exponent))// &
-                ' (1e6 / ||A||, the scale of the spectrum here: further out, mu = target '// &
-                '+ 1/nu cancels and loses more than 6 of the 16 digits)')
-            return
-        end if
+        call this%check_target(a_norm, target_input, unit_exponent, stat)
+        if (.not. stat%ok()) return
         ! LU of I - sigma A, kept in place of A (A itself is applied through L_c)
         this%a = -(sigma*this%lambda_scale)*this%a
         do a = 1, this%p
@@ -168,6 +186,105 @@ contains
                 to_string(sigma)//' (an eigenvalue equals the target; move the target)')
         end if
     end subroutine operator_setup
+
+    !> The full operator (K - sigma B)^-1 B / lambda_scale in the n free dofs. sigma = 0 uses
+    !> `chol`, the factor of K (no second factorization); sigma /= 0 factors K - sigma B once
+    !> with UMFPACK, after the range check of operator_setup with ||A||_inf estimated
+    !> (norm_estimate: a few sparse solves instead of forming A). Nothing of order p^2.
+    subroutine operator_setup_full(this, k, b, chol, contact, lambda, sigma, stat, &
+                                   target_input, unit_exponent)
+        class(contact_operator_t), intent(inout) :: this
+        type(csr_matrix_t), intent(in) :: k, b
+        type(cholesky_t), intent(in), target :: chol
+        type(contact_t), intent(in) :: contact
+        real(wp), intent(in) :: lambda, sigma
+        type(status_t), intent(out) :: stat
+        real(wp), intent(in) :: target_input
+        integer, intent(in) :: unit_exponent
+        real(wp) :: a_norm
+
+        this%full = .true.
+        this%p = contact%p()
+        this%n = k%n()
+        this%lambda = lambda
+        this%sigma = sigma
+        this%lambda_scale = lambda_unit(lambda)
+        this%b_scaled = b
+        this%b_scaled%val = b%val/this%lambda_scale
+        this%chol => chol
+        if (.not. (abs(sigma) > 0.0_wp)) return
+        call this%norm_estimate(contact, a_norm, stat)
+        if (.not. stat%ok()) return
+        call this%check_target(a_norm, target_input, unit_exponent, stat)
+        if (.not. stat%ok()) return
+        ! no iterative refinement: ARPACK needs a backward-stable solve, which the LU gives,
+        ! and every eigenpair's backward error on (K, B) is checked; refinement tripled the
+        ! cost of each application (measured, docs/performance.md)
+        call this%shifted%factor_shifted(k, b, sigma, stat, refinement_steps=0)
+        if (stat%code /= STATUS_SINGULAR) return
+        stat%message = 'arpack: K - sigma B for sigma = '//to_string(sigma)//': '// &
+                       stat%message//' (an eigenvalue equals the target; move the target)'
+    end subroutine operator_setup_full
+
+    !> |sigma| ||A|| <= TARGET_RANGE, with a_norm = ||A / lambda_scale||_inf; written with
+    !> quotients, which cannot overflow (sigma may be clamped to huge, see eigen_analysis).
+    !> Otherwise STATUS_BAD_INPUT in one line naming the variable (the caller adds the file).
+    subroutine operator_check_target(this, a_norm, target_input, unit_exponent, stat)
+        class(contact_operator_t), intent(in) :: this
+        real(wp), intent(in) :: a_norm, target_input
+        integer, intent(in) :: unit_exponent
+        type(status_t), intent(out) :: stat
+        if (.not. abs(this%sigma) > (TARGET_RANGE/a_norm)/this%lambda_scale) return
+        call stat%fail(STATUS_BAD_INPUT, '&eigen: target = '// &
+            real_to_text(target_input)//': expected |target| <= '// &
+            short(scale((TARGET_RANGE/a_norm)/this%lambda_scale, unit_exponent))// &
+            ' (1e6 / ||A||, the scale of the spectrum here: further out, mu = target '// &
+            '+ 1/nu cancels and loses more than 6 of the 16 digits)')
+    end subroutine operator_check_target
+
+    !> ||A / lambda_scale||_inf = ||(A / lambda_scale)'||_1 estimated by LAPACK dlacn2
+    !> (Higham's estimator: a lower bound, exact on the scenes measured), with A = N K^-1 X' M
+    !> and A' = M X K^-1 N' applied through solves with the sparse factor of K (this%chol):
+    !> about five, O(nnz(L)) each, where forming A costs O(p^3) and p^2 memory.
+    subroutine operator_norm_estimate(this, contact, estimate, stat)
+        class(contact_operator_t), intent(in) :: this
+        type(contact_t), intent(in) :: contact
+        real(wp), intent(out) :: estimate
+        type(status_t), intent(out) :: stat
+        real(wp) :: v(this%p), x(this%p), product(this%p), mx(this%p), direction(2)
+        integer :: isgn(this%p), kase, isave(3)
+        direction = this%lambda/this%lambda_scale*contact%tangent - &
+                    contact%normal/this%lambda_scale
+        estimate = 0.0_wp
+        kase = 0
+        do
+            call dlacn2(this%p, v, x, isgn, estimate, kase, isave)
+            if (kase == 0) exit
+            if (kase == 1) then   ! A' x = M (X K^-1 N' x)
+                call compliance(contact%normal, x, direction, mx)
+                call contact%mass%matvec(mx, product)
+            else                  ! A x = N K^-1 X' (M x)
+                call contact%mass%matvec(x, mx)
+                call compliance(direction, mx, contact%normal, product)
+            end if
+            if (.not. stat%ok()) return
+            x = product
+        end do
+
+    contains
+
+        !> out(a) = row . (K^-1 z)(node a) with z(node b) = column y(b), zero elsewhere.
+        subroutine compliance(column, y, row, out)
+            real(wp), intent(in) :: column(2), y(:), row(2)
+            real(wp), intent(out) :: out(:)
+            real(wp), allocatable :: z(:, :), w(:, :)
+            allocate (z(this%n, 1), source=0.0_wp)
+            allocate (w(this%n, 1))
+            call contact%scatter(column, y, z(:, 1))
+            call this%chol%solve(z, w, stat)
+            call contact%gather(row, w(:, 1), out)
+        end subroutine compliance
+    end subroutine operator_norm_estimate
 
     !> A = (lambda Kt_nt - Kt_nn) M as a dense p x p matrix, with Kt_nn and Kt_nt formed from
     !> L_c as the dense solver forms them (contact_reduction: dpotri, O(p^3)).
@@ -224,12 +341,27 @@ contains
         end do
     end subroutine operator_apply_a
 
-    !> ARPACK's OP: A (sigma = 0) or (I - sigma A)^-1 A, divided by lambda_scale.
-    subroutine operator_apply(this, y, out)
-        class(contact_operator_t), intent(in) :: this
+    !> ARPACK's OP: A (sigma = 0) or (I - sigma A)^-1 A, divided by lambda_scale; the full
+    !> operator (K - sigma B)^-1 B / lambda_scale.
+    subroutine operator_apply(this, y, out, stat)
+        class(contact_operator_t), intent(inout) :: this
         real(wp), intent(in) :: y(:)
         real(wp), intent(out) :: out(:)
+        type(status_t), intent(out) :: stat
+        real(wp), allocatable :: by(:, :), x(:, :)
         integer :: info
+        if (this%full) then
+            allocate (by(this%n, 1))
+            call this%b_scaled%matvec(y, by(:, 1))
+            if (abs(this%sigma) > 0.0_wp) then
+                call this%shifted%solve(by(:, 1), out, stat)
+            else
+                allocate (x(this%n, 1))
+                call this%chol%solve(by, x, stat)
+                out = x(:, 1)
+            end if
+            return
+        end if
         call this%apply_a(y, out)
         if (.not. (abs(this%sigma) > 0.0_wp)) return
         ! dgetrf succeeded in setup, so dgetrs cannot fail on these arguments
@@ -256,12 +388,16 @@ contains
     !> sigma = 0): any positive real mu below mu_+ would be nearer sigma than r. With
     !> `complete` (the set is the whole spectrum) no positive real mu in it means none
     !> exists. Returns CERTIFIED_FOUND (`lowest` its index), CERTIFIED_NONE or UNDECIDED.
-    pure subroutine certify_lowest(mu, is_real, sigma, complete, outcome, lowest)
+    !> With cn_max > 0 the disc must also reach cn_max (sigma + r >= cn_max), so that the set
+    !> holds every positive real mu in (0, cn_max].
+    pure subroutine certify_lowest(mu, is_real, sigma, complete, outcome, lowest, cn_max)
         complex(wp), intent(in) :: mu(:)
         logical, intent(in) :: is_real(:)
         real(wp), intent(in) :: sigma
         logical, intent(in) :: complete
         integer, intent(out) :: outcome, lowest
+        real(wp), intent(in), optional :: cn_max
+        real(wp) :: radius, reach
         integer :: i
         lowest = 0
         do i = 1, size(mu)
@@ -276,9 +412,27 @@ contains
         if (complete) then
             outcome = merge(CERTIFIED_FOUND, CERTIFIED_NONE, lowest > 0)
         else if (size(mu) > 0 .and. lowest > 0) then
-            if (sigma - maxval(abs(mu - sigma)) <= 0.0_wp) outcome = CERTIFIED_FOUND
+            radius = maxval(abs(mu - sigma))
+            reach = 0.0_wp
+            if (present(cn_max)) reach = cn_max
+            if (sigma - radius <= 0.0_wp .and. sigma + radius >= reach) outcome = CERTIFIED_FOUND
         end if
     end subroutine certify_lowest
+
+    !> The positive real mu a run must report, ascending: the lowest, and every one up to
+    !> cn_max. Two runs agree when these lists match (certified_search).
+    pure function wanted_values(mu, is_real, cn_max) result(values)
+        complex(wp), intent(in) :: mu(:)
+        logical, intent(in) :: is_real(:)
+        real(wp), intent(in) :: cn_max
+        real(wp), allocatable :: values(:)
+        logical :: positive(size(mu))
+        positive = is_real .and. real(mu, wp) > 0.0_wp
+        values = pack(real(mu, wp), positive)
+        if (size(values) == 0) return
+        values = values(sort_index(values))
+        values = pack(values, values <= cn_max .or. values <= values(1))
+    end function wanted_values
 
     !> Eigenvalues of K phi = mu B phi nearest the target (0: smallest in modulus), always
     !> including the lowest positive real one when it is found, in output order, with full
@@ -288,11 +442,12 @@ contains
     !> Strategy (docs/numerics.md, "ARPACK solver"): ARPACK on nev eigenvalues nearest the target;
     !> a certified answer is confirmed by a second run from another start vector; nev
     !> doubles while undecided; past p/4 (or if runs keep disagreeing) all p eigenvalues of
-    !> the reduced matrix are computed densely, which decides every case.
+    !> the reduced matrix are computed densely, which decides every case. The same holds for
+    !> both operators (options%full); the full one's eigenvectors come from ARPACK itself.
     subroutine arpack_spectrum(k, b, chol, contact, lambda, options, n_keep, spec, warning, &
                                stat)
         type(csr_matrix_t), intent(in) :: k, b
-        type(cholesky_t), intent(in) :: chol
+        type(cholesky_t), intent(in), target :: chol
         type(contact_t), intent(in) :: contact
         real(wp), intent(in) :: lambda
         type(arpack_options_t), intent(in) :: options
@@ -300,12 +455,12 @@ contains
         type(spectrum_t), intent(out) :: spec
         character(len=:), allocatable, intent(out) :: warning
         type(status_t), intent(out) :: stat
-        type(contact_operator_t) :: op
+        type(contact_operator_t) :: op, reduced
         type(ritz_t) :: run
         complex(wp), allocatable :: mu(:)
         real(wp) :: radius
         integer :: p, cap, n_operator
-        logical :: found_before, confirmed
+        logical :: found_before, confirmed, lifted
 
         warning = ''
         p = contact%p()
@@ -315,19 +470,36 @@ contains
                 'ARPACK needs at least 3 (nev + 2 <= ncv <= p); use solver = ''dense''')
             return
         end if
-        call op%setup(chol, contact, lambda, options%target, stat, options%target_input, &
-                      options%unit_exponent)
+        if (options%full) then
+            call op%setup_full(k, b, chol, contact, lambda, options%target, stat, &
+                               options%target_input, options%unit_exponent)
+        else
+            call op%setup(chol, contact, lambda, options%target, stat, options%target_input, &
+                          options%unit_exponent)
+        end if
         if (.not. stat%ok()) return
 
         call certified_search(op, options, run, mu, confirmed, found_before, n_operator, stat)
         if (.not. stat%ok()) return
 
+        ! reduced eigenvectors y are lifted to phi; the full operator's are phi already
+        lifted = .not. op%full
         if (.not. confirmed) then
             ! Undecided: all p eigenvalues of the reduced p x p matrix decide (O(p^3)).
             if (p <= DENSE_FALLBACK_MAX) then
-                call dense_ritz(op, options%nev, run, stat)
-                if (.not. stat%ok()) return
-                mu = op%mu_of(run%nu)
+                if (op%full) then
+                    call reduced%setup(chol, contact, lambda, options%target, stat, &
+                                       options%target_input, options%unit_exponent)
+                    if (.not. stat%ok()) return
+                    call dense_ritz(reduced, options%nev, options%cn_max, run, stat)
+                    if (.not. stat%ok()) return
+                    mu = reduced%mu_of(run%nu)
+                    lifted = .true.
+                else
+                    call dense_ritz(op, options%nev, options%cn_max, run, stat)
+                    if (.not. stat%ok()) return
+                    mu = op%mu_of(run%nu)
+                end if
             else
                 radius = 0.0_wp
                 if (size(mu) > 0) radius = maxval(abs(mu - options%target))
@@ -347,24 +519,30 @@ contains
                 arpack_info_message('dnaupd', run%info)//'); raise maxit or ncv')
             return
         end if
-        call fill_spectrum(k, b, chol, contact, lambda, mu, run, n_keep, spec, stat)
+        if (lifted) then
+            call fill_spectrum(k, b, chol, contact, lambda, mu, run, n_keep, spec, stat)
+        else
+            call fill_full_spectrum(k, b, mu, run, n_keep, spec)
+        end if
         spec%n_operator = n_operator
+        spec%dense_decision = .not. confirmed .and. p <= DENSE_FALLBACK_MAX
     end subroutine arpack_spectrum
 
-    !> ARPACK runs on `op` until the lowest positive real mu is certified (certify_lowest)
-    !> by two runs from different start vectors that agree on it (`confirmed`), doubling nev
+    !> ARPACK runs on `op` until the lowest positive real mu (and with options%cn_max every
+    !> one up to it) is certified (certify_lowest) by two runs from different start vectors
+    !> that agree on them (`confirmed`, wanted_values), doubling nev
     !> while undecided; stops undecided past nev > p/4 or NEV_SEARCH_MAX. `run` and `mu` are
     !> the last run's Ritz values and mu = target + 1/nu; `found_before`: the last run
     !> certified a value that the one before did not confirm.
     subroutine certified_search(op, options, run, mu, confirmed, found_before, n_operator, stat)
-        type(contact_operator_t), intent(in) :: op
+        type(contact_operator_t), intent(inout) :: op
         type(arpack_options_t), intent(in) :: options
         type(ritz_t), intent(out) :: run
         complex(wp), allocatable, intent(out) :: mu(:)
         logical, intent(out) :: confirmed, found_before
         integer, intent(out) :: n_operator
         type(status_t), intent(out) :: stat
-        real(wp) :: mu_now, mu_before
+        real(wp), allocatable :: values_now(:), values_before(:)
         integer :: p, nev, cap, attempt, outcome, lowest
 
         p = op%p
@@ -373,25 +551,27 @@ contains
         n_operator = 0
         found_before = .false.
         confirmed = .false.
-        mu_before = 0.0_wp
         do attempt = 1, MAX_ATTEMPTS
             call run_arpack(op, nev, options, attempt, run, stat)
             if (.not. stat%ok()) return
             n_operator = n_operator + run%n_operator
             mu = op%mu_of(run%nu)
-            call certify_lowest(mu, run%is_real, options%target, .false., outcome, lowest)
+            call certify_lowest(mu, run%is_real, options%target, .false., outcome, lowest, &
+                                options%cn_max)
             ! with info = 1 (maxit) only some wanted values converged: nearer ones may be
             ! missing, so the disc argument does not hold
             if (run%info /= 0) outcome = UNDECIDED
             if (outcome == CERTIFIED_FOUND) then
-                mu_now = real(mu(lowest), wp)
+                values_now = wanted_values(mu, run%is_real, options%cn_max)
                 if (found_before) then
-                    confirmed = abs(mu_now - mu_before) <= AGREE_TOL*abs(mu_now)
+                    confirmed = size(values_now) == size(values_before)
+                    if (confirmed) confirmed = all(abs(values_now - values_before) <= &
+                                                   AGREE_TOL*abs(values_now))
                     if (confirmed) exit
                     nev = min(2*nev, cap)   ! two runs disagree: look wider
                 end if
                 found_before = .true.
-                mu_before = mu_now
+                values_before = values_now
             else
                 found_before = .false.
                 nev = min(2*nev, cap)
@@ -426,6 +606,7 @@ contains
         certified = .false.
         n_operator = 0
         op%p = size(a, 1)
+        op%n = op%p
         if (op%p - 2 < 1) return   ! too small for ARPACK: the caller goes dense
         op%explicit = .true.
         allocate (op%a, source=a)
@@ -441,10 +622,12 @@ contains
 
     !> All p eigenvalues of the reduced operator by LAPACK dgeev, as a run would give them
     !> (nu of the operator), keeping the `n_report` of largest |nu| (nearest the target) and
-    !> the lowest positive real mu; the rest are dropped before eigenvectors are formed.
-    subroutine dense_ritz(op, n_report, run, stat)
+    !> the lowest positive real mu, and every positive real mu up to cn_max; the rest are
+    !> dropped before eigenvectors are formed.
+    subroutine dense_ritz(op, n_report, cn_max, run, stat)
         type(contact_operator_t), intent(in) :: op
         integer, intent(in) :: n_report
+        real(wp), intent(in) :: cn_max
         type(ritz_t), intent(out) :: run
         type(status_t), intent(out) :: stat
         real(wp), allocatable :: a(:, :), wr(:), wi(:), vr(:, :), work(:), vl(:, :), size_nu(:)
@@ -480,6 +663,8 @@ contains
             chosen(j) = .true.
         end do
         if (lowest > 0) chosen(lowest) = .true.
+        chosen = chosen .or. (is_real .and. keep .and. real(mu, wp) > 0.0_wp .and. &
+                              real(mu, wp) <= cn_max)
         do j = 1, p
             if (.not. chosen(j) .or. is_real(j)) cycle
             if (wi(j) > 0.0_wp .and. j < p) chosen(j + 1) = .true.
@@ -499,13 +684,13 @@ contains
     !> One ARPACK run: standard mode on `op`, nev wanted ('LR' without shift, 'LM' with),
     !> from a deterministic start vector that differs between attempts.
     subroutine run_arpack(op, nev_wanted, options, attempt, run, stat)
-        type(contact_operator_t), intent(in) :: op
+        type(contact_operator_t), intent(inout) :: op
         integer, intent(in) :: nev_wanted, attempt
         type(arpack_options_t), intent(in) :: options
         type(ritz_t), intent(out) :: run
         type(status_t), intent(out) :: stat
         real(wp), allocatable :: resid(:), v(:, :), workd(:), workl(:), dr(:), di(:), z(:, :), &
-                                 workev(:)
+                                 workev(:), start(:)
         logical, allocatable :: select(:)
         integer :: iparam(11), ipntr(14), ido, info, n, ncv, lworkl, nconv, j, i, nev
         character(len=2) :: which
@@ -514,10 +699,12 @@ contains
         ! ARPACK may adjust nev in place to keep a conjugate pair together (seen with arpack-ng
         ! 3.8 on tiny n): give it a private copy.
         nev = nev_wanted
-        n = op%p
+        n = op%n
         ncv = options%ncv
         if (ncv == 0) ncv = max(2*nev + 1, 20)
-        ncv = min(max(ncv, nev + 2), n)
+        ! at most p: the full operator has rank p, and a longer Krylov basis would only add
+        ! null vectors of B (Ritz values nu ~ 0, mu ~ 1/eps)
+        ncv = min(max(ncv, nev + 2), op%p)
         which = 'LM'
         tol = options%tol
         lworkl = 3*ncv**2 + 6*ncv
@@ -525,6 +712,14 @@ contains
         ! Start vector: smooth plus oscillating parts, nonzero in every component and in
         ! every eigendirection generically; the phase changes with the attempt.
         resid = [(1.0_wp + 0.5_wp*sin(real(i*attempt, wp)*0.7548776662466927_wp), i=1, n)]
+        if (op%full) then
+            ! into the range of OP: its null space (that of B, n - p wide) holds no eigenvector
+            ! of a finite mu, and a start vector inside it would only feed round-off back
+            start = resid
+            call op%apply(start, resid, stat)
+            if (.not. stat%ok()) return
+            run%n_operator = 1
+        end if
         iparam = 0
         iparam(1) = 1               ! exact shifts
         iparam(3) = options%maxit
@@ -537,7 +732,9 @@ contains
                         workd, workl, lworkl, info)
             if (ido /= 1 .and. ido /= -1) exit   ! 99: done; no other request in mode 1
             run%n_operator = run%n_operator + 1
-            call op%apply(workd(ipntr(1):ipntr(1) + n - 1), workd(ipntr(2):ipntr(2) + n - 1))
+            call op%apply(workd(ipntr(1):ipntr(1) + n - 1), workd(ipntr(2):ipntr(2) + n - 1), &
+                          stat)
+            if (.not. stat%ok()) return
         end do
         run%info = info
         if (info < 0) then
@@ -612,17 +809,53 @@ contains
         integer, intent(in) :: n_keep
         type(spectrum_t), intent(out) :: spec
         type(status_t), intent(out) :: stat
-        integer, allocatable :: order(:), kinds(:)
-        integer :: n_ev
+        integer, allocatable :: order(:)
 
-        n_ev = size(mu)
-        allocate (order(n_ev), kinds(n_ev))
+        call ordered_values(mu, run, spec, order)
+        call lift_eigenvectors(k, b, chol, contact, lambda, spec%mu, run%y(:, order), n_keep, &
+                               spec%residual, spec%vectors, stat)
+    end subroutine fill_spectrum
+
+    !> spec%mu, kind and condition (unknown: -1) of a run's eigenvalues `mu` in output order,
+    !> and `order`, the permutation from the run's order to it.
+    subroutine ordered_values(mu, run, spec, order)
+        complex(wp), intent(in) :: mu(:)
+        type(ritz_t), intent(in) :: run
+        type(spectrum_t), intent(inout) :: spec
+        integer, allocatable, intent(out) :: order(:)
+        integer, allocatable :: kinds(:)
+        allocate (order(size(mu)), kinds(size(mu)))
         call order_eigenvalues(mu, run%is_real, order, kinds)
         spec%mu = mu(order)
         where (run%is_real(order)) spec%mu = real(spec%mu, wp)
         spec%kind = kinds
-        allocate (spec%condition(n_ev), source=-1.0_wp)
-        call lift_eigenvectors(k, b, chol, contact, lambda, spec%mu, run%y(:, order), n_keep, &
-                               spec%residual, spec%vectors, stat)
-    end subroutine fill_spectrum
+        allocate (spec%condition(size(mu)), source=-1.0_wp)
+    end subroutine ordered_values
+
+    !> The spectrum of the final run of the full operator, in output order: ARPACK's Ritz
+    !> vectors are the eigenvectors phi of the pencil; the backward error of every pair on
+    !> (K, B), the first n_keep normalised and kept.
+    subroutine fill_full_spectrum(k, b, mu, run, n_keep, spec)
+        type(csr_matrix_t), intent(in) :: k, b
+        complex(wp), intent(in) :: mu(:)
+        type(ritz_t), intent(in) :: run
+        integer, intent(in) :: n_keep
+        type(spectrum_t), intent(out) :: spec
+        integer, allocatable :: order(:)
+        real(wp) :: k_norm, b_norm
+        integer :: n_ev, i
+
+        n_ev = size(mu)
+        call ordered_values(mu, run, spec, order)
+        allocate (spec%residual(n_ev), spec%vectors(k%n(), min(n_keep, n_ev)))
+        k_norm = k%norm_inf()
+        b_norm = b%norm_inf()
+        do i = 1, n_ev
+            spec%residual(i) = backward_error(k, b, spec%mu(i), run%y(:, order(i)), k_norm, &
+                                              b_norm)
+            if (i > size(spec%vectors, 2)) cycle
+            spec%vectors(:, i) = run%y(:, order(i))
+            call normalise_mode(spec%vectors(:, i))
+        end do
+    end subroutine fill_full_spectrum
 end module arpack_eigen

@@ -107,6 +107,7 @@ contains
         allocate (spec%mu(n_ev), spec%kind(n_ev), spec%condition(n_ev))
         spec%mu(:) = mu(keep(order))
         spec%kind(:) = kinds
+        spec%dense_decision = .true.
         spec%condition(:) = condition(keep(order))
         allocate (spec%lambda_sensitivity(n_ev), source=-1.0_wp)
         if (n_ev > 0) then

@@ -8,7 +8,7 @@ module lapack_interfaces
     implicit none
     private
     public :: dgeevx, dggev, dgemm, dsyrk, lapack_info_message
-    public :: dgeev, dtrsv, dtrsm, dgetrf, dgetrs, dpotri, lapack_eigenvector
+    public :: dgeev, dtrsv, dtrsm, dgetrf, dgetrs, dpotri, dlacn2, lapack_eigenvector
 
     interface
         subroutine dgeevx(balanc, jobvl, jobvr, sense, n, a, lda, wr, wi, vl, ldvl, vr, ldvr, &
@@ -88,6 +88,15 @@ module lapack_interfaces
             real(wp), intent(inout) :: a(lda, *)
             integer, intent(out) :: ipiv(*), info
         end subroutine dgetrf
+
+        subroutine dlacn2(n, v, x, isgn, est, kase, isave)
+            import :: wp
+            integer, intent(in) :: n
+            real(wp), intent(out) :: v(*)
+            real(wp), intent(inout) :: x(*), est
+            integer, intent(out) :: isgn(*)
+            integer, intent(inout) :: kase, isave(3)
+        end subroutine dlacn2
 
         subroutine dgetrs(trans, n, nrhs, a, lda, ipiv, b, ldb, info)
             import :: wp

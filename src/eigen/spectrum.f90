@@ -26,6 +26,9 @@ module spectrum
         real(wp), allocatable :: lambda_sensitivity(:)
         complex(wp), allocatable :: vectors(:, :)  !! (n_free, n_kept) modes of the first n_kept
         integer :: n_operator = 0                  !! operator applications (iterative solvers)
+        !> the iterative solver could not certify its answer and all p eigenvalues of the
+        !> reduced matrix decided it (always true of the dense solver)
+        logical :: dense_decision = .false.
     contains
         procedure :: n => spectrum_n
         procedure :: lowest_positive => spectrum_lowest_positive

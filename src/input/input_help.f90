@@ -10,7 +10,7 @@ module input_help
     use input_validation, only: MESH_SOURCES, ELEMENT_NAMES, DIAGONALS, RECTANGLE_SIDES, &
                                 ACCEPTED_ANALYSES, ACCEPTED_SOLVERS, MAX_CELLS_PER_SIDE, &
                                 SWEEP_SPACINGS, MAX_SWEEP_POINTS, VTK_FORMATS, SOLVE_DATA, &
-                                SOLVE_STARTS, ESTIMATE_MODES
+                                SOLVE_STARTS, ESTIMATE_MODES, EIGEN_OPERATORS
     implicit none
     private
     public :: help_text
@@ -78,7 +78,11 @@ contains
                //entry('dense_max_contact', to_string(d%eigen%dense_max_contact), &
                        "'auto' picks 'dense' up to this many contact nodes, else 'arpack'") &
                //entry('estimate', quoted(d%eigen%estimate), one_of(ESTIMATE_MODES)// &
-                       ": error estimate of mu (auto: <= 40000 dofs)")
+                       ": error estimate of mu (auto: <= 40000 dofs)") &
+               //entry('operator', quoted(d%eigen%operator), one_of(EIGEN_OPERATORS)// &
+                       ": ARPACK on p x p or (K - target B)^-1 B") &
+               //entry('cn_max', real_to_text(d%eigen%cn_max), 'report every positive mu' &
+                       //' in (0, cn_max] (0: only the lowest)')
         text = text//'&output'//NL &
                //entry('directory', quoted(d%output%directory), "'' means output/<input" &
                        //' file stem> (from the working directory)') &

@@ -30,7 +30,8 @@ module input_records
         'analysis lambda:a real number', 'eigen solver:a quoted name', &
         'eigen nev:an integer', 'eigen target:a real number', 'eigen tol:a real number', &
         'eigen maxit:an integer', 'eigen ncv:an integer', 'eigen dense_max_contact:an integer', &
-        'eigen estimate:a quoted name', &
+        'eigen estimate:a quoted name', 'eigen operator:a quoted name', &
+        'eigen cn_max:a real number', &
         'output directory:a quoted path', 'output vtk:.true. or .false.', &
         'output modes:an integer', 'output matrices:.true. or .false.', &
         'output vtk_format:a quoted name', 'output plot:.true. or .false.', &
@@ -284,10 +285,11 @@ contains
         integer, intent(out) :: ios
         character(len=*), intent(inout) :: msg
         integer, intent(in), optional :: listing_unit
-        character(len=NAME_LEN) :: solver, estimate
+        character(len=NAME_LEN) :: solver, estimate, operator
         integer :: nev, maxit, ncv, dense_max_contact
-        real(wp) :: target, tol
-        namelist /eigen/ solver, nev, target, tol, maxit, ncv, dense_max_contact, estimate
+        real(wp) :: target, tol, cn_max
+        namelist /eigen/ solver, nev, target, tol, maxit, ncv, dense_max_contact, estimate, &
+            operator, cn_max
 
         solver = config%eigen%solver
         nev = config%eigen%nev
@@ -297,6 +299,8 @@ contains
         ncv = config%eigen%ncv
         dense_max_contact = config%eigen%dense_max_contact
         estimate = config%eigen%estimate
+        operator = config%eigen%operator
+        cn_max = config%eigen%cn_max
         if (present(listing_unit)) then
             write (listing_unit, nml=eigen, iostat=ios, iomsg=msg)
             return
@@ -311,6 +315,8 @@ contains
         config%eigen%ncv = ncv
         config%eigen%dense_max_contact = dense_max_contact
         config%eigen%estimate = lowercase(adjustl(estimate))
+        config%eigen%operator = lowercase(adjustl(operator))
+        config%eigen%cn_max = cn_max
     end subroutine eigen_record
 
     !> One '&output ... /' record into config%output (unchanged if it fails).

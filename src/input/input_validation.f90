@@ -18,8 +18,8 @@ module input_validation
     public :: validate_config
     public :: MESH_SOURCES, ELEMENT_NAMES, DIAGONALS, RECTANGLE_SIDES, ACCEPTED_ANALYSES, &
               ACCEPTED_SOLVERS, MAX_CELLS_PER_SIDE, SWEEP_SPACINGS, MAX_SWEEP_POINTS, &
-              VTK_FORMATS, SOLVE_DATA, SOLVE_STARTS, ESTIMATE_MODES, ADAPT_ELEMENTS, &
-              ADAPT_ANALYSES
+              VTK_FORMATS, SOLVE_DATA, SOLVE_STARTS, ESTIMATE_MODES, EIGEN_OPERATORS, &
+              ADAPT_ELEMENTS, ADAPT_ANALYSES
 
     character(len=*), parameter :: MESH_SOURCES(*) = [character(len=9) :: 'rectangle', 'gmsh']
     character(len=*), parameter :: ELEMENT_NAMES(*) = [character(len=2) :: &
@@ -35,6 +35,8 @@ module input_validation
                                                           'arpack', 'auto']
     !> &eigen estimate: when the error estimate of the lowest positive mu is computed.
     character(len=*), parameter :: ESTIMATE_MODES(*) = [character(len=4) :: 'auto', 'on', 'off']
+    !> &eigen operator: what ARPACK iterates on.
+    character(len=*), parameter :: EIGEN_OPERATORS(*) = [character(len=7) :: 'reduced', 'full']
     integer, parameter :: MAX_CELLS_PER_SIDE = 1000000
     !> &adapt: the elements with a refinement (triangles) and an enriched space one degree
     !> higher for the error estimate (P4 has none: no P5 here), and the analyses that adapt.
@@ -244,10 +246,13 @@ contains
         type(eigen_config_t), intent(in) :: c
         character(len=*), intent(in) :: path
         type(status_t), intent(inout) :: stat
-        logical :: tol_ok
+        logical :: tol_ok, cn_max_ok
 
         tol_ok = ieee_is_finite(c%tol)
         if (tol_ok) tol_ok = c%tol >= 0.0_wp .and. c%tol < 1.0_wp
+        ! compared only when finite: NaN >= 0 traps in a Debug build
+        cn_max_ok = ieee_is_finite(c%cn_max)
+        if (cn_max_ok) cn_max_ok = c%cn_max >= 0.0_wp
         if (.not. any(ACCEPTED_SOLVERS == c%solver)) then
             call reject('solver', quoted(c%solver), 'one of '//one_of(ACCEPTED_SOLVERS))
         else if (c%nev < 1) then
@@ -265,6 +270,14 @@ contains
             call reject('dense_max_contact', to_string(c%dense_max_contact), 'an integer >= 1')
         else if (.not. any(ESTIMATE_MODES == c%estimate)) then
             call reject('estimate', quoted(c%estimate), 'one of '//one_of(ESTIMATE_MODES))
+        else if (.not. any(EIGEN_OPERATORS == c%operator)) then
+            call reject('operator', quoted(c%operator), 'one of '//one_of(EIGEN_OPERATORS))
+        else if (c%operator == 'full' .and. c%solver == 'dense') then
+            call reject('operator', quoted(c%operator), "'reduced' with solver = 'dense' "// &
+                        "(the full operator is an ARPACK operator)")
+        else if (.not. cn_max_ok) then
+            call reject('cn_max', real_to_text(c%cn_max), 'a finite number >= 0 (0: only '// &
+                        'the lowest positive mu)')
         end if
 
     contains

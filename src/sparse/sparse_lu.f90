@@ -15,7 +15,7 @@ module sparse_lu
     use umfpack_c, only: umfpack_di_symbolic, umfpack_di_numeric, umfpack_di_solve, &
                          umfpack_di_free_symbolic, umfpack_di_free_numeric, umfpack_di_defaults, &
                          UMFPACK_CONTROL, UMFPACK_INFO, UMFPACK_At, UMFPACK_PRL, &
-                         UMFPACK_ORDERING, UMFPACK_LNZ, UMFPACK_UNZ, UMFPACK_FLOPS, &
+                         UMFPACK_ORDERING, UMFPACK_IRSTEP, UMFPACK_LNZ, UMFPACK_UNZ, UMFPACK_FLOPS, &
                          UMFPACK_RCOND, UMFPACK_ORDERING_AMD, UMFPACK_ORDERING_METIS, &
                          UMFPACK_ORDERING_CHOLMOD, UMFPACK_ORDERING_NONE, &
                          UMFPACK_OK, UMFPACK_WARNING_singular_matrix, &
@@ -49,6 +49,7 @@ module sparse_lu
         real(c_double) :: info(UMFPACK_INFO) = 0.0_c_double
     contains
         procedure :: factor => lu_factor
+        procedure :: factor_shifted => lu_factor_shifted
         procedure :: solve => lu_solve
         procedure :: free => lu_free
         procedure :: rcond => lu_rcond
@@ -67,21 +68,69 @@ contains
         type(csr_matrix_t), intent(in) :: a
         type(status_t), intent(out) :: stat
         integer, intent(in), optional :: ordering
-        type(c_ptr) :: symbolic
-        integer(c_int) :: code, n
 
         call this%free()
-        n = int(a%n(), c_int)
-        if (n < 1) then
+        if (a%n() < 1) then
             call stat%fail(STATUS_BAD_INPUT, 'sparse_lu: the matrix is empty')
             return
         end if
         this%ap = int(a%row_start - 1, c_int)
         this%ai = int(a%col - 1, c_int)
         this%ax = real(a%val, c_double)
+        call factor_copies(this, stat, ordering)
+    end subroutine lu_factor
 
+    !> Factorize a - sigma b, where the pattern of b lies within that of a (so K - sigma B
+    !> for the contact matrix B, whose couplings are those of contact edges, all inside K's
+    !> elements): the difference is formed straight into the copies UMFPACK needs, with no
+    !> other copy of a. A b entry outside a's pattern fails with STATUS_BAD_INPUT.
+    !> `refinement_steps`: UMFPACK's iterative refinement per solve (its default 2; each step
+    !> costs another solve and product, and 0 leaves a backward-stable LU solve).
+    subroutine lu_factor_shifted(this, a, b, sigma, stat, ordering, refinement_steps)
+        class(lu_t), intent(inout) :: this
+        type(csr_matrix_t), intent(in) :: a, b
+        real(wp), intent(in) :: sigma
+        type(status_t), intent(out) :: stat
+        integer, intent(in), optional :: ordering, refinement_steps
+        integer :: i, k, slot
+
+        call this%free()
+        if (a%n() < 1 .or. b%n() /= a%n()) then
+            call stat%fail(STATUS_BAD_INPUT, 'sparse_lu: shifted matrix of order '// &
+                           to_string(a%n())//' with b of order '//to_string(b%n()))
+            return
+        end if
+        this%ap = int(a%row_start - 1, c_int)
+        this%ai = int(a%col - 1, c_int)
+        this%ax = real(a%val, c_double)
+        do i = 1, b%n()
+            do k = b%row_start(i), b%row_start(i + 1) - 1
+                slot = a%slot(i, b%col(k))
+                if (slot == 0) then
+                    call stat%fail(STATUS_BAD_INPUT, 'sparse_lu: entry ('//to_string(i)// &
+                        ', '//to_string(b%col(k))//') of b is outside the pattern of a')
+                    call this%free()
+                    return
+                end if
+                this%ax(slot) = this%ax(slot) - real(sigma*b%val(k), c_double)
+            end do
+        end do
+        call factor_copies(this, stat, ordering, refinement_steps)
+    end subroutine lu_factor_shifted
+
+    !> Symbolic and numeric factorization of the copies this%ap, ai, ax.
+    subroutine factor_copies(this, stat, ordering, refinement_steps)
+        class(lu_t), intent(inout) :: this
+        type(status_t), intent(inout) :: stat
+        integer, intent(in), optional :: ordering, refinement_steps
+        type(c_ptr) :: symbolic
+        integer(c_int) :: code, n
+
+        n = int(size(this%ap) - 1, c_int)
         call umfpack_di_defaults(this%control)
         this%control(UMFPACK_PRL + 1) = 0.0_c_double   ! silent: statuses travel up instead
+        if (present(refinement_steps)) this%control(UMFPACK_IRSTEP + 1) = &
+            real(max(0, refinement_steps), c_double)
         if (present(ordering)) then
             select case (ordering)
             case (LU_ORDERING_DEFAULT, LU_ORDERING_METIS, LU_ORDERING_NATURAL, &
@@ -121,7 +170,7 @@ contains
             call this%free()
             return
         end if
-    end subroutine lu_factor
+    end subroutine factor_copies
 
     !> Solve A x = b for one right-hand side.
     subroutine lu_solve(this, b, x, stat)

@@ -9,7 +9,7 @@ module umfpack_c
               umfpack_di_free_symbolic, umfpack_di_free_numeric, umfpack_di_defaults
     public :: UMFPACK_CONTROL, UMFPACK_INFO, UMFPACK_A, UMFPACK_At
     public :: UMFPACK_PRL, UMFPACK_ORDERING, UMFPACK_STATUS, UMFPACK_LNZ, UMFPACK_UNZ, &
-              UMFPACK_FLOPS, UMFPACK_RCOND, UMFPACK_ORDERING_USED
+              UMFPACK_FLOPS, UMFPACK_RCOND, UMFPACK_ORDERING_USED, UMFPACK_IRSTEP
     public :: UMFPACK_ORDERING_CHOLMOD, UMFPACK_ORDERING_AMD, UMFPACK_ORDERING_METIS, &
               UMFPACK_ORDERING_NONE
     public :: UMFPACK_OK, UMFPACK_WARNING_singular_matrix, &
@@ -32,6 +32,7 @@ module umfpack_c
     ! C indices into Control and Info (add 1 in Fortran).
     integer, parameter :: UMFPACK_PRL = 0            !! Control: print level
     integer, parameter :: UMFPACK_ORDERING = 10      !! Control: fill-reducing ordering
+    integer, parameter :: UMFPACK_IRSTEP = 7         !! Control: iterative refinement steps
     integer, parameter :: UMFPACK_STATUS = 0         !! Info: status of the last call
     integer, parameter :: UMFPACK_ORDERING_USED = 19 !! Info
     integer, parameter :: UMFPACK_FLOPS = 42         !! Info: flops of the numeric phase
