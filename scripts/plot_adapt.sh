@@ -7,7 +7,7 @@
 # Usage: plot_adapt.sh OUTDIR [SUMMARY]   (SUMMARY: the summary.json to read, by default
 # OUTDIR's; nceig passes its own while the set is still being staged)
 set -euo pipefail
-source "$(dirname "$0")/plot_common.sh"
+source "$(dirname "$0")/lib/plot_common.sh"
 plot_begin adapt.csv "run nceig with &adapt tolerance > 0" "$@"
 tolerance=$(value adapt_tolerance)
 title="$(value element), lambda = $(value lambda), start $(value adapt_start_dofs) dofs"

@@ -7,7 +7,7 @@
 # Usage: plot_lambda_sweep.sh OUTDIR [SUMMARY]   (SUMMARY: the summary.json to read, by
 # default OUTDIR's; nceig passes its own while the set is still being staged)
 set -euo pipefail
-source "$(dirname "$0")/plot_common.sh"
+source "$(dirname "$0")/lib/plot_common.sh"
 plot_begin lambda_sweep.csv "run nceig with kind = 'lambda_sweep'" "$@"
 plus=$(value lambda_critical_plus)
 minus=$(value lambda_critical_minus)

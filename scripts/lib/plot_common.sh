@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: MIT
 # What the plot scripts (plot_lambda_sweep.sh, plot_adapt.sh) share, sourced after `set -u`:
-#     source "$(dirname "$0")/plot_common.sh"
+#     source "$(dirname "$0")/lib/plot_common.sh"
 #     plot_begin CSV_NAME 'how to make it' "$@"   # sets dir, csv, summary, terminal, tmp
 # plot_begin checks the arguments (OUTDIR [SUMMARY]) and the tools, and arranges that the
 # partial picture $tmp is removed if the script ends early (a failed gnuplot must leave
