@@ -5,7 +5,7 @@
 # Usage: scripts/bench_adapt.sh [--element E] [--start N] [REPEATS] [TOLERANCE ...]
 #   E: the adapted element (default p3), N: the starting N x N squares (default 4);
 #   defaults: 3 repeats, tolerances 1e-4 1e-6 1e-8 1e-10.
-# First a reference: the same loop to 1e-12 (P3; about 80 s on 2 cores) whose own estimate
+# First a reference: the same loop to 1e-12 (P3; 35 s on 2 idle cores) whose own estimate
 # bounds the error of the true errors below. Then each tolerance, REPEATS times: levels,
 # final dofs, wall time and peak memory (median; /usr/bin/time), the estimate and the true
 # error. Then uniform P1 and P2 meshes N = 8 ... 256 once each (wall time without the
