@@ -20,12 +20,9 @@ fi
 # smallest estimate, so that the tolerance line never sits on the frame
 ymin=$(awk -F, -v t="$tolerance" 'NR > 1 && $6 != "" && (m == "" || $6 < m) { m = $6 }
     END { if (m == "" || t < m) m = t; print m / 3 }' "$csv")
-gnuplot <<GNUPLOT
-set terminal $terminal
-set output '$tmp'
-set datafile separator ','
-# mu and the estimate are empty where a level has none: NaN there breaks the line
-cell(c) = strcol(c) eq '' ? NaN : column(c)
+{
+    gnuplot_preamble
+    cat <<GNUPLOT
 set multiplot layout 2, 1 title "nceig adaptive refinement: $title" font ',13'
 set grid xtics ytics mxtics mytics lc rgb '#dddddd'
 set logscale x
@@ -44,4 +41,5 @@ set ylabel 'lowest positive {/Symbol m} = critical c_n'
 plot '$csv' using 2:(cell(5)):(cell(5)*cell(6)) skip 1 with yerrorlines pt 7 ps 0.6 lw 1.5 lc rgb '#2ca02c' title '{/Symbol m} {/Symbol \261} estimate'
 unset multiplot
 GNUPLOT
+} | gnuplot
 plot_commit

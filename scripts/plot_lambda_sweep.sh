@@ -43,12 +43,9 @@ else
     mark "$plus" '{/Symbol l}_+' right
 fi
 
-gnuplot <<GNUPLOT
-set terminal $terminal
-set output '$tmp'
-set datafile separator ','
-# c_n and c_t are empty where no positive mu exists: NaN there breaks the line
-cell(c) = strcol(c) eq '' ? NaN : column(c)
+{
+    gnuplot_preamble
+    cat <<GNUPLOT
 set multiplot layout 2, 1 title "nceig lambda sweep: $title" font ',13'
 set grid xtics ytics mytics lc rgb '#dddddd'
 set logscale y
@@ -62,4 +59,5 @@ set ylabel 'critical c_t = {/Symbol m} |{/Symbol l}|'
 plot '$csv' using $xcol:(cell(3)) skip 1 with linespoints pt 7 ps 0.4 lw 1.5 lc rgb '#2ca02c' title 'c_t'
 unset multiplot
 GNUPLOT
+} | gnuplot
 plot_commit

@@ -31,5 +31,13 @@ plot_begin() {
 
 value() { jq -r --arg key "$1" '.[$key] // empty' "$summary"; }
 
+# gnuplot_preamble: the first gnuplot lines of every picture: the terminal, the partial
+# file, CSV input, and cell(c), the value of column c or NaN where it is empty (a value
+# nceig leaves empty, which breaks the line there).
+gnuplot_preamble() {
+    printf '%s\n' "set terminal $terminal" "set output '$tmp'" "set datafile separator ','" \
+        "cell(c) = strcol(c) eq '' ? NaN : column(c)"
+}
+
 # plot_commit: the drawn picture into place, whole.
 plot_commit() { mv -f "$tmp" "$picture_path"; }
