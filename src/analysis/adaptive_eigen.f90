@@ -172,13 +172,22 @@ contains
             if (row%estimated) line = line//', estimate '//short_real_text(row%error_estimate)
         end function level_line
 
+        !> Why the estimate is missing: no positive mu, its size (est%skipped), or the
+        !> warning its failure left (eigen_analysis: 'no error estimate for ...: why').
         function no_estimate_reason() result(reason)
             character(len=:), allocatable :: reason
+            character(len=*), parameter :: FAILED = 'no error estimate for the lowest positive mu: '
+            integer :: i
+            reason = 'the estimate failed'
             if (out%res%spec%lowest_positive() == 0) then
                 reason = 'no positive mu to adapt to'
-            else
-                reason = 'the enriched contact is too large for its dense reduction, or '// &
-                         'the estimate failed: see the warnings'
+            else if (allocated(out%res%error%skipped)) then
+                reason = out%res%error%skipped
+            else if (allocated(out%res%warnings)) then
+                do i = 1, size(out%res%warnings)
+                    if (index(out%res%warnings(i), FAILED) == 1) &
+                        reason = 'the estimate failed: '//trim(out%res%warnings(i)(len(FAILED) + 1:))
+                end do
             end if
         end function no_estimate_reason
     end subroutine adapt_eigen

@@ -134,7 +134,12 @@ contains
         if (stat%ok()) call build_contact(m_plus, prob%contact_part, dofs_plus, contact_plus, &
                                           stat)
         if (.not. stat%ok()) return
-        if (contact_plus%p() > max_contact) return
+        if (contact_plus%p() > max_contact) then
+            est%skipped = 'not computed: the enriched problem has '// &
+                to_string(contact_plus%p())//' contact nodes, more than the '// &
+                to_string(max_contact)//' its dense reduction takes'
+            return
+        end if
         call assemble_b(contact_plus, dofs_plus%n_free, lambda, b_plus, stat)
         if (stat%ok()) call factor_stiffness(k_plus, m_plus, dofs_plus, contact_plus, chol, &
                                              ignored, stat)
