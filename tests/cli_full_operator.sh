@@ -52,6 +52,26 @@ check 'full without cn_max: critical_cn is the lowest alone' \
     '[[ $(json "$work/lowest/summary.json" critical_cn) == "[$(json "$work/lowest/summary.json" critical_c_n)]" ]]'
 check 'full without cn_max: certified by ARPACK, not densely' \
     '[[ $(json "$work/lowest/summary.json" dense_decision) == false ]]'
+# Its factor: CHOLMOD's own ordering (the progress line says so), no contact-last block;
+# near the threshold lambda+ = 1.917 of 16 x 16 (mu ~ 1e5) ARPACK is undecided and the
+# dense decision factors again with the contact dofs last, then decides like 'reduced'.
+check 'full: K factored in CHOLMOD'"'"'s own ordering, once' \
+    '[[ $(grep -c "factor .*CHOLMOD, its own ordering" "$work/lowest.out") == 1 &&
+        $(grep -c "contact nodes last" "$work/lowest.out") == 0 ]]'
+for op in full reduced; do
+    cat >"$work/near_$op.nml" <<NML
+&mesh nx = 16, ny = 16, element = 'p1' /
+&analysis kind = 'eigen', lambda = 1.918 /
+&eigen solver = 'arpack', operator = '$op', estimate = 'off' /
+&output directory = '$work/near_$op', plot = .false., vtk = .false. /
+NML
+    "$nceig" "$work/near_$op.nml" >"$work/near_$op.out" 2>&1
+done
+n=$work/near_full/summary.json
+check 'full near the threshold: the dense decision, after a contact-last factor' \
+    '[[ $(json "$n" dense_decision) == true ]] && grep -q "contact nodes last" "$work/near_full.out"'
+check 'full near the threshold: the same lowest mu as reduced (1e-10)' \
+    'close "$(json "$n" lowest_positive_mu)" "$(json "$work/near_reduced/summary.json" lowest_positive_mu)" 1e-10'
 check 'full: --help documents operator and cn_max' \
     '"$nceig" --help | grep -q "operator = " && "$nceig" --help | grep -q "cn_max = "'
 cli_end

@@ -99,6 +99,7 @@ contains
         logical, intent(in), optional :: with_error_estimate
         type(cholesky_t) :: chol
         real(wp) :: start
+        logical :: full, refactor
 
         res%lambda = lambda
         start = wall_time()
@@ -109,14 +110,32 @@ contains
 
         res%solver = choose_solver(config%eigen%solver, prob%contact%p(), &
                                    config%eigen%dense_max_contact, config%eigen%operator)
-        call check_contact_memory(config, prob%contact%p(), contact_peak_blocks( &
-            res%solver == SOLVER_ARPACK .and. .not. abs(config%eigen%target) > 0.0_wp), stat)
-        if (.not. stat%ok()) return
-        call factor_stiffness(prob%k, prob%mesh, prob%dofs, prob%contact, chol, timings, stat)
-        call explain_singular_k(config, stat)
-        if (.not. stat%ok()) return
-        call eigen_with_factor(config, prob, chol, res, timings, stat)
-        call chol%free()
+        full = operator_name(res%solver, config%eigen%operator) == 'full'
+        ! The full operator only solves with K: CHOLMOD's own ordering, without the dense
+        ! 2p x 2p block of the contact dofs last, which costs O(p^3) and dominates when p is
+        ! a large part of n. That factor is made only if the dense decision is needed.
+        if (full) then
+            call factor_stiffness(prob%k, prob%mesh, prob%dofs, prob%contact, chol, timings, &
+                                  stat, contact_last=.false.)
+            call explain_singular_k(config, stat)
+            if (.not. stat%ok()) return
+            call eigen_with_factor(config, prob, chol, res, timings, stat, &
+                                   contact_last=.false., needs_contact_last=refactor)
+            call chol%free()
+            if (.not. (stat%ok() .and. refactor)) return
+        end if
+        if (.not. full .or. refactor) then
+            call check_contact_memory(config, prob%contact%p(), contact_peak_blocks( &
+                res%solver == SOLVER_ARPACK .and. .not. abs(config%eigen%target) > 0.0_wp), &
+                stat)
+            if (.not. stat%ok()) return
+            call factor_stiffness(prob%k, prob%mesh, prob%dofs, prob%contact, chol, timings, &
+                                  stat)
+            call explain_singular_k(config, stat)
+            if (.not. stat%ok()) return
+            call eigen_with_factor(config, prob, chol, res, timings, stat)
+            call chol%free()
+        end if
         if (.not. (stat%ok() .and. present(with_error_estimate))) return
         if (.not. with_error_estimate) return
         select case (trim(config%eigen%estimate))
@@ -160,9 +179,11 @@ contains
 
     !> The spectrum at res%lambda (res%b assembled, res%solver chosen) from a factor of K made
     !> by factor_stiffness, which stays allocated for the caller (the threshold analysis reads
-    !> the contact blocks off the same factor). A caller that already has Kt_nn and Kt_nt
+    !> the contact blocks off the same factor; the full operator may use one without the
+    !> contact dofs last). A caller that already has Kt_nn and Kt_nt
     !> passes them to spare the dense solver forming them again.
-    subroutine eigen_with_factor(config, prob, chol, res, timings, stat, kt_nn, kt_nt)
+    subroutine eigen_with_factor(config, prob, chol, res, timings, stat, kt_nn, kt_nt, &
+                                 contact_last, needs_contact_last)
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: prob
         type(cholesky_t), intent(in) :: chol
@@ -170,6 +191,11 @@ contains
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
         real(wp), intent(in), optional :: kt_nn(:, :), kt_nt(:, :)   !! (p, p) both
+        !> `chol` has the contact dofs last (default); without, only the full operator runs,
+        !> and `needs_contact_last` tells that it needs that factor to decide (see
+        !> arpack_spectrum: nothing else is computed then)
+        logical, intent(in), optional :: contact_last
+        logical, intent(out), optional :: needs_contact_last
         type(arpack_options_t) :: options
         real(wp) :: start, reduction_seconds
         character(len=:), allocatable :: certificate   !! why ARPACK's answer is not certified
@@ -187,11 +213,19 @@ contains
                 cn_max=in_units(config%eigen%cn_max, -prob%mu_exponent()), &
                 full=config%eigen%operator == 'full', &
                 unit_exponent=prob%mu_exponent(), target_input=config%eigen%target)
+            if (present(contact_last)) options%contact_last = contact_last
             call arpack_spectrum(prob%k, res%b, chol, prob%contact, res%lambda, options, n_keep, &
-                                 res%spec, certificate, stat)
+                                 res%spec, certificate, stat, needs_contact_last)
             if (stat%code == STATUS_BAD_INPUT) stat%message = config%input_file//': '// &
                                                               stat%message
             if (.not. stat%ok()) return
+            if (present(needs_contact_last)) then
+                if (needs_contact_last) then   ! nothing computed: the caller factors again
+                    call timings%add(PHASE_EIGEN, wall_time() - start, ': arpack on the '// &
+                        'full operator, undecided: the dense decision needs the contact dofs last')
+                    return
+                end if
+            end if
             call timings%add(PHASE_EIGEN, wall_time() - start, ': arpack on the '// &
                              operator_name(res%solver, config%eigen%operator)//' operator, '// &
                              to_string(res%spec%n())//' eigenvalues')

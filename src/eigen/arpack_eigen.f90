@@ -86,6 +86,9 @@ module arpack_eigen
         real(wp) :: cn_max = 0.0_wp
         !> ARPACK on (K - sigma B)^-1 B in the n free dofs instead of the p x p reduction
         logical :: full = .false.
+        !> the factor of K has the contact dofs last (factor_stiffness): the reduced operator
+        !> and the dense decision read its trailing block; the full operator only solves
+        logical :: contact_last = .true.
         !> For messages: the problem solved is the input one with mu divided by
         !> 2^unit_exponent (problem_t), and `target_input` is &eigen target as given.
         integer :: unit_exponent = 0
@@ -445,7 +448,7 @@ contains
     !> the reduced matrix are computed densely, which decides every case. The same holds for
     !> both operators (options%full); the full one's eigenvectors come from ARPACK itself.
     subroutine arpack_spectrum(k, b, chol, contact, lambda, options, n_keep, spec, warning, &
-                               stat)
+                               stat, needs_contact_last)
         type(csr_matrix_t), intent(in) :: k, b
         type(cholesky_t), intent(in), target :: chol
         type(contact_t), intent(in) :: contact
@@ -455,6 +458,10 @@ contains
         type(spectrum_t), intent(out) :: spec
         character(len=:), allocatable, intent(out) :: warning
         type(status_t), intent(out) :: stat
+        !> set (and nothing computed) when the full operator on a factor without the contact
+        !> dofs last (options%contact_last false) is undecided: the dense decision needs that
+        !> factor, which the caller makes and calls again with
+        logical, intent(out), optional :: needs_contact_last
         type(contact_operator_t) :: op, reduced
         type(ritz_t) :: run
         complex(wp), allocatable :: mu(:)
@@ -463,6 +470,7 @@ contains
         logical :: found_before, confirmed, lifted
 
         warning = ''
+        if (present(needs_contact_last)) needs_contact_last = .false.
         p = contact%p()
         cap = p - 2   ! ARPACK needs nev + 2 <= ncv <= n
         if (cap < 1) then
@@ -487,6 +495,13 @@ contains
         if (.not. confirmed) then
             ! Undecided: all p eigenvalues of the reduced p x p matrix decide (O(p^3)).
             if (p <= DENSE_FALLBACK_MAX) then
+                if (op%full .and. .not. options%contact_last) then
+                    if (present(needs_contact_last)) needs_contact_last = .true.
+                    if (.not. present(needs_contact_last)) call stat%fail(STATUS_SOLVER, &
+                        'arpack: the dense decision needs a factor of K with the contact ' &
+                        //'dofs last')
+                    return
+                end if
                 if (op%full) then
                     call reduced%setup(chol, contact, lambda, options%target, stat, &
                                        options%target_input, options%unit_exponent)

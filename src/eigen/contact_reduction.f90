@@ -88,8 +88,10 @@ contains
     !> dissection on the node graph with the contact nodes last (node_ordering), then CHOLMOD
     !> with that ordering, so that `contact_tail` can read K^-1 on the contact dofs off the
     !> factor. Adds the ordering and factorization times to `timings`. A singular K is
-    !> explained (the usual cause: no Dirichlet boundary).
-    subroutine factor_stiffness(k, m, dofs, contact, chol, timings, stat)
+    !> explained (the usual cause: no Dirichlet boundary). `contact_last` = .false. (for
+    !> the full ARPACK operator, which only solves with K) leaves the ordering to CHOLMOD:
+    !> no dense 2p x 2p trailing block, which dominates when p is a large part of n.
+    subroutine factor_stiffness(k, m, dofs, contact, chol, timings, stat, contact_last)
         type(csr_matrix_t), intent(in) :: k
         type(mesh_t), intent(in) :: m
         type(dof_map_t), intent(in) :: dofs
@@ -97,26 +99,43 @@ contains
         type(cholesky_t), intent(inout) :: chol
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
+        logical, intent(in), optional :: contact_last   !! default .true.
         integer, allocatable :: permutation(:)
         real(wp) :: start
 
         start = wall_time()
+        if (present(contact_last)) then
+            if (.not. contact_last) then
+                call chol%factor(k, stat)
+                call explain(stat, 'CHOLMOD, its own ordering')
+                return
+            end if
+        end if
         call nested_dissection_last(m, dofs, contact%nodes, permutation, stat)
         if (.not. stat%ok()) return
         call timings%add(PHASE_ORDERING, wall_time() - start, ': METIS, contact nodes last')
         start = wall_time()
         call chol%factor(k, stat, ordering=ORDERING_GIVEN, permutation=permutation, &
                          keep_last=2*contact%p())
-        if (stat%code == STATUS_SINGULAR) then
-            stat%message = 'the stiffness matrix K is singular: is there a Dirichlet boundary ' &
-                //'that stops every rigid motion? ('//stat%message//')'
-            return
-        else if (.not. stat%ok()) then
-            stat%message = 'stiffness matrix K: '//stat%message
-            return
-        end if
-        call timings%add(PHASE_FACTOR, wall_time() - start, ': CHOLMOD, '//to_string(k%n())// &
-                         ' dofs')
+        call explain(stat, 'CHOLMOD')
+
+    contains
+
+        !> A failed factor's message, or the factor's time.
+        subroutine explain(stat, what)
+            type(status_t), intent(inout) :: stat
+            character(len=*), intent(in) :: what
+            if (stat%code == STATUS_SINGULAR) then
+                stat%message = 'the stiffness matrix K is singular: is there a Dirichlet ' &
+                    //'boundary that stops every rigid motion? ('//stat%message//')'
+                return
+            else if (.not. stat%ok()) then
+                stat%message = 'stiffness matrix K: '//stat%message
+                return
+            end if
+            call timings%add(PHASE_FACTOR, wall_time() - start, ': '//what//', '// &
+                             to_string(k%n())//' dofs')
+        end subroutine explain
     end subroutine factor_stiffness
 
     !> The trailing 2p x 2p block L_c of a factor made by factor_stiffness, and `slot`(c, a):
