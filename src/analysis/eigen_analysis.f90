@@ -111,6 +111,7 @@ contains
         res%solver = choose_solver(config%eigen%solver, prob%contact%p(), &
                                    config%eigen%dense_max_contact, config%eigen%operator)
         full = operator_name(res%solver, config%eigen%operator) == 'full'
+        refactor = .false.
         ! The full operator only solves with K: CHOLMOD's own ordering, without the dense
         ! 2p x 2p block of the contact dofs last, which costs O(p^3) and dominates when p is
         ! a large part of n. That factor is made only if the dense decision is needed.
