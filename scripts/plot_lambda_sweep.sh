@@ -2,8 +2,9 @@
 # SPDX-License-Identifier: MIT
 # Draw OUTDIR/lambda_sweep.png from OUTDIR/lambda_sweep.csv and OUTDIR/summary.json of an
 # nceig run with kind = 'lambda_sweep': critical c_n and c_t against lambda on log y axes,
-# the thresholds lambda+ and lambda- as dashed vertical lines. A 'log' sweep (one sign) is
-# drawn against |lambda| on a log axis. Needs gnuplot (Debian gnuplot-nox: pngcairo) and jq.
+# the thresholds lambda+ and lambda- as dashed vertical lines, error bars where the sweep
+# was adapted (&adapt). A 'log' sweep (one sign) is drawn against |lambda| on a log axis.
+# Needs gnuplot (Debian gnuplot-nox: pngcairo) and jq.
 # Usage: plot_lambda_sweep.sh OUTDIR [SUMMARY]   (SUMMARY: the summary.json to read, by
 # default OUTDIR's; nceig passes its own while the set is still being staged)
 set -euo pipefail
@@ -43,6 +44,13 @@ else
     mark "$plus" '{/Symbol l}_+' right
 fi
 
+# An adapted sweep (&adapt) has an error estimate per point (column 6): error bars then.
+style=linespoints cn_bar='' ct_bar='' bar_title=''
+if awk -F, 'NR > 1 && $6 != "" { found = 1 } END { exit !found }' "$csv"; then
+    style=yerrorlines cn_bar=':(cell(2)*cell(6))' ct_bar=':(cell(3)*cell(6))'
+    bar_title=' {/Symbol \261} error estimate'
+fi
+
 {
     gnuplot_preamble
     cat <<GNUPLOT
@@ -54,9 +62,9 @@ set key top right
 set xlabel "$xlabel"
 $marks
 set ylabel 'critical c_n = lowest positive {/Symbol m}'
-plot '$csv' using $xcol:(cell(2)) skip 1 with linespoints pt 7 ps 0.4 lw 1.5 lc rgb '#1f77b4' title 'c_n'
+plot '$csv' using $xcol:(cell(2))$cn_bar skip 1 with $style pt 7 ps 0.4 lw 1.5 lc rgb '#1f77b4' title 'c_n$bar_title'
 set ylabel 'critical c_t = {/Symbol m} |{/Symbol l}|'
-plot '$csv' using $xcol:(cell(3)) skip 1 with linespoints pt 7 ps 0.4 lw 1.5 lc rgb '#2ca02c' title 'c_t'
+plot '$csv' using $xcol:(cell(3))$ct_bar skip 1 with $style pt 7 ps 0.4 lw 1.5 lc rgb '#2ca02c' title 'c_t$bar_title'
 unset multiplot
 GNUPLOT
 } | gnuplot

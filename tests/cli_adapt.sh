@@ -91,6 +91,29 @@ check 'no positive mu: adapt.png not drawn, said why' \
 check 'no positive mu: only the listed files' \
     '[[ $(ls -A "$work/none" | sort | tr "\n" " ") == "adapt.csv eigenvalues.csv mesh.msh mode_001.png mode_001.vtu summary.json " ]]'
 
+# A lambda sweep to a tolerance: every row has its estimate within it (or says none), the
+# meshes grow or are reused, the same mu as a single adaptive run at one of its lambdas.
+cat >"$work/sweep.nml" <<NML
+&mesh nx = 2, ny = 2, element = 'p2' /
+&analysis kind = 'lambda_sweep', lambda = 5.0 /
+&sweep lambdas = 4.0, 5.0, 6.0, 1.0 /
+&adapt tolerance = 1e-5 /
+&output directory = '$work/sweep', vtk = .false. /
+NML
+"$nceig" "$work/sweep.nml" >"$work/stdout" 2>"$work/err"; rc=$?
+w=$work/sweep/lambda_sweep.csv
+check 'sweep: exit 0, nothing on stderr' '[[ $rc -eq 0 && ! -s "$work/err" ]]'
+check 'sweep: every row with a mu has its estimate <= 1e-5' \
+    'awk -F, "NR > 1 && \$2 != \"\" && !(\$6 != \"\" && \$6 <= 1e-5) { bad = 1 } END { exit bad }" "$w"'
+check 'sweep: no positive mu at lambda = 1 (below the threshold), no estimate' \
+    '[[ $(sed -n 5p "$w" | cut -d, -f2,6) == "," ]]'
+check 'sweep: summary counts the adapted rows and the reused meshes' \
+    '[[ $(json "$work/sweep/summary.json" sweep_n_adapted) == 4 && -n $(json "$work/sweep/summary.json" sweep_n_mesh_reused) ]]'
+# lambda = 5 from the mesh of lambda = 4 against lambda = 5 alone: each within its estimate
+# (1e-5), so within 2e-5 of each other plus the ratio's spread: 5e-5 relative
+check 'sweep: lambda = 5 agrees with the single adaptive run (5e-5)' \
+    'close "$(sed -n 3p "$w" | cut -d, -f2)" "$(json "$work/out/summary.json" lowest_positive_mu)" 5e-5'
+
 # bad NAME WORD... -- SETTINGS: one stderr line with every WORD, exit 2, no output.
 bad() {
     local name=$1
@@ -112,7 +135,7 @@ bad 'theta 0' '&adapt' 'theta' -- --set adapt%theta=0
 bad 'max_levels < 0' '&adapt' 'max_levels' -- --set adapt%max_levels=-1
 bad 'max_dofs below the start' '&adapt' 'max_dofs = 20' 'free dofs of the starting mesh' \
     -- --set adapt%max_dofs=20
-bad 'another analysis' '&adapt' 'tolerance' "kind = 'threshold'" -- \
+bad 'another analysis' '&adapt' 'tolerance' "kind = 'threshold'" 'eigen' 'lambda_sweep' -- \
     --set analysis%kind=threshold
 bad 'quadrilaterals' '&adapt' 'tolerance' "element = 'q2'" -- --set mesh%element=q2
 bad 'p4 (no enriched space)' '&adapt' "element = 'p4'" -- --set mesh%element=p4

@@ -25,6 +25,7 @@ module threshold_analysis
     use critical_lambda, only: thresholds_t, pencil_thresholds, confirm_thresholds, &
                                lowest_positive_mu
     use critical_set, only: critical_set_t, find_critical_set
+    use adaptive_eigen, only: adapt_eigen, adaptive_result_t
     use eigen_analysis, only: eigen_result_t, choose_solver, eigen_with_factor, SOLVER_ARPACK, &
                               to_input_units
     implicit none
@@ -41,7 +42,13 @@ module threshold_analysis
         real(wp), allocatable :: mu(:)           !! lowest positive mu where found(i)
         logical, allocatable :: found(:)
         !> positive real eigenvalues at lambda(i); -1 where ARPACK decided (it sees a few)
+        !> or the point was adapted
         integer, allocatable :: n_positive(:)
+        !> with &adapt: |relative error estimate| of mu(i) (negative: none) and the free dofs
+        !> of the mesh it was computed on; without, -1 and the dofs of the one mesh
+        real(wp), allocatable :: error_estimate(:)
+        integer, allocatable :: n_dofs(:)
+        integer :: n_reused = 0                  !! &adapt: points that refined nothing
         integer :: n_arpack = 0                  !! points certified by ARPACK
         integer :: n_dense = 0                   !! points decided densely (incl. fallbacks)
     end type sweep_curve_t
@@ -136,7 +143,18 @@ contains
         res%sweep%lambda = sweep_lambdas(config%sweep)
         associate (n => size(res%sweep%lambda))
             allocate (res%sweep%mu(n), res%sweep%found(n), res%sweep%n_positive(n))
+            allocate (res%sweep%error_estimate(n), source=-1.0_wp)
+            allocate (res%sweep%n_dofs(n), source=prob%dofs%n_free)
         end associate
+        if (config%adapt%tolerance > 0.0_wp) then
+            call adaptive_sweep(config, prob, res%sweep, timings, stat)
+            if (.not. stat%ok()) return
+            res%time_sweep = wall_time() - start
+            call timings%note('sweep      '//seconds_text(res%time_sweep)//' s: '// &
+                to_string(size(res%sweep%lambda))//' lambdas, adapted to '// &
+                seconds_text(config%adapt%tolerance))
+            return
+        end if
         options = arpack_options_t(nev=config%eigen%nev, ncv=config%eigen%ncv, &
             maxit=config%eigen%maxit, tol=config%eigen%tol)
         do i = 1, size(res%sweep%lambda)
@@ -182,6 +200,43 @@ contains
             if (stat%ok()) mu = real(values, wp)
         end subroutine real_to_input_units
     end subroutine solve_thresholds
+
+    !> The curve with &adapt: at each lambda the adaptive loop of analysis 'eigen' until the
+    !> estimate meets the tolerance, starting from the last mesh that met it at a lambda
+    !> before (the mesh of a neighbouring lambda is usually fine already: the point then
+    !> costs one solve and one estimate). A point whose loop stops short keeps its last mu
+    !> and estimate, and its mesh is not passed on.
+    subroutine adaptive_sweep(config, prob, curve, timings, stat)
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(in) :: prob
+        type(sweep_curve_t), intent(inout) :: curve
+        type(timings_t), intent(inout) :: timings
+        type(status_t), intent(out) :: stat
+        type(config_t) :: point_config
+        type(problem_t) :: current
+        type(adaptive_result_t) :: out
+        !> a point's phases would flood the progress lines; the sweep's time is time_sweep
+        type(timings_t) :: quiet
+        integer :: i, lowest
+
+        current = prob
+        point_config = config
+        do i = 1, size(curve%lambda)
+            call timings%tick('sweep, lambda', i, size(curve%lambda))
+            point_config%analysis%lambda = curve%lambda(i)
+            call adapt_eigen(point_config, current, out, quiet, stat)
+            if (.not. stat%ok()) return
+            lowest = out%res%spec%lowest_positive()
+            curve%found(i) = lowest > 0
+            curve%mu(i) = 0.0_wp
+            if (curve%found(i)) curve%mu(i) = real(out%res%spec%mu(lowest), wp)
+            curve%n_positive(i) = -1
+            if (out%res%error%computed) curve%error_estimate(i) = abs(out%res%error%relative)
+            curve%n_dofs(i) = out%prob%dofs%n_free
+            if (size(out%levels) == 1) curve%n_reused = curve%n_reused + 1
+            if (out%converged) current = out%prob
+        end do
+    end subroutine adaptive_sweep
 
     !> The lambdas the boundary search counts positive mu at: a sweep's own lambdas (it solves
     !> there anyway), or for 'threshold' every k-th of them, at most THRESHOLD_SCAN_POINTS with

@@ -1,6 +1,6 @@
 ! SPDX-License-Identifier: MIT
 !> analysis = 'threshold' and 'lambda_sweep': the files of an eigen run at &analysis lambda,
-!> lambda_sweep.csv for a sweep (and its plot once committed), summary.json with the threshold
+!> lambda_sweep.csv for a sweep (and lambda_sweep.png), summary.json with the threshold
 !> and sweep keys; and the lines they add to the stdout summary.
 module threshold_run
     use kinds, only: wp
@@ -28,7 +28,7 @@ module threshold_run
 
     character(len=*), parameter :: SWEEP_FILE = 'lambda_sweep.csv'
     character(len=*), parameter :: SWEEP_HEADER = &
-        'lambda,critical_c_n,critical_c_t,slip_sign,n_positive'
+        'lambda,critical_c_n,critical_c_t,slip_sign,n_positive,error_estimate,n_dofs'
     character(len=*), parameter :: SIDE_NAMES(2) = [character(len=5) :: 'plus', 'minus']
 
     !> 'threshold' (with_sweep false) or 'lambda_sweep'.
@@ -276,17 +276,26 @@ contains
         call summary%add_integer('sweep_n_with_positive_mu', count(res%sweep%found))
         call summary%add_integer('sweep_n_arpack', res%sweep%n_arpack)
         call summary%add_integer('sweep_n_dense', res%sweep%n_dense)
+        ! with &adapt: the points adapted (every one), those whose mesh needed no refinement
+        ! (the previous point's served), the largest estimate met
+        if (config%adapt%tolerance > 0.0_wp) then
+            call summary%add_integer('sweep_n_adapted', size(res%sweep%lambda))
+            call summary%add_integer('sweep_n_mesh_reused', res%sweep%n_reused)
+            call summary%add_real_or_null('sweep_max_error_estimate', &
+                maxval(res%sweep%error_estimate), any(res%sweep%error_estimate >= 0.0_wp))
+        end if
         call summary%add_real('time_sweep_s', res%time_sweep)
     end subroutine add_sweep_keys
 
-    !> lambda,critical_c_n,critical_c_t,slip_sign,n_positive: one row per lambda in input
-    !> order; c_n and c_t are empty where no positive real mu exists.
+    !> lambda,critical_c_n,critical_c_t,slip_sign,n_positive,error_estimate,n_dofs: one row
+    !> per lambda in input order; c_n and c_t are empty where no positive real mu exists,
+    !> error_estimate where none was computed (always without &adapt).
     subroutine write_sweep_csv(path, curve, stat)
         character(len=*), intent(in) :: path
         type(sweep_curve_t), intent(in) :: curve
         type(status_t), intent(out) :: stat
         type(csv_writer_t) :: csv
-        character(len=:), allocatable :: values
+        character(len=:), allocatable :: values, estimate
         integer :: i
 
         call csv%open(path, SWEEP_HEADER)
@@ -294,8 +303,11 @@ contains
             values = ','
             if (curve%found(i)) values = real_to_text(curve%mu(i))//','// &
                 real_to_text(critical_c_t(curve%mu(i), curve%lambda(i)))
+            estimate = ''
+            if (curve%error_estimate(i) >= 0.0_wp) estimate = real_to_text(curve%error_estimate(i))
             call csv%row(real_to_text(curve%lambda(i))//','//values//','// &
-                to_string(slip_sign(curve%lambda(i)))//','//to_string(curve%n_positive(i)))
+                to_string(slip_sign(curve%lambda(i)))//','//to_string(curve%n_positive(i))// &
+                ','//estimate//','//to_string(curve%n_dofs(i)))
         end do
         call csv%close(stat)
     end subroutine write_sweep_csv

@@ -111,8 +111,8 @@ module run_config
         integer :: max_iterations = 50
     end type solve_config_t
 
-    !> &adapt (analysis = 'eigen'): refine the mesh by newest-vertex bisection until the error
-    !> estimate of the lowest positive mu is at most `tolerance` (0: no adaptation).
+    !> &adapt (analysis 'eigen', 'lambda_sweep'): refine the mesh by newest-vertex bisection
+    !> until the error estimate of the lowest positive mu is at most `tolerance` (0: none).
     type, public :: adapt_config_t
         real(wp) :: tolerance = 0.0_wp      !! relative, 0 <= tolerance < 1; 0 is off
         integer :: max_dofs = 1000000       !! no level solves on more free dofs than this
