@@ -48,7 +48,7 @@ module threshold_analysis
         !> of the mesh it was computed on; without, -1 and the dofs of the one mesh
         real(wp), allocatable :: error_estimate(:)
         integer, allocatable :: n_dofs(:)
-        integer :: n_reused = 0                  !! &adapt: points that refined nothing
+        integer :: n_reused = 0                  !! &adapt: points met with no refinement
         integer :: n_arpack = 0                  !! points certified by ARPACK
         integer :: n_dense = 0                   !! points decided densely (incl. fallbacks)
     end type sweep_curve_t
@@ -233,7 +233,7 @@ contains
             curve%n_positive(i) = -1
             if (out%res%error%computed) curve%error_estimate(i) = abs(out%res%error%relative)
             curve%n_dofs(i) = out%prob%dofs%n_free
-            if (size(out%levels) == 1) curve%n_reused = curve%n_reused + 1
+            if (out%converged .and. size(out%levels) == 1) curve%n_reused = curve%n_reused + 1
             if (out%converged) current = out%prob
         end do
     end subroutine adaptive_sweep
