@@ -99,7 +99,7 @@ contains
         logical, intent(in), optional :: with_error_estimate
         type(cholesky_t) :: chol
         real(wp) :: start
-        logical :: full, refactor
+        logical :: contact_last, refactor
 
         res%lambda = lambda
         start = wall_time()
@@ -110,33 +110,28 @@ contains
 
         res%solver = choose_solver(config%eigen%solver, prob%contact%p(), &
                                    config%eigen%dense_max_contact, config%eigen%operator)
-        full = operator_name(res%solver, config%eigen%operator) == 'full'
-        refactor = .false.
         ! The full operator only solves with K: CHOLMOD's own ordering, without the dense
         ! 2p x 2p block of the contact dofs last, which costs O(p^3) and dominates when p is
-        ! a large part of n. That factor is made only if the dense decision is needed.
-        if (full) then
+        ! a large part of n. The contact-last factor follows only if the dense decision needs
+        ! it; every other run makes that one from the start.
+        contact_last = operator_name(res%solver, config%eigen%operator) /= 'full'
+        do
+            if (contact_last) then
+                call check_contact_memory(config, prob%contact%p(), contact_peak_blocks( &
+                    res%solver == SOLVER_ARPACK .and. .not. abs(config%eigen%target) > 0.0_wp), &
+                    stat)
+                if (.not. stat%ok()) return
+            end if
             call factor_stiffness(prob%k, prob%mesh, prob%dofs, prob%contact, chol, timings, &
-                                  stat, contact_last=.false.)
+                                  stat, contact_last)
             call explain_singular_k(config, stat)
             if (.not. stat%ok()) return
             call eigen_with_factor(config, prob, chol, res, timings, stat, &
-                                   contact_last=.false., needs_contact_last=refactor)
+                                   contact_last=contact_last, needs_contact_last=refactor)
             call chol%free()
-            if (.not. (stat%ok() .and. refactor)) return
-        end if
-        if (.not. full .or. refactor) then
-            call check_contact_memory(config, prob%contact%p(), contact_peak_blocks( &
-                res%solver == SOLVER_ARPACK .and. .not. abs(config%eigen%target) > 0.0_wp), &
-                stat)
-            if (.not. stat%ok()) return
-            call factor_stiffness(prob%k, prob%mesh, prob%dofs, prob%contact, chol, timings, &
-                                  stat)
-            call explain_singular_k(config, stat)
-            if (.not. stat%ok()) return
-            call eigen_with_factor(config, prob, chol, res, timings, stat)
-            call chol%free()
-        end if
+            if (.not. (stat%ok() .and. refactor)) exit
+            contact_last = .true.
+        end do
         if (.not. (stat%ok() .and. present(with_error_estimate))) return
         if (.not. with_error_estimate) return
         select case (trim(config%eigen%estimate))
@@ -202,6 +197,7 @@ contains
         character(len=:), allocatable :: certificate   !! why ARPACK's answer is not certified
         integer :: n_keep
 
+        if (present(needs_contact_last)) needs_contact_last = .false.
         n_keep = max(1, config%output%modes)
         start = wall_time()
         certificate = ''
