@@ -19,7 +19,7 @@ nus=("$@")
 command -v jq >/dev/null || { echo "continuum_table: needs jq" >&2; exit 1; }
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-key() { jq -r --arg key "$2" '.[$key] // empty' "$1"; }
+source "$root/scripts/lib/bench_common.sh"   # key FILE KEY
 
 echo "# nceig $("$nceig" --version | cut -d' ' -f2), $(nproc) cores, tolerance $tolerance," \
     "load at start: $(cut -d' ' -f1-3 /proc/loadavg)"

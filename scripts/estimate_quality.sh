@@ -18,7 +18,7 @@ command -v jq >/dev/null || { echo "estimate_quality: needs jq" >&2; exit 1; }
 command -v gmsh >/dev/null || { echo "estimate_quality: needs gmsh" >&2; exit 1; }
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-key() { jq -r --arg key "$2" '.[$key] // empty' "$1"; }
+source "$root/scripts/lib/bench_common.sh"   # key FILE KEY
 
 for order in 2 3; do
     gmsh "$root/input/meshes/half_contact.geo" -2 -clmax 0.25 -order $order -format msh41 \

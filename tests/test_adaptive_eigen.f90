@@ -7,6 +7,7 @@ program test_adaptive_eigen
     use kinds, only: wp
     use status, only: status_t, STATUS_BAD_INPUT
     use testing, only: test_suite_t
+    use fixtures, only: square_scene
     use run_config, only: config_t
     use timer, only: timings_t
     use problem, only: problem_t, build_problem
@@ -28,18 +29,13 @@ program test_adaptive_eigen
 
 contains
 
-    !> The reference scene: unit square, top fixed, contact on the bottom, lambda = 5.
+    !> The reference scene (fixtures' square_scene, lambda = 5) adapted to `tolerance`.
     function reference_config(n, element, tolerance) result(config)
         integer, intent(in) :: n
         character(len=*), intent(in) :: element
         real(wp), intent(in) :: tolerance
         type(config_t) :: config
-        config%input_file = 'test'
-        config%mesh%nx = n
-        config%mesh%ny = n
-        config%mesh%element = element
-        config%analysis%kind = 'eigen'
-        config%analysis%lambda = 5.0_wp
+        call square_scene(n, element, 'right', config)
         config%adapt%tolerance = tolerance
     end function reference_config
 
