@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT
 # &adapt end to end: the loop meets its tolerance and writes adapt.csv, adapt.png, the final
 # mode with its error indicators and mesh.msh, which nceig reads back to the same problem
-# and eigenvalue and can adapt further; a limit reached is exit 0 with a warning in
+# and eigenvalue and can adapt further; the same for the critical lambdas and a sweep; a limit reached is exit 0 with a warning in
 # summary.json and on stdout; bad input is one stderr line naming &adapt and the variable,
 # exit 2, no output. Usage: cli_adapt.sh NCEIG SOURCE_DIR
 set -u
@@ -121,6 +121,47 @@ check 'sweep: summary counts the adapted rows and the reused meshes' \
 check 'sweep: lambda = 5 agrees with the single adaptive run (5e-5)' \
     'close "$(sed -n 3p "$w" | cut -d, -f2)" "$(json "$work/out/summary.json" lowest_positive_mu)" 5e-5'
 
+# The critical lambdas to a tolerance: both sides' estimates in summary.json and adapt.csv
+# within it, on one final mesh whose threshold, read back, is the same number; the mirror
+# symmetry of the square gives lambda- = -lambda+ (the meshes are not mirror images: each
+# side's own error, 1e-6, bounds the difference with the ratio's spread: 3e-6 relative).
+cat >"$work/threshold.nml" <<NML
+&mesh nx = 4, ny = 4, element = 'p2' /
+&analysis kind = 'threshold', lambda = 5.0 /
+&adapt tolerance = 1e-6 /
+&output directory = '$work/threshold', vtk = .false. /
+NML
+"$nceig" "$work/threshold.nml" >"$work/stdout" 2>"$work/err"; rc=$?
+s=$work/threshold/summary.json
+check 'threshold: exit 0, nothing on stderr' '[[ $rc -eq 0 && ! -s "$work/err" ]]'
+check 'threshold: converged, both estimates <= 1e-6' '[[ $(json "$s" adapt_converged) == true ]] &&
+    awk -v p="$(json "$s" lambda_critical_plus_error_estimate)" \
+        -v m="$(json "$s" lambda_critical_minus_error_estimate)" \
+        "BEGIN { exit !(p > 0 && p <= 1e-6 && m > 0 && m <= 1e-6) }"'
+check 'threshold: both confirmed' '[[ $(json "$s" lambda_critical_plus_confirmed) == true &&
+    $(json "$s" lambda_critical_minus_confirmed) == true ]]'
+check 'threshold: lambda- = -lambda+ (3e-6)' \
+    'close "$(json "$s" lambda_critical_plus)" "$(awk -v m="$(json "$s" lambda_critical_minus)" "BEGIN { printf \"%.17g\", -m }")" 3e-6'
+csv=$work/threshold/adapt.csv
+check 'threshold adapt.csv: header' '[[ $(head -n 1 "$csv") == level,n_dofs,n_contact,n_cells,lambda_plus,error_estimate_plus,lambda_minus,error_estimate_minus,time_s ]]'
+check 'threshold adapt.csv: the last row is the summary'\''s' \
+    '[[ $(tail -n 1 "$csv" | cut -d, -f2) == $(json "$s" n_dofs) &&
+        $(tail -n 1 "$csv" | cut -d, -f5) == $(json "$s" lambda_critical_plus) ]]'
+check 'threshold: stdout gives each estimate' \
+    '[[ $(grep -c "relative error estimate .* (p3 enrichment)" "$work/stdout") -eq 2 ]]'
+cp "$work/threshold/mesh.msh" "$work/threshold.msh"
+cat >"$work/threshold_back.nml" <<NML
+&mesh source = 'gmsh', file = '$work/threshold.msh', dirichlet = 'top',
+      neumann = 'left right', contact = 'bottom' /
+&analysis kind = 'threshold', lambda = 5.0 /
+&output directory = '$work/threshold_back', vtk = .false., plot = .false. /
+NML
+"$nceig" "$work/threshold_back.nml" >/dev/null 2>"$work/err"; rc=$?
+b=$work/threshold_back/summary.json
+check 'threshold: mesh.msh reads back to the same lambda+ (1e-12) and estimate (1e-6 of it)' \
+    '[[ $rc -eq 0 ]] && close "$(json "$b" lambda_critical_plus)" "$(json "$s" lambda_critical_plus)" 1e-12 &&
+    close "$(json "$b" lambda_critical_plus_error_estimate)" "$(json "$s" lambda_critical_plus_error_estimate)" 1e-6'
+
 # bad NAME WORD... -- SETTINGS: one stderr line with every WORD, exit 2, no output.
 bad() {
     local name=$1
@@ -142,8 +183,8 @@ bad 'theta 0' '&adapt' 'theta' -- --set adapt%theta=0
 bad 'max_levels < 0' '&adapt' 'max_levels' -- --set adapt%max_levels=-1
 bad 'max_dofs below the start' '&adapt' 'max_dofs = 20' 'free dofs of the starting mesh' \
     -- --set adapt%max_dofs=20
-bad 'another analysis' '&adapt' 'tolerance' "kind = 'threshold'" 'eigen' 'lambda_sweep' -- \
-    --set analysis%kind=threshold
+bad 'another analysis' '&adapt' 'tolerance' "kind = 'branch'" 'eigen' 'threshold' \
+    'lambda_sweep' -- --set analysis%kind=branch
 bad 'quadrilaterals' '&adapt' 'tolerance' "element = 'q2'" -- --set mesh%element=q2
 bad 'p4 (no enriched space)' '&adapt' "element = 'p4'" -- --set mesh%element=p4
 bad 'estimate off' '&adapt' "estimate = 'off'" -- --set eigen%estimate=off

@@ -12,7 +12,8 @@ program test_adaptive_eigen
     use timer, only: timings_t
     use problem, only: problem_t, build_problem
     use mesh, only: mesh_t
-    use adaptive_eigen, only: adapt_eigen, adaptive_result_t, doerfler_marking
+    use adaptive_eigen, only: adapt_eigen, adaptive_result_t
+    use adaptive_loop, only: doerfler_marking
     implicit none
 
     !> The critical c_n of the reference scene (lambda = 5), from an adaptive P3 run to the

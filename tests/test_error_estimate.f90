@@ -22,8 +22,8 @@ program test_error_estimate
     use contact_reduction, only: factor_stiffness
     use timer, only: timings_t
     use problem, only: problem_t
-    use error_estimate, only: error_estimate_t, estimate_lowest_error, enriched_mesh, &
-                              ENRICHED_CONTACT_MAX
+    use error_estimate, only: error_estimate_t, estimate_lowest_error, ENRICHED_CONTACT_MAX
+    use enrichment, only: enriched_mesh
     implicit none
 
     !> The critical c_n of the reference scene in the limit h -> 0 (docs/model.md)

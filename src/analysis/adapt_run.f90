@@ -21,6 +21,7 @@ module adapt_run
     use filesystem, only: remove_file
     implicit none
     private
+    public :: add_adapt_keys, adapt_report_lines, write_adapted_mesh, draw_adapt_plot
 
     character(len=*), parameter, public :: ADAPT_HEADER = &
         'level,n_dofs,n_contact,n_cells,mu,error_estimate,time_s'
@@ -57,38 +58,47 @@ contains
         type(status_t), intent(out) :: stat
         call write_eigen_files(stage, config, this%out%prob, this%out%res, stat, this%plot_note)
         if (stat%ok()) call write_adapt_csv(stage%path('adapt.csv'), this%out, stat)
-        if (stat%ok()) call write_gmsh(stage%path(MESH_FILE), this%out%prob%mesh, stat)
+        if (stat%ok()) call write_adapted_mesh(stage, this%out%prob, stat)
         this%adapt_note = ''
-        if (.not. (stat%ok() .and. config%output%plot)) return
-        if (any(this%out%levels%estimated)) then
-            call draw_adapt(this, stage, config, prob, stat)
-        else
-            this%adapt_note = 'not drawn: no level has an error estimate'
-        end if
+        if (stat%ok() .and. config%output%plot) call draw_adapt_plot(stage, config, &
+            this%summary(config, prob), any(this%out%levels%estimated), this%adapt_note, stat)
     end subroutine adapt_run_write_files
 
-    !> adapt.png into the staging folder, from adapt.csv and a scratch summary.json.
-    subroutine draw_adapt(this, stage, config, prob, stat)
-        class(adapt_run_t), intent(inout) :: this
+    !> mesh.msh: the final mesh of an adaptive run, for &mesh source = 'gmsh'.
+    subroutine write_adapted_mesh(stage, prob, stat)
+        type(output_stage_t), intent(inout) :: stage
+        type(problem_t), intent(in) :: prob
+        type(status_t), intent(out) :: stat
+        call write_gmsh(stage%path(MESH_FILE), prob%mesh, stat)
+    end subroutine write_adapted_mesh
+
+    !> adapt.png into the staging folder, from adapt.csv and `summary` written as a scratch
+    !> summary.json; `note` says where it is, or why it is not drawn (`any_estimated` false:
+    !> no level has an estimate).
+    subroutine draw_adapt_plot(stage, config, summary, any_estimated, note, stat)
         type(output_stage_t), intent(inout) :: stage
         type(config_t), intent(in) :: config
-        type(problem_t), intent(in) :: prob
+        type(json_object_t), intent(in) :: summary
+        logical, intent(in) :: any_estimated
+        character(len=:), allocatable, intent(inout) :: note
         type(status_t), intent(out) :: stat
         character(len=*), parameter :: PNG = 'adapt.png'
         character(len=:), allocatable :: summary_path, png_path
-        type(json_object_t) :: summary
         logical :: drawn
 
+        if (.not. any_estimated) then
+            note = 'not drawn: no level has an error estimate'
+            return
+        end if
         summary_path = stage%scratch('.adapt-summary.json')
-        summary = this%summary(config, prob)
         call summary%write(summary_path, stat)
         if (.not. stat%ok()) return
-        call run_plot_script('plot_adapt.sh', stage%folder(), summary_path, drawn, this%adapt_note)
+        call run_plot_script('plot_adapt.sh', stage%folder(), summary_path, drawn, note)
         call remove_file(summary_path)
         if (.not. drawn) return
         png_path = stage%path(PNG)   ! registered: part of the committed set
-        this%adapt_note = trim(config%output%directory)//'/'//PNG
-    end subroutine draw_adapt
+        note = trim(config%output%directory)//'/'//PNG
+    end subroutine draw_adapt_plot
 
     !> level,n_dofs,n_contact,n_cells,mu,error_estimate,time_s; mu and error_estimate empty
     !> where there is no positive mu or no estimate.
@@ -122,26 +132,47 @@ contains
         type(problem_t), intent(in) :: prob
         type(json_object_t) :: summary
         summary = eigen_summary_json(config, this%out%prob, this%out%res, this%timings)
+        call add_adapt_keys(summary, config, prob%dofs%n_free, size(this%out%levels) - 1, &
+                            this%out%converged, this%out%outcome)
+    end function adapt_run_summary
+
+    !> The keys of an adaptive loop (any goal) that started from `start_dofs` free dofs.
+    subroutine add_adapt_keys(summary, config, start_dofs, levels, converged, outcome)
+        type(json_object_t), intent(inout) :: summary
+        type(config_t), intent(in) :: config
+        integer, intent(in) :: start_dofs, levels
+        logical, intent(in) :: converged
+        character(len=*), intent(in) :: outcome
         call summary%add_real('adapt_tolerance', config%adapt%tolerance)
         call summary%add_real('adapt_theta', config%adapt%theta)
-        call summary%add_integer('adapt_levels', size(this%out%levels) - 1)
-        call summary%add_integer('adapt_start_dofs', prob%dofs%n_free)
-        call summary%add_logical('adapt_converged', this%out%converged)
-        call summary%add_string('adapt_outcome', this%out%outcome)
+        call summary%add_integer('adapt_levels', levels)
+        call summary%add_integer('adapt_start_dofs', start_dofs)
+        call summary%add_logical('adapt_converged', converged)
+        call summary%add_string('adapt_outcome', outcome)
         call summary%add_string('adapted_mesh_file', MESH_FILE)
-    end function adapt_run_summary
+    end subroutine add_adapt_keys
 
     function adapt_run_report(this, config, prob) result(text)
         class(adapt_run_t), intent(in) :: this
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: prob
         character(len=:), allocatable :: text
-        character(len=*), parameter :: NL = new_line('a')
         text = summary_lines(config, this%out%prob, this%out%res, this%timings, this%plot_note)
-        text = text//NL//'  adapt       '//to_string(size(this%out%levels) - 1)// &
-            ' refinements from '//to_string(prob%dofs%n_free)//' dofs; '//this%out%outcome// &
-            NL//'  mesh        '//trim(config%output%directory)//'/'//MESH_FILE// &
-            ' (the final mesh, for &mesh source = ''gmsh'')'
-        if (len(this%adapt_note) > 0) text = text//NL//'  adapt plot  '//this%adapt_note
+        text = text//adapt_report_lines(config, prob%dofs%n_free, size(this%out%levels) - 1, &
+                                        this%out%outcome, this%adapt_note)
     end function adapt_run_report
+
+    !> The stdout lines of an adaptive loop: refinements and outcome, the mesh file, the plot.
+    function adapt_report_lines(config, start_dofs, levels, outcome, adapt_note) result(text)
+        type(config_t), intent(in) :: config
+        integer, intent(in) :: start_dofs, levels
+        character(len=*), intent(in) :: outcome, adapt_note
+        character(len=:), allocatable :: text
+        character(len=*), parameter :: NL = new_line('a')
+        text = NL//'  adapt       '//to_string(levels)//' refinements from '// &
+            to_string(start_dofs)//' dofs; '//outcome//NL//'  mesh        '// &
+            trim(config%output%directory)//'/'//MESH_FILE// &
+            ' (the final mesh, for &mesh source = ''gmsh'')'
+        if (len(adapt_note) > 0) text = text//NL//'  adapt plot  '//adapt_note
+    end function adapt_report_lines
 end module adapt_run

@@ -20,7 +20,7 @@ contains
         character(len=*), intent(in) :: kind
         logical, intent(in) :: adaptive
         class(analysis_t), allocatable, intent(out) :: analysis
-        type(threshold_run_t) :: sweep
+        type(threshold_run_t) :: sweep, threshold
         select case (kind)
         case ('eigen')
             if (adaptive) then
@@ -28,7 +28,9 @@ contains
             else
                 allocate (eigen_run_t :: analysis)
             end if
-        case ('threshold'); allocate (threshold_run_t :: analysis)
+        case ('threshold')
+            threshold%adaptive = adaptive
+            allocate (analysis, source=threshold)
         case ('lambda_sweep')
             sweep%with_sweep = .true.
             allocate (analysis, source=sweep)

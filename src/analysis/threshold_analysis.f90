@@ -27,7 +27,11 @@ module threshold_analysis
     use critical_set, only: critical_set_t, find_critical_set
     use adaptive_eigen, only: adapt_eigen, adaptive_result_t
     use eigen_analysis, only: eigen_result_t, choose_solver, eigen_with_factor, SOLVER_ARPACK, &
-                              to_input_units
+                              to_input_units, ESTIMATE_AUTO_MAX_DOFS
+    use error_estimate, only: ENRICHED_CONTACT_MAX
+    use threshold_estimate, only: threshold_estimate_t, threshold_displacements, &
+                                  estimate_threshold_errors
+    use accuracy, only: WARNING_LEN
     implicit none
     private
     public :: threshold_result_t, solve_thresholds
@@ -58,6 +62,8 @@ module threshold_analysis
         type(thresholds_t) :: thresholds
         !> the boundary of {lambda : a positive mu exists} over the &sweep range
         type(critical_set_t) :: set
+        !> the error estimates of lambda+ and lambda- (as &eigen estimate asks)
+        type(threshold_estimate_t) :: estimate
         type(sweep_curve_t) :: sweep             !! allocated for 'lambda_sweep' only
         real(wp) :: time_threshold = 0.0_wp      !! pencil QZ and the confirming solves, s
         real(wp) :: time_sweep = 0.0_wp          !! all the p x p solves of the sweep, s
@@ -66,21 +72,24 @@ module threshold_analysis
 contains
 
     !> Factor K, form Kt_nn and Kt_nt, and compute the spectrum at &analysis lambda, the
-    !> thresholds with their confirmations, and (with `with_sweep`) the &sweep curve.
-    subroutine solve_thresholds(config, prob, with_sweep, res, timings, stat)
+    !> thresholds with their error estimates and confirmations, and (with `with_sweep`) the
+    !> &sweep curve. `estimate`: the thresholds' estimate on this very problem, known
+    !> already (the adaptive loop's last level), not computed again.
+    subroutine solve_thresholds(config, prob, with_sweep, res, timings, stat, estimate)
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: prob
         logical, intent(in) :: with_sweep
         type(threshold_result_t), intent(out) :: res
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
+        type(threshold_estimate_t), intent(in), optional :: estimate
         type(cholesky_t) :: chol
         type(reduced_blocks_t) :: blocks
         type(arpack_options_t) :: options
         real(wp) :: start
-        real(wp), allocatable :: mu_meet(:)
+        real(wp), allocatable :: mu_meet(:), u_threshold(:, :)
         integer :: i, n_operator
-        logical :: certified
+        logical :: certified, estimated
 
         res%eigen%solver = choose_solver(config%eigen%solver, prob%contact%p(), &
                                          config%eigen%dense_max_contact, config%eigen%operator)
@@ -109,12 +118,20 @@ contains
 
         call eigen_with_factor(config, prob, chol, res%eigen, timings, stat, blocks%kt_nn, &
                                blocks%kt_nt)
+        start = wall_time()
+        if (stat%ok()) call pencil_thresholds(blocks%kt_nn, blocks%kt_nt, res%thresholds, stat)
+        ! the displacements of the limit modes, for the estimate, while the factor is there
+        estimated = .false.
+        if (present(estimate)) then
+            res%estimate = estimate
+        else
+            estimated = wants_estimate()
+            if (estimated .and. stat%ok()) call threshold_displacements(chol, prob%contact, &
+                prob%dofs%n_free, res%thresholds, u_threshold, stat)
+        end if
         call chol%free()
         if (.not. stat%ok()) return
-
-        start = wall_time()
-        call pencil_thresholds(blocks%kt_nn, blocks%kt_nt, res%thresholds, stat)
-        if (.not. stat%ok()) return
+        if (estimated) call add_threshold_estimate()
         blocks%mass = prob%contact%mass
         ! Dense on purpose, whatever the solver: just inside a threshold there is no positive
         ! mu, which only the complete spectrum shows, and just outside the wanted mu is huge,
@@ -189,6 +206,40 @@ contains
                           to_string(size(res%sweep%lambda))//' lambdas')
 
     contains
+
+        !> &eigen estimate: 'on', 'off', or 'auto' (up to ESTIMATE_AUTO_MAX_DOFS free dofs);
+        !> res%estimate%skipped says why not.
+        logical function wants_estimate()
+            select case (trim(config%eigen%estimate))
+            case ('on')
+                wants_estimate = .true.
+            case ('auto')
+                wants_estimate = prob%dofs%n_free <= ESTIMATE_AUTO_MAX_DOFS
+                if (.not. wants_estimate) res%estimate%skipped = 'not computed: '// &
+                    to_string(prob%dofs%n_free)//' dofs, more than the '// &
+                    to_string(ESTIMATE_AUTO_MAX_DOFS)//" of &eigen estimate = 'auto'"
+            case default
+                wants_estimate = .false.
+                res%estimate%skipped = "not computed: &eigen estimate = 'off'"
+            end select
+            where (.not. res%thresholds%found) res%estimate%skipped = ''
+        end function wants_estimate
+
+        !> res%estimate; its failure costs the estimate (a warning), never the run.
+        subroutine add_threshold_estimate()
+            type(status_t) :: failed
+            real(wp) :: begin
+            begin = wall_time()
+            call estimate_threshold_errors(prob, res%thresholds, u_threshold, &
+                                           ENRICHED_CONTACT_MAX, res%estimate, failed)
+            if (.not. failed%ok()) then
+                res%eigen%warnings = [character(len=WARNING_LEN) :: res%eigen%warnings, &
+                    'no error estimate for the critical lambdas: '//failed%message]
+                return
+            end if
+            if (any(res%estimate%computed)) call timings%add(PHASE_REDUCTION, &
+                wall_time() - begin, ': error estimates of the critical lambdas')
+        end subroutine add_threshold_estimate
 
         subroutine real_to_input_units(mu, stat, sweep_lambda)
             real(wp), intent(inout) :: mu(:)

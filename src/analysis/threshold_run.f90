@@ -1,7 +1,9 @@
 ! SPDX-License-Identifier: MIT
 !> analysis = 'threshold' and 'lambda_sweep': the files of an eigen run at &analysis lambda,
 !> lambda_sweep.csv for a sweep (and lambda_sweep.png), summary.json with the threshold
-!> and sweep keys; and the lines they add to the stdout summary.
+!> and sweep keys; and the lines they add to the stdout summary. 'threshold' with &adapt
+!> tolerance > 0 adapts the mesh to the thresholds first (adaptive_threshold) and reports on
+!> the final mesh, with adapt.csv, adapt.png and mesh.msh as an adaptive eigen run does.
 module threshold_run
     use kinds, only: wp
     use status, only: status_t
@@ -11,7 +13,10 @@ module threshold_run
     use run_config, only: config_t
     use problem, only: problem_t
     use threshold_analysis, only: threshold_result_t, sweep_curve_t, solve_thresholds
-    use critical_lambda, only: SIDE_PLUS, SIDE_MINUS, CONFIRM_OFFSET
+    use adaptive_threshold, only: adaptive_thresholds_t, adapt_thresholds
+    use adapt_run, only: add_adapt_keys, adapt_report_lines, write_adapted_mesh, draw_adapt_plot
+    use element_types, only: element_name
+    use critical_lambda, only: SIDE_PLUS, SIDE_MINUS, SIDE_NAMES, SIDE_LABELS, CONFIRM_OFFSET
     use critical_set, only: critical_set_t, MECHANISM_NAMES, MECHANISM_COMPLEX_PAIR
     use ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use critical_point, only: slip_sign, critical_c_t
@@ -29,14 +34,20 @@ module threshold_run
     character(len=*), parameter :: SWEEP_FILE = 'lambda_sweep.csv'
     character(len=*), parameter :: SWEEP_HEADER = &
         'lambda,critical_c_n,critical_c_t,slip_sign,n_positive,error_estimate,n_dofs'
-    character(len=*), parameter :: SIDE_NAMES(2) = [character(len=5) :: 'plus', 'minus']
+
+    character(len=*), parameter, public :: THRESHOLD_ADAPT_HEADER = 'level,n_dofs,'// &
+        'n_contact,n_cells,lambda_plus,error_estimate_plus,lambda_minus,error_estimate_minus,time_s'
 
     !> 'threshold' (with_sweep false) or 'lambda_sweep'.
     type, extends(analysis_t), public :: threshold_run_t
         logical :: with_sweep = .false.
+        !> 'threshold' with &adapt: the loop, whose final problem the files describe
+        logical :: adaptive = .false.
+        type(adaptive_thresholds_t) :: adapted
         type(threshold_result_t) :: res
         character(len=:), allocatable :: plot_note   !! mode_001.png: where, or why not
         character(len=:), allocatable :: sweep_note  !! lambda_sweep.png: where, or why not
+        character(len=:), allocatable :: adapt_note  !! adapt.png: where, or why not
     contains
         procedure :: solve => threshold_run_solve
         procedure :: write_files => threshold_run_write_files
@@ -52,7 +63,16 @@ contains
         type(problem_t), intent(in) :: prob
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
-        call solve_thresholds(config, prob, this%with_sweep, this%res, timings, stat)
+        if (.not. this%adaptive) then
+            call solve_thresholds(config, prob, this%with_sweep, this%res, timings, stat)
+            return
+        end if
+        call adapt_thresholds(config, prob, this%adapted, timings, stat)
+        if (stat%ok()) call solve_thresholds(config, this%adapted%prob, .false., this%res, &
+                                             timings, stat, this%adapted%estimate)
+        if (stat%ok() .and. .not. this%adapted%converged) this%res%eigen%warnings = &
+            [character(len=len(this%res%eigen%warnings)) :: this%adapted%outcome, &
+             this%res%eigen%warnings]
     end subroutine threshold_run_solve
 
     subroutine threshold_run_write_files(this, stage, config, prob, stat)
@@ -61,6 +81,18 @@ contains
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: prob
         type(status_t), intent(out) :: stat
+        if (this%adaptive) then
+            call write_eigen_files(stage, config, this%adapted%prob, this%res%eigen, stat, &
+                                   this%plot_note)
+            if (stat%ok()) call write_threshold_adapt_csv(stage%path('adapt.csv'), &
+                                                          this%adapted, stat)
+            if (stat%ok()) call write_adapted_mesh(stage, this%adapted%prob, stat)
+            this%adapt_note = ''
+            if (stat%ok() .and. config%output%plot) call draw_adapt_plot(stage, config, &
+                this%summary(config, prob), any(this%adapted%levels%estimated(1)) .or. &
+                any(this%adapted%levels%estimated(2)), this%adapt_note, stat)
+            return
+        end if
         call write_eigen_files(stage, config, prob, this%res%eigen, stat, this%plot_note)
         if (stat%ok() .and. allocated(this%res%sweep%lambda)) then
             call write_sweep_csv(stage%path(SWEEP_FILE), this%res%sweep, stat)
@@ -99,9 +131,15 @@ contains
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: prob
         type(json_object_t) :: summary
-        summary = eigen_summary_json(config, prob, this%res%eigen, this%timings)
+        if (this%adaptive) then
+            summary = eigen_summary_json(config, this%adapted%prob, this%res%eigen, this%timings)
+        else
+            summary = eigen_summary_json(config, prob, this%res%eigen, this%timings)
+        end if
         call add_threshold_keys(summary, this%res)
         if (allocated(this%res%sweep%lambda)) call add_sweep_keys(summary, config, this%res)
+        if (this%adaptive) call add_adapt_keys(summary, config, prob%dofs%n_free, &
+            size(this%adapted%levels) - 1, this%adapted%converged, this%adapted%outcome)
     end function threshold_run_summary
 
     function threshold_run_report(this, config, prob) result(text)
@@ -109,10 +147,45 @@ contains
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: prob
         character(len=:), allocatable :: text
-        text = threshold_summary_lines(config, prob, this%res, this%timings, this%plot_note)
+        if (this%adaptive) then
+            text = threshold_summary_lines(config, this%adapted%prob, this%res, this%timings, &
+                                           this%plot_note)
+            text = text//adapt_report_lines(config, prob%dofs%n_free, &
+                size(this%adapted%levels) - 1, this%adapted%outcome, this%adapt_note)
+        else
+            text = threshold_summary_lines(config, prob, this%res, this%timings, this%plot_note)
+        end if
         if (allocated(this%sweep_note)) text = text//new_line('a')//'  plot        '// &
                                                 this%sweep_note
     end function threshold_run_report
+
+    !> level,n_dofs,n_contact,n_cells,lambda_plus,error_estimate_plus,lambda_minus,
+    !> error_estimate_minus,time_s; a side's cells empty where it has no threshold or no
+    !> estimate.
+    subroutine write_threshold_adapt_csv(path, out, stat)
+        character(len=*), intent(in) :: path
+        type(adaptive_thresholds_t), intent(in) :: out
+        type(status_t), intent(out) :: stat
+        type(csv_writer_t) :: csv
+        character(len=:), allocatable :: line
+        integer :: i, side
+
+        call csv%open(path, THRESHOLD_ADAPT_HEADER)
+        do i = 1, size(out%levels)
+            associate (row => out%levels(i))
+                line = to_string(row%level)//','//to_string(row%n_dofs)//','// &
+                    to_string(row%n_contact)//','//to_string(row%n_cells)
+                do side = SIDE_PLUS, SIDE_MINUS
+                    line = line//','
+                    if (row%found(side)) line = line//real_to_text(row%lambda(side))
+                    line = line//','
+                    if (row%estimated(side)) line = line//real_to_text(row%error_estimate(side))
+                end do
+                call csv%row(line//','//real_to_text(row%time_s))
+            end associate
+        end do
+        call csv%close(stat)
+    end subroutine write_threshold_adapt_csv
 
 
     !> lambda_critical_plus/minus (null where none), the backward error of each on the pencil,
@@ -143,6 +216,12 @@ contains
                                               thr%lambda_inside(side), thr%found(side))
                 call summary%add_real_or_null('mu_'//s//'_inside', thr%mu_inside(side), &
                                               thr%has_mu_inside(side))
+            end do
+            ! |lambda_h - lambda| / |lambda_h| estimated (threshold_estimate); null where not
+            do side = SIDE_PLUS, SIDE_MINUS
+                call summary%add_real_or_null('lambda_critical_'//trim(SIDE_NAMES(side))// &
+                    '_error_estimate', abs(res%estimate%relative(side)), &
+                    res%estimate%computed(side))
             end do
             ! |lambda*| is the friction coefficient of the Signorini-Coulomb eigenproblem
             ! (model.md section 7), whether or not a positive mu appears there
@@ -321,13 +400,12 @@ contains
         character(len=*), intent(in) :: plot_note
         character(len=:), allocatable :: text
         character(len=*), parameter :: NL = new_line('a')
-        character(len=*), parameter :: LABELS(2) = [character(len=7) :: 'lambda+', 'lambda-']
         integer :: side
 
         text = summary_lines(config, prob, res%eigen, timings, plot_note)
         associate (thr => res%thresholds)
             do side = SIDE_PLUS, SIDE_MINUS
-                text = text//NL//'  '//LABELS(side)//'     '
+                text = text//NL//'  '//SIDE_LABELS(side)//'     '
                 if (.not. thr%found(side)) then
                     text = text//'none (no real eigenvalue of Kt_nn x = lambda Kt_nt x ' &
                         //merge('> 0', '< 0', side == SIDE_PLUS)//')'
@@ -335,7 +413,8 @@ contains
                 end if
                 text = text//real_to_text(thr%lambda(side))//' (pencil backward error '// &
                     short_real_text(thr%residual(side))//'), '// &
-                    trim(merge('confirmed    ', 'NOT confirmed', thr%confirmed(side)))//NL// &
+                    trim(merge('confirmed    ', 'NOT confirmed', thr%confirmed(side)))// &
+                    estimate_text(side)//NL// &
                     '              just outside, lambda = '// &
                     real_to_text(thr%lambda_outside(side))//': lowest positive mu = '// &
                     mu_text(thr%has_mu_outside(side), thr%mu_outside(side))//NL// &
@@ -355,6 +434,20 @@ contains
         end if
 
     contains
+
+        !> the line of the relative error estimate, or of why there is none ('' when neither)
+        function estimate_text(side) result(s)
+            integer, intent(in) :: side
+            character(len=:), allocatable :: s
+            s = ''
+            if (res%estimate%computed(side)) then
+                s = NL//'              relative error estimate '// &
+                    short_real_text(abs(res%estimate%relative(side)))//' ('// &
+                    element_name(res%estimate%element)//' enrichment)'
+            else if (len_trim(res%estimate%skipped(side)) > 0) then
+                s = NL//'              relative error estimate '//trim(res%estimate%skipped(side))
+            end if
+        end function estimate_text
 
         function mu_text(found, mu) result(s)
             logical, intent(in) :: found

@@ -24,10 +24,13 @@ module critical_lambda
     private
     public :: thresholds_t, pencil_thresholds, lowest_positive_mu, confirm_thresholds
     public :: reduced_eigenvalues, count_positive
-    public :: SIDE_PLUS, SIDE_MINUS, CONFIRM_OFFSET
+    public :: SIDE_PLUS, SIDE_MINUS, SIDE_NAMES, SIDE_LABELS, CONFIRM_OFFSET
 
     integer, parameter :: SIDE_PLUS = 1    !! index of lambda+ > 0 in thresholds_t arrays
     integer, parameter :: SIDE_MINUS = 2   !! index of lambda- < 0
+    !> the sides in key names (lambda_critical_plus) and in text (lambda+)
+    character(len=*), parameter :: SIDE_NAMES(2) = [character(len=5) :: 'plus', 'minus']
+    character(len=*), parameter :: SIDE_LABELS(2) = [character(len=7) :: 'lambda+', 'lambda-']
     !> Relative distance of the confirming solves from a threshold: far above the threshold's
     !> own relative error (~ condition * 1e-16) so that the side is certain, close enough that
     !> mu ~ C / (lambda - lambda*) is large just outside.

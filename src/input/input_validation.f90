@@ -42,7 +42,7 @@ module input_validation
     !> higher for the error estimate (P4 has none: no P5 here), and the analyses that adapt.
     character(len=*), parameter :: ADAPT_ELEMENTS(*) = [character(len=2) :: 'p1', 'p2', 'p3']
     character(len=*), parameter :: ADAPT_ANALYSES(*) = [character(len=12) :: 'eigen', &
-                                                         'lambda_sweep']
+                                                         'threshold', 'lambda_sweep']
     character(len=*), parameter :: SWEEP_SPACINGS(*) = [character(len=6) :: 'linear', 'log']
     integer, parameter :: MAX_SWEEP_POINTS = 100000   !! n_lambda of a &sweep range
     !> &output vtk_format: the encodings of vtk_writer (VTK_BINARY, VTK_ASCII).

@@ -1,0 +1,186 @@
+! SPDX-License-Identifier: MIT
+!> The adaptive loop of &adapt tolerance > 0, for any goal: solve, estimate, mark, refine,
+!> until the goal's error estimate is at most the tolerance or a limit is reached.
+!>
+!> A goal (adapt_goal_t) solves its problem on a mesh, estimates its error by the
+!> dual-weighted residual of module enrichment (the element one degree higher on the same
+!> cells), and marks cells from its indicators; the loop refines the marked cells by
+!> newest-vertex bisection (mesh_refine: conforming and nested, parts and the contact
+!> segment carried to the children) and builds the next level's problem in memory. The
+!> goals: the lowest positive mu (adaptive_eigen) and the critical lambdas
+!> (adaptive_threshold).
+module adaptive_loop
+    use kinds, only: wp
+    use status, only: status_t, STATUS_BAD_INPUT
+    use strings, only: to_string, short_real_text
+    use timer, only: wall_time, timings_t, PHASE_ASSEMBLY
+    use run_config, only: config_t
+    use mesh, only: mesh_t
+    use mesh_refine, only: refinable_mesh_t, build_refinable_mesh
+    use element_types, only: element_name
+    use problem, only: problem_t, build_problem
+    use enrichment, only: enriched_element
+    use sorting, only: sort_index
+    implicit none
+    private
+    public :: adapt_mesh, doerfler_marking
+
+    !> What the loop adapts to.
+    type, abstract, public :: adapt_goal_t
+    contains
+        !> solve and estimate on `prob` (level `level`; `loop_start` the loop's wall_time)
+        procedure(goal_solve), deferred :: solve
+        !> the largest |relative error estimate| of the goal; negative when one is missing
+        procedure(goal_error), deferred :: error
+        !> the cells to refine
+        procedure(goal_mark), deferred :: mark
+        !> why the estimate is missing
+        procedure(goal_missing), deferred :: missing
+    end type adapt_goal_t
+
+    abstract interface
+        subroutine goal_solve(this, config, prob, level, loop_start, timings, stat)
+            import :: adapt_goal_t, config_t, problem_t, timings_t, status_t, wp
+            class(adapt_goal_t), intent(inout) :: this
+            type(config_t), intent(in) :: config
+            type(problem_t), intent(in) :: prob
+            integer, intent(in) :: level
+            real(wp), intent(in) :: loop_start
+            type(timings_t), intent(inout) :: timings
+            type(status_t), intent(out) :: stat
+        end subroutine goal_solve
+
+        real(wp) function goal_error(this)
+            import :: adapt_goal_t, wp
+            class(adapt_goal_t), intent(in) :: this
+        end function goal_error
+
+        function goal_mark(this, theta, tolerance) result(marked)
+            import :: adapt_goal_t, wp
+            class(adapt_goal_t), intent(in) :: this
+            real(wp), intent(in) :: theta, tolerance
+            integer, allocatable :: marked(:)
+        end function goal_mark
+
+        function goal_missing(this) result(reason)
+            import :: adapt_goal_t
+            class(adapt_goal_t), intent(in) :: this
+            character(len=:), allocatable :: reason
+        end function goal_missing
+    end interface
+
+contains
+
+    !> Run the loop from the problem `start` (level 0) of `config`; `prob` is the problem of
+    !> the last level solved, whose solution `goal` holds. A limit reached is no failure (stat
+    !> ok, converged false, `outcome` says what was reached); bad input is: a starting mesh
+    !> with more free dofs than max_dofs, or cells with no refinement or no enriched space.
+    subroutine adapt_mesh(config, start, goal, prob, converged, outcome, timings, stat)
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(in) :: start
+        class(adapt_goal_t), intent(inout) :: goal
+        type(problem_t), intent(out) :: prob
+        logical, intent(out) :: converged
+        character(len=:), allocatable, intent(out) :: outcome
+        type(timings_t), intent(inout) :: timings
+        type(status_t), intent(out) :: stat
+        type(refinable_mesh_t) :: tree
+        type(mesh_t) :: refined
+        type(problem_t) :: next
+        integer :: level, element
+        integer, allocatable :: marked(:)
+        real(wp) :: loop_start, level_start, error
+
+        loop_start = wall_time()
+        converged = .false.
+        outcome = ''
+        allocate (marked(0))   ! (gfortran 12 warns of an unallocated one at -O3)
+        element = start%mesh%element
+        if (enriched_element(element) == 0) then
+            call stat%fail(STATUS_BAD_INPUT, config%input_file//': &adapt: tolerance = '// &
+                short_real_text(config%adapt%tolerance)//': expected 0 for '// &
+                element_name(element)//' cells (adaptation refines triangles p1, p2 or p3)')
+            return
+        end if
+        if (start%dofs%n_free > config%adapt%max_dofs) then
+            call stat%fail(STATUS_BAD_INPUT, config%input_file//': &adapt: max_dofs = '// &
+                to_string(config%adapt%max_dofs)//': expected at least the '// &
+                to_string(start%dofs%n_free)//' free dofs of the starting mesh')
+            return
+        end if
+        call build_refinable_mesh(start%mesh, tree, stat)
+        if (.not. stat%ok()) then
+            stat%message = config%input_file//': &adapt: '//stat%message
+            return
+        end if
+        prob = start
+        level = 0
+        do
+            call goal%solve(config, prob, level, loop_start, timings, stat)
+            if (.not. stat%ok()) return
+            error = goal%error()
+            if (error < 0.0_wp) then
+                outcome = 'tolerance not met: no error estimate at level '// &
+                    to_string(level)//' ('//goal%missing()//')'
+                exit
+            end if
+            if (error <= config%adapt%tolerance) then
+                converged = .true.
+                outcome = 'tolerance '//short_real_text(config%adapt%tolerance)// &
+                    ' met at level '//to_string(level)//': estimate '// &
+                    short_real_text(error)//', '//to_string(prob%dofs%n_free)//' dofs'
+                exit
+            end if
+            if (level >= config%adapt%max_levels) then
+                outcome = 'tolerance '//short_real_text(config%adapt%tolerance)// &
+                    ' not met: max_levels = '//to_string(config%adapt%max_levels)// &
+                    ' reached with estimate '//short_real_text(error)//' at '// &
+                    to_string(prob%dofs%n_free)//' dofs'
+                exit
+            end if
+            level_start = wall_time()
+            marked = goal%mark(config%adapt%theta, config%adapt%tolerance)
+            call tree%refine(marked, stat)
+            if (stat%ok()) call tree%to_mesh(element, refined, stat)
+            if (stat%ok()) call build_problem(config, next, stat, given_mesh=refined)
+            if (.not. stat%ok()) return
+            call timings%add(PHASE_ASSEMBLY, wall_time() - level_start, ': level '// &
+                to_string(level + 1)//', '//to_string(size(marked))//' cells marked, '// &
+                to_string(refined%n_cells())//' cells, '//to_string(next%dofs%n_free)//' dofs')
+            if (next%dofs%n_free > config%adapt%max_dofs) then
+                outcome = 'tolerance '//short_real_text(config%adapt%tolerance)// &
+                    ' not met: the next level would have '//to_string(next%dofs%n_free)// &
+                    ' dofs, more than max_dofs = '//to_string(config%adapt%max_dofs)// &
+                    '; reached estimate '//short_real_text(error)//' at '// &
+                    to_string(prob%dofs%n_free)//' dofs'
+                exit
+            end if
+            prob = next
+            level = level + 1
+        end do
+    end subroutine adapt_mesh
+
+    !> Doerfler's bulk marking: the cells of the largest indicators, fewest first, whose sum
+    !> reaches theta times the sum of all (ties broken by cell order). Every cell with a
+    !> positive indicator when theta = 1; none when all indicators vanish.
+    pure function doerfler_marking(eta, theta) result(marked)
+        real(wp), intent(in) :: eta(:)
+        real(wp), intent(in) :: theta
+        integer, allocatable :: marked(:)
+        integer, allocatable :: order(:)
+        real(wp) :: goal, held
+        integer :: n, k
+
+        allocate (order(size(eta)))   ! (gfortran 12 warns of an unallocated one at -O3)
+        order = sort_index(-eta)      ! largest first, stable
+        goal = theta*sum(eta)
+        held = 0.0_wp
+        n = 0
+        do k = 1, size(order)
+            if (.not. (held < goal) .or. .not. eta(order(k)) > 0.0_wp) exit
+            held = held + eta(order(k))
+            n = k
+        end do
+        marked = order(:n)
+    end function doerfler_marking
+end module adaptive_loop
