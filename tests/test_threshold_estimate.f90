@@ -23,9 +23,9 @@ program test_threshold_estimate
     implicit none
 
     !> lambda+ of the reference scene (nu = 0.3) in the limit h -> 0: an adaptive P3 run to
-    !> the estimate 3.9e-10 (40 levels, 117450 dofs; the level before differs by 2.0e-9,
-    !> its estimate 1.8e-9); lambda- = -lambda+ by the mirror symmetry of the square.
-    real(wp), parameter :: REFERENCE_LAMBDA = 1.9447114436_wp
+    !> the estimate 6.4e-11 (docs/accuracy.md: 45 levels, 254388 dofs); lambda- = -lambda+
+    !> by the mirror symmetry of the square.
+    real(wp), parameter :: REFERENCE_LAMBDA = 1.9447114427670043_wp
     character(len=*), parameter :: ELEMENTS(3) = [character(len=2) :: 'p1', 'p2', 'p3']
     type(test_suite_t) :: t
     t%name = 'test_threshold_estimate'
