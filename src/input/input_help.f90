@@ -141,8 +141,8 @@ contains
                        //' (infinity norms) to stop at') &
                //entry('max_iterations', to_string(d%solve%max_iterations), 'Newton iterations')
         text = text//'&adapt       (eigen, threshold, lambda_sweep: refine until the estimate is met)'//NL &
-               //entry('tolerance', real_to_text(d%adapt%tolerance), 'relative error of the' &
-                       //' lowest positive mu or of both critical lambdas (0: off; < 1)') &
+               //entry('tolerance', real_to_text(d%adapt%tolerance), 'relative error of' &
+                       //' mu or of both critical lambdas (0: off; < 1)') &
                //entry('max_dofs', to_string(d%adapt%max_dofs), 'no level solves on more' &
                        //' free dofs') &
                //entry('max_levels', to_string(d%adapt%max_levels), 'refinement steps after' &
