@@ -15,6 +15,9 @@ program test_extremes_range
     use eigen_analysis, only: eigen_result_t, solve_eigen
     use spectrum, only: KIND_COMPLEX
     use accuracy, only: BACKWARD_ERROR_BOUND
+    use sparse_cholesky, only: cholesky_t
+    use contact_reduction, only: factor_stiffness, contact_flexibility
+    use lapack_interfaces, only: dgeev
     implicit none
 
     type(test_suite_t) :: t
@@ -23,6 +26,7 @@ program test_extremes_range
     call domain_size_over_the_range(t)
     call young_and_size_cancel(t)
     call huge_lambda(t)
+    call limit_pencil_directly(t)
     call arpack_targets(t)
     call singular_looking_inputs(t)
     call t%report()
@@ -159,6 +163,56 @@ contains
         call run(c, res, stat)
         call check_refused(t, 'lambda = 1.7e308', stat, '&analysis: lambda = ')
     end subroutine huge_lambda
+
+    !> The limit lambda -> +-infinity is its own eigenproblem, K phi = nu B_inf phi with
+    !> B_inf = T' M N (B / lambda -> B_inf; docs/model.md, section 5), and c_t = |lambda| mu
+    !> tends to |nu|: the nu > 0 of least modulus for +infinity, the nu < 0 for -infinity.
+    !> Computed here independently, by dgeev on its reduced matrix Kt_nt M (eigenvalues
+    !> 1 / nu), against the run at lambda = +-1e300 (where the -N' term of B is 1e-300 of
+    !> the other): equal to 1e-12.
+    subroutine limit_pencil_directly(t)
+        type(test_suite_t), intent(inout) :: t
+        type(eigen_result_t) :: res
+        type(config_t) :: c
+        type(problem_t) :: prob
+        type(cholesky_t) :: chol
+        type(timings_t) :: timings
+        type(status_t) :: stat
+        real(wp), allocatable :: kt_nn(:, :), kt_nt(:, :), a(:, :), wr(:), wi(:), work(:)
+        real(wp) :: vl(1, 1), vr(1, 1), nu(2), query(1)
+        integer :: p, info, sgn
+        c = scene()
+        call build_problem(c, prob, stat)
+        if (stat%ok()) call factor_stiffness(prob%k, prob%mesh, prob%dofs, prob%contact, chol, &
+                                             timings, stat)
+        if (stat%ok()) call contact_flexibility(chol, prob%contact, kt_nn, kt_nt, stat)
+        call chol%free()
+        call t%check('limit pencil: reduced blocks', stat%ok())
+        if (.not. stat%ok()) return
+        p = prob%contact%p()
+        a = matmul(kt_nt, prob%contact%mass_dense())
+        allocate (wr(p), wi(p))
+        call dgeev('N', 'N', p, a, p, wr, wi, vl, 1, vr, 1, query, -1, info)
+        allocate (work(int(query(1))))
+        call dgeev('N', 'N', p, a, p, wr, wi, vl, 1, vr, 1, work, size(work), info)
+        call t%check('limit pencil: dgeev', info == 0)
+        ! nu = 1 / theta over the real theta: the smallest positive nu is 1 / the largest theta
+        nu(1) = 1.0_wp/maxval(wr, mask=wi == 0.0_wp .and. wr > 0.0_wp)
+        nu(2) = 1.0_wp/minval(wr, mask=wi == 0.0_wp .and. wr < 0.0_wp)
+        do sgn = 1, 2
+            c = scene()
+            c%analysis%lambda = merge(1.0e300_wp, -1.0e300_wp, sgn == 1)
+            call run(c, res, stat)
+            call t%check('limit pencil: lambda = +-1e300 solved', stat%ok() .and. &
+                         res%spec%lowest_positive() == 1)
+            if (res%spec%lowest_positive() /= 1) cycle
+            ! mu is in the units of E (1 here): lambda mu is nu itself
+            call t%check_close('limit pencil: lambda mu at '// &
+                               trim(merge('+1e300', '-1e300', sgn == 1))//' = nu of K phi = '// &
+                               'nu B_inf phi', 1.0e300_wp*real(res%spec%mu(1), wp), &
+                               abs(nu(sgn)), rel_tol=1.0e-12_wp)
+        end do
+    end subroutine limit_pencil_directly
 
     !> ARPACK with a target sigma: the lowest positive mu agrees with the dense solver's
     !> (to the certificate's 1e-8) and is certified, or the run is refused naming &eigen
