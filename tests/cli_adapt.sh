@@ -186,6 +186,8 @@ bad 'max_dofs below the start' '&adapt' 'max_dofs = 20' 'free dofs of the starti
 bad 'another analysis' '&adapt' 'tolerance' "kind = 'branch'" 'eigen' 'threshold' \
     'lambda_sweep' -- --set analysis%kind=branch
 bad 'quadrilaterals' '&adapt' 'tolerance' "element = 'q2'" -- --set mesh%element=q2
+bad 'threshold on quadrilaterals' '&adapt' 'tolerance' "element = 'q1'" -- \
+    --set analysis%kind=threshold --set mesh%element=q1
 bad 'p4 (no enriched space)' '&adapt' "element = 'p4'" -- --set mesh%element=p4
 bad 'estimate off' '&adapt' "estimate = 'off'" -- --set eigen%estimate=off
 cli_end
