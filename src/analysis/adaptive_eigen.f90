@@ -123,9 +123,9 @@ contains
         if (this%res%error%computed) eigen_goal_error = abs(this%res%error%relative)
     end function eigen_goal_error
 
-    function eigen_goal_mark(this, theta, tolerance) result(marked)
+    function eigen_goal_mark(this, theta) result(marked)
         class(eigen_goal_t), intent(in) :: this
-        real(wp), intent(in) :: theta, tolerance
+        real(wp), intent(in) :: theta
         integer, allocatable :: marked(:)
         marked = doerfler_marking(this%res%error%indicators, theta)
     end function eigen_goal_mark

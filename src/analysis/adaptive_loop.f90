@@ -55,10 +55,10 @@ module adaptive_loop
             class(adapt_goal_t), intent(in) :: this
         end function goal_error
 
-        function goal_mark(this, theta, tolerance) result(marked)
+        function goal_mark(this, theta) result(marked)
             import :: adapt_goal_t, wp
             class(adapt_goal_t), intent(in) :: this
-            real(wp), intent(in) :: theta, tolerance
+            real(wp), intent(in) :: theta
             integer, allocatable :: marked(:)
         end function goal_mark
 
@@ -139,7 +139,7 @@ contains
                 exit
             end if
             level_start = wall_time()
-            marked = goal%mark(config%adapt%theta, config%adapt%tolerance)
+            marked = goal%mark(config%adapt%theta)
             call tree%refine(marked, stat)
             if (stat%ok()) call tree%to_mesh(element, refined, stat)
             if (stat%ok()) call build_problem(config, next, stat, given_mesh=refined)

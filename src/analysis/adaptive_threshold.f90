@@ -57,6 +57,7 @@ module adaptive_threshold
         type(threshold_level_t), allocatable :: levels(:)
         type(thresholds_t) :: thr
         type(threshold_estimate_t) :: est
+        real(wp) :: tolerance = 0.0_wp   !! &adapt tolerance: the sides above it mark cells
     contains
         procedure :: solve => threshold_goal_solve
         procedure :: error => threshold_goal_error
@@ -96,6 +97,7 @@ contains
         real(wp), allocatable :: kt_nn(:, :), kt_nt(:, :), u(:, :)
         real(wp) :: start
 
+        this%tolerance = config%adapt%tolerance
         call check_contact_memory(config, prob%contact%p(), contact_peak_blocks(.false.), stat)
         if (.not. stat%ok()) return
         call factor_stiffness(prob%k, prob%mesh, prob%dofs, prob%contact, chol, timings, stat)
@@ -137,7 +139,8 @@ contains
             line = 'adapt level '//to_string(row%level)//': '//to_string(row%n_dofs)//' dofs'
             do side = SIDE_PLUS, SIDE_MINUS
                 if (.not. row%found(side)) cycle
-                line = line//', '//SIDE_LABELS(side)//' = '//short_real_text(row%lambda(side), 12)
+                line = line//', '//SIDE_LABELS(side)//' = '// &
+                    short_real_text(row%lambda(side), 12)
                 if (row%estimated(side)) line = line//' (estimate '// &
                     short_real_text(row%error_estimate(side))//')'
             end do
@@ -155,9 +158,9 @@ contains
     end function threshold_goal_error
 
     !> The union of the Doerfler sets of the sides still above the tolerance.
-    function threshold_goal_mark(this, theta, tolerance) result(marked)
+    function threshold_goal_mark(this, theta) result(marked)
         class(threshold_goal_t), intent(in) :: this
-        real(wp), intent(in) :: theta, tolerance
+        real(wp), intent(in) :: theta
         integer, allocatable :: marked(:)
         logical, allocatable :: chosen(:)
         integer :: side, i
@@ -165,7 +168,7 @@ contains
         allocate (chosen(size(this%est%indicators, 1)), source=.false.)
         do side = SIDE_PLUS, SIDE_MINUS
             if (.not. this%thr%found(side)) cycle
-            if (abs(this%est%relative(side)) <= tolerance) cycle
+            if (abs(this%est%relative(side)) <= this%tolerance) cycle
             chosen(doerfler_marking(this%est%indicators(:, side), theta)) = .true.
         end do
         marked = pack([(i, i=1, size(chosen))], chosen)

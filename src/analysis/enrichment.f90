@@ -27,6 +27,9 @@ module enrichment
     use elasticity, only: stiffness_tables_t, stiffness_tables, element_energy
     use contact_boundary, only: contact_t, build_contact, edge_mass
     use csr_matrix, only: csr_matrix_t
+    use sparse_cholesky, only: cholesky_t
+    use contact_reduction, only: factor_stiffness, contact_flexibility
+    use timer, only: timings_t
     use problem, only: problem_t
     implicit none
     private
@@ -45,6 +48,7 @@ module enrichment
         procedure :: prolonged => enrichment_prolonged
         procedure :: interpolant => enrichment_interpolant
         procedure :: cell_residuals => enrichment_cell_residuals
+        procedure :: reduce => enrichment_reduce
     end type enrichment_t
 
 contains
@@ -111,6 +115,18 @@ contains
         end if
         enr%element = enriched_element(prob%mesh%element)
     end subroutine build_enrichment
+
+    !> Factor K+ with its contact dofs last and form its contact blocks Kt_nn+, Kt_nt+; `chol`
+    !> stays factored for the caller's solves (free it), also when stat fails.
+    subroutine enrichment_reduce(this, chol, kt_nn, kt_nt, stat)
+        class(enrichment_t), intent(in) :: this
+        type(cholesky_t), intent(inout) :: chol
+        real(wp), allocatable, intent(out) :: kt_nn(:, :), kt_nt(:, :)
+        type(status_t), intent(out) :: stat
+        type(timings_t) :: ignored   ! the estimate's time is counted as a whole
+        call factor_stiffness(this%k, this%mesh, this%dofs, this%contact, chol, ignored, stat)
+        if (stat%ok()) call contact_flexibility(chol, this%contact, kt_nn, kt_nt, stat)
+    end subroutine enrichment_reduce
 
     !> The free-dof vector on V+ of a field of V_h (given on prob%dofs): each enriched cell
     !> node gets the coarse cell's interpolation at its reference point.

@@ -25,12 +25,11 @@
 module error_estimate
     use kinds, only: wp
     use status, only: status_t, STATUS_SOLVER
-    use timer, only: wall_time, timings_t
+    use timer, only: wall_time
     use contact_boundary, only: assemble_b
     use csr_matrix, only: csr_matrix_t
     use sparse_cholesky, only: cholesky_t
-    use contact_reduction, only: factor_stiffness, contact_flexibility, reduced_matrix, &
-                                 lambda_unit
+    use contact_reduction, only: reduced_matrix, lambda_unit
     use dual_eigen, only: reduced_left_eigenvector
     use problem, only: problem_t
     use enrichment, only: enrichment_t, build_enrichment
@@ -72,7 +71,6 @@ contains
         type(enrichment_t) :: enr
         type(csr_matrix_t) :: b_plus
         type(cholesky_t) :: chol
-        type(timings_t) :: ignored
         character(len=:), allocatable :: skipped
         real(wp), allocatable :: kt_nn(:, :), kt_nt(:, :), a(:, :), w(:), rhs(:, :), psi(:, :), &
                                  u(:), z(:), b_u(:), r_cell(:)
@@ -85,9 +83,7 @@ contains
         if (.not. stat%ok() .or. enr%element == 0) return
         est%element = enr%element
         call assemble_b(enr%contact, enr%dofs%n_free, lambda, b_plus, stat)
-        if (stat%ok()) call factor_stiffness(enr%k, enr%mesh, enr%dofs, enr%contact, chol, &
-                                             ignored, stat)
-        if (stat%ok()) call contact_flexibility(chol, enr%contact, kt_nn, kt_nt, stat)
+        if (stat%ok()) call enr%reduce(chol, kt_nn, kt_nt, stat)
         if (.not. stat%ok()) then
             call chol%free()
             return

@@ -21,10 +21,9 @@ module threshold_estimate
     use kinds, only: wp
     use status, only: status_t, STATUS_SOLVER
     use strings, only: to_string
-    use timer, only: wall_time, timings_t
+    use timer, only: wall_time
     use sparse_cholesky, only: cholesky_t
     use contact_boundary, only: contact_t
-    use contact_reduction, only: factor_stiffness, contact_flexibility
     use critical_lambda, only: thresholds_t, pencil_thresholds, SIDE_PLUS, SIDE_MINUS
     use lapack_interfaces, only: dgetrf, dgetrs
     use problem, only: problem_t
@@ -83,7 +82,6 @@ contains
         type(enrichment_t) :: enr
         type(thresholds_t) :: left
         type(cholesky_t) :: chol
-        type(timings_t) :: ignored
         character(len=:), allocatable :: skipped
         real(wp), allocatable :: kt_nn(:, :), kt_nt(:, :), g_h(:, :), w_h(:), rhs(:, :), &
                                  z_plus(:, :), u(:), w(:), z(:), r_cell(:), g(:), z_t(:), &
@@ -101,8 +99,7 @@ contains
             return
         end if
         est%element = enr%element
-        call factor_stiffness(enr%k, enr%mesh, enr%dofs, enr%contact, chol, ignored, stat)
-        if (stat%ok()) call contact_flexibility(chol, enr%contact, kt_nn, kt_nt, stat)
+        call enr%reduce(chol, kt_nn, kt_nt, stat)
         ! the left eigenvectors y: the right ones of the transposed pencil
         if (stat%ok()) call pencil_thresholds(kt_nn, transpose(kt_nt), left, stat)
         if (.not. stat%ok()) then
