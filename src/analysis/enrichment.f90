@@ -233,6 +233,9 @@ contains
             cell_of_node(this%mesh%cells(4:, c)) = c
         end do
         per_edge = size(this%mesh%edges, 1)
+        ! allocated before its first assignment: gfortran 12 reads the bounds of an
+        ! unallocated left-hand side for the reallocation test, which UBSan reports
+        allocate (me(per_edge, per_edge))
         row_factor = lambda*this%contact%tangent - this%contact%normal
         do e = 1, size(this%mesh%edges, 2)
             if (this%mesh%edge_part(e) /= contact_part) cycle
