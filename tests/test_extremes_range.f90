@@ -197,8 +197,8 @@ contains
         call dgeev('N', 'N', p, a, p, wr, wi, vl, 1, vr, 1, work, size(work), info)
         call t%check('limit pencil: dgeev', info == 0)
         ! nu = 1 / theta over the real theta: the smallest positive nu is 1 / the largest theta
-        nu(1) = 1.0_wp/maxval(wr, mask=wi == 0.0_wp .and. wr > 0.0_wp)
-        nu(2) = 1.0_wp/minval(wr, mask=wi == 0.0_wp .and. wr < 0.0_wp)
+        nu(1) = 1.0_wp/maxval(wr, mask=.not. abs(wi) > 0.0_wp .and. wr > 0.0_wp)
+        nu(2) = 1.0_wp/minval(wr, mask=.not. abs(wi) > 0.0_wp .and. wr < 0.0_wp)
         do sgn = 1, 2
             c = scene()
             c%analysis%lambda = merge(1.0e300_wp, -1.0e300_wp, sgn == 1)

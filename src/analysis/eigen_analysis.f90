@@ -24,7 +24,7 @@ module eigen_analysis
     private
     public :: eigen_result_t, solve_eigen, choose_solver, eigen_with_factor, solver_name
     public :: operator_name, critical_cn
-    public :: to_input_units
+    public :: to_input_units, estimate_wanted
     public :: SOLVER_DENSE, SOLVER_ARPACK
 
     !> The eigensolver a run used (&eigen solver = 'auto' resolves to one of them).
@@ -100,6 +100,7 @@ contains
         type(cholesky_t) :: chol
         real(wp) :: start
         logical :: contact_last, refactor
+        character(len=:), allocatable :: why_not
 
         res%lambda = lambda
         start = wall_time()
@@ -134,19 +135,33 @@ contains
         end do
         if (.not. (stat%ok() .and. present(with_error_estimate))) return
         if (.not. with_error_estimate) return
+        if (estimate_wanted(config, prob%dofs%n_free, why_not)) then
+            call add_error_estimate(prob, res, timings)
+        else if (len(why_not) > 0) then
+            res%error%skipped = why_not
+        end if
+    end subroutine solve_eigen
+
+    !> Whether &eigen estimate asks for the error estimates on a problem of `n_free` dofs:
+    !> 'on', 'off', or 'auto' (up to ESTIMATE_AUTO_MAX_DOFS); `why_not` the sentence for a
+    !> problem 'auto' leaves out ('' otherwise: 'off' is the user's own choice).
+    logical function estimate_wanted(config, n_free, why_not)
+        type(config_t), intent(in) :: config
+        integer, intent(in) :: n_free
+        character(len=:), allocatable, intent(out) :: why_not
+        why_not = ''
         select case (trim(config%eigen%estimate))
         case ('on')
-            call add_error_estimate(prob, res, timings)
+            estimate_wanted = .true.
         case ('auto')
-            if (prob%dofs%n_free <= ESTIMATE_AUTO_MAX_DOFS) then
-                call add_error_estimate(prob, res, timings)
-            else
-                res%error%skipped = 'not computed: '//to_string(prob%dofs%n_free)// &
-                    ' dofs, more than the '//to_string(ESTIMATE_AUTO_MAX_DOFS)//' of &eigen '// &
-                    "estimate = 'auto' (it costs a few times the solve; 'on' computes it)"
-            end if
+            estimate_wanted = n_free <= ESTIMATE_AUTO_MAX_DOFS
+            if (.not. estimate_wanted) why_not = 'not computed: '//to_string(n_free)// &
+                ' dofs, more than the '//to_string(ESTIMATE_AUTO_MAX_DOFS)//' of &eigen '// &
+                "estimate = 'auto' (it costs a few times the solve; 'on' computes it)"
+        case default
+            estimate_wanted = .false.
         end select
-    end subroutine solve_eigen
+    end function estimate_wanted
 
     !> res%error for the lowest positive mu (error_estimate): computed where the element has
     !> an enrichment (P1) and the enriched contact has at most ENRICHED_CONTACT_MAX nodes; a

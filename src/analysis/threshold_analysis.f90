@@ -27,7 +27,7 @@ module threshold_analysis
     use critical_set, only: critical_set_t, find_critical_set
     use adaptive_eigen, only: adapt_eigen, adaptive_result_t
     use eigen_analysis, only: eigen_result_t, choose_solver, eigen_with_factor, SOLVER_ARPACK, &
-                              to_input_units, ESTIMATE_AUTO_MAX_DOFS
+                              to_input_units, estimate_wanted
     use error_estimate, only: ENRICHED_CONTACT_MAX
     use threshold_estimate, only: threshold_estimate_t, threshold_displacements, &
                                   estimate_threshold_errors
@@ -207,22 +207,12 @@ contains
 
     contains
 
-        !> &eigen estimate: 'on', 'off', or 'auto' (up to ESTIMATE_AUTO_MAX_DOFS free dofs);
-        !> res%estimate%skipped says why not.
+        !> As &eigen estimate asks (estimate_wanted); res%estimate%skipped says why not on
+        !> the sides with a threshold.
         logical function wants_estimate()
-            select case (trim(config%eigen%estimate))
-            case ('on')
-                wants_estimate = .true.
-            case ('auto')
-                wants_estimate = prob%dofs%n_free <= ESTIMATE_AUTO_MAX_DOFS
-                if (.not. wants_estimate) res%estimate%skipped = 'not computed: '// &
-                    to_string(prob%dofs%n_free)//' dofs, more than the '// &
-                    to_string(ESTIMATE_AUTO_MAX_DOFS)//" of &eigen estimate = 'auto'"
-            case default
-                wants_estimate = .false.
-                res%estimate%skipped = "not computed: &eigen estimate = 'off'"
-            end select
-            where (.not. res%thresholds%found) res%estimate%skipped = ''
+            character(len=:), allocatable :: why_not
+            wants_estimate = estimate_wanted(config, prob%dofs%n_free, why_not)
+            where (res%thresholds%found) res%estimate%skipped = why_not
         end function wants_estimate
 
         !> res%estimate; its failure costs the estimate (a warning), never the run.
