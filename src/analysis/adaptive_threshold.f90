@@ -18,10 +18,9 @@ module adaptive_threshold
     use strings, only: to_string, short_real_text
     use timer, only: wall_time, timings_t, PHASE_REDUCTION
     use run_config, only: config_t
-    use problem, only: problem_t, explain_singular_k
+    use problem, only: problem_t
     use sparse_cholesky, only: cholesky_t
-    use contact_reduction, only: factor_stiffness, contact_flexibility
-    use memory_budget, only: check_contact_memory, contact_peak_blocks
+    use threshold_analysis, only: factor_with_contact_blocks
     use critical_lambda, only: thresholds_t, pencil_thresholds, SIDE_PLUS, SIDE_MINUS, &
                                SIDE_LABELS
     use error_estimate, only: ENRICHED_CONTACT_MAX
@@ -98,14 +97,10 @@ contains
         real(wp) :: start
 
         this%tolerance = config%adapt%tolerance
-        call check_contact_memory(config, prob%contact%p(), contact_peak_blocks(.false.), stat)
-        if (.not. stat%ok()) return
-        call factor_stiffness(prob%k, prob%mesh, prob%dofs, prob%contact, chol, timings, stat)
-        call explain_singular_k(config, stat)
+        call factor_with_contact_blocks(config, prob, chol, kt_nn, kt_nt, timings, stat)
         if (.not. stat%ok()) return
         start = wall_time()
-        call contact_flexibility(chol, prob%contact, kt_nn, kt_nt, stat)
-        if (stat%ok()) call pencil_thresholds(kt_nn, kt_nt, this%thr, stat)
+        call pencil_thresholds(kt_nn, kt_nt, this%thr, stat)
         if (stat%ok()) call threshold_displacements(chol, prob%contact, prob%dofs%n_free, &
                                                     this%thr, u, stat)
         call chol%free()

@@ -34,7 +34,7 @@ module threshold_analysis
     use accuracy, only: WARNING_LEN
     implicit none
     private
-    public :: threshold_result_t, solve_thresholds
+    public :: threshold_result_t, solve_thresholds, factor_with_contact_blocks
 
     !> 'threshold' counts positive mu on at most this many of the &sweep lambdas (spacing 1
     !> on the default range [-20, 20]); 'lambda_sweep' on all of them (see scan_lambdas).
@@ -100,22 +100,9 @@ contains
         call timings%add(PHASE_ASSEMBLY, wall_time() - start, ': B for lambda = '// &
                          real_to_text(res%eigen%lambda))
 
-        ! the thresholds always form Kt_nn and Kt_nt
-        call check_contact_memory(config, prob%contact%p(), contact_peak_blocks(.false.), stat)
+        call factor_with_contact_blocks(config, prob, chol, blocks%kt_nn, blocks%kt_nt, timings, &
+                                        stat)
         if (.not. stat%ok()) return
-        call factor_stiffness(prob%k, prob%mesh, prob%dofs, prob%contact, chol, timings, stat)
-        call explain_singular_k(config, stat)
-        if (.not. stat%ok()) return
-
-        start = wall_time()
-        call contact_flexibility(chol, prob%contact, blocks%kt_nn, blocks%kt_nt, stat)
-        if (.not. stat%ok()) then
-            call chol%free()
-            return
-        end if
-        call timings%add(PHASE_REDUCTION, wall_time() - start, ': contact blocks of K^-1, '// &
-                         to_string(prob%contact%p())//' x '//to_string(prob%contact%p()))
-
         call eigen_with_factor(config, prob, chol, res%eigen, timings, stat, blocks%kt_nn, &
                                blocks%kt_nt)
         start = wall_time()
@@ -241,6 +228,33 @@ contains
             if (stat%ok()) mu = real(values, wp)
         end subroutine real_to_input_units
     end subroutine solve_thresholds
+
+    !> Factor K with the contact dofs last and form Kt_nn and Kt_nt, which every threshold
+    !> computation needs (their memory checked first); `chol` stays factored for the
+    !> caller's solves (free it), and is freed here on failure.
+    subroutine factor_with_contact_blocks(config, prob, chol, kt_nn, kt_nt, timings, stat)
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(in) :: prob
+        type(cholesky_t), intent(inout) :: chol
+        real(wp), allocatable, intent(out) :: kt_nn(:, :), kt_nt(:, :)
+        type(timings_t), intent(inout) :: timings
+        type(status_t), intent(out) :: stat
+        real(wp) :: start
+
+        call check_contact_memory(config, prob%contact%p(), contact_peak_blocks(.false.), stat)
+        if (.not. stat%ok()) return
+        call factor_stiffness(prob%k, prob%mesh, prob%dofs, prob%contact, chol, timings, stat)
+        call explain_singular_k(config, stat)
+        if (.not. stat%ok()) return
+        start = wall_time()
+        call contact_flexibility(chol, prob%contact, kt_nn, kt_nt, stat)
+        if (.not. stat%ok()) then
+            call chol%free()
+            return
+        end if
+        call timings%add(PHASE_REDUCTION, wall_time() - start, ': contact blocks of K^-1, '// &
+                         to_string(prob%contact%p())//' x '//to_string(prob%contact%p()))
+    end subroutine factor_with_contact_blocks
 
     !> The curve with &adapt: at each lambda the adaptive loop of analysis 'eigen' until the
     !> estimate meets the tolerance, starting from the last mesh that met it at a lambda
