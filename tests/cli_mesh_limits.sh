@@ -3,7 +3,7 @@
 # Meshes nceig must refuse with one line naming the input (or mesh file and line), fast and
 # without a backtrace: a grid whose dof count overflows default integers (nx = ny = 46341);
 # thin strips whose dense contact blocks exceed the machine's memory (nx = 200000 and
-# 1000000, ny = 1: refused in seconds, with the estimate); a Gmsh mesh cut in two by a crack
+# 1000000, ny = 1: refused before allocating, with the estimate); a Gmsh mesh cut in two by a crack
 # (duplicated nodes along x = 0.5), which used to end in an internal Cholesky message; and,
 # under ulimit -v, an allocation that fails after the estimate passed (exit 5, one line).
 # Usage: cli_mesh_limits.sh NCEIG SOURCE_DIR
@@ -12,19 +12,20 @@ nceig=$1
 source "$(dirname "$0")/lib/cli_common.sh"
 cli_begin cli_mesh_limits
 cd "$work"
-# The time bounds guard against the minutes an O(p^2) setup took; a sanitizer build runs
-# 5-10 times slower, so its bounds are 10 times larger.
-slowdown=1
-if ldd "$nceig" 2>/dev/null | grep -q libasan; then slowdown=10; fi
+# No wall-clock bound is asserted (a loaded machine exceeds any): the refusals come from
+# estimates made before any large allocation, which the messages show. `timeout` only stops
+# a run that hangs, so that CI cannot stall; the seconds are printed for the reader.
+HANG=600
+sanitized=0
+if ldd "$nceig" 2>/dev/null | grep -q libasan; then sanitized=1; fi
 
-# refused NAME STATUS SECONDS WORD...: the last run ($rc, $seconds, err) ended with STATUS
-# within SECONDS, one stderr line containing every WORD, and no output directory.
+# refused NAME STATUS WORD...: the last run ($rc, err) ended with STATUS, one stderr line
+# containing every WORD, and no output directory.
 refused() {
-    local name=$1 status=$2 limit=$3 ok=1
-    shift 3
+    local name=$1 status=$2 ok=1
+    shift 2
     [[ $rc -eq $status ]] || ok=0
     [[ $(wc -l <err) -eq 1 ]] || ok=0
-    (( seconds <= limit * slowdown )) || ok=0
     for word in "$@"; do grep -q -F -- "$word" err || ok=0; done
     [[ ! -e out ]] || ok=0
     check "$name" '[[ $ok -eq 1 ]]'
@@ -36,21 +37,21 @@ run() {
     printf '&mesh %s /\n&output directory = "out" /\n' "$1" >in.nml
     rm -rf out
     SECONDS=0
-    "$nceig" in.nml >stdout 2>err
+    timeout $HANG "$nceig" in.nml >stdout 2>err
     rc=$?
     seconds=$SECONDS
 }
 
 run "nx = 46341, ny = 46341"
-refused 'nx = ny = 46341: the input file, &mesh, nx and ny and the limit' 2 5 \
+refused 'nx = ny = 46341: the input file, &mesh, nx and ny and the limit' 2 \
     'in.nml: &mesh: nx = 46341, ny = 46341' '(nx + 1) (ny + 1) <= 1073741823'
 
 run "nx = 200000, ny = 1"
-refused 'thin strip nx = 200000: refused with the memory estimate' 2 10 \
+refused 'thin strip nx = 200000: refused with the memory estimate' 2 \
     'in.nml: &mesh: nx = 200000, ny = 1' 'p = 200001' '(8 p x p doubles) need an estimated 2560.0 GB' 'MemAvailable'
 
 run "nx = 1000000, ny = 1"
-refused 'nx = 1000000, ny = 1 (the largest documented): refused in seconds' 2 20 \
+refused 'nx = 1000000, ny = 1 (the largest documented): refused before allocating' 2 \
     'in.nml: &mesh: nx = 1000000, ny = 1' 'estimated 64000.1 GB'
 
 # Two unit-height quadrangles side by side whose common side is two pairs of nodes (3, 7 at
@@ -90,23 +91,23 @@ $Elements
 $EndElements
 MSH
 run "source = 'gmsh', file = 'crack.msh'"
-refused 'a crack (duplicated nodes): the mesh file, the line, not connected' 3 5 \
+refused 'a crack (duplicated nodes): the mesh file, the line, not connected' 3 \
     'crack.msh:31: the mesh is not connected: it falls into 2 pieces'
 
 # An allocation failure after the estimate passed (here: a 700 MB address space) is one
 # line and exit status 5, not a backtrace.
 # AddressSanitizer reserves terabytes of address space at start: under ulimit -v a sanitized
 # nceig cannot even start, so that build skips this one case.
-if [[ $slowdown -ne 1 ]]; then
+if [[ $sanitized -eq 1 ]]; then
     echo "SKIP  out of memory under ulimit -v: a sanitizer build cannot run under ulimit -v"
 else
     printf '&mesh nx = 5000, ny = 1 /\n&output directory = "out" /\n' >in.nml
     rm -rf out
     SECONDS=0
-    (ulimit -v 700000 && exec "$nceig" in.nml) >stdout 2>err
+    (ulimit -v 700000 && exec timeout $HANG "$nceig" in.nml) >stdout 2>err
     rc=$?
     seconds=$SECONDS
-    refused 'out of memory under ulimit -v: one line, exit status 5' 5 20 'out of memory'
+    refused 'out of memory under ulimit -v: one line, exit status 5' 5 'out of memory'
 fi
 
 cli_end
