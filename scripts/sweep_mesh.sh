@@ -4,7 +4,7 @@
 # fineness, for several element and mesh types, its Richardson-extrapolated limits and the
 # measured accuracy/time trade. See docs/meshes.md, "Mesh refinement sweeps".
 #
-#   scripts/sweep_mesh.sh [-e FAMILIES] [-n SIZES] [-j JOBS] [-o OUTDIR] [-s] TEMPLATE.nml
+#   scripts/sweep_mesh.sh [-e FAMILIES] [-n SIZES] [-j JOBS] [-o OUTDIR] [-g GEO] [-s] TEMPLATE.nml
 #   scripts/sweep_mesh.sh --run OUTDIR FAMILY N      (one run; what a SLURM array task does)
 #   scripts/sweep_mesh.sh --collect OUTDIR           (tables and plots from the runs present)
 set -uo pipefail
@@ -16,7 +16,7 @@ DEFAULT_SIZES=4,8,16,32,64
 
 usage() {
     cat <<EOF
-usage: scripts/sweep_mesh.sh [-e FAMILIES] [-n SIZES] [-j JOBS] [-o OUTDIR] [-s] TEMPLATE.nml
+usage: scripts/sweep_mesh.sh [-e FAMILIES] [-n SIZES] [-j JOBS] [-o OUTDIR] [-g GEO] [-s] TEMPLATE.nml
   -e FAMILIES  comma list of element[:mesh]: element p1, q1, p2, q2, p3, p4; mesh 'right'
                or 'left' (structured triangles, default: the template's diagonal) or 'delaunay'
                (a Gmsh mesh, triangles only); 'delaunay' alone means p1:delaunay.
@@ -24,6 +24,11 @@ usage: scripts/sweep_mesh.sh [-e FAMILIES] [-n SIZES] [-j JOBS] [-o OUTDIR] [-s]
   -n SIZES     comma list of N, the mesh size being h = 1/N. Default: $DEFAULT_SIZES
   -j JOBS      runs at a time (default 1; use 1 for timings you want to quote)
   -o OUTDIR    default: output/sweep_<template stem>
+  -g GEO       the Gmsh geometry of a template whose body is a Gmsh mesh (&mesh source =
+               'gmsh'): its 'delaunay' families mesh GEO with h = 1/N; its physical groups
+               must carry the names the template uses. Only 'delaunay' families refine such a
+               body, and without -g the sweep refuses it. A rectangle template needs no -g:
+               its 'delaunay' families mesh the template's own width x height rectangle.
   -s           write a SLURM job-array script and its collection step instead of running
 Each (family, N) is one nceig process in OUTDIR/runs/<family>_n<N>/; a run whose
 summary.json exists is not redone. Outputs: OUTDIR/results.csv, extrapolation.csv,
@@ -78,6 +83,70 @@ parse_family() {
 
 run_name() { local family=${1//:/-}; printf '%s_n%04d' "$family" "$2"; }
 
+# template_value FILE GROUP VARIABLE: the value the namelist FILE gives VARIABLE in &GROUP,
+# unquoted and lower-cased ('' when not given). Comments (! outside quotes) are dropped and
+# the file read as one text, so a group may span lines or share one with others.
+template_value() {
+    awk -v group="$2" -v variable="$3" -v q="'" -v dq='"' '
+        function strip(s,    i, c, quote, out) {  # s up to a ! outside quotes
+            quote = ""; out = ""
+            for (i = 1; i <= length(s); i++) {
+                c = substr(s, i, 1)
+                if (quote == "" && c == "!") break
+                if (quote == "" && (c == q || c == dq)) quote = c
+                else if (c == quote) quote = ""
+                out = out c
+            }
+            return out
+        }
+        { text = text " " strip($0) }
+        END {
+            text = tolower(text); gsub(/[\t\r]/, " ", text)
+            if (!match(text, "&" group "[ ,]")) exit
+            rest = substr(text, RSTART + RLENGTH); quote = ""; body = ""
+            for (i = 1; i <= length(rest); i++) {  # the group ends at a / outside quotes
+                c = substr(rest, i, 1)
+                if (quote == "" && c == "/") break
+                if (quote == "" && (c == q || c == dq)) quote = c
+                else if (c == quote) quote = ""
+                body = body c
+            }
+            pattern = "(^|[ ,])" variable " *= *(" q "[^" q "]*" q "|" dq "[^" dq "]*" dq "|[^ ,]+)"
+            if (match(body, pattern)) {
+                value = substr(body, RSTART, RLENGTH)
+                sub(/^[ ,]*[a-z_0-9]+ *= */, "", value)
+                if (substr(value, 1, 1) == q || substr(value, 1, 1) == dq)
+                    value = substr(value, 2, length(value) - 2)
+                print value
+            }
+        }' "$1"
+}
+
+# write_rectangle_geo FILE WIDTH HEIGHT: the Gmsh geometry of nceig's rectangle (corner at
+# the origin), with the side names as physical groups, so that a template's dirichlet,
+# neumann and contact sides name the same sides on its Delaunay meshes.
+write_rectangle_geo() {
+    cat >"$1" <<GEO
+// The rectangle of the sweep's template, written by sweep_mesh.sh for its delaunay families.
+Point(1) = {0, 0, 0, 1e22};
+Point(2) = {$2, 0, 0, 1e22};
+Point(3) = {$2, $3, 0, 1e22};
+Point(4) = {0, $3, 0, 1e22};
+Line(1) = {1, 2};
+Line(2) = {2, 3};
+Line(3) = {3, 4};
+Line(4) = {4, 1};
+Curve Loop(1) = {1, 2, 3, 4};
+Plane Surface(1) = {1};
+Physical Curve("bottom") = {1};
+Physical Curve("right") = {2};
+Physical Curve("top") = {3};
+Physical Curve("left") = {4};
+Physical Surface("body") = {1};
+Mesh.Algorithm = 5;
+GEO
+}
+
 # ------------------------------------------------------------------------- one run
 
 # --run OUTDIR FAMILY N: make the input from OUTDIR/template.nml, run nceig under
@@ -109,10 +178,12 @@ run_one() {
         local order=${element#p}
         if [[ ! -f $root/scripts/make_mesh.sh ]]; then
             echo "failed: scripts/make_mesh.sh is missing (Gmsh meshes)" >"$dir/status"
+        elif [[ ! -f $outdir/geometry.geo ]]; then
+            echo "failed: $outdir/geometry.geo is missing (start the sweep again)" >"$dir/status"
         else
             t0=$(date +%s.%N)
-            if ! bash "$root/scripts/make_mesh.sh" "$n" "$order" "$dir/mesh.msh" \
-                    >"$dir/mesh.log" 2>&1; then
+            if ! bash "$root/scripts/make_mesh.sh" "$n" "$order" "$dir/mesh.msh" msh41 \
+                    "$outdir/geometry.geo" >"$dir/mesh.log" 2>&1; then
                 echo "failed: mesh generation: $(tail -n 1 "$dir/mesh.log")" >"$dir/status"
             fi
             t1=$(date +%s.%N)
@@ -145,6 +216,18 @@ run_one() {
         rc=$?
         t1=$(date +%s.%N)
         awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.2f\n", b - a }' >"$dir/time.txt"
+    fi
+    # The body solved must be the one this family refines: a rectangle for the structured
+    # families, the mesh made here for 'delaunay', never whatever the template says.
+    local solved want=rectangle
+    [[ $mesh == delaunay ]] && want=gmsh
+    if [[ $rc -eq 0 && -s $dir/output/summary.json ]]; then
+        solved=$(json_value "$dir/output/summary.json" mesh_source)
+        if [[ $solved != "$want" ]]; then
+            echo "failed: nceig solved a '$solved' mesh, not the family's $want" >"$dir/status"
+            echo "FAILED  $family N=$n: nceig solved a '$solved' mesh, not the family's $want"
+            return 1
+        fi
     fi
     if [[ $rc -eq 0 && -s $dir/output/summary.json ]]; then
         echo ok >"$dir/status"
@@ -419,13 +502,14 @@ case ${1:-} in
     --help | -h) usage; exit 0 ;;
 esac
 
-families=$DEFAULT_FAMILIES sizes=$DEFAULT_SIZES jobs=1 outdir= slurm=0
-while getopts ':e:n:j:o:sh' option; do
+families=$DEFAULT_FAMILIES sizes=$DEFAULT_SIZES jobs=1 outdir= slurm=0 geometry=
+while getopts ':e:n:j:o:g:sh' option; do
     case $option in
         e) families=$OPTARG ;;
         n) sizes=$OPTARG ;;
         j) jobs=$OPTARG ;;
         o) outdir=$OPTARG ;;
+        g) geometry=$OPTARG ;;
         s) slurm=1 ;;
         h) usage; exit 0 ;;
         :) die "option -$OPTARG needs a value" ;;
@@ -447,6 +531,25 @@ done
 for n in "${size_list[@]}"; do
     [[ $n =~ ^[1-9][0-9]*$ ]] || die "-n: '$n' is not a positive integer"
 done
+# The body: a sweep refines the template's own geometry, never another one.
+source=$(template_value "$template" mesh source)
+case ${source:-rectangle} in
+    rectangle)
+        [[ -z $geometry ]] || die "-g $geometry: the body of $template is its rectangle (&mesh source = 'rectangle'); -g is for a template whose &mesh source is 'gmsh'"
+        width=$(template_value "$template" mesh width)
+        height=$(template_value "$template" mesh height)
+        width=${width:-1.0} height=${height:-1.0}
+        width=${width//d/e} height=${height//d/e}
+        awk -v w="$width" -v h="$height" 'BEGIN { exit !(w + 0 > 0 && h + 0 > 0) }' \
+            || die "$template: &mesh width = $width, height = $height: expected positive numbers" ;;
+    gmsh)
+        for family in "${family_list[@]}"; do
+            [[ $(parse_family "$family") == *' delaunay' ]] || die "$template: &mesh source = 'gmsh': family '$family' would solve a rectangle, not this body; only 'delaunay' families (e.g. -e p1:delaunay,p2:delaunay) refine a Gmsh body"
+        done
+        [[ -n $geometry ]] || die "$template: &mesh source = 'gmsh': give the body's Gmsh geometry with -g FILE.geo, which the 'delaunay' families mesh with h = 1/N"
+        [[ -f $geometry ]] || die "-g $geometry: no such geometry file" ;;
+    *) die "$template: &mesh source = '$source': expected 'rectangle' or 'gmsh'" ;;
+esac
 [[ -n $outdir ]] || outdir="output/sweep_$(basename "${template%.*}")"
 [[ $outdir != *"'"* ]] || die "-o $outdir: quotes are not allowed in the output folder"
 mkdir -p "$outdir/runs" || die "cannot create $outdir"
@@ -456,6 +559,14 @@ if [[ -f $outdir/template.nml ]] && ! cmp -s "$template" "$outdir/template.nml";
     die "$outdir holds a sweep of another template (template.nml differs from $template): choose another -o or remove it"
 fi
 cp "$template" "$outdir/template.nml"
+if [[ -n $geometry ]]; then
+    if [[ -f $outdir/geometry.geo ]] && ! cmp -s "$geometry" "$outdir/geometry.geo"; then
+        die "$outdir holds a sweep of another geometry (geometry.geo differs from $geometry): choose another -o or remove it"
+    fi
+    cp "$geometry" "$outdir/geometry.geo"
+else
+    write_rectangle_geo "$outdir/geometry.geo" "$width" "$height"
+fi
 nceig=$(find_nceig) || exit 2
 
 runs=()

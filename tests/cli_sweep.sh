@@ -3,7 +3,8 @@
 # scripts/sweep_mesh.sh on tiny meshes: the tables and plots of a sweep, the per-run inputs
 # (the template copied unchanged, the mesh and output folder as --set overrides, the
 # command recorded), resuming without redoing, a failing family
-# reported while the others are kept, and the SLURM scripts of -s.
+# reported while the others are kept, the template's own body refined (never another one),
+# and the SLURM scripts of -s.
 # Usage: cli_sweep.sh NCEIG SOURCE_DIR
 set -u
 nceig=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
@@ -103,6 +104,53 @@ check 'malformed family: exit 2, message names it' '[[ $rc -eq 2 ]] && grep -q "
 bash "$sweep" -e q1 -n 0 -o "$work/bad" "$work/template.nml" >/dev/null 2>"$work/err"
 rc=$?
 check 'N = 0 refused' '[[ $rc -eq 2 ]] && grep -q -- "-n" "$work/err"'
+
+# The body is the template's own. A trapezoid given as a Gmsh mesh: refused without its
+# geometry, refused for the structured families (they mesh a rectangle), and with -g every
+# run solves a Delaunay mesh of the trapezoid: run N = 4 equals nceig on make_mesh.sh's mesh
+# of the same geometry (the same Gmsh call, so the same mesh), and a unit-square run differs.
+cat >"$work/trapezoid.geo" <<'GEO'
+Point(1) = {0, 0, 0, 1e22}; Point(2) = {2, 0, 0, 1e22};
+Point(3) = {1.5, 1, 0, 1e22}; Point(4) = {0.5, 1, 0, 1e22};
+Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};
+Curve Loop(1) = {1, 2, 3, 4}; Plane Surface(1) = {1};
+Physical Curve("bottom") = {1}; Physical Curve("right") = {2};
+Physical Curve("top") = {3}; Physical Curve("left") = {4};
+Physical Surface("body") = {1};
+Mesh.Algorithm = 5;
+GEO
+bash "$source_dir/scripts/make_mesh.sh" 4 1 "$work/trapezoid_4.msh" msh41 "$work/trapezoid.geo"
+cat >"$work/trapezoid.nml" <<'NML'
+&mesh source = 'gmsh', file = 'trapezoid_4.msh', contact = 'bottom' /
+&analysis lambda = 5.0 / &output vtk = .false. /
+NML
+bash "$sweep" -e p1:delaunay -n 4 -o "$work/trap_bad" "$work/trapezoid.nml" >/dev/null 2>"$work/err"
+rc=$?
+check 'Gmsh template without -g: exit 2, asks for the geometry' \
+    '[[ $rc -eq 2 && $(wc -l <"$work/err") -eq 1 ]] && grep -q "source = .gmsh.*-g FILE.geo" "$work/err"'
+bash "$sweep" -e q1,p1:delaunay -n 4 -g "$work/trapezoid.geo" -o "$work/trap_bad" "$work/trapezoid.nml" >/dev/null 2>"$work/err"
+rc=$?
+check 'Gmsh template with a structured family: exit 2 naming it' \
+    '[[ $rc -eq 2 ]] && grep -q "family .q1. would solve a rectangle" "$work/err"'
+check 'refused sweeps ran nothing' '[[ -z $(ls -A "$work/trap_bad/runs" 2>/dev/null) ]]'
+bash "$sweep" -g "$work/trapezoid.geo" -e p1:right -n 4 -o "$work/trap_bad2" "$work/template.nml" >/dev/null 2>"$work/err"
+rc=$?
+check '-g with a rectangle template: exit 2' '[[ $rc -eq 2 ]] && grep -q "source = .rectangle." "$work/err"'
+bash "$sweep" -e p1:delaunay -n 4,8,16 -g "$work/trapezoid.geo" -o "$work/trap" "$work/trapezoid.nml" >"$work/trap.log" 2>&1
+"$nceig" "$work/trapezoid.nml" --set "output%directory=$work/trap_direct" >/dev/null 2>&1
+direct=$(json "$work/trap_direct/summary.json" lowest_positive_mu)
+swept=$(json "$work/trap/runs/p1-delaunay_n0004/output/summary.json" lowest_positive_mu)
+square=$(json "$work/sweep/runs/p1-right_n0004/output/summary.json" lowest_positive_mu)
+check "Gmsh sweep: N = 4 solves the trapezoid (mu $swept, direct $direct)" \
+    '[[ -n $direct ]] && close "$swept" "$direct" 1e-12'
+check "Gmsh sweep: not the square (mu $swept against $square)" '! close "$swept" "$square" 1e-2'
+# A 2 x 1 rectangle template: its delaunay meshes are 2 x 1 too: edges of at most h = 1/4
+# along a contact side of length 2 are at least 8, so at least 9 contact nodes (the unit
+# square has about 5).
+sed 's/&mesh nx = 3, ny = 3, element = .q2.,/\&mesh width = 2.0, height = 1.0,/' "$work/template.nml" >"$work/wide.nml"
+bash "$sweep" -e delaunay -n 4 -o "$work/wide" "$work/wide.nml" >"$work/wide.log" 2>&1
+check 'rectangle template 2 x 1: its delaunay mesh has at least 9 contact nodes at h = 1/4' \
+    '[[ $(json "$work/wide/runs/delaunay_n0004/output/summary.json" n_contact) -ge 9 ]]'
 
 # SLURM: scripts written, nothing run.
 out3="$work/slurm"
