@@ -14,5 +14,7 @@ if [[ $type == Asan ]]; then
     set -- -DNCEIG_SANITIZE=ON "$@"
 fi
 cmake -S "$root" -B "$folder" -DCMAKE_BUILD_TYPE="$type" "$@" >/dev/null
-cmake --build "$folder" -j "$(nproc)" 2>&1 | { grep -E -i 'warning|error' || true; }
+# Only diagnostics (the compilers' 'Warning:', 'error:', make's '***'), not file names that
+# contain the word (error_estimate.f90).
+cmake --build "$folder" -j "$(nproc)" 2>&1 | { grep -E '(^|[ :])([Ww]arning|[Ee]rror):|\*\*\*|CMake Error' || true; }
 test -x "$folder/nceig"

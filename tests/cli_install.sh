@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
-# cmake --install into a temporary prefix: the installed nceig answers --version, the installed
+# cmake --install into a temporary prefix: the installed nceig answers --version, its example
+# inputs run from a copy, the installed
 # nceig-sweep runs a sweep with the prefix's own binaries (an nceig earlier on PATH that fails
 # is not used), the installed nceig draws its sweep plot with the installed script, and the
 # prefix still works after being moved.
@@ -21,6 +22,17 @@ for program in nceig nceig-extrapolate nceig-sweep; do
 done
 check 'the installed nceig --version is the built one' \
     '[[ "$("$prefix/bin/nceig" --version)" == "$("$nceig" --version)" ]]'
+
+# The README's first run from the prefix: the examples are installed with their meshes and run
+# from a copy (the Gmsh example reads its mesh relative to its own folder).
+check 'the example inputs are installed' \
+    '[[ -f $prefix/share/nceig/input/square.nml && -f $prefix/share/nceig/input/meshes/square_16.msh ]]'
+cp -r "$prefix/share/nceig/input" "$work/examples"
+(cd "$work" && "$prefix/bin/nceig" examples/square.nml && "$prefix/bin/nceig" examples/delaunay.nml) \
+    >"$work/examples.log" 2>&1
+rc=$?
+check 'the installed examples run from a copy' \
+    '[[ $rc -eq 0 && -s $work/output/square/summary.json && -s $work/output/delaunay/summary.json ]]'
 
 # A decoy first on PATH: a sweep that used it would fail every run.
 mkdir -p "$work/decoy"

@@ -11,6 +11,7 @@ program test_mesh_check
     use mesh, only: mesh_t
     use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P3, MAX_ELEMENT, element_name
     use mesh_structured, only: structured_rectangle, PART_BOTTOM, PART_TOP
+    use filesystem, only: remove_file
     use mesh_gmsh, only: read_gmsh
     use mesh_check, only: check_mesh
     use strings, only: to_string
@@ -215,7 +216,7 @@ contains
         edge_line = 17 + m%n_nodes() + count(m%edge_part < part)
     end function edge_line
 
-    !> Write m as MSH 2.2, read it back, check with `contact` the contact group: STATUS_MESH,
+    !> Write m as MSH 2.2 (a scratch file in the working folder), read it back, check with `contact` the contact group: STATUS_MESH,
     !> and a message 'file:line: ...' containing `words`.
     subroutine expect_refusal(what, m, line, words, contact)
         character(len=*), intent(in) :: what, words
@@ -227,6 +228,7 @@ contains
         path = 'check_'//to_string(line)//'_'//element_name(m%element)//'.msh'
         call write_msh22(path, m)
         call read_gmsh(path, from_file, stat)
+        call remove_file(path)
         call t%check(what//': the reader accepts the file', stat%ok())
         if (.not. stat%ok()) then
             print '(a)', '      '//stat%message
