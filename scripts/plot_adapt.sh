@@ -18,11 +18,11 @@ tolerance=$(value adapt_tolerance)
 header=$(head -n 1 "$csv")
 if [[ $header == *lambda_plus* ]]; then
     sides=("5|6|lambda+|#1f77b4|1" "7|8|-lambda-|#ff7f0e|-1")
-    goal='critical {/Symbol l}'
+    goal='critical {/Symbol l}  (dimensionless)'
     title="$(value element), the critical lambdas, start $(value adapt_start_dofs) dofs"
 else
     sides=("5|6|{/Symbol m}|#1f77b4|1")
-    goal='lowest positive {/Symbol m} = critical c_n'
+    goal='lowest positive {/Symbol m} = critical c_n  [E / length]'
     title="$(value element), lambda = $(value lambda), start $(value adapt_start_dofs) dofs"
 fi
 estimates=$(for s in "${sides[@]}"; do IFS='|' read -r _ e _ <<<"$s"; echo "$e"; done)
@@ -48,11 +48,11 @@ done
 set multiplot layout 2, 1 title "nceig adaptive refinement: $title" font ',13'
 set grid xtics ytics mxtics mytics lc rgb '#dddddd'
 set logscale x
-set xlabel 'free dofs'
+set xlabel 'free degrees of freedom'
 set logscale y
 set format y '10^{%L}'
 set key top right
-set ylabel 'relative error estimate'
+set ylabel 'relative error estimate  (dimensionless)'
 set yrange [$ymin:*]
 plot $estimate_plot \
      $tolerance with lines dashtype 2 lw 1.5 lc rgb '#c0392b' title sprintf('tolerance %g', $tolerance)

@@ -18,12 +18,18 @@ if [[ $(value mesh_source) == rectangle ]]; then
     title="$title $(value nx)x$(value ny)"
     [[ $(value element) != p* ]] || title="$title $(value diagonal)"   # triangles only
 fi
-title="${title}, $(value n_contact) contact nodes"
+# An adapted sweep solves each lambda on its own adapted mesh: the summary's mesh is only
+# where every point started.
+if [[ $(value sweep_n_adapted) =~ ^[1-9] ]]; then
+    title="${title} start, each lambda adapted (largest estimate $(printf "%.2g" "$(value sweep_max_error_estimate)"))"
+else
+    title="${title}, $(value n_contact) contact nodes"
+fi
 
 # A log x axis needs one sign: |lambda| then.
-xcol='($1)' xlabel='{/Symbol l}' xlog=''
+xcol='($1)' xlabel='{/Symbol l}  (dimensionless)' xlog=''
 if [[ $spacing == log ]]; then
-    xcol='(abs($1))' xlabel='|{/Symbol l}|' xlog='set logscale x'
+    xcol='(abs($1))' xlabel='|{/Symbol l}|  (dimensionless)' xlog='set logscale x'
 fi
 
 marks=''
@@ -61,9 +67,9 @@ $xlog
 set key top right
 set xlabel "$xlabel"
 $marks
-set ylabel 'critical c_n = lowest positive {/Symbol m}'
+set ylabel 'critical c_n = lowest positive {/Symbol m}  [E / length]'
 plot '$csv' using $xcol:(cell(2))$cn_bar skip 1 with $style pt 7 ps 0.4 lw 1.5 lc rgb '#1f77b4' title 'c_n$bar_title'
-set ylabel 'critical c_t = {/Symbol m} |{/Symbol l}|'
+set ylabel 'critical c_t = {/Symbol m} |{/Symbol l}|  [E / length]'
 plot '$csv' using $xcol:(cell(3))$ct_bar skip 1 with $style pt 7 ps 0.4 lw 1.5 lc rgb '#2ca02c' title 'c_t$bar_title'
 unset multiplot
 GNUPLOT
