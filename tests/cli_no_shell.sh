@@ -3,7 +3,8 @@
 # nceig starts gnuplot and the plot scripts with an argument vector, through no shell, and
 # writes paths into gnuplot text as quoted strings: an output directory holding quotes, `;`
 # or gnuplot's system() runs nothing, and "Bob's results" gets its pictures. Under a low
-# descriptor limit the note says why gnuplot did not start, not that it is missing.
+# descriptor limit the note says why gnuplot did not start, not that it is missing. A reader
+# that closes stdout early (`| head`) neither kills the run (SIGPIPE) nor loses its set.
 # Usage: cli_no_shell.sh NCEIG SOURCE_DIR
 set -u
 # absolute: the runs start in the scratch folder, where relative output paths land
@@ -100,5 +101,19 @@ if [[ $have_gnuplot -eq 1 ]]; then
     check 'ulimit -n 4..8: the lowest limit says "could not be started: Too many open files"' \
         '[[ $n_reason -ge 1 ]]'
 fi
+
+# stdout closed early: with progress lines (the reader leaves after the first) and without
+for progress in .true. .false.; do
+    rm -rf pipe
+    "$nceig" "$source_dir/input/square.nml" --set output%directory=pipe \
+        --set "output%progress=$progress" 2>"$work/stderr" | head -c 10 >/dev/null
+    rc=${PIPESTATUS[0]}
+    check "| head -c 10, progress = $progress: exit 0 (not 141), no error, summary.json" \
+        '[[ $rc -eq 0 && ! -s "$work/stderr" && -s pipe/summary.json ]]'
+done
+# A failed run keeps its own status when stdout is closed
+"$nceig" "$work/no-such-input.nml" 2>/dev/null | head -c 1 >/dev/null
+rc=${PIPESTATUS[0]}
+check '| head, a missing input file: exit 2 as ever' '[[ $rc -eq 2 ]]'
 
 cli_end
