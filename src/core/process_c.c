@@ -73,7 +73,7 @@ int nceig_run_program(const char *args, int count, const char *output, int *erro
     }
     if (status == 0) {
         /* dup2 clears O_CLOEXEC on the copies, so the child keeps exactly 0, 1, 2. */
-        if (status == 0) status = posix_spawn_file_actions_adddup2(&actions, in_fd, 0);
+        status = posix_spawn_file_actions_adddup2(&actions, in_fd, 0);
         if (status == 0) status = posix_spawn_file_actions_adddup2(&actions, out_fd, 1);
         if (status == 0) status = posix_spawn_file_actions_adddup2(&actions, out_fd, 2);
         /* nceig ignores SIGPIPE, and exec keeps an ignored signal ignored: give the child
