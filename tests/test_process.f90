@@ -88,7 +88,8 @@ program test_process
     call t%check('sh is on the PATH', program_on_path('sh'))
     call t%check('a missing program is not on the PATH', &
                  .not. program_on_path('nceig-no-such-program-here'))
-    call t%check('a path with / is checked as it is', program_on_path('/bin/sh') .and. &
+    call t%check('a path with / is checked as it is: /bin/sh', program_on_path('/bin/sh'))
+    call t%check('a path with / is checked as it is: /nonexistent/sh', &
                  .not. program_on_path('/nonexistent/sh'))
 
     call t%report()
