@@ -39,8 +39,8 @@ ymin=$(awk -F, -v t="$tolerance" -v cols="$estimates" 'BEGIN { n = split(cols, c
 estimate_plot='' value_plot=''
 for s in "${sides[@]}"; do
     IFS='|' read -r v e name colour sign <<<"$s"
-    estimate_plot+="'$csv' using 2:(cell($e)) skip 1 with linespoints pt 7 ps 0.6 lw 1.5 lc rgb '$colour' title '$name', "
-    value_plot+="'$csv' using 2:($sign*cell($v)):(abs(cell($v))*cell($e)) skip 1 with yerrorlines pt 7 ps 0.6 lw 1.5 lc rgb '$colour' title '$name {/Symbol \261} estimate', "
+    estimate_plot+="$(gnuplot_string "$csv") using 2:(cell($e)) skip 1 with linespoints pt 7 ps 0.6 lw 1.5 lc rgb '$colour' title '$name', "
+    value_plot+="$(gnuplot_string "$csv") using 2:($sign*cell($v)):(abs(cell($v))*cell($e)) skip 1 with yerrorlines pt 7 ps 0.6 lw 1.5 lc rgb '$colour' title '$name {/Symbol \261} estimate', "
 done
 {
     gnuplot_preamble

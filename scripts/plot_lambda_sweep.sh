@@ -68,9 +68,9 @@ set key top right
 set xlabel "$xlabel"
 $marks
 set ylabel 'critical c_n = lowest positive {/Symbol m}  [E / length]'
-plot '$csv' using $xcol:(cell(2))$cn_bar skip 1 with $style pt 7 ps 0.4 lw 1.5 lc rgb '#1f77b4' title 'c_n$bar_title'
+plot $(gnuplot_string "$csv") using $xcol:(cell(2))$cn_bar skip 1 with $style pt 7 ps 0.4 lw 1.5 lc rgb '#1f77b4' title 'c_n$bar_title'
 set ylabel 'critical c_t = {/Symbol m} |{/Symbol l}|  [E / length]'
-plot '$csv' using $xcol:(cell(3))$ct_bar skip 1 with $style pt 7 ps 0.4 lw 1.5 lc rgb '#2ca02c' title 'c_t$bar_title'
+plot $(gnuplot_string "$csv") using $xcol:(cell(3))$ct_bar skip 1 with $style pt 7 ps 0.4 lw 1.5 lc rgb '#2ca02c' title 'c_t$bar_title'
 unset multiplot
 GNUPLOT
 } | gnuplot

@@ -17,6 +17,7 @@ program nceig
     use analysis_base, only: analysis_t, run_analysis
     use analysis_registry, only: new_analysis
     use console, only: print_progress
+    use process, only: ignore_broken_pipe
     implicit none
 
     type(config_t) :: config
@@ -26,15 +27,19 @@ program nceig
     type(status_t) :: stat
     type(command_t) :: command
     real(wp) :: start, phase
+    integer :: ios
 
+    ! stdout is a report, not the results: a reader that stops early (`| head`) must not end
+    ! the run by SIGPIPE, maybe before its commit. Lines it did not take are lost (iostat).
+    call ignore_broken_pipe()
     call read_command_line(command, stat)
     call stop_on_failure(stat)
     select case (command%action)
     case ('help')
-        write (output_unit, '(a)') help_text()
+        write (output_unit, '(a)', iostat=ios) help_text()
         call exit_with(0)
     case ('version')
-        write (output_unit, '(a)') 'nceig '//NCEIG_VERSION
+        write (output_unit, '(a)', iostat=ios) 'nceig '//NCEIG_VERSION
         call exit_with(0)
     end select
 
@@ -63,7 +68,7 @@ program nceig
 
     call run_analysis(analysis, config, prob, start, timings, stat)
     call stop_on_failure(stat)
-    write (output_unit, '(a)') analysis%report(config, prob)
+    write (output_unit, '(a)', iostat=ios) analysis%report(config, prob)
     call stop_on_failure(analysis%verdict)
     ! gfortran 12 keeps main-program allocatables in a frame gone before LeakSanitizer looks
     deallocate (command%action, command%input, command%settings)

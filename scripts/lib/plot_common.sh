@@ -6,6 +6,8 @@
 # partial picture $tmp is removed if the script ends early (a failed gnuplot must leave
 # nothing behind: nceig draws in its staging folder, whose files join the output set).
 # value KEY prints a key of the summary.json, read as JSON ('' for null or absent).
+# gnuplot_string TEXT prints TEXT as a gnuplot single-quoted string (for paths in the
+# gnuplot text: a folder named "Bob's results" must neither break nor extend the commands).
 
 plot_begin() {
     local name=$1 hint=$2 picture=${1%.csv}.png
@@ -26,8 +28,13 @@ plot_begin() {
     gnuplot -e 'set terminal' 2>&1 | grep -q pngcairo || terminal='png size 1000,800'
     picture_path="$dir/$picture"
     tmp="$dir/.$picture.partial"
+    [[ $dir$summary != *[[:cntrl:]]* ]] ||
+        { echo "$0: the path holds a control character, which gnuplot cannot quote" >&2; exit 2; }
     trap 'rm -f "$tmp"' EXIT
 }
+
+# A quote is doubled, the one escape of gnuplot's single-quoted strings.
+gnuplot_string() { printf "'%s'" "${1//\'/\'\'}"; }
 
 value() { jq -r --arg key "$1" '.[$key] // empty' "$summary"; }
 
@@ -35,7 +42,8 @@ value() { jq -r --arg key "$1" '.[$key] // empty' "$summary"; }
 # file, CSV input, and cell(c), the value of column c or NaN where it is empty (a value
 # nceig leaves empty, which breaks the line there).
 gnuplot_preamble() {
-    printf '%s\n' "set terminal $terminal" "set output '$tmp'" "set datafile separator ','" \
+    printf '%s\n' "set terminal $terminal" "set output $(gnuplot_string "$tmp")" \
+        "set datafile separator ','" \
         "cell(c) = strcol(c) eq '' ? NaN : column(c)"
 }
 

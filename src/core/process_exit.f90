@@ -20,8 +20,9 @@ contains
     !> Flush the standard units and exit with `code` (libgfortran closes other units at exit).
     subroutine exit_with(code)
         integer, intent(in) :: code
-        flush (output_unit)
-        flush (error_unit)
+        integer :: ios
+        flush (output_unit, iostat=ios)   ! a closed pipe does not change the status
+        flush (error_unit, iostat=ios)
         call c_exit(int(code, c_int))
     end subroutine exit_with
 end module process_exit

@@ -10,9 +10,11 @@ module console
 
 contains
 
+    !> A line that cannot be written (stdout a closed pipe) is dropped: the run goes on.
     subroutine print_progress(line)
         character(len=*), intent(in) :: line
-        write (output_unit, '(a)') line
-        flush (output_unit)
+        integer :: ios
+        write (output_unit, '(a)', iostat=ios) line
+        flush (output_unit, iostat=ios)
     end subroutine print_progress
 end module console

@@ -7,7 +7,9 @@ module mode_plot
     use kinds, only: wp
     use strings, only: to_string, short_real_text
     use filesystem, only: remove_file
-    use gnuplot, only: gnuplot_available
+    use strings, only: text_t
+    use process, only: run_program
+    use gnuplot, only: gnuplot_available, gnuplot_string, quotable, path_argument, not_run_note
     implicit none
     private
     public :: plot_mode, MAX_PLOT_CELLS
@@ -30,13 +32,19 @@ contains
         logical, intent(out) :: drawn
         character(len=:), allocatable, intent(out) :: note
         real(wp) :: scale, diameter, u_max, magnitude
-        integer :: unit, ios, cell, a, exit_status, command_status
+        integer :: unit, ios, cell, a, exit_status
         character(len=512) :: msg
+        character(len=:), allocatable :: reason
+        type(text_t) :: arguments(2)
 
         drawn = .false.
         if (size(cells, 2) > MAX_PLOT_CELLS) then
             note = 'not drawn: '//to_string(size(cells, 2))//' cells (more than '// &
                    to_string(MAX_PLOT_CELLS)//'); open the mode''s VTU file in ParaView'
+            return
+        end if
+        if (.not. quotable(png)) then
+            note = 'not drawn: the output path holds a control character'
             return
         end if
         if (.not. gnuplot_available()) then
@@ -55,8 +63,8 @@ contains
             return
         end if
         write (unit, '(a)', iostat=ios) 'set terminal pngcairo size 900,800 noenhanced', &
-            "set output '"//png//"'", 'set size ratio -1', 'set palette rgb 33,13,10', &
-            "set title '"//title//"'", "set xlabel 'x + "//short_real_text(scale)// &
+            'set output '//gnuplot_string(path_argument(png)), 'set size ratio -1', &
+            'set palette rgb 33,13,10', 'set title '//gnuplot_string(title), "set xlabel 'x + "//short_real_text(scale)// &
             " u_x (deformed, largest |u| drawn as 1/10 of the mesh size)'", &
             "set ylabel 'y + "//short_real_text(scale)//" u_y'", &
             "set cblabel '|u| (mode normalised to largest entry 1)'", '$cells << EOD'
@@ -79,11 +87,14 @@ contains
             note = 'not drawn: the gnuplot script could not be written'
             return
         end if
-        call execute_command_line("gnuplot '"//script//"' >/dev/null 2>&1", &
-                                  exitstat=exit_status, cmdstat=command_status)
+        ! gnuplot reads the script named by its argument; no shell parses the path. Set one
+        ! by one: gfortran 12 garbles [text_t(f(x)), ...] when f returns an allocatable string.
+        arguments(1)%text = 'gnuplot'
+        arguments(2)%text = path_argument(script)
+        call run_program(arguments, exit_status, reason)
         call remove_file(script)
-        drawn = command_status == 0 .and. exit_status == 0
-        note = 'not drawn: gnuplot failed on '//png
-        if (drawn) note = ''
+        drawn = exit_status == 0
+        note = not_run_note('gnuplot', exit_status, reason)
+        if (.not. drawn .and. note == '') note = 'not drawn: gnuplot failed on '//png
     end subroutine plot_mode
 end module mode_plot

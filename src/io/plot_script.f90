@@ -7,7 +7,9 @@
 module plot_script
     use executable, only: scripts_directory
     use filesystem, only: file_exists
-    use gnuplot, only: gnuplot_available
+    use strings, only: text_t
+    use process, only: run_program
+    use gnuplot, only: gnuplot_available, quotable, path_argument, not_run_note
     implicit none
     private
     public :: run_plot_script
@@ -21,29 +23,36 @@ contains
         character(len=*), intent(in) :: script, directory, summary
         logical, intent(out) :: drawn
         character(len=:), allocatable, intent(out) :: note
-        integer :: exit_status, command_status
-        character(len=:), allocatable :: plot_script
+        integer :: exit_status
+        character(len=:), allocatable :: plot_script, reason
+        type(text_t) :: arguments(4)
 
         drawn = .false.
         plot_script = scripts_directory()//'/'//script
-        if (index(directory//summary, "'") > 0) then
-            note = 'not drawn: the output path contains a quote; run '//plot_script//' by hand'
-            return
-        end if
         if (.not. file_exists(plot_script)) then
             note = 'not drawn: '//plot_script//' is missing'
+            return
+        end if
+        if (.not. quotable(directory//summary)) then
+            note = 'not drawn: the output path holds a control character'
             return
         end if
         if (.not. gnuplot_available()) then
             note = 'not drawn: gnuplot is not installed (the CSV holds the data)'
             return
         end if
-        call execute_command_line("bash '"//plot_script//"' '"//directory//"' '"//summary// &
-                                  "' >/dev/null 2>&1", exitstat=exit_status, &
-                                  cmdstat=command_status)
-        drawn = command_status == 0 .and. exit_status == 0
-        note = ''
-        if (.not. drawn) note = 'not drawn: the plot script failed; run bash '//plot_script// &
-                                ' on the output directory to see why'
+        ! Paths as arguments: no shell parses them (the script quotes them for gnuplot).
+        ! Set one by one: gfortran 12 garbles [text_t(f(x)), ...] (an argument got another's
+        ! bytes) when f returns an allocatable string.
+        arguments(1)%text = 'bash'
+        arguments(2)%text = path_argument(plot_script)
+        arguments(3)%text = path_argument(directory)
+        arguments(4)%text = path_argument(summary)
+        call run_program(arguments, exit_status, reason)
+        drawn = exit_status == 0
+        note = not_run_note('bash', exit_status, reason)
+        if (.not. drawn .and. note == '') &
+            note = 'not drawn: the plot script failed; run bash '//plot_script// &
+                   ' on the output directory to see why'
     end subroutine run_plot_script
 end module plot_script
