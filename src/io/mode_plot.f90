@@ -17,7 +17,8 @@ module mode_plot
     !> Above this many cells gnuplot takes many seconds and the picture is a blur: the VTU is
     !> the way to look at such a mode.
     integer, parameter :: MAX_PLOT_CELLS = 40000
-    !> The largest displacement is drawn as this fraction of the mesh's diameter.
+    !> The largest displacement is drawn as this fraction of the mesh's diameter (the
+    !> diagonal of its bounding box).
     real(wp), parameter :: DEFORMATION_FRACTION = 0.1_wp
 
 contains
@@ -65,8 +66,8 @@ contains
         write (unit, '(a)', iostat=ios) 'set terminal pngcairo size 900,800 noenhanced', &
             'set output '//gnuplot_string(path_argument(png)), 'set size ratio -1', &
             'set palette rgb 33,13,10', 'set title '//gnuplot_string(title), "set xlabel 'x + "//short_real_text(scale)// &
-            " u_x (deformed, largest |u| drawn as 1/10 of the mesh size)'", &
-            "set ylabel 'y + "//short_real_text(scale)//" u_y'", &
+             " u_x  [length]  (deformed: largest |u| drawn as 1/10 of the body''s diagonal)'", &
+            "set ylabel 'y + "//short_real_text(scale)//" u_y  [length]'", &
             "set cblabel '|u| (mode normalised to largest entry 1)'", '$cells << EOD'
         do cell = 1, size(cells, 2)
             if (ios /= 0) exit
