@@ -184,6 +184,9 @@ contains
         call list_directory(dead, names)
         call t%check('list_directory lists the two files', size(names) == 2 .and. &
                      any(names == 'mode_001.vtu') .and. any(names == 'summary.json'))
+        call list_directory(dead//'/none', names, stat)
+        call t%check('list_directory of a missing directory: STATUS_IO naming it', &
+                     stat%code == STATUS_IO .and. index(stat%message, dead//'/none') > 0)
         call stage%begin(dir, stat)
         call t%check('begin after killed runs succeeds', stat%ok())
         call t%check('staging folder of a gone process removed', .not. file_exists(dead))

@@ -115,7 +115,7 @@ module filesystem
             type(c_ptr), value :: handle
             character(kind=c_char), intent(out) :: name(*)
             integer(c_int), value :: capacity
-            integer(c_int) :: length           ! -1: no more entries, -2: name too long
+            integer(c_int) :: length           ! -1: no more entries, -2: name too long, -3: errno
         end function c_next_entry
 
         function c_check_written(path, expected, actual) bind(C, name='nceig_check_written') &
@@ -497,27 +497,39 @@ contains
         process_gone = c_process_gone(int(pid, c_int)) /= 0
     end function process_gone
 
-    !> Names of the entries of directory `path` but '.' and '..', in no particular order;
-    !> none when it cannot be read. Best effort, like remove_file: names longer than
-    !> MAX_NAME_LEN are left out.
-    subroutine list_directory(path, names)
+    !> Names of the entries of directory `path` but '.' and '..', in no particular order.
+    !> Names longer than MAX_NAME_LEN are left out. With `stat`, a directory that cannot be
+    !> opened or read (out of descriptors, no permission) fails with STATUS_IO naming it;
+    !> without, the listing is best effort (what was read, possibly nothing).
+    subroutine list_directory(path, names, stat)
         character(len=*), intent(in) :: path
         character(len=MAX_NAME_LEN), allocatable, intent(out) :: names(:)
+        type(status_t), intent(out), optional :: stat
         character(len=MAX_NAME_LEN), allocatable :: grown(:)
         character(kind=c_char) :: name(MAX_NAME_LEN)
         type(c_ptr) :: handle
         integer :: n, length, i
+        integer(c_int) :: errnum
 
         allocate (names(16))
         n = 0
         handle = c_open_directory(c_path(path))
         if (.not. c_associated(handle)) then
+            errnum = c_errno()
             names = names(:0)
+            if (present(stat)) call stat%fail(STATUS_IO, 'cannot list directory '//short(path) &
+                                              //': '//error_text(errnum))
             return
         end if
         do
             length = c_next_entry(handle, name, int(MAX_NAME_LEN, c_int))
             if (length == -1) exit
+            if (length == -3) then
+                errnum = c_errno()
+                if (present(stat)) call stat%fail(STATUS_IO, 'cannot list directory ' &
+                                                  //short(path)//': '//error_text(errnum))
+                exit
+            end if
             if (length < 0) cycle
             if (n == size(names)) then
                 allocate (grown(2*n))

@@ -350,7 +350,13 @@ contains
 
         linked = .false.
         call read_listed_files(join(this%directory, SUMMARY_FILE), old_set)
-        call list_directory(this%directory, entries)
+        ! A listing cut short would leave the user's files out of the new directory.
+        call list_directory(this%directory, entries, stat)
+        if (.not. stat%ok()) then
+            call stat%fail(STATUS_IO, stat%message//'; its other files could not be ' &
+                           //'carried over, the previous set stays')
+            return
+        end if
         do i = 1, size(entries)
             name = trim(entries(i))
             if (name == SUMMARY_FILE .or. name == AFTER_COMMIT_FILE) cycle
