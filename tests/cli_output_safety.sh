@@ -64,6 +64,20 @@ done
 check 'out of descriptors: each run succeeds or exits 4 with one line, nothing lost' '[[ -z $bad ]]'
 check 'out of descriptors: a failed listing is reported (directory and reason)' \
     '[[ $n_listing -ge 1 ]]'
+# --- A file over the size limit (ulimit -f) is a failed write, like a full disk, not SIGXFSZ.
+cat >"$work/big.nml" <<NML
+&mesh nx = 32, ny = 32 /
+&output directory = '$out', modes = 3, plot = .false. /
+NML
+rm -rf "$work/ref" && cp -a "$out" "$work/ref"
+bash -c 'ulimit -f 50; exec "$0" "$1"' "$nceig" "$work/big.nml" >/dev/null 2>"$work/stderr"
+rc=$?
+echo "      ulimit -f 50: exit $rc: $(head -3 "$work/stderr")"
+check 'ulimit -f 50: exit 4, one line naming the file and the size limit' \
+    '[[ $rc -eq 4 && $(wc -l <"$work/stderr") -eq 1 ]] && grep -q "mode_00[0-9]\.vtu: .*file size limit" "$work/stderr"'
+check 'ulimit -f 50: the previous set and the notes stay' 'unchanged "$out" "$work/ref"'
+check 'ulimit -f 50: no staging folder left' '[[ -z $(staging_left "$out") ]]'
+
 if [[ $(id -u) -eq 0 ]] && command -v setpriv >/dev/null; then
     # root reads any directory: the unreadable one is tried as nobody
     as_nobody() { setpriv --reuid=65534 --regid=65534 --clear-groups "$@"; }

@@ -311,7 +311,7 @@ contains
         else if (status == -2) then
             ios = EIO
             write (msg, '(a, i0, a, i0, a)') 'the file holds ', actual, ' of the ', expected, &
-                ' bytes written (disk full?)'
+                ' bytes written (disk full, or over the file size limit?)'
         end if
     end subroutine close_output
 

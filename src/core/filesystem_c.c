@@ -352,6 +352,11 @@ int nceig_cleanup_arm(const char *path, int levels)
     memcpy(staging_path, path, length + 1);
     created_levels = levels;
     armed = 1;
+    /* A file over the size limit (ulimit -f) must fail its write(2) with EFBIG, which
+       close_output reports like a full disk, not kill the run with its staging folder
+       left (SIGXFSZ's default action). For the rest of the process: no write is wanted
+       past the limit. */
+    (void)signal(SIGXFSZ, SIG_IGN);
     memset(&action, 0, sizeof action);
     action.sa_handler = on_signal;
     sigemptyset(&action.sa_mask);
