@@ -92,6 +92,7 @@ program test_output_stage
     call check_stale_staging()
     call check_without_swap()
     call check_in_place()
+    call check_long_names()
 
     ! A regular file where a parent directory should be; a path too long: nothing is left.
     committed_a = first_line(dir//'/a.txt')
@@ -257,4 +258,51 @@ contains
         call t%check('in place: no staging folder left', &
                      .not. file_exists(HERE//'/.nceig-partial-'//trim(pid)))
     end subroutine check_in_place
+
+    !> Names of 221 to 255 bytes are legal; the staging and lock names derived from them
+    !> are shortened to fit NAME_MAX, and the stale staging folders of such a directory are
+    !> still found. A name over 255 bytes is refused as too long.
+    subroutine check_long_names()
+        character(len=:), allocatable :: long_dir, folder, dead
+        integer :: n, dash
+        do n = 236, 255, 19
+            long_dir = 'stage_out/'//repeat('l', n)
+            call stage%begin(long_dir, stat)
+            call t%check('a '//trim(str(n))//'-byte name: begin succeeds', stat%ok())
+            if (.not. stat%ok()) then
+                print '(a)', '      '//stat%message
+                cycle
+            end if
+            folder = stage%folder()
+            call t%check('a '//trim(str(n))//'-byte name: the staging name fits NAME_MAX', &
+                         len(folder) - len('stage_out/') <= MAX_NAME_LEN &
+                         .and. is_directory(folder))
+            call write_text(stage%path('a.txt'), 'long a')
+            call write_text(stage%path('summary.json'), '  "files": ["a.txt"],')
+            call stage%commit(stat)
+            call t%check('a '//trim(str(n))//'-byte name: commit succeeds', &
+                         stat%ok() .and. first_line(long_dir//'/a.txt') == 'long a')
+            ! a dead run's staging folder of that directory: the next begin removes it
+            dash = index(folder, '-', back=.true.)
+            dead = folder(:dash)//'999999999'
+            call make_directories(dead, stat)
+            call stage%begin(long_dir, stat)
+            call t%check('a '//trim(str(n))//'-byte name: a dead run''s staging folder is ' &
+                         //'removed', stat%ok() .and. .not. file_exists(dead))
+            call stage%abort()
+            call remove_tree(long_dir)
+        end do
+        call stage%begin('stage_out/'//repeat('l', 256), stat)
+        call t%check('a 256-byte name: refused as too long', &
+                     stat%code == STATUS_IO .and. index(stat%message, 'too long') > 0)
+        if (allocated(stat%message)) print '(a)', '      '//stat%message(:min(len(stat%message), 60))//'...'
+        call t%check('a 256-byte name: nothing created', &
+                     .not. file_exists('stage_out/'//repeat('l', 256)))
+    end subroutine check_long_names
+
+    function str(n) result(text)
+        integer, intent(in) :: n
+        character(len=12) :: text
+        write (text, '(i0)') n
+    end function str
 end program test_output_stage

@@ -1,6 +1,7 @@
 ! SPDX-License-Identifier: MIT
 !> Outputs appear whole or not at all. The files of a run are written into a private staging
-!> folder next to the output directory, `<parent>/.<name>.nceig-staging-<pid>`, and the
+!> folder next to the output directory, `<parent>/.<name>.nceig-staging-<pid>` (a name over
+!> 220 bytes shortened with a hash, so that this fits NAME_MAX: name_key), and the
 !> commit puts that folder in place of the directory in one step (Linux renameat2
 !> RENAME_EXCHANGE), then removes the old set. At every instant the output directory holds
 !> the previous complete set or the new one: a run that fails, is killed or runs out of disk
@@ -21,6 +22,7 @@
 !> files deleted, and summary.json renamed in last. Each rename is atomic, the set is not:
 !> a commit cut short leaves no summary.json (the mark of an incomplete set).
 module output_stage
+    use iso_fortran_env, only: int64
     use status, only: status_t, STATUS_IO
     use filesystem, only: make_directories, rename_file, remove_directory, remove_file, &
                           can_replace, &
@@ -30,7 +32,7 @@ module output_stage
                           remove_tree, lock_file, unlock_file, real_path, cleanup_on_signal, &
                           hold_signals, end_cleanup_on_signal
     use text_file, only: read_line
-    use strings, only: text_t, append_text
+    use strings, only: text_t, append_text, to_string
     implicit none
     private
 
@@ -46,6 +48,9 @@ module output_stage
     !> now it is drawn in the staging folder and listed like any file.
     character(len=*), parameter :: AFTER_COMMIT_FILE = 'lambda_sweep.png'
     character(len=*), parameter :: SUMMARY_FILE = 'summary.json'
+    !> The longest name key (see name_key): '.'//key//STAGING_SUFFIX//9 digits fits
+    !> MAX_NAME_LEN (255) with room to spare.
+    integer, parameter :: MAX_KEY_LEN = 220
 
     !> A file name registered through `path`.
 
@@ -55,6 +60,7 @@ module output_stage
         character(len=:), allocatable :: directory   !! final output directory
         character(len=:), allocatable :: parent      !! its parent, where staging and lock go
         character(len=:), allocatable :: base        !! its last component
+        character(len=:), allocatable :: key         !! base, or its shortened form: name_key
         character(len=:), allocatable :: staging     !! <parent>/.<base>.nceig-staging-<pid>
         character(len=:), allocatable :: aside       !! <parent>/.<base>.nceig-old-<pid>
         type(text_t), allocatable :: names(:) !! files registered through path()
@@ -101,6 +107,13 @@ contains
         end if
         slash = index(this%directory, '/', back=.true.)
         this%base = this%directory(slash + 1:)
+        if (len(this%base) > MAX_NAME_LEN) then
+            call stat%fail(STATUS_IO, 'output directory '//this%directory//': its last ' &
+                           //'component has '//to_string(len(this%base))//' bytes, more than ' &
+                           //'the '//to_string(MAX_NAME_LEN)//' a file system allows: name too long')
+            return
+        end if
+        this%key = name_key(this%base)
         if (slash == 0) then
             this%parent = '.'
         else if (slash == 1) then
@@ -124,9 +137,9 @@ contains
         if (this%in_place) then
             this%staging = join(this%directory, IN_PLACE_PREFIX//trim(pid_text))
         else
-            this%staging = join(this%parent, '.'//this%base//STAGING_SUFFIX//trim(pid_text))
+            this%staging = join(this%parent, '.'//this%key//STAGING_SUFFIX//trim(pid_text))
         end if
-        this%aside = join(this%parent, '.'//this%base//ASIDE_SUFFIX//trim(pid_text))
+        this%aside = join(this%parent, '.'//this%key//ASIDE_SUFFIX//trim(pid_text))
         ! Armed before anything is made, so that no signal finds it unregistered.
         call cleanup_on_signal(this%staging, 0, stat)
         if (stat%ok() .and. .not. this%in_place) &
@@ -140,8 +153,8 @@ contains
         if (this%in_place) then
             call remove_stale_staging(this%directory, IN_PLACE_PREFIX)
         else
-            call remove_stale_staging(this%parent, '.'//this%base//ASIDE_SUFFIX, this%directory)
-            call remove_stale_staging(this%parent, '.'//this%base//STAGING_SUFFIX)
+            call remove_stale_staging(this%parent, '.'//this%key//ASIDE_SUFFIX, this%directory)
+            call remove_stale_staging(this%parent, '.'//this%key//STAGING_SUFFIX)
         end if
         if (stat%ok()) call make_directories(this%staging, stat)
         if (.not. stat%ok()) then
@@ -154,6 +167,30 @@ contains
         end if
         this%active = .true.
     end subroutine output_stage_begin
+
+    !> The name the staging, aside and lock names of directory `base` are derived from:
+    !> `base` itself, or, when the derived names would exceed NAME_MAX (a name over
+    !> MAX_KEY_LEN bytes), its first bytes, '~' and 8 hex digits of a hash of the whole
+    !> (FNV-1a): recognisable, the same for every run into that directory, and short enough.
+    pure function name_key(base) result(key)
+        character(len=*), intent(in) :: base
+        character(len=:), allocatable :: key
+        integer(int64), parameter :: FNV_OFFSET = 2166136261_int64, FNV_PRIME = 16777619_int64
+        integer(int64) :: hash
+        character(len=8) :: hex
+        integer :: i
+        if (len(base) <= MAX_KEY_LEN) then
+            key = base
+            return
+        end if
+        hash = FNV_OFFSET
+        do i = 1, len(base)
+            ! stays below 2**32 before the product, below 2**57 after: no overflow
+            hash = modulo(ieor(hash, int(iachar(base(i:i)), int64))*FNV_PRIME, 2_int64**32)
+        end do
+        write (hex, '(z8.8)') hash
+        key = base(:MAX_KEY_LEN - 9)//'~'//hex
+    end function name_key
 
     !> Remove the staging folders `<parent>/<prefix><pid>` whose process is gone: a run
     !> killed (SIGKILL) before or during its commit leaves its staging folder behind (holding
@@ -246,7 +283,7 @@ contains
         if (this%in_place) then
             call lock_file(join(this%directory, IN_PLACE_LOCK), lock, stat)
         else
-            call lock_file(join(this%parent, '.'//this%base//LOCK_SUFFIX), lock, stat)
+            call lock_file(join(this%parent, '.'//this%key//LOCK_SUFFIX), lock, stat)
         end if
         if (.not. stat%ok()) then
             call this%abort()
