@@ -14,7 +14,8 @@ module filesystem
     public :: make_directories, rename_file, remove_file, remove_directory, file_exists, &
               is_directory, process_id, is_real_directory, process_gone, list_directory
     public :: close_output, sync_path, sync_filesystem, replace_directory, make_link, &
-              copy_mode, remove_tree, lock_file, unlock_file, real_path, can_replace
+              copy_mode, remove_tree, lock_file, unlock_file, real_path, can_replace, &
+              canonical_path
     public :: cleanup_on_signal, hold_signals, end_cleanup_on_signal
     integer, parameter, public :: MAX_NAME_LEN = 255   !! NAME_MAX of Linux file systems
 
@@ -424,6 +425,45 @@ contains
         end if
         resolved = from_c_chars(buffer, length)
     end function real_path
+
+    !> The absolute path of `path` with links, '.', '..' and repeated '/'
+    !> resolved: realpath where it exists, else that of its nearest existing ancestor
+    !> followed by the rest, resolved as written (nothing there can be a link yet).
+    recursive function canonical_path(path) result(canonical)
+        character(len=*), intent(in) :: path
+        character(len=:), allocatable :: canonical
+        character(len=:), allocatable :: rest, last, up
+        integer :: slash
+        rest = path
+        do while (len(rest) > 1)
+            if (rest(len(rest):) /= '/') exit
+            rest = rest(:len(rest) - 1)
+        end do
+        if (len(rest) == 0) rest = '.'
+        if (file_exists(rest) .or. rest == '/') then
+            canonical = real_path(rest)
+            if (canonical(1:1) == '/') return
+        end if
+        slash = index(rest, '/', back=.true.)
+        last = rest(slash + 1:)
+        if (slash == 0) then
+            up = real_path('.')
+        else if (slash == 1) then
+            up = '/'
+        else
+            up = canonical_path(rest(:slash - 1))
+        end if
+        select case (last)
+        case ('', '.')
+            canonical = up
+        case ('..')
+            slash = index(up, '/', back=.true.)
+            canonical = up(:max(slash - 1, 1))
+        case default
+            canonical = up//'/'//last
+            if (up == '/') canonical = '/'//last
+        end select
+    end function canonical_path
 
     !> Until end_cleanup_on_signal, SIGTERM, SIGINT and SIGHUP remove the staging folder
     !> `staging` (its files, then itself) and the last `created_levels` directories of its

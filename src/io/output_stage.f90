@@ -15,12 +15,16 @@
 !> directory, unless the new set has a file of that name. A subdirectory cannot be carried
 !> that way: the commit then fails (STATUS_IO), and the previous set stays.
 !>
-!> An existing directory that cannot be replaced by a rename (a mount point, '.', a parent
-!> we may not write) is committed in place instead: staged in
+!> The directory is known by its real path (links, '.', '..' resolved), so every spelling
+!> of it gets the same staging name, lock and way of commit.
+!> An existing directory that cannot be replaced by a rename (a mount point, a parent we
+!> may not write) is committed in place instead: staged in
 !> `<directory>/.nceig-partial-<pid>`, then, under the lock `<directory>/.nceig-lock`,
 !> the old summary.json is deleted, the files renamed in one by one, the old set's other
 !> files deleted, and summary.json renamed in last. Each rename is atomic, the set is not:
-!> a commit cut short leaves no summary.json (the mark of an incomplete set).
+!> a commit cut short leaves no summary.json (the mark of an incomplete set). The working
+!> directory (or one above it) is committed in place too, lest a swap leave the user's shell
+!> in a removed directory, but staged and locked in the parent like any other.
 module output_stage
     use iso_fortran_env, only: int64
     use status, only: status_t, STATUS_IO
@@ -30,6 +34,7 @@ module output_stage
                           file_exists, list_directory, MAX_NAME_LEN, sync_path, &
                           sync_filesystem, replace_directory, make_link, copy_mode, &
                           remove_tree, lock_file, unlock_file, real_path, cleanup_on_signal, &
+                          canonical_path, &
                           hold_signals, end_cleanup_on_signal
     use text_file, only: read_line
     use strings, only: text_t, append_text, to_string
@@ -68,6 +73,7 @@ module output_stage
         logical :: active = .false.                  !! between begin and commit/abort
         logical :: exchange = .true.                 !! false: never swap (tests the fallback)
         logical :: in_place = .false.                !! commit file by file (see the header)
+        logical :: inside = .false.                  !! staging and lock inside `directory`
     contains
         procedure :: begin => output_stage_begin
         procedure :: path => output_stage_path
@@ -94,17 +100,12 @@ contains
         integer :: slash
 
         if (this%active) call this%abort()
-        this%directory = trim(directory)
+        ! One real directory, one lock and one staging name, however it is spelt ('out/.',
+        ! './out', 'a/../out', a link): runs into two spellings must take turns.
+        this%directory = canonical_path(trim(directory))
         if (allocated(this%names)) deallocate (this%names)
         allocate (this%names(0))
         this%created_levels = 0
-        do while (len(this%directory) > 1)
-            if (this%directory(len(this%directory):) /= '/') exit
-            this%directory = this%directory(:len(this%directory) - 1)
-        end do
-        if (is_directory(this%directory)) then
-            if (.not. is_real_directory(this%directory)) this%directory = real_path(this%directory)
-        end if
         slash = index(this%directory, '/', back=.true.)
         this%base = this%directory(slash + 1:)
         if (len(this%base) > MAX_NAME_LEN) then
@@ -127,14 +128,15 @@ contains
                                ': a file of that name is in the way')
                 return
             end if
-            this%in_place = this%base == '' .or. this%base == '.' .or. this%base == '..'
-            if (.not. this%in_place) &
-                this%in_place = .not. can_replace(this%directory, this%parent)
+            this%inside = .not. can_replace(this%directory, this%parent)
+            ! A swap would leave the working directory (ours, the user's shell's) a removed one.
+            this%in_place = this%inside .or. holds_working_directory(this%directory)
         else
+            this%inside = .false.
             this%in_place = .false.
         end if
         write (pid_text, '(i0)') process_id()
-        if (this%in_place) then
+        if (this%inside) then
             this%staging = join(this%directory, IN_PLACE_PREFIX//trim(pid_text))
         else
             this%staging = join(this%parent, '.'//this%key//STAGING_SUFFIX//trim(pid_text))
@@ -142,7 +144,7 @@ contains
         this%aside = join(this%parent, '.'//this%key//ASIDE_SUFFIX//trim(pid_text))
         ! Armed before anything is made, so that no signal finds it unregistered.
         call cleanup_on_signal(this%staging, 0, stat)
-        if (stat%ok() .and. .not. this%in_place) &
+        if (stat%ok() .and. .not. this%inside) &
             call make_directories(this%parent, stat, this%created_levels)
         if (.not. stat%ok()) then
             call end_cleanup_on_signal()
@@ -150,7 +152,7 @@ contains
             return
         end if
         call cleanup_on_signal(this%staging, this%created_levels, stat)
-        if (this%in_place) then
+        if (this%inside) then
             call remove_stale_staging(this%directory, IN_PLACE_PREFIX)
         else
             call remove_stale_staging(this%parent, '.'//this%key//ASIDE_SUFFIX, this%directory)
@@ -167,6 +169,15 @@ contains
         end if
         this%active = .true.
     end subroutine output_stage_begin
+
+    !> True when the working directory is `directory` or below it: what '.' or '..' names.
+    logical function holds_working_directory(directory)
+        character(len=*), intent(in) :: directory
+        character(len=:), allocatable :: here
+        here = real_path('.')
+        holds_working_directory = here == directory .or. directory == '/' .or. &
+                                  index(here//'/', directory//'/') == 1
+    end function holds_working_directory
 
     !> The name the staging, aside and lock names of directory `base` are derived from:
     !> `base` itself, or, when the derived names would exceed NAME_MAX (a name over
@@ -280,7 +291,7 @@ contains
             call this%abort()
             return
         end if
-        if (this%in_place) then
+        if (this%inside) then
             call lock_file(join(this%directory, IN_PLACE_LOCK), lock, stat)
         else
             call lock_file(join(this%parent, '.'//this%key//LOCK_SUFFIX), lock, stat)
