@@ -7,7 +7,7 @@
 # bad input), leaving the previous set, the user's files, and no staging folder.
 # Usage: cli_output_safety.sh NCEIG SOURCE_DIR
 set -u
-nceig=$1
+nceig=$(realpath "$1")
 source "$2/tests/output_sets.bash"
 source "$(dirname "$0")/lib/cli_common.sh"
 cli_begin cli_output_safety
@@ -77,6 +77,36 @@ check 'ulimit -f 50: exit 4, one line naming the file and the size limit' \
     '[[ $rc -eq 4 && $(wc -l <"$work/stderr") -eq 1 ]] && grep -q "mode_00[0-9]\.vtu: .*file size limit" "$work/stderr"'
 check 'ulimit -f 50: the previous set and the notes stay' 'unchanged "$out" "$work/ref"'
 check 'ulimit -f 50: no staging folder left' '[[ -z $(staging_left "$out") ]]'
+
+# --- A run never replaces a file it read: an output directory holding the input file or
+# the mesh file is refused (exit 2) before any computing; here an adaptive run, whose set
+# has a mesh.msh, reading the mesh.msh of the directory it would write.
+cat >"$work/adapt.nml" <<NML
+&mesh nx = 2, ny = 2, element = 'p2', dirichlet = 'top', neumann = 'left right', contact = 'bottom' /
+&adapt tolerance = 1e-3 /
+&output directory = '$work/X', modes = 1, plot = .false. /
+NML
+"$nceig" "$work/adapt.nml" >/dev/null 2>&1
+cp -a "$work/X" "$work/ref_X"
+sed -i "s|&mesh .*|\&mesh source = 'gmsh', file = 'X/mesh.msh', dirichlet = 'top', neumann = 'left right', contact = 'bottom' /|" "$work/adapt.nml"
+for spelling in X X/. "$work/X/"; do
+    sed "s|directory = '[^']*'|directory = '$spelling'|" "$work/adapt.nml" >"$work/read_mesh.nml"
+    (cd "$work" && "$nceig" read_mesh.nml >/dev/null 2>"$work/stderr")
+    rc=$?
+    echo "      the mesh read from '$spelling': exit $rc: $(cat "$work/stderr")"
+    check "the mesh read from '$spelling': exit 2, one line naming &output directory and the file" \
+        '[[ $rc -eq 2 && $(wc -l <"$work/stderr") -eq 1 ]] && grep -q "&output directory = .* holds &mesh file X/mesh.msh, which this run reads" "$work/stderr"'
+    check "the mesh read from '$spelling': the directory is untouched" \
+        'diff -r "$work/X" "$work/ref_X" >/dev/null && [[ -z $(staging_left "$work/X") ]]'
+done
+mkdir -p "$work/X/sub"
+printf "&mesh nx = 4, ny = 4 /\n&output directory = '%s', plot = .false. /\n" "$work/X" \
+    >"$work/X/sub/in.nml"
+"$nceig" "$work/X/sub/in.nml" >/dev/null 2>"$work/stderr"
+rc=$?
+echo "      the input file below the directory: exit $rc: $(cat "$work/stderr")"
+check 'the input file below the output directory: exit 2 naming it' \
+    '[[ $rc -eq 2 ]] && grep -q "holds the input file .*X/sub/in.nml" "$work/stderr"'
 
 if [[ $(id -u) -eq 0 ]] && command -v setpriv >/dev/null; then
     # root reads any directory: the unreadable one is tried as nobody
