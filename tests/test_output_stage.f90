@@ -10,6 +10,7 @@ program test_output_stage
                           remove_file, remove_directory, process_gone, list_directory, &
                           remove_tree, close_output, MAX_NAME_LEN
     use testing, only: test_suite_t
+    use iso_c_binding, only: c_int, c_char, c_null_char
     implicit none
     type(test_suite_t) :: t
     type(output_stage_t) :: stage
@@ -45,7 +46,8 @@ program test_output_stage
     call t%check('staging folder next to the directory', is_directory(staging))
     a_path = stage%path('a.txt')
     b_path = stage%path('b.txt')
-    call t%check('path points into the staging folder', a_path == staging//'/a.txt')
+    call t%check('path points into the staging folder', &
+                 index(a_path, '/'//staging//'/a.txt', back=.true.) == len(a_path) - len(staging) - 6)
     call write_text(a_path, 'new a')
     call write_text(b_path, 'new b')
     call write_text(stage%path('summary.json'), '  "files": ["a.txt", "b.txt"],')
@@ -92,6 +94,7 @@ program test_output_stage
     call check_stale_staging()
     call check_without_swap()
     call check_in_place()
+    call check_long_names()
 
     ! A regular file where a parent directory should be; a path too long: nothing is left.
     committed_a = first_line(dir//'/a.txt')
@@ -184,6 +187,9 @@ contains
         call list_directory(dead, names)
         call t%check('list_directory lists the two files', size(names) == 2 .and. &
                      any(names == 'mode_001.vtu') .and. any(names == 'summary.json'))
+        call list_directory(dead//'/none', names, stat)
+        call t%check('list_directory of a missing directory: STATUS_IO naming it', &
+                     stat%code == STATUS_IO .and. index(stat%message, dead//'/none') > 0)
         call stage%begin(dir, stat)
         call t%check('begin after killed runs succeeds', stat%ok())
         call t%check('staging folder of a gone process removed', .not. file_exists(dead))
@@ -226,32 +232,100 @@ contains
         call stage%abort()
     end subroutine check_without_swap
 
-    !> A directory that cannot be renamed ('.' here; a mount point, an unwritable parent)
-    !> is committed in place, file by file, summary.json last: the same set in the end.
+    !> A directory that holds the working directory ('.' here; as for a mount point or an
+    !> unwritable parent, a rename cannot replace it) is committed in place, file by file,
+    !> summary.json last: the same set in the end. Another spelling of it from elsewhere
+    !> ('stage_out/here/.') names the same directory: the same staging name and lock.
     subroutine check_in_place()
-        character(len=*), parameter :: HERE = 'stage_out/here/.'
+        character(len=*), parameter :: HERE = 'stage_out/here'
+        character(len=:), allocatable :: outside
+        interface
+            function c_chdir(path) bind(C, name='chdir') result(status)
+                import :: c_int, c_char
+                character(kind=c_char), intent(in) :: path(*)
+                integer(c_int) :: status
+            end function c_chdir
+        end interface
         call make_directories(HERE//'/plots', stat)
         call write_text(HERE//'/notes.txt', 'mine')
-        call stage%begin(HERE, stat)
+        call stage%begin(HERE//'/.', stat)
+        outside = stage%folder()
+        call t%check('another spelling: the same staging folder as the plain name', &
+                     stat%ok() .and. index(outside, '/stage_out/.here.nceig-staging-'//trim(pid)) > 0)
+        call stage%abort()
+        call stage%begin('stage_out/x/../here/', stat)
+        call t%check('a spelling with ..: the same staging folder', stage%folder() == outside)
+        call stage%abort()
+        call t%check('chdir into the directory', c_chdir(HERE//c_null_char) == 0)
+        call stage%begin('.', stat)
         call t%check('in place: begin succeeds', stat%ok())
-        call t%check('in place: staging inside the directory', &
-                     is_directory(HERE//'/.nceig-partial-'//trim(pid)))
+        call t%check('in place: the same staging folder as from outside', &
+                     stage%folder() == outside .and. is_directory(outside))
         call write_text(stage%path('a.txt'), 'first a')
         call write_text(stage%path('b.txt'), 'first b')
         call write_text(stage%path('summary.json'), '  "files": ["a.txt", "b.txt"],')
         call stage%commit(stat)
         call t%check('in place: commit succeeds', stat%ok())
-        call stage%begin(HERE, stat)
+        call stage%begin('.', stat)
         call write_text(stage%path('a.txt'), 'second a')
         call write_text(stage%path('summary.json'), '  "files": ["a.txt"],')
         call stage%commit(stat)
+        call t%check('in place: the working directory is still the directory', &
+                     first_line('notes.txt') == 'mine')
+        call t%check('back from the directory', c_chdir('../..'//c_null_char) == 0)
         call t%check('in place: the new file is in', first_line(HERE//'/a.txt') == 'second a')
         call t%check('in place: the old set''s other file is gone', &
                      .not. file_exists(HERE//'/b.txt'))
         call t%check('in place: the user''s file and folder stay', &
                      first_line(HERE//'/notes.txt') == 'mine')
         call t%check('in place: the user''s folder stays', is_directory(HERE//'/plots'))
-        call t%check('in place: no staging folder left', &
-                     .not. file_exists(HERE//'/.nceig-partial-'//trim(pid)))
+        call t%check('in place: no staging folder left', .not. file_exists(outside))
     end subroutine check_in_place
+
+    !> Names of 221 to 255 bytes are legal; the staging and lock names derived from them
+    !> are shortened to fit NAME_MAX, and the stale staging folders of such a directory are
+    !> still found. A name over 255 bytes is refused as too long.
+    subroutine check_long_names()
+        character(len=:), allocatable :: long_dir, folder, dead
+        integer :: n, dash
+        do n = 236, 255, 19
+            long_dir = 'stage_out/'//repeat('l', n)
+            call stage%begin(long_dir, stat)
+            call t%check('a '//trim(str(n))//'-byte name: begin succeeds', stat%ok())
+            if (.not. stat%ok()) then
+                print '(a)', '      '//stat%message
+                cycle
+            end if
+            folder = stage%folder()
+            call t%check('a '//trim(str(n))//'-byte name: the staging name fits NAME_MAX', &
+                         len(folder) - index(folder, '/', back=.true.) <= MAX_NAME_LEN &
+                         .and. is_directory(folder))
+            call write_text(stage%path('a.txt'), 'long a')
+            call write_text(stage%path('summary.json'), '  "files": ["a.txt"],')
+            call stage%commit(stat)
+            call t%check('a '//trim(str(n))//'-byte name: commit succeeds', &
+                         stat%ok() .and. first_line(long_dir//'/a.txt') == 'long a')
+            ! a dead run's staging folder of that directory: the next begin removes it
+            dash = index(folder, '-', back=.true.)
+            dead = folder(:dash)//'999999999'
+            call make_directories(dead, stat)
+            call stage%begin(long_dir, stat)
+            call t%check('a '//trim(str(n))//'-byte name: a dead run''s staging folder is ' &
+                         //'removed', stat%ok() .and. .not. file_exists(dead))
+            call stage%abort()
+            call remove_tree(long_dir)
+        end do
+        call stage%begin('stage_out/'//repeat('l', 256), stat)
+        call t%check('a 256-byte name: refused as too long', &
+                     stat%code == STATUS_IO .and. index(stat%message, 'too long') > 0)
+        if (allocated(stat%message)) print '(a)', '      '//stat%message(:min(len(stat%message), 60))//'...'
+        call t%check('a 256-byte name: nothing created', &
+                     .not. file_exists('stage_out/'//repeat('l', 256)))
+    end subroutine check_long_names
+
+    function str(n) result(text)
+        integer, intent(in) :: n
+        character(len=12) :: text
+        write (text, '(i0)') n
+    end function str
 end program test_output_stage

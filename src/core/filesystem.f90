@@ -14,7 +14,8 @@ module filesystem
     public :: make_directories, rename_file, remove_file, remove_directory, file_exists, &
               is_directory, process_id, is_real_directory, process_gone, list_directory
     public :: close_output, sync_path, sync_filesystem, replace_directory, make_link, &
-              copy_mode, remove_tree, lock_file, unlock_file, real_path, can_replace
+              copy_mode, remove_tree, lock_file, unlock_file, real_path, can_replace, &
+              canonical_path
     public :: cleanup_on_signal, hold_signals, end_cleanup_on_signal
     integer, parameter, public :: MAX_NAME_LEN = 255   !! NAME_MAX of Linux file systems
 
@@ -115,7 +116,7 @@ module filesystem
             type(c_ptr), value :: handle
             character(kind=c_char), intent(out) :: name(*)
             integer(c_int), value :: capacity
-            integer(c_int) :: length           ! -1: no more entries, -2: name too long
+            integer(c_int) :: length           ! -1: no more entries, -2: name too long, -3: errno
         end function c_next_entry
 
         function c_check_written(path, expected, actual) bind(C, name='nceig_check_written') &
@@ -311,7 +312,7 @@ contains
         else if (status == -2) then
             ios = EIO
             write (msg, '(a, i0, a, i0, a)') 'the file holds ', actual, ' of the ', expected, &
-                ' bytes written (disk full?)'
+                ' bytes written (disk full, or over the file size limit?)'
         end if
     end subroutine close_output
 
@@ -425,6 +426,45 @@ contains
         resolved = from_c_chars(buffer, length)
     end function real_path
 
+    !> The absolute path of `path` with links, '.', '..' and repeated '/'
+    !> resolved: realpath where it exists, else that of its nearest existing ancestor
+    !> followed by the rest, resolved as written (nothing there can be a link yet).
+    recursive function canonical_path(path) result(canonical)
+        character(len=*), intent(in) :: path
+        character(len=:), allocatable :: canonical
+        character(len=:), allocatable :: rest, last, up
+        integer :: slash
+        rest = path
+        do while (len(rest) > 1)
+            if (rest(len(rest):) /= '/') exit
+            rest = rest(:len(rest) - 1)
+        end do
+        if (len(rest) == 0) rest = '.'
+        if (file_exists(rest) .or. rest == '/') then
+            canonical = real_path(rest)
+            if (canonical(1:1) == '/') return
+        end if
+        slash = index(rest, '/', back=.true.)
+        last = rest(slash + 1:)
+        if (slash == 0) then
+            up = real_path('.')
+        else if (slash == 1) then
+            up = '/'
+        else
+            up = canonical_path(rest(:slash - 1))
+        end if
+        select case (last)
+        case ('', '.')
+            canonical = up
+        case ('..')
+            slash = index(up, '/', back=.true.)
+            canonical = up(:max(slash - 1, 1))
+        case default
+            canonical = up//'/'//last
+            if (up == '/') canonical = '/'//last
+        end select
+    end function canonical_path
+
     !> Until end_cleanup_on_signal, SIGTERM, SIGINT and SIGHUP remove the staging folder
     !> `staging` (its files, then itself) and the last `created_levels` directories of its
     !> parent, then end the process by that signal (see filesystem_c.c).
@@ -497,27 +537,39 @@ contains
         process_gone = c_process_gone(int(pid, c_int)) /= 0
     end function process_gone
 
-    !> Names of the entries of directory `path` but '.' and '..', in no particular order;
-    !> none when it cannot be read. Best effort, like remove_file: names longer than
-    !> MAX_NAME_LEN are left out.
-    subroutine list_directory(path, names)
+    !> Names of the entries of directory `path` but '.' and '..', in no particular order.
+    !> Names longer than MAX_NAME_LEN are left out. With `stat`, a directory that cannot be
+    !> opened or read (out of descriptors, no permission) fails with STATUS_IO naming it;
+    !> without, the listing is best effort (what was read, possibly nothing).
+    subroutine list_directory(path, names, stat)
         character(len=*), intent(in) :: path
         character(len=MAX_NAME_LEN), allocatable, intent(out) :: names(:)
+        type(status_t), intent(out), optional :: stat
         character(len=MAX_NAME_LEN), allocatable :: grown(:)
         character(kind=c_char) :: name(MAX_NAME_LEN)
         type(c_ptr) :: handle
         integer :: n, length, i
+        integer(c_int) :: errnum
 
         allocate (names(16))
         n = 0
         handle = c_open_directory(c_path(path))
         if (.not. c_associated(handle)) then
+            errnum = c_errno()
             names = names(:0)
+            if (present(stat)) call stat%fail(STATUS_IO, 'cannot list directory '//short(path) &
+                                              //': '//error_text(errnum))
             return
         end if
         do
             length = c_next_entry(handle, name, int(MAX_NAME_LEN, c_int))
             if (length == -1) exit
+            if (length == -3) then
+                errnum = c_errno()
+                if (present(stat)) call stat%fail(STATUS_IO, 'cannot list directory ' &
+                                                  //short(path)//': '//error_text(errnum))
+                exit
+            end if
             if (length < 0) cycle
             if (n == size(names)) then
                 allocate (grown(2*n))

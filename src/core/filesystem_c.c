@@ -50,14 +50,17 @@ void nceig_close_directory(void *directory)
 }
 
 /* The next entry's name into name[0..capacity) (not NUL-terminated): its length, -1 at the
-   end, or -2 for a name longer than capacity (not copied). "." and ".." are skipped. */
+   end, -2 for a name longer than capacity (not copied), or -3 when readdir failed (errno;
+   readdir returns NULL both at the end and on an error, and only errno tells them apart).
+   "." and ".." are skipped. */
 int nceig_next_entry(void *directory, char *name, int capacity)
 {
     struct dirent *entry;
     size_t length;
     do {
+        errno = 0;
         entry = readdir((DIR *)directory);
-        if (entry == NULL) return -1;
+        if (entry == NULL) return errno == 0 ? -1 : -3;
     } while (strcmp(entry->d_name, ".") == 0 || strcmp(entry->d_name, "..") == 0);
     length = strlen(entry->d_name);
     if (length > (size_t)capacity) return -2;
@@ -349,6 +352,11 @@ int nceig_cleanup_arm(const char *path, int levels)
     memcpy(staging_path, path, length + 1);
     created_levels = levels;
     armed = 1;
+    /* A file over the size limit (ulimit -f) must fail its write(2) with EFBIG, which
+       close_output reports like a full disk, not kill the run with its staging folder
+       left (SIGXFSZ's default action). For the rest of the process: no write is wanted
+       past the limit. */
+    (void)signal(SIGXFSZ, SIG_IGN);
     memset(&action, 0, sizeof action);
     action.sa_handler = on_signal;
     sigemptyset(&action.sa_mask);

@@ -14,7 +14,7 @@ module input_config
     use strings, only: lowercase, printable, to_string
     use input_validation, only: validate_config
     use iso_fortran_env, only: iostat_end
-    use filesystem, only: is_directory
+    use filesystem, only: is_directory, canonical_path
     implicit none
     private
     public :: read_input, default_output_directory, resolve_relative
@@ -109,7 +109,35 @@ contains
         if (len_trim(config%output%directory) == 0) then
             config%output%directory = default_output_directory(input)
         end if
+        call check_inputs_outside_output(config, shown_path(input), stat)
     end subroutine read_and_check
+
+    !> The output directory must not hold a file the run reads (the input file, the Gmsh
+    !> mesh), at any depth: the commit replaces the directory as a whole, so such a file
+    !> would be overwritten by an output of its name (an adaptive run's mesh.msh), deleted
+    !> with the previous set that listed it, or, in a subfolder, fail the commit after all
+    !> the computing. Refused before any computing, as bad input.
+    subroutine check_inputs_outside_output(config, path, stat)
+        type(config_t), intent(in) :: config
+        character(len=*), intent(in) :: path   !! the input file, as shown in messages
+        type(status_t), intent(inout) :: stat
+        character(len=:), allocatable :: output
+        output = canonical_path(trim(config%output%directory))
+        call check_one(config%input_file, 'the input file')
+        if (config%mesh%source == 'gmsh') call check_one(trim(config%mesh%file), '&mesh file')
+    contains
+        subroutine check_one(file, what)
+            character(len=*), intent(in) :: file, what
+            character(len=:), allocatable :: read_path
+            if (.not. stat%ok()) return
+            read_path = canonical_path(file)
+            if (output /= '/' .and. index(read_path, output//'/') /= 1) return
+            call stat%fail(STATUS_BAD_INPUT, path//': &output directory = '''// &
+                           trim(config%output%directory)//''' holds '//what//' '// &
+                           shown_path(file)//', which this run reads; nceig replaces its ' &
+                           //'output directory as a whole: choose another directory')
+        end subroutine check_one
+    end subroutine check_inputs_outside_output
 
     ! ------------------------------------------------------------------ reading groups
 

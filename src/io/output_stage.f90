@@ -1,6 +1,7 @@
 ! SPDX-License-Identifier: MIT
 !> Outputs appear whole or not at all. The files of a run are written into a private staging
-!> folder next to the output directory, `<parent>/.<name>.nceig-staging-<pid>`, and the
+!> folder next to the output directory, `<parent>/.<name>.nceig-staging-<pid>` (a name over
+!> 220 bytes shortened with a hash, so that this fits NAME_MAX: name_key), and the
 !> commit puts that folder in place of the directory in one step (Linux renameat2
 !> RENAME_EXCHANGE), then removes the old set. At every instant the output directory holds
 !> the previous complete set or the new one: a run that fails, is killed or runs out of disk
@@ -14,13 +15,18 @@
 !> directory, unless the new set has a file of that name. A subdirectory cannot be carried
 !> that way: the commit then fails (STATUS_IO), and the previous set stays.
 !>
-!> An existing directory that cannot be replaced by a rename (a mount point, '.', a parent
-!> we may not write) is committed in place instead: staged in
+!> The directory is known by its real path (links, '.', '..' resolved), so every spelling
+!> of it gets the same staging name, lock and way of commit.
+!> An existing directory that cannot be replaced by a rename (a mount point, a parent we
+!> may not write) is committed in place instead: staged in
 !> `<directory>/.nceig-partial-<pid>`, then, under the lock `<directory>/.nceig-lock`,
 !> the old summary.json is deleted, the files renamed in one by one, the old set's other
 !> files deleted, and summary.json renamed in last. Each rename is atomic, the set is not:
-!> a commit cut short leaves no summary.json (the mark of an incomplete set).
+!> a commit cut short leaves no summary.json (the mark of an incomplete set). The working
+!> directory (or one above it) is committed in place too, lest a swap leave the user's shell
+!> in a removed directory, but staged and locked in the parent like any other.
 module output_stage
+    use iso_fortran_env, only: int64
     use status, only: status_t, STATUS_IO
     use filesystem, only: make_directories, rename_file, remove_directory, remove_file, &
                           can_replace, &
@@ -28,9 +34,10 @@ module output_stage
                           file_exists, list_directory, MAX_NAME_LEN, sync_path, &
                           sync_filesystem, replace_directory, make_link, copy_mode, &
                           remove_tree, lock_file, unlock_file, real_path, cleanup_on_signal, &
+                          canonical_path, &
                           hold_signals, end_cleanup_on_signal
     use text_file, only: read_line
-    use strings, only: text_t, append_text
+    use strings, only: text_t, append_text, to_string
     implicit none
     private
 
@@ -46,6 +53,9 @@ module output_stage
     !> now it is drawn in the staging folder and listed like any file.
     character(len=*), parameter :: AFTER_COMMIT_FILE = 'lambda_sweep.png'
     character(len=*), parameter :: SUMMARY_FILE = 'summary.json'
+    !> The longest name key (see name_key): '.'//key//STAGING_SUFFIX//9 digits fits
+    !> MAX_NAME_LEN (255) with room to spare.
+    integer, parameter :: MAX_KEY_LEN = 220
 
     !> A file name registered through `path`.
 
@@ -55,6 +65,7 @@ module output_stage
         character(len=:), allocatable :: directory   !! final output directory
         character(len=:), allocatable :: parent      !! its parent, where staging and lock go
         character(len=:), allocatable :: base        !! its last component
+        character(len=:), allocatable :: key         !! base, or its shortened form: name_key
         character(len=:), allocatable :: staging     !! <parent>/.<base>.nceig-staging-<pid>
         character(len=:), allocatable :: aside       !! <parent>/.<base>.nceig-old-<pid>
         type(text_t), allocatable :: names(:) !! files registered through path()
@@ -62,6 +73,7 @@ module output_stage
         logical :: active = .false.                  !! between begin and commit/abort
         logical :: exchange = .true.                 !! false: never swap (tests the fallback)
         logical :: in_place = .false.                !! commit file by file (see the header)
+        logical :: inside = .false.                  !! staging and lock inside `directory`
     contains
         procedure :: begin => output_stage_begin
         procedure :: path => output_stage_path
@@ -88,19 +100,21 @@ contains
         integer :: slash
 
         if (this%active) call this%abort()
-        this%directory = trim(directory)
+        ! One real directory, one lock and one staging name, however it is spelt ('out/.',
+        ! './out', 'a/../out', a link): runs into two spellings must take turns.
+        this%directory = canonical_path(trim(directory))
         if (allocated(this%names)) deallocate (this%names)
         allocate (this%names(0))
         this%created_levels = 0
-        do while (len(this%directory) > 1)
-            if (this%directory(len(this%directory):) /= '/') exit
-            this%directory = this%directory(:len(this%directory) - 1)
-        end do
-        if (is_directory(this%directory)) then
-            if (.not. is_real_directory(this%directory)) this%directory = real_path(this%directory)
-        end if
         slash = index(this%directory, '/', back=.true.)
         this%base = this%directory(slash + 1:)
+        if (len(this%base) > MAX_NAME_LEN) then
+            call stat%fail(STATUS_IO, 'output directory '//this%directory//': its last ' &
+                           //'component has '//to_string(len(this%base))//' bytes, more than ' &
+                           //'the '//to_string(MAX_NAME_LEN)//' a file system allows: name too long')
+            return
+        end if
+        this%key = name_key(this%base)
         if (slash == 0) then
             this%parent = '.'
         else if (slash == 1) then
@@ -114,22 +128,23 @@ contains
                                ': a file of that name is in the way')
                 return
             end if
-            this%in_place = this%base == '' .or. this%base == '.' .or. this%base == '..'
-            if (.not. this%in_place) &
-                this%in_place = .not. can_replace(this%directory, this%parent)
+            this%inside = .not. can_replace(this%directory, this%parent)
+            ! A swap would leave the working directory (ours, the user's shell's) a removed one.
+            this%in_place = this%inside .or. holds_working_directory(this%directory)
         else
+            this%inside = .false.
             this%in_place = .false.
         end if
         write (pid_text, '(i0)') process_id()
-        if (this%in_place) then
+        if (this%inside) then
             this%staging = join(this%directory, IN_PLACE_PREFIX//trim(pid_text))
         else
-            this%staging = join(this%parent, '.'//this%base//STAGING_SUFFIX//trim(pid_text))
+            this%staging = join(this%parent, '.'//this%key//STAGING_SUFFIX//trim(pid_text))
         end if
-        this%aside = join(this%parent, '.'//this%base//ASIDE_SUFFIX//trim(pid_text))
+        this%aside = join(this%parent, '.'//this%key//ASIDE_SUFFIX//trim(pid_text))
         ! Armed before anything is made, so that no signal finds it unregistered.
         call cleanup_on_signal(this%staging, 0, stat)
-        if (stat%ok() .and. .not. this%in_place) &
+        if (stat%ok() .and. .not. this%inside) &
             call make_directories(this%parent, stat, this%created_levels)
         if (.not. stat%ok()) then
             call end_cleanup_on_signal()
@@ -137,11 +152,11 @@ contains
             return
         end if
         call cleanup_on_signal(this%staging, this%created_levels, stat)
-        if (this%in_place) then
+        if (this%inside) then
             call remove_stale_staging(this%directory, IN_PLACE_PREFIX)
         else
-            call remove_stale_staging(this%parent, '.'//this%base//ASIDE_SUFFIX, this%directory)
-            call remove_stale_staging(this%parent, '.'//this%base//STAGING_SUFFIX)
+            call remove_stale_staging(this%parent, '.'//this%key//ASIDE_SUFFIX, this%directory)
+            call remove_stale_staging(this%parent, '.'//this%key//STAGING_SUFFIX)
         end if
         if (stat%ok()) call make_directories(this%staging, stat)
         if (.not. stat%ok()) then
@@ -154,6 +169,39 @@ contains
         end if
         this%active = .true.
     end subroutine output_stage_begin
+
+    !> True when the working directory is `directory` or below it: what '.' or '..' names.
+    logical function holds_working_directory(directory)
+        character(len=*), intent(in) :: directory
+        character(len=:), allocatable :: here
+        here = real_path('.')
+        holds_working_directory = here == directory .or. directory == '/' .or. &
+                                  index(here//'/', directory//'/') == 1
+    end function holds_working_directory
+
+    !> The name the staging, aside and lock names of directory `base` are derived from:
+    !> `base` itself, or, when the derived names would exceed NAME_MAX (a name over
+    !> MAX_KEY_LEN bytes), its first bytes, '~' and 8 hex digits of a hash of the whole
+    !> (FNV-1a): recognisable, the same for every run into that directory, and short enough.
+    pure function name_key(base) result(key)
+        character(len=*), intent(in) :: base
+        character(len=:), allocatable :: key
+        integer(int64), parameter :: FNV_OFFSET = 2166136261_int64, FNV_PRIME = 16777619_int64
+        integer(int64) :: hash
+        character(len=8) :: hex
+        integer :: i
+        if (len(base) <= MAX_KEY_LEN) then
+            key = base
+            return
+        end if
+        hash = FNV_OFFSET
+        do i = 1, len(base)
+            ! stays below 2**32 before the product, below 2**57 after: no overflow
+            hash = modulo(ieor(hash, int(iachar(base(i:i)), int64))*FNV_PRIME, 2_int64**32)
+        end do
+        write (hex, '(z8.8)') hash
+        key = base(:MAX_KEY_LEN - 9)//'~'//hex
+    end function name_key
 
     !> Remove the staging folders `<parent>/<prefix><pid>` whose process is gone: a run
     !> killed (SIGKILL) before or during its commit leaves its staging folder behind (holding
@@ -243,10 +291,10 @@ contains
             call this%abort()
             return
         end if
-        if (this%in_place) then
+        if (this%inside) then
             call lock_file(join(this%directory, IN_PLACE_LOCK), lock, stat)
         else
-            call lock_file(join(this%parent, '.'//this%base//LOCK_SUFFIX), lock, stat)
+            call lock_file(join(this%parent, '.'//this%key//LOCK_SUFFIX), lock, stat)
         end if
         if (.not. stat%ok()) then
             call this%abort()
@@ -350,7 +398,13 @@ contains
 
         linked = .false.
         call read_listed_files(join(this%directory, SUMMARY_FILE), old_set)
-        call list_directory(this%directory, entries)
+        ! A listing cut short would leave the user's files out of the new directory.
+        call list_directory(this%directory, entries, stat)
+        if (.not. stat%ok()) then
+            call stat%fail(STATUS_IO, stat%message//'; its other files could not be ' &
+                           //'carried over, the previous set stays')
+            return
+        end if
         do i = 1, size(entries)
             name = trim(entries(i))
             if (name == SUMMARY_FILE .or. name == AFTER_COMMIT_FILE) cycle
