@@ -75,11 +75,15 @@ check 'a Gmsh mesh adapts further' '[[ $rc -eq 0 && ! -s "$work/err" &&
 check 'full operator: the loop meets its tolerance' '[[ $rc -eq 0 && ! -s "$work/err" &&
     $(json "$work/full/summary.json" adapt_converged) == true ]]'
 
-# A limit: exit 0, a warning in summary.json and on stdout that names it and what was reached.
+# A limit: the set of the last level is written, with a warning in summary.json and on
+# stdout that names the limit and what was reached, and the run exits 8 (tolerance not
+# met) with one line on stderr, so that no script takes it for a success.
 "$nceig" "$work/adapt.nml" --set adapt%max_levels=2 --set output%directory="$work/limit" \
     >"$work/stdout" 2>"$work/err"; rc=$?
 l=$work/limit/summary.json
-check 'max_levels reached: exit 0' '[[ $rc -eq 0 && ! -s "$work/err" ]]'
+check 'max_levels reached: exit 8, one stderr line naming &adapt and the limit' \
+    '[[ $rc -eq 8 && $(wc -l <"$work/err") -eq 1 ]] && grep -q "adapt.nml: &adapt: tolerance 1.00E-05 not met: max_levels = 2 reached" "$work/err"'
+check 'max_levels reached: the set is written' '[[ -s "$work/limit/adapt.csv" && -s "$work/limit/mesh.msh" ]]'
 check 'max_levels reached: not converged, 2 levels' \
     '[[ $(json "$l" adapt_converged) == false && $(json "$l" adapt_levels) == 2 ]]'
 check 'max_levels reached: warning in summary.json' \
@@ -161,6 +165,20 @@ b=$work/threshold_back/summary.json
 check 'threshold: mesh.msh reads back to the same lambda+ (1e-12) and estimate (1e-6 of it)' \
     '[[ $rc -eq 0 ]] && close "$(json "$b" lambda_critical_plus)" "$(json "$s" lambda_critical_plus)" 1e-12 &&
     close "$(json "$b" lambda_critical_plus_error_estimate)" "$(json "$s" lambda_critical_plus_error_estimate)" 1e-6'
+
+# Limits reached by the other goals: exit 8 too, the set written. The thresholds stopped
+# after one level; the sweep's points stopped after one level each (lambda = 1 has no
+# positive mu, so no tolerance to miss: 3 of its 4 points are counted).
+"$nceig" "$work/threshold.nml" --set adapt%max_levels=1 --set output%directory="$work/th_limit" \
+    >/dev/null 2>"$work/err"; rc=$?
+check 'threshold, max_levels reached: exit 8, one stderr line, the set written' \
+    '[[ $rc -eq 8 && $(wc -l <"$work/err") -eq 1 && -s $work/th_limit/summary.json ]] &&
+     grep -q "&adapt: tolerance 1.00E-06 not met: max_levels = 1 reached" "$work/err"'
+"$nceig" "$work/sweep.nml" --set adapt%max_levels=1 --set adapt%tolerance=1e-9 \
+    --set output%directory="$work/sw_limit" >/dev/null 2>"$work/err"; rc=$?
+check 'sweep, max_levels reached: exit 8, the points counted, the set written' \
+    '[[ $rc -eq 8 && $(wc -l <"$work/err") -eq 1 && $(json "$work/sw_limit/summary.json" sweep_n_not_met) == 3 ]] &&
+     grep -q "3 of the sweep.s points with a positive mu did not meet the tolerance" "$work/err"'
 
 # bad NAME WORD... -- SETTINGS: one stderr line with every WORD, exit 2, no output.
 bad() {

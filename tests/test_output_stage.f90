@@ -260,7 +260,8 @@ contains
         call stage%begin('.', stat)
         call t%check('in place: begin succeeds', stat%ok())
         call t%check('in place: the same staging folder as from outside', &
-                     stage%folder() == outside .and. is_directory(outside))
+                     stage%folder() == outside)
+        call t%check('in place: the staging folder exists', is_directory(outside))
         call write_text(stage%path('a.txt'), 'first a')
         call write_text(stage%path('b.txt'), 'first b')
         call write_text(stage%path('summary.json'), '  "files": ["a.txt", "b.txt"],')
@@ -298,20 +299,23 @@ contains
             end if
             folder = stage%folder()
             call t%check('a '//trim(str(n))//'-byte name: the staging name fits NAME_MAX', &
-                         len(folder) - index(folder, '/', back=.true.) <= MAX_NAME_LEN &
-                         .and. is_directory(folder))
+                         len(folder) - index(folder, '/', back=.true.) <= MAX_NAME_LEN)
+            call t%check('a '//trim(str(n))//'-byte name: the staging folder exists', &
+                         is_directory(folder))
             call write_text(stage%path('a.txt'), 'long a')
             call write_text(stage%path('summary.json'), '  "files": ["a.txt"],')
             call stage%commit(stat)
-            call t%check('a '//trim(str(n))//'-byte name: commit succeeds', &
-                         stat%ok() .and. first_line(long_dir//'/a.txt') == 'long a')
+            call t%check('a '//trim(str(n))//'-byte name: commit succeeds', stat%ok())
+            call t%check('a '//trim(str(n))//'-byte name: the file is in', &
+                         first_line(long_dir//'/a.txt') == 'long a')
             ! a dead run's staging folder of that directory: the next begin removes it
             dash = index(folder, '-', back=.true.)
             dead = folder(:dash)//'999999999'
             call make_directories(dead, stat)
             call stage%begin(long_dir, stat)
+            call t%check('a '//trim(str(n))//'-byte name: begin after a dead run', stat%ok())
             call t%check('a '//trim(str(n))//'-byte name: a dead run''s staging folder is ' &
-                         //'removed', stat%ok() .and. .not. file_exists(dead))
+                         //'removed', .not. file_exists(dead))
             call stage%abort()
             call remove_tree(long_dir)
         end do

@@ -4,7 +4,7 @@
 !> indicators, mode_001.png), adapt.csv (one row per level), adapt.png, and mesh.msh, the
 !> final mesh as a Gmsh file any analysis reads back.
 module adapt_run
-    use status, only: status_t
+    use status, only: status_t, STATUS_NOT_MET
     use strings, only: to_string
     use real_format, only: real_to_text
     use timer, only: timings_t
@@ -47,6 +47,12 @@ contains
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
         call adapt_eigen(config, prob, this%out, timings, stat)
+        ! Without a positive mu there is no value to quote, so nothing to take for a met
+        ! tolerance: that stays exit 0 with its warning.
+        if (.not. stat%ok() .or. this%out%converged) return
+        if (this%out%res%spec%lowest_positive() > 0) call this%verdict%fail(STATUS_NOT_MET, &
+            config%input_file//': &adapt: '//this%out%outcome// &
+            ' (the set of the last level is written)')
     end subroutine adapt_run_solve
 
     !> The files of the final level; `prob` (the starting mesh) is not written.

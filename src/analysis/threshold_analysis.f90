@@ -53,6 +53,10 @@ module threshold_analysis
         real(wp), allocatable :: error_estimate(:)
         integer, allocatable :: n_dofs(:)
         integer :: n_reused = 0                  !! &adapt: points met with no refinement
+        !> &adapt: points with a positive mu whose tolerance was not met, and the first
+        !> such point's outcome
+        integer :: n_not_met = 0
+        character(len=:), allocatable :: not_met
         integer :: n_arpack = 0                  !! points certified by ARPACK
         integer :: n_dense = 0                   !! points decided densely (incl. fallbacks)
     end type sweep_curve_t
@@ -289,6 +293,11 @@ contains
             if (out%res%error%computed) curve%error_estimate(i) = abs(out%res%error%relative)
             curve%n_dofs(i) = out%prob%dofs%n_free
             if (out%converged .and. size(out%levels) == 1) curve%n_reused = curve%n_reused + 1
+            if (curve%found(i) .and. .not. out%converged) then
+                curve%n_not_met = curve%n_not_met + 1
+                if (.not. allocated(curve%not_met)) curve%not_met = 'lambda = '// &
+                    real_to_text(curve%lambda(i))//': '//out%outcome
+            end if
             if (out%converged) current = out%prob
         end do
     end subroutine adaptive_sweep

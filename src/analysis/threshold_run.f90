@@ -6,7 +6,7 @@
 !> the final mesh, with adapt.csv, adapt.png and mesh.msh as an adaptive eigen run does.
 module threshold_run
     use kinds, only: wp
-    use status, only: status_t
+    use status, only: status_t, STATUS_NOT_MET
     use strings, only: to_string, short_real_text
     use real_format, only: real_to_text
     use timer, only: timings_t
@@ -65,6 +65,11 @@ contains
         type(status_t), intent(out) :: stat
         if (.not. this%adaptive) then
             call solve_thresholds(config, prob, this%with_sweep, this%res, timings, stat)
+            if (.not. stat%ok() .or. .not. this%with_sweep) return
+            if (this%res%sweep%n_not_met > 0) call this%verdict%fail(STATUS_NOT_MET, &
+                config%input_file//': &adapt: '//to_string(this%res%sweep%n_not_met)// &
+                ' of the sweep''s points with a positive mu did not meet the tolerance, '// &
+                'the first at '//this%res%sweep%not_met//' (the set is written)')
             return
         end if
         call adapt_thresholds(config, prob, this%adapted, timings, stat)
@@ -73,6 +78,9 @@ contains
         if (stat%ok() .and. .not. this%adapted%converged) this%res%eigen%warnings = &
             [character(len=len(this%res%eigen%warnings)) :: this%adapted%outcome, &
              this%res%eigen%warnings]
+        if (stat%ok() .and. .not. this%adapted%converged) call this%verdict%fail( &
+            STATUS_NOT_MET, config%input_file//': &adapt: '//this%adapted%outcome// &
+            ' (the set of the last level is written)')
     end subroutine threshold_run_solve
 
     subroutine threshold_run_write_files(this, stage, config, prob, stat)
@@ -360,6 +368,7 @@ contains
         if (config%adapt%tolerance > 0.0_wp) then
             call summary%add_integer('sweep_n_adapted', size(res%sweep%lambda))
             call summary%add_integer('sweep_n_mesh_reused', res%sweep%n_reused)
+            call summary%add_integer('sweep_n_not_met', res%sweep%n_not_met)
             call summary%add_real_or_null('sweep_max_error_estimate', &
                 maxval(res%sweep%error_estimate), any(res%sweep%error_estimate >= 0.0_wp))
         end if

@@ -115,8 +115,12 @@ module run_config
     !> until the error estimate of the lowest positive mu is at most `tolerance` (0: none).
     type, public :: adapt_config_t
         real(wp) :: tolerance = 0.0_wp      !! relative, 0 <= tolerance < 1; 0 is off
-        integer :: max_dofs = 1000000       !! no level solves on more free dofs than this
-        integer :: max_levels = 40          !! refinement steps after the starting mesh
+        !> no level solves on more free dofs than this; 0: as many as the memory available
+        !> at the start allows (adaptive_dof_limit)
+        integer :: max_dofs = 0
+        !> refinement steps after the starting mesh; 0: no limit (the tolerance or the
+        !> dofs end the loop, never a level count)
+        integer :: max_levels = 0
         !> Doerfler marking: refine the fewest cells whose indicators sum to at least this
         !> fraction of the total (0 < theta <= 1; 1 refines every cell with an indicator)
         real(wp) :: theta = 0.25_wp

@@ -6,7 +6,7 @@ module status
     private
     public :: status_t
     public :: STATUS_SUCCESS, STATUS_BAD_INPUT, STATUS_MESH, STATUS_IO, STATUS_SOLVER, &
-              STATUS_SINGULAR, STATUS_INTERNAL
+              STATUS_SINGULAR, STATUS_INTERNAL, STATUS_NOT_MET
 
     integer, parameter :: STATUS_SUCCESS = 0
     integer, parameter :: STATUS_BAD_INPUT = 2   !! input file or command line is wrong
@@ -15,6 +15,10 @@ module status
     integer, parameter :: STATUS_SOLVER = 5      !! a numerical library reported failure
     integer, parameter :: STATUS_SINGULAR = 6    !! K is singular (e.g. no Dirichlet boundary)
     integer, parameter :: STATUS_INTERNAL = 7    !! a broken invariant: a bug, not bad input
+    !> An adaptive run ended without meeting &adapt tolerance (a limit reached, or no error
+    !> estimate): its set, of the last level, is written, but no script may take it for
+    !> a success.
+    integer, parameter :: STATUS_NOT_MET = 8
 
     type :: status_t
         integer :: code = STATUS_SUCCESS

@@ -144,9 +144,9 @@ contains
                //entry('tolerance', real_to_text(d%adapt%tolerance), 'relative error of' &
                        //' mu or of both critical lambdas (0: off; < 1)') &
                //entry('max_dofs', to_string(d%adapt%max_dofs), 'no level solves on more' &
-                       //' free dofs') &
+                       //' free dofs (0: as memory allows)') &
                //entry('max_levels', to_string(d%adapt%max_levels), 'refinement steps after' &
-                       //' the starting mesh') &
+                       //' the starting mesh (0: no limit)') &
                //entry('theta', real_to_text(d%adapt%theta), 'Doerfler fraction: refine' &
                        //' cells holding this part of the estimate')
 

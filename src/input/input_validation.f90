@@ -89,10 +89,10 @@ contains
             if (.not. tolerance_ok) then
                 call reject('tolerance', real_to_text(c%tolerance), &
                             'a relative error with 0 <= tolerance < 1 (0: no adaptation)')
-            else if (c%max_dofs < 1) then
-                call reject('max_dofs', to_string(c%max_dofs), 'an integer >= 1')
+            else if (c%max_dofs < 0) then
+                call reject('max_dofs', to_string(c%max_dofs), 'an integer >= 0 (0: the memory available)')
             else if (c%max_levels < 0) then
-                call reject('max_levels', to_string(c%max_levels), 'an integer >= 0')
+                call reject('max_levels', to_string(c%max_levels), 'an integer >= 0 (0: no limit)')
             else if (.not. theta_ok) then
                 call reject('theta', real_to_text(c%theta), 'a fraction with 0 < theta <= 1')
             end if

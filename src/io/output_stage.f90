@@ -130,7 +130,8 @@ contains
             end if
             this%inside = .not. can_replace(this%directory, this%parent)
             ! A swap would leave the working directory (ours, the user's shell's) a removed one.
-            this%in_place = this%inside .or. holds_working_directory(this%directory)
+            this%in_place = this%inside
+            if (.not. this%in_place) this%in_place = holds_working_directory(this%directory)
         else
             this%inside = .false.
             this%in_place = .false.
