@@ -5,7 +5,8 @@
 # thin strips whose dense contact blocks exceed the machine's memory (nx = 200000 and
 # 1000000, ny = 1: refused in seconds, with the estimate); a Gmsh mesh cut in two by a crack
 # (duplicated nodes along x = 0.5), which used to end in an internal Cholesky message; and,
-# under ulimit -v, an allocation that fails after the estimate passed (exit 5, one line).
+# under ulimit -v, an allocation that fails after the estimate passed (exit 5, one line),
+# and a limit too small for the BLAS's buffers, which hung (exit 5 at once).
 # Usage: cli_mesh_limits.sh NCEIG SOURCE_DIR
 set -u
 nceig=$1
@@ -107,6 +108,18 @@ else
     rc=$?
     seconds=$SECONDS
     refused 'out of memory under ulimit -v: one line, exit status 5' 5 20 'out of memory'
+
+    # An address space too small for OpenBLAS's 128 MiB buffer: OpenBLAS retried its mmap
+    # for ever inside CHOLMOD (and its shutdown then joined a thread stuck so). timeout: a
+    # regression must fail this check, not hang the suite.
+    printf '&mesh nx = 64, ny = 64 /\n&output directory = "out" /\n' >in.nml
+    rm -rf out
+    SECONDS=0
+    (ulimit -v 100000 && exec timeout 60 "$nceig" in.nml) >stdout 2>err
+    rc=$?
+    seconds=$SECONDS
+    refused 'ulimit -v 100000: refused before OpenBLAS, exit status 5' 5 20 'ulimit -v' \
+        'in.nml'
 fi
 
 cli_end
