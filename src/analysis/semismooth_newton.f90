@@ -102,14 +102,16 @@ contains
             call lu%free()
             if (.not. stat%ok()) return
 
-            merit = sum(h**2)
+            ! ||H||_2 by norm2, which scales: the squares of entries near 1e160 overflowed
+            merit = norm2(h)
             t = 1.0_wp
             accepted = .false.
             do halving = 0, MAX_HALVINGS
                 x_trial = x + t*dx
                 call cp%residual(x_trial, h_trial)
-                merit_trial = sum(h_trial**2)
-                if (merit_trial <= (1.0_wp - 2.0_wp*ARMIJO*t)*merit) then
+                merit_trial = norm2(h_trial)
+                ! ||H_trial||^2 <= (1 - 2 a t) ||H||^2, on the norms
+                if (merit_trial <= sqrt(1.0_wp - 2.0_wp*ARMIJO*t)*merit) then
                     accepted = .true.
                     exit
                 end if
