@@ -80,4 +80,12 @@ done
 check 'poisson 0.499999999999 on p2: a round-off warning with the digits lost' \
     'grep -q "^warning: nearly incompressible.*14 of 16 digits lost" "$work/nu_0.499999999999.out" && grep -q "14 of 16 digits lost" "$work/nu_0.499999999999/summary.json"'
 check 'poisson 0.4999999 on p2: no warning' '! grep -q warning "$work/nu_0.4999999.out"'
+# On 16 x 16 K still factors but the enriched (p3) matrix of the error estimate does not:
+# the run goes on without the estimate, and the warning says whose matrix was singular (it
+# blamed K and a missing Dirichlet boundary).
+printf '%s\n' "&mesh element = 'p2', nx = 16, ny = 16 /" "&material poisson = 0.499999999999 /" \
+    "&output directory = '$work/nu_16', vtk = .false., plot = .false. /" >"$work/nu.nml"
+"$nceig" "$work/nu.nml" >"$work/nu_16.out" 2>&1; rc=$?
+check 'enriched matrix singular: exit 0, the warning names the error estimate'"'"'s matrix' \
+    '[[ $rc -eq 0 ]] && grep -q "^warning: no error estimate .*the enriched stiffness matrix of the error estimate" "$work/nu_16.out" && ! grep -q Dirichlet "$work/nu_16.out"'
 cli_end
