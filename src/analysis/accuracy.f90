@@ -33,7 +33,7 @@ module accuracy
     real(wp), parameter :: LAMBDA_SENSITIVITY_BOUND = 1.0e4_wp
     !> Relative round-off error of mu per eps x L/G: K's condition grows like L/G as nu ->
     !> 0.5, in any element. Measured (P2, 8 x 8 and 16 x 16, errors against the values at
-    !> nu = 0.4999999): 35 to 70 eps L/G on 8 x 8, 110 to 180 on 16 x 16 (it grows with
+    !> nu = 0.4999999): 35 to 67 eps L/G on 8 x 8, 108 to 180 on 16 x 16 (it grows with
     !> refinement); 100 makes the warning fire from L/G = 4.5e7 (nu = 0.49999999, error
     !> 3.9e-7 measured), where the error estimate, which sees only the discretisation, does not.
     real(wp), parameter :: ROUNDOFF_PER_LAME_RATIO = 100.0_wp
