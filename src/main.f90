@@ -6,7 +6,7 @@ program nceig
     use kinds, only: wp
     use status, only: status_t, STATUS_BAD_INPUT
     use version, only: NCEIG_VERSION
-    use process_exit, only: exit_with
+    use process_exit, only: exit_with, exit_now
     use timer, only: wall_time, timings_t, PHASE_ASSEMBLY
     use strings, only: to_string
     use run_config, only: config_t
@@ -18,6 +18,7 @@ program nceig
     use analysis_registry, only: new_analysis
     use console, only: print_progress
     use process, only: ignore_broken_pipe
+    use memory_budget, only: check_address_space
     implicit none
 
     type(config_t) :: config
@@ -66,6 +67,12 @@ program nceig
         ' cells, '//to_string(prob%dofs%n_free)//' dofs, '//to_string(prob%contact%p())// &
         ' contact nodes, K with '//to_string(prob%k%nnz())//' entries')
 
+    call check_address_space(stat)
+    if (.not. stat%ok()) then
+        ! exit handlers would hang: OpenBLAS's shutdown joins a thread retrying its buffer
+        write (error_unit, '(a)') 'nceig: '//config%input_file//': '//stat%message
+        call exit_now(stat%code)
+    end if
     call run_analysis(analysis, config, prob, start, timings, stat)
     call stop_on_failure(stat)
     write (output_unit, '(a)', iostat=ios) analysis%report(config, prob)

@@ -80,6 +80,14 @@ bad 'eigen operator unknown' "&eigen operator = 'whole' /" '&eigen' operator "'f
 bad 'eigen operator full with dense' "&eigen operator = 'full', solver = 'dense' /" '&eigen' operator dense
 bad 'eigen cn_max < 0' "&eigen cn_max = -1 /" '&eigen' cn_max '>= 0'
 bad 'eigen cn_max NaN' "&eigen cn_max = NaN /" '&eigen' cn_max finite
+# 'solve' works in the input's units: loads within young's range, displacements within the
+# size's (u_d1 = 1e300 overflowed the Newton merit: SIGFPE in Debug)
+bad 'solve u_d1 1e300' "&analysis kind = 'solve' /
+&solve u_d1 = 1e300 /" '&solve' u_d1 '1e50'
+bad 'solve t2 -1e101' "&analysis kind = 'solve' /
+&solve t2 = -1e101 /" '&solve' t2 '1e100'
+bad 'solve c_n 1e-101' "&analysis kind = 'solve' /
+&solve c_n = 1e-101 /" '&solve' c_n '1e-100 to 1e100'
 # the &output groups carry the directory themselves
 bad_output() {
     local name=$1 text=$2

@@ -68,4 +68,24 @@ ks=$(ratio "$work/scaled/K.mtx") ku=$(ratio "$work/unit/K.mtx")
 check "K.mtx of the input problem: 2^30 K(1) ($ks, $ku)" 'close "$ks" "$(awk -v k="$ku" "BEGIN { printf \"%.17g\", k * 2^30 }")" 1e-15'
 bs=$(ratio "$work/scaled/B.mtx") bu=$(ratio "$work/unit/B.mtx")
 check "B.mtx of the input problem: 2^-20 B(1) ($bs, $bu)" 'close "$bs" "$(awk -v b="$bu" "BEGIN { printf \"%.17g\", b * 2^-20 }")" 1e-15'
+
+# nu near 0.5 on p2 (no locking warning): K's condition grows like L/G, and the digits lost
+# to round-off (7e-3 relative at nu = 0.499999999999 on 8 x 8) are said, on stdout and in
+# summary.json; nu = 0.4999999 (about 1e-7 of them) has no warning.
+for nu in 0.4999999 0.499999999999; do
+    printf '%s\n' "&mesh element = 'p2' /" "&material poisson = $nu /" \
+        "&output directory = '$work/nu_$nu', vtk = .false., plot = .false. /" >"$work/nu.nml"
+    "$nceig" "$work/nu.nml" >"$work/nu_$nu.out" 2>&1
+done
+check 'poisson 0.499999999999 on p2: a round-off warning with the digits lost' \
+    'grep -q "^warning: nearly incompressible.*14 of 16 digits lost" "$work/nu_0.499999999999.out" && grep -q "14 of 16 digits lost" "$work/nu_0.499999999999/summary.json"'
+check 'poisson 0.4999999 on p2: no warning' '! grep -q warning "$work/nu_0.4999999.out"'
+# On 16 x 16 K still factors but the enriched (p3) matrix of the error estimate does not:
+# the run goes on without the estimate, and the warning says whose matrix was singular (it
+# blamed K and a missing Dirichlet boundary).
+printf '%s\n' "&mesh element = 'p2', nx = 16, ny = 16 /" "&material poisson = 0.499999999999 /" \
+    "&output directory = '$work/nu_16', vtk = .false., plot = .false. /" >"$work/nu.nml"
+"$nceig" "$work/nu.nml" >"$work/nu_16.out" 2>&1; rc=$?
+check 'enriched matrix singular: exit 0, the warning names the error estimate'"'"'s matrix' \
+    '[[ $rc -eq 0 ]] && grep -q "^warning: no error estimate .*the enriched stiffness matrix of the error estimate" "$work/nu_16.out" && ! grep -q Dirichlet "$work/nu_16.out"'
 cli_end

@@ -5,7 +5,8 @@
 # thin strips whose dense contact blocks exceed the machine's memory (nx = 200000 and
 # 1000000, ny = 1: refused before allocating, with the estimate); a Gmsh mesh cut in two by a crack
 # (duplicated nodes along x = 0.5), which used to end in an internal Cholesky message; and,
-# under ulimit -v, an allocation that fails after the estimate passed (exit 5, one line).
+# under ulimit -v, an allocation that fails after the estimate passed (exit 5, one line),
+# and a limit too small for the BLAS's buffers, which hung (exit 5 at once).
 # Usage: cli_mesh_limits.sh NCEIG SOURCE_DIR
 set -u
 nceig=$1
@@ -94,6 +95,45 @@ run "source = 'gmsh', file = 'crack.msh'"
 refused 'a crack (duplicated nodes): the mesh file, the line, not connected' 3 \
     'crack.msh:31: the mesh is not connected: it falls into 2 pieces'
 
+# A sliver: node 5 lies 1e-13 off the diagonal 1-3, so cell 1 5 3 has an area of 5e-14 (above
+# the degenerate bound, 64 eps x diameter^2) but makes K numerically singular. The message
+# blamed a missing Dirichlet boundary; it names the cell.
+cat >sliver.msh <<'MSH'
+$MeshFormat
+2.2 0 8
+$EndMeshFormat
+$PhysicalNames
+4
+1 1 "bottom"
+1 2 "right"
+1 3 "top"
+1 4 "left"
+$EndPhysicalNames
+$Nodes
+5
+1 0 0 0
+2 1 0 0
+3 1 1 0
+4 0 1 0
+5 0.5 0.4999999999999 0
+$EndNodes
+$Elements
+8
+1 1 2 1 1 1 2
+2 1 2 2 2 2 3
+3 1 2 3 3 3 4
+4 1 2 4 4 4 1
+5 2 2 5 1 1 2 5
+6 2 2 5 1 2 3 5
+7 2 2 5 1 1 5 3
+8 2 2 5 1 1 3 4
+$EndElements
+MSH
+run "source = 'gmsh', file = 'sliver.msh'"
+refused 'a sliver cell: K singular, the cell named, not the Dirichlet boundary' 6 \
+    'in.nml: &mesh: the stiffness matrix K is singular, likely from a sliver' \
+    'the cell at sliver.msh:27 has |det J| = 5.00E-14'
+
 # An allocation failure after the estimate passed (here: a 700 MB address space) is one
 # line and exit status 5, not a backtrace.
 # AddressSanitizer reserves terabytes of address space at start: under ulimit -v a sanitized
@@ -108,6 +148,18 @@ else
     rc=$?
     seconds=$SECONDS
     refused 'out of memory under ulimit -v: one line, exit status 5' 5 'out of memory'
+
+    # An address space too small for OpenBLAS's 128 MiB buffer: OpenBLAS retried its mmap
+    # for ever inside CHOLMOD (and its shutdown then joined a thread stuck so). timeout: a
+    # regression must fail this check, not hang the suite.
+    printf '&mesh nx = 64, ny = 64 /\n&output directory = "out" /\n' >in.nml
+    rm -rf out
+    SECONDS=0
+    (ulimit -v 100000 && exec timeout 60 "$nceig" in.nml) >stdout 2>err
+    rc=$?
+    seconds=$SECONDS
+    refused 'ulimit -v 100000: refused before OpenBLAS, exit status 5' 5 'ulimit -v' \
+        'in.nml'
 fi
 
 cli_end

@@ -49,6 +49,13 @@ bad 'two variables in one --set' 'mesh%nx=3, ny=0' '&mesh' nx 'one variable'
 bad 'a value cut short' 'mesh%nx=3/4' '&mesh' nx 'one value'
 bad 'no group' 'lambda=2' 'group%variable=value'
 bad 'no value' 'analysis%lambda=' 'group%variable=value'
+bad 'a newline between two settings' $'mesh%nx=4\nmesh%ny=8' 'newline'
+bad 'a newline ending the value' $'analysis%lambda=5\n' 'newline'
+bad 'a carriage return' $'analysis%lambda=5\r' 'control character'
+
+# A tab is a blank, as in the file (gfortran's read took it as part of the number).
+"$nceig" "$work/small.nml" --set $'analysis%lambda=2.5\t' >/dev/null 2>"$work/err"; rc=$?
+check 'a tab after a --set value is a blank' '[[ $rc -eq 0 ]] && grep -q "\"lambda\": 2.5" "$work/out/summary.json"'
 
 "$nceig" "$work/small.nml" --set >/dev/null 2>"$work/err"; rc=$?
 check '--set without its value: exit 2, one line' '[[ $rc -eq 2 && $(wc -l <"$work/err") -eq 1 ]] && grep -q -- --set "$work/err"'

@@ -8,7 +8,8 @@ program test_cell_geometry
     use element_types, only: ELEMENT_P1, ELEMENT_Q1, element_nodes_per_cell
     use shape_functions, only: reference_nodes, MAX_NODES
     use cell_geometry, only: jacobian_at, det_range, negligible_det, orientation_of, &
-                             cell_orientation, DEGENERATE_FRACTION, CELL_ANTICLOCKWISE, &
+                             cell_orientation, cell_thinness, DEGENERATE_FRACTION, &
+                             CELL_ANTICLOCKWISE, &
                              CELL_CLOCKWISE, CELL_DEGENERATE, CELL_FOLDED
     use elasticity, only: element_stiffness, ELEMENT_OK, ELEMENT_INVERTED
     use mesh, only: mesh_t
@@ -50,6 +51,11 @@ program test_cell_geometry
                  cell_orientation(ELEMENT_P1, unit_triangle) == CELL_ANTICLOCKWISE .and. &
                  cell_orientation(ELEMENT_P1, unit_triangle(:, [1, 3, 2])) == CELL_CLOCKWISE &
                  .and. cell_orientation(ELEMENT_Q1, dart()) == CELL_FOLDED)
+    ! x = 2 xi, y = 3 eta: det J = 6, diameter^2 = 13; a corner 1e-13 off the opposite side
+    call t%check('cell_thinness: det J / diameter^2, tiny for a sliver', &
+                 abs(cell_thinness(ELEMENT_P1, unit_triangle) - 6.0_wp/13.0_wp) < 1.0e-15_wp &
+                 .and. abs(cell_thinness(ELEMENT_P1, reshape([0.0_wp, 0.0_wp, 0.5_wp, &
+                 0.5_wp - 1.0e-13_wp, 1.0_wp, 1.0_wp], [2, 3])) - 5.0e-14_wp) < 1.0e-16_wp)
 
     ! The reader and the assembly against each other, across the threshold.
     do i = 1, size(FACTORS)

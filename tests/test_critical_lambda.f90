@@ -255,6 +255,22 @@ contains
         call t%check('log sweep: -1000, -100, -10, -1', size(lambdas) == 4 .and. &
             all(abs(lambdas - [-1000.0_wp, -100.0_wp, -10.0_wp, -1.0_wp]) <= &
                 4.0_wp*epsilon(1.0_wp)*abs(lambdas)))
+        ! Ranges whose span (linear) or ratio (log) overflows binary64 (red-team report).
+        c%spacing = 'linear'
+        c%lambda_min = -9.0e307_wp
+        c%lambda_max = 9.0e307_wp
+        c%n_lambda = 5
+        lambdas = sweep_lambdas(c)
+        call t%check('linear sweep -9e307 to 9e307: finite, even steps', size(lambdas) == 5 &
+            .and. all(abs(lambdas - [-9.0e307_wp, -4.5e307_wp, 0.0_wp, 4.5e307_wp, &
+                                     9.0e307_wp]) <= 4.0_wp*epsilon(1.0_wp)*9.0e307_wp))
+        c%spacing = 'log'
+        c%lambda_min = 1.0e-200_wp
+        c%lambda_max = 1.0e200_wp
+        lambdas = sweep_lambdas(c)
+        call t%check('log sweep 1e-200 to 1e200: ratio 1e100 per step', size(lambdas) == 5 &
+            .and. all(abs(lambdas - [1.0e-200_wp, 1.0e-100_wp, 1.0_wp, 1.0e100_wp, &
+                                     1.0e200_wp]) <= 1.0e-12_wp*abs(lambdas)))
         c%lambdas(1:3) = [7.0_wp, -2.0_wp, 0.0_wp]
         lambdas = sweep_lambdas(c)
         call t%check('a list wins over the range, in its order', size(lambdas) == 3 .and. &

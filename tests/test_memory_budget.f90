@@ -4,9 +4,10 @@
 !> reading of MemAvailable (else MemTotal) from a meminfo file.
 program test_memory_budget
     use kinds, only: wp, i8
-    use status, only: status_t, STATUS_BAD_INPUT
+    use status, only: status_t, STATUS_BAD_INPUT, STATUS_SOLVER
     use run_config, only: config_t
-    use memory_budget, only: contact_blocks_bytes, check_contact_memory, contact_peak_blocks
+    use memory_budget, only: contact_blocks_bytes, check_contact_memory, contact_peak_blocks, &
+                             check_address_space
     use system_memory, only: available_memory_bytes
     use testing, only: test_suite_t
     implicit none
@@ -21,6 +22,16 @@ program test_memory_budget
                  contact_peak_blocks(.false.) == 10 .and. contact_peak_blocks(.true.) == 8)
     call t%check_close('estimate: 80 p^2 bytes', contact_blocks_bytes(10001, 10), &
                        80.0_wp*10001.0_wp**2, 1.0e-15_wp)
+
+    ! ulimit -v: OpenBLAS hung retrying its 128 MiB buffer under 100 MB of address space.
+    call check_address_space(stat, headroom=35_i8*1000000_i8)
+    call t%check('address space: 35 MB of headroom is refused, exit 5, naming ulimit -v', &
+                 stat%code == STATUS_SOLVER .and. index(stat%message, 'ulimit -v') > 0 .and. &
+                 index(stat%message, 'leaves 35 MB') > 0)
+    call check_address_space(stat, headroom=1024_i8**3)
+    call t%check('address space: 1 GiB of headroom, or no limit, passes', stat%ok())
+    call check_address_space(stat, headroom=-1_i8)
+    call t%check('address space: no limit (-1) passes', stat%ok())
 
     config%input_file = 'strip.nml'
     config%mesh%source = 'rectangle'

@@ -27,6 +27,13 @@ program test_namelist_scan
     call t%check('has_group: present and absent groups', has_group(groups, 'eig') .and. &
                  .not. has_group(groups, 'solve'))
 
+    ! gfortran's namelist read takes a tab right after a number as part of it.
+    call scan([character(len=40) :: '&mesh nx = 3'//achar(9), achar(9)//'ny = 4'//achar(9) &
+               //'! c', 'file = ''a'//achar(9)//'b'' /'])
+    call t%check('scan_groups: tabs outside quotes become blanks, inside kept', stat%ok() &
+                 .and. group_body(groups, 'mesh') == ' nx = 3   ny = 4  file = ''a' &
+                 //achar(9)//'b'' ')
+
     call scan([character(len=20) :: '&mesh /', '&solve /'])
     call t%check('scan_groups: an unknown group names its line and the known ones', &
                  stat%code == STATUS_BAD_INPUT .and. index(stat%message, 'line 2') > 0 .and. &

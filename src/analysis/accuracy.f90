@@ -31,6 +31,12 @@ module accuracy
     !> |lambda / (lambda - lambda_c)|, so 1e4 is lambda within 1e-4 relative of lambda_c, where
     !> a change of lambda in its 6th digit moves mu by 1% or more.
     real(wp), parameter :: LAMBDA_SENSITIVITY_BOUND = 1.0e4_wp
+    !> Relative round-off error of mu per eps x L/G: K's condition grows like L/G as nu ->
+    !> 0.5, in any element. Measured (P2, 8 x 8 and 16 x 16, errors against the values at
+    !> nu = 0.4999999): 35 to 67 eps L/G on 8 x 8, 108 to 180 on 16 x 16 (it grows with
+    !> refinement); 100 makes the warning fire from L/G = 4.5e7 (nu = 0.49999999, error
+    !> 3.9e-7 measured), where the error estimate, which sees only the discretisation, does not.
+    real(wp), parameter :: ROUNDOFF_PER_LAME_RATIO = 100.0_wp
 
 contains
 
@@ -90,6 +96,16 @@ contains
             short(lame_ratio(poisson))//'): '//trim(element)//' elements lock, so mu is ' &
             //'the accurate eigenvalue of a discrete problem that converges slowly to the ' &
             //'continuous one; use p2 or q2 or refine much further')
+
+        associate (roundoff => ROUNDOFF_PER_LAME_RATIO*epsilon(1.0_wp)*lame_ratio(poisson))
+            if (roundoff > FORWARD_ERROR_BOUND) call add('nearly incompressible material ' &
+                //'(poisson = '//real_to_text(poisson)//', L/G = '// &
+                short(lame_ratio(poisson))//'): the condition of K grows like L/G, so mu has a ' &
+                //'round-off error of about '//short(roundoff)//' relative ('// &
+                to_string(nint(log10(roundoff/epsilon(1.0_wp))))//' of 16 digits lost; more on ' &
+                //'finer meshes), which the error estimate does not see; keep L/G below ' &
+                //short(FORWARD_ERROR_BOUND/(ROUNDOFF_PER_LAME_RATIO*epsilon(1.0_wp))))
+        end associate
 
         if (allocated(spec%lambda_sensitivity)) then
             do i = 1, spec%n()

@@ -125,7 +125,7 @@ contains
             end if
             call factor_stiffness(prob%k, prob%mesh, prob%dofs, prob%contact, chol, timings, &
                                   stat, contact_last)
-            call explain_singular_k(config, stat)
+            call explain_singular_k(config, prob%mesh, stat)
             if (.not. stat%ok()) return
             call eigen_with_factor(config, prob, chol, res, timings, stat, &
                                    contact_last=contact_last, needs_contact_last=refactor)

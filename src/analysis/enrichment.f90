@@ -15,7 +15,7 @@
 !> pencil's traction for the threshold), so one routine gives the cells' share of both.
 module enrichment
     use kinds, only: wp, N_DIM
-    use status, only: status_t, STATUS_BAD_INPUT
+    use status, only: status_t, STATUS_BAD_INPUT, STATUS_SINGULAR
     use strings, only: to_string
     use mesh, only: mesh_t
     use element_types, only: ELEMENT_P1, ELEMENT_P2, ELEMENT_P3, ELEMENT_P4, &
@@ -124,7 +124,18 @@ contains
         real(wp), allocatable, intent(out) :: kt_nn(:, :), kt_nt(:, :)
         type(status_t), intent(out) :: stat
         type(timings_t) :: ignored   ! the estimate's time is counted as a whole
+        character(len=:), allocatable :: detail
+        integer :: at
         call factor_stiffness(this%k, this%mesh, this%dofs, this%contact, chol, ignored, stat)
+        if (stat%code == STATUS_SINGULAR) then
+            ! Not K's: factor_stiffness's hint (a Dirichlet boundary) cannot be the cause here.
+            detail = ''
+            at = index(stat%message, '(CHOLMOD')
+            if (at > 0) detail = ' '//stat%message(at:)
+            stat%message = 'the enriched stiffness matrix of the error estimate (one degree ' &
+                //'higher on the same cells; K itself was factored) is numerically singular' &
+                //', as a nearly incompressible material or a sliver cell make it first'//detail
+        end if
         if (stat%ok()) call contact_flexibility(chol, this%contact, kt_nn, kt_nt, stat)
     end subroutine enrichment_reduce
 

@@ -4,13 +4,14 @@
 !> inside the allocator with a backtrace, or swapped for minutes.
 module memory_budget
     use kinds, only: wp, i8
-    use status, only: status_t, STATUS_BAD_INPUT
+    use status, only: status_t, STATUS_BAD_INPUT, STATUS_SOLVER
     use strings, only: to_string
     use run_config, only: config_t
-    use system_memory, only: available_memory_bytes
+    use system_memory, only: available_memory_bytes, address_space_headroom_bytes
     implicit none
     private
-    public :: contact_blocks_bytes, check_contact_memory, contact_peak_blocks
+    public :: contact_blocks_bytes, check_contact_memory, contact_peak_blocks, &
+              check_address_space
 
     !> Dense p x p arrays alive at once at the peak (the trailing block of the factor is
     !> zeroed in full by the shim, so all of it is resident). Forming Kt_nn and Kt_nt
@@ -25,6 +26,13 @@ module memory_budget
     !> 10 p^2 doubles are 1.3 GB.) Measured: nx = 10000, ny = 1, p = 10001: peak RSS 6.28 GB
     !> against 6.40 GB estimated.
     integer, parameter :: PEAK_BLOCKS_ARPACK = 8
+    !> Address space a BLAS call needs beyond what the process maps: OpenBLAS's buffer
+    !> (BUFFER_SIZE, 128 MiB on x86_64) and room to spare (64 MiB, a glibc malloc arena).
+    !> Under less, OpenBLAS retries its failed mmap for ever (blas_memory_alloc, inside
+    !> CHOLMOD). Measured (P1 64 x 64, 2 threads): hangs with 168 MB of headroom, runs with
+    !> 189 MB; its worker threads' buffers are mapped when the library loads, so the number
+    !> of threads does not change it.
+    integer(i8), parameter :: BLAS_HEADROOM_BYTES = 192_i8*1048576_i8
 
 contains
 
@@ -82,6 +90,35 @@ contains
             largest_p = int(sqrt(real(limit, wp)/(8.0_wp*blocks)))
         end function largest_p
     end subroutine check_contact_memory
+
+    !> STATUS_SOLVER (exit 5) when the address-space limit (ulimit -v) leaves less room than
+    !> a BLAS call needs: checked before any library call, since OpenBLAS would hang
+    !> retrying its allocation. `headroom` defaults to this process's
+    !> (address_space_headroom_bytes); a negative headroom (no limit) skips the check.
+    subroutine check_address_space(stat, headroom)
+        type(status_t), intent(out) :: stat
+        integer(i8), intent(in), optional :: headroom   !! bytes
+        integer(i8) :: room
+
+        if (present(headroom)) then
+            room = headroom
+        else
+            room = address_space_headroom_bytes()
+        end if
+        if (room < 0 .or. room >= BLAS_HEADROOM_BYTES) return
+        call stat%fail(STATUS_SOLVER, 'the address-space limit (ulimit -v) leaves '// &
+            megabytes(room)//' MB to map, less than the '//megabytes(BLAS_HEADROOM_BYTES)// &
+            ' MB a BLAS call needs (OpenBLAS would retry its 128 MiB buffer for ever); '// &
+            'expected a limit at least '//megabytes(BLAS_HEADROOM_BYTES - room)//' MB higher')
+
+    contains
+
+        function megabytes(bytes) result(text)
+            integer(i8), intent(in) :: bytes
+            character(len=:), allocatable :: text
+            text = to_string(int((bytes + 999999_i8)/1000000_i8))
+        end function megabytes
+    end subroutine check_address_space
 
     !> Bytes as GB (1e9) with one decimal: '32.0'.
     function gigabytes(bytes) result(text)

@@ -9,6 +9,7 @@ module problem
     use run_config, only: config_t
     use mesh, only: mesh_t
     use element_types, only: element_from_name
+    use cell_geometry, only: cell_thinness
     use mesh_structured, only: structured_rectangle
     use mesh_gmsh, only: read_gmsh
     use mesh_check, only: check_mesh
@@ -29,6 +30,11 @@ module problem
     !> ... and on the rectangle's cell shape from this aspect ratio: cond(K) grows like its
     !> square; seen singular at 1e6, backward errors of 1e-8 (warned) at 1e4.
     real(wp), parameter :: SINGULAR_ASPECT_RATIO = 1.0e4_wp
+    !> ... and on a sliver cell (a mesh file's: a rectangle's cells are all alike) whose
+    !> |det J| / diameter^2 (cell_thinness) is below this: its stiffness, ~ 1 / thinness
+    !> times the others', alone spans half of the 1 / (1e3 eps) pivot ratio CHOLMOD allows.
+    !> Seen singular at 1e-13 (a triangle with a corner 1e-13 off the opposite side).
+    real(wp), parameter :: SLIVER_THINNESS = 1.0e-8_wp
     !> 'branch' and 'solve' work in the input's units (their loads, displacements and
     !> compliances have units): E and the mesh size stay within these powers of ten, so that
     !> the products of assembly and residuals (E / h^2 x h^2, squared norms) stay in binary64.
@@ -236,13 +242,16 @@ contains
 
     !> When `stat` says K is singular (STATUS_SINGULAR) and the input explains it, one line
     !> naming that input instead (STATUS_BAD_INPUT): poisson so near 0.5, or rectangle cells
-    !> so elongated, that K is singular in binary64 although not in exact arithmetic.
-    subroutine explain_singular_k(config, stat)
+    !> so elongated, that K is singular in binary64 although not in exact arithmetic; or, still
+    !> STATUS_SINGULAR, naming a sliver cell of `m` (a mesh file's) as the likely cause.
+    subroutine explain_singular_k(config, m, stat)
         type(config_t), intent(in) :: config
+        type(mesh_t), intent(in) :: m
         type(status_t), intent(inout) :: stat
-        character(len=:), allocatable :: detail
+        character(len=:), allocatable :: detail, place
         real(wp) :: lame_ratio, aspect   !! aspect: log10 of the cells' aspect ratio
-        integer :: at
+        real(wp) :: thinness
+        integer :: at, worst
 
         if (stat%code /= STATUS_SINGULAR) return
         detail = ''
@@ -256,6 +265,21 @@ contains
                 real_to_text(config%material%poisson)//': so close to 0.5 that L/G = 2 nu / '// &
                 '(1 - 2 nu) = '//short(lame_ratio)//' makes K numerically singular'//detail// &
                 '; expected L/G below '//short(SINGULAR_LAME_RATIO)//' (poisson <= 0.49999999995)')
+            return
+        end if
+        ! a rectangle's cells are all alike: their aspect ratio, below, says more
+        worst = 0
+        thinness = huge(1.0_wp)
+        if (config%mesh%source /= 'rectangle') call thinnest_cell(m, worst, thinness)
+        if (worst > 0 .and. thinness < SLIVER_THINNESS) then
+            place = 'cell '//to_string(worst)
+            if (allocated(m%file) .and. allocated(m%cell_line)) place = 'the cell at '// &
+                m%file//':'//to_string(m%cell_line(worst))
+            stat%message = config%input_file//': &mesh: the stiffness matrix K is singular, '// &
+                'likely from a sliver: '//place//' has |det J| = '//short(thinness)// &
+                ' x its squared diameter (a near-zero area; its stiffness swamps the '// &
+                'others'')'//detail//'; expected cells with |det J| above '// &
+                short(SLIVER_THINNESS)//' x their squared diameter (remesh)'
             return
         end if
         if (config%mesh%source /= 'rectangle') return
@@ -272,6 +296,24 @@ contains
                 'a factor '//short(SINGULAR_ASPECT_RATIO)//' of 1')
         end if
     end subroutine explain_singular_k
+
+    !> The cell of smallest cell_thinness and its thinness (worst = 0: no cells).
+    subroutine thinnest_cell(m, worst, thinness)
+        type(mesh_t), intent(in) :: m
+        integer, intent(out) :: worst
+        real(wp), intent(out) :: thinness
+        real(wp) :: x
+        integer :: c
+        worst = 0
+        thinness = huge(1.0_wp)
+        do c = 1, m%n_cells()
+            x = cell_thinness(m%element, m%coords(:, m%cells(:, c)))
+            if (x < thinness) then
+                worst = c
+                thinness = x
+            end if
+        end do
+    end subroutine thinnest_cell
 
     !> e such that x / 2^e is in [1, 2) (x > 0; a subnormal x too): the unit of x.
     elemental integer function unit_exponent(x)

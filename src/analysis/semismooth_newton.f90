@@ -53,7 +53,7 @@ contains
         type(csr_matrix_t) :: jac
         type(lu_t) :: lu
         real(wp), allocatable :: h(:), h_trial(:), dx(:), x_trial(:), diagonal(:)
-        real(wp) :: scale, e, merit, merit_trial, t, nu
+        real(wp) :: scale, e, t, nu
         integer :: k, halving, retry, i
         logical :: accepted
 
@@ -102,14 +102,12 @@ contains
             call lu%free()
             if (.not. stat%ok()) return
 
-            merit = sum(h**2)
             t = 1.0_wp
             accepted = .false.
             do halving = 0, MAX_HALVINGS
                 x_trial = x + t*dx
                 call cp%residual(x_trial, h_trial)
-                merit_trial = sum(h_trial**2)
-                if (merit_trial <= (1.0_wp - 2.0_wp*ARMIJO*t)*merit) then
+                if (sufficient_decrease(h_trial, h, t)) then
                     accepted = .true.
                     exit
                 end if
@@ -143,6 +141,23 @@ contains
             text = text//trim(adjustl(buffer))
         end do
     end function newton_history_text
+
+    !> Armijo's test ||H_trial||^2 <= (1 - 2 ARMIJO t) ||H||^2. Sums of squares while they
+    !> cannot overflow (as always before, so that paths and results stay the same); beyond
+    !> (u_d1 = 1e300 trapped), the same test on norm2, which scales. A NaN or infinity in
+    !> h_trial fails it, so the step is halved.
+    pure logical function sufficient_decrease(h_trial, h, t)
+        real(wp), intent(in) :: h_trial(:), h(:), t
+        !> |entries| below which n squares stay finite for n up to 1.8e8
+        real(wp), parameter :: SQUARES_SAFE = 1.0e150_wp
+        real(wp) :: largest
+        largest = max(norm_inf(h_trial), norm_inf(h))
+        if (largest < SQUARES_SAFE) then
+            sufficient_decrease = sum(h_trial**2) <= (1.0_wp - 2.0_wp*ARMIJO*t)*sum(h**2)
+        else
+            sufficient_decrease = norm2(h_trial) <= sqrt(1.0_wp - 2.0_wp*ARMIJO*t)*norm2(h)
+        end if
+    end function sufficient_decrease
 
     pure real(wp) function norm_inf(v)
         real(wp), intent(in) :: v(:)

@@ -6,7 +6,8 @@
 module solve_analysis
     use kinds, only: wp, i8, N_DIM
     use status, only: status_t, STATUS_SOLVER
-    use strings, only: short_real_text
+    use strings, only: short_real_text, to_string
+    use ieee_arithmetic, only: ieee_is_finite
     use timer, only: wall_time, timings_t
     use run_config, only: config_t
     use problem, only: problem_t
@@ -53,6 +54,7 @@ contains
         logical, allocatable :: loaded(:)
         real(wp) :: start
         integer :: node, a
+        logical :: finite
 
         associate (c => config%solve)
             res%on_branch_data = c%data == 'branch'
@@ -102,6 +104,17 @@ contains
         call newton_solve(res%cp, res%x, options, res%report, stat)
         if (.not. stat%ok()) return
         res%time_newton = wall_time() - start
+        ! A NaN or infinity is no answer, converged or not: refuse before anything is written
+        ! (a failed 'solve' commits newton.csv).
+        finite = all(ieee_is_finite(res%x))
+        if (finite) finite = all(ieee_is_finite(res%report%residual))
+        if (.not. finite) then
+            call stat%fail(STATUS_SOLVER, config%input_file//': &solve: the Newton iteration '// &
+                'produced a non-finite value (NaN or infinity) after '// &
+                to_string(res%report%iterations)//' iterations: the data overflow the '// &
+                'arithmetic (young, the loads and c_n, c_t in the input''s units)')
+            return
+        end if
 
         block
             real(wp), allocatable :: h(:)

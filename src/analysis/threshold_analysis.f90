@@ -248,7 +248,7 @@ contains
         call check_contact_memory(config, prob%contact%p(), contact_peak_blocks(.false.), stat)
         if (.not. stat%ok()) return
         call factor_stiffness(prob%k, prob%mesh, prob%dofs, prob%contact, chol, timings, stat)
-        call explain_singular_k(config, stat)
+        call explain_singular_k(config, prob%mesh, stat)
         if (.not. stat%ok()) return
         start = wall_time()
         call contact_flexibility(chol, prob%contact, kt_nn, kt_nt, stat)

@@ -6,13 +6,17 @@ module process_exit
     use iso_fortran_env, only: error_unit, output_unit
     implicit none
     private
-    public :: exit_with
+    public :: exit_with, exit_now
 
     interface
         subroutine c_exit(code) bind(C, name='exit')
             import :: c_int
             integer(c_int), value :: code
         end subroutine c_exit
+        subroutine c_exit_now(code) bind(C, name='_exit')
+            import :: c_int
+            integer(c_int), value :: code
+        end subroutine c_exit_now
     end interface
 
 contains
@@ -25,4 +29,14 @@ contains
         flush (error_unit, iostat=ios)
         call c_exit(int(code, c_int))
     end subroutine exit_with
+
+    !> exit_with without the exit handlers: for a process whose libraries cannot finish (an
+    !> OpenBLAS thread retrying an allocation under ulimit -v, which blas_shutdown would
+    !> join for ever). Only before any file of the run is open.
+    subroutine exit_now(code)
+        integer, intent(in) :: code
+        flush (output_unit)
+        flush (error_unit)
+        call c_exit_now(int(code, c_int))
+    end subroutine exit_now
 end module process_exit

@@ -146,7 +146,7 @@ contains
     pure function sweep_lambdas(c) result(lambdas)
         type(sweep_config_t), intent(in) :: c
         real(wp), allocatable :: lambdas(:)
-        real(wp) :: ratio
+        real(wp) :: ratio, half, t
         integer :: n, i
 
         n = count_set_lambdas(c)
@@ -157,14 +157,31 @@ contains
         n = c%n_lambda
         allocate (lambdas(n))
         if (c%spacing == 'log') then
-            ratio = c%lambda_max/c%lambda_min   ! > 0: one sign
-            do i = 1, n
-                lambdas(i) = c%lambda_min*ratio**(real(i - 1, wp)/real(n - 1, wp))
-            end do
+            ! The ratio overflows (or underflows) beyond 308 decades (1e-200 to 1e200):
+            ! then through logs, which cost about |log ratio| ulps; below, the power.
+            if (abs(exponent(c%lambda_max) - exponent(c%lambda_min)) < &
+                maxexponent(1.0_wp) - 1) then
+                ratio = c%lambda_max/c%lambda_min   ! > 0: one sign
+                do i = 1, n
+                    lambdas(i) = c%lambda_min*ratio**(real(i - 1, wp)/real(n - 1, wp))
+                end do
+            else
+                do i = 1, n
+                    t = real(i - 1, wp)/real(n - 1, wp)
+                    lambdas(i) = sign(exp((1.0_wp - t)*log(abs(c%lambda_min)) + &
+                                          t*log(abs(c%lambda_max))), c%lambda_min)
+                end do
+            end if
         else
-            do i = 1, n
-                lambdas(i) = c%lambda_min + (c%lambda_max - c%lambda_min)* &
-                             (real(i - 1, wp)/real(n - 1, wp))
+            ! In units of 2 when an end exceeds 1: the span max - min then stays finite
+            ! (-9e307 to 9e307), and halving and doubling are exact, so the points are
+            ! those of the plain formula wherever it does not overflow.
+            half = 1.0_wp
+            if (max(abs(c%lambda_min), abs(c%lambda_max)) > 1.0_wp) half = 0.5_wp
+            do i = 2, n - 1   ! the ends exactly, below: near huge(), t = 1 could round over
+                t = real(i - 1, wp)/real(n - 1, wp)
+                lambdas(i) = (half*c%lambda_min + (half*c%lambda_max - half*c%lambda_min)*t) &
+                             /half
             end do
         end if
         lambdas(1) = c%lambda_min

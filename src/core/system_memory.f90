@@ -5,11 +5,21 @@
 !> hold is not ours, and a run that overflows into swap (or the OOM killer) is no answer.
 module system_memory
     use kinds, only: i8
+    use iso_c_binding, only: c_long_long
     implicit none
     private
-    public :: available_memory_bytes, MEMINFO_PATH
+    public :: available_memory_bytes, MEMINFO_PATH, address_space_headroom_bytes
 
     character(len=*), parameter :: MEMINFO_PATH = '/proc/meminfo'
+    !> The process's own mappings: 'VmSize:   123456 kB'.
+    character(len=*), parameter :: STATUS_PATH = '/proc/self/status'
+
+    interface
+        function nceig_address_space_limit() bind(C, name='nceig_address_space_limit')
+            import :: c_long_long
+            integer(c_long_long) :: nceig_address_space_limit
+        end function nceig_address_space_limit
+    end interface
 
 contains
 
@@ -44,4 +54,33 @@ contains
         close (unit)
         if (bytes < 0) bytes = total
     end function available_memory_bytes
+
+    !> Bytes of address space the process may still map under its limit (ulimit -v,
+    !> RLIMIT_AS) beyond what it maps now (VmSize); -1 when there is no limit, or the size
+    !> cannot be read (not Linux), so that callers skip their check rather than refuse.
+    function address_space_headroom_bytes() result(bytes)
+        integer(i8) :: bytes
+        integer(i8) :: limit, mapped
+        integer :: unit, ios
+        character(len=256) :: line
+
+        bytes = -1
+        limit = int(nceig_address_space_limit(), i8)
+        if (limit < 0) return
+        mapped = -1
+        open (newunit=unit, file=STATUS_PATH, status='old', action='read', iostat=ios)
+        if (ios /= 0) return
+        do
+            read (unit, '(a)', iostat=ios) line
+            if (ios /= 0) exit
+            if (index(line, 'VmSize:') == 1) then
+                read (line(len('VmSize:') + 1:), *, iostat=ios) mapped
+                if (ios /= 0) mapped = -1
+                exit
+            end if
+        end do
+        close (unit)
+        if (mapped < 0) return
+        bytes = max(0_i8, limit - 1024_i8*mapped)
+    end function address_space_headroom_bytes
 end module system_memory

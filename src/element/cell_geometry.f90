@@ -9,7 +9,7 @@ module cell_geometry
     implicit none
     private
     public :: jacobian_at, jacobian_of, det_range, det_range_of, negligible_det, &
-              orientation_of, cell_orientation
+              orientation_of, cell_orientation, cell_thinness
     public :: DEGENERATE_FRACTION, CELL_ANTICLOCKWISE, CELL_CLOCKWISE, CELL_DEGENERATE, &
               CELL_FOLDED
 
@@ -113,6 +113,19 @@ contains
             orientation_of = CELL_FOLDED
         end if
     end function orientation_of
+
+    !> The smallest |det J| of cell `xy` at its reference nodes over its squared diameter:
+    !> about 1 for a well-shaped cell, tiny for a sliver, whose stiffness (~ 1 / this) swamps
+    !> the others' and makes K numerically singular although it passed as non-degenerate.
+    pure real(wp) function cell_thinness(element, xy)
+        integer, intent(in) :: element
+        real(wp), intent(in) :: xy(:, :)   !! (2, nodes per cell)
+        real(wp) :: ref_nodes(2, MAX_NODES), det_min, det_max
+        call reference_nodes(element, ref_nodes)
+        call det_range(element, xy, ref_nodes(:, 1:size(xy, 2)), det_min, det_max)
+        cell_thinness = min(abs(det_min), abs(det_max))/ &
+                        (negligible_det(xy)/DEGENERATE_FRACTION)
+    end function cell_thinness
 
     !> CELL_* of cell `xy` from det J at its nodes: where a mesh file's cells are checked.
     pure integer function cell_orientation(element, xy)

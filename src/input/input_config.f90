@@ -467,21 +467,36 @@ contains
         character(len=*), intent(in) :: setting
         type(config_t), intent(inout) :: config
         type(status_t), intent(inout) :: stat
-        character(len=:), allocatable :: label, group, variable, value, assignment
+        character(len=:), allocatable :: label, group, variable, value, assignment, blanked
         type(text_t), allocatable :: pieces(:)
         character(len=MSG_LEN) :: msg
-        integer :: equals, percent, ios
+        integer :: equals, percent, ios, k
+        logical :: control
 
         label = '--set '//printable(setting)
-        equals = index(setting, '=')
-        percent = index(setting(:max(equals - 1, 0)), '%')
+        ! A tab is a blank, as in the file; any other control character (a newline from
+        ! $'...' or a script) would cut the record and drop what follows it unread.
+        blanked = setting
+        control = .false.
+        do k = 1, len(blanked)
+            if (blanked(k:k) == achar(9)) blanked(k:k) = ' '
+            if (iachar(blanked(k:k)) < 32 .or. iachar(blanked(k:k)) == 127) control = .true.
+        end do
+        if (control) then
+            call stat%fail(STATUS_BAD_INPUT, label//': expected group%variable=value on ' &
+                           //'one line: a value may not contain a newline or other control ' &
+                           //'character (one --set per variable)')
+            return
+        end if
+        equals = index(blanked, '=')
+        percent = index(blanked(:max(equals - 1, 0)), '%')
         if (percent <= 1 .or. equals <= percent + 1) then
             call malformed()
             return
         end if
-        group = lowercase(trim(adjustl(setting(:percent - 1))))
-        variable = trim(adjustl(setting(percent + 1:equals - 1)))
-        value = trim(adjustl(setting(equals + 1:)))
+        group = lowercase(trim(adjustl(blanked(:percent - 1))))
+        variable = trim(adjustl(blanked(percent + 1:equals - 1)))
+        value = trim(adjustl(blanked(equals + 1:)))
         if (len(value) == 0) then
             call malformed()
             return

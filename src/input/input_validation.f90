@@ -45,6 +45,13 @@ module input_validation
                                                          'threshold', 'lambda_sweep']
     character(len=*), parameter :: SWEEP_SPACINGS(*) = [character(len=6) :: 'linear', 'log']
     integer, parameter :: MAX_SWEEP_POINTS = 100000   !! n_lambda of a &sweep range
+    !> &solve works in the input's units, where young is within 1e-100 to 1e100 and the
+    !> mesh size within 1e-50 to 1e50 (problem.f90): forces, tractions and compliances get
+    !> young's range, displacements the size's, so that the residual's entries (E u,
+    !> f size^2, c_n u size) stay below about 1e250 (u_d1 = 1e300 overflowed the merit).
+    real(wp), parameter :: SOLVE_FORCE_RANGE = 1.0e100_wp, SOLVE_LENGTH_RANGE = 1.0e50_wp
+    character(len=*), parameter :: SOLVE_UNITS = ' (analysis ''solve'' works in the ' &
+                                                 //'input''s units)'
     !> &output vtk_format: the encodings of vtk_writer (VTK_BINARY, VTK_ASCII).
     character(len=*), parameter :: VTK_FORMATS(*) = [character(len=6) :: 'binary', 'ascii']
     !> &solve data: loads of the input, or the data of model.md section 9 at the critical point.
@@ -384,26 +391,31 @@ contains
         if (tol_ok) tol_ok = c%tol > 0.0_wp .and. c%tol < 1.0_wp
         if (.not. any(SOLVE_DATA == c%data)) then
             call reject('data', quoted(c%data), 'one of '//one_of(SOLVE_DATA))
-        else if (.not. positive_finite(c%c_n)) then
-            call reject('c_n', real_to_text(c%c_n), 'a finite number > 0')
-        else if (.not. positive_finite(c%c_t)) then
-            call reject('c_t', real_to_text(c%c_t), 'a finite number > 0')
+        else if (.not. in_range(c%c_n, 1.0_wp/SOLVE_FORCE_RANGE, SOLVE_FORCE_RANGE)) then
+            call reject('c_n', real_to_text(c%c_n), 'a number from 1e-100 to 1e100' &
+                        //SOLVE_UNITS)
+        else if (.not. in_range(c%c_t, 1.0_wp/SOLVE_FORCE_RANGE, SOLVE_FORCE_RANGE)) then
+            call reject('c_t', real_to_text(c%c_t), 'a number from 1e-100 to 1e100' &
+                        //SOLVE_UNITS)
         else if (.not. positive_finite(c%critical_factor)) then
             call reject('critical_factor', real_to_text(c%critical_factor), 'a finite number > 0')
-        else if (.not. all(ieee_is_finite([c%f1, c%f2, c%t1, c%t2, c%u_d1, c%u_d2]))) then
-            call reject('f1, f2, t1, t2, u_d1, u_d2', real_to_text(c%f1)//', ' &
-                        //real_to_text(c%f2)//', '//real_to_text(c%t1)//', ' &
-                        //real_to_text(c%t2)//', '//real_to_text(c%u_d1)//', ' &
-                        //real_to_text(c%u_d2), 'finite numbers')
         else if (.not. any(SOLVE_STARTS == c%start)) then
             call reject('start', quoted(c%start), 'one of '//one_of(SOLVE_STARTS))
-        else if (.not. ieee_is_finite(c%start_delta)) then
-            call reject('start_delta', real_to_text(c%start_delta), 'a finite number')
-        else if (.not. ieee_is_finite(c%start_scale)) then
-            call reject('start_scale', real_to_text(c%start_scale), 'a finite number')
-        else if (.not. ieee_is_finite(c%start_noise)) then
-            call reject('start_noise', real_to_text(c%start_noise), 'a finite number')
-        else if (.not. tol_ok) then
+        else
+            call bounded('f1', c%f1, SOLVE_FORCE_RANGE, '1e100 (a force density)')
+            call bounded('f2', c%f2, SOLVE_FORCE_RANGE, '1e100 (a force density)')
+            call bounded('t1', c%t1, SOLVE_FORCE_RANGE, '1e100 (a traction)')
+            call bounded('t2', c%t2, SOLVE_FORCE_RANGE, '1e100 (a traction)')
+            call bounded('u_d1', c%u_d1, SOLVE_LENGTH_RANGE, '1e50 (a displacement)')
+            call bounded('u_d2', c%u_d2, SOLVE_LENGTH_RANGE, '1e50 (a displacement)')
+            call bounded('start_delta', c%start_delta, SOLVE_LENGTH_RANGE, '1e50')
+            call bounded('start_scale', c%start_scale, SOLVE_LENGTH_RANGE, &
+                         '1e50 (a displacement)')
+            call bounded('start_noise', c%start_noise, SOLVE_LENGTH_RANGE, &
+                         '1e50 (a displacement)')
+        end if
+        if (.not. stat%ok()) return
+        if (.not. tol_ok) then
             call reject('tol', real_to_text(c%tol), 'a number with 0 < tol < 1')
         else if (c%max_iterations < 1) then
             call reject('max_iterations', to_string(c%max_iterations), 'an integer >= 1')
@@ -415,7 +427,24 @@ contains
             character(len=*), intent(in) :: variable, value, expected
             call fail_value(stat, path, 'solve', variable, value, expected)
         end subroutine reject
+
+        !> |x| <= limit, up to the first broken bound.
+        subroutine bounded(variable, x, limit, limit_text)
+            character(len=*), intent(in) :: variable, limit_text
+            real(wp), intent(in) :: x, limit
+            if (.not. stat%ok()) return
+            if (in_range(abs(x), 0.0_wp, limit)) return
+            call reject(variable, real_to_text(x), '|'//variable//'| <= '//limit_text &
+                        //SOLVE_UNITS)
+        end subroutine bounded
     end subroutine validate_solve
+
+    !> low <= x <= high, false for NaN (tested before comparing: a NaN traps in Debug).
+    elemental logical function in_range(x, low, high)
+        real(wp), intent(in) :: x, low, high
+        in_range = ieee_is_finite(x)
+        if (in_range) in_range = x >= low .and. x <= high
+    end function in_range
 
     !> The one message format of a rejected value.
     subroutine fail_value(stat, path, group, variable, value, expected)

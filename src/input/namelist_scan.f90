@@ -139,6 +139,10 @@ contains
                     cycle
                 else if (inside .and. c == '/') then
                     call close_group()
+                else if (inside .and. c == achar(9)) then
+                    ! A tab is a blank, but gfortran's namelist read takes one right after
+                    ! a number ('lambda = 2.5<TAB>') as part of it: a space instead.
+                    call add(' ')
                 else if (inside) then
                     call add(c)
                 else if (index(BLANKS//achar(13), c) == 0) then
