@@ -32,9 +32,13 @@ program test_full_operator
 
     !> The agreement bound between the two operators (see the header).
     real(wp), parameter :: AGREE = 1.0e-10_wp
-    !> Largest backward error accepted for an eigenpair of the full operator: ARPACK
-    !> converges to tol = eps on OP, and one sparse LU solve is backward stable, so ~1e-15 is
-    !> expected (measured 1e-16 to 6e-16); 1e-12 flags a lost digit budget, not round-off.
+    !> Largest backward error accepted for an eigenpair of the full operator without a far
+    !> shift: ARPACK converges to tol = eps on OP, and one sparse LU solve is backward
+    !> stable, so ~1e-15 is expected (measured 1e-16 to 6e-16); 1e-12 flags a lost digit
+    !> budget, not round-off. A shift sigma solves with K - sigma B, whose rounding is
+    !> eps (||K|| + |sigma| ||B||): relative to the pair's own scale that is up to
+    !> eps |sigma| ||A|| (3.5e-12 at 1e4; the Prescott kernel on one thread exceeded 1e-12
+    !> there), so far shifts are allowed the agreement bound below, 10 eps |sigma| ||A||.
     real(wp), parameter :: BACKWARD_MAX = 1.0e-12_wp
 
     type(test_suite_t) :: t
@@ -327,10 +331,15 @@ contains
         type(eigen_result_t), intent(in) :: full, reduced
         logical, intent(in) :: ok, by_arpack
         real(wp), intent(in), optional :: tolerance   !! relative; default AGREE
-        real(wp) :: bound
+        real(wp) :: bound, backward
         integer :: lf, lr
         bound = AGREE
-        if (present(tolerance)) bound = tolerance
+        backward = BACKWARD_MAX
+        if (present(tolerance)) then
+            bound = tolerance
+            ! a far shift's rounding (above): its bound exceeds AGREE from |sigma| ~ 3e3
+            if (tolerance > AGREE) backward = tolerance
+        end if
         call t%check(what//': both operators succeed', ok)
         if (.not. ok) return
         call t%check(what//': both by ARPACK', full%solver == SOLVER_ARPACK .and. &
@@ -342,8 +351,8 @@ contains
         call t%check(what//': same existence of a positive mu', (lf > 0) .eqv. (lr > 0))
         if (lf > 0 .and. lr > 0) call t%check_close(what//': lowest positive mu', &
             real(full%spec%mu(lf), wp), real(reduced%spec%mu(lr), wp), bound)
-        call t%check(what//': full backward errors <= 1e-12', &
-                     full%spec%max_residual() <= BACKWARD_MAX)
+        call t%check(what//': full backward errors at round-off (1e-12, or the shift''s bound)', &
+                     full%spec%max_residual() <= backward)
         if (by_arpack) then
             call t%check(what//': certified by ARPACK on the full operator, not densely', &
                          .not. full%spec%dense_decision)
