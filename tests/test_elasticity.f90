@@ -37,6 +37,9 @@ program test_elasticity
         call check_distorted(element)
     end do
     call check_bad_cells()
+    do element = ELEMENT_P1, MAX_ELEMENT
+        call check_tiny_straight_cell(element)
+    end do
     call t%report()
 
 contains
@@ -174,6 +177,47 @@ contains
                          dot_product(z, matmul(ke, u))) <= &
                      1.0e-13_wp*norm2(z)*maxval(sum(abs(ke), dim=2))*norm2(u)*size(u))
     end subroutine check_tables_and_energy
+
+    !> A straight cell of size 1e-9 at (0.7, 0.3): its node coordinates carry a rounding of
+    !> 1e-16, 1e-7 of its size. Its stiffness must be that of the straight cell of its
+    !> corners, whatever the rounding of its other nodes: moving each by one ulp changes
+    !> nothing (an isoparametric map of all nodes in global coordinates changed it by ~1e-7
+    !> relative).
+    subroutine check_tiny_straight_cell(element)
+        integer, intent(in) :: element
+        real(wp), parameter :: H = 1.0e-9_wp, ORIGIN(2) = [0.7_wp, 0.3_wp]
+        real(wp), allocatable :: xy(:, :), nudged(:, :), ke(:, :), ke_nudged(:, :)
+        real(wp) :: ref(2, MAX_NODES), corner(2, 4)
+        integer :: n, corners, i, info, info_nudged
+        character(len=:), allocatable :: label
+
+        n = element_nodes_per_cell(element)
+        corners = element_corners(element)
+        if (n == corners) return
+        label = ' ('//element_name(element)//')'
+        allocate (xy(2, n), nudged(2, n), ke(2*n, 2*n), ke_nudged(2*n, 2*n))
+        call reference_nodes(element, ref)
+        corner = reshape([0.0_wp, 0.0_wp, 1.0_wp, 0.1_wp, 0.8_wp, 0.9_wp, -0.1_wp, 1.0_wp], &
+                         [2, 4])
+        do i = 1, n   ! the affine image of the reference nodes (a parallelogram for quads)
+            if (corners == 3) then
+                xy(:, i) = ORIGIN + H*(ref(1, i)*corner(:, 2) + ref(2, i)*corner(:, 3))
+            else
+                xy(:, i) = ORIGIN + H*(0.5_wp*(ref(1, i) + 1.0_wp)*[1.0_wp, 0.1_wp] + &
+                                       0.5_wp*(ref(2, i) + 1.0_wp)*[-0.1_wp, 1.0_wp])
+            end if
+        end do
+        nudged = xy
+        do i = corners + 1, n
+            nudged(:, i) = nudged(:, i) + spacing(nudged(:, i))
+        end do
+        call element_stiffness(element, xy, YOUNG, POISSON, ke, info)
+        call element_stiffness(element, nudged, YOUNG, POISSON, ke_nudged, info_nudged)
+        call t%check('tiny straight cell: accepted'//label, info == ELEMENT_OK .and. &
+                     info_nudged == ELEMENT_OK)
+        call t%check('tiny straight cell: one ulp on its edge nodes changes nothing'//label, &
+                     maxval(abs(ke - ke_nudged)) <= 1.0e-12_wp*maxval(abs(ke)))
+    end subroutine check_tiny_straight_cell
 
     subroutine check_bad_cells()
         real(wp) :: ke(6, 6), ke_q1(8, 8), min_det

@@ -7,7 +7,8 @@ module elasticity
                              ELEMENT_P4, element_nodes_per_cell
     use quadrature, only: quadrature_rule_t, triangle_rule, quad_rule
     use shape_functions, only: evaluate_shape, reference_nodes, MAX_NODES
-    use cell_geometry, only: det_range_of, jacobian_of, orientation_of, CELL_ANTICLOCKWISE
+    use cell_geometry, only: det_range_of, jacobian_of, orientation_of, CELL_ANTICLOCKWISE, &
+                             local_coordinates
     implicit none
     private
     public :: plane_strain_matrix, lame_coefficients, element_stiffness, stiffness_rule, &
@@ -141,17 +142,19 @@ contains
                 info = ELEMENT_BAD_ARGUMENT
                 return
             end if
-            call integrate(tables, ke, info, smallest)
+            call integrate(tables, local_coordinates(element, xy), ke, info, smallest)
         else
-            call integrate(stiffness_tables(element), ke, info, smallest)
+            call integrate(stiffness_tables(element), local_coordinates(element, xy), ke, &
+                           info, smallest)
         end if
         if (present(min_det)) min_det = smallest
 
     contains
 
         !> (a pure internal procedure may not define its host's variables: all are arguments)
-        pure subroutine integrate(t, ke, info, smallest)
+        pure subroutine integrate(t, xy, ke, info, smallest)
             type(stiffness_tables_t), intent(in) :: t
+            real(wp), intent(in) :: xy(:, :)   !! local_coordinates of the cell
             real(wp), intent(inout) :: ke(:, :)
             integer, intent(out) :: info
             real(wp), intent(out) :: smallest
@@ -218,13 +221,14 @@ contains
         real(wp), intent(in) :: young, poisson
         real(wp), intent(in) :: u(:), z(:)          !! (2 nodes)
         real(wp) :: jacobian(2, 2), inverse_t(2, 2), det, grad(2, MAX_NODES), lame_l, &
-                    shear_g, eps_u(3), eps_z(3), sigma(3)
+                    shear_g, eps_u(3), eps_z(3), sigma(3), local(size(xy, 1), size(xy, 2))
         integer :: n, q
         n = size(xy, 2)
+        local = local_coordinates(tables%element, xy)   ! as element_stiffness integrates
         call lame_coefficients(young, poisson, lame_l, shear_g)
         energy = 0.0_wp
         do q = 1, tables%rule%n_points
-            call jacobian_of(xy, tables%at_points(:, :, q), jacobian, det)
+            call jacobian_of(local, tables%at_points(:, :, q), jacobian, det)
             inverse_t = reshape([jacobian(2, 2), -jacobian(1, 2), &
                                  -jacobian(2, 1), jacobian(1, 1)], [2, 2])/det
             grad(:, 1:n) = matmul(inverse_t, tables%at_points(:, :, q))

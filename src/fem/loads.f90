@@ -10,7 +10,7 @@ module loads
     use quadrature, only: quadrature_rule_t, line_rule
     use shape_functions, only: evaluate_shape, evaluate_line_shape, MAX_NODES, MAX_EDGE_NODES
     use elasticity, only: load_rule
-    use cell_geometry, only: jacobian_at
+    use cell_geometry, only: jacobian_at, local_coordinates
     use strings, only: to_string
     use dof_map, only: node_dofs
     implicit none
@@ -85,8 +85,8 @@ contains
         do cell = 1, m%n_cells()
             do q = 1, rule%n_points
                 call evaluate_shape(m%element, rule%points(:, q), values, gradients)
-                call jacobian_at(m%element, m%coords(:, m%cells(:, cell)), rule%points(:, q), &
-                                 jacobian, det)
+                call jacobian_at(m%element, local_coordinates(m%element, &
+                                 m%coords(:, m%cells(:, cell))), rule%points(:, q), jacobian, det)
                 do a = 1, n
                     f(node_dofs(m%cells(a, cell))) = &
                         f(node_dofs(m%cells(a, cell))) + rule%weights(q)*det*values(a)*force
