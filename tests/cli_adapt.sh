@@ -29,7 +29,7 @@ check 'stdout: one progress line per level' \
     '[[ $(grep -c "adapt level" "$work/stdout") -eq $(( $(json "$s" adapt_levels) + 1 )) ]]'
 csv=$work/out/adapt.csv
 check 'adapt.csv: header' \
-    '[[ $(head -n 1 "$csv") == level,n_dofs,n_contact,n_cells,mu,error_estimate,time_s ]]'
+    '[[ $(head -n 1 "$csv") == level,n_dofs,n_contact,n_cells,mu,error_estimate,time_s,error_bar ]]'
 check 'adapt.csv: one row per level, the last the summary'\''s' \
     '[[ $(($(wc -l <"$csv") - 1)) -eq $(( $(json "$s" adapt_levels) + 1 )) &&
         $(tail -n 1 "$csv" | cut -d, -f2) == $(json "$s" n_dofs) ]]'
@@ -89,7 +89,7 @@ check 'max_levels reached: not converged, 2 levels' \
 check 'max_levels reached: warning in summary.json' \
     'grep -A1 "\"warnings\"" "$l" | grep -q "tolerance 1.00E-05 not met: max_levels = 2 reached"'
 check 'max_levels reached: warning on stdout' \
-    'grep -q "^warning: tolerance 1.00E-05 not met: max_levels = 2 reached with estimate" "$work/stdout"'
+    'grep -q "^warning: tolerance 1.00E-05 not met: max_levels = 2 reached with error bar" "$work/stdout"'
 
 # No positive mu (lambda = 1, below the threshold 1.94): nothing to adapt to, said so; the
 # set holds exactly its listed files (no picture, no leftover of one).
@@ -147,7 +147,7 @@ check 'threshold: both confirmed' '[[ $(json "$s" lambda_critical_plus_confirmed
 check 'threshold: lambda- = -lambda+ (3e-6)' \
     'close "$(json "$s" lambda_critical_plus)" "$(awk -v m="$(json "$s" lambda_critical_minus)" "BEGIN { printf \"%.17g\", -m }")" 3e-6'
 csv=$work/threshold/adapt.csv
-check 'threshold adapt.csv: header' '[[ $(head -n 1 "$csv") == level,n_dofs,n_contact,n_cells,lambda_plus,error_estimate_plus,lambda_minus,error_estimate_minus,time_s ]]'
+check 'threshold adapt.csv: header' '[[ $(head -n 1 "$csv") == level,n_dofs,n_contact,n_cells,lambda_plus,error_estimate_plus,lambda_minus,error_estimate_minus,time_s,error_bar_plus,error_bar_minus ]]'
 check 'threshold adapt.csv: the last row is the summary'\''s' \
     '[[ $(tail -n 1 "$csv" | cut -d, -f2) == $(json "$s" n_dofs) &&
         $(tail -n 1 "$csv" | cut -d, -f5) == $(json "$s" lambda_critical_plus) ]]'

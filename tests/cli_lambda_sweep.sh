@@ -35,7 +35,7 @@ NML
 "$nceig" "$work/list.nml" >"$work/stdout" 2>"$work/stderr"; rc=$?
 csv="$work/list/lambda_sweep.csv"
 check 'list sweep runs' '[[ $rc -eq 0 && ! -s "$work/stderr" ]]'
-check 'sweep csv header' '[[ $(head -1 "$csv") == "lambda,critical_c_n,critical_c_t,slip_sign,n_positive,error_estimate,n_dofs" ]]'
+check 'sweep csv header' '[[ $(head -1 "$csv") == "lambda,critical_c_n,critical_c_t,slip_sign,n_positive,error_estimate,n_dofs,error_bar" ]]'
 check 'sweep csv: one row per lambda, in the given order' '[[ $(tail -n +2 "$csv" | cut -d, -f1 | tr "\n" " ") == "5.0 -5.0 0.5 -30.0 " ]]'
 check 'sweep csv: empty c_n and c_t and no positive mu inside the thresholds' '[[ $(sed -n 4p "$csv" | cut -d, -f1-6) == "0.5,,,-1,0," ]]'
 check 'sweep csv: c_t = c_n |lambda|' 'tail -n +2 "$csv" | awk -F, "\$2 != \"\" { l = \$1 < 0 ? -\$1 : \$1; d = \$3 - \$2 * l; if (d < 0) d = -d; if (d > 1e-14 * \$3) exit 1 }"'
@@ -98,6 +98,6 @@ done
 check 'arpack sweep: solver arpack, some points certified by ARPACK' '[[ $(json "$work/arpack/summary.json" solver) == arpack && $(json "$work/arpack/summary.json" sweep_n_arpack) -gt 0 ]]'
 check 'arpack sweep: same thresholds as dense' '[[ $(json "$work/arpack/summary.json" lambda_critical_plus) == $(json "$work/dense/summary.json" lambda_critical_plus) && $(json "$work/arpack/summary.json" lambda_critical_minus) == $(json "$work/dense/summary.json" lambda_critical_minus) ]]'
 # (7 columns each: the arpack row's c_n is field 9 of the pasted line)
-check 'arpack sweep: same curve as dense' 'paste -d, "$work/dense/lambda_sweep.csv" "$work/arpack/lambda_sweep.csv" | tail -n +2 | awk -F, "{ if ((\$2 == \"\") != (\$9 == \"\")) exit 1; if (\$2 != \"\") { d = \$2 - \$9; if (d < 0) d = -d; if (d > 1e-9 * \$2) exit 1 } }"'
+check 'arpack sweep: same curve as dense' 'paste -d, "$work/dense/lambda_sweep.csv" "$work/arpack/lambda_sweep.csv" | tail -n +2 | awk -F, "{ if ((\$2 == \"\") != (\$10 == \"\")) exit 1; if (\$2 != \"\") { d = \$2 - \$10; if (d < 0) d = -d; if (d > 1e-9 * \$2) exit 1 } }"'
 
 cli_end

@@ -4,6 +4,7 @@
 !> indicators, mode_001.png), adapt.csv (one row per level), adapt.png, and mesh.msh, the
 !> final mesh as a Gmsh file any analysis reads back.
 module adapt_run
+    use kinds, only: wp
     use status, only: status_t, STATUS_NOT_MET
     use strings, only: to_string
     use real_format, only: real_to_text
@@ -24,7 +25,7 @@ module adapt_run
     public :: add_adapt_keys, adapt_report_lines, write_adapted_mesh, draw_adapt_plot
 
     character(len=*), parameter, public :: ADAPT_HEADER = &
-        'level,n_dofs,n_contact,n_cells,mu,error_estimate,time_s'
+        'level,n_dofs,n_contact,n_cells,mu,error_estimate,time_s,error_bar'
     character(len=*), parameter :: MESH_FILE = 'mesh.msh'
 
     type, extends(analysis_t), public :: adapt_run_t
@@ -106,14 +107,15 @@ contains
         note = trim(config%output%directory)//'/'//PNG
     end subroutine draw_adapt_plot
 
-    !> level,n_dofs,n_contact,n_cells,mu,error_estimate,time_s; mu and error_estimate empty
+    !> level,n_dofs,n_contact,n_cells,mu,error_estimate,time_s,error_bar (the bar is last so
+    !> that the columns before it keep their places); mu, error_estimate and error_bar empty
     !> where there is no positive mu or no estimate.
     subroutine write_adapt_csv(path, out, stat)
         character(len=*), intent(in) :: path
         type(adaptive_result_t), intent(in) :: out
         type(status_t), intent(out) :: stat
         type(csv_writer_t) :: csv
-        character(len=:), allocatable :: mu, estimate
+        character(len=:), allocatable :: mu, estimate, bar
         integer :: i
 
         call csv%open(path, ADAPT_HEADER)
@@ -123,9 +125,11 @@ contains
                 if (row%has_mu) mu = real_to_text(row%mu)
                 estimate = ''
                 if (row%estimated) estimate = real_to_text(row%error_estimate)
+                bar = ''
+                if (row%error_bar >= 0.0_wp) bar = real_to_text(row%error_bar)
                 call csv%row(to_string(row%level)//','//to_string(row%n_dofs)//','// &
                     to_string(row%n_contact)//','//to_string(row%n_cells)//','//mu//','// &
-                    estimate//','//real_to_text(row%time_s))
+                    estimate//','//real_to_text(row%time_s)//','//bar)
             end associate
         end do
         call csv%close(stat)

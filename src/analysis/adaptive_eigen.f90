@@ -14,6 +14,8 @@ module adaptive_eigen
     use eigen_analysis, only: eigen_result_t, solve_eigen
     use accuracy, only: WARNING_LEN
     use adaptive_loop, only: adapt_goal_t, adapt_mesh, doerfler_marking
+    use error_bar, only: level_bar
+    use element_types, only: element_degree
     implicit none
     private
     public :: adapt_eigen
@@ -28,6 +30,7 @@ module adaptive_eigen
         real(wp) :: mu = 0.0_wp               !! lowest positive mu, input units
         logical :: estimated = .false.
         real(wp) :: error_estimate = 0.0_wp   !! |relative error estimate| of mu
+        real(wp) :: error_bar = -1.0_wp       !! the bar at this level (error_bar); < 0: none
         real(wp) :: time_s = 0.0_wp           !! wall time from the loop's start to this level's end
     end type adapt_level_t
 
@@ -90,6 +93,14 @@ contains
                          with_error_estimate=.true.)
         if (.not. stat%ok()) return
         this%levels = [this%levels, level_row()]
+        ! the bar over the levels so far: one dip of the estimate cannot make it small
+        associate (rows => this%levels, last => this%levels(size(this%levels)))
+            if (last%estimated) then
+                last%error_bar = level_bar(merge(rows%error_estimate, -1.0_wp, rows%estimated), &
+                                           rows%n_dofs, element_degree(prob%mesh%element), -1.0_wp)
+                this%res%error%bar = last%error_bar
+            end if
+        end associate
         call timings%note(level_line(this%levels(size(this%levels))))
 
     contains
@@ -113,14 +124,15 @@ contains
             character(len=:), allocatable :: line
             line = 'adapt level '//to_string(row%level)//': '//to_string(row%n_dofs)//' dofs'
             if (row%has_mu) line = line//', mu = '//short_real_text(row%mu, 12)
-            if (row%estimated) line = line//', estimate '//short_real_text(row%error_estimate)
+            if (row%estimated) line = line//', estimate '//short_real_text(row%error_estimate)// &
+                ', bar '//short_real_text(row%error_bar)
         end function level_line
     end subroutine eigen_goal_solve
 
     real(wp) function eigen_goal_error(this)
         class(eigen_goal_t), intent(in) :: this
         eigen_goal_error = -1.0_wp
-        if (this%res%error%computed) eigen_goal_error = abs(this%res%error%relative)
+        if (this%res%error%computed) eigen_goal_error = this%res%error%bar
     end function eigen_goal_error
 
     function eigen_goal_mark(this, theta) result(marked)

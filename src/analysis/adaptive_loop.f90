@@ -1,6 +1,6 @@
 ! SPDX-License-Identifier: MIT
 !> The adaptive loop of &adapt tolerance > 0, for any goal: solve, estimate, mark, refine,
-!> until the goal's error estimate is at most the tolerance or a limit is reached. With
+!> until the goal's error bar (error_bar) is at most the tolerance or a limit is reached. With
 !> the default limits (max_levels = 0, max_dofs = 0) only the memory the machine has ends a
 !> loop that has not met its tolerance, never a level count.
 !>
@@ -39,7 +39,7 @@ module adaptive_loop
     contains
         !> solve and estimate on `prob` (level `level`; `loop_start` the loop's wall_time)
         procedure(goal_solve), deferred :: solve
-        !> the largest |relative error estimate| of the goal; negative when one is missing
+        !> the largest relative error bar of the goal (error_bar); negative when one is missing
         procedure(goal_error), deferred :: error
         !> the cells to refine
         procedure(goal_mark), deferred :: mark
@@ -143,14 +143,14 @@ contains
             if (error <= config%adapt%tolerance) then
                 converged = .true.
                 outcome = 'tolerance '//short_real_text(config%adapt%tolerance)// &
-                    ' met at level '//to_string(level)//': estimate '// &
+                    ' met at level '//to_string(level)//': error bar '// &
                     short_real_text(error)//', '//to_string(prob%dofs%n_free)//' dofs'
                 exit
             end if
             if (config%adapt%max_levels > 0 .and. level >= config%adapt%max_levels) then
                 outcome = 'tolerance '//short_real_text(config%adapt%tolerance)// &
                     ' not met: max_levels = '//to_string(config%adapt%max_levels)// &
-                    ' reached with estimate '//short_real_text(error)//' at '// &
+                    ' reached with error bar '//short_real_text(error)//' at '// &
                     to_string(prob%dofs%n_free)//' dofs'
                 exit
             end if
@@ -167,7 +167,7 @@ contains
                 outcome = 'tolerance '//short_real_text(config%adapt%tolerance)// &
                     ' not met: the next level would have '//to_string(next%dofs%n_free)// &
                     ' dofs, more than '//dof_limit// &
-                    '; reached estimate '//short_real_text(error)//' at '// &
+                    '; reached error bar '//short_real_text(error)//' at '// &
                     to_string(prob%dofs%n_free)//' dofs'
                 exit
             end if

@@ -27,6 +27,8 @@ module adaptive_threshold
     use threshold_estimate, only: threshold_estimate_t, threshold_displacements, &
                                   estimate_threshold_errors
     use adaptive_loop, only: adapt_goal_t, adapt_mesh, doerfler_marking
+    use error_bar, only: level_bar
+    use element_types, only: element_degree
     implicit none
     private
     public :: adapt_thresholds
@@ -41,6 +43,7 @@ module adaptive_threshold
         real(wp) :: lambda(2) = 0.0_wp
         logical :: estimated(2) = .false.
         real(wp) :: error_estimate(2) = 0.0_wp    !! |relative error estimate| of lambda
+        real(wp) :: error_bar(2) = -1.0_wp         !! the bars at this level; < 0: none
         real(wp) :: time_s = 0.0_wp
     end type threshold_level_t
 
@@ -111,6 +114,7 @@ contains
         call timings%add(PHASE_REDUCTION, wall_time() - start, ': thresholds and their '// &
                          'error estimates, level '//to_string(level))
         this%levels = [this%levels, level_row()]
+        call level_bars(this%levels, element_degree(prob%mesh%element), this%est)
         call timings%note(level_line(this%levels(size(this%levels))))
 
     contains
@@ -137,7 +141,8 @@ contains
                 line = line//', '//SIDE_LABELS(side)//' = '// &
                     short_real_text(row%lambda(side), 12)
                 if (row%estimated(side)) line = line//' (estimate '// &
-                    short_real_text(row%error_estimate(side))//')'
+                    short_real_text(row%error_estimate(side))//', bar '// &
+                    short_real_text(row%error_bar(side))//')'
             end do
         end function level_line
     end subroutine threshold_goal_solve
@@ -149,8 +154,24 @@ contains
         threshold_goal_error = -1.0_wp
         if (.not. any(this%thr%found)) return
         if (any(this%thr%found .and. .not. this%est%computed)) return
-        threshold_goal_error = maxval(abs(this%est%relative), mask=this%thr%found)
+        threshold_goal_error = maxval(this%est%bar, mask=this%thr%found)
     end function threshold_goal_error
+
+    !> Each side's bar at the last of `levels` (error_bar: the last BAR_WINDOW levels where
+    !> that side was found and estimated), into the last row and `est`.
+    subroutine level_bars(levels, degree, est)
+        type(threshold_level_t), intent(inout) :: levels(:)
+        integer, intent(in) :: degree
+        type(threshold_estimate_t), intent(inout) :: est
+        integer :: side, k
+        k = size(levels)
+        do side = SIDE_PLUS, SIDE_MINUS
+            if (.not. (levels(k)%found(side) .and. levels(k)%estimated(side))) cycle
+            levels(k)%error_bar(side) = level_bar(merge(levels%error_estimate(side), -1.0_wp, &
+                levels%found(side) .and. levels%estimated(side)), levels%n_dofs, degree, -1.0_wp)
+            est%bar(side) = levels(k)%error_bar(side)
+        end do
+    end subroutine level_bars
 
     !> The union of the Doerfler sets of the sides still above the tolerance.
     function threshold_goal_mark(this, theta) result(marked)
@@ -163,7 +184,7 @@ contains
         allocate (chosen(size(this%est%indicators, 1)), source=.false.)
         do side = SIDE_PLUS, SIDE_MINUS
             if (.not. this%thr%found(side)) cycle
-            if (abs(this%est%relative(side)) <= this%tolerance) cycle
+            if (this%est%bar(side) <= this%tolerance) cycle
             chosen(doerfler_marking(this%est%indicators(:, side), theta)) = .true.
         end do
         marked = pack([(i, i=1, size(chosen))], chosen)

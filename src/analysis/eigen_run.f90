@@ -24,7 +24,7 @@ module eigen_run
     use mode_plot, only: plot_mode
     use blas_info, only: blas_in_use
     use csr_matrix, only: csr_matrix_t
-    use error_estimate, only: error_estimate_t
+    use error_estimate, only: error_estimate_t, estimate_label
     implicit none
     private
     public :: eigen_summary_json, no_eigen_summary_json, summary_lines, write_eigenvalues_csv, write_modes, &
@@ -105,10 +105,10 @@ contains
         type(timings_t), intent(in) :: timings
         type(eigen_result_t), intent(in), optional :: res
         type(json_object_t) :: summary
-        character(len=*), parameter :: LOWEST_KEYS(6) = [character(len=30) :: &
+        character(len=*), parameter :: LOWEST_KEYS(7) = [character(len=30) :: &
             'lowest_positive_mu', 'critical_c_n', 'critical_c_t', &
             'lowest_positive_condition', 'lowest_positive_residual', &
-            'lowest_positive_error_estimate']
+            'lowest_positive_error_estimate', 'lowest_positive_error_bar']
         integer :: lowest, i, blas_threads
         real(wp) :: mu, lambda
         character(len=:), allocatable :: blas_library, blas_config
@@ -160,6 +160,9 @@ contains
             ! |mu - mu_h| / mu_h estimated (error_estimate); null where not computed
             call summary%add_real_or_null('lowest_positive_error_estimate', &
                                           abs(res%error%relative), res%error%computed)
+            ! the relative bar quoted with c_n (error_bar); null where there is none
+            call summary%add_real_or_null('lowest_positive_error_bar', res%error%bar, &
+                                          res%error%computed .and. res%error%bar >= 0.0_wp)
         else
             do i = 1, size(LOWEST_KEYS)
                 call summary%add_null(trim(LOWEST_KEYS(i)))
@@ -200,28 +203,31 @@ contains
         end if
     end function summary_json
 
-    !> index,re,im,kind,residual,condition,error_estimate; an unknown condition is left
-    !> empty, and so is error_estimate but for the lowest positive mu when `error` holds it.
+    !> index,re,im,kind,residual,condition,error_estimate,error_bar; an unknown condition is
+    !> left empty, and so are error_estimate and error_bar but for the lowest positive mu
+    !> when `error` holds them.
     subroutine write_eigenvalues_csv(path, spec, stat, error)
         character(len=*), intent(in) :: path
         type(spectrum_t), intent(in) :: spec
         type(status_t), intent(out) :: stat
         type(error_estimate_t), intent(in), optional :: error
         type(csv_writer_t) :: csv
-        character(len=:), allocatable :: condition, estimate
+        character(len=:), allocatable :: condition, estimate, bar
         integer :: i
 
-        call csv%open(path, 'index,re,im,kind,residual,condition,error_estimate')
+        call csv%open(path, 'index,re,im,kind,residual,condition,error_estimate,error_bar')
         do i = 1, spec%n()
             condition = ''
             if (spec%condition(i) >= 0.0_wp) condition = real_to_text(spec%condition(i))
             estimate = ''
+            bar = ''
             if (present(error) .and. i == spec%lowest_positive()) then
                 if (error%computed) estimate = real_to_text(abs(error%relative))
+                if (error%computed .and. error%bar >= 0.0_wp) bar = real_to_text(error%bar)
             end if
             call csv%row(to_string(i)//','//real_to_text(real(spec%mu(i), wp))//','// &
                 real_to_text(aimag(spec%mu(i)))//','//kind_name(spec%kind(i))//','// &
-                real_to_text(spec%residual(i))//','//condition//','//estimate)
+                real_to_text(spec%residual(i))//','//condition//','//estimate//','//bar)
         end do
         call csv%close(stat)
     end subroutine write_eigenvalues_csv
@@ -299,13 +305,18 @@ contains
         lowest = res%spec%lowest_positive()
         if (lowest > 0) then
             mu = real(res%spec%mu(lowest), wp)
-            text = text//'  lowest positive mu = critical c_n = '//real_to_text(mu)//NL// &
+            text = text//'  lowest positive mu = critical c_n = '//real_to_text(mu)
+            ! the headline quotes its bar, absolute: c_n = X +- B
+            if (res%error%computed .and. res%error%bar >= 0.0_wp) text = text//' +- '// &
+                short_real_text(res%error%bar*mu)
+            text = text//NL// &
                 '  critical c_t = mu |lambda| = '//real_to_text(critical_c_t(mu, res%lambda))// &
                 ', slip sign s = '//to_string(slip_sign(res%lambda))// &
                 ' (u_t '//merge('< 0', '> 0', slip_sign(res%lambda) < 0)//' along t)'//NL
             if (res%error%computed) text = text//'  relative error estimate of mu: '// &
                 short_real_text(abs(res%error%relative))//' ('// &
-                element_name(res%error%element)//' enrichment)'//NL
+                estimate_label(res%error)//'); error bar '// &
+                short_real_text(res%error%bar)//NL
             if (allocated(res%error%skipped)) text = text//'  relative error estimate of mu: '// &
                 res%error%skipped//NL
         else

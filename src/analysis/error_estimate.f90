@@ -24,6 +24,8 @@
 !> Computed where an enrichment exists (P1, P2, P3: module enrichment).
 module error_estimate
     use kinds, only: wp
+    use error_bar, only: single_bar
+    use element_types, only: element_name
     use status, only: status_t, STATUS_SOLVER
     use timer, only: wall_time
     use contact_boundary, only: assemble_b
@@ -47,13 +49,21 @@ module error_estimate
         logical :: computed = .false.
         !> (mu+ - mu_h) / mu_h by the weighted residual: the signed relative error estimate
         real(wp) :: relative = 0.0_wp
+        !> the relative error bar quoted with mu (error_bar: from this estimate; an adaptive
+        !> run's from its levels); negative: none
+        real(wp) :: bar = -1.0_wp
         real(wp) :: mu_enriched = 0.0_wp         !! mu+, same units as mu_h
         real(wp), allocatable :: indicators(:)   !! (n_cells) eta_K, relative to mu_h
         integer :: element = 0                   !! the enriched element (ELEMENT_P2 for P1)
+        !> the estimate is the difference to the same element on the mesh of halved cells
+        !> (elements with no degree above them: Q1, Q2, P4 on a rectangle), no cell indicators
+        logical :: halved_mesh = .false.
         real(wp) :: seconds = 0.0_wp             !! wall time of the estimate
         !> why it was not computed when &eigen estimate decided so ('' otherwise)
         character(len=:), allocatable :: skipped
     end type error_estimate_t
+
+    public :: estimate_label
 
 contains
 
@@ -122,6 +132,15 @@ contains
         est%relative = -sum(r_cell)/(b_phi_psi*mu_h)
         est%indicators = abs(r_cell)/(abs(b_phi_psi)*mu_h)
         est%computed = .true.
+        est%bar = single_bar(abs(est%relative), -1.0_wp)
         est%seconds = wall_time() - start
     end subroutine estimate_lowest_error
+
+    !> How the estimate was made, for the stdout lines: 'p2 enrichment', 'q2, halved mesh'.
+    function estimate_label(est) result(label)
+        type(error_estimate_t), intent(in) :: est
+        character(len=:), allocatable :: label
+        label = element_name(est%element)//' enrichment'
+        if (est%halved_mesh) label = element_name(est%element)//', halved mesh'
+    end function estimate_label
 end module error_estimate

@@ -51,6 +51,7 @@ module threshold_analysis
         !> with &adapt: |relative error estimate| of mu(i) (negative: none) and the free dofs
         !> of the mesh it was computed on; without, -1 and the dofs of the one mesh
         real(wp), allocatable :: error_estimate(:)
+        real(wp), allocatable :: error_bar(:)    !! &adapt: the bar of mu(i); negative: none
         integer, allocatable :: n_dofs(:)
         integer :: n_reused = 0                  !! &adapt: points met with no refinement
         !> &adapt: points with a positive mu whose tolerance was not met, and the first
@@ -152,6 +153,7 @@ contains
         associate (n => size(res%sweep%lambda))
             allocate (res%sweep%mu(n), res%sweep%found(n), res%sweep%n_positive(n))
             allocate (res%sweep%error_estimate(n), source=-1.0_wp)
+            allocate (res%sweep%error_bar(n), source=-1.0_wp)
             allocate (res%sweep%n_dofs(n), source=prob%dofs%n_free)
         end associate
         if (config%adapt%tolerance > 0.0_wp) then
@@ -291,6 +293,7 @@ contains
             if (curve%found(i)) curve%mu(i) = real(out%res%spec%mu(lowest), wp)
             curve%n_positive(i) = -1
             if (out%res%error%computed) curve%error_estimate(i) = abs(out%res%error%relative)
+            if (out%res%error%computed) curve%error_bar(i) = out%res%error%bar
             curve%n_dofs(i) = out%prob%dofs%n_free
             if (out%converged .and. size(out%levels) == 1) curve%n_reused = curve%n_reused + 1
             if (curve%found(i) .and. .not. out%converged) then

@@ -19,6 +19,7 @@
 !> Both sides share one enriched factor.
 module threshold_estimate
     use kinds, only: wp
+    use error_bar, only: single_bar
     use status, only: status_t, STATUS_SOLVER
     use strings, only: to_string
     use timer, only: wall_time
@@ -36,6 +37,8 @@ module threshold_estimate
         logical :: computed(2) = .false.            !! per side (SIDE_PLUS, SIDE_MINUS)
         !> (lambda+ - lambda_h) / lambda_h by the weighted residual, signed
         real(wp) :: relative(2) = 0.0_wp
+        !> the relative error bars quoted (error_bar); negative: none
+        real(wp) :: bar(2) = -1.0_wp
         real(wp) :: lambda_enriched(2) = 0.0_wp     !! the enriched pencil's threshold
         real(wp), allocatable :: indicators(:, :)   !! (n_cells, 2) eta_K relative to lambda_h
         integer :: element = 0                      !! the enriched element
@@ -151,6 +154,7 @@ contains
             est%relative(side) = -sum(r_cell)/r_weight
             est%indicators(:, side) = abs(r_cell)/abs(r_weight)
             est%computed(side) = .true.
+            est%bar(side) = single_bar(abs(est%relative(side)), -1.0_wp)
         end do
         est%seconds = wall_time() - start
     end subroutine estimate_threshold_errors

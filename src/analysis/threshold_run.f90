@@ -33,10 +33,11 @@ module threshold_run
 
     character(len=*), parameter :: SWEEP_FILE = 'lambda_sweep.csv'
     character(len=*), parameter :: SWEEP_HEADER = &
-        'lambda,critical_c_n,critical_c_t,slip_sign,n_positive,error_estimate,n_dofs'
+        'lambda,critical_c_n,critical_c_t,slip_sign,n_positive,error_estimate,n_dofs,error_bar'
 
     character(len=*), parameter, public :: THRESHOLD_ADAPT_HEADER = 'level,n_dofs,'// &
-        'n_contact,n_cells,lambda_plus,error_estimate_plus,lambda_minus,error_estimate_minus,time_s'
+        'n_contact,n_cells,lambda_plus,error_estimate_plus,lambda_minus,'// &
+        'error_estimate_minus,time_s,error_bar_plus,error_bar_minus'
 
     !> 'threshold' (with_sweep false) or 'lambda_sweep'.
     type, extends(analysis_t), public :: threshold_run_t
@@ -168,8 +169,8 @@ contains
     end function threshold_run_report
 
     !> level,n_dofs,n_contact,n_cells,lambda_plus,error_estimate_plus,lambda_minus,
-    !> error_estimate_minus,time_s; a side's cells empty where it has no threshold or no
-    !> estimate.
+    !> error_estimate_minus,time_s,error_bar_plus,error_bar_minus; a side's cells empty where
+    !> it has no threshold or no estimate.
     subroutine write_threshold_adapt_csv(path, out, stat)
         character(len=*), intent(in) :: path
         type(adaptive_thresholds_t), intent(in) :: out
@@ -189,7 +190,13 @@ contains
                     line = line//','
                     if (row%estimated(side)) line = line//real_to_text(row%error_estimate(side))
                 end do
-                call csv%row(line//','//real_to_text(row%time_s))
+                line = line//','//real_to_text(row%time_s)
+                do side = SIDE_PLUS, SIDE_MINUS
+                    line = line//','
+                    if (row%error_bar(side) >= 0.0_wp) line = line// &
+                        real_to_text(row%error_bar(side))
+                end do
+                call csv%row(line)
             end associate
         end do
         call csv%close(stat)
@@ -230,6 +237,12 @@ contains
                 call summary%add_real_or_null('lambda_critical_'//trim(SIDE_NAMES(side))// &
                     '_error_estimate', abs(res%estimate%relative(side)), &
                     res%estimate%computed(side))
+            end do
+            ! the relative bars quoted with them (error_bar); null where none
+            do side = SIDE_PLUS, SIDE_MINUS
+                call summary%add_real_or_null('lambda_critical_'//trim(SIDE_NAMES(side))// &
+                    '_error_bar', res%estimate%bar(side), &
+                    res%estimate%computed(side) .and. res%estimate%bar(side) >= 0.0_wp)
             end do
             ! |lambda*| is the friction coefficient of the Signorini-Coulomb eigenproblem
             ! (model.md section 7), whether or not a positive mu appears there
@@ -371,6 +384,8 @@ contains
             call summary%add_integer('sweep_n_not_met', res%sweep%n_not_met)
             call summary%add_real_or_null('sweep_max_error_estimate', &
                 maxval(res%sweep%error_estimate), any(res%sweep%error_estimate >= 0.0_wp))
+            call summary%add_real_or_null('sweep_max_error_bar', &
+                maxval(res%sweep%error_bar), any(res%sweep%error_bar >= 0.0_wp))
         end if
         call summary%add_real('time_sweep_s', res%time_sweep)
     end subroutine add_sweep_keys
@@ -383,7 +398,7 @@ contains
         type(sweep_curve_t), intent(in) :: curve
         type(status_t), intent(out) :: stat
         type(csv_writer_t) :: csv
-        character(len=:), allocatable :: values, estimate
+        character(len=:), allocatable :: values, estimate, bar
         integer :: i
 
         call csv%open(path, SWEEP_HEADER)
@@ -393,9 +408,11 @@ contains
                 real_to_text(critical_c_t(curve%mu(i), curve%lambda(i)))
             estimate = ''
             if (curve%error_estimate(i) >= 0.0_wp) estimate = real_to_text(curve%error_estimate(i))
+            bar = ''
+            if (curve%error_bar(i) >= 0.0_wp) bar = real_to_text(curve%error_bar(i))
             call csv%row(real_to_text(curve%lambda(i))//','//values//','// &
                 to_string(slip_sign(curve%lambda(i)))//','//to_string(curve%n_positive(i))// &
-                ','//estimate//','//to_string(curve%n_dofs(i)))
+                ','//estimate//','//to_string(curve%n_dofs(i))//','//bar)
         end do
         call csv%close(stat)
     end subroutine write_sweep_csv
@@ -420,7 +437,12 @@ contains
                         //merge('> 0', '< 0', side == SIDE_PLUS)//')'
                     cycle
                 end if
-                text = text//real_to_text(thr%lambda(side))//' (pencil backward error '// &
+                text = text//real_to_text(thr%lambda(side))
+                ! the headline quotes its bar, absolute: lambda = X +- B
+                if (res%estimate%computed(side) .and. res%estimate%bar(side) >= 0.0_wp) &
+                    text = text//' +- '//short_real_text(res%estimate%bar(side)* &
+                                                         abs(thr%lambda(side)))
+                text = text//' (pencil backward error '// &
                     short_real_text(thr%residual(side))//'), '// &
                     trim(merge('confirmed    ', 'NOT confirmed', thr%confirmed(side)))// &
                     estimate_text(side)//NL// &
@@ -452,7 +474,8 @@ contains
             if (res%estimate%computed(side)) then
                 s = NL//'              relative error estimate '// &
                     short_real_text(abs(res%estimate%relative(side)))//' ('// &
-                    element_name(res%estimate%element)//' enrichment)'
+                    element_name(res%estimate%element)//' enrichment); error bar '// &
+                    short_real_text(res%estimate%bar(side))
             else if (len_trim(res%estimate%skipped(side)) > 0) then
                 s = NL//'              relative error estimate '//trim(res%estimate%skipped(side))
             end if
