@@ -34,11 +34,11 @@ check 'P1: eigenvalues.csv has the estimate in the first row only' '[[ $(sed -n 
 check 'P1: mode_001.vtu has the cell data error_indicator, mode_002.vtu none' 'grep -aq "<CellData Scalars=\"error_indicator\">" "$work/out/mode_001.vtu" && ! grep -aq "<CellData" "$work/out/mode_002.vtu"'
 "$nceig" "$work/small.nml" --set mesh%element=q1 --set output%directory="$work/q1" >"$work/stdout_q1" 2>&1
 # Q1 has no degree above it: its estimate is the difference to Q1 on the halved mesh, a
-# number, printed so, with a bar of 4 times it (error_bar's BAR_FACTOR)
+# number, printed so, with a bar of 5 times it (error_bar's BAR_FACTOR)
 check 'Q1 (no enrichment): the estimate from the halved mesh, printed so' \
     'grep -q "\"lowest_positive_error_estimate\": [0-9]" "$work/q1/summary.json" && grep -q "(q1, halved mesh); error bar" "$work/stdout_q1"'
-check 'Q1: the bar is 4 times the estimate' \
-    'close "$(json "$work/q1/summary.json" lowest_positive_error_bar)" "$(awk -v e="$(json "$work/q1/summary.json" lowest_positive_error_estimate)" "BEGIN { printf \"%.17g\", 4 * e }")" 1e-14'
+check 'Q1: the bar is 5 times the estimate' \
+    'close "$(json "$work/q1/summary.json" lowest_positive_error_bar)" "$(awk -v e="$(json "$work/q1/summary.json" lowest_positive_error_estimate)" "BEGIN { printf \"%.17g\", 5 * e }")" 1e-14'
 check 'K.mtx is Matrix Market' 'head -1 "$work/out/K.mtx" | grep -q "^%%MatrixMarket matrix coordinate real general"'
 
 bad() {  # name, namelist text, expected words in the message

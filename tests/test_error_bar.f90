@@ -1,10 +1,11 @@
 ! SPDX-License-Identifier: MIT
 !> error_bar: the bar is BAR_FACTOR times the estimate plus the round-off part, and along
-!> adaptive levels the envelope of the last BAR_WINDOW estimates carried at the optimal rate,
-!> so that a single dip of the estimate cannot make the bar small.
+!> adaptive levels LEVEL_FACTOR times the envelope of the last BAR_WINDOW estimates carried
+!> at the optimal rate, so that a single dip of the estimate cannot make the bar small, and
+!> at least the change of the value over those levels.
 program test_error_bar
     use kinds, only: wp
-    use error_bar, only: single_bar, level_bar, BAR_FACTOR, BAR_WINDOW
+    use error_bar, only: single_bar, level_bar, BAR_FACTOR, LEVEL_FACTOR, BAR_WINDOW
     use testing, only: test_suite_t
     implicit none
     type(test_suite_t) :: t
@@ -12,6 +13,7 @@ program test_error_bar
     t%name = 'test_error_bar'
     call check_single()
     call check_dip_bridged()
+    call check_moving_value()
     call check_window_forgets()
     call check_missing()
     call t%report()
@@ -27,32 +29,44 @@ contains
         call t%check('one mesh: no estimate, no bar', single_bar(-1.0_wp, 1.0e-4_wp) < 0.0_wp)
     end subroutine check_single
 
-    !> Estimates 1e-6, 1e-6, then a dip to 1e-9 at 1.1 times the dofs: the bar keeps the
-    !> previous level's 1e-6 carried by (1/1.1)^3 for degree 3.
+    !> Estimates 1e-6, 1e-6, then a dip to 1e-9 at 1.1 times the dofs (values that agree):
+    !> the bar keeps the previous level's 1e-6 carried by (1/1.1)^3 for degree 3.
     subroutine check_dip_bridged()
         real(wp) :: bar
-        bar = level_bar([1.0e-6_wp, 1.0e-6_wp, 1.0e-9_wp], [1000, 1000, 1100], 3, -1.0_wp)
+        bar = level_bar([1.0e-6_wp, 1.0e-6_wp, 1.0e-9_wp], [1.0_wp, 1.0_wp, 1.0_wp], &
+                        [1000, 1000, 1100], 3, -1.0_wp)
         call t%check_close('a dip: the previous level carried at the rate', bar, &
-                           BAR_FACTOR*1.0e-6_wp/1.1_wp**3, 1.0e-14_wp)
+                           LEVEL_FACTOR*1.0e-6_wp/1.1_wp**3, 1.0e-14_wp)
     end subroutine check_dip_bridged
+
+    !> Small estimates but a value that moved by 40 % over the window (a mode that moves with
+    !> the mesh): the bar is at least that change.
+    subroutine check_moving_value()
+        real(wp) :: bar
+        bar = level_bar([0.03_wp, 0.03_wp, 0.03_wp], [100.0_wp, 150.0_wp, 250.0_wp], &
+                        [1000, 2000, 4000], 2, -1.0_wp)
+        call t%check_close('a value still moving: the bar is its change', bar, &
+                           150.0_wp/250.0_wp, 1.0e-14_wp)
+    end subroutine check_moving_value
 
     !> A level older than BAR_WINDOW no longer counts.
     subroutine check_window_forgets()
         real(wp) :: estimates(BAR_WINDOW + 1), bar
-        integer :: dofs(BAR_WINDOW + 1)
+        integer :: dofs(BAR_WINDOW + 1), i
         estimates = 1.0e-9_wp
         estimates(1) = 1.0_wp
         dofs = 100
-        bar = level_bar(estimates, dofs, 2, -1.0_wp)
+        bar = level_bar(estimates, [(1.0_wp, i=1, BAR_WINDOW + 1)], dofs, 2, -1.0_wp)
         call t%check_close('a level older than the window is forgotten', bar, &
-                           BAR_FACTOR*1.0e-9_wp, 1.0e-14_wp)
+                           LEVEL_FACTOR*1.0e-9_wp, 1.0e-14_wp)
     end subroutine check_window_forgets
 
     subroutine check_missing()
         call t%check('no estimate at the last level: no bar', &
-                     level_bar([1.0e-3_wp, -1.0_wp], [10, 20], 1, -1.0_wp) < 0.0_wp)
+                     level_bar([1.0e-3_wp, -1.0_wp], [1.0_wp, 1.0_wp], [10, 20], 1, -1.0_wp) &
+                     < 0.0_wp)
         call t%check_close('a level without an estimate is skipped', &
-                           level_bar([-1.0_wp, 1.0e-3_wp], [10, 20], 1, -1.0_wp), &
-                           BAR_FACTOR*1.0e-3_wp, 1.0e-15_wp)
+                           level_bar([-1.0_wp, 1.0e-3_wp], [2.0_wp, 1.0_wp], [10, 20], 1, &
+                                     -1.0_wp), LEVEL_FACTOR*1.0e-3_wp, 1.0e-15_wp)
     end subroutine check_missing
 end program test_error_bar

@@ -20,12 +20,14 @@ program test_threshold_estimate
     use threshold_estimate, only: threshold_estimate_t, threshold_displacements, &
                                   estimate_threshold_errors
     use adaptive_threshold, only: adaptive_thresholds_t, adapt_thresholds
+    use error_bar, only: LEVEL_FACTOR
     implicit none
 
-    !> lambda+ of the reference scene (nu = 0.3) in the limit h -> 0: an adaptive P3 run to
-    !> the estimate 6.4e-11 (docs/accuracy.md: 45 levels, 254388 dofs); lambda- = -lambda+
-    !> by the mirror symmetry of the square.
-    real(wp), parameter :: REFERENCE_LAMBDA = 1.9447114427670043_wp
+    !> lambda+ of the reference scene (nu = 0.3) in the limit h -> 0, independently of the
+    !> estimate: graded P4 meshes (tests/data/truths.csv, uncertainty 5.6e-10; an adaptive P3
+    !> run to 6.4e-11 agrees to 4.8e-11); lambda- = -lambda+ by the mirror symmetry of the
+    !> square.
+    real(wp), parameter :: REFERENCE_LAMBDA = 1.9447114426738574_wp
     character(len=*), parameter :: ELEMENTS(3) = [character(len=2) :: 'p1', 'p2', 'p3']
     type(test_suite_t) :: t
     t%name = 'test_threshold_estimate'
@@ -164,11 +166,10 @@ contains
         end do
     end subroutine indicators_bound_the_estimate
 
-    !> P2 from 4 x 4 to 1e-6: converged, both final estimates within it, and the estimate
-    !> tracks the true error: measured ratio estimate / true 0.53 on both sides (the P2
-    !> estimate of a corner-singular goal is a two-level difference, below the error when the
-    !> P3 error is not yet small against the P2 one: the same as for mu, docs/accuracy.md);
-    !> asserted in [0.3, 2]. The true error (1.1e-6) is 1e5 times the reference's.
+    !> P2 from 4 x 4 to 1e-6: converged on its bars (error_bar), both within the tolerance,
+    !> each at least LEVEL_FACTOR times its estimate, and each at least the true error against
+    !> the independent value (measured 3e-7 against 3.1e-9: the loop stopped where the errors
+    !> at the two ends of Gamma_C nearly cancel, so the bar is far above the error there).
     subroutine loop_reaches_tolerance(t)
         type(test_suite_t), intent(inout) :: t
         type(config_t) :: config
@@ -189,9 +190,11 @@ contains
         call t%check('adaptive thresholds: converged', out%converged)
         call t%check('adaptive thresholds: refined', size(out%levels) > 1 .and. &
                      out%prob%dofs%n_free > start%dofs%n_free)
-        call t%check('adaptive thresholds: both estimates within the tolerance', &
+        call t%check('adaptive thresholds: both bars within the tolerance', &
                      all(out%estimate%computed) .and. &
-                     all(abs(out%estimate%relative) <= config%adapt%tolerance))
+                     all(out%estimate%bar <= config%adapt%tolerance))
+        call t%check('adaptive thresholds: each bar at least LEVEL_FACTOR times its estimate', &
+                     all(out%estimate%bar >= LEVEL_FACTOR*abs(out%estimate%relative)))
         ! the final level's thresholds, solved again on its problem: the same numbers
         call thresholds_and_estimate(out%prob, thr, est)
         associate (last => out%levels(size(out%levels)))
@@ -200,12 +203,13 @@ contains
         end associate
         exact = [REFERENCE_LAMBDA, -REFERENCE_LAMBDA]
         do side = SIDE_PLUS, SIDE_MINUS
-            ratio = abs(out%estimate%relative(side))/abs((thr%lambda(side) - exact(side))/ &
-                                                        exact(side))
-            print '(a, a, es10.3, a, es10.3)', SIDE_NAMES(side), ': estimate / true error', &
+            ratio = out%estimate%bar(side)/abs((thr%lambda(side) - exact(side))/exact(side))
+            print '(a, a, es10.3, a, es10.3)', SIDE_NAMES(side), ': bar / true error', &
                 ratio, ', true error', abs((thr%lambda(side) - exact(side))/exact(side))
-            call t%check('adaptive thresholds: estimate / true error in [0.3, 2], '// &
-                         SIDE_NAMES(side), ratio >= 0.3_wp .and. ratio <= 2.0_wp)
+            ! the bar holds; no upper limit here: the loop may stop where the errors at the
+            ! two ends of Gamma_C cancel and the true error is far below any estimate
+            call t%check('adaptive thresholds: the bar holds (>= the true error), '// &
+                         SIDE_NAMES(side), ratio >= 1.0_wp)
         end do
     end subroutine loop_reaches_tolerance
 

@@ -96,8 +96,9 @@ contains
         ! the bar over the levels so far: one dip of the estimate cannot make it small
         associate (rows => this%levels, last => this%levels(size(this%levels)))
             if (last%estimated) then
-                last%error_bar = level_bar(merge(rows%error_estimate, -1.0_wp, rows%estimated), &
-                                           rows%n_dofs, element_degree(prob%mesh%element), -1.0_wp)
+                last%error_bar = level_bar(merge(rows%error_estimate, -1.0_wp, rows%estimated &
+                    .and. rows%has_mu), rows%mu, rows%n_dofs, element_degree(prob%mesh%element), &
+                    -1.0_wp)
                 this%res%error%bar = last%error_bar
             end if
         end associate

@@ -168,7 +168,8 @@ contains
         do side = SIDE_PLUS, SIDE_MINUS
             if (.not. (levels(k)%found(side) .and. levels(k)%estimated(side))) cycle
             levels(k)%error_bar(side) = level_bar(merge(levels%error_estimate(side), -1.0_wp, &
-                levels%found(side) .and. levels%estimated(side)), levels%n_dofs, degree, -1.0_wp)
+                levels%found(side) .and. levels%estimated(side)), levels%lambda(side), &
+                levels%n_dofs, degree, -1.0_wp)
             est%bar(side) = levels(k)%error_bar(side)
         end do
     end subroutine level_bars

@@ -5,7 +5,7 @@ module eigen_analysis
     use kinds, only: wp
     use status, only: status_t, STATUS_BAD_INPUT
     use timer, only: wall_time, timings_t, PHASE_ASSEMBLY, PHASE_REDUCTION, PHASE_EIGEN
-    use strings, only: to_string
+    use strings, only: to_string, short_real_text
     use real_format, only: real_to_text
     use run_config, only: config_t
     use problem, only: problem_t, explain_singular_k, build_problem
@@ -22,6 +22,9 @@ module eigen_analysis
     use error_estimate, only: error_estimate_t, estimate_lowest_error, ENRICHED_CONTACT_MAX, &
                               estimate_label
     use enrichment, only: enriched_element
+    use mesh, only: mesh_t
+    use mesh_refine, only: refinable_mesh_t, build_refinable_mesh
+    use mode_resolution, only: contact_mode_cells
     use error_bar, only: single_bar
     implicit none
     private
@@ -145,6 +148,9 @@ contains
             else
                 call add_halved_mesh_estimate(config, prob, res, timings)
             end if
+            ! an adaptive run judges resolution by the change of mu between its levels
+            if (.not. config%adapt%tolerance > 0.0_wp) call check_resolution(config, prob, &
+                                                                             res, timings)
         else if (len(why_not) > 0) then
             res%error%skipped = why_not
         end if
@@ -196,57 +202,140 @@ contains
             ': error estimate ('//estimate_label(res%error)//')')
     end subroutine add_error_estimate
 
-    !> res%error for an element with no degree above it (Q1, Q2, P4) on the rectangle: the
-    !> difference to the same element on the mesh of halved cells, whose space holds this
-    !> one's, (mu_h/2 - mu_h) / mu_h; no cell indicators. It costs about four times the solve.
-    !> Gmsh meshes of such elements get none (said in res%error%skipped); a failure only
-    !> costs the estimate (a warning), never the run.
+    !> res%error for an element with no degree above it (Q1, Q2, P4): the difference to the
+    !> same element on the mesh of halved cells, whose space holds this one's,
+    !> (mu_h/2 - mu_h) / mu_h; no cell indicators. It costs about four times the solve. A
+    !> failure only costs the estimate (a warning), never the run.
     recursive subroutine add_halved_mesh_estimate(config, prob, res, timings)
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: prob
         type(eigen_result_t), intent(inout) :: res
         type(timings_t), intent(inout) :: timings
-        type(config_t) :: halved
-        type(problem_t) :: fine
-        type(eigen_result_t) :: fine_res
-        type(timings_t) :: quiet
-        type(status_t) :: stat
-        real(wp) :: start, mu, mu_fine
-        integer :: lowest
+        real(wp) :: start, mu, mu_fine, cells_fine
+        character(len=:), allocatable :: why_not
 
-        lowest = res%spec%lowest_positive()
-        if (lowest == 0) return
-        if (trim(config%mesh%source) /= 'rectangle') then
-            res%error%skipped = 'not computed: '//element_name(prob%mesh%element)// &
-                ' has no degree above it and a Gmsh mesh no halved mesh here'
-            return
-        end if
+        if (res%spec%lowest_positive() == 0) return
         start = wall_time()
-        halved = config
-        halved%mesh%nx = 2*config%mesh%nx
-        halved%mesh%ny = 2*config%mesh%ny
-        call build_problem(halved, fine, stat)
-        if (stat%ok()) call solve_eigen(halved, fine, res%lambda, fine_res, quiet, stat)
-        if (stat%ok() .and. fine_res%spec%lowest_positive() == 0) call stat%fail( &
-            STATUS_BAD_INPUT, 'no positive mu on the halved mesh')
-        if (.not. stat%ok()) then
-            res%warnings = [character(len=WARNING_LEN) :: res%warnings, &
-                            'no error estimate for the lowest positive mu: '//stat%message]
+        call halved_mesh_mu(config, prob, res, mu_fine, cells_fine, why_not)
+        if (len(why_not) > 0) then
+            res%error%skipped = 'not computed: '//why_not
             return
         end if
-        mu = real(res%spec%mu(lowest), wp)
-        mu_fine = real(fine_res%spec%mu(fine_res%spec%lowest_positive()), wp)
+        mu = real(res%spec%mu(res%spec%lowest_positive()), wp)
         res%error%computed = .true.
         res%error%halved_mesh = .true.
         res%error%element = prob%mesh%element
         res%error%relative = (mu_fine - mu)/mu
-        res%error%mu_enriched = mu_fine
+        res%error%mu_enriched = scale(mu_fine, -prob%mu_exponent())   ! prob%k's units
+        res%error%mode_cells_halved = cells_fine
         allocate (res%error%indicators(0))
         res%error%bar = single_bar(abs(res%error%relative), -1.0_wp)
         res%error%seconds = wall_time() - start
         call timings%add(PHASE_EIGEN, res%error%seconds, ': error estimate ('// &
                          estimate_label(res%error)//')')
     end subroutine add_halved_mesh_estimate
+
+    !> Whether the mesh resolves the mode of the lowest positive mu (mode_resolution): one
+    !> narrower than RESOLVED_CELLS cells on Gamma_C is solved again on the halved mesh (the
+    !> Q1, Q2, P4 estimate has done so). Its change of mu bounds the bar from below (the
+    !> halved mesh's value is no closer to the continuum than the bar claims otherwise), and a
+    !> mode that did not widen with the mesh (less than WIDENING times) while mu moved by more
+    !> than MOVED moves with the mesh (mu ~ 1/h moves by O(1): 63 % and 41 % for contact on
+    !> the middle of a side at h = 1/16, 1/32; the reference scene at 4 x 4, whose mode
+    !> widens 1.43 times, moves 0.3 %): a warning says that the scene may have no converged
+    !> value at this resolution.
+    !> Coarse meshes of resolved scenes pay about four times the solve; the reference scene's
+    !> mode spans 2 cells from N = 16 on.
+    recursive subroutine check_resolution(config, prob, res, timings)
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(in) :: prob
+        type(eigen_result_t), intent(inout) :: res
+        type(timings_t), intent(inout) :: timings
+        real(wp), parameter :: RESOLVED_CELLS = 2.0_wp, WIDENING = 1.5_wp, MOVED = 0.1_wp
+        real(wp) :: mu, mu_fine, cells_fine, change, start
+        character(len=:), allocatable :: why_not
+        integer :: lowest
+
+        lowest = res%spec%lowest_positive()
+        if (lowest == 0 .or. .not. res%error%computed) return
+        res%error%mode_cells = contact_mode_cells(prob, real(res%spec%vectors(:, lowest), wp))
+        if (.not. (res%error%mode_cells >= 0.0_wp .and. &
+                   res%error%mode_cells < RESOLVED_CELLS)) return
+        mu = real(res%spec%mu(lowest), wp)
+        start = wall_time()
+        if (res%error%halved_mesh) then
+            mu_fine = mu*(1.0_wp + res%error%relative)
+            cells_fine = res%error%mode_cells_halved
+        else
+            call halved_mesh_mu(config, prob, res, mu_fine, cells_fine, why_not)
+            if (len(why_not) > 0) return
+            res%error%mode_cells_halved = cells_fine
+            call timings%add(PHASE_EIGEN, wall_time() - start, ': resolution check, the '// &
+                             'mode spans '//short_real_text(res%error%mode_cells)//' cells')
+        end if
+        change = abs(mu_fine - mu)/abs(mu)
+        res%error%bar = max(res%error%bar, change)
+        if (cells_fine >= WIDENING*res%error%mode_cells .or. change <= MOVED) return
+        res%warnings = [character(len=WARNING_LEN) :: res%warnings, &
+            'the mode of the lowest positive mu spans '//short_real_text(res%error%mode_cells)// &
+            ' cells of the contact segment and did not widen on the halved mesh ('// &
+            short_real_text(cells_fine)//'), where mu moved by '//short_real_text(change)// &
+            ' relative: it moves with the mesh, and this scene may have no converged c_n '// &
+            'at this resolution']
+    end subroutine check_resolution
+
+    !> The lowest positive mu (input units) and its mode's width in cells
+    !> (contact_mode_cells) on the mesh of `prob` with every cell halved: the rectangle with
+    !> 2 nx x 2 ny cells, or a Gmsh triangle mesh (P1 to P3) bisected twice. `why_not`
+    !> says why there is none ('' when computed).
+    recursive subroutine halved_mesh_mu(config, prob, res, mu_fine, cells_fine, why_not)
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(in) :: prob
+        type(eigen_result_t), intent(in) :: res
+        real(wp), intent(out) :: mu_fine, cells_fine
+        character(len=:), allocatable, intent(out) :: why_not
+        type(config_t) :: halved
+        type(problem_t) :: fine
+        type(eigen_result_t) :: fine_res
+        type(timings_t) :: quiet
+        type(status_t) :: stat
+        type(refinable_mesh_t) :: tree
+        type(mesh_t) :: refined
+        integer :: lowest, i, pass
+
+        why_not = ''
+        mu_fine = 0.0_wp
+        cells_fine = -1.0_wp
+        halved = config
+        halved%eigen%estimate = 'off'
+        if (trim(config%mesh%source) == 'rectangle') then
+            halved%mesh%nx = 2*config%mesh%nx
+            halved%mesh%ny = 2*config%mesh%ny
+            call build_problem(halved, fine, stat)
+        else if (enriched_element(prob%mesh%element) /= 0) then   ! triangles P1 to P3
+            call build_refinable_mesh(prob%mesh, tree, stat)
+            do pass = 1, 2   ! newest-vertex bisection of every cell, twice: h / 2
+                if (stat%ok()) call tree%refine([(i, i=1, tree%n_cells())], stat)
+            end do
+            if (stat%ok()) call tree%to_mesh(prob%mesh%element, refined, stat)
+            if (stat%ok()) call build_problem(halved, fine, stat, given_mesh=refined)
+        else
+            why_not = element_name(prob%mesh%element)//' cells of a Gmsh mesh are not halved here'
+            return
+        end if
+        if (stat%ok()) call solve_eigen(halved, fine, res%lambda, fine_res, quiet, stat)
+        if (.not. stat%ok()) then
+            why_not = 'the halved mesh failed: '//stat%message
+            return
+        end if
+        lowest = fine_res%spec%lowest_positive()
+        if (lowest == 0) then
+            why_not = 'no positive mu on the halved mesh'
+            return
+        end if
+        mu_fine = real(fine_res%spec%mu(lowest), wp)
+        cells_fine = contact_mode_cells(fine, real(fine_res%spec%vectors(:, lowest), wp))
+    end subroutine halved_mesh_mu
 
     !> The spectrum at res%lambda (res%b assembled, res%solver chosen) from a factor of K made
     !> by factor_stiffness, which stays allocated for the caller (the threshold analysis reads

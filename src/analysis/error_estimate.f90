@@ -58,6 +58,11 @@ module error_estimate
         !> the estimate is the difference to the same element on the mesh of halved cells
         !> (elements with no degree above them: Q1, Q2, P4 on a rectangle), no cell indicators
         logical :: halved_mesh = .false.
+        !> the width of the mode on Gamma_C in cells (mode_resolution) on this mesh and on the
+        !> halved one (negative: not measured): a mode that does not widen with the mesh is
+        !> not resolved by it
+        real(wp) :: mode_cells = -1.0_wp
+        real(wp) :: mode_cells_halved = -1.0_wp
         real(wp) :: seconds = 0.0_wp             !! wall time of the estimate
         !> why it was not computed when &eigen estimate decided so ('' otherwise)
         character(len=:), allocatable :: skipped
