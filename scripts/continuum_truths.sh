@@ -13,7 +13,8 @@
 # when the sequence is not geometric). Cross-check: nceig's adaptive P3 loop to 1e-10
 # (a different mesh family, a different element, its own stopping test).
 # Usage: scripts/continuum_truths.sh [--write] [SCENE...]
-#   --write   also rewrite tests/data/truths.csv (all scenes only)
+#   --write   also write the scenes computed into tests/data/truths.csv (their rows replaced,
+#             the other scenes' rows kept)
 # Prints scene, quantity, value, uncertainty, method, adaptive value, difference, time.
 # Needs gmsh and jq; about 10 to 15 minutes on 2 shared cores (the threshold scene is most).
 set -euo pipefail
@@ -27,7 +28,6 @@ command -v gmsh >/dev/null || { echo "continuum_truths: needs gmsh" >&2; exit 1;
 source "$root/scripts/lib/truth_scenes.sh"
 scenes=("$@")
 ((${#scenes[@]} > 0)) || scenes=("${truth_scenes[@]}")
-((write == 0 || $# == 0)) || { echo "continuum_truths: --write recomputes all scenes" >&2; exit 2; }
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 alpha=0.15 hmax=0.075 hmins=(1e-4 1e-5 1e-6 1e-7)
@@ -111,7 +111,7 @@ for name in "${scenes[@]}"; do
                 "graded-P4", ad, ade, d, t
             n = split(seqs, x, " ")
             printf "%-24s   graded P4, hmin = 1e-4 .. 1e-7:", ""
-            for (i = 1; i <= n; i++) printf " %.15g", x[i]; printf "\n" }'
+            for (i = 1; i <= n; i++) printf " %.17g", x[i]; printf "\n" }'
         awk -v v="$value" -v u="$unc" 'BEGIN { printf "%.2e", u / (v < 0 ? -v : v) }' >"$work/ur"
         echo "$name,$q,$value,$(cat "$work/ur"),$method" >>"$csv"
     done
@@ -138,4 +138,12 @@ for q in lowest_positive_mu lambda_critical_minus; do
     echo "single-element-p1,$q,$v,0,closed-form-p1-one-triangle" >>"$csv"
 done
 echo "total $(($(date +%s) - total_start)) s"
-if ((write)); then cp "$csv" "$root/tests/data/truths.csv"; echo "wrote tests/data/truths.csv"; fi
+if ((write)); then
+    old=$root/tests/data/truths.csv
+    [[ -f $old ]] || echo "scene,quantity,value,uncertainty,method" >"$old"
+    awk -F, 'NR == FNR { if (FNR > 1) new[$1] = 1; next }
+        FNR == 1 || !($1 in new)' "$csv" "$old" >"$work/merged"
+    tail -n +2 "$csv" >>"$work/merged"
+    cp "$work/merged" "$old"
+    echo "wrote tests/data/truths.csv"
+fi

@@ -3,7 +3,7 @@
 // "Independent truths"): unit square, contact on the left half of the bottom, the right
 // half (bottom_free) traction-free like the sides, top fixed. Graded toward both ends of
 // Gamma_C (0,0) and (1/2,0), the top corners and the free corner (1,0).
-DefineConstant[ graded = 1, alpha = 0.2, hmin = 1e-4, hmax = 0.1 ];
+DefineConstant[ graded = 1, alpha = 0.2, hmin = 1e-4, hmax = 0.1, algorithm = 5 ];
 Point(1) = {0, 0, 0, 1};
 Point(2) = {0.5, 0, 0, 1};
 Point(3) = {1, 0, 0, 1};
@@ -32,4 +32,4 @@ If (graded == 1)
     Mesh.MeshSizeFromPoints = 0;
     Mesh.MeshSizeFromCurvature = 0;
 EndIf
-Mesh.Algorithm = 5;   // Delaunay
+Mesh.Algorithm = algorithm;   // 5 Delaunay (default), 6 Frontal-Delaunay, 1 MeshAdapt

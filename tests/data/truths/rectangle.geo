@@ -7,7 +7,7 @@
 // -clmax. Parameters from the command line, e.g.
 //   gmsh rectangle.geo -setnumber W 3 -setnumber alpha 0.2 -setnumber hmin 1e-5 \
 //        -setnumber hmax 0.1 -2 -order 4 -format msh41 -o mesh.msh
-DefineConstant[ W = 1, H = 1, graded = 1, alpha = 0.2, hmin = 1e-4, hmax = 0.1 ];
+DefineConstant[ W = 1, H = 1, graded = 1, alpha = 0.2, hmin = 1e-4, hmax = 0.1, algorithm = 5 ];
 Point(1) = {0, 0, 0, 1};
 Point(2) = {W, 0, 0, 1};
 Point(3) = {W, H, 0, 1};
@@ -33,4 +33,4 @@ If (graded == 1)
     Mesh.MeshSizeFromPoints = 0;
     Mesh.MeshSizeFromCurvature = 0;
 EndIf
-Mesh.Algorithm = 5;   // Delaunay
+Mesh.Algorithm = algorithm;   // 5 Delaunay (default), 6 Frontal-Delaunay, 1 MeshAdapt

@@ -2,7 +2,7 @@
 // Trapezoid of the independent truths (docs/accuracy.md, "Independent truths"): bottom
 // 0..2 at y = 0 (group bottom, contact), top 0.5..1.5 at y = 1 (group top, fixed), slanted
 // free sides right and left. Grading as in rectangle.geo (toward the four corners).
-DefineConstant[ graded = 1, alpha = 0.2, hmin = 1e-4, hmax = 0.1 ];
+DefineConstant[ graded = 1, alpha = 0.2, hmin = 1e-4, hmax = 0.1, algorithm = 5 ];
 Point(1) = {0, 0, 0, 1};
 Point(2) = {2, 0, 0, 1};
 Point(3) = {1.5, 1, 0, 1};
@@ -28,4 +28,4 @@ If (graded == 1)
     Mesh.MeshSizeFromPoints = 0;
     Mesh.MeshSizeFromCurvature = 0;
 EndIf
-Mesh.Algorithm = 5;   // Delaunay
+Mesh.Algorithm = algorithm;   // 5 Delaunay (default), 6 Frontal-Delaunay, 1 MeshAdapt
