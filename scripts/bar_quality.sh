@@ -1,0 +1,167 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# How good the error bar (or, before it exists, the error estimate) of every critical value
+# is: bar / true error, against the independent truths of tests/data/truths.csv
+# (docs/accuracy.md, "Independent truths" and "Quality of the error bars").
+# For every scene of truths.csv (scripts/lib/truth_scenes.sh; the single-element closed
+# form is a P1 value, not a continuum one, and is left out) and every family:
+#   uniform P1, P2, P3 (and Q1, Q2 on rectangles) at N = 4, 8, 16, 32 cells per unit
+#   length (rectangles: nceig's own meshes, 'right' diagonals; other shapes: Gmsh Delaunay
+#   meshes of the scene's .geo of size 1/N, of the element's order), and
+#   adaptive P1, P2, P3 to 1e-8 (from N = 4; at most 60000 dofs, so P1 stops early),
+#   every adapt.csv level from the 3rd on,
+# it takes the relative bar of each value (summary.json lowest_positive_error_bar,
+# lambda_critical_plus/minus_error_bar, adapt.csv error_bar(_plus/_minus) when present,
+# else the error estimate: lowest_positive_error_estimate, ..._error_estimate,
+# error_estimate(_plus/_minus); the table says which) over its true relative error, and
+# prints min, median, max and the share in [1, 10] per family and overall. 'threshold'
+# scenes give the critical lambdas (uniform threshold runs and kind = 'threshold'
+# adaptive). Values whose true error is below 100 times the truth's uncertainty are
+# skipped (counted); values with neither bar nor estimate (Q1, Q2) are counted as 'none'.
+# Usage: scripts/bar_quality.sh [-j JOBS] [SCENE...]   (JOBS parallel runs, default 2)
+# Needs gmsh and jq; about 5 to 10 minutes on 2 cores.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+nceig=${NCEIG:-$root/build/nceig}
+jobs=2
+if [[ ${1:-} == -j ]]; then jobs=$2; shift 2; fi
+[[ -x $nceig ]] || { echo "bar_quality: build first (scripts/build.sh Release)" >&2; exit 1; }
+command -v jq >/dev/null || { echo "bar_quality: needs jq" >&2; exit 1; }
+command -v gmsh >/dev/null || { echo "bar_quality: needs gmsh" >&2; exit 1; }
+truths=${TRUTHS:-$root/tests/data/truths.csv}
+[[ -f $truths ]] || { echo "bar_quality: $truths missing (scripts/continuum_truths.sh --write)" >&2; exit 1; }
+source "$root/scripts/lib/truth_scenes.sh"
+scenes=("$@")
+if ((${#scenes[@]} == 0)); then
+    mapfile -t scenes < <(awk -F, 'NR > 1 && $5 !~ /^closed/ && !seen[$1]++ { print $1 }' "$truths")
+fi
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+start=$(date +%s)
+export OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1
+sizes=(4 8 16 32)
+
+# job NAME FAMILY MESH_LINE ADAPT_LINE: writes $work/jobs/NAME.nml and NAME.meta
+mkdir -p "$work/jobs" "$work/meshes"
+job() {
+    local name=$1 family=$2 mesh_line=$3 adapt_line=$4 est=on
+    [[ $family == *q1* || $family == *q2* ]] && est=auto
+    {
+        echo "$mesh_line"
+        scene_physics_nml
+        echo "&eigen estimate = '$est' /"
+        echo "$adapt_line"
+        echo "&output directory = '$work/out/$name', vtk = .false., plot = .false., progress = .false. /"
+    } >"$work/jobs/$name.nml"
+    echo "$scene $family $kind" >"$work/jobs/$name.meta"
+}
+
+for scene in "${scenes[@]}"; do
+    scene_info "$scene"
+    for el in p1 p2 p3 q1 q2; do
+        [[ $el == q* && -z $W ]] && continue
+        for n in "${sizes[@]}"; do
+            if [[ -n $W ]]; then
+                mesh_line=$(scene_rect_nml "$n" "$el")
+            else
+                m=$work/meshes/${scene}_${el}_$n.msh
+                scene_gmsh "$m" "${el#p}" -setnumber graded 0 -clmax "$(awk -v n="$n" 'BEGIN { print 1 / n }')"
+                mesh_line=$(scene_mesh_nml "$m")
+            fi
+            job "${scene}_u${el}_$n" "uniform-$el" "$mesh_line" ""
+        done
+    done
+    for el in p1 p2 p3; do
+        if [[ -n $W ]]; then
+            mesh_line=$(scene_rect_nml 4 "$el")
+        else
+            m=$work/meshes/${scene}_${el}_4.msh
+            mesh_line=$(scene_mesh_nml "$m")
+        fi
+        job "${scene}_a$el" "adaptive-$el" "$mesh_line" \
+            "&adapt tolerance = 1e-8, max_dofs = 60000, max_levels = 200 /"
+    done
+done
+
+# run the jobs, longest first (adaptive, then the finest uniform meshes)
+ls "$work/jobs"/*.nml | awk '{ k = ($0 ~ /_a/) ? 0 : ($0 ~ /_32\.nml/) ? 1 : 2; print k, $0 }' |
+    sort -k1,1n | cut -d' ' -f2- |
+    xargs -P "$jobs" -I{} sh -c '"$1" "$2" >"$2.log" 2>&1; echo $? >"$2.rc"' _ "$nceig" {}
+
+# ratios: one line per value: scene family quantity source ratio (or 'skip' / 'none')
+ratio_lines() {
+    local f name scene family kind rc out q
+    for f in "$work/jobs"/*.nml; do
+        name=$(basename "$f" .nml)
+        read -r scene family kind <"$work/jobs/$name.meta"
+        rc=$(cat "$f.rc")
+        out=$work/out/$name
+        if [[ $rc != 0 && $rc != 8 ]] || [[ ! -f $out/summary.json ]]; then
+            echo "$scene $family - failed $rc"; continue
+        fi
+        for q in $(awk -F, -v s="$scene" '$1 == s { print $2 }' "$truths"); do
+            read -r truth unc < <(awk -F, -v s="$scene" -v q="$q" '$1 == s && $2 == q { print $3, $4 }' "$truths")
+            if [[ $family == adaptive-* ]]; then
+                local vcol ecol bcol
+                case $q in
+                    lowest_positive_mu) vcol=mu ecol=error_estimate bcol=error_bar ;;
+                    lambda_critical_plus) vcol=lambda_plus ecol=error_estimate_plus bcol=error_bar_plus ;;
+                    lambda_critical_minus) vcol=lambda_minus ecol=error_estimate_minus bcol=error_bar_minus ;;
+                esac
+                awk -F, -v v="$vcol" -v e="$ecol" -v b="$bcol" -v t="$truth" -v u="$unc" \
+                    -v pre="$scene $family $q" 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
+                    $1 >= 2 && c[v] && $c[v] != "" {
+                        src = (c[b] && $c[b] != "") ? "bar" : (c[e] && $c[e] != "") ? "estimate" : "none"
+                        err = ($c[v] - t) / t; if (err < 0) err = -err
+                        if (err < 100 * u) { print pre, src, "skip"; next }
+                        if (src == "none") { print pre, "none", "none"; next }
+                        print pre, src, (src == "bar" ? $c[b] : $c[e]) / err }' "$out/adapt.csv"
+            else
+                jq -r --arg q "$q" --arg t "$truth" --arg u "$unc" --arg pre "$scene $family $q" '
+                    (.[$q]) as $v | (.[$q + "_error_bar"]) as $b
+                    | (if $q == "lowest_positive_mu" then .lowest_positive_error_estimate
+                       else .[$q + "_error_estimate"] end) as $e
+                    | if $v == null then "\($pre) none missing" else
+                      ((($v - ($t | tonumber)) / ($t | tonumber)) | fabs) as $err
+                      | if $err < 100 * ($u | tonumber) then "\($pre) - skip"
+                        elif $b != null then "\($pre) bar \($b / $err)"
+                        elif $e != null then "\($pre) estimate \($e / $err)"
+                        else "\($pre) none none" end end' "$out/summary.json" |
+                    sed 's/lowest_positive_mu_error_bar//'
+            fi
+        done
+    done
+}
+# a summary line of the ratios on stdin: label source n min median max share[1,10] skipped none
+summarise() {
+    awk -v label="$1" '
+        $5 == "skip" { skip++; next }
+        $5 == "none" || $5 == "missing" || $4 == "failed" { none++; next }
+        { r[++n] = $5 + 0; src[$4] = 1 }
+        END {
+            s = ""; for (k in src) s = s (s == "" ? "" : "+") k; if (s == "") s = "-"
+            if (n == 0) { printf "%-28s %-9s %4d %8s %8s %8s %7s %5d %5d\n", label, s, 0, "-", "-", "-", "-", skip, none; exit }
+            for (i = 1; i <= n; i++) for (j = i + 1; j <= n; j++) if (r[j] < r[i]) { t = r[i]; r[i] = r[j]; r[j] = t }
+            for (i = 1; i <= n; i++) if (r[i] >= 1 && r[i] <= 10) in10++
+            med = (n % 2) ? r[(n + 1) / 2] : (r[n / 2] + r[n / 2 + 1]) / 2
+            printf "%-28s %-9s %4d %8.3g %8.3g %8.3g %6.0f%% %5d %5d\n", label, s, n, r[1], med, r[n], 100 * in10 / n, skip, none }'
+}
+
+ratio_lines >"$work/ratios"
+echo "# nceig $("$nceig" --version | cut -d' ' -f2): bar / true error against ${truths#$root/}"
+echo "# source 'bar' = *_error_bar, 'estimate' = *_error_estimate (no bar in this build)"
+printf '%-28s %-9s %4s %8s %8s %8s %7s %5s %5s\n' family source n min median max '[1,10]' skip none
+for group in mu lambda; do
+    if [[ $group == mu ]]; then sel='$3 == "lowest_positive_mu"'; echo "critical c_n (lowest positive mu):"
+    else sel='$3 != "lowest_positive_mu"'; echo "critical lambdas (lambda+ and lambda-):"; fi
+    for fam in uniform-p1 uniform-p2 uniform-p3 uniform-q1 uniform-q2 adaptive-p1 adaptive-p2 adaptive-p3; do
+        awk -v f="$fam" "\$2 == f && $sel" "$work/ratios" | summarise "  $fam"
+    done
+    awk "$sel" "$work/ratios" | summarise "  all"
+done
+awk '1' "$work/ratios" | summarise "overall"
+echo
+echo "per scene (all families):"
+for scene in "${scenes[@]}"; do awk -v s="$scene" '$1 == s' "$work/ratios" | summarise "  $scene"; done
+if grep -q failed "$work/ratios"; then echo "failed runs:"; grep failed "$work/ratios" | sort -u; fi
+echo "time $(($(date +%s) - start)) s ($jobs parallel runs)"
