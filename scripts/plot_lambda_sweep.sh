@@ -50,11 +50,11 @@ else
     mark "$plus" '{/Symbol l}_+' right
 fi
 
-# An adapted sweep (&adapt) has an error estimate per point (column 6): error bars then.
+# An adapted sweep (&adapt) has an error bar per point (column 8): drawn then.
 style=linespoints cn_bar='' ct_bar='' bar_title=''
-if awk -F, 'NR > 1 && $6 != "" { found = 1 } END { exit !found }' "$csv"; then
-    style=yerrorlines cn_bar=':(cell(2)*cell(6))' ct_bar=':(cell(3)*cell(6))'
-    bar_title=' {/Symbol \261} error estimate'
+if awk -F, 'NR > 1 && $8 != "" { found = 1 } END { exit !found }' "$csv"; then
+    style=yerrorlines cn_bar=':(cell(2)*cell(8))' ct_bar=':(cell(3)*cell(8))'
+    bar_title=' {/Symbol \261} error bar'
 fi
 
 {
