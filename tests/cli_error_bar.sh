@@ -97,6 +97,24 @@ NML
         'awk -v b="$(json "$work/middle/summary.json" lowest_positive_error_bar)" "BEGIN { exit !(b >= 0.3) }"'
     check 'contact on the middle of a side: the warning says it moves with the mesh' \
         'grep -q "^warning: the mode of the lowest positive mu spans .* it moves with the mesh" "$work/stdout"'
+
+    # A boundary point where two positive mu meet (complex_pair) has a bar from the problem
+    # one degree higher: the example's point (P2, h = 1/16) against P3 on h = 1/32, whose
+    # own bar is four times smaller: the bar covers the difference.
+    cp -r "$root/input" "$work/input"
+    (cd "$work/input" && "$nceig" half_contact.nml --set output%directory="$work/hc16" \
+        --set output%plot=.false. >/dev/null 2>&1)
+    gmsh "$root/input/meshes/half_contact.geo" -2 -order 3 -clmax 0.03125 -format msh41 \
+        -o "$work/hc32.msh" >/dev/null 2>&1
+    (cd "$work/input" && "$nceig" half_contact.nml --set mesh%file="$work/hc32.msh" \
+        --set output%directory="$work/hc32" --set output%plot=.false. >/dev/null 2>&1)
+    coarse=$(jq -r '.boundary_lambda[0]' "$work/hc16/summary.json")
+    fine=$(jq -r '.boundary_lambda[0]' "$work/hc32/summary.json")
+    bar=$(jq -r '.boundary_error_bar[0]' "$work/hc16/summary.json")
+    check "complex_pair point $coarse +- $bar (relative) holds $fine (P3, h = 1/32)" \
+        '[[ $(jq -r ".boundary_mechanism[0]" "$work/hc16/summary.json") == complex_pair ]] &&
+         awk -v c="$coarse" -v f="$fine" -v b="$bar" "BEGIN { d = c - f; if (d < 0) d = -d
+             m = c < 0 ? -c : c; exit !(b > 0 && d <= b * m) }"'
 else
     echo "SKIP  the Gmsh scenes (trapezoid, half contact, middle contact): gmsh is not installed"
 fi

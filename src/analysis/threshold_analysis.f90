@@ -29,6 +29,7 @@ module threshold_analysis
     use eigen_analysis, only: eigen_result_t, choose_solver, eigen_with_factor, SOLVER_ARPACK, &
                               to_input_units, estimate_wanted
     use error_estimate, only: ENRICHED_CONTACT_MAX
+    use boundary_estimate, only: estimate_boundary_bars
     use threshold_estimate, only: threshold_estimate_t, threshold_displacements, &
                                   estimate_threshold_errors
     use accuracy, only: WARNING_LEN
@@ -144,6 +145,7 @@ contains
             if (.not. stat%ok()) return
             res%set%points%mu_meet = mu_meet
         end if
+        if (estimated .or. present(estimate)) call add_boundary_bars()
         res%time_threshold = wall_time() - start
         call timings%note('thresholds '//seconds_text(res%time_threshold)//' s')
         if (.not. with_sweep) return
@@ -223,6 +225,22 @@ contains
             if (any(res%estimate%computed)) call timings%add(PHASE_REDUCTION, &
                 wall_time() - begin, ': error estimates of the critical lambdas')
         end subroutine add_threshold_estimate
+
+        !> The bars of the boundary points (boundary_estimate); a failure costs them only.
+        subroutine add_boundary_bars()
+            type(status_t) :: failed
+            real(wp) :: begin
+            begin = wall_time()
+            call estimate_boundary_bars(prob, res%thresholds, res%estimate, &
+                                        ENRICHED_CONTACT_MAX, res%set, failed)
+            if (.not. failed%ok()) then
+                res%eigen%warnings = [character(len=WARNING_LEN) :: res%eigen%warnings, &
+                    'no error bars for the boundary points: '//failed%message]
+                return
+            end if
+            if (any(res%set%points%error_bar >= 0.0_wp)) call timings%add(PHASE_REDUCTION, &
+                wall_time() - begin, ': error bars of the boundary points')
+        end subroutine add_boundary_bars
 
         subroutine real_to_input_units(mu, stat, sweep_lambda)
             real(wp), intent(inout) :: mu(:)

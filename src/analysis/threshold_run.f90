@@ -265,7 +265,8 @@ contains
     subroutine add_boundary_keys(summary, set)
         type(json_object_t), intent(inout) :: summary
         type(critical_set_t), intent(in) :: set
-        real(wp), allocatable :: lower(:), upper(:), lambdas(:), discriminants(:), mu_meets(:)
+        real(wp), allocatable :: lower(:), upper(:), lambdas(:), discriminants(:), mu_meets(:), &
+                                 bars(:)
         integer, allocatable :: below(:), above(:)
         logical, allocatable :: confirmed(:)
         character(len=len(MECHANISM_NAMES)), allocatable :: mechanisms(:)
@@ -276,8 +277,11 @@ contains
         ! passed as an array makes a temporary (a runtime warning under -fcheck=all).
         n = size(set%points)
         allocate (lambdas(n), discriminants(n), mu_meets(n), below(n), above(n), confirmed(n), &
-                  mechanisms(n), directions(n))
+                  mechanisms(n), directions(n), bars(n))
         do i = 1, n
+            ! the relative bar of each point (boundary_estimate); NaN is written as null
+            bars(i) = set%points(i)%error_bar
+            if (bars(i) < 0.0_wp) bars(i) = ieee_value(1.0_wp, ieee_quiet_nan)
             associate (b => set%points(i))
                 lambdas(i) = b%lambda
                 below(i) = b%n_below
@@ -312,6 +316,7 @@ contains
         call summary%add_integer('boundary_n_points', n)
         call summary%add_real_array('boundary_lambda', lambdas)
         call summary%add_string_array('boundary_mechanism', mechanisms)
+        call summary%add_real_array('boundary_error_bar', bars)
         call summary%add_string_array('boundary_direction', directions)
         call summary%add_logical_array('boundary_confirmed', confirmed)
         call summary%add_integer_array('boundary_n_positive_below', below)
@@ -503,7 +508,10 @@ contains
             to_string(size(set%points))//' points'
         do i = 1, size(set%points)
             associate (b => set%points(i))
-                text = text//NL//'              lambda = '//real_to_text(b%lambda)//' '// &
+                text = text//NL//'              lambda = '//real_to_text(b%lambda)
+                if (b%error_bar >= 0.0_wp) text = text//' +- '// &
+                    short_real_text(b%error_bar*abs(b%lambda))
+                text = text//' '// &
                     trim(MECHANISM_NAMES(b%mechanism))//', positive mu '// &
                     trim(merge('appears ', 'vanishes', b%appears))//' as lambda increases ('// &
                     to_string(b%n_below)//' -> '//to_string(b%n_above)//'), '// &

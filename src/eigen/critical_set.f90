@@ -50,6 +50,9 @@ module critical_set
         !> the counts just below and above differ by one from/to zero (pencil) or by two
         !> with the discriminant changing sign (complex_pair)
         logical :: confirmed = .false.
+        !> the relative error bar of lambda against the continuum (filled by the analysis:
+        !> boundary_estimate); negative: none
+        real(wp) :: error_bar = -1.0_wp
     end type boundary_point_t
 
     type, public :: critical_set_t
