@@ -25,7 +25,6 @@ module eigen_run
     use blas_info, only: blas_in_use
     use csr_matrix, only: csr_matrix_t
     use error_estimate, only: error_estimate_t, estimate_label
-    use mode_resolution, only: contact_mode_cells
     implicit none
     private
     public :: eigen_summary_json, no_eigen_summary_json, summary_lines, write_eigenvalues_csv, write_modes, &
@@ -306,8 +305,6 @@ contains
         lowest = res%spec%lowest_positive()
         if (lowest > 0) then
             mu = real(res%spec%mu(lowest), wp)
-            text = text//'  DEBUG mode cells '//short_real_text(contact_mode_cells(prob, &
-                real(res%spec%vectors(:, lowest), wp)))//NL
             text = text//'  lowest positive mu = critical c_n = '//real_to_text(mu)
             ! the headline quotes its bar, absolute: c_n = X +- B
             if (res%error%computed .and. res%error%bar >= 0.0_wp) text = text//' +- '// &
