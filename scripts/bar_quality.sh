@@ -118,7 +118,9 @@ ratio_lines() {
                         print pre, src, (src == "bar" ? $c[b] : $c[e]) / err }' "$out/adapt.csv"
             else
                 jq -r --arg q "$q" --arg t "$truth" --arg u "$unc" --arg pre "$scene $family $q" '
-                    (.[$q]) as $v | (.[$q + "_error_bar"]) as $b
+                    (.[$q]) as $v
+                    | (if $q == "lowest_positive_mu" then .lowest_positive_error_bar
+                       else .[$q + "_error_bar"] end) as $b
                     | (if $q == "lowest_positive_mu" then .lowest_positive_error_estimate
                        else .[$q + "_error_estimate"] end) as $e
                     | if $v == null then "\($pre) none missing" else
@@ -126,8 +128,7 @@ ratio_lines() {
                       | if $err < 100 * ($u | tonumber) then "\($pre) - skip"
                         elif $b != null then "\($pre) bar \($b / $err)"
                         elif $e != null then "\($pre) estimate \($e / $err)"
-                        else "\($pre) none none" end end' "$out/summary.json" |
-                    sed 's/lowest_positive_mu_error_bar//'
+                        else "\($pre) none none" end end' "$out/summary.json"
             fi
         done
     done
