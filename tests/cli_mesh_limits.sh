@@ -55,9 +55,9 @@ run "nx = 1000000, ny = 1"
 refused 'nx = 1000000, ny = 1 (the largest documented): refused before allocating' 2 \
     'in.nml: &mesh: nx = 1000000, ny = 1' 'estimated 64000.1 GB'
 
-# Two unit-height quadrangles side by side whose common side is two pairs of nodes (3, 7 at
-# x = 0.5): each half is held by the top, but the body is two pieces.
-cat >crack.msh <<'MSH'
+# msh_header: the start of an MSH 2.2 file with the four sides as physical groups
+msh_header() {
+    cat <<'MSH'
 $MeshFormat
 2.2 0 8
 $EndMeshFormat
@@ -68,6 +68,12 @@ $PhysicalNames
 1 3 "top"
 1 4 "left"
 $EndPhysicalNames
+MSH
+}
+
+# Two unit-height quadrangles side by side whose common side is two pairs of nodes (3, 7 at
+# x = 0.5): each half is held by the top, but the body is two pieces.
+{ msh_header; cat <<'MSH'; } >crack.msh
 $Nodes
 8
 1 0 0 0
@@ -98,17 +104,7 @@ refused 'a crack (duplicated nodes): the mesh file, the line, not connected' 3 \
 # A sliver: node 5 lies 1e-13 off the diagonal 1-3, so cell 1 5 3 has an area of 5e-14 (above
 # the degenerate bound, 64 eps x diameter^2) but makes K numerically singular. The message
 # blamed a missing Dirichlet boundary; it names the cell.
-cat >sliver.msh <<'MSH'
-$MeshFormat
-2.2 0 8
-$EndMeshFormat
-$PhysicalNames
-4
-1 1 "bottom"
-1 2 "right"
-1 3 "top"
-1 4 "left"
-$EndPhysicalNames
+{ msh_header; cat <<'MSH'; } >sliver.msh
 $Nodes
 5
 1 0 0 0
