@@ -27,8 +27,8 @@ module eigen_run
     use error_estimate, only: error_estimate_t, estimate_label
     implicit none
     private
-    public :: eigen_summary_json, no_eigen_summary_json, summary_lines, write_eigenvalues_csv, write_modes, &
-              write_eigen_files
+    public :: eigen_summary_json, no_eigen_summary_json, summary_lines, &
+              write_eigenvalues_csv, write_modes, write_eigen_files
 
     type, extends(analysis_t), public :: eigen_run_t
         type(eigen_result_t) :: res

@@ -140,7 +140,8 @@ contains
                //entry('tol', real_to_text(d%solve%tol), '||residual|| / ||load||' &
                        //' (infinity norms) to stop at') &
                //entry('max_iterations', to_string(d%solve%max_iterations), 'Newton iterations')
-        text = text//'&adapt       (eigen, threshold, lambda_sweep: refine until the error bar is met)'//NL &
+        text = text//'&adapt       (eigen, threshold, lambda_sweep: refine until the error bar' &
+               //' is met)'//NL &
                //entry('tolerance', real_to_text(d%adapt%tolerance), 'relative error of' &
                        //' mu or of both critical lambdas (0: off; < 1)') &
                //entry('max_dofs', to_string(d%adapt%max_dofs), 'no level solves on more' &

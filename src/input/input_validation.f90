@@ -97,7 +97,8 @@ contains
                 call reject('tolerance', real_to_text(c%tolerance), &
                             'a relative error with 0 <= tolerance < 1 (0: no adaptation)')
             else if (c%max_dofs < 0) then
-                call reject('max_dofs', to_string(c%max_dofs), 'an integer >= 0 (0: the memory available)')
+                call reject('max_dofs', to_string(c%max_dofs), &
+                            'an integer >= 0 (0: the memory available)')
             else if (c%max_levels < 0) then
                 call reject('max_levels', to_string(c%max_levels), 'an integer >= 0 (0: no limit)')
             else if (.not. theta_ok) then

@@ -65,8 +65,9 @@ contains
         end if
         write (unit, '(a)', iostat=ios) 'set terminal pngcairo size 900,800 noenhanced', &
             'set output '//gnuplot_string(path_argument(png)), 'set size ratio -1', &
-            'set palette rgb 33,13,10', 'set title '//gnuplot_string(title), "set xlabel 'x + "//short_real_text(scale)// &
-             " u_x  [length]  (deformed: largest |u| drawn as 1/10 of the body''s diagonal)'", &
+            'set palette rgb 33,13,10', 'set title '//gnuplot_string(title), &
+            "set xlabel 'x + "//short_real_text(scale)// &
+            " u_x  [length]  (deformed: largest |u| drawn as 1/10 of the body''s diagonal)'", &
             "set ylabel 'y + "//short_real_text(scale)//" u_y  [length]'", &
             "set cblabel '|u| (mode normalised to largest entry 1)'", '$cells << EOD'
         do cell = 1, size(cells, 2)

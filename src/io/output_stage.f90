@@ -111,7 +111,8 @@ contains
         if (len(this%base) > MAX_NAME_LEN) then
             call stat%fail(STATUS_IO, 'output directory '//this%directory//': its last ' &
                            //'component has '//to_string(len(this%base))//' bytes, more than ' &
-                           //'the '//to_string(MAX_NAME_LEN)//' a file system allows: name too long')
+                           //'the '//to_string(MAX_NAME_LEN)//' a file system allows: name ' &
+                           //'too long')
             return
         end if
         this%key = name_key(this%base)
