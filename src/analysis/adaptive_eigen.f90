@@ -93,15 +93,9 @@ contains
                          with_error_estimate=.true.)
         if (.not. stat%ok()) return
         this%levels = [this%levels, level_row()]
-        ! the bar over the levels so far: one dip of the estimate cannot make it small
-        associate (rows => this%levels, last => this%levels(size(this%levels)))
-            if (last%estimated) then
-                last%error_bar = level_bar(merge(rows%error_estimate, -1.0_wp, rows%estimated &
-                    .and. rows%has_mu), rows%mu, rows%n_dofs, element_degree(prob%mesh%element), &
-                    -1.0_wp)
-                this%res%error%bar = last%error_bar
-            end if
-        end associate
+        call set_level_bar(this%levels, element_degree(prob%mesh%element))
+        if (this%levels(size(this%levels))%estimated) &
+            this%res%error%bar = this%levels(size(this%levels))%error_bar
         call timings%note(level_line(this%levels(size(this%levels))))
 
     contains
@@ -129,6 +123,25 @@ contains
                 ', bar '//short_real_text(row%error_bar)
         end function level_line
     end subroutine eigen_goal_solve
+
+    !> The bar over the levels so far into the last one (error_bar): one dip of the estimate
+    !> cannot make it small. Plain arrays, filled level by level: a component of an array of
+    !> derived type passed as an array makes a temporary (a runtime warning under -fcheck=all).
+    pure subroutine set_level_bar(levels, degree)
+        type(adapt_level_t), intent(inout) :: levels(:)
+        integer, intent(in) :: degree
+        real(wp) :: estimates(size(levels)), mu(size(levels))
+        integer :: dofs(size(levels)), i, k
+        k = size(levels)
+        if (.not. levels(k)%estimated) return
+        do i = 1, k
+            estimates(i) = -1.0_wp
+            if (levels(i)%estimated .and. levels(i)%has_mu) estimates(i) = levels(i)%error_estimate
+            mu(i) = levels(i)%mu
+            dofs(i) = levels(i)%n_dofs
+        end do
+        levels(k)%error_bar = level_bar(estimates, mu, dofs, degree, -1.0_wp)
+    end subroutine set_level_bar
 
     real(wp) function eigen_goal_error(this)
         class(eigen_goal_t), intent(in) :: this

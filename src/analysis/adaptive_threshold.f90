@@ -163,13 +163,20 @@ contains
         type(threshold_level_t), intent(inout) :: levels(:)
         integer, intent(in) :: degree
         type(threshold_estimate_t), intent(inout) :: est
-        integer :: side, k
+        real(wp) :: estimates(size(levels)), lambdas(size(levels))
+        integer :: dofs(size(levels)), side, k, i
         k = size(levels)
         do side = SIDE_PLUS, SIDE_MINUS
             if (.not. (levels(k)%found(side) .and. levels(k)%estimated(side))) cycle
-            levels(k)%error_bar(side) = level_bar(merge(levels%error_estimate(side), -1.0_wp, &
-                levels%found(side) .and. levels%estimated(side)), levels%lambda(side), &
-                levels%n_dofs, degree, -1.0_wp)
+            ! plain arrays: components of a derived-type array would make temporaries
+            do i = 1, k
+                estimates(i) = -1.0_wp
+                if (levels(i)%found(side) .and. levels(i)%estimated(side)) &
+                    estimates(i) = levels(i)%error_estimate(side)
+                lambdas(i) = levels(i)%lambda(side)
+                dofs(i) = levels(i)%n_dofs
+            end do
+            levels(k)%error_bar(side) = level_bar(estimates, lambdas, dofs, degree, -1.0_wp)
             est%bar(side) = levels(k)%error_bar(side)
         end do
     end subroutine level_bars
