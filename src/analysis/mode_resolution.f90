@@ -25,19 +25,16 @@ contains
         real(wp) :: cells
         real(wp), allocatable :: u(:), weight(:), position(:)
         real(wp) :: m2, m4, cell
-        integer :: p, a, peak, k
+        integer :: p, a, peak
 
         cells = -1.0_wp
         p = prob%contact%p()
         if (p < 3) return
         allocate (u(p), weight(p), position(p))
         call prob%contact%gather(prob%contact%normal, phi, u)
-        ! the lumped boundary mass: the length each node stands for
+        ! the lumped boundary mass M 1: the length each node stands for
+        call prob%contact%mass%matvec([(1.0_wp, a=1, p)], weight)
         do a = 1, p
-            weight(a) = 0.0_wp
-            do k = prob%contact%mass%row_start(a), prob%contact%mass%row_start(a + 1) - 1
-                weight(a) = weight(a) + prob%contact%mass%val(k)
-            end do
             position(a) = dot_product(prob%mesh%coords(:, prob%contact%nodes(a)), &
                                       prob%contact%tangent)
         end do

@@ -142,7 +142,7 @@ contains
         integer, intent(in) :: element
         real(wp), intent(in) :: xy(:, :)   !! (2, nodes per cell)
         real(wp) :: local(size(xy, 1), size(xy, 2))
-        real(wp) :: ref(2, MAX_NODES), mapped(2), xi, eta, tolerance, diameter
+        real(wp) :: ref(2, MAX_NODES), mapped(2, size(xy, 2)), xi, eta, tolerance, diameter
         integer :: a, n, corners
 
         n = size(xy, 2)
@@ -154,30 +154,20 @@ contains
         call reference_nodes(element, ref)
         diameter = maxval(abs(local(:, 1:corners)))
         tolerance = 1.0e-8_wp*diameter + 64.0_wp*epsilon(1.0_wp)*maxval(abs(xy))
-        do a = corners + 1, n
+        do a = corners + 1, n   ! where the corners' map puts each higher-order node
             xi = ref(1, a)
             eta = ref(2, a)
             if (corners == 3) then   ! reference triangle (0,0), (1,0), (0,1)
-                mapped = local(:, 2)*xi + local(:, 3)*eta
+                mapped(:, a) = local(:, 2)*xi + local(:, 3)*eta
             else                     ! reference square [-1, 1]^2, corners anticlockwise
-                mapped = 0.25_wp*((1.0_wp + xi)*(1.0_wp - eta)*local(:, 2) + &
-                                  (1.0_wp + xi)*(1.0_wp + eta)*local(:, 3) + &
-                                  (1.0_wp - xi)*(1.0_wp + eta)*local(:, 4))
-            end if
-            ! curved: the isoparametric map of all nodes, translated only
-            if (maxval(abs(local(:, a) - mapped)) > tolerance) return
-        end do
-        do a = corners + 1, n
-            xi = ref(1, a)
-            eta = ref(2, a)
-            if (corners == 3) then
-                local(:, a) = local(:, 2)*xi + local(:, 3)*eta
-            else
-                local(:, a) = 0.25_wp*((1.0_wp + xi)*(1.0_wp - eta)*local(:, 2) + &
-                                       (1.0_wp + xi)*(1.0_wp + eta)*local(:, 3) + &
-                                       (1.0_wp - xi)*(1.0_wp + eta)*local(:, 4))
+                mapped(:, a) = 0.25_wp*((1.0_wp + xi)*(1.0_wp - eta)*local(:, 2) + &
+                                        (1.0_wp + xi)*(1.0_wp + eta)*local(:, 3) + &
+                                        (1.0_wp - xi)*(1.0_wp + eta)*local(:, 4))
             end if
         end do
+        ! curved: the isoparametric map of all nodes, translated only
+        if (maxval(abs(local(:, corners + 1:n) - mapped(:, corners + 1:n))) > tolerance) return
+        local(:, corners + 1:n) = mapped(:, corners + 1:n)
     end function local_coordinates
 
     !> CELL_* of cell `xy` from det J at its nodes: where a mesh file's cells are checked.

@@ -5,9 +5,8 @@
 !> the run still succeeds and `note` says why there is no picture.
 module mode_plot
     use kinds, only: wp
-    use strings, only: to_string, short_real_text
+    use strings, only: to_string, short_real_text, text_t
     use filesystem, only: remove_file
-    use strings, only: text_t
     use process, only: run_program
     use gnuplot, only: gnuplot_available, gnuplot_string, quotable, path_argument, not_run_note
     implicit none
