@@ -6,7 +6,7 @@ module problem
     use status, only: status_t, STATUS_BAD_INPUT, STATUS_SINGULAR
     use strings, only: NAME_LEN, split_names, to_string, short => short_real_text, joined
     use real_format, only: real_to_text
-    use run_config, only: config_t
+    use run_config, only: config_t, UNSCALED_YOUNG_RANGE, UNSCALED_SIZE_RANGE
     use mesh, only: mesh_t
     use element_types, only: element_from_name
     use cell_geometry, only: cell_thinness
@@ -35,11 +35,6 @@ module problem
     !> times the others', alone spans half of the 1 / (1e3 eps) pivot ratio CHOLMOD allows.
     !> Seen singular at 1e-13 (a triangle with a corner 1e-13 off the opposite side).
     real(wp), parameter :: SLIVER_THINNESS = 1.0e-8_wp
-    !> 'branch' and 'solve' work in the input's units (their loads, displacements and
-    !> compliances have units): E and the mesh size stay within these powers of ten, so that
-    !> the products of assembly and residuals (E / h^2 x h^2, squared norms) stay in binary64.
-    real(wp), parameter :: UNSCALED_YOUNG_RANGE = 1.0e100_wp
-    real(wp), parameter :: UNSCALED_SIZE_RANGE = 1.0e50_wp
 
     type, public :: problem_t
         type(mesh_t) :: mesh

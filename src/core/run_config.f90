@@ -12,6 +12,13 @@ module run_config
     public :: NAME_LEN, LIST_LEN   !! of strings, for the users of the records
 
     integer, parameter, public :: PATH_LEN = 4096
+    !> 'branch' and 'solve' work in the input's units (their loads, displacements and
+    !> compliances have units): E and the mesh size stay within these powers of ten, so that
+    !> the products of assembly and residuals (E / h^2 x h^2, squared norms) stay in binary64;
+    !> the build of the problem checks E and the size, the validation of &solve its forces
+    !> (E's range) and displacements (the size's).
+    real(wp), parameter, public :: UNSCALED_YOUNG_RANGE = 1.0e100_wp
+    real(wp), parameter, public :: UNSCALED_SIZE_RANGE = 1.0e50_wp
 
     type, public :: mesh_config_t
         character(len=NAME_LEN) :: source = 'rectangle'   !! 'rectangle' | 'gmsh'

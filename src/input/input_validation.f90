@@ -8,7 +8,8 @@ module input_validation
     use status, only: status_t, STATUS_BAD_INPUT
     use run_config, only: config_t, mesh_config_t, material_config_t, analysis_config_t, &
                           eigen_config_t, output_config_t, branch_config_t, solve_config_t, &
-                          sweep_config_t, count_set_lambdas, lambda_is_set
+                          sweep_config_t, count_set_lambdas, lambda_is_set, &
+                          UNSCALED_YOUNG_RANGE, UNSCALED_SIZE_RANGE
     use strings, only: to_string, split_words, count_names, quoted, one_of, &
                        NAME_LEN, LIST_LEN
     use real_format, only: real_to_text
@@ -45,11 +46,13 @@ module input_validation
                                                          'threshold', 'lambda_sweep']
     character(len=*), parameter :: SWEEP_SPACINGS(*) = [character(len=6) :: 'linear', 'log']
     integer, parameter :: MAX_SWEEP_POINTS = 100000   !! n_lambda of a &sweep range
-    !> &solve works in the input's units, where young is within 1e-100 to 1e100 and the
-    !> mesh size within 1e-50 to 1e50 (problem.f90): forces, tractions and compliances get
-    !> young's range, displacements the size's, so that the residual's entries (E u,
-    !> f size^2, c_n u size) stay below about 1e250 (u_d1 = 1e300 overflowed the merit).
-    real(wp), parameter :: SOLVE_FORCE_RANGE = 1.0e100_wp, SOLVE_LENGTH_RANGE = 1.0e50_wp
+    !> &solve works in the input's units, where young and the mesh size keep to
+    !> UNSCALED_YOUNG_RANGE and UNSCALED_SIZE_RANGE (run_config): forces, tractions and
+    !> compliances get young's range, displacements the size's, so that the residual's
+    !> entries (E u, f size^2, c_n u size) stay below about 1e250 (u_d1 = 1e300 overflowed
+    !> the merit).
+    real(wp), parameter :: SOLVE_FORCE_RANGE = UNSCALED_YOUNG_RANGE
+    real(wp), parameter :: SOLVE_LENGTH_RANGE = UNSCALED_SIZE_RANGE
     character(len=*), parameter :: SOLVE_UNITS = ' (analysis ''solve'' works in the ' &
                                                  //'input''s units)'
     !> &output vtk_format: the encodings of vtk_writer (VTK_BINARY, VTK_ASCII).
