@@ -9,7 +9,7 @@
 # Usage: scripts/check_layers.sh [SRC_DIR]   (default: src/ next to this script)
 
 # Bottom first: each folder may use only the folders to its left (and itself).
-LAYERS=(core input sparse element mesh fem contact eigen io analysis)
+LAYERS=(core input sparse element mesh fem contact model eigen numerics analysis io report)
 
 set -u
 src=${1:-$(cd "$(dirname "$0")/.." && pwd)/src}
