@@ -11,7 +11,7 @@ module adaptive_eigen
     use timer, only: wall_time, timings_t
     use run_config, only: config_t
     use problem, only: problem_t
-    use eigen_analysis, only: eigen_result_t, solve_eigen
+    use eigen_analysis, only: eigen_result_t, solve_eigen, estimate_eigen
     use accuracy, only: WARNING_LEN
     use adaptive_loop, only: adapt_goal_t, adapt_mesh, doerfler_marking
     use error_bar, only: level_bar
@@ -89,9 +89,9 @@ contains
         ! the loop is driven by the estimate: it is computed at every level, whatever its size
         level_config = config
         level_config%eigen%estimate = 'on'
-        call solve_eigen(level_config, prob, config%analysis%lambda, this%res, timings, stat, &
-                         with_error_estimate=.true.)
+        call solve_eigen(level_config, prob, config%analysis%lambda, this%res, timings, stat)
         if (.not. stat%ok()) return
+        call estimate_eigen(level_config, prob, this%res, timings)
         this%levels = [this%levels, level_row()]
         call set_level_bar(this%levels, element_degree(prob%mesh%element))
         if (this%levels(size(this%levels))%estimated) &
@@ -156,23 +156,17 @@ contains
         marked = doerfler_marking(this%res%error%indicators, theta)
     end function eigen_goal_mark
 
-    !> Why the estimate is missing: no positive mu, its size (est%skipped), or the
-    !> warning its failure left (eigen_analysis: 'no error estimate for ...: why').
+    !> Why the estimate is missing: no positive mu, its size (est%skipped), or its failure.
     function eigen_goal_missing(this) result(reason)
         class(eigen_goal_t), intent(in) :: this
         character(len=:), allocatable :: reason
-        character(len=*), parameter :: FAILED = 'no error estimate for the lowest positive mu: '
-        integer :: i
         reason = 'the estimate failed'
         if (this%res%spec%lowest_positive() == 0) then
             reason = 'no positive mu to adapt to'
         else if (allocated(this%res%error%skipped)) then
             reason = this%res%error%skipped
-        else if (allocated(this%res%warnings)) then
-            do i = 1, size(this%res%warnings)
-                if (index(this%res%warnings(i), FAILED) == 1) &
-                    reason = 'the estimate failed: '//trim(this%res%warnings(i)(len(FAILED) + 1:))
-            end do
+        else if (allocated(this%res%error%failure)) then
+            reason = 'the estimate failed: '//this%res%error%failure
         end if
     end function eigen_goal_missing
 end module adaptive_eigen

@@ -28,7 +28,7 @@ module eigen_analysis
     use error_bar, only: single_bar
     implicit none
     private
-    public :: eigen_result_t, solve_eigen, choose_solver, eigen_with_factor, solver_name
+    public :: eigen_result_t, solve_eigen, estimate_eigen, choose_solver, eigen_with_factor, solver_name
     public :: operator_name, critical_cn
     public :: to_input_units, estimate_wanted
     public :: SOLVER_DENSE, SOLVER_ARPACK
@@ -94,20 +94,16 @@ contains
 
     !> Assemble B for `lambda`, factor K (factor_stiffness: contact dofs last, which both
     !> solvers read the contact blocks from), and compute the spectrum.
-    recursive subroutine solve_eigen(config, prob, lambda, res, timings, stat, &
-                                     with_error_estimate)
+    recursive subroutine solve_eigen(config, prob, lambda, res, timings, stat)
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: prob
         real(wp), intent(in) :: lambda
         type(eigen_result_t), intent(out) :: res
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
-        !> also res%error (add_error_estimate); default false: only analysis 'eigen' asks
-        logical, intent(in), optional :: with_error_estimate
         type(cholesky_t) :: chol
         real(wp) :: start
         logical :: contact_last, refactor
-        character(len=:), allocatable :: why_not
 
         res%lambda = lambda
         start = wall_time()
@@ -140,8 +136,18 @@ contains
             if (.not. (stat%ok() .and. refactor)) exit
             contact_last = .true.
         end do
-        if (.not. (stat%ok() .and. present(with_error_estimate))) return
-        if (.not. with_error_estimate) return
+    end subroutine solve_eigen
+
+    !> res%error of a spectrum solve_eigen found, as &eigen estimate asks: the enriched
+    !> estimate, or the halved mesh's for an element without a degree above, and the
+    !> resolution check; `res%error%skipped` says why none where 'auto' leaves it out. Only
+    !> the eigen analyses call it (a threshold's spectra carry no estimate of mu).
+    recursive subroutine estimate_eigen(config, prob, res, timings)
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(in) :: prob
+        type(eigen_result_t), intent(inout) :: res
+        type(timings_t), intent(inout) :: timings
+        character(len=:), allocatable :: why_not
         if (estimate_wanted(config, prob%dofs%n_free, why_not)) then
             if (enriched_element(prob%mesh%element) /= 0) then
                 call add_error_estimate(prob, res, timings)
@@ -154,7 +160,7 @@ contains
         else if (len(why_not) > 0) then
             res%error%skipped = why_not
         end if
-    end subroutine solve_eigen
+    end subroutine estimate_eigen
 
     !> Whether &eigen estimate asks for the error estimates on a problem of `n_free` dofs:
     !> 'on', 'off', or 'auto' (up to ESTIMATE_AUTO_MAX_DOFS); `why_not` the sentence for a
@@ -189,11 +195,11 @@ contains
 
         lowest = res%spec%lowest_positive()
         if (lowest == 0 .or. size(res%spec%vectors, 2) < lowest) return
-        ! mu in the units of prob%k (exact: a power of two)
         call estimate_lowest_error(prob, res%lambda, &
-            scale(real(res%spec%mu(lowest), wp), -prob%mu_exponent()), &
+            prob%units%mu_to_scaled(real(res%spec%mu(lowest), wp)), &
             real(res%spec%vectors(:, lowest), wp), ENRICHED_CONTACT_MAX, res%error, stat)
         if (.not. stat%ok()) then
+            res%error%failure = stat%message
             res%warnings = [character(len=WARNING_LEN) :: res%warnings, &
                             'no error estimate for the lowest positive mu: '//stat%message]
             return
@@ -226,7 +232,7 @@ contains
         res%error%halved_mesh = .true.
         res%error%element = prob%mesh%element
         res%error%relative = (mu_fine - mu)/mu
-        res%error%mu_enriched = scale(mu_fine, -prob%mu_exponent())   ! prob%k's units
+        res%error%mu_enriched = prob%units%mu_to_scaled(mu_fine)   ! prob%k's units
         res%error%mode_cells_halved = cells_fine
         allocate (res%error%indicators(0))
         res%error%bar = single_bar(abs(res%error%relative), -1.0_wp)
@@ -366,14 +372,14 @@ contains
         start = wall_time()
         certificate = ''
         if (res%solver == SOLVER_ARPACK) then
-            ! the target in the units of prob%k (exact); clamped where that overflows, which
-            ! is far outside the accepted range anyway (arpack_eigen: TARGET_RANGE)
+            ! the target in the units of prob%k; clamped where that overflows, which is far
+            ! outside the accepted range anyway (arpack_eigen: TARGET_RANGE)
             options = arpack_options_t(nev=config%eigen%nev, ncv=config%eigen%ncv, &
                 maxit=config%eigen%maxit, tol=config%eigen%tol, &
-                target=in_units(config%eigen%target, -prob%mu_exponent()), &
-                cn_max=in_units(config%eigen%cn_max, -prob%mu_exponent()), &
+                target=prob%units%mu_to_scaled(config%eigen%target), &
+                cn_max=prob%units%mu_to_scaled(config%eigen%cn_max), &
                 full=config%eigen%operator == 'full', &
-                unit_exponent=prob%mu_exponent(), target_input=config%eigen%target)
+                units=prob%units, target_input=config%eigen%target)
             if (present(contact_last)) options%contact_last = contact_last
             call arpack_spectrum(prob%k, res%b, chol, prob%contact, res%lambda, options, n_keep, &
                                  res%spec, certificate, stat, needs_contact_last)
@@ -433,21 +439,8 @@ contains
         end if
     end function critical_cn
 
-    !> x 2^e, clamped to +-huge where that overflows.
-    elemental real(wp) function in_units(x, e)
-        real(wp), intent(in) :: x
-        integer, intent(in) :: e
-        in_units = x
-        if (.not. abs(x) > 0.0_wp) return
-        if (exponent(x) + e > maxexponent(x)) then
-            in_units = sign(huge(x), x)
-        else
-            in_units = scale(x, e)
-        end if
-    end function in_units
-
-    !> Eigenvalues of (prob%k, B(prob%contact)) to those of the input problem: x
-    !> 2^prob%mu_exponent(), exactly. Fails (STATUS_BAD_INPUT, naming &material young or the
+    !> Eigenvalues of (prob%k, B(prob%contact)) to those of the input problem (prob%units),
+    !> exactly. Fails (STATUS_BAD_INPUT, naming &material young or the
     !> mesh size, whichever pushes further) when an |mu| would leave the normal binary64
     !> range [tiny, huge] = [2.2e-308, 1.8e308]: overflow, or digits lost to underflow.
     subroutine to_input_units(config, prob, mu, stat, sweep_lambda)
@@ -457,17 +450,16 @@ contains
         type(status_t), intent(out) :: stat
         !> the largest |lambda| of a sweep, when mu are its points (default: &analysis lambda)
         real(wp), intent(in), optional :: sweep_lambda
-        integer :: e, i, worst, worst_exponent
+        integer :: i, worst, worst_exponent
         character(len=:), allocatable :: what, lambda_name
         real(wp) :: lambda
 
-        e = prob%mu_exponent()
         if (size(mu) == 0) return
         worst = 0
         worst_exponent = 0
         do i = 1, size(mu)
             if (.not. abs(mu(i)) > 0.0_wp) cycle
-            associate (x => exponent(abs(mu(i))) + e)
+            associate (x => prob%units%input_exponent(abs(mu(i))))
                 if (x > maxexponent(1.0_wp) .or. x < minexponent(1.0_wp)) then
                     if (worst == 0 .or. abs(x) > abs(worst_exponent)) then
                         worst = i
@@ -484,28 +476,29 @@ contains
                 lambda = sweep_lambda
                 lambda_name = '&sweep: lambda = '
             end if
-            if (abs(lambda) > 1.0_wp .and. worst_exponent < 0 .and. &
-                exponent(lambda) > max(-prob%young_exponent, prob%length_exponent)) then
+            if (worst_exponent < 0 .and. prob%units%lambda_dominates(lambda)) then
                 what = lambda_name//real_to_text(lambda)//' (a point of the sweep)'
                 if (.not. present(sweep_lambda)) what = lambda_name//real_to_text(lambda)
-            else if (abs(prob%young_exponent) >= abs(prob%length_exponent)) then
+            else if (prob%units%young_dominates()) then
                 what = '&material: young = '//real_to_text(prob%young)
             else if (config%mesh%source == 'rectangle') then
                 what = '&mesh: width = '//real_to_text(config%mesh%width)//', height = '// &
                        real_to_text(config%mesh%height)
             else
                 what = '&mesh: the mesh in '//trim(config%mesh%file)//' (size 2^'// &
-                       to_string(prob%length_exponent)//')'
+                       to_string(prob%units%length_exponent)//')'
             end if
             call stat%fail(STATUS_BAD_INPUT, config%input_file//': '//what// &
-                ': an eigenvalue mu would be about '//decimal_text(log10(abs(mu(worst))) + &
-                real(e, wp)*log10(2.0_wp))//' (mu scales like young / size, '// &
+                ': an eigenvalue mu would be about '// &
+                decimal_text(prob%units%input_log10(abs(mu(worst))))// &
+                ' (mu scales like young / size, '// &
                 'and like 1 / lambda for large |lambda|), '// &
                 'outside the 2.2e-308 to 1.8e308 that binary64 holds to full precision')
             return
         end if
         do i = 1, size(mu)
-            mu(i) = cmplx(scale(real(mu(i), wp), e), scale(aimag(mu(i)), e), wp)
+            mu(i) = cmplx(prob%units%mu_to_input(real(mu(i), wp)), &
+                          prob%units%mu_to_input(aimag(mu(i))), wp)
         end do
 
     contains

@@ -34,6 +34,7 @@ module contact_boundary
         procedure :: gather => contact_gather
         procedure :: scatter => contact_scatter
         procedure :: mass_dense => contact_mass_dense
+        procedure :: slip_direction => contact_slip_direction
     end type contact_t
 
 contains
@@ -297,7 +298,7 @@ contains
             end do
         end do
         call csr_from_element_dofs(n_free, pair_dofs, b)
-        row_factor = lambda*contact%tangent - contact%normal
+        row_factor = contact%slip_direction(lambda)
         do a = 1, contact%p()
             do k = contact%mass%row_start(a), contact%mass%row_start(a + 1) - 1
                 col_node = contact%mass%col(k)
@@ -316,4 +317,20 @@ contains
         real(wp), intent(in) :: u(2), v(2)
         cross = u(1)*v(2) - u(2)*v(1)
     end function cross
+
+    !> lambda t - n, the direction of b_lambda's test functions on Gamma_C (docs/model.md,
+    !> section 4), divided by `unit` (a power of two that keeps it and what it multiplies in
+    !> range for huge |lambda|, contact_reduction::lambda_unit; default 1): the one place it
+    !> is formed.
+    pure function contact_slip_direction(this, lambda, unit) result(direction)
+        class(contact_t), intent(in) :: this
+        real(wp), intent(in) :: lambda
+        real(wp), intent(in), optional :: unit
+        real(wp) :: direction(2)
+        if (present(unit)) then
+            direction = lambda/unit*this%tangent - this%normal/unit
+        else
+            direction = lambda*this%tangent - this%normal
+        end if
+    end function contact_slip_direction
 end module contact_boundary

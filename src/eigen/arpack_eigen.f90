@@ -32,11 +32,12 @@ module arpack_eigen
     use contact_boundary, only: contact_t
     use sparse_lu, only: lu_t
     use sorting, only: sort_index
+    use unit_scaling, only: units_t
     use spectrum, only: spectrum_t, order_eigenvalues, backward_error, normalise_mode
     use lapack_interfaces, only: dtrsv, dgetrf, dgetrs, dgeev, dgemm, dlacn2, &
                                  lapack_info_message, lapack_eigenvector
     use contact_reduction, only: contact_tail, flexibility_blocks, lift_eigenvectors, &
-                                 reduced_matrix, lambda_unit
+                                 scaled_reduced_matrix, lambda_unit, mu_of_theta
     use arpack_interfaces, only: dnaupd, dneupd, arpack_info_message
     implicit none
     private
@@ -89,9 +90,9 @@ module arpack_eigen
         !> the factor of K has the contact dofs last (factor_stiffness): the reduced operator
         !> and the dense decision read its trailing block; the full operator only solves
         logical :: contact_last = .true.
-        !> For messages: the problem solved is the input one with mu divided by
-        !> 2^unit_exponent (problem_t), and `target_input` is &eigen target as given.
-        integer :: unit_exponent = 0
+        !> For messages: the problem solved is the input one in the scaled `units`
+        !> (problem_t), and `target_input` is &eigen target as given.
+        type(units_t) :: units
         real(wp) :: target_input = 0.0_wp
     end type arpack_options_t
 
@@ -106,6 +107,7 @@ module arpack_eigen
         !> |lambda| > 1, else 1): A ~ lambda overflowed ARPACK's norms from |lambda| ~ 1e160
         real(wp) :: lambda_scale = 1.0_wp
         real(wp) :: normal(2) = 0.0_wp, tangent(2) = 0.0_wp
+        real(wp) :: direction(2) = 0.0_wp      !! (lambda t - n) / lambda_scale
         real(wp), allocatable :: l_tail(:, :)   !! (2p, 2p) trailing block of the factor
         integer, allocatable :: slot(:, :)      !! (2, p) row in l_tail of contact dof (c, a)
         type(csr_matrix_t) :: mass              !! (p, p) boundary mass M
@@ -147,14 +149,14 @@ contains
     !> dofs (see node_ordering), and factor I - sigma A when sigma /= 0, after checking
     !> |sigma| ||A|| <= TARGET_RANGE (STATUS_BAD_INPUT naming &eigen target otherwise).
     subroutine operator_setup(this, chol, contact, lambda, sigma, stat, target_input, &
-                              unit_exponent)
+                              units)
         class(contact_operator_t), intent(inout) :: this
         type(cholesky_t), intent(in) :: chol
         type(contact_t), intent(in) :: contact
         real(wp), intent(in) :: lambda, sigma
         type(status_t), intent(out) :: stat
         real(wp), intent(in) :: target_input      !! sigma as the input gave it (messages)
-        integer, intent(in) :: unit_exponent      !! input mu = 2^unit_exponent mu here
+        type(units_t), intent(in) :: units        !! of mu here (messages)
         real(wp) :: a_norm
         integer :: a, info
 
@@ -165,6 +167,7 @@ contains
         this%lambda_scale = lambda_unit(lambda)
         this%normal = contact%normal
         this%tangent = contact%tangent
+        this%direction = contact%slip_direction(lambda, this%lambda_scale)
         this%mass = contact%mass
         call contact_tail(chol, contact, this%l_tail, this%slot, stat)
         if (.not. stat%ok()) return
@@ -175,7 +178,7 @@ contains
         ! |sigma| ||A|| > TARGET_RANGE, this%a being A / lambda_scale; written as quotients,
         ! which cannot overflow (sigma may be clamped to huge, see eigen_analysis)
         a_norm = maxval(sum(abs(this%a), dim=2))
-        call this%check_target(a_norm, target_input, unit_exponent, stat)
+        call this%check_target(a_norm, target_input, units, stat)
         if (.not. stat%ok()) return
         ! LU of I - sigma A, kept in place of A (A itself is applied through L_c)
         this%a = -(sigma*this%lambda_scale)*this%a
@@ -195,7 +198,7 @@ contains
     !> with UMFPACK, after the range check of operator_setup with ||A||_inf estimated
     !> (norm_estimate: a few sparse solves instead of forming A). Nothing of order p^2.
     subroutine operator_setup_full(this, k, b, chol, contact, lambda, sigma, stat, &
-                                   target_input, unit_exponent)
+                                   target_input, units)
         class(contact_operator_t), intent(inout) :: this
         type(csr_matrix_t), intent(in) :: k, b
         type(cholesky_t), intent(in), target :: chol
@@ -203,7 +206,7 @@ contains
         real(wp), intent(in) :: lambda, sigma
         type(status_t), intent(out) :: stat
         real(wp), intent(in) :: target_input
-        integer, intent(in) :: unit_exponent
+        type(units_t), intent(in) :: units
         real(wp) :: a_norm
 
         this%full = .true.
@@ -218,7 +221,7 @@ contains
         if (.not. (abs(sigma) > 0.0_wp)) return
         call this%norm_estimate(contact, a_norm, stat)
         if (.not. stat%ok()) return
-        call this%check_target(a_norm, target_input, unit_exponent, stat)
+        call this%check_target(a_norm, target_input, units, stat)
         if (.not. stat%ok()) return
         ! no iterative refinement: ARPACK needs a backward-stable solve, which the LU gives,
         ! and every eigenpair's backward error on (K, B) is checked; refinement tripled the
@@ -232,15 +235,15 @@ contains
     !> |sigma| ||A|| <= TARGET_RANGE, with a_norm = ||A / lambda_scale||_inf; written with
     !> quotients, which cannot overflow (sigma may be clamped to huge, see eigen_analysis).
     !> Otherwise STATUS_BAD_INPUT in one line naming the variable (the caller adds the file).
-    subroutine operator_check_target(this, a_norm, target_input, unit_exponent, stat)
+    subroutine operator_check_target(this, a_norm, target_input, units, stat)
         class(contact_operator_t), intent(in) :: this
         real(wp), intent(in) :: a_norm, target_input
-        integer, intent(in) :: unit_exponent
+        type(units_t), intent(in) :: units
         type(status_t), intent(out) :: stat
         if (.not. abs(this%sigma) > (TARGET_RANGE/a_norm)/this%lambda_scale) return
         call stat%fail(STATUS_BAD_INPUT, '&eigen: target = '// &
             real_to_text(target_input)//': expected |target| <= '// &
-            short(scale((TARGET_RANGE/a_norm)/this%lambda_scale, unit_exponent))// &
+            short(units%mu_to_input((TARGET_RANGE/a_norm)/this%lambda_scale))// &
             ' (1e6 / ||A||, the scale of the spectrum here: further out, mu = target '// &
             '+ 1/nu cancels and loses more than 6 of the 16 digits)')
     end subroutine operator_check_target
@@ -256,8 +259,7 @@ contains
         type(status_t), intent(out) :: stat
         real(wp) :: v(this%p), x(this%p), product(this%p), mx(this%p), direction(2)
         integer :: isgn(this%p), kase, isave(3)
-        direction = this%lambda/this%lambda_scale*contact%tangent - &
-                    contact%normal/this%lambda_scale
+        direction = contact%slip_direction(this%lambda, this%lambda_scale)
         estimate = 0.0_wp
         kase = 0
         do
@@ -306,8 +308,7 @@ contains
         ! allocated first: reallocation on assignment would read the undefined bounds that
         ! intent(out) leaves (UBSan saw their arithmetic overflow)
         allocate (a(this%p, this%p))
-        a(:, :) = reduced_matrix(kt_nn/this%lambda_scale, kt_nt, this%mass, &
-                                 this%lambda/this%lambda_scale)
+        a(:, :) = scaled_reduced_matrix(kt_nn, kt_nt, this%mass, this%lambda)
     end subroutine operator_dense_a
 
     !> mu of an eigenvalue nu of the operator: A y = theta y with nu = (theta / lambda_scale)
@@ -315,7 +316,7 @@ contains
     elemental complex(wp) function operator_mu_of(this, nu) result(mu)
         class(contact_operator_t), intent(in) :: this
         complex(wp), intent(in) :: nu
-        mu = this%sigma + (1.0_wp/nu)/this%lambda_scale
+        mu = this%sigma + mu_of_theta(nu, this%lambda_scale)
     end function operator_mu_of
 
     !> out = A y / lambda_scale = N K^-1 (lambda T' - N') M y / lambda_scale, through two
@@ -334,8 +335,7 @@ contains
         call this%mass%matvec(y, my)
         z = 0.0_wp
         do a = 1, this%p
-            z(this%slot(:, a)) = (this%lambda/this%lambda_scale*this%tangent - &
-                                  this%normal/this%lambda_scale)*my(a)
+            z(this%slot(:, a)) = this%direction*my(a)
         end do
         call dtrsv('L', 'N', 'N', 2*this%p, this%l_tail, 2*this%p, z, 1)
         call dtrsv('L', 'T', 'N', 2*this%p, this%l_tail, 2*this%p, z, 1)
@@ -480,10 +480,10 @@ contains
         end if
         if (options%full) then
             call op%setup_full(k, b, chol, contact, lambda, options%target, stat, &
-                               options%target_input, options%unit_exponent)
+                               options%target_input, options%units)
         else
             call op%setup(chol, contact, lambda, options%target, stat, options%target_input, &
-                          options%unit_exponent)
+                          options%units)
         end if
         if (.not. stat%ok()) return
 
@@ -504,7 +504,7 @@ contains
                 end if
                 if (op%full) then
                     call reduced%setup(chol, contact, lambda, options%target, stat, &
-                                       options%target_input, options%unit_exponent)
+                                       options%target_input, options%units)
                     if (.not. stat%ok()) return
                     call dense_ritz(reduced, options%nev, options%cn_max, run, stat)
                     if (.not. stat%ok()) return

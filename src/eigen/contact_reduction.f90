@@ -25,7 +25,15 @@ module contact_reduction
     implicit none
     private
     public :: factor_stiffness, contact_tail, flexibility_blocks, contact_flexibility, &
-              lift_eigenvectors, lift_block_columns, reduced_matrix, lambda_unit
+              lift_eigenvectors, lift_block_columns, reduced_matrix, scaled_reduced_matrix, &
+              lambda_unit, mu_of_theta
+
+    !> mu = 1 / theta of an eigenvalue theta / unit of A / unit (unit: lambda_unit, or 1):
+    !> the one place the reciprocal is taken. unit is a power of two, so (1 / theta) / unit
+    !> is 1 / (theta unit) exactly.
+    interface mu_of_theta
+        module procedure mu_of_theta_real, mu_of_theta_complex
+    end interface mu_of_theta
 
     !> Columns per multi-right-hand-side solve of the lift: up to 64 keeps CHOLMOD's
     !> supernodal solve in BLAS-3 (each solve streams the whole factor), but one n x block
@@ -64,6 +72,27 @@ contains
         end do
     end function reduced_matrix
 
+    !> A(lambda) / lambda_unit(lambda) (see reduced_matrix and lambda_unit): what every
+    !> solver decomposes; its eigenvalues are theta / lambda_unit (mu_of_theta).
+    pure function scaled_reduced_matrix(kt_nn, kt_nt, mass, lambda) result(a)
+        real(wp), intent(in) :: kt_nn(:, :), kt_nt(:, :)   !! (p, p)
+        type(csr_matrix_t), intent(in) :: mass
+        real(wp), intent(in) :: lambda
+        real(wp) :: a(size(kt_nn, 1), size(kt_nn, 2))
+        a = reduced_matrix(kt_nn/lambda_unit(lambda), kt_nt, mass, lambda/lambda_unit(lambda))
+    end function scaled_reduced_matrix
+
+    elemental real(wp) function mu_of_theta_real(theta, unit) result(mu)
+        real(wp), intent(in) :: theta, unit
+        mu = (1.0_wp/theta)/unit
+    end function mu_of_theta_real
+
+    elemental complex(wp) function mu_of_theta_complex(theta, unit) result(mu)
+        complex(wp), intent(in) :: theta
+        real(wp), intent(in) :: unit
+        mu = (1.0_wp/theta)/unit
+    end function mu_of_theta_complex
+
     !> A power of two 2^c with |lambda| / 2^c in [1, 2) when |lambda| > 1, else 1. The
     !> solvers work on A / lambda_unit and (lambda t - n) / lambda_unit, exact rescalings that
     !> only divide the eigenvalues theta and the vectors phi by it: lambda Kt_nt overflows from
@@ -80,8 +109,7 @@ contains
         class(reduced_blocks_t), intent(in) :: this
         real(wp), intent(in) :: lambda
         real(wp) :: a(size(this%kt_nn, 1), size(this%kt_nn, 2))
-        a = reduced_matrix(this%kt_nn/lambda_unit(lambda), this%kt_nt, this%mass, &
-                           lambda/lambda_unit(lambda))
+        a = scaled_reduced_matrix(this%kt_nn, this%kt_nt, this%mass, lambda)
     end function reduced_blocks_matrix
 
     !> Factor K for the eigenproblem, whatever the solver and analysis: METIS nested
@@ -283,8 +311,7 @@ contains
         ! lambda t - n up to a factor, which only scales phi: divided by lambda_unit, so that
         ! phi and B phi (~ lambda^2) cannot overflow in the backward error (they gave
         ! Infinity from |lambda| ~ 1e155)
-        direction = lambda/lambda_unit(lambda)*contact%tangent - &
-                    contact%normal/lambda_unit(lambda)
+        direction = contact%slip_direction(lambda, lambda_unit(lambda))
         k_norm = k%norm_inf()
         b_norm = b%norm_inf()
         allocate (residual(n_ev), vectors(n_free, min(n_keep, n_ev)))

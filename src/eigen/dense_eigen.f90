@@ -13,8 +13,8 @@ module dense_eigen
     use csr_matrix, only: csr_matrix_t
     use sparse_cholesky, only: cholesky_t
     use contact_boundary, only: contact_t
-    use contact_reduction, only: contact_flexibility, lift_eigenvectors, reduced_matrix, &
-                                 lambda_unit
+    use contact_reduction, only: contact_flexibility, lift_eigenvectors, &
+                                 scaled_reduced_matrix, lambda_unit, mu_of_theta
     use spectrum, only: spectrum_t, order_eigenvalues, KIND_POSITIVE, KIND_COMPLEX
     use lapack_interfaces, only: dgeevx, lapack_info_message, lapack_eigenvector
     implicit none
@@ -52,13 +52,12 @@ contains
         if (present(kt_nn_given) .and. present(kt_nt_given)) then
             kt_nt = kt_nt_given   ! kept for the lambda sensitivity below
             allocate (a(p, p))
-            a(:, :) = reduced_matrix(kt_nn_given/lambda_scale, kt_nt, contact%mass, &
-                                     lambda/lambda_scale)
+            a(:, :) = scaled_reduced_matrix(kt_nn_given, kt_nt, contact%mass, lambda)
         else
             call contact_flexibility(chol, contact, kt_nn, kt_nt, stat)
             if (.not. stat%ok()) return
             allocate (a(p, p))
-            a(:, :) = reduced_matrix(kt_nn/lambda_scale, kt_nt, contact%mass, lambda/lambda_scale)
+            a(:, :) = scaled_reduced_matrix(kt_nn, kt_nt, contact%mass, lambda)
             deallocate (kt_nn)
         end if
         if (present(reduction_seconds)) reduction_seconds = wall_time() - start
@@ -91,8 +90,8 @@ contains
         allocate (condition(p), source=-1.0_wp)
         do j = 1, p
             if (abs(theta(j)) > 0.0_wp) then
-                mu(j) = (1.0_wp/theta(j))/lambda_scale
-                if (.not. (abs(wi(j)) > 0.0_wp)) mu(j) = cmplx((1.0_wp/wr(j))/lambda_scale, &
+                mu(j) = mu_of_theta(theta(j), lambda_scale)
+                if (.not. (abs(wi(j)) > 0.0_wp)) mu(j) = cmplx(mu_of_theta(wr(j), lambda_scale), &
                                                                0.0_wp, wp)
                 ! relative condition of theta (hence of mu = 1/theta) on the balanced matrix
                 condition(j) = abnrm/(rconde(j)*abs(theta(j)))

@@ -11,8 +11,8 @@ module elasticity
                              local_coordinates
     implicit none
     private
-    public :: plane_strain_matrix, lame_coefficients, element_stiffness, stiffness_rule, &
-              load_rule, stiffness_tables, element_energy
+    public :: plane_strain_matrix, lame_coefficients, lame_ratio, element_stiffness, &
+              stiffness_rule, load_rule, stiffness_tables, element_energy
     public :: ELEMENT_OK, ELEMENT_INVERTED, ELEMENT_BAD_ARGUMENT
 
     ! Outcomes of element_stiffness; the caller, which knows the cell number, words them.
@@ -51,6 +51,13 @@ contains
         lame_l = young*poisson/((1.0_wp + poisson)*(1.0_wp - 2.0_wp*poisson))
         shear_g = 0.5_wp*young/(1.0_wp + poisson)
     end subroutine lame_coefficients
+
+    !> L/G = 2 nu / (1 - 2 nu): how close to incompressible the material is (the spread of
+    !> K's pivots, the locking of low-order elements).
+    elemental real(wp) function lame_ratio(poisson)
+        real(wp), intent(in) :: poisson
+        lame_ratio = 2.0_wp*poisson/(1.0_wp - 2.0_wp*poisson)
+    end function lame_ratio
 
     !> The quadrature rule element_stiffness uses: exact for affine cells (straight-sided
     !> triangles, parallelograms), where the integrand is a polynomial of degree 2(p - 1). P1:

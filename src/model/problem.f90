@@ -15,11 +15,13 @@ module problem
     use mesh_check, only: check_mesh
     use dof_map, only: dof_map_t, build_dof_map
     use assembly, only: assemble_stiffness
+    use elasticity, only: lame_ratio
     use contact_boundary, only: contact_t, build_contact
     use csr_matrix, only: csr_matrix_t
+    use unit_scaling, only: units_t, units_of
     implicit none
     private
-    public :: problem_t, build_problem, assemble_all_dofs, unit_exponent, explain_singular_k
+    public :: problem_t, build_problem, assemble_all_dofs, explain_singular_k
     public :: SINGULAR_LAME_RATIO, SINGULAR_ASPECT_RATIO
 
     !> A K that CHOLMOD finds numerically singular is blamed on &material poisson from this
@@ -50,22 +52,18 @@ module problem
         integer :: contact_part = 0
         real(wp) :: young = 0.0_wp
         real(wp) :: poisson = 0.0_wp
-        !> Units of k and contact (eigen analyses, see build_problem): k is K / 2^young_exponent
-        !> and contact%mass is M / 2^length_exponent, so the eigenvalues mu of k, B(contact)
-        !> are those of K, B divided by 2^mu_exponent(). 0, 0 for 'branch' and 'solve'.
-        integer :: young_exponent = 0
-        integer :: length_exponent = 0
-    contains
-        procedure :: mu_exponent => problem_mu_exponent
+        !> The units of k and contact%mass (units_t): scaled for the eigen analyses (see
+        !> build_problem), the input's for 'branch' and 'solve'.
+        type(units_t) :: units
     end type problem_t
 
 contains
 
     !> Mesh the domain, resolve the boundary part names, number the free dofs, collect the
     !> contact boundary and assemble K; `with_all_dofs` also keeps K and Gamma_C on all dofs.
-    !> Without `with_all_dofs` (the eigen analyses) K and Gamma_C are in units of E and of the
-    !> mesh size (powers of two: young_exponent, length_exponent); prob%mesh keeps the input
-    !> coordinates. `given_mesh` replaces the mesh of &mesh (a level of an adaptive loop).
+    !> Without `with_all_dofs` (the eigen analyses) K and Gamma_C are in the scaled units of
+    !> prob%units; prob%mesh keeps the input coordinates. `given_mesh` replaces the mesh of
+    !> &mesh (a level of an adaptive loop).
     subroutine build_problem(config, prob, stat, with_all_dofs, given_mesh)
         type(config_t), intent(in) :: config
         type(problem_t), intent(out) :: prob
@@ -136,19 +134,14 @@ contains
                 stat%message = config%input_file//': &mesh: contact: '//stat%message
         end subroutine free_contact
 
-        !> The eigen analyses: K and Gamma_C in units where E and the mesh size are in [1, 2).
-        !> mu scales exactly like E / size (2D: K does not change with the size, M grows with
-        !> it), and a change of unit by a power of two is exact, so the scaled problem is the
-        !> input problem itself, while the products of the assembly (det J ~ size^2, entries
-        !> ~ E) and of the solvers stay far from overflow and underflow. prob%mesh keeps the
-        !> input coordinates.
+        !> The eigen analyses: K and Gamma_C in the scaled units (units_t), where E and the
+        !> mesh size are in [1, 2). prob%mesh keeps the input coordinates.
         subroutine unit_system(stat)
             type(status_t), intent(out) :: stat
             real(wp), allocatable :: physical_coords(:, :)
-            prob%young_exponent = unit_exponent(prob%young)
-            prob%length_exponent = unit_exponent(maxval(abs(prob%mesh%coords)))
+            prob%units = units_of(prob%young, prob%mesh%coords)
             allocate (physical_coords, source=prob%mesh%coords)
-            prob%mesh%coords = scale(prob%mesh%coords, -prob%length_exponent)
+            prob%mesh%coords = prob%units%scaled_lengths(prob%mesh%coords)
             ! a coordinate more than ~600 decades below the largest (width = 1e-300 with
             ! height = 1e300) leaves the normal range in any one unit
             if (any(abs(physical_coords) > 0.0_wp .and. &
@@ -160,7 +153,7 @@ contains
             else
                 call free_contact(stat)
                 if (stat%ok()) call assemble_stiffness(prob%mesh, prob%dofs, &
-                    scale(prob%young, -prob%young_exponent), prob%poisson, prob%k, stat)
+                    prob%units%scaled_young(prob%young), prob%poisson, prob%k, stat)
             end if
             call move_alloc(physical_coords, prob%mesh%coords)
         end subroutine unit_system
@@ -244,7 +237,7 @@ contains
         type(mesh_t), intent(in) :: m
         type(status_t), intent(inout) :: stat
         character(len=:), allocatable :: detail, place
-        real(wp) :: lame_ratio, aspect   !! aspect: log10 of the cells' aspect ratio
+        real(wp) :: ratio, aspect   !! ratio: L/G; aspect: log10 of the cells' aspect ratio
         real(wp) :: thinness
         integer :: at, worst
 
@@ -252,13 +245,11 @@ contains
         detail = ''
         at = index(stat%message, '(CHOLMOD')
         if (at > 0) detail = ' '//stat%message(at:)
-        associate (nu => config%material%poisson)
-            lame_ratio = 2.0_wp*nu/(1.0_wp - 2.0_wp*nu)
-        end associate
-        if (lame_ratio >= SINGULAR_LAME_RATIO) then
+        ratio = lame_ratio(config%material%poisson)
+        if (ratio >= SINGULAR_LAME_RATIO) then
             call stat%fail(STATUS_BAD_INPUT, config%input_file//': &material: poisson = '// &
                 real_to_text(config%material%poisson)//': so close to 0.5 that L/G = 2 nu / '// &
-                '(1 - 2 nu) = '//short(lame_ratio)//' makes K numerically singular'//detail// &
+                '(1 - 2 nu) = '//short(ratio)//' makes K numerically singular'//detail// &
                 '; expected L/G below '//short(SINGULAR_LAME_RATIO)//' (poisson <= 0.49999999995)')
             return
         end if
@@ -309,19 +300,6 @@ contains
             end if
         end do
     end subroutine thinnest_cell
-
-    !> e such that x / 2^e is in [1, 2) (x > 0; a subnormal x too): the unit of x.
-    elemental integer function unit_exponent(x)
-        real(wp), intent(in) :: x
-        unit_exponent = 0
-        if (x > 0.0_wp) unit_exponent = exponent(x) - 1
-    end function unit_exponent
-
-    !> mu of the physical problem = 2^mu_exponent x mu of (k, B(contact)).
-    pure integer function problem_mu_exponent(this)
-        class(problem_t), intent(in) :: this
-        problem_mu_exponent = this%young_exponent - this%length_exponent
-    end function problem_mu_exponent
 
     !> K and the contact boundary on all dofs (none prescribed), in the node-major numbering
     !> of dof_map::all_dof: what the compliance problem with Dirichlet data needs.

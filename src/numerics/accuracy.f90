@@ -7,6 +7,7 @@ module accuracy
     use strings, only: to_string, short => short_real_text
     use real_format, only: real_to_text
     use spectrum, only: spectrum_t
+    use elasticity, only: lame_ratio
     implicit none
     private
     public :: accuracy_warnings, forward_error_estimate, lame_ratio
@@ -45,12 +46,6 @@ contains
         real(wp), intent(in) :: condition, residual
         forward_error_estimate = condition*max(residual, epsilon(1.0_wp))
     end function forward_error_estimate
-
-    !> L/G = 2 nu / (1 - 2 nu): how close to incompressible the material is.
-    elemental real(wp) function lame_ratio(poisson)
-        real(wp), intent(in) :: poisson
-        lame_ratio = 2.0_wp*poisson/(1.0_wp - 2.0_wp*poisson)
-    end function lame_ratio
 
     !> Every reason to distrust the result of an eigen run, one sentence each; none for a
     !> well-posed, well-resolved problem such as the reference scene.

@@ -36,7 +36,7 @@ module enrichment
     public :: enrichment_t, build_enrichment, enriched_element, enriched_mesh
 
     !> The problem of `prob` with elements one degree higher on the same cells, in the units
-    !> of prob (lengths / 2^length_exponent, E / 2^young_exponent).
+    !> of prob (prob%units).
     type, public :: enrichment_t
         integer :: element = 0
         type(mesh_t) :: mesh
@@ -99,8 +99,8 @@ contains
         call enriched_mesh(prob%mesh, enriched_element(prob%mesh%element), enr%mesh, stat)
         if (.not. stat%ok()) return
         ! the units of prob (see build_problem)
-        enr%mesh%coords = scale(enr%mesh%coords, -prob%length_exponent)
-        enr%young = scale(prob%young, -prob%young_exponent)
+        enr%mesh%coords = prob%units%scaled_lengths(enr%mesh%coords)
+        enr%young = prob%units%scaled_young(prob%young)
         call build_dof_map(enr%mesh, prob%dirichlet_parts, enr%dofs, stat)
         if (stat%ok()) call assemble_stiffness(enr%mesh, enr%dofs, enr%young, prob%poisson, &
                                                enr%k, stat)
@@ -247,7 +247,7 @@ contains
         ! allocated before its first assignment: gfortran 12 reads the bounds of an
         ! unallocated left-hand side for the reallocation test, which UBSan reports
         allocate (me(per_edge, per_edge))
-        row_factor = lambda*this%contact%tangent - this%contact%normal
+        row_factor = this%contact%slip_direction(lambda)
         do e = 1, size(this%mesh%edges, 2)
             if (this%mesh%edge_part(e) /= contact_part) cycle
             me = edge_mass(per_edge, norm2(this%mesh%coords(:, this%mesh%edges(2, e)) - &

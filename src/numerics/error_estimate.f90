@@ -31,7 +31,7 @@ module error_estimate
     use contact_boundary, only: assemble_b
     use csr_matrix, only: csr_matrix_t
     use sparse_cholesky, only: cholesky_t
-    use contact_reduction, only: reduced_matrix, lambda_unit
+    use contact_reduction, only: scaled_reduced_matrix, lambda_unit, mu_of_theta
     use dual_eigen, only: reduced_left_eigenvector
     use problem, only: problem_t
     use enrichment, only: enrichment_t, build_enrichment
@@ -66,6 +66,8 @@ module error_estimate
         real(wp) :: seconds = 0.0_wp             !! wall time of the estimate
         !> why it was not computed when &eigen estimate decided so ('' otherwise)
         character(len=:), allocatable :: skipped
+        !> why the estimate failed (the run goes on with a warning); unallocated otherwise
+        character(len=:), allocatable :: failure
     end type error_estimate_t
 
     public :: estimate_label
@@ -105,14 +107,14 @@ contains
         end if
         ! A / lambda_unit, as the dense solver: eigenvalues theta / lambda_unit
         unit = lambda_unit(lambda)
-        a = reduced_matrix(kt_nn/unit, kt_nt, enr%contact%mass, lambda/unit)
+        a = scaled_reduced_matrix(kt_nn, kt_nt, enr%contact%mass, lambda)
         deallocate (kt_nn, kt_nt)
         call reduced_left_eigenvector(a, 1.0_wp/(mu_h*unit), w, theta, stat)
         if (.not. stat%ok()) then
             call chol%free()
             return
         end if
-        est%mu_enriched = 1.0_wp/(theta*unit)
+        est%mu_enriched = mu_of_theta(theta, unit)
         ! psi+ = K+^-1 N+' w+ (the factor mu+ only scales it)
         allocate (rhs(enr%dofs%n_free, 1), source=0.0_wp)
         allocate (psi(enr%dofs%n_free, 1))

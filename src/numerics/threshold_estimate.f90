@@ -65,7 +65,7 @@ contains
         allocate (u(n_free, 2))
         do side = SIDE_PLUS, SIDE_MINUS
             if (.not. thr%found(side)) cycle
-            call contact%scatter(thr%lambda(side)*contact%tangent - contact%normal, &
+            call contact%scatter(contact%slip_direction(thr%lambda(side)), &
                                  thr%vectors(:, side), rhs(:, side))
         end do
         call chol%solve(rhs, u, stat)

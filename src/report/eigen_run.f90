@@ -11,7 +11,8 @@ module eigen_run
     use version, only: NCEIG_VERSION
     use run_config, only: config_t
     use problem, only: problem_t
-    use eigen_analysis, only: eigen_result_t, solve_eigen, solver_name, operator_name, critical_cn
+    use eigen_analysis, only: eigen_result_t, solve_eigen, estimate_eigen, solver_name, &
+                              operator_name, critical_cn
     use critical_point, only: slip_sign, critical_c_t
     use analysis_base, only: analysis_t
     use spectrum, only: spectrum_t, kind_name, KIND_COMPLEX
@@ -23,7 +24,6 @@ module eigen_run
     use element_types, only: element_name, element_corners
     use mode_plot, only: plot_mode
     use blas_info, only: blas_in_use
-    use csr_matrix, only: csr_matrix_t
     use error_estimate, only: error_estimate_t, estimate_label
     implicit none
     private
@@ -48,8 +48,8 @@ contains
         type(problem_t), intent(in) :: prob
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
-        call solve_eigen(config, prob, config%analysis%lambda, this%res, timings, stat, &
-                         with_error_estimate=.true.)
+        call solve_eigen(config, prob, config%analysis%lambda, this%res, timings, stat)
+        if (stat%ok()) call estimate_eigen(config, prob, this%res, timings)
     end subroutine eigen_run_solve
 
     subroutine eigen_run_write_files(this, stage, config, prob, stat)
@@ -369,26 +369,16 @@ contains
             size(res%spec%vectors, 2) > 0) call draw_first_mode(stage, config, prob, res, plot_note)
     end subroutine write_eigen_files
 
-    !> K.mtx and B.mtx of the input problem: prob%k and res%b are in units of E and of the mesh
-    !> size (powers of two, so scaling back is exact; beyond the binary64 range Infinity).
+    !> K.mtx and B.mtx of the input problem: prob%k and res%b are in prob%units (powers of
+    !> two, so the conversion is exact; beyond the binary64 range Infinity).
     subroutine write_matrices(stage, prob, res, stat)
         type(output_stage_t), intent(inout) :: stage
         type(problem_t), intent(in) :: prob
         type(eigen_result_t), intent(in) :: res
         type(status_t), intent(out) :: stat
-        type(csr_matrix_t) :: physical
-        if (prob%young_exponent == 0 .and. prob%length_exponent == 0) then
-            call write_matrix_market(stage%path('K.mtx'), prob%k, stat)
-            if (stat%ok()) call write_matrix_market(stage%path('B.mtx'), res%b, stat)
-            return
-        end if
-        physical = prob%k
-        physical%val = scale(physical%val, prob%young_exponent)
-        call write_matrix_market(stage%path('K.mtx'), physical, stat)
-        if (.not. stat%ok()) return
-        physical = res%b
-        physical%val = scale(physical%val, prob%length_exponent)
-        call write_matrix_market(stage%path('B.mtx'), physical, stat)
+        call write_matrix_market(stage%path('K.mtx'), prob%units%stiffness_to_input(prob%k), stat)
+        if (stat%ok()) call write_matrix_market(stage%path('B.mtx'), &
+                                                prob%units%mass_to_input(res%b), stat)
     end subroutine write_matrices
 
     !> mode_001.png of the first mode (its real part), joined to the set when drawn.
