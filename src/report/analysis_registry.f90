@@ -4,7 +4,7 @@
 module analysis_registry
     use analysis_base, only: analysis_t
     use eigen_run, only: eigen_run_t
-    use threshold_run, only: threshold_run_t
+    use threshold_run, only: threshold_run_t, sweep_run_t, adapt_threshold_run_t
     use branch_run, only: branch_run_t
     use solve_run, only: solve_run_t
     use adapt_run, only: adapt_run_t
@@ -14,13 +14,13 @@ module analysis_registry
 
 contains
 
-    !> The analysis of `kind`, adaptive (&adapt tolerance > 0) or not; an unknown kind
-    !> (which the input check refuses first) leaves `analysis` unallocated.
+    !> The analysis of `kind`, adaptive (&adapt tolerance > 0) or not: each variant is a type
+    !> of its own, chosen here once. An unknown kind (which the input check refuses first)
+    !> leaves `analysis` unallocated. 'lambda_sweep' adapts each point itself (&adapt).
     subroutine new_analysis(kind, adaptive, analysis)
         character(len=*), intent(in) :: kind
         logical, intent(in) :: adaptive
         class(analysis_t), allocatable, intent(out) :: analysis
-        type(threshold_run_t) :: sweep, threshold
         select case (kind)
         case ('eigen')
             if (adaptive) then
@@ -29,11 +29,12 @@ contains
                 allocate (eigen_run_t :: analysis)
             end if
         case ('threshold')
-            threshold%adaptive = adaptive
-            allocate (analysis, source=threshold)
-        case ('lambda_sweep')
-            sweep%with_sweep = .true.
-            allocate (analysis, source=sweep)
+            if (adaptive) then
+                allocate (adapt_threshold_run_t :: analysis)
+            else
+                allocate (threshold_run_t :: analysis)
+            end if
+        case ('lambda_sweep'); allocate (sweep_run_t :: analysis)
         case ('branch'); allocate (branch_run_t :: analysis)
         case ('solve'); allocate (solve_run_t :: analysis)
         end select

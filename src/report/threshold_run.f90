@@ -1,9 +1,10 @@
 ! SPDX-License-Identifier: MIT
-!> analysis = 'threshold' and 'lambda_sweep': the files of an eigen run at &analysis lambda,
-!> lambda_sweep.csv for a sweep (and lambda_sweep.png), summary.json with the threshold
-!> and sweep keys; and the lines they add to the stdout summary. 'threshold' with &adapt
-!> tolerance > 0 adapts the mesh to the thresholds first (adaptive_threshold) and reports on
-!> the final mesh, with adapt.csv, adapt.png and mesh.msh as an adaptive eigen run does.
+!> analysis = 'threshold' and 'lambda_sweep', one type each: the files of an eigen run at
+!> &analysis lambda, lambda_sweep.csv for a sweep (and lambda_sweep.png), summary.json with
+!> the threshold and sweep keys; and the lines they add to the stdout summary. The adaptive
+!> 'threshold' (&adapt tolerance > 0, a type of its own) adapts the mesh to the thresholds
+!> first (adaptive_threshold) and reports on the final mesh, with adapt.csv, adapt.png and
+!> mesh.msh as an adaptive eigen run does.
 module threshold_run
     use kinds, only: wp
     use status, only: status_t, STATUS_NOT_MET
@@ -39,22 +40,37 @@ module threshold_run
         'n_contact,n_cells,lambda_plus,error_estimate_plus,lambda_minus,'// &
         'error_estimate_minus,time_s,error_bar_plus,error_bar_minus'
 
-    !> 'threshold' (with_sweep false) or 'lambda_sweep'.
+    !> 'threshold': the thresholds on the mesh of &mesh.
     type, extends(analysis_t), public :: threshold_run_t
-        logical :: with_sweep = .false.
-        !> 'threshold' with &adapt: the loop, whose final problem the files describe
-        logical :: adaptive = .false.
-        type(adaptive_thresholds_t) :: adapted
         type(threshold_result_t) :: res
         character(len=:), allocatable :: plot_note   !! mode_001.png: where, or why not
-        character(len=:), allocatable :: sweep_note  !! lambda_sweep.png: where, or why not
-        character(len=:), allocatable :: adapt_note  !! adapt.png: where, or why not
     contains
         procedure :: solve => threshold_run_solve
         procedure :: write_files => threshold_run_write_files
         procedure :: summary => threshold_run_summary
         procedure :: report => threshold_run_report
     end type threshold_run_t
+
+    !> 'lambda_sweep': the thresholds and the lowest positive mu at every lambda of &sweep.
+    type, extends(threshold_run_t), public :: sweep_run_t
+        character(len=:), allocatable :: sweep_note  !! lambda_sweep.png: where, or why not
+    contains
+        procedure :: solve => sweep_run_solve
+        procedure :: write_files => sweep_run_write_files
+        procedure :: summary => sweep_run_summary
+        procedure :: report => sweep_run_report
+    end type sweep_run_t
+
+    !> 'threshold' with &adapt: the loop, whose final problem the files describe.
+    type, extends(threshold_run_t), public :: adapt_threshold_run_t
+        type(adaptive_thresholds_t) :: adapted
+        character(len=:), allocatable :: adapt_note  !! adapt.png: where, or why not
+    contains
+        procedure :: solve => adapt_threshold_run_solve
+        procedure :: write_files => adapt_threshold_run_write_files
+        procedure :: summary => adapt_threshold_run_summary
+        procedure :: report => adapt_threshold_run_report
+    end type adapt_threshold_run_t
 
 contains
 
@@ -64,15 +80,29 @@ contains
         type(problem_t), intent(in) :: prob
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
-        if (.not. this%adaptive) then
-            call solve_thresholds(config, prob, this%with_sweep, this%res, timings, stat)
-            if (.not. stat%ok() .or. .not. this%with_sweep) return
-            if (this%res%sweep%n_not_met > 0) call this%verdict%fail(STATUS_NOT_MET, &
-                config%input_file//': &adapt: '//to_string(this%res%sweep%n_not_met)// &
-                ' of the sweep''s points with a positive mu did not meet the tolerance, '// &
-                'the first at '//this%res%sweep%not_met//' (the set is written)')
-            return
-        end if
+        call solve_thresholds(config, prob, .false., this%res, timings, stat)
+    end subroutine threshold_run_solve
+
+    subroutine sweep_run_solve(this, config, prob, timings, stat)
+        class(sweep_run_t), intent(inout) :: this
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(in) :: prob
+        type(timings_t), intent(inout) :: timings
+        type(status_t), intent(out) :: stat
+        call solve_thresholds(config, prob, .true., this%res, timings, stat)
+        if (.not. stat%ok()) return
+        if (this%res%sweep%n_not_met > 0) call this%verdict%fail(STATUS_NOT_MET, &
+            config%input_file//': &adapt: '//to_string(this%res%sweep%n_not_met)// &
+            ' of the sweep''s points with a positive mu did not meet the tolerance, '// &
+            'the first at '//this%res%sweep%not_met//' (the set is written)')
+    end subroutine sweep_run_solve
+
+    subroutine adapt_threshold_run_solve(this, config, prob, timings, stat)
+        class(adapt_threshold_run_t), intent(inout) :: this
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(in) :: prob
+        type(timings_t), intent(inout) :: timings
+        type(status_t), intent(out) :: stat
         call adapt_thresholds(config, prob, this%adapted, timings, stat)
         if (stat%ok()) call solve_thresholds(config, this%adapted%prob, .false., this%res, &
                                              timings, stat, this%adapted%estimate)
@@ -82,7 +112,7 @@ contains
         if (stat%ok() .and. .not. this%adapted%converged) call this%verdict%fail( &
             STATUS_NOT_MET, config%input_file//': &adapt: '//this%adapted%outcome// &
             ' (the set of the last level is written)')
-    end subroutine threshold_run_solve
+    end subroutine adapt_threshold_run_solve
 
     subroutine threshold_run_write_files(this, stage, config, prob, stat)
         class(threshold_run_t), intent(inout) :: this
@@ -90,30 +120,44 @@ contains
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: prob
         type(status_t), intent(out) :: stat
-        if (this%adaptive) then
-            call write_eigen_files(stage, config, this%adapted%prob, this%res%eigen, stat, &
-                                   this%plot_note)
-            if (stat%ok()) call write_threshold_adapt_csv(stage%path('adapt.csv'), &
-                                                          this%adapted, stat)
-            if (stat%ok()) call write_adapted_mesh(stage, this%adapted%prob, stat)
-            this%adapt_note = ''
-            if (stat%ok() .and. config%output%plot) call draw_adapt_plot(stage, config, &
-                this%summary(config, prob), any(this%adapted%levels%estimated(1)) .or. &
-                any(this%adapted%levels%estimated(2)), this%adapt_note, stat)
-            return
-        end if
         call write_eigen_files(stage, config, prob, this%res%eigen, stat, this%plot_note)
+    end subroutine threshold_run_write_files
+
+    subroutine sweep_run_write_files(this, stage, config, prob, stat)
+        class(sweep_run_t), intent(inout) :: this
+        type(output_stage_t), intent(inout) :: stage
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(in) :: prob
+        type(status_t), intent(out) :: stat
+        call this%threshold_run_t%write_files(stage, config, prob, stat)
         if (stat%ok() .and. allocated(this%res%sweep%lambda)) then
             call write_sweep_csv(stage%path(SWEEP_FILE), this%res%sweep, stat)
         end if
         if (stat%ok() .and. allocated(this%res%sweep%lambda) .and. config%sweep%plot) &
             call draw_sweep(this, stage, config, prob, stat)
-    end subroutine threshold_run_write_files
+    end subroutine sweep_run_write_files
+
+    subroutine adapt_threshold_run_write_files(this, stage, config, prob, stat)
+        class(adapt_threshold_run_t), intent(inout) :: this
+        type(output_stage_t), intent(inout) :: stage
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(in) :: prob
+        type(status_t), intent(out) :: stat
+        call write_eigen_files(stage, config, this%adapted%prob, this%res%eigen, stat, &
+                               this%plot_note)
+        if (stat%ok()) call write_threshold_adapt_csv(stage%path('adapt.csv'), &
+                                                      this%adapted, stat)
+        if (stat%ok()) call write_adapted_mesh(stage, this%adapted%prob, stat)
+        this%adapt_note = ''
+        if (stat%ok() .and. config%output%plot) call draw_adapt_plot(stage, config, &
+            this%summary(config, prob), any(this%adapted%levels%estimated(1)) .or. &
+            any(this%adapted%levels%estimated(2)), this%adapt_note, stat)
+    end subroutine adapt_threshold_run_write_files
 
     !> lambda_sweep.png into the staging folder, so that it joins the set: the plot script
     !> reads the curve and a summary.json made now for it (a scratch file, not the set's).
     subroutine draw_sweep(this, stage, config, prob, stat)
-        class(threshold_run_t), intent(inout) :: this
+        class(sweep_run_t), intent(inout) :: this
         type(output_stage_t), intent(inout) :: stage
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: prob
@@ -140,33 +184,58 @@ contains
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: prob
         type(json_object_t) :: summary
-        if (this%adaptive) then
-            summary = eigen_summary_json(config, this%adapted%prob, this%res%eigen, this%timings)
-        else
-            summary = eigen_summary_json(config, prob, this%res%eigen, this%timings)
-        end if
+        summary = eigen_summary_json(config, prob, this%res%eigen, this%timings)
         call add_threshold_keys(summary, this%res)
-        if (allocated(this%res%sweep%lambda)) call add_sweep_keys(summary, config, this%res)
-        if (this%adaptive) call add_adapt_keys(summary, config, prob%dofs%n_free, &
-            size(this%adapted%levels) - 1, this%adapted%converged, this%adapted%outcome)
     end function threshold_run_summary
+
+    function sweep_run_summary(this, config, prob) result(summary)
+        class(sweep_run_t), intent(in) :: this
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(in) :: prob
+        type(json_object_t) :: summary
+        summary = this%threshold_run_t%summary(config, prob)
+        if (allocated(this%res%sweep%lambda)) call add_sweep_keys(summary, config, this%res)
+    end function sweep_run_summary
+
+    function adapt_threshold_run_summary(this, config, prob) result(summary)
+        class(adapt_threshold_run_t), intent(in) :: this
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(in) :: prob
+        type(json_object_t) :: summary
+        summary = eigen_summary_json(config, this%adapted%prob, this%res%eigen, this%timings)
+        call add_threshold_keys(summary, this%res)
+        call add_adapt_keys(summary, config, prob%dofs%n_free, &
+            size(this%adapted%levels) - 1, this%adapted%converged, this%adapted%outcome)
+    end function adapt_threshold_run_summary
 
     function threshold_run_report(this, config, prob) result(text)
         class(threshold_run_t), intent(in) :: this
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: prob
         character(len=:), allocatable :: text
-        if (this%adaptive) then
-            text = threshold_summary_lines(config, this%adapted%prob, this%res, this%timings, &
-                                           this%plot_note)
-            text = text//adapt_report_lines(config, prob%dofs%n_free, &
-                size(this%adapted%levels) - 1, this%adapted%outcome, this%adapt_note)
-        else
-            text = threshold_summary_lines(config, prob, this%res, this%timings, this%plot_note)
-        end if
+        text = threshold_summary_lines(config, prob, this%res, this%timings, this%plot_note)
+    end function threshold_run_report
+
+    function sweep_run_report(this, config, prob) result(text)
+        class(sweep_run_t), intent(in) :: this
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(in) :: prob
+        character(len=:), allocatable :: text
+        text = this%threshold_run_t%report(config, prob)
         if (allocated(this%sweep_note)) text = text//new_line('a')//'  plot        '// &
                                                 this%sweep_note
-    end function threshold_run_report
+    end function sweep_run_report
+
+    function adapt_threshold_run_report(this, config, prob) result(text)
+        class(adapt_threshold_run_t), intent(in) :: this
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(in) :: prob
+        character(len=:), allocatable :: text
+        text = threshold_summary_lines(config, this%adapted%prob, this%res, this%timings, &
+                                       this%plot_note)
+        text = text//adapt_report_lines(config, prob%dofs%n_free, &
+            size(this%adapted%levels) - 1, this%adapted%outcome, this%adapt_note)
+    end function adapt_threshold_run_report
 
     !> level,n_dofs,n_contact,n_cells,lambda_plus,error_estimate_plus,lambda_minus,
     !> error_estimate_minus,time_s,error_bar_plus,error_bar_minus; a side's cells empty where
