@@ -6,6 +6,7 @@
 program test_output_stage
     use status, only: status_t, STATUS_IO
     use output_stage, only: output_stage_t
+    use strings, only: text_t
     use filesystem, only: file_exists, is_directory, process_id, make_directories, &
                           remove_file, remove_directory, process_gone, list_directory, &
                           remove_tree, close_output, MAX_NAME_LEN
@@ -44,13 +45,13 @@ program test_output_stage
     call t%check('begin succeeds', stat%ok())
     call t%check('begin does not create the directory itself', .not. file_exists(dir))
     call t%check('staging folder next to the directory', is_directory(staging))
-    a_path = stage%path('a.txt')
-    b_path = stage%path('b.txt')
+    call stage%add('a.txt', a_path)
+    call stage%add('b.txt', b_path)
     call t%check('path points into the staging folder', &
                  index(a_path, '/'//staging//'/a.txt', back=.true.) == len(a_path) - len(staging) - 6)
     call write_text(a_path, 'new a')
     call write_text(b_path, 'new b')
-    call write_text(stage%path('summary.json'), '  "files": ["a.txt", "b.txt"],')
+    call write_staged('summary.json', '  "files": ["a.txt", "b.txt"],')
     call stage%commit(stat)
     call t%check('commit succeeds', stat%ok())
     call t%check('a.txt committed', file_exists(dir//'/a.txt'))
@@ -61,17 +62,29 @@ program test_output_stage
     ! A second run replaces the set: its files, the user's files, not the older set's.
     call write_text(dir//'/notes.txt', 'mine')
     call stage%begin(dir, stat)
-    call write_text(stage%path('a.txt'), 'newer a')
-    call write_text(stage%path('summary.json'), '  "files": ["a.txt"],')
+    call write_staged('a.txt', 'newer a')
+    call write_staged('summary.json', '  "files": ["a.txt"],')
     call stage%commit(stat)
     call t%check('commit replaces an older file', first_line(dir//'/a.txt') == 'newer a')
     call t%check('the older set''s other file is gone', .not. file_exists(dir//'/b.txt'))
     call t%check('the user''s file is kept', first_line(dir//'/notes.txt') == 'mine')
     call t%check('no staging folder after a swap', .not. file_exists(staging))
 
+    ! A file an older build left unlisted (begin's unlisted_old) goes with the old set; the
+    ! user's file stays.
+    call write_text(dir//'/old.png', 'unlisted')
+    call stage%begin(dir, stat, [text_t('old.png')])
+    call write_staged('a.txt', 'newer a')
+    call write_staged('summary.json', '  "files": ["a.txt"],')
+    call stage%commit(stat)
+    call t%check('commit with unlisted_old succeeds', stat%ok())
+    call t%check('an unlisted file of an older build is removed', &
+                 .not. file_exists(dir//'/old.png'))
+    call t%check('beside it the user''s file is kept', first_line(dir//'/notes.txt') == 'mine')
+
     call stage%begin(dir, stat)
-    call write_text(stage%path('a.txt'), 'aborted a')
-    call write_text(stage%path('c.txt'), 'aborted c')
+    call write_staged('a.txt', 'aborted a')
+    call write_staged('c.txt', 'aborted c')
     call stage%abort()
     call t%check('abort leaves the older file', first_line(dir//'/a.txt') == 'newer a')
     call t%check('abort leaves no new file', .not. file_exists(dir//'/c.txt'))
@@ -82,7 +95,7 @@ program test_output_stage
     ! A folder of the user's cannot be carried over: the commit fails, nothing changes.
     call make_directories(dir//'/plots', stat)
     call stage%begin(dir, stat)
-    call write_text(stage%path('a.txt'), 'refused a')
+    call write_staged('a.txt', 'refused a')
     call stage%commit(stat)
     call t%check('a foreign folder: STATUS_IO', stat%code == STATUS_IO)
     if (allocated(stat%message)) print '(a)', '      '//stat%message
@@ -152,6 +165,14 @@ contains
         close (unit)
     end subroutine write_text
 
+    !> `text` as the file `name` of the stage's set.
+    subroutine write_staged(name, text)
+        character(len=*), intent(in) :: name, text
+        character(len=:), allocatable :: path
+        call stage%add(name, path)
+        call write_text(path, text)
+    end subroutine write_staged
+
     function first_line(path) result(line)
         character(len=*), intent(in) :: path
         character(len=80) :: line
@@ -208,11 +229,10 @@ contains
     !> the next run puts it back before anything else.
     subroutine check_without_swap()
         character(len=*), parameter :: ASIDE = 'stage_out/.run.nceig-old-999999999'
-        stage%exchange = .false.
         call stage%begin(dir, stat)
-        call write_text(stage%path('a.txt'), 'set aside a')
-        call write_text(stage%path('summary.json'), '  "files": ["a.txt"],')
-        call stage%commit(stat)
+        call write_staged('a.txt', 'set aside a')
+        call write_staged('summary.json', '  "files": ["a.txt"],')
+        call stage%commit(stat, swap=.false.)
         call t%check('without swap: commit succeeds', stat%ok())
         call t%check('without swap: the new set is in place', &
                      first_line(dir//'/a.txt') == 'set aside a')
@@ -220,7 +240,6 @@ contains
                      first_line(dir//'/notes.txt') == 'mine')
         call t%check('without swap: the old set is removed', &
                      .not. file_exists('stage_out/.run.nceig-old-'//trim(pid)))
-        stage%exchange = .true.
 
         call make_directories(ASIDE, stat)
         call write_text(ASIDE//'/a.txt', 'old a')
@@ -262,14 +281,14 @@ contains
         call t%check('in place: the same staging folder as from outside', &
                      stage%folder() == outside)
         call t%check('in place: the staging folder exists', is_directory(outside))
-        call write_text(stage%path('a.txt'), 'first a')
-        call write_text(stage%path('b.txt'), 'first b')
-        call write_text(stage%path('summary.json'), '  "files": ["a.txt", "b.txt"],')
+        call write_staged('a.txt', 'first a')
+        call write_staged('b.txt', 'first b')
+        call write_staged('summary.json', '  "files": ["a.txt", "b.txt"],')
         call stage%commit(stat)
         call t%check('in place: commit succeeds', stat%ok())
         call stage%begin('.', stat)
-        call write_text(stage%path('a.txt'), 'second a')
-        call write_text(stage%path('summary.json'), '  "files": ["a.txt"],')
+        call write_staged('a.txt', 'second a')
+        call write_staged('summary.json', '  "files": ["a.txt"],')
         call stage%commit(stat)
         call t%check('in place: the working directory is still the directory', &
                      first_line('notes.txt') == 'mine')
@@ -302,8 +321,8 @@ contains
                          len(folder) - index(folder, '/', back=.true.) <= MAX_NAME_LEN)
             call t%check('a '//trim(str(n))//'-byte name: the staging folder exists', &
                          is_directory(folder))
-            call write_text(stage%path('a.txt'), 'long a')
-            call write_text(stage%path('summary.json'), '  "files": ["a.txt"],')
+            call write_staged('a.txt', 'long a')
+            call write_staged('summary.json', '  "files": ["a.txt"],')
             call stage%commit(stat)
             call t%check('a '//trim(str(n))//'-byte name: commit succeeds', stat%ok())
             call t%check('a '//trim(str(n))//'-byte name: the file is in', &

@@ -28,7 +28,8 @@ module eigen_analysis
     use error_bar, only: single_bar
     implicit none
     private
-    public :: eigen_result_t, solve_eigen, estimate_eigen, choose_solver, eigen_with_factor, solver_name
+    public :: eigen_result_t, solve_eigen, estimate_eigen, choose_solver, eigen_with_factor, &
+              solver_name
     public :: operator_name, critical_cn
     public :: to_input_units, estimate_wanted
     public :: SOLVER_DENSE, SOLVER_ARPACK

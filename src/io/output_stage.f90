@@ -10,9 +10,9 @@
 !>
 !> The set is the run's files (summary.json lists them); the output directory is replaced
 !> as a whole. What else was in it: the previous set (the files its summary.json lists,
-!> summary.json and lambda_sweep.png, drawn after a commit) goes; any other file or link
-!> (the user's notes, files of runs older than that) is kept, as a hard link in the new
-!> directory, unless the new set has a file of that name. A subdirectory cannot be carried
+!> summary.json, and the names the caller gives begin as left unlisted by older sets)
+!> goes; any other file or link (the user's notes, files of runs older than that) is kept,
+!> as a hard link in the new directory, unless the new set has a file of that name. A subdirectory cannot be carried
 !> that way: the commit then fails (STATUS_IO), and the previous set stays.
 !>
 !> The directory is known by its real path (links, '.', '..' resolved), so every spelling
@@ -49,18 +49,14 @@ module output_stage
     !> the directory swap (dropped with the set).
     character(len=*), parameter :: IN_PLACE_PREFIX = '.nceig-partial-'
     character(len=*), parameter :: IN_PLACE_LOCK = '.nceig-lock'
-    !> Earlier builds drew it into the directory after the commit, unlisted in their sets;
-    !> now it is drawn in the staging folder and listed like any file.
-    character(len=*), parameter :: AFTER_COMMIT_FILE = 'lambda_sweep.png'
     character(len=*), parameter :: SUMMARY_FILE = 'summary.json'
     !> The longest name key (see name_key): '.'//key//STAGING_SUFFIX//9 digits fits
     !> MAX_NAME_LEN (255) with room to spare.
     integer, parameter :: MAX_KEY_LEN = 220
 
-    !> A file name registered through `path`.
-
-    !> One staging area. Use: begin, write each file to path(name), then commit, or abort
-    !> on any failure. Register the summary (summary.json) last: it lists the others.
+    !> One staging area. Use: begin, add each file (add gives the path to write it to), then
+    !> commit, or abort on any failure. Add the summary (summary.json) last: it lists the
+    !> others.
     type, public :: output_stage_t
         character(len=:), allocatable :: directory   !! final output directory
         character(len=:), allocatable :: parent      !! its parent, where staging and lock go
@@ -68,15 +64,16 @@ module output_stage
         character(len=:), allocatable :: key         !! base, or its shortened form: name_key
         character(len=:), allocatable :: staging     !! <parent>/.<base>.nceig-staging-<pid>
         character(len=:), allocatable :: aside       !! <parent>/.<base>.nceig-old-<pid>
-        type(text_t), allocatable :: names(:) !! files registered through path()
+        type(text_t), allocatable :: names(:) !! files registered through add()
+        !> files of older sets that their summary.json did not list (begin's `unlisted_old`)
+        type(text_t), allocatable :: unlisted_old(:)
         integer :: created_levels = 0                !! parents of `directory` begin made
         logical :: active = .false.                  !! between begin and commit/abort
-        logical :: exchange = .true.                 !! false: never swap (tests the fallback)
         logical :: in_place = .false.                !! commit file by file (see the header)
         logical :: inside = .false.                  !! staging and lock inside `directory`
     contains
         procedure :: begin => output_stage_begin
-        procedure :: path => output_stage_path
+        procedure :: add => output_stage_add
         procedure :: commit => output_stage_commit
         procedure :: abort => output_stage_abort
         procedure :: file_names => output_stage_file_names
@@ -92,10 +89,13 @@ contains
     !> at commit. A link to a directory is followed: the directory it names is replaced.
     !> Fails with STATUS_IO naming the directory when it cannot be created or written; then
     !> nothing was created.
-    subroutine output_stage_begin(this, directory, stat)
+    subroutine output_stage_begin(this, directory, stat, unlisted_old)
         class(output_stage_t), intent(inout) :: this
         character(len=*), intent(in) :: directory
         type(status_t), intent(out) :: stat
+        !> names an older build wrote into the directory without listing them in its set:
+        !> removed with the previous set, never carried over as the user's
+        type(text_t), intent(in), optional :: unlisted_old(:)
         character(len=32) :: pid_text
         integer :: slash
 
@@ -105,6 +105,9 @@ contains
         this%directory = canonical_path(trim(directory))
         if (allocated(this%names)) deallocate (this%names)
         allocate (this%names(0))
+        if (allocated(this%unlisted_old)) deallocate (this%unlisted_old)
+        allocate (this%unlisted_old(0))
+        if (present(unlisted_old)) this%unlisted_old = unlisted_old
         this%created_levels = 0
         slash = index(this%directory, '/', back=.true.)
         this%base = this%directory(slash + 1:)
@@ -247,12 +250,13 @@ contains
         end do
     end subroutine remove_stale_staging
 
-    !> Where to write the output file `name` while staging, registering it for commit.
-    !> Before begin (or after commit/abort) this is simply <directory>/<name> or <name>.
-    function output_stage_path(this, name) result(file_path)
+    !> Add the output file `name` to the set and give the path to write it to while staging.
+    !> Before begin (or after commit/abort) nothing is added and the path is simply
+    !> <directory>/<name> or <name>.
+    subroutine output_stage_add(this, name, file_path)
         class(output_stage_t), intent(inout) :: this
         character(len=*), intent(in) :: name
-        character(len=:), allocatable :: file_path
+        character(len=:), allocatable, intent(out) :: file_path
 
         if (.not. this%active) then
             file_path = trim(name)
@@ -261,7 +265,7 @@ contains
         end if
         file_path = this%staging//'/'//trim(name)
         if (.not. is_listed(trim(name), this%names)) call append_text(this%names, trim(name))
-    end function output_stage_path
+    end subroutine output_stage_add
 
     !> Put the staged set in place of the output directory in one step, and remove the old
     !> set. Where the file system cannot swap directories (NFS), the old directory is
@@ -275,9 +279,12 @@ contains
     !> old set removed. SIGTERM and SIGINT wait for
     !> the end of the commit. On failure the staged files are deleted, the previous set stays
     !> as it was, and STATUS_IO names the file or directory.
-    subroutine output_stage_commit(this, stat)
+    subroutine output_stage_commit(this, stat, swap)
         class(output_stage_t), intent(inout) :: this
         type(status_t), intent(out) :: stat
+        !> .false.: set the old directory aside instead of swapping, what a file system that
+        !> cannot swap (NFS) gets anyway; default .true.
+        logical, intent(in), optional :: swap
         type(status_t) :: sync_stat
         character(len=:), allocatable :: old
         integer :: lock
@@ -322,7 +329,7 @@ contains
             if (stat%ok() .and. linked) call sync_path(this%staging, stat)
         end if
         if (stat%ok()) call replace_directory(this%staging, this%directory, this%aside, old, &
-                                              stat, this%exchange)
+                                              stat, optional_true(swap))
         if (.not. stat%ok()) then
             call unlock_file(lock)
             call this%abort()
@@ -381,7 +388,9 @@ contains
             if (index(old_set(i)%text, '/') > 0 .or. old_set(i)%text == '..') cycle
             call remove_file(join(this%directory, old_set(i)%text))
         end do
-        call remove_file(join(this%directory, AFTER_COMMIT_FILE))
+        do i = 1, size(this%unlisted_old)
+            call remove_file(join(this%directory, this%unlisted_old(i)%text))
+        end do
         if (is_listed(SUMMARY_FILE, this%names)) &
             call rename_file(join(this%staging, SUMMARY_FILE), &
                              join(this%directory, SUMMARY_FILE), stat)
@@ -409,7 +418,7 @@ contains
         end if
         do i = 1, size(entries)
             name = trim(entries(i))
-            if (name == SUMMARY_FILE .or. name == AFTER_COMMIT_FILE) cycle
+            if (name == SUMMARY_FILE .or. is_listed(name, this%unlisted_old)) cycle
             if (index(name, IN_PLACE_PREFIX) == 1) cycle
             if (is_listed(name, old_set) .or. is_listed(name, this%names)) cycle
             if (is_real_directory(join(this%directory, name))) then
@@ -440,7 +449,7 @@ contains
         call list_directory(old, entries)
         do i = 1, size(entries)
             name = trim(entries(i))
-            if (name == SUMMARY_FILE .or. name == AFTER_COMMIT_FILE) cycle
+            if (name == SUMMARY_FILE .or. is_listed(name, this%unlisted_old)) cycle
             if (index(name, IN_PLACE_PREFIX) == 1) cycle
             if (is_listed(name, old_set)) cycle
             if (file_exists(join(this%directory, name))) cycle
@@ -548,4 +557,10 @@ contains
         end do
         this%created_levels = 0
     end subroutine remove_created_parents
+    !> An optional flag, .true. when absent.
+    pure logical function optional_true(flag)
+        logical, intent(in), optional :: flag
+        optional_true = .true.
+        if (present(flag)) optional_true = flag
+    end function optional_true
 end module output_stage

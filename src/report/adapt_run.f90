@@ -63,8 +63,12 @@ contains
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: prob
         type(status_t), intent(out) :: stat
+        character(len=:), allocatable :: path
         call write_eigen_files(stage, config, this%out%prob, this%out%res, stat, this%plot_note)
-        if (stat%ok()) call write_adapt_csv(stage%path('adapt.csv'), this%out, stat)
+        if (stat%ok()) then
+            call stage%add('adapt.csv', path)
+            call write_adapt_csv(path, this%out, stat)
+        end if
         if (stat%ok()) call write_adapted_mesh(stage, this%out%prob, stat)
         this%adapt_note = ''
         if (stat%ok() .and. config%output%plot) call draw_adapt_plot(stage, config, &
@@ -76,7 +80,9 @@ contains
         type(output_stage_t), intent(inout) :: stage
         type(problem_t), intent(in) :: prob
         type(status_t), intent(out) :: stat
-        call write_gmsh(stage%path(MESH_FILE), prob%mesh, stat)
+        character(len=:), allocatable :: path
+        call stage%add(MESH_FILE, path)
+        call write_gmsh(path, prob%mesh, stat)
     end subroutine write_adapted_mesh
 
     !> adapt.png into the staging folder, from adapt.csv and `summary` written as a scratch
@@ -103,7 +109,7 @@ contains
         call run_plot_script('plot_adapt.sh', stage%folder(), summary_path, drawn, note)
         call remove_file(summary_path)
         if (.not. drawn) return
-        png_path = stage%path(PNG)   ! registered: part of the committed set
+        call stage%add(PNG, png_path)   ! drawn there: part of the committed set
         note = trim(config%output%directory)//'/'//PNG
     end subroutine draw_adapt_plot
 

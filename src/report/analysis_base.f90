@@ -12,9 +12,15 @@ module analysis_base
     use output_stage, only: output_stage_t
     use json_writer, only: json_object_t
     use filesystem, only: MAX_NAME_LEN
+    use strings, only: text_t
     implicit none
     private
     public :: run_analysis
+
+    !> Files older builds wrote into the output directory unlisted in their sets (they drew
+    !> lambda_sweep.png after the commit); now every file is staged and listed, and these go
+    !> with the previous set.
+    character(len=*), parameter :: OLD_UNLISTED = 'lambda_sweep.png'
 
     type, abstract, public :: analysis_t
         !> The run's verdict once its outputs are written: a solve whose Newton iteration did
@@ -42,7 +48,8 @@ module analysis_base
             type(status_t), intent(out) :: stat
         end subroutine solve_interface
 
-        !> Every file of the analysis but summary.json, each at stage%path(name).
+        !> Every file of the analysis but summary.json, each at the path stage%add(name, path)
+        !> gives.
         subroutine write_interface(this, stage, config, prob, stat)
             import :: analysis_t, output_stage_t, config_t, problem_t, status_t
             class(analysis_t), intent(inout) :: this
@@ -92,7 +99,7 @@ contains
         call this%solve(config, prob, timings, stat)
         if (.not. stat%ok()) return
         start = wall_time()
-        call stage%begin(trim(config%output%directory), stat)
+        call stage%begin(trim(config%output%directory), stat, [text_t(OLD_UNLISTED)])
         if (.not. stat%ok()) then
             ! output_stage knows the directory, not the input file that named it.
             call stat%fail(stat%code, config%input_file//': &output directory: '//stat%message)
@@ -104,7 +111,7 @@ contains
             timings%total = wall_time() - run_start
             this%timings = timings
             summary = this%summary(config, prob)
-            summary_path = stage%path('summary.json')
+            call stage%add('summary.json', summary_path)
             call summary%add_string_array('files', stage%file_names(MAX_NAME_LEN))
             call summary%write(summary_path, stat)
             if (stat%ok()) call stage%commit(stat)

@@ -51,11 +51,15 @@ contains
         integer, allocatable :: members(:)
         real(wp), allocatable :: x_base(:), u(:)
         integer :: j, i
+        character(len=:), allocatable :: path
 
         associate (res => this%res)
-            call write_eigenvalues_csv(stage%path('eigenvalues.csv'), res%critical%eig%spec, &
-                                       stat)
-            if (stat%ok()) call write_branch_csv(stage%path('branch.csv'), res, stat)
+            call stage%add('eigenvalues.csv', path)
+            call write_eigenvalues_csv(path, res%critical%eig%spec, stat)
+            if (stat%ok()) then
+                call stage%add('branch.csv', path)
+                call write_branch_csv(path, res, stat)
+            end if
             if (.not. (stat%ok() .and. config%output%vtk)) return
             x_base = res%critical%u_base(res%cp%free_to_all)
             members = member_indices(size(res%deltas), config%branch%write_members)
@@ -63,7 +67,8 @@ contains
             do j = 1, size(members)
                 i = members(j)
                 u(:) = res%cp%expand(x_base + res%deltas(i)*res%critical%phi)
-                call write_vtu(stage%path('branch_'//zero_padded(i, 3)//'.vtu'), prob%mesh, &
+                call stage%add('branch_'//zero_padded(i, 3)//'.vtu', path)
+                call write_vtu(path, prob%mesh, &
                     ['displacement'], reshape(u, [N_DIM, prob%mesh%n_nodes(), 1]), &
                     trim(config%output%vtk_format), stat)
                 if (.not. stat%ok()) return

@@ -246,6 +246,7 @@ contains
         character(len=*), parameter :: FIELD_NAMES(2) = [character(len=17) :: &
                                                           'displacement', 'displacement_imag']
         real(wp), allocatable :: fields(:, :, :)
+        character(len=:), allocatable :: path
         integer :: i, n_nodes
 
         n_nodes = prob%mesh%n_nodes()
@@ -257,14 +258,15 @@ contains
                 allocate (fields(2, n_nodes, 1))
             end if
             fields(:, :, 1) = prob%dofs%nodal_field(real(spec%vectors(:, i), wp))
+            call stage%add('mode_'//zero_padded(i, 3)//'.vtu', path)
             if (with_indicators(i)) then
-                call write_vtu(stage%path('mode_'//zero_padded(i, 3)//'.vtu'), prob%mesh, &
+                call write_vtu(path, prob%mesh, &
                                FIELD_NAMES(1:size(fields, 3)), fields, vtk_format, stat, &
                                ['error_indicator'], reshape(error%indicators, &
                                                             [size(error%indicators), 1]))
             else
-                call write_vtu(stage%path('mode_'//zero_padded(i, 3)//'.vtu'), prob%mesh, &
-                               FIELD_NAMES(1:size(fields, 3)), fields, vtk_format, stat)
+                call write_vtu(path, prob%mesh, FIELD_NAMES(1:size(fields, 3)), fields, &
+                               vtk_format, stat)
             end if
             deallocate (fields)
             if (.not. stat%ok()) return
@@ -359,7 +361,9 @@ contains
         type(eigen_result_t), intent(in) :: res
         type(status_t), intent(out) :: stat
         character(len=:), allocatable, intent(out), optional :: plot_note
-        call write_eigenvalues_csv(stage%path('eigenvalues.csv'), res%spec, stat, res%error)
+        character(len=:), allocatable :: path
+        call stage%add('eigenvalues.csv', path)
+        call write_eigenvalues_csv(path, res%spec, stat, res%error)
         if (stat%ok() .and. config%output%vtk) call write_modes(stage, prob, res%spec, &
             config%output%modes, trim(config%output%vtk_format), stat, res%error)
         if (stat%ok() .and. config%output%matrices) call write_matrices(stage, prob, res, stat)
@@ -376,9 +380,12 @@ contains
         type(problem_t), intent(in) :: prob
         type(eigen_result_t), intent(in) :: res
         type(status_t), intent(out) :: stat
-        call write_matrix_market(stage%path('K.mtx'), prob%units%stiffness_to_input(prob%k), stat)
-        if (stat%ok()) call write_matrix_market(stage%path('B.mtx'), &
-                                                prob%units%mass_to_input(res%b), stat)
+        character(len=:), allocatable :: path
+        call stage%add('K.mtx', path)
+        call write_matrix_market(path, prob%units%stiffness_to_input(prob%k), stat)
+        if (.not. stat%ok()) return
+        call stage%add('B.mtx', path)
+        call write_matrix_market(path, prob%units%mass_to_input(res%b), stat)
     end subroutine write_matrices
 
     !> mode_001.png of the first mode (its real part), joined to the set when drawn.
@@ -397,7 +404,7 @@ contains
             prob%mesh%coords, prob%mesh%cells, element_corners(prob%mesh%element), &
             prob%dofs%nodal_field(real(res%spec%vectors(:, 1), wp)), drawn, note)
         if (.not. drawn) return
-        png_path = stage%path(PNG)   ! registered: part of the committed set
+        call stage%add(PNG, png_path)   ! drawn there: part of the committed set
         note = trim(config%output%directory)//'/'//PNG
     end subroutine draw_first_mode
 end module eigen_run

@@ -50,12 +50,17 @@ contains
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: prob
         type(status_t), intent(out) :: stat
+        character(len=:), allocatable :: path
         associate (res => this%res)
-            call write_newton_csv(stage%path('newton.csv'), res, stat)
-            if (stat%ok()) call write_states_csv(stage%path('contact_states.csv'), prob, res, &
-                                                 stat)
+            call stage%add('newton.csv', path)
+            call write_newton_csv(path, res, stat)
+            if (stat%ok()) then
+                call stage%add('contact_states.csv', path)
+                call write_states_csv(path, prob, res, stat)
+            end if
             if (stat%ok() .and. config%output%vtk .and. res%report%converged) then
-                call write_vtu(stage%path('solution.vtu'), prob%mesh, ['displacement'], &
+                call stage%add('solution.vtu', path)
+                call write_vtu(path, prob%mesh, ['displacement'], &
                     reshape(res%cp%expand(res%x), [N_DIM, prob%mesh%n_nodes(), 1]), &
                     trim(config%output%vtk_format), stat)
             end if

@@ -129,9 +129,11 @@ contains
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: prob
         type(status_t), intent(out) :: stat
+        character(len=:), allocatable :: path
         call this%threshold_run_t%write_files(stage, config, prob, stat)
         if (stat%ok() .and. allocated(this%res%sweep%lambda)) then
-            call write_sweep_csv(stage%path(SWEEP_FILE), this%res%sweep, stat)
+            call stage%add(SWEEP_FILE, path)
+            call write_sweep_csv(path, this%res%sweep, stat)
         end if
         if (stat%ok() .and. allocated(this%res%sweep%lambda) .and. config%sweep%plot) &
             call draw_sweep(this, stage, config, prob, stat)
@@ -143,10 +145,13 @@ contains
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: prob
         type(status_t), intent(out) :: stat
+        character(len=:), allocatable :: path
         call write_eigen_files(stage, config, this%adapted%prob, this%res%eigen, stat, &
                                this%plot_note)
-        if (stat%ok()) call write_threshold_adapt_csv(stage%path('adapt.csv'), &
-                                                      this%adapted, stat)
+        if (stat%ok()) then
+            call stage%add('adapt.csv', path)
+            call write_threshold_adapt_csv(path, this%adapted, stat)
+        end if
         if (stat%ok()) call write_adapted_mesh(stage, this%adapted%prob, stat)
         this%adapt_note = ''
         if (stat%ok() .and. config%output%plot) call draw_adapt_plot(stage, config, &
@@ -175,7 +180,7 @@ contains
                              this%sweep_note)
         call remove_file(summary_path)
         if (.not. drawn) return
-        png_path = stage%path(PNG)   ! registered: part of the committed set
+        call stage%add(PNG, png_path)   ! drawn there: part of the committed set
         this%sweep_note = trim(config%output%directory)//'/'//PNG
     end subroutine draw_sweep
 
