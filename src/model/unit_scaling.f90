@@ -127,8 +127,7 @@ contains
         class(units_t), intent(in) :: this
         type(csr_matrix_t), intent(in) :: k
         type(csr_matrix_t) :: physical
-        physical = k
-        physical%val = scale(physical%val, this%young_exponent)
+        physical = scaled_matrix(k, this%young_exponent)
     end function units_stiffness_to_input
 
     !> A scaled contact mass (or B, made of it) in input units.
@@ -136,7 +135,15 @@ contains
         class(units_t), intent(in) :: this
         type(csr_matrix_t), intent(in) :: b
         type(csr_matrix_t) :: physical
-        physical = b
-        physical%val = scale(physical%val, this%length_exponent)
+        physical = scaled_matrix(b, this%length_exponent)
     end function units_mass_to_input
+
+    !> a 2^e, exactly (but for overflow and underflow).
+    function scaled_matrix(a, e) result(scaled)
+        type(csr_matrix_t), intent(in) :: a
+        integer, intent(in) :: e
+        type(csr_matrix_t) :: scaled
+        scaled = a
+        scaled%val = scale(scaled%val, e)
+    end function scaled_matrix
 end module unit_scaling

@@ -18,11 +18,9 @@ module adapt_run
     use json_writer, only: json_object_t
     use csv_writer, only: csv_writer_t
     use gmsh_writer, only: write_gmsh
-    use plot_script, only: run_plot_script
-    use filesystem, only: remove_file
     implicit none
     private
-    public :: add_adapt_keys, adapt_report_lines, write_adapted_mesh, draw_adapt_plot
+    public :: add_adapt_keys, adapt_report_lines, write_adapted_mesh, ask_adapt_plot
 
     character(len=*), parameter, public :: ADAPT_HEADER = &
         'level,n_dofs,n_contact,n_cells,mu,error_estimate,time_s,error_bar'
@@ -31,7 +29,6 @@ module adapt_run
     type, extends(analysis_t), public :: adapt_run_t
         type(adaptive_result_t) :: out
         character(len=:), allocatable :: plot_note    !! mode_001.png: where, or why not
-        character(len=:), allocatable :: adapt_note   !! adapt.png: where, or why not
     contains
         procedure :: solve => adapt_run_solve
         procedure :: write_files => adapt_run_write_files
@@ -70,9 +67,10 @@ contains
             call write_adapt_csv(path, this%out, stat)
         end if
         if (stat%ok()) call write_adapted_mesh(stage, this%out%prob, stat)
-        this%adapt_note = ''
-        if (stat%ok() .and. config%output%plot) call draw_adapt_plot(stage, config, &
-            this%summary(config, prob), any(this%out%levels%estimated), this%adapt_note, stat)
+        if (stat%ok()) call ask_adapt_plot(this, config, any(this%out%levels%estimated))
+        ! the files describe the final level: the starting problem `prob` has no part in them
+        associate (start => prob)
+        end associate
     end subroutine adapt_run_write_files
 
     !> mesh.msh: the final mesh of an adaptive run, for &mesh source = 'gmsh'.
@@ -85,33 +83,22 @@ contains
         call write_gmsh(path, prob%mesh, stat)
     end subroutine write_adapted_mesh
 
-    !> adapt.png into the staging folder, from adapt.csv and `summary` written as a scratch
-    !> summary.json; `note` says where it is, or why it is not drawn (`any_estimated` false:
-    !> no level has an estimate).
-    subroutine draw_adapt_plot(stage, config, summary, any_estimated, note, stat)
-        type(output_stage_t), intent(inout) :: stage
+    !> Ask run_analysis for adapt.png (plot_adapt.sh on adapt.csv and summary.json) when
+    !> &output plot is on; `any_estimated` false (no level has an estimate): nothing to draw,
+    !> and the note says so.
+    subroutine ask_adapt_plot(run, config, any_estimated)
+        class(analysis_t), intent(inout) :: run
         type(config_t), intent(in) :: config
-        type(json_object_t), intent(in) :: summary
         logical, intent(in) :: any_estimated
-        character(len=:), allocatable, intent(inout) :: note
-        type(status_t), intent(out) :: stat
-        character(len=*), parameter :: PNG = 'adapt.png'
-        character(len=:), allocatable :: summary_path, png_path
-        logical :: drawn
-
+        run%picture_note = ''
+        if (.not. config%output%plot) return
         if (.not. any_estimated) then
-            note = 'not drawn: no level has an error estimate'
+            run%picture_note = 'not drawn: no level has an error estimate'
             return
         end if
-        summary_path = stage%scratch('.adapt-summary.json')
-        call summary%write(summary_path, stat)
-        if (.not. stat%ok()) return
-        call run_plot_script('plot_adapt.sh', stage%folder(), summary_path, drawn, note)
-        call remove_file(summary_path)
-        if (.not. drawn) return
-        call stage%add(PNG, png_path)   ! drawn there: part of the committed set
-        note = trim(config%output%directory)//'/'//PNG
-    end subroutine draw_adapt_plot
+        run%picture_script = 'plot_adapt.sh'
+        run%picture_file = 'adapt.png'
+    end subroutine ask_adapt_plot
 
     !> level,n_dofs,n_contact,n_cells,mu,error_estimate,time_s,error_bar (the bar is last so
     !> that the columns before it keep their places); mu, error_estimate and error_bar empty
@@ -175,7 +162,7 @@ contains
         character(len=:), allocatable :: text
         text = summary_lines(config, this%out%prob, this%out%res, this%timings, this%plot_note)
         text = text//adapt_report_lines(config, prob%dofs%n_free, size(this%out%levels) - 1, &
-                                        this%out%outcome, this%adapt_note)
+                                        this%out%outcome, this%picture_note)
     end function adapt_run_report
 
     !> The stdout lines of an adaptive loop: refinements and outcome, the mesh file, the plot.

@@ -23,17 +23,11 @@ contains
         class(analysis_t), allocatable, intent(out) :: analysis
         select case (kind)
         case ('eigen')
-            if (adaptive) then
-                allocate (adapt_run_t :: analysis)
-            else
-                allocate (eigen_run_t :: analysis)
-            end if
+            if (adaptive) allocate (adapt_run_t :: analysis)
+            if (.not. adaptive) allocate (eigen_run_t :: analysis)
         case ('threshold')
-            if (adaptive) then
-                allocate (adapt_threshold_run_t :: analysis)
-            else
-                allocate (threshold_run_t :: analysis)
-            end if
+            if (adaptive) allocate (adapt_threshold_run_t :: analysis)
+            if (.not. adaptive) allocate (threshold_run_t :: analysis)
         case ('lambda_sweep'); allocate (sweep_run_t :: analysis)
         case ('branch'); allocate (branch_run_t :: analysis)
         case ('solve'); allocate (solve_run_t :: analysis)

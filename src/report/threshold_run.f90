@@ -15,7 +15,7 @@ module threshold_run
     use problem, only: problem_t
     use threshold_analysis, only: threshold_result_t, sweep_curve_t, solve_thresholds
     use adaptive_threshold, only: adaptive_thresholds_t, adapt_thresholds
-    use adapt_run, only: add_adapt_keys, adapt_report_lines, write_adapted_mesh, draw_adapt_plot
+    use adapt_run, only: add_adapt_keys, adapt_report_lines, write_adapted_mesh, ask_adapt_plot
     use element_types, only: element_name
     use critical_lambda, only: SIDE_PLUS, SIDE_MINUS, SIDE_NAMES, SIDE_LABELS, CONFIRM_OFFSET
     use critical_set, only: critical_set_t, MECHANISM_NAMES, MECHANISM_COMPLEX_PAIR
@@ -26,8 +26,6 @@ module threshold_run
     use output_stage, only: output_stage_t
     use json_writer, only: json_object_t
     use csv_writer, only: csv_writer_t
-    use plot_script, only: run_plot_script
-    use filesystem, only: remove_file
     implicit none
     private
     public :: write_sweep_csv
@@ -53,7 +51,6 @@ module threshold_run
 
     !> 'lambda_sweep': the thresholds and the lowest positive mu at every lambda of &sweep.
     type, extends(threshold_run_t), public :: sweep_run_t
-        character(len=:), allocatable :: sweep_note  !! lambda_sweep.png: where, or why not
     contains
         procedure :: solve => sweep_run_solve
         procedure :: write_files => sweep_run_write_files
@@ -64,7 +61,6 @@ module threshold_run
     !> 'threshold' with &adapt: the loop, whose final problem the files describe.
     type, extends(threshold_run_t), public :: adapt_threshold_run_t
         type(adaptive_thresholds_t) :: adapted
-        character(len=:), allocatable :: adapt_note  !! adapt.png: where, or why not
     contains
         procedure :: solve => adapt_threshold_run_solve
         procedure :: write_files => adapt_threshold_run_write_files
@@ -135,8 +131,10 @@ contains
             call stage%add(SWEEP_FILE, path)
             call write_sweep_csv(path, this%res%sweep, stat)
         end if
-        if (stat%ok() .and. allocated(this%res%sweep%lambda) .and. config%sweep%plot) &
-            call draw_sweep(this, stage, config, prob, stat)
+        if (stat%ok() .and. allocated(this%res%sweep%lambda) .and. config%sweep%plot) then
+            this%picture_script = 'plot_lambda_sweep.sh'
+            this%picture_file = 'lambda_sweep.png'
+        end if
     end subroutine sweep_run_write_files
 
     subroutine adapt_threshold_run_write_files(this, stage, config, prob, stat)
@@ -153,36 +151,12 @@ contains
             call write_threshold_adapt_csv(path, this%adapted, stat)
         end if
         if (stat%ok()) call write_adapted_mesh(stage, this%adapted%prob, stat)
-        this%adapt_note = ''
-        if (stat%ok() .and. config%output%plot) call draw_adapt_plot(stage, config, &
-            this%summary(config, prob), any(this%adapted%levels%estimated(1)) .or. &
-            any(this%adapted%levels%estimated(2)), this%adapt_note, stat)
+        if (stat%ok()) call ask_adapt_plot(this, config, &
+            any(this%adapted%levels%estimated(1)) .or. any(this%adapted%levels%estimated(2)))
+        ! the files describe the final level: the starting problem `prob` has no part in them
+        associate (start => prob)
+        end associate
     end subroutine adapt_threshold_run_write_files
-
-    !> lambda_sweep.png into the staging folder, so that it joins the set: the plot script
-    !> reads the curve and a summary.json made now for it (a scratch file, not the set's).
-    subroutine draw_sweep(this, stage, config, prob, stat)
-        class(sweep_run_t), intent(inout) :: this
-        type(output_stage_t), intent(inout) :: stage
-        type(config_t), intent(in) :: config
-        type(problem_t), intent(in) :: prob
-        type(status_t), intent(out) :: stat
-        character(len=*), parameter :: PNG = 'lambda_sweep.png'
-        character(len=:), allocatable :: summary_path, png_path
-        type(json_object_t) :: summary
-        logical :: drawn
-
-        summary_path = stage%scratch('.sweep-summary.json')
-        summary = this%summary(config, prob)
-        call summary%write(summary_path, stat)
-        if (.not. stat%ok()) return
-        call run_plot_script('plot_lambda_sweep.sh', stage%folder(), summary_path, drawn, &
-                             this%sweep_note)
-        call remove_file(summary_path)
-        if (.not. drawn) return
-        call stage%add(PNG, png_path)   ! drawn there: part of the committed set
-        this%sweep_note = trim(config%output%directory)//'/'//PNG
-    end subroutine draw_sweep
 
     function threshold_run_summary(this, config, prob) result(summary)
         class(threshold_run_t), intent(in) :: this
@@ -227,8 +201,8 @@ contains
         type(problem_t), intent(in) :: prob
         character(len=:), allocatable :: text
         text = this%threshold_run_t%report(config, prob)
-        if (allocated(this%sweep_note)) text = text//new_line('a')//'  plot        '// &
-                                                this%sweep_note
+        if (allocated(this%picture_note)) text = text//new_line('a')//'  plot        '// &
+                                                  this%picture_note
     end function sweep_run_report
 
     function adapt_threshold_run_report(this, config, prob) result(text)
@@ -239,7 +213,7 @@ contains
         text = threshold_summary_lines(config, this%adapted%prob, this%res, this%timings, &
                                        this%plot_note)
         text = text//adapt_report_lines(config, prob%dofs%n_free, &
-            size(this%adapted%levels) - 1, this%adapted%outcome, this%adapt_note)
+            size(this%adapted%levels) - 1, this%adapted%outcome, this%picture_note)
     end function adapt_threshold_run_report
 
     !> level,n_dofs,n_contact,n_cells,lambda_plus,error_estimate_plus,lambda_minus,
