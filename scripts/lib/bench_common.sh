@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: MIT
-# What the benchmark scripts of the reference scene share (scripts/bench_scaling.sh,
-# scripts/bench_operator.sh); sourced after they have read their own --options:
+# What the benchmark scripts of the reference scene share (scripts/bench/bench_scaling.sh,
+# scripts/bench/bench_operator.sh); sourced after they have read their own --options:
 #     source "$root/scripts/lib/bench_common.sh"
 #     bench_begin NAME "$@"      # REPEATS and N... from what is left of the arguments
 # $nceig must name the executable.
@@ -15,7 +15,7 @@ bench_begin() {
     shift || true
     sizes=("$@")
     ((${#sizes[@]} > 0)) || sizes=(64 128 256 512 1024)
-    [[ -x $nceig ]] || { echo "$name: build first (scripts/build.sh Release)" >&2; exit 1; }
+    [[ -x $nceig ]] || { echo "$name: build first (scripts/dev/build.sh Release)" >&2; exit 1; }
     [[ -x /usr/bin/time ]] || { echo "$name: needs /usr/bin/time (package time)" >&2; exit 1; }
     work=$(mktemp -d)
     trap 'rm -rf "$work"' EXIT
