@@ -3,9 +3,10 @@
 !> line, in the order of the namelists. The messages about a value the runtime could not
 !> read, the quoting and length checks of --set and the file, `nceig --help` and the tests
 !> all read it; the defaults stay those of run_config (the help prints them from a default
-!> config_t). A new variable is one entry here, its component in run_config, its line in
-!> the group's namelist reader (input_records) and, if it has one, its special rule in
-!> input_validation; test_input_records fails until the table, the reader and the help agree.
+!> config_t). A new variable is one entry here, its component in run_config, its lines in
+!> the group's namelist reader (input_records), its row in docs/input.md and, if it has
+!> one, its special rule in input_validation; test_input_records fails until the table and
+!> the reader agree, cli_input_reference until docs/input.md and the help do.
 module input_table
     use run_config, only: config_t, MAX_SWEEP_LAMBDAS, PATH_LEN
     use strings, only: lowercase, to_string, one_of, NAME_LEN, LIST_LEN
