@@ -5,11 +5,11 @@
 !> read; cli_input_reference that docs/input.md shows the same variables and defaults.
 module input_help
     use kinds, only: wp
-    use strings, only: to_string, quoted, NAME_LEN
+    use strings, only: to_string, quoted, one_of, NAME_LEN
     use real_format, only: real_to_text
-    use input_table, only: input_variable_t, load_table, group_header, KNOWN_GROUPS, &
-                           VALUE_REAL, VALUE_INTEGER, VALUE_LOGICAL, VALUE_NAME, VALUE_PATH, &
-                           VALUE_LIST
+    use input_table, only: input_variable_t, load_table, group_header, allowed_values, &
+                           KNOWN_GROUPS, VALUE_REAL, VALUE_INTEGER, VALUE_LOGICAL, VALUE_NAME, &
+                           VALUE_PATH, VALUE_LIST
     use input_records, only: reader_defaults, LISTING_LINE_LEN
     implicit none
     private
@@ -57,7 +57,7 @@ contains
                     value = value//', '
                     cycle
                 end if
-                text = text//entry(name, value, trim(table(i)%help))
+                text = text//entry(name, value, described(table(i)))
                 name = ''
                 value = ''
             end do
@@ -79,6 +79,17 @@ contains
                        //description(break + 1:)//NL
             end if
         end function entry
+
+        !> The help line of `variable`, its accepted values in place of '@'.
+        function described(variable) result(description)
+            type(input_variable_t), intent(in) :: variable
+            character(len=:), allocatable :: description
+            integer :: at
+            description = trim(variable%help)
+            at = index(description, '@')
+            if (at > 0) description = description(:at - 1) &
+                //one_of(allowed_values(variable%choices))//description(at + 1:)
+        end function described
 
         !> The default of `variable` as the help shows it: from the namelist write of
         !> `values` (names(k) its variable), in the input file's own notation.

@@ -9,7 +9,7 @@
 !> the reader agree, cli_input_reference until docs/input.md and the help do.
 module input_table
     use run_config, only: config_t, MAX_SWEEP_LAMBDAS, PATH_LEN
-    use strings, only: lowercase, to_string, one_of, NAME_LEN, LIST_LEN
+    use strings, only: lowercase, to_string, NAME_LEN, LIST_LEN
     use input_validation, only: MESH_SOURCES, ELEMENT_NAMES, DIAGONALS, RECTANGLE_SIDES, &
                                 ACCEPTED_ANALYSES, ACCEPTED_SOLVERS, MAX_CELLS_PER_SIDE, &
                                 SWEEP_SPACINGS, MAX_SWEEP_POINTS, VTK_FORMATS, SOLVE_DATA, &
@@ -18,7 +18,7 @@ module input_table
     private
     public :: input_variable_t, input_variables, load_table, group_header, table_variables, &
               expected_value, is_text_variable, text_capacity, expectation
-    public :: KNOWN_GROUPS, HELP_LEN
+    public :: KNOWN_GROUPS, HELP_LEN, allowed_values
     public :: VALUE_REAL, VALUE_INTEGER, VALUE_LOGICAL, VALUE_NAME, VALUE_PATH, VALUE_LIST, &
               VALUE_REALS
 
@@ -33,7 +33,15 @@ module input_table
     character(len=*), parameter :: VALUE_TEXT(7) = [character(len=24) :: 'a real number', &
         'an integer', '.true. or .false.', 'a quoted name', 'a quoted path', &
         'a quoted list of names', 'a list of real numbers']
-    !> A help line's description; new_line('a') in it continues under the description.
+    !> The accepted values of a choice (input_validation's lists): allowed_values(IN_*).
+    !> (Codes, not the texts: the table is built at every look-up, the texts only for --help.)
+    integer, parameter :: IN_MESH_SOURCES = 1, IN_ELEMENT_NAMES = 2, IN_DIAGONALS = 3, &
+                          IN_RECTANGLE_SIDES = 4, IN_ACCEPTED_ANALYSES = 5, &
+                          IN_ACCEPTED_SOLVERS = 6, IN_ESTIMATE_MODES = 7, &
+                          IN_EIGEN_OPERATORS = 8, IN_VTK_FORMATS = 9, IN_SWEEP_SPACINGS = 10, &
+                          IN_SOLVE_DATA = 11, IN_SOLVE_STARTS = 12
+    !> A help line's description; new_line('a') in it continues under the description,
+    !> '@' stands for the accepted values of its choice.
     integer, parameter :: HELP_LEN = 160
 
     type :: input_variable_t
@@ -47,6 +55,7 @@ module input_table
         !> carries the description
         logical :: joined = .false.
         integer :: capacity = 0                   !! characters of a text variable
+        integer :: choices = 0                    !! IN_*: its accepted values; 0: any
     end type input_variable_t
 
 contains
@@ -58,7 +67,7 @@ contains
         character(len=*), parameter :: NL = new_line('a')
         type(config_t) :: d
         table = [ &
-            v('mesh', 'source', VALUE_NAME, 'one of '//one_of(MESH_SOURCES)), &
+            v('mesh', 'source', VALUE_NAME, 'one of @', choices=IN_MESH_SOURCES), &
             v('mesh', 'file', VALUE_PATH, "Gmsh .msh (source = 'gmsh'), relative to the " &
               //'input file''s folder'), &
             v('mesh', 'width', VALUE_REAL, 'rectangle size along x'), &
@@ -66,21 +75,22 @@ contains
             v('mesh', 'nx', VALUE_INTEGER, 'cells along x (1 to ' &
               //to_string(MAX_CELLS_PER_SIDE)//')'), &
             v('mesh', 'ny', VALUE_INTEGER, 'cells along y'), &
-            v('mesh', 'element', VALUE_NAME, one_of(ELEMENT_NAMES)//NL &
-              //'(p3, p4: cubic, quartic triangles; rectangle; Gmsh sets its own)'), &
-            v('mesh', 'diagonal', VALUE_NAME, one_of(DIAGONALS) &
-              //': triangle diagonals rise to the right or left'), &
-            v('mesh', 'dirichlet', VALUE_LIST, 'fixed sides ('//one_of(RECTANGLE_SIDES) &
-              //') or Gmsh groups'), &
+            v('mesh', 'element', VALUE_NAME, '@'//NL &
+              //'(p3, p4: cubic, quartic triangles; rectangle; Gmsh sets its own)', &
+              choices=IN_ELEMENT_NAMES), &
+            v('mesh', 'diagonal', VALUE_NAME, '@' &
+              //': triangle diagonals rise to the right or left', choices=IN_DIAGONALS), &
+            v('mesh', 'dirichlet', VALUE_LIST, 'fixed sides (@) or Gmsh groups', &
+              choices=IN_RECTANGLE_SIDES), &
             v('mesh', 'neumann', VALUE_LIST, 'loaded by &solve t1, t2 (free in eigen runs);' &
               //' unnamed sides are free'), &
             v('mesh', 'contact', VALUE_LIST, 'the one side or group in contact'), &
             v('material', 'young', VALUE_REAL, 'Young''s modulus E > 0'), &
             v('material', 'poisson', VALUE_REAL, 'Poisson''s ratio, -1 < poisson < 0.5'), &
-            v('analysis', 'kind', VALUE_NAME, 'one of '//one_of(ACCEPTED_ANALYSES)), &
+            v('analysis', 'kind', VALUE_NAME, 'one of @', choices=IN_ACCEPTED_ANALYSES), &
             v('analysis', 'lambda', VALUE_REAL, &
               'ratio in b_lambda(phi, v) = lambda int phi_n v_t - int phi_n v_n'), &
-            v('eigen', 'solver', VALUE_NAME, 'one of '//one_of(ACCEPTED_SOLVERS)), &
+            v('eigen', 'solver', VALUE_NAME, 'one of @', choices=IN_ACCEPTED_SOLVERS), &
             v('eigen', 'nev', VALUE_INTEGER, 'ARPACK: eigenvalues nearest target per run' &
               //' (doubled while undecided)'), &
             v('eigen', 'target', VALUE_REAL, 'shift sigma: eigenvalues nearest to it are' &
@@ -91,10 +101,10 @@ contains
               //' (0: chosen from nev)'), &
             v('eigen', 'dense_max_contact', VALUE_INTEGER, &
               "'auto' picks 'dense' up to this many contact nodes, else 'arpack'"), &
-            v('eigen', 'estimate', VALUE_NAME, one_of(ESTIMATE_MODES) &
-              //': error estimate of mu (auto: <= 40000 dofs)'), &
-            v('eigen', 'operator', VALUE_NAME, one_of(EIGEN_OPERATORS) &
-              //': ARPACK on p x p or (K - target B)^-1 B'), &
+            v('eigen', 'estimate', VALUE_NAME, '@' &
+              //': error estimate of mu (auto: <= 40000 dofs)', choices=IN_ESTIMATE_MODES), &
+            v('eigen', 'operator', VALUE_NAME, '@' &
+              //': ARPACK on p x p or (K - target B)^-1 B', choices=IN_EIGEN_OPERATORS), &
             v('eigen', 'cn_max', VALUE_REAL, 'report every positive mu in (0, cn_max]' &
               //' (0: only the lowest)'), &
             v('output', 'directory', VALUE_PATH, "'' means output/<input file stem>" &
@@ -102,9 +112,9 @@ contains
             v('output', 'vtk', VALUE_LOGICAL, 'write mode_NNN.vtu for ParaView'), &
             v('output', 'modes', VALUE_INTEGER, 'how many modes to write as .vtu'), &
             v('output', 'matrices', VALUE_LOGICAL, 'write K.mtx and B.mtx (Matrix Market)'), &
-            v('output', 'vtk_format', VALUE_NAME, one_of(VTK_FORMATS) &
+            v('output', 'vtk_format', VALUE_NAME, '@' &
               //" ('binary': raw appended data; 'ascii': text)", &
-              capacity=len(d%output%vtk_format)), &
+              capacity=len(d%output%vtk_format), choices=IN_VTK_FORMATS), &
             v('output', 'plot', VALUE_LOGICAL, 'draw mode_001.png with gnuplot' &
               //' (the first mode on the deformed mesh)'), &
             v('output', 'progress', VALUE_LOGICAL, 'a line on stdout as each phase ends' &
@@ -113,8 +123,8 @@ contains
             v('sweep', 'lambda_max', VALUE_REAL, 'last lambda, > lambda_min'), &
             v('sweep', 'n_lambda', VALUE_INTEGER, 'points in the range (2 to ' &
               //to_string(MAX_SWEEP_POINTS)//')'), &
-            v('sweep', 'spacing', VALUE_NAME, one_of(SWEEP_SPACINGS) &
-              //" ('log': one sign, geometric in |lambda|)"), &
+            v('sweep', 'spacing', VALUE_NAME, '@' &
+              //" ('log': one sign, geometric in |lambda|)", choices=IN_SWEEP_SPACINGS), &
             v('sweep', 'lambdas', VALUE_REALS, 'explicit list (up to ' &
               //to_string(MAX_SWEEP_LAMBDAS)//'), replaces the range', shown_default='unset'), &
             v('sweep', 'plot', VALUE_LOGICAL, 'draw lambda_sweep.png with gnuplot when it' &
@@ -124,8 +134,8 @@ contains
             v('branch', 'n_delta', VALUE_INTEGER, 'deltas evenly spaced in' &
               //' [-delta_max, delta_max]'), &
             v('branch', 'write_members', VALUE_INTEGER, 'members written as branch_NNN.vtu'), &
-            v('solve', 'data', VALUE_NAME, one_of(SOLVE_DATA)//': the loads below, or those' &
-              //' of &branch'), &
+            v('solve', 'data', VALUE_NAME, '@: the loads below, or those of &branch', &
+              choices=IN_SOLVE_DATA), &
             v('solve', 'c_n', VALUE_REAL, 'normal compliance (data = ''given'')'), &
             v('solve', 'c_t', VALUE_REAL, 'tangential compliance'), &
             v('solve', 'critical_factor', VALUE_REAL, &
@@ -136,7 +146,7 @@ contains
             v('solve', 't2', VALUE_REAL, 'traction on every Neumann part'), &
             v('solve', 'u_d1', VALUE_REAL, '', joined=.true.), &
             v('solve', 'u_d2', VALUE_REAL, 'displacement on Gamma_D'), &
-            v('solve', 'start', VALUE_NAME, one_of(SOLVE_STARTS)), &
+            v('solve', 'start', VALUE_NAME, '@', choices=IN_SOLVE_STARTS), &
             v('solve', 'start_delta', VALUE_REAL, 'start = ''branch'': U + start_delta phi'), &
             v('solve', 'start_scale', VALUE_REAL, &
               'start = ''random'' or ''mode'': size of the guess'), &
@@ -164,13 +174,13 @@ contains
 
     !> One table entry; a text variable holds NAME_LEN, PATH_LEN or LIST_LEN characters
     !> unless `capacity` says otherwise.
-    pure function v(group, name, value_type, help, shown_default, joined, capacity) &
+    pure function v(group, name, value_type, help, shown_default, joined, capacity, choices) &
             result(entry)
         character(len=*), intent(in) :: group, name, help
         integer, intent(in) :: value_type
         character(len=*), intent(in), optional :: shown_default
         logical, intent(in), optional :: joined
-        integer, intent(in), optional :: capacity
+        integer, intent(in), optional :: capacity, choices
         type(input_variable_t) :: entry
         entry%group = group
         entry%name = name
@@ -184,7 +194,29 @@ contains
         case (VALUE_LIST); entry%capacity = LIST_LEN
         end select
         if (present(capacity)) entry%capacity = capacity
+        if (present(choices)) entry%choices = choices
     end function v
+
+    !> The accepted values of choice `choices` (IN_*); none for 0.
+    pure function allowed_values(choices) result(values)
+        integer, intent(in) :: choices
+        character(len=:), allocatable :: values(:)
+        select case (choices)
+        case (IN_MESH_SOURCES); values = MESH_SOURCES
+        case (IN_ELEMENT_NAMES); values = ELEMENT_NAMES
+        case (IN_DIAGONALS); values = DIAGONALS
+        case (IN_RECTANGLE_SIDES); values = RECTANGLE_SIDES
+        case (IN_ACCEPTED_ANALYSES); values = ACCEPTED_ANALYSES
+        case (IN_ACCEPTED_SOLVERS); values = ACCEPTED_SOLVERS
+        case (IN_ESTIMATE_MODES); values = ESTIMATE_MODES
+        case (IN_EIGEN_OPERATORS); values = EIGEN_OPERATORS
+        case (IN_VTK_FORMATS); values = VTK_FORMATS
+        case (IN_SWEEP_SPACINGS); values = SWEEP_SPACINGS
+        case (IN_SOLVE_DATA); values = SOLVE_DATA
+        case (IN_SOLVE_STARTS); values = SOLVE_STARTS
+        case default; allocate (character(len=1) :: values(0))
+        end select
+    end function allowed_values
 
     !> The --help line that opens group `group`: '&group', for the groups of one analysis
     !> followed by what they are for.
