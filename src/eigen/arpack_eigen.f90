@@ -38,6 +38,8 @@ module arpack_eigen
     use contact_reduction, only: contact_tail, flexibility_blocks, lift_eigenvectors, &
                                  reduced_matrix, lambda_unit
     use arpack_interfaces, only: dnaupd, dneupd, arpack_info_message
+    use roundoff, only: left_from_reduced, lowest_roundoff
+    use timer, only: wall_time
     implicit none
     private
     public :: arpack_options_t, contact_operator_t, arpack_spectrum, is_real_ritz
@@ -120,10 +122,16 @@ module arpack_eigen
         type(csr_matrix_t) :: b_scaled
         type(lu_t) :: shifted
         type(cholesky_t), pointer :: chol => null()
+        !> Apply the transposed operator instead: same eigenvalues, and its eigenvectors are
+        !> the left ones (of A, or of the pencil for the full operator), for the round-off
+        !> bound. The full one needs the contact (B' = N' M X) kept here.
+        logical :: transposed = .false.
+        type(contact_t) :: contact
     contains
         procedure :: setup => operator_setup
         procedure :: setup_full => operator_setup_full
         procedure :: apply_a => operator_apply_a
+        procedure :: apply_at => operator_apply_at
         procedure :: apply => operator_apply
         procedure :: dense_a => operator_dense_a
         procedure :: mu_of => operator_mu_of
@@ -139,6 +147,8 @@ module arpack_eigen
         logical, allocatable :: is_real(:)
         integer :: info = 0
         integer :: n_operator = 0
+        !> left eigenvector (p) of the lowest positive mu, when the dense decision found it
+        real(wp), allocatable :: left(:)
     end type ritz_t
 
 contains
@@ -215,6 +225,10 @@ contains
         this%b_scaled = b
         this%b_scaled%val = b%val/this%lambda_scale
         this%chol => chol
+        this%contact = contact
+        this%mass = contact%mass
+        this%normal = contact%normal
+        this%tangent = contact%tangent
         if (.not. (abs(sigma) > 0.0_wp)) return
         call this%norm_estimate(contact, a_norm, stat)
         if (.not. stat%ok()) return
@@ -344,25 +358,72 @@ contains
         end do
     end subroutine operator_apply_a
 
+    !> out = A' w / lambda_scale = M X K^-1 N' w / lambda_scale (X = lambda T - N), through
+    !> the same two triangular solves with L_c as apply_a.
+    subroutine operator_apply_at(this, w, out)
+        class(contact_operator_t), intent(in) :: this
+        real(wp), intent(in) :: w(:)
+        real(wp), intent(out) :: out(:)
+        real(wp) :: xz(this%p), z(2*this%p), direction(2)
+        integer :: a
+        if (this%explicit) then
+            call dgemm('T', 'N', this%p, 1, this%p, 1.0_wp, this%a, this%p, w, this%p, 0.0_wp, &
+                       out, this%p)
+            return
+        end if
+        direction = this%lambda/this%lambda_scale*this%tangent - this%normal/this%lambda_scale
+        z = 0.0_wp
+        do a = 1, this%p
+            z(this%slot(:, a)) = this%normal*w(a)
+        end do
+        call dtrsv('L', 'N', 'N', 2*this%p, this%l_tail, 2*this%p, z, 1)
+        call dtrsv('L', 'T', 'N', 2*this%p, this%l_tail, 2*this%p, z, 1)
+        do a = 1, this%p
+            xz(a) = dot_product(direction, z(this%slot(:, a)))
+        end do
+        call this%mass%matvec(xz, out)
+    end subroutine operator_apply_at
+
     !> ARPACK's OP: A (sigma = 0) or (I - sigma A)^-1 A, divided by lambda_scale; the full
-    !> operator (K - sigma B)^-1 B / lambda_scale.
+    !> operator (K - sigma B)^-1 B / lambda_scale. With `transposed` their transposes, whose
+    !> eigenvalues are the same: A' (I - sigma A)^-T, and for the full operator
+    !> (K - sigma B)^-T B' = (K - sigma B')^-1 B' (K symmetric; UMFPACK solves with the
+    !> transpose of the same LU), the shift-invert operator of the pencil (K, B'), whose
+    !> eigenvectors are the left eigenvectors y of (K, B): K y = mu B' y.
     subroutine operator_apply(this, y, out, stat)
         class(contact_operator_t), intent(inout) :: this
         real(wp), intent(in) :: y(:)
         real(wp), intent(out) :: out(:)
         type(status_t), intent(out) :: stat
-        real(wp), allocatable :: by(:, :), x(:, :)
+        real(wp), allocatable :: by(:, :), x(:, :), xy(:), mxy(:), w(:)
         integer :: info
         if (this%full) then
             allocate (by(this%n, 1))
-            call this%b_scaled%matvec(y, by(:, 1))
+            if (this%transposed) then
+                ! left: (K - sigma B)^-T B' y / lambda_scale, B' = N' M X
+                allocate (xy(this%p), mxy(this%p))
+                call this%contact%gather(this%lambda/this%lambda_scale*this%tangent - &
+                                         this%normal/this%lambda_scale, y, xy)
+                call this%mass%matvec(xy, mxy)
+                by = 0.0_wp
+                call this%contact%scatter(this%normal, mxy, by(:, 1))
+            else
+                call this%b_scaled%matvec(y, by(:, 1))
+            end if
             if (abs(this%sigma) > 0.0_wp) then
-                call this%shifted%solve(by(:, 1), out, stat)
+                call this%shifted%solve(by(:, 1), out, stat, transposed=this%transposed)
             else
                 allocate (x(this%n, 1))
                 call this%chol%solve(by, x, stat)
                 out = x(:, 1)
             end if
+            return
+        end if
+        if (this%transposed) then
+            w = y
+            if (abs(this%sigma) > 0.0_wp) call dgetrs('T', this%p, 1, this%a, this%p, &
+                                                       this%pivots, w, this%p, info)
+            call this%apply_at(w, out)
             return
         end if
         call this%apply_a(y, out)
@@ -539,9 +600,72 @@ contains
         else
             call fill_full_spectrum(k, b, mu, run, n_keep, spec)
         end if
+        if (.not. stat%ok()) return
         spec%n_operator = n_operator
         spec%dense_decision = .not. confirmed .and. p <= DENSE_FALLBACK_MAX
+        call add_roundoff(max(options%nev, size(run%nu)))
+    contains
+
+        !> spec%roundoff of the lowest positive mu (module roundoff)
+        !> from its left eigenvector: of the dense decision's reduced matrix when it decided,
+        !> else from one ARPACK run on the transposed operator (the last run's nev). A failure
+        !> only leaves them unknown.
+        subroutine add_roundoff(nev)
+            integer, intent(in) :: nev
+            real(wp), allocatable :: w(:), y(:)
+            type(status_t) :: left_stat
+            real(wp) :: start
+            allocate (spec%roundoff(spec%n()), source=-1.0_wp)
+            if (spec%lowest_positive() /= 1 .or. size(spec%vectors, 2) < 1) return
+            start = wall_time()
+            if (spec%dense_decision) then
+                if (allocated(run%left)) call left_from_reduced(chol, contact, k%n(), run%left, &
+                                                                y, left_stat)
+            else if (op%full) then
+                call left_eigenvector(op, options, min(nev, cap), real(spec%mu(1), wp), y, &
+                                      left_stat)
+            else
+                call left_eigenvector(op, options, min(nev, cap), real(spec%mu(1), wp), w, &
+                                      left_stat)
+                if (left_stat%ok() .and. allocated(w)) call left_from_reduced(chol, contact, &
+                    k%n(), w, y, left_stat)
+            end if
+            if (left_stat%ok()) call lowest_roundoff(k, b, contact, lambda, real(spec%mu(1), wp), &
+                real(spec%vectors(:, 1), wp), y, spec%roundoff(1))
+            spec%roundoff_seconds = wall_time() - start
+        end subroutine add_roundoff
     end subroutine arpack_spectrum
+
+    !> The eigenvector of the transposed operator (op%transposed) for the real eigenvalue
+    !> nearest `mu_lowest`, from one ARPACK run of `nev` values: the left eigenvector of
+    !> the lowest positive mu (reduced: w with A' w = theta w; full: y with K y = mu B' y).
+    !> Unallocated when no real Ritz value converged.
+    subroutine left_eigenvector(op, options, nev, mu_lowest, left, stat)
+        type(contact_operator_t), intent(inout) :: op
+        type(arpack_options_t), intent(in) :: options
+        integer, intent(in) :: nev
+        real(wp), intent(in) :: mu_lowest
+        real(wp), allocatable, intent(out) :: left(:)
+        type(status_t), intent(out) :: stat
+        type(ritz_t) :: run
+        complex(wp), allocatable :: mu(:)
+        integer :: pick, i
+        op%transposed = .true.
+        call run_arpack(op, nev, options, 1, run, stat)
+        op%transposed = .false.
+        if (.not. stat%ok()) return
+        mu = op%mu_of(run%nu)
+        pick = 0
+        do i = 1, size(mu)
+            if (.not. run%is_real(i)) cycle
+            if (pick == 0) then
+                pick = i
+            else if (abs(mu(i) - mu_lowest) < abs(mu(pick) - mu_lowest)) then
+                pick = i
+            end if
+        end do
+        if (pick > 0) left = real(run%y(:, pick), wp)
+    end subroutine left_eigenvector
 
     !> ARPACK runs on `op` until the lowest positive real mu (and with options%cn_max every
     !> one up to it) is certified (certify_lowest) by two runs from different start vectors
@@ -654,10 +778,11 @@ contains
         p = op%p
         call op%dense_a(a, stat)
         if (.not. stat%ok()) return
-        allocate (wr(p), wi(p), vr(p, p), vl(1, 1))
-        call dgeev('N', 'V', p, a, p, wr, wi, vl, 1, vr, p, query, -1, info)
+        ! left eigenvectors too: the round-off bound of the lowest positive mu needs its own
+        allocate (wr(p), wi(p), vr(p, p), vl(p, p))
+        call dgeev('V', 'V', p, a, p, wr, wi, vl, p, vr, p, query, -1, info)
         allocate (work(max(1, int(query(1)))))
-        call dgeev('N', 'V', p, a, p, wr, wi, vl, 1, vr, p, work, size(work), info)
+        call dgeev('V', 'V', p, a, p, wr, wi, vl, p, vr, p, work, size(work), info)
         if (info /= 0) then
             call stat%fail(STATUS_SOLVER, lapack_info_message('dgeev', info))
             return
@@ -677,7 +802,10 @@ contains
             j = maxloc(size_nu, dim=1, mask=.not. chosen)
             chosen(j) = .true.
         end do
-        if (lowest > 0) chosen(lowest) = .true.
+        if (lowest > 0) then
+            chosen(lowest) = .true.
+            run%left = vl(:, lowest)   ! real: the lowest positive mu is real
+        end if
         chosen = chosen .or. (is_real .and. keep .and. real(mu, wp) > 0.0_wp .and. &
                               real(mu, wp) <= cn_max)
         do j = 1, p
