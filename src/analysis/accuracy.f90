@@ -50,14 +50,22 @@ contains
                 //'the lowest positive mu: its bound is '//short(roundoff)//' relative'//WHY]
         else if (roundoff > FORWARD_ERROR_BOUND) then
             warnings = [character(len=WARNING_LEN) :: 'round-off bound of the lowest positive ' &
-                //'mu is '//short(roundoff)//' relative, about '// &
-                to_string(max(0, floor(-log10(roundoff))))//' correct digits'//WHY]
+                //'mu is '//short(roundoff)//' relative: '//digits(floor(-log10(roundoff)))//WHY]
         else if (discretisation >= 0.0_wp .and. roundoff > discretisation) then
             warnings = [character(len=WARNING_LEN) :: 'round-off dominates the error bar of ' &
                 //'the lowest positive mu: '//short(roundoff)//' relative against '// &
                 short(discretisation)//' from the discretisation, which refining the mesh ' &
                 //'does not reduce'//WHY]
         end if
+
+    contains
+
+        function digits(n) result(text)
+            integer, intent(in) :: n
+            character(len=:), allocatable :: text
+            text = 'only its sign is certain'
+            if (n > 0) text = 'about '//to_string(n)//' correct digits'
+        end function digits
     end function roundoff_warnings
 
     !> condition x max(backward error, eps): first-order bound of the relative error of mu.

@@ -335,8 +335,11 @@ contains
                 short_real_text(res%error%bar)//NL
             if (allocated(res%error%skipped)) text = text//'  relative error estimate of mu: '// &
                 res%error%skipped//NL
-            if (res%roundoff >= 0.0_wp) text = text//'  round-off bound of mu: '// &
-                short_real_text(res%roundoff)//' relative (part of the error bar)'//NL
+            if (res%roundoff >= 0.0_wp) then
+                text = text//'  round-off bound of mu: '//short_real_text(res%roundoff)//' relative'
+                if (res%error%computed) text = text//' (in the error bar)'
+                text = text//NL
+            end if
         else
             text = text//'  no positive real eigenvalue for this lambda'//NL
         end if
