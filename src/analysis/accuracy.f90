@@ -50,7 +50,7 @@ contains
                 //'the lowest positive mu: its bound is '//short(roundoff)//' relative'//WHY]
         else if (roundoff > FORWARD_ERROR_BOUND) then
             warnings = [character(len=WARNING_LEN) :: 'round-off bound of the lowest positive ' &
-                //'mu is '//short(roundoff)//' relative: '//digits(floor(-log10(roundoff)))//WHY]
+                //'mu is '//short(roundoff)//' relative: '//digits_text(floor(-log10(roundoff)))//WHY]
         else if (discretisation >= 0.0_wp .and. roundoff > discretisation) then
             warnings = [character(len=WARNING_LEN) :: 'round-off dominates the error bar of ' &
                 //'the lowest positive mu: '//short(roundoff)//' relative against '// &
@@ -60,12 +60,12 @@ contains
 
     contains
 
-        function digits(n) result(text)
+        function digits_text(n) result(text)
             integer, intent(in) :: n
             character(len=:), allocatable :: text
             text = 'only its sign is certain'
             if (n > 0) text = 'about '//to_string(n)//' correct digits'
-        end function digits
+        end function digits_text
     end function roundoff_warnings
 
     !> condition x max(backward error, eps): first-order bound of the relative error of mu.
