@@ -50,7 +50,8 @@ contains
                 //'the lowest positive mu: its bound is '//short(roundoff)//' relative'//WHY]
         else if (roundoff > FORWARD_ERROR_BOUND) then
             warnings = [character(len=WARNING_LEN) :: 'round-off bound of the lowest positive ' &
-                //'mu is '//short(roundoff)//' relative: '//digits_text(floor(-log10(roundoff)))//WHY]
+                //'mu is '//short(roundoff)//' relative: '// &
+                digits_text(floor(-log10(roundoff)))//WHY]
         else if (discretisation >= 0.0_wp .and. roundoff > discretisation) then
             warnings = [character(len=WARNING_LEN) :: 'round-off dominates the error bar of ' &
                 //'the lowest positive mu: '//short(roundoff)//' relative against '// &
