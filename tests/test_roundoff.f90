@@ -50,7 +50,8 @@ contains
         type(contact_t) :: contact
         call two_dof_pencil(k, b, contact)
         call t%check_close('bound of the 2 x 2 pencil in closed form', &
-            roundoff_bound(k, b, contact, LAMBDA, MU, X, Y), 12.0_wp*ROUNDOFF_UNITS*EPS, 1.0e-14_wp)
+            roundoff_bound(k, b, contact, LAMBDA, MU, X, Y), 12.0_wp*ROUNDOFF_UNITS*EPS, &
+            1.0e-14_wp)
         call t%check_close('bound is invariant under scaling of x and y', &
             roundoff_bound(k, b, contact, LAMBDA, MU, -1.0e-200_wp*X, 3.0e150_wp*Y), &
             12.0_wp*ROUNDOFF_UNITS*EPS, 1.0e-14_wp)

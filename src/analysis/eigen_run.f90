@@ -336,7 +336,8 @@ contains
             if (allocated(res%error%skipped)) text = text//'  relative error estimate of mu: '// &
                 res%error%skipped//NL
             if (res%roundoff >= 0.0_wp) then
-                text = text//'  round-off bound of mu: '//short_real_text(res%roundoff)//' relative'
+                text = text//'  round-off bound of mu: '//short_real_text(res%roundoff)// &
+                       ' relative'
                 if (res%error%computed) text = text//' (in the error bar)'
                 text = text//NL
             end if

@@ -61,6 +61,8 @@ module contact_operator
         procedure :: setup_full => operator_setup_full
         procedure :: apply_a => operator_apply_a
         procedure :: apply_at => operator_apply_at
+        procedure :: x_direction => operator_x_direction
+        procedure :: contact_compliance => operator_contact_compliance
         procedure :: apply => operator_apply
         procedure :: dense_a => operator_dense_a
         procedure :: mu_of => operator_mu_of
@@ -255,24 +257,14 @@ contains
         class(contact_operator_t), intent(in) :: this
         real(wp), intent(in) :: y(:)
         real(wp), intent(out) :: out(:)
-        real(wp) :: my(this%p), z(2*this%p)
-        integer :: a
+        real(wp) :: my(this%p)
         if (this%explicit) then
             call dgemm('N', 'N', this%p, 1, this%p, 1.0_wp, this%a, this%p, y, this%p, 0.0_wp, &
                        out, this%p)
             return
         end if
         call this%mass%matvec(y, my)
-        z = 0.0_wp
-        do a = 1, this%p
-            z(this%slot(:, a)) = (this%lambda/this%lambda_scale*this%tangent - &
-                                  this%normal/this%lambda_scale)*my(a)
-        end do
-        call dtrsv('L', 'N', 'N', 2*this%p, this%l_tail, 2*this%p, z, 1)
-        call dtrsv('L', 'T', 'N', 2*this%p, this%l_tail, 2*this%p, z, 1)
-        do a = 1, this%p
-            out(a) = dot_product(this%normal, z(this%slot(:, a)))
-        end do
+        call this%contact_compliance(this%x_direction(), this%normal, my, out)
     end subroutine operator_apply_a
 
     !> out = A' w / lambda_scale = M X K^-1 N' w / lambda_scale (X = lambda T - N), through
@@ -281,25 +273,41 @@ contains
         class(contact_operator_t), intent(in) :: this
         real(wp), intent(in) :: w(:)
         real(wp), intent(out) :: out(:)
-        real(wp) :: xz(this%p), z(2*this%p), direction(2)
-        integer :: a
+        real(wp) :: xz(this%p)
         if (this%explicit) then
             call dgemm('T', 'N', this%p, 1, this%p, 1.0_wp, this%a, this%p, w, this%p, 0.0_wp, &
                        out, this%p)
             return
         end if
+        call this%contact_compliance(this%normal, this%x_direction(), w, xz)
+        call this%mass%matvec(xz, out)
+    end subroutine operator_apply_at
+
+    !> (lambda t - n) / lambda_scale: the direction of X (X y(a) = it . y(dofs(:, a))).
+    pure function operator_x_direction(this) result(direction)
+        class(contact_operator_t), intent(in) :: this
+        real(wp) :: direction(2)
         direction = this%lambda/this%lambda_scale*this%tangent - this%normal/this%lambda_scale
+    end function operator_x_direction
+
+    !> out(a) = d_out . (K^-1 f)(dofs(:, a)) for the contact forces f(dofs(:, b)) = d_in v(b):
+    !> K^-1 on the contact dofs as L_c^-T L_c^-1.
+    subroutine operator_contact_compliance(this, d_in, d_out, v, out)
+        class(contact_operator_t), intent(in) :: this
+        real(wp), intent(in) :: d_in(2), d_out(2), v(:)
+        real(wp), intent(out) :: out(:)
+        real(wp) :: z(2*this%p)
+        integer :: a
         z = 0.0_wp
         do a = 1, this%p
-            z(this%slot(:, a)) = this%normal*w(a)
+            z(this%slot(:, a)) = d_in*v(a)
         end do
         call dtrsv('L', 'N', 'N', 2*this%p, this%l_tail, 2*this%p, z, 1)
         call dtrsv('L', 'T', 'N', 2*this%p, this%l_tail, 2*this%p, z, 1)
         do a = 1, this%p
-            xz(a) = dot_product(direction, z(this%slot(:, a)))
+            out(a) = dot_product(d_out, z(this%slot(:, a)))
         end do
-        call this%mass%matvec(xz, out)
-    end subroutine operator_apply_at
+    end subroutine operator_contact_compliance
 
     !> ARPACK's OP: A (sigma = 0) or (I - sigma A)^-1 A, divided by lambda_scale; the full
     !> operator (K - sigma B)^-1 B / lambda_scale. With `transposed` their transposes, whose
@@ -319,8 +327,7 @@ contains
             if (this%transposed) then
                 ! left: (K - sigma B)^-T B' y / lambda_scale, B' = N' M X
                 allocate (xy(this%p), mxy(this%p))
-                call this%contact%gather(this%lambda/this%lambda_scale*this%tangent - &
-                                         this%normal/this%lambda_scale, y, xy)
+                call this%contact%gather(this%x_direction(), y, xy)
                 call this%mass%matvec(xy, mxy)
                 by = 0.0_wp
                 call this%contact%scatter(this%normal, mxy, by(:, 1))
