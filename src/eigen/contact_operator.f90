@@ -60,7 +60,6 @@ module contact_operator
         procedure :: setup => operator_setup
         procedure :: setup_full => operator_setup_full
         procedure :: apply_a => operator_apply_a
-        procedure :: apply_at => operator_apply_at
         procedure :: x_direction => operator_x_direction
         procedure :: contact_compliance => operator_contact_compliance
         procedure :: apply => operator_apply
@@ -252,36 +251,25 @@ contains
     end function operator_mu_of
 
     !> out = A y / lambda_scale = N K^-1 (lambda T' - N') M y / lambda_scale, through two
-    !> triangular solves with L_c.
-    subroutine operator_apply_a(this, y, out)
+    !> triangular solves with L_c; with `transposed`, A' y / lambda_scale = M X K^-1 N' y /
+    !> lambda_scale (X = lambda T - N) through the same solves.
+    subroutine operator_apply_a(this, y, out, transposed)
         class(contact_operator_t), intent(in) :: this
         real(wp), intent(in) :: y(:)
         real(wp), intent(out) :: out(:)
-        real(wp) :: my(this%p)
+        logical, intent(in) :: transposed
+        real(wp) :: v(this%p)
         if (this%explicit) then
-            call dgemm('N', 'N', this%p, 1, this%p, 1.0_wp, this%a, this%p, y, this%p, 0.0_wp, &
-                       out, this%p)
-            return
+            call dgemm(merge('T', 'N', transposed), 'N', this%p, 1, this%p, 1.0_wp, this%a, &
+                       this%p, y, this%p, 0.0_wp, out, this%p)
+        else if (transposed) then
+            call this%contact_compliance(this%normal, this%x_direction(), y, v)
+            call this%mass%matvec(v, out)
+        else
+            call this%mass%matvec(y, v)
+            call this%contact_compliance(this%x_direction(), this%normal, v, out)
         end if
-        call this%mass%matvec(y, my)
-        call this%contact_compliance(this%x_direction(), this%normal, my, out)
     end subroutine operator_apply_a
-
-    !> out = A' w / lambda_scale = M X K^-1 N' w / lambda_scale (X = lambda T - N), through
-    !> the same two triangular solves with L_c as apply_a.
-    subroutine operator_apply_at(this, w, out)
-        class(contact_operator_t), intent(in) :: this
-        real(wp), intent(in) :: w(:)
-        real(wp), intent(out) :: out(:)
-        real(wp) :: xz(this%p)
-        if (this%explicit) then
-            call dgemm('T', 'N', this%p, 1, this%p, 1.0_wp, this%a, this%p, w, this%p, 0.0_wp, &
-                       out, this%p)
-            return
-        end if
-        call this%contact_compliance(this%normal, this%x_direction(), w, xz)
-        call this%mass%matvec(xz, out)
-    end subroutine operator_apply_at
 
     !> (lambda t - n) / lambda_scale: the direction of X (X y(a) = it . y(dofs(:, a))).
     pure function operator_x_direction(this) result(direction)
@@ -347,10 +335,10 @@ contains
             w = y
             if (abs(this%sigma) > 0.0_wp) call dgetrs('T', this%p, 1, this%a, this%p, &
                                                        this%pivots, w, this%p, info)
-            call this%apply_at(w, out)
+            call this%apply_a(w, out, transposed=.true.)
             return
         end if
-        call this%apply_a(y, out)
+        call this%apply_a(y, out, transposed=.false.)
         if (.not. (abs(this%sigma) > 0.0_wp)) return
         ! dgetrf succeeded in setup, so dgetrs cannot fail on these arguments
         call dgetrs('N', this%p, 1, this%a, this%p, this%pivots, out, this%p, info)
