@@ -6,7 +6,7 @@
 # scaled by s in {1, 1.37} (mu scales exactly like E / s: the values compared are mu s / E),
 # the dense and the ARPACK solver, and ARPACK on the full operator. A Gmsh mesh is written
 # here scaled by s (and moved off the origin) from the generator SCENE names.
-# Usage: scripts/roundoff_spread.sh NCEIG NAME 'MESH' 'MATERIAL' LAMBDA
+# Usage: scripts/dev/roundoff_spread.sh NCEIG NAME 'MESH' 'MATERIAL' LAMBDA
 #   MESH: the &mesh body with the size left out (rectangle: width and height are set to s;
 #   'sliver DELTA N': an N x N Gmsh triangle mesh of the unit square with one cell on the
 #   contact side split around a node DELTA (relative) off its diagonal: a sliver).
