@@ -88,13 +88,13 @@ contains
     !> Collapsed Gauss rule on the reference triangle (area 1/2) exact for polynomials of
     !> total degree <= `degree`: (u, v) in [-1, 1]^2 maps to y = (1 + v)/2,
     !> x = (1 + u)(1 - v)/4 with Jacobian (1 - v)/8. A polynomial of degree d in (x, y) is of
-    !> degree d in u and d + 1 in v after the map, so n = d/2 + 1 points per direction.
+    !> degree d in u and d + 1 in v after the map, so n = ceil((d + 2)/2) points per direction.
     pure function triangle_rule_exact(degree) result(rule)
         integer, intent(in) :: degree
         type(gauss_rule_t) :: rule
         real(wp), allocatable :: x(:), w(:)
         integer :: n, i, j, q
-        n = max(0, degree)/2 + 1
+        n = (max(0, degree) + 3)/2
         allocate (x(n), w(n))
         call gauss_legendre(n, x, w)
         allocate (rule%points(2, n*n), rule%weights(n*n))
