@@ -21,10 +21,9 @@ program test_hp_eigen
     use dense_eigen, only: dense_spectrum
     use contact_reduction, only: factor_stiffness
     use timer, only: timings_t
-    use gauss_rules, only: gauss_rule_t
     use hp_basis, only: hp_bubble_count
     use hp_space, only: hp_space_t, build_hp_space
-    use hp_stiffness, only: hp_element_laplace, hp_stiffness_rules, HP_OK
+    use hp_stiffness, only: hp_element_laplace, hp_reference_tables, HP_OK
     use hp_eigen, only: hp_dense_spectrum
     implicit none
 
@@ -84,7 +83,6 @@ contains
         type(mesh_t) :: m
         type(hp_space_t) :: space
         type(status_t) :: stat
-        type(gauss_rule_t), allocatable :: rules(:)
         real(wp), allocatable :: a(:, :), b(:, :), ke(:, :), me(:, :), w(:), work(:)
         integer, allocatable :: global(:), functions(:)
         integer :: c, n_free, n, nb, i, info, next
@@ -93,15 +91,14 @@ contains
         n_free = maxval([0, space%free_function])
         n = n_free + m%n_cells()*hp_bubble_count(p)
         allocate (a(n, n), b(n, n), source=0.0_wp)
-        rules = hp_stiffness_rules(p)
         next = n_free
         do c = 1, m%n_cells()
             functions = space%cell_functions(c, m%cells(:, c))
             nb = hp_bubble_count(p)
             global = [space%free_function(functions), (next + i, i=1, nb)]
             next = next + nb
-            call hp_element_laplace(m%coords(:, m%cells(:, c)), space%edge_degrees_of(c), p, &
-                                    space%cell_flip(:, c), rules(p), ke, me, info)
+            call hp_element_laplace(m%coords(:, m%cells(:, c)), hp_reference_tables( &
+                space%edge_degrees_of(c), p, space%cell_flip(:, c)), ke, me, info)
             if (info /= HP_OK .or. .not. stat%ok()) then
                 lowest = huge(1.0_wp)
                 return

@@ -13,98 +13,128 @@ module hp_stiffness
     use mesh, only: mesh_t
     use csr_matrix, only: csr_matrix_t, csr_from_element_dofs
     use gauss_rules, only: gauss_rule_t, triangle_rule_exact
-    use hp_basis, only: hp_triangle_shape, hp_local_count, hp_bubble_count, MAX_HP_DEGREE
+    use hp_basis, only: hp_triangle_shape, hp_local_count, hp_bubble_count
     use elasticity, only: lame_coefficients
     use hp_space, only: hp_space_t
     implicit none
     private
-    public :: hp_reference_gradients, hp_element_stiffness, hp_element_laplace, &
-              condense_interior, assemble_hp_stiffness, hp_stiffness_rules
+    public :: hp_reference_tables, hp_element_stiffness, hp_element_laplace, &
+              condense_interior, assemble_hp_stiffness, configuration_key
 
     integer, parameter :: HP_OK = 0, HP_INVERTED = 1
     public :: HP_OK, HP_INVERTED
 
+    !> The reference integrals of one cell configuration (edge degrees, interior degree, edge
+    !> directions), shared by all cells of that configuration: on an affine cell the physical
+    !> gradients are J^-T times the reference ones, so every element matrix is a combination
+    !> of these four with the entries of J^-T and det J. A mesh has few configurations (a
+    !> degree per layer, eight direction patterns), so the basis is evaluated a few dozen
+    !> times instead of once per cell.
+    type, public :: hp_tables_t
+        integer :: key(7) = 0   !! edge degrees, interior degree, directions (0/1)
+        !> (n, n, 4): int d_xi phi_a d_xi phi_b, int d_xi phi_a d_eta phi_b,
+        !> int d_eta phi_a d_eta phi_b, int phi_a phi_b over the reference triangle
+        real(wp), allocatable :: r(:, :, :)
+    end type hp_tables_t
+
 contains
 
-    !> The quadrature rules of the stiffness, rules(p) exact to degree 2p: the stiffness of
-    !> an affine cell needs 2(p - 1), the mass 2p.
-    pure function hp_stiffness_rules(p_max) result(rules)
-        integer, intent(in) :: p_max
-        type(gauss_rule_t) :: rules(p_max)
-        integer :: p
-        do p = 1, p_max
-            rules(p) = triangle_rule_exact(2*p)
-        end do
-    end function hp_stiffness_rules
-
-    !> Values and physical gradients of the local functions of the straight triangle xy(:,
-    !> 1:3) at the points of `rule`, with the weights times det J; info = HP_INVERTED for a
-    !> cell that is clockwise or flat.
-    pure subroutine hp_reference_gradients(xy, edge_degree, p, flip, rule, values, grad_x, &
-                                           grad_y, weights, info)
-        real(wp), intent(in) :: xy(:, :)
+    !> Key of a configuration, for hp_tables_t%key.
+    pure function configuration_key(edge_degree, p, flip) result(key)
         integer, intent(in) :: edge_degree(3), p
         logical, intent(in) :: flip(3)
-        type(gauss_rule_t), intent(in) :: rule
-        real(wp), allocatable, intent(out) :: values(:, :), grad_x(:, :), grad_y(:, :)  !! (nq, n)
-        real(wp), allocatable, intent(out) :: weights(:)   !! (nq)
-        integer, intent(out) :: info
-        real(wp) :: jacobian(2, 2), det, inverse_t(2, 2)
-        real(wp), allocatable :: v(:), g(:, :)
-        integer :: n, nq, q
+        integer :: key(7)
+        key = [edge_degree, p, merge(1, 0, flip)]
+    end function configuration_key
 
+    !> The reference integrals of a configuration, by the collapsed Gauss rule exact to
+    !> degree 2p (the mass; the stiffness needs 2(p - 1)).
+    pure function hp_reference_tables(edge_degree, p, flip) result(tables)
+        integer, intent(in) :: edge_degree(3), p
+        logical, intent(in) :: flip(3)
+        type(hp_tables_t) :: tables
+        type(gauss_rule_t) :: rule
+        real(wp), allocatable :: v(:, :), gxi(:, :), geta(:, :), weighted(:, :), &
+                                 value(:), gradient(:, :)
+        integer :: n, q
+        tables%key = configuration_key(edge_degree, p, flip)
+        rule = triangle_rule_exact(2*p)
         n = hp_local_count(edge_degree, p)
-        nq = rule%n_points()
+        allocate (v(rule%n_points(), n), gxi(rule%n_points(), n), geta(rule%n_points(), n), &
+                  value(n), gradient(2, n))
+        do q = 1, rule%n_points()
+            call hp_triangle_shape(edge_degree, p, flip, rule%points(:, q), value, gradient)
+            v(q, :) = value
+            gxi(q, :) = gradient(1, :)
+            geta(q, :) = gradient(2, :)
+        end do
+        allocate (tables%r(n, n, 4))
+        weighted = gxi
+        do q = 1, rule%n_points()
+            weighted(q, :) = rule%weights(q)*gxi(q, :)
+        end do
+        tables%r(:, :, 1) = matmul(transpose(weighted), gxi)
+        tables%r(:, :, 2) = matmul(transpose(weighted), geta)
+        do q = 1, rule%n_points()
+            weighted(q, :) = rule%weights(q)*geta(q, :)
+        end do
+        tables%r(:, :, 3) = matmul(transpose(weighted), geta)
+        do q = 1, rule%n_points()
+            weighted(q, :) = rule%weights(q)*v(q, :)
+        end do
+        tables%r(:, :, 4) = matmul(transpose(weighted), v)
+    end function hp_reference_tables
+
+    !> J^-T and det J of the straight triangle xy(:, 1:3); info = HP_INVERTED when it is
+    !> clockwise or flat (det J not above 1e-14 |J|^2).
+    pure subroutine affine_map(xy, inverse_t, det, info)
+        real(wp), intent(in) :: xy(:, :)
+        real(wp), intent(out) :: inverse_t(2, 2), det
+        integer, intent(out) :: info
+        real(wp) :: jacobian(2, 2)
         jacobian(:, 1) = xy(:, 2) - xy(:, 1)
         jacobian(:, 2) = xy(:, 3) - xy(:, 1)
         det = jacobian(1, 1)*jacobian(2, 2) - jacobian(1, 2)*jacobian(2, 1)
         info = HP_OK
-        if (.not. det > 1.0e-14_wp*sum(jacobian**2)) info = HP_INVERTED
-        allocate (values(nq, n), grad_x(nq, n), grad_y(nq, n), weights(nq), v(n), g(2, n))
-        if (info /= HP_OK) return
+        inverse_t = 0.0_wp
+        if (.not. det > 1.0e-14_wp*sum(jacobian**2)) then
+            info = HP_INVERTED
+            return
+        end if
         inverse_t = reshape([jacobian(2, 2), -jacobian(1, 2), -jacobian(2, 1), &
                              jacobian(1, 1)], [2, 2])/det
-        do q = 1, nq
-            call hp_triangle_shape(edge_degree, p, flip, rule%points(:, q), v, g)
-            values(q, :) = v
-            g = matmul(inverse_t, g)
-            grad_x(q, :) = g(1, :)
-            grad_y(q, :) = g(2, :)
-        end do
-        weights = rule%weights*det
-    end subroutine hp_reference_gradients
+    end subroutine affine_map
 
-    !> Plane-strain element stiffness of all local functions (interior ones included), in
-    !> dof order (x_1, y_1, x_2, y_2, ...).
-    pure subroutine hp_element_stiffness(xy, edge_degree, p, flip, rule, young, poisson, ke, &
-                                         info)
+    !> int (d phi_a/d x_i)(d phi_b/d x_j) over the cell, from the reference integrals: with
+    !> C = J^-T, d/dx_i = C(i, 1) d/dxi + C(i, 2) d/deta.
+    pure function physical_products(r, c, det, i, j) result(s)
+        real(wp), intent(in) :: r(:, :, :), c(2, 2), det
+        integer, intent(in) :: i, j
+        real(wp) :: s(size(r, 1), size(r, 2))
+        s = det*(c(i, 1)*c(j, 1)*r(:, :, 1) + c(i, 1)*c(j, 2)*r(:, :, 2) + &
+                 c(i, 2)*c(j, 1)*transpose(r(:, :, 2)) + c(i, 2)*c(j, 2)*r(:, :, 3))
+    end function physical_products
+
+    !> Plane-strain element stiffness of all local functions (interior ones included) of the
+    !> straight triangle xy(:, 1:3) with the reference integrals `tables` of its
+    !> configuration, in dof order (x_1, y_1, x_2, y_2, ...).
+    pure subroutine hp_element_stiffness(xy, tables, young, poisson, ke, info)
         real(wp), intent(in) :: xy(:, :)
-        integer, intent(in) :: edge_degree(3), p
-        logical, intent(in) :: flip(3)
-        type(gauss_rule_t), intent(in) :: rule
+        type(hp_tables_t), intent(in) :: tables
         real(wp), intent(in) :: young, poisson
         real(wp), allocatable, intent(out) :: ke(:, :)
         integer, intent(out) :: info
-        real(wp), allocatable :: values(:, :), gx(:, :), gy(:, :), w(:), sxx(:, :), syy(:, :), &
-                                 sxy(:, :)
-        real(wp) :: lame_l, shear_g
-        integer :: n, q
-
-        call hp_reference_gradients(xy, edge_degree, p, flip, rule, values, gx, gy, w, info)
-        n = size(gx, 2)
+        real(wp), allocatable :: sxx(:, :), syy(:, :), sxy(:, :)
+        real(wp) :: c(2, 2), det, lame_l, shear_g
+        integer :: n
+        n = size(tables%r, 1)
         allocate (ke(2*n, 2*n), source=0.0_wp)
+        call affine_map(xy, c, det, info)
         if (info /= HP_OK) return
         call lame_coefficients(young, poisson, lame_l, shear_g)
-        ! S_xy = Gx' W Gy etc.: three products of (n x nq)(nq x n), BLAS-like matmul
-        do q = 1, size(w)
-            values(q, :) = w(q)*gx(q, :)   ! (reused as W Gx)
-        end do
-        sxx = matmul(transpose(values), gx)
-        sxy = matmul(transpose(values), gy)
-        do q = 1, size(w)
-            values(q, :) = w(q)*gy(q, :)
-        end do
-        syy = matmul(transpose(values), gy)
+        sxx = physical_products(tables%r, c, det, 1, 1)
+        syy = physical_products(tables%r, c, det, 2, 2)
+        sxy = physical_products(tables%r, c, det, 1, 2)
         ! (a, b) blocks of B_a' D B_b: see elasticity's element_stiffness
         ke(1:2*n:2, 1:2*n:2) = (lame_l + 2.0_wp*shear_g)*sxx + shear_g*syy
         ke(2:2*n:2, 2:2*n:2) = (lame_l + 2.0_wp*shear_g)*syy + shear_g*sxx
@@ -113,29 +143,15 @@ contains
     end subroutine hp_element_stiffness
 
     !> Scalar Laplace stiffness int grad u . grad v and mass int u v of all local functions.
-    pure subroutine hp_element_laplace(xy, edge_degree, p, flip, rule, ke, me, info)
+    pure subroutine hp_element_laplace(xy, tables, ke, me, info)
         real(wp), intent(in) :: xy(:, :)
-        integer, intent(in) :: edge_degree(3), p
-        logical, intent(in) :: flip(3)
-        type(gauss_rule_t), intent(in) :: rule
+        type(hp_tables_t), intent(in) :: tables
         real(wp), allocatable, intent(out) :: ke(:, :), me(:, :)
         integer, intent(out) :: info
-        real(wp), allocatable :: values(:, :), gx(:, :), gy(:, :), w(:), weighted(:, :)
-        integer :: q
-        call hp_reference_gradients(xy, edge_degree, p, flip, rule, values, gx, gy, w, info)
-        allocate (weighted, mold=gx)
-        do q = 1, size(w)
-            weighted(q, :) = w(q)*gx(q, :)
-        end do
-        ke = matmul(transpose(weighted), gx)
-        do q = 1, size(w)
-            weighted(q, :) = w(q)*gy(q, :)
-        end do
-        ke = ke + matmul(transpose(weighted), gy)
-        do q = 1, size(w)
-            weighted(q, :) = w(q)*values(q, :)
-        end do
-        me = matmul(transpose(weighted), values)
+        real(wp) :: c(2, 2), det
+        call affine_map(xy, c, det, info)
+        ke = physical_products(tables%r, c, det, 1, 1) + physical_products(tables%r, c, det, 2, 2)
+        me = det*tables%r(:, :, 4)
     end subroutine hp_element_laplace
 
     !> Static condensation of the last n_interior rows and columns of the symmetric positive
@@ -184,10 +200,10 @@ contains
         real(wp), intent(in) :: young, poisson
         type(csr_matrix_t), intent(out) :: k
         type(status_t), intent(out) :: stat
-        type(gauss_rule_t), allocatable :: rules(:)
+        type(hp_tables_t), allocatable :: tables(:)
         integer, allocatable :: element_dofs(:, :), dofs(:)
         real(wp), allocatable :: ke(:, :), kc(:, :)
-        integer :: c, n_cells, info, p, n_dofs
+        integer :: c, n_cells, info, p, n_dofs, n_tables, t, key(7)
 
         n_cells = m%n_cells()
         allocate (element_dofs(space%max_cell_dofs(), n_cells), source=0)
@@ -196,14 +212,14 @@ contains
             element_dofs(1:size(dofs), c) = dofs
         end do
         call csr_from_element_dofs(space%n_free(), element_dofs, k)
-        allocate (rules(min(MAX_HP_DEGREE, maxval(space%cell_degree))))
-        rules = hp_stiffness_rules(size(rules))
+        allocate (tables(16))
+        n_tables = 0
         do c = 1, n_cells
             p = space%cell_degree(c)
-            ! stiffness of an affine cell: degree 2(p - 1), the rule of degree p - 1's mass
-            call hp_element_stiffness(m%coords(:, m%cells(1:3, c)), &
-                space%edge_degrees_of(c), p, space%cell_flip(:, c), rules(max(1, p - 1)), &
-                young, poisson, ke, info)
+            key = configuration_key(space%edge_degrees_of(c), p, space%cell_flip(:, c))
+            t = table_of(key)
+            call hp_element_stiffness(m%coords(:, m%cells(1:3, c)), tables(t), young, &
+                                      poisson, ke, info)
             if (info == HP_OK) call condense_interior(ke, 2*hp_bubble_count(p), kc, info)
             if (info /= HP_OK) then
                 call stat%fail(STATUS_MESH, 'hp stiffness: cell '//to_string(c)// &
@@ -217,5 +233,24 @@ contains
                 return
             end if
         end do
+
+    contains
+
+        !> Index in `tables` of the configuration `key`, computed on first use.
+        integer function table_of(key)
+            integer, intent(in) :: key(7)
+            type(hp_tables_t), allocatable :: grown(:)
+            do table_of = 1, n_tables
+                if (all(tables(table_of)%key == key)) return
+            end do
+            if (n_tables == size(tables)) then
+                allocate (grown(2*n_tables))
+                grown(1:n_tables) = tables
+                call move_alloc(grown, tables)
+            end if
+            n_tables = n_tables + 1
+            table_of = n_tables
+            tables(n_tables) = hp_reference_tables(key(1:3), key(4), key(5:7) == 1)
+        end function table_of
     end subroutine assemble_hp_stiffness
 end module hp_stiffness
