@@ -53,7 +53,7 @@ contains
 
     !> The P1 mesh of `m` refined geometrically toward `points` (2, n) with factor `sigma`
     !> and `layers` levels (see the module's comment); `h_min` returns the size reached at
-    !> the points. Parts and boundary edges carry over; any triangle mesh (P1 to P4) is
+    !> the points (the largest diameter of the cells touching one). Parts and boundary edges carry over; any triangle mesh (P1 to P4) is
     !> accepted, its higher-order nodes dropped.
     subroutine geometric_mesh(m, points, sigma, layers, graded, h_min, stat)
         type(mesh_t), intent(in) :: m
@@ -102,10 +102,10 @@ contains
         end do
         call r%to_mesh(ELEMENT_P1, graded, stat)
         if (.not. stat%ok()) return
-        h_min = huge(1.0_wp)
+        h_min = 0.0_wp   ! the largest cell at a point: every one there is no larger
         do c = 1, graded%n_cells()
             if (nearest_point(graded%coords(:, graded%cells(:, c))) <= 0.0_wp) &
-                h_min = min(h_min, cell_diameter(graded%coords(:, graded%cells(:, c))))
+                h_min = max(h_min, cell_diameter(graded%coords(:, graded%cells(:, c))))
         end do
 
     contains
