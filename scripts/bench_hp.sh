@@ -17,6 +17,6 @@ libs=$(sed -e 's/^.* -o [^ ]* *//' -e 's/libnceig_testing.a//' \
 gfortran -O3 -std=f2008 -Wall -Wextra -fimplicit-none -I "$build/modules" \
     "$root/scripts/bench_hp.f90" -o "$work/bench_hp" $libs
 if (($# == 0)); then
-    set -- 0.2 1.0 2 2 4 5 6 6 8 7 10 8 12 9
+    set -- 0.15 1.0 1 2 3 4 4 5 5 6 6 7 7 8 8 9 10 10 16 11
 fi
 OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1} "$work/bench_hp" "$@"
