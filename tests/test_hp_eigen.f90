@@ -56,7 +56,7 @@ contains
     !> -Laplace u = lambda u on ]0,1[^2, u = 0 on the boundary: lambda_1 = 2 pi^2, its mode
     !> sin(pi x) sin(pi y) analytic, so on a fixed mesh of 8 triangles the error of the
     !> Rayleigh-Ritz value falls exponentially in p (Babuska-Szabo). Measured: 2e-3 at p = 3,
-    !> 2e-10 at p = 7, 2e-14 at p = 9, then a round-off floor of 1e-13 to 5e-13 (the mass
+    !> 2e-10 at p = 7, 1e-13 at p = 9, then a round-off floor of 1e-13 to 5e-13 (the mass
     !> matrix's condition grows with p); asserted: below 1e-10 from p = 10 on, and each step
     !> of 2 in p gaining at least a factor 30 (measured: 20 to 700 per single step) while the
     !> error is above 1e-11.
