@@ -6,16 +6,8 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${NCEIG_BUILD:-$root/build}
-[[ -f $build/libnceig_lib.a ]] ||
-    { echo "bench_hp: build first (scripts/build.sh Release)" >&2; exit 1; }
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-# The link line of a test program, minus its own object and the test library.
-libs=$(sed -e 's/^.* -o [^ ]* *//' -e 's/libnceig_testing.a//' \
-       -e "s#\.\./libnceig_lib.a#$build/libnceig_lib.a#" \
-       "$build/tests/CMakeFiles/test_mesh_refine.dir/link.txt")
-gfortran -O3 -std=f2008 -Wall -Wextra -fimplicit-none -I "$build/modules" \
-    "$root/scripts/bench_hp.f90" -o "$work/bench_hp" $libs
+source "$root/scripts/lib/bench_common.sh"
+bench_program bench_hp
 if (($# == 0)); then
     set -- 0.15 1.0 1 2 3 4 4 5 5 6 6 7 7 8 8 9 10 10 16 11
 fi

@@ -8,25 +8,21 @@ program test_hp_eigen
     use kinds, only: wp
     use status, only: status_t
     use testing, only: test_suite_t
-    use fixtures, only: single_triangle
+    use fixtures, only: single_triangle, contact_scene
     use mesh, only: mesh_t
     use element_types, only: ELEMENT_P1, ELEMENT_P2, ELEMENT_P3, ELEMENT_P4
     use mesh_structured, only: structured_rectangle
-    use dof_map, only: dof_map_t, build_dof_map
-    use assembly, only: assemble_stiffness
-    use contact_boundary, only: contact_t, build_contact, assemble_b
+    use contact_boundary, only: contact_t, assemble_b
     use csr_matrix, only: csr_matrix_t
     use sparse_cholesky, only: cholesky_t
     use spectrum, only: spectrum_t
     use dense_eigen, only: dense_spectrum
-    use contact_reduction, only: factor_stiffness
+    use contact_reduction, only: reduced_blocks_t
     use timer, only: timings_t
     use hp_basis, only: hp_bubble_count
     use hp_space, only: hp_space_t, build_hp_space
     use hp_stiffness, only: hp_element_laplace, hp_reference_tables, HP_OK
-    use hp_eigen, only: hp_dense_spectrum, hp_lowest_positive, factor_hp_stiffness
-    use hp_stiffness, only: assemble_hp_stiffness
-    use hp_contact, only: build_hp_contact
+    use hp_eigen, only: hp_dense_spectrum, hp_lowest_positive, hp_factored_problem
     use arpack_eigen, only: arpack_options_t, arpack_spectrum
     use mesh_singular, only: singular_vertices
     use mesh_geometric, only: geometric_mesh, cell_layers, layer_degrees
@@ -230,10 +226,9 @@ contains
         call t%check('graded mesh: eigenvalues-only path finds it', stat%ok() .and. found)
         call t%check_close('graded mesh: eigenvalues-only path equals dense', mu, &
                            real(dense%mu(1), wp), 1.0e-10_wp)
-        call assemble_hp_stiffness(graded, space, 1.0_wp, 0.3_wp, k, stat)
-        if (stat%ok()) call build_hp_contact(graded, space, 1, contact, stat)
+        call hp_factored_problem(graded, degree, [3], 1, 1.0_wp, 0.3_wp, space, contact, k, &
+                                 chol, timings, stat)
         if (stat%ok()) call assemble_b(contact, space%n_free(), 5.0_wp, b, stat)
-        if (stat%ok()) call factor_hp_stiffness(k, graded, space, contact, chol, timings, stat)
         call t%check('graded mesh: K, B and the factor', stat%ok())
         if (.not. stat%ok()) return
         do i = 1, 2
@@ -248,24 +243,23 @@ contains
         end do
     end subroutine solvers_agree_on_a_graded_mesh
 
-    !> The dense spectrum of the Lagrange elements of mesh m (E = 1, nu = 0.3).
+    !> The dense spectrum of the Lagrange elements of mesh m (E = 1, nu = 0.3), from the
+    !> fixtures' contact scene (K, its factor and the contact blocks).
     subroutine lagrange_spectrum(m, dirichlet_parts, contact_part, lambda, spec)
         type(mesh_t), intent(in) :: m
         integer, intent(in) :: dirichlet_parts(:), contact_part
         real(wp), intent(in) :: lambda
         type(spectrum_t), intent(out) :: spec
-        type(dof_map_t) :: dofs
+        type(reduced_blocks_t) :: blocks
         type(contact_t) :: contact
         type(csr_matrix_t) :: k, b
         type(cholesky_t) :: chol
-        type(timings_t) :: timings
         type(status_t) :: stat
-        call build_dof_map(m, dirichlet_parts, dofs, stat)
-        if (stat%ok()) call build_contact(m, contact_part, dofs, contact, stat)
-        if (stat%ok()) call assemble_stiffness(m, dofs, 1.0_wp, 0.3_wp, k, stat)
-        if (stat%ok()) call assemble_b(contact, dofs%n_free, lambda, b, stat)
-        if (stat%ok()) call factor_stiffness(k, m, dofs, contact, chol, timings, stat)
-        if (stat%ok()) call dense_spectrum(k, b, chol, contact, lambda, 0, spec, stat)
+        call contact_scene(m, dirichlet_parts, contact_part, 0.3_wp, blocks, stat, k=k, &
+                           contact=contact, chol=chol)
+        if (stat%ok()) call assemble_b(contact, k%n(), lambda, b, stat)
+        if (stat%ok()) call dense_spectrum(k, b, chol, contact, lambda, 0, spec, stat, &
+                                           kt_nn_given=blocks%kt_nn, kt_nt_given=blocks%kt_nt)
         call t%check('Lagrange reference solve', stat%ok())
         if (.not. stat%ok()) allocate (spec%mu(0), spec%kind(0))
     end subroutine lagrange_spectrum

@@ -28,7 +28,8 @@ module hp_eigen
     use timer, only: PHASE_ASSEMBLY, PHASE_REDUCTION, PHASE_EIGEN
     implicit none
     private
-    public :: factor_hp_stiffness, hp_dense_spectrum, hp_lowest_positive, lowest_positive_of
+    public :: factor_hp_stiffness, hp_factored_problem, hp_dense_spectrum, hp_lowest_positive, &
+              lowest_positive_of
 
 contains
 
@@ -63,6 +64,33 @@ contains
                          to_string(k%n())//' hp dofs')
     end subroutine factor_hp_stiffness
 
+    !> The hp space of the P1 mesh `m` with cell degrees `degree` and `dirichlet_parts`
+    !> clamped, its stiffness K (interior condensed), the contact data of part
+    !> `contact_part`, and K's factor with the contact dofs last: what every hp eigensolve
+    !> starts from. Adds the assembly, ordering and factor times to `timings`.
+    subroutine hp_factored_problem(m, degree, dirichlet_parts, contact_part, young, poisson, &
+                                   space, contact, k, chol, timings, stat)
+        type(mesh_t), intent(in) :: m
+        integer, intent(in) :: degree(:), dirichlet_parts(:), contact_part
+        real(wp), intent(in) :: young, poisson
+        type(hp_space_t), intent(out) :: space
+        type(contact_t), intent(out) :: contact
+        type(csr_matrix_t), intent(out) :: k
+        type(cholesky_t), intent(inout) :: chol
+        type(timings_t), intent(inout) :: timings
+        type(status_t), intent(out) :: stat
+        real(wp) :: start
+        start = wall_time()
+        call build_hp_space(m, degree, dirichlet_parts, space, stat)
+        if (.not. stat%ok()) return
+        call assemble_hp_stiffness(m, space, young, poisson, k, stat)
+        if (.not. stat%ok()) return
+        call build_hp_contact(m, space, contact_part, contact, stat)
+        if (.not. stat%ok()) return
+        call timings%add(PHASE_ASSEMBLY, wall_time() - start, ': hp space, K, M')
+        call factor_hp_stiffness(k, m, space, contact, chol, timings, stat)
+    end subroutine hp_factored_problem
+
     !> All nonzero eigenvalues of K phi = mu B phi (B for `lambda`) on the hp space of the P1
     !> mesh `m` with cell degrees `degree`, `dirichlet_parts` clamped and Gamma_C the part
     !> `contact_part`, by the dense reduced solver; the modes of the first `n_keep` kept.
@@ -81,17 +109,10 @@ contains
         type(csr_matrix_t) :: k, b
         type(cholesky_t) :: chol
         real(wp) :: start, reduction_seconds
-        start = wall_time()
-        call build_hp_space(m, degree, dirichlet_parts, space, stat)
-        if (.not. stat%ok()) return
-        call assemble_hp_stiffness(m, space, young, poisson, k, stat)
-        if (.not. stat%ok()) return
-        call build_hp_contact(m, space, contact_part, contact, stat)
+        call hp_factored_problem(m, degree, dirichlet_parts, contact_part, young, poisson, &
+                                 space, contact, k, chol, timings, stat)
         if (.not. stat%ok()) return
         call assemble_b(contact, space%n_free(), lambda, b, stat)
-        if (.not. stat%ok()) return
-        call timings%add(PHASE_ASSEMBLY, wall_time() - start, ': hp space, K, M, B')
-        call factor_hp_stiffness(k, m, space, contact, chol, timings, stat)
         if (.not. stat%ok()) return
         start = wall_time()
         call dense_spectrum(k, b, chol, contact, lambda, n_keep, spec, stat, reduction_seconds)
@@ -128,15 +149,8 @@ contains
 
         mu = 0.0_wp
         found = .false.
-        start = wall_time()
-        call build_hp_space(m, degree, dirichlet_parts, space, stat)
-        if (.not. stat%ok()) return
-        call assemble_hp_stiffness(m, space, young, poisson, k, stat)
-        if (.not. stat%ok()) return
-        call build_hp_contact(m, space, contact_part, contact, stat)
-        if (.not. stat%ok()) return
-        call timings%add(PHASE_ASSEMBLY, wall_time() - start, ': hp space, K, M')
-        call factor_hp_stiffness(k, m, space, contact, chol, timings, stat)
+        call hp_factored_problem(m, degree, dirichlet_parts, contact_part, young, poisson, &
+                                 space, contact, k, chol, timings, stat)
         if (.not. stat%ok()) return
         start = wall_time()
         call contact_flexibility(chol, contact, kt_nn, kt_nt, stat)
