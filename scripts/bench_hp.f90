@@ -1,11 +1,14 @@
 ! SPDX-License-Identifier: MIT
 !> hp on the reference scene (unit square, nu = 0.3, lambda = 5, Gamma_D the top, Gamma_C the
-!> bottom): geometric meshes toward the singular points found from the geometry, degrees
-!> rising linearly away from them, the lowest positive mu against the continuum value of
-!> tests/data/truths.csv, and where the time goes. Run by scripts/bench_hp.sh.
-!> Arguments: sigma slope p_min n_start, then pairs (layers p_max) for each row. Each row
-!> is run three times: the phase times are the last run's, total and cpu the medians.
-!> `dofs` are those of the factor, `interior` those condensed out cell by cell.
+!> bottom) or another scene: geometric meshes toward the singular points found from the
+!> geometry, degrees rising linearly away from them, the lowest positive mu against the
+!> continuum value of tests/data/truths.csv, and where the time goes. Run by
+!> scripts/bench_hp.sh. Arguments: sigma slope p_min n_start (cells per side of the
+!> starting square), then pairs (layers p_max) for each row. Each row is run three times:
+!> the phase times are the last run's, total and cpu the medians. `dofs` are those of the
+!> factor, `interior` those condensed out cell by cell. Another scene comes from the
+!> environment: HP_MESH (a Gmsh file, instead of the square), HP_CONTACT (its Gamma_C
+!> part; the clamped part is 'top'), HP_POISSON, HP_LAMBDA and HP_TRUTH.
 program bench_hp
     use kinds, only: wp
     use status, only: status_t
@@ -13,6 +16,7 @@ program bench_hp
     use mesh, only: mesh_t
     use element_types, only: ELEMENT_P1
     use mesh_structured, only: structured_rectangle
+    use mesh_gmsh, only: read_gmsh
     use mesh_singular, only: singular_vertices
     use mesh_geometric, only: geometric_mesh, cell_layers, layer_degrees
     use hp_basis, only: hp_bubble_count
@@ -22,7 +26,7 @@ program bench_hp
     use spectrum, only: spectrum_t
     implicit none
 
-    real(wp), parameter :: TRUTH = 0.75284361680855649_wp   !! tests/data/truths.csv, ref
+    real(wp), parameter :: REF_TRUTH = 0.75284361680855649_wp   !! tests/data/truths.csv, ref
     integer, parameter :: RUNS = 3   !! each row is run this often; the median is shown
     type(mesh_t) :: m, graded
     type(hp_space_t) :: space
@@ -39,6 +43,18 @@ program bench_hp
     logical :: found
     type(contact_t) :: contact
     type(spectrum_t) :: spec
+    character(len=:), allocatable :: mesh_file, contact_name, text
+    real(wp) :: poisson, lambda, truth
+
+    mesh_file = environment('HP_MESH', '')
+    contact_name = environment('HP_CONTACT', 'bottom')
+    text = environment('HP_POISSON', '0.3')
+    read (text, *) poisson
+    text = environment('HP_LAMBDA', '5.0')
+    read (text, *) lambda
+    text = environment('HP_TRUTH', '0')
+    read (text, *) truth
+    if (len(mesh_file) == 0) truth = REF_TRUTH
 
     call get_command_argument(1, arg); read (arg, *) sigma
     call get_command_argument(2, arg); read (arg, *) slope
@@ -54,8 +70,12 @@ program bench_hp
         do run = 1, RUNS
             call cpu_time(cpu_start)
             start = wall_time()
-            call structured_rectangle(1.0_wp, 1.0_wp, n_start, n_start, ELEMENT_P1, 'right', &
-                                      m, stat)
+            if (len(mesh_file) > 0) then
+                call read_gmsh(mesh_file, m, stat)
+            else
+                call structured_rectangle(1.0_wp, 1.0_wp, n_start, n_start, ELEMENT_P1, &
+                                          'right', m, stat)
+            end if
             call check()
             singular = singular_vertices(m)
             points = m%coords(:, singular)
@@ -65,8 +85,9 @@ program bench_hp
             degree = layer_degrees(layer, p_min, slope, p_max)
             mesh_seconds = wall_time() - start
             timings = timings_t()
-            call hp_lowest_positive(graded, degree, [3], 1, 1.0_wp, 0.3_wp, 5.0_wp, space, mu, &
-                                    found, timings, stat)
+            call hp_lowest_positive(graded, degree, [m%part_index('top')], &
+                                    m%part_index(contact_name), 1.0_wp, poisson, lambda, space, &
+                                    mu, found, timings, stat)
             call check()
             total(run) = wall_time() - start
             call cpu_time(cpu_end)
@@ -76,7 +97,7 @@ program bench_hp
         mus(i) = mu
         write (rows(i), '(i8, i7, i7, i7, i10, es10.2, a10, 8f9.3)') layers, p_max, &
             graded%n_cells(), space%n_free(), 2*sum(hp_bubble_count(degree)), &
-            abs(mu - TRUTH)/TRUTH, '', mesh_seconds, &
+            abs(mu - truth)/truth, '', mesh_seconds, &
             timings%assembly, timings%ordering, timings%factor, timings%reduction, &
             timings%eigen, median(total), median(cpu)
     end do
@@ -97,8 +118,8 @@ program bench_hp
     degree = layer_degrees(cell_layers(graded, points, sigma, h_min), p_min, slope, p_max)
     timings = timings_t()
     start = wall_time()
-    call hp_dense_spectrum(graded, degree, [3], 1, 1.0_wp, 0.3_wp, 5.0_wp, 1, space, contact, &
-                           spec, timings, stat)
+    call hp_dense_spectrum(graded, degree, [m%part_index('top')], m%part_index(contact_name), &
+                           1.0_wp, poisson, lambda, 1, space, contact, spec, timings, stat)
     call check()
     write (*, '(a, i0, a, i0, a, i0, a, 3(f0.3, a), es9.2, a, es9.2)') &
         'full spectrum, layers ', layers, ', p_max ', p_max, ': ', spec%n(), &
@@ -107,6 +128,19 @@ program bench_hp
         spec%residual(1), ', largest', maxval(spec%residual)
 
 contains
+
+    !> The environment variable `name`, or `default` when unset or empty.
+    function environment(name, default) result(value)
+        character(len=*), intent(in) :: name, default
+        character(len=:), allocatable :: value
+        integer :: length, code
+        call get_environment_variable(name, length=length, status=code)
+        value = default
+        if (code /= 0 .or. length == 0) return
+        deallocate (value)
+        allocate (character(len=length) :: value)
+        call get_environment_variable(name, value)
+    end function environment
 
     pure real(wp) function median(x)
         real(wp), intent(in) :: x(3)
