@@ -3,7 +3,7 @@
 !> bottom) or another scene: geometric meshes toward the singular points found from the
 !> geometry, degrees rising linearly away from them, the lowest positive mu against the
 !> continuum value of tests/data/truths.csv, and where the time goes. Run by
-!> scripts/bench_hp.sh. Arguments: sigma slope p_min n_start (cells per side of the
+!> scripts/bench/bench_hp.sh. Arguments: sigma slope p_min n_start (cells per side of the
 !> starting square), then pairs (layers p_max) for each row. Each row is run three times:
 !> the phase times are the last run's, total and cpu the medians. `dofs` are those of the
 !> factor, `interior` those condensed out cell by cell. Another scene comes from the

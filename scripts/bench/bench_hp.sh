@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
-# hp on the reference scene (scripts/bench_hp.f90): compiled here against the Release library
+# hp on the reference scene (scripts/bench/bench_hp.f90): compiled here against the Release library
 # of build/ (no CMake target), then run on a sequence of geometric meshes.
-# Usage: scripts/bench_hp.sh [--scene NAME] [SIGMA SLOPE P_MIN N_START LAYERS P_MAX ...]
+# Usage: scripts/bench/bench_hp.sh [--scene NAME] [SIGMA SLOPE P_MIN N_START LAYERS P_MAX ...]
 # --scene: a scene of tests/data/truths.csv (scripts/lib/truth_scenes.sh) other than the
 # square: starts from a plain Gmsh mesh of it (size 0.3; needs gmsh) instead of the square.
 set -euo pipefail
-root=$(cd "$(dirname "$0")/.." && pwd)
+root=$(cd "$(dirname "$0")/../.." && pwd)
 build=${NCEIG_BUILD:-$root/build}
 source "$root/scripts/lib/bench_common.sh"
 scene=
