@@ -20,7 +20,8 @@ module adaptive_threshold
     use run_config, only: config_t
     use problem, only: problem_t
     use sparse_cholesky, only: cholesky_t
-    use threshold_analysis, only: factor_with_contact_blocks
+    use threshold_analysis, only: factor_with_contact_blocks, threshold_result_t, &
+                                  solve_thresholds
     use critical_lambda, only: thresholds_t, pencil_thresholds, SIDE_PLUS, SIDE_MINUS, &
                                SIDE_LABELS
     use error_estimate, only: ENRICHED_CONTACT_MAX
@@ -31,7 +32,7 @@ module adaptive_threshold
     use element_types, only: element_degree
     implicit none
     private
-    public :: adapt_thresholds
+    public :: adapt_thresholds, solve_adapted_thresholds
 
     !> One level of the loop: a row of adapt.csv, arrays by SIDE_PLUS, SIDE_MINUS.
     type, public :: threshold_level_t
@@ -85,6 +86,23 @@ contains
         call move_alloc(goal%levels, out%levels)
         out%estimate = goal%est
     end subroutine adapt_thresholds
+
+    !> The adaptive 'threshold' analysis: the loop from `start` (adapt_thresholds), then the
+    !> threshold analysis on its final problem with the loop's estimates; a limit reached
+    !> heads the warnings of `res` (out%converged false says so).
+    subroutine solve_adapted_thresholds(config, start, out, res, timings, stat)
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(in) :: start
+        type(adaptive_thresholds_t), intent(out) :: out
+        type(threshold_result_t), intent(out) :: res
+        type(timings_t), intent(inout) :: timings
+        type(status_t), intent(out) :: stat
+        call adapt_thresholds(config, start, out, timings, stat)
+        if (stat%ok()) call solve_thresholds(config, out%prob, .false., res, timings, stat, &
+                                             out%estimate)
+        if (stat%ok() .and. .not. out%converged) res%eigen%warnings = &
+            [character(len=len(res%eigen%warnings)) :: out%outcome, res%eigen%warnings]
+    end subroutine solve_adapted_thresholds
 
     !> Factor K, form the contact blocks, solve the pencil, and estimate both thresholds.
     subroutine threshold_goal_solve(this, config, prob, level, loop_start, timings, stat)

@@ -14,7 +14,7 @@ module threshold_run
     use run_config, only: config_t
     use problem, only: problem_t
     use threshold_analysis, only: threshold_result_t, sweep_curve_t, solve_thresholds
-    use adaptive_threshold, only: adaptive_thresholds_t, adapt_thresholds
+    use adaptive_threshold, only: adaptive_thresholds_t, solve_adapted_thresholds
     use adapt_run, only: add_adapt_keys, adapt_report_lines, write_adapted_mesh, ask_adapt_plot
     use element_types, only: element_name
     use critical_lambda, only: SIDE_PLUS, SIDE_MINUS, SIDE_NAMES, SIDE_LABELS, CONFIRM_OFFSET
@@ -99,12 +99,7 @@ contains
         type(problem_t), intent(in) :: prob
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
-        call adapt_thresholds(config, prob, this%adapted, timings, stat)
-        if (stat%ok()) call solve_thresholds(config, this%adapted%prob, .false., this%res, &
-                                             timings, stat, this%adapted%estimate)
-        if (stat%ok() .and. .not. this%adapted%converged) this%res%eigen%warnings = &
-            [character(len=len(this%res%eigen%warnings)) :: this%adapted%outcome, &
-             this%res%eigen%warnings]
+        call solve_adapted_thresholds(config, prob, this%adapted, this%res, timings, stat)
         if (stat%ok() .and. .not. this%adapted%converged) call this%verdict%fail( &
             STATUS_NOT_MET, config%input_file//': &adapt: '//this%adapted%outcome// &
             ' (the set of the last level is written)')
