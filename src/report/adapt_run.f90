@@ -13,18 +13,16 @@ module adapt_run
     use problem, only: problem_t
     use analysis_base, only: analysis_t
     use adaptive_eigen, only: adapt_eigen, adaptive_result_t
-    use eigen_run, only: eigen_summary_json, summary_lines, write_eigen_files
+    use eigen_files, only: eigen_summary_json, summary_lines, write_eigen_files
     use output_stage, only: output_stage_t
     use json_writer, only: json_object_t
     use csv_writer, only: csv_writer_t
-    use gmsh_writer, only: write_gmsh
+    use adapt_files, only: add_adapt_keys, adapt_report_lines, write_adapted_mesh, &
+                           ask_adapt_plot
     implicit none
     private
-    public :: add_adapt_keys, adapt_report_lines, write_adapted_mesh, ask_adapt_plot
-
     character(len=*), parameter, public :: ADAPT_HEADER = &
         'level,n_dofs,n_contact,n_cells,mu,error_estimate,time_s,error_bar'
-    character(len=*), parameter :: MESH_FILE = 'mesh.msh'
 
     type, extends(analysis_t), public :: adapt_run_t
         type(adaptive_result_t) :: out
@@ -73,33 +71,6 @@ contains
         end associate
     end subroutine adapt_run_write_files
 
-    !> mesh.msh: the final mesh of an adaptive run, for &mesh source = 'gmsh'.
-    subroutine write_adapted_mesh(stage, prob, stat)
-        type(output_stage_t), intent(inout) :: stage
-        type(problem_t), intent(in) :: prob
-        type(status_t), intent(out) :: stat
-        character(len=:), allocatable :: path
-        call stage%add(MESH_FILE, path)
-        call write_gmsh(path, prob%mesh, stat)
-    end subroutine write_adapted_mesh
-
-    !> Ask run_analysis for adapt.png (plot_adapt.sh on adapt.csv and summary.json) when
-    !> &output plot is on; `any_estimated` false (no level has an estimate): nothing to draw,
-    !> and the note says so.
-    subroutine ask_adapt_plot(run, config, any_estimated)
-        class(analysis_t), intent(inout) :: run
-        type(config_t), intent(in) :: config
-        logical, intent(in) :: any_estimated
-        run%picture_note = ''
-        if (.not. config%output%plot) return
-        if (.not. any_estimated) then
-            run%picture_note = 'not drawn: no level has an error estimate'
-            return
-        end if
-        run%picture_script = 'plot_adapt.sh'
-        run%picture_file = 'adapt.png'
-    end subroutine ask_adapt_plot
-
     !> level,n_dofs,n_contact,n_cells,mu,error_estimate,time_s,error_bar (the bar is last so
     !> that the columns before it keep their places); mu, error_estimate and error_bar empty
     !> where there is no positive mu or no estimate.
@@ -139,22 +110,6 @@ contains
                             this%out%converged, this%out%outcome)
     end function adapt_run_summary
 
-    !> The keys of an adaptive loop (any goal) that started from `start_dofs` free dofs.
-    subroutine add_adapt_keys(summary, config, start_dofs, levels, converged, outcome)
-        type(json_object_t), intent(inout) :: summary
-        type(config_t), intent(in) :: config
-        integer, intent(in) :: start_dofs, levels
-        logical, intent(in) :: converged
-        character(len=*), intent(in) :: outcome
-        call summary%add_real('adapt_tolerance', config%adapt%tolerance)
-        call summary%add_real('adapt_theta', config%adapt%theta)
-        call summary%add_integer('adapt_levels', levels)
-        call summary%add_integer('adapt_start_dofs', start_dofs)
-        call summary%add_logical('adapt_converged', converged)
-        call summary%add_string('adapt_outcome', outcome)
-        call summary%add_string('adapted_mesh_file', MESH_FILE)
-    end subroutine add_adapt_keys
-
     function adapt_run_report(this, config, prob) result(text)
         class(adapt_run_t), intent(in) :: this
         type(config_t), intent(in) :: config
@@ -164,18 +119,4 @@ contains
         text = text//adapt_report_lines(config, prob%dofs%n_free, size(this%out%levels) - 1, &
                                         this%out%outcome, this%picture_note)
     end function adapt_run_report
-
-    !> The stdout lines of an adaptive loop: refinements and outcome, the mesh file, the plot.
-    function adapt_report_lines(config, start_dofs, levels, outcome, adapt_note) result(text)
-        type(config_t), intent(in) :: config
-        integer, intent(in) :: start_dofs, levels
-        character(len=*), intent(in) :: outcome, adapt_note
-        character(len=:), allocatable :: text
-        character(len=*), parameter :: NL = new_line('a')
-        text = NL//'  adapt       '//to_string(levels)//' refinements from '// &
-            to_string(start_dofs)//' dofs; '//outcome//NL//'  mesh        '// &
-            trim(config%output%directory)//'/'//MESH_FILE// &
-            ' (the final mesh, for &mesh source = ''gmsh'')'
-        if (len(adapt_note) > 0) text = text//NL//'  adapt plot  '//adapt_note
-    end function adapt_report_lines
 end module adapt_run

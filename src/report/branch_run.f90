@@ -11,7 +11,7 @@ module branch_run
     use run_config, only: config_t
     use problem, only: problem_t
     use analysis_base, only: analysis_t
-    use eigen_run, only: eigen_summary_json, write_eigenvalues_csv
+    use eigen_files, only: eigen_summary_json, write_eigenvalues_csv
     use branch_analysis, only: branch_result_t, run_branch
     use output_stage, only: output_stage_t
     use json_writer, only: json_object_t

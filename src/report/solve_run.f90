@@ -12,7 +12,7 @@ module solve_run
     use run_config, only: config_t
     use problem, only: problem_t
     use analysis_base, only: analysis_t
-    use eigen_run, only: eigen_summary_json, no_eigen_summary_json
+    use eigen_files, only: eigen_summary_json, no_eigen_summary_json
     use solve_analysis, only: solve_result_t, run_solve, solve_status
     use normal_compliance, only: state_name, STATE_SEPARATED, STATE_STICK, &
                                  STATE_SLIP_PLUS, STATE_SLIP_MINUS

@@ -15,14 +15,14 @@ module threshold_run
     use problem, only: problem_t
     use threshold_analysis, only: threshold_result_t, sweep_curve_t, solve_thresholds
     use adaptive_threshold, only: adaptive_thresholds_t, solve_adapted_thresholds
-    use adapt_run, only: add_adapt_keys, adapt_report_lines, write_adapted_mesh, ask_adapt_plot
+    use adapt_files, only: add_adapt_keys, adapt_report_lines, write_adapted_mesh, ask_adapt_plot
     use element_types, only: element_name
     use critical_lambda, only: SIDE_PLUS, SIDE_MINUS, SIDE_NAMES, SIDE_LABELS, CONFIRM_OFFSET
     use critical_set, only: critical_set_t, MECHANISM_NAMES, MECHANISM_COMPLEX_PAIR
     use ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use critical_point, only: slip_sign, critical_c_t
     use analysis_base, only: analysis_t
-    use eigen_run, only: eigen_summary_json, summary_lines, write_eigen_files
+    use eigen_files, only: eigen_summary_json, summary_lines, write_eigen_files
     use output_stage, only: output_stage_t
     use json_writer, only: json_object_t
     use csv_writer, only: csv_writer_t
