@@ -477,9 +477,11 @@ contains
             character(len=:), allocatable :: s
             s = ''
             if (res%estimate%computed(side)) then
+                s = ' enrichment'
+                if (res%estimate%halved_mesh) s = ', halved mesh'
                 s = NL//'              relative error estimate '// &
                     short_real_text(abs(res%estimate%relative(side)))//' ('// &
-                    element_name(res%estimate%element)//' enrichment); error bar '// &
+                    element_name(res%estimate%element)//s//'); error bar '// &
                     short_real_text(res%estimate%bar(side))
             else if (len_trim(res%estimate%skipped(side)) > 0) then
                 s = NL//'              relative error estimate '//trim(res%estimate%skipped(side))
