@@ -38,7 +38,7 @@ module threshold_analysis
     use accuracy, only: WARNING_LEN
     implicit none
     private
-    public :: threshold_result_t, solve_thresholds, factor_with_contact_blocks
+    public :: threshold_result_t, solve_thresholds, factor_with_contact_blocks, scan_lambdas
 
     !> 'threshold' counts positive mu on at most this many of the &sweep lambdas (spacing 1
     !> on the default range [-20, 20]); 'lambda_sweep' on all of them (see scan_lambdas).

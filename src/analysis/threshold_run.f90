@@ -13,11 +13,12 @@ module threshold_run
     use run_config, only: config_t
     use problem, only: problem_t
     use threshold_analysis, only: threshold_result_t, sweep_curve_t, solve_thresholds
-    use adaptive_threshold, only: adaptive_thresholds_t, adapt_thresholds
+    use adaptive_threshold, only: adaptive_thresholds_t, adapt_thresholds, apply_collision_bars
     use adapt_run, only: add_adapt_keys, adapt_report_lines, write_adapted_mesh, draw_adapt_plot
     use element_types, only: element_name
     use critical_lambda, only: SIDE_PLUS, SIDE_MINUS, SIDE_NAMES, SIDE_LABELS, CONFIRM_OFFSET
-    use critical_set, only: critical_set_t, MECHANISM_NAMES, MECHANISM_COMPLEX_PAIR
+    use critical_set, only: critical_set_t, MECHANISM_NAMES, MECHANISM_COMPLEX_PAIR, &
+                            onset_point
     use ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use critical_point, only: slip_sign, critical_c_t
     use analysis_base, only: analysis_t
@@ -37,7 +38,9 @@ module threshold_run
 
     character(len=*), parameter, public :: THRESHOLD_ADAPT_HEADER = 'level,n_dofs,'// &
         'n_contact,n_cells,lambda_plus,error_estimate_plus,lambda_minus,'// &
-        'error_estimate_minus,time_s,error_bar_plus,error_bar_minus'
+        'error_estimate_minus,time_s,error_bar_plus,error_bar_minus,collision_plus,'// &
+        'error_estimate_collision_plus,error_bar_collision_plus,collision_minus,'// &
+        'error_estimate_collision_minus,error_bar_collision_minus'
 
     !> 'threshold' (with_sweep false) or 'lambda_sweep'.
     type, extends(analysis_t), public :: threshold_run_t
@@ -76,6 +79,7 @@ contains
         call adapt_thresholds(config, prob, this%adapted, timings, stat)
         if (stat%ok()) call solve_thresholds(config, this%adapted%prob, .false., this%res, &
                                              timings, stat, this%adapted%estimate)
+        if (stat%ok()) call apply_collision_bars(this%adapted, this%res%set)
         if (stat%ok() .and. .not. this%adapted%converged) this%res%eigen%warnings = &
             [character(len=len(this%res%eigen%warnings)) :: this%adapted%outcome, &
              this%res%eigen%warnings]
@@ -169,8 +173,9 @@ contains
     end function threshold_run_report
 
     !> level,n_dofs,n_contact,n_cells,lambda_plus,error_estimate_plus,lambda_minus,
-    !> error_estimate_minus,time_s,error_bar_plus,error_bar_minus; a side's cells empty where
-    !> it has no threshold or no estimate.
+    !> error_estimate_minus,time_s,error_bar_plus,error_bar_minus, then per side the collision
+    !> onset, its estimate and bar; a side's cells empty where it has no threshold (collision
+    !> onset) or no estimate.
     subroutine write_threshold_adapt_csv(path, out, stat)
         character(len=*), intent(in) :: path
         type(adaptive_thresholds_t), intent(in) :: out
@@ -195,6 +200,17 @@ contains
                     line = line//','
                     if (row%error_bar(side) >= 0.0_wp) line = line// &
                         real_to_text(row%error_bar(side))
+                end do
+                ! a side whose onset is a collision of two real mu: its lambda, estimate, bar
+                do side = SIDE_PLUS, SIDE_MINUS
+                    line = line//','
+                    if (row%collision(side)) line = line//real_to_text(row%collision_lambda(side))
+                    line = line//','
+                    if (row%collision_estimate(side) >= 0.0_wp) line = line// &
+                        real_to_text(row%collision_estimate(side))
+                    line = line//','
+                    if (row%collision_bar(side) >= 0.0_wp) line = line// &
+                        real_to_text(row%collision_bar(side))
                 end do
                 call csv%row(line)
             end associate
@@ -328,23 +344,6 @@ contains
         call summary%add_real_array('positive_mu_intervals_upper', upper)
         call summary%add_integer('boundary_n_evaluations', set%n_evaluations)
     end subroutine add_boundary_keys
-
-    !> The index of the boundary point nearest zero on `side` (0 when none): the onset of a
-    !> positive mu as |lambda| grows from 0 on that side.
-    pure integer function onset_point(set, side)
-        type(critical_set_t), intent(in) :: set
-        integer, intent(in) :: side
-        integer :: i
-        onset_point = 0
-        do i = 1, size(set%points)
-            if ((set%points(i)%lambda > 0.0_wp) .neqv. (side == SIDE_PLUS)) cycle
-            if (onset_point == 0) then
-                onset_point = i
-            else if (abs(set%points(i)%lambda) < abs(set%points(onset_point)%lambda)) then
-                onset_point = i
-            end if
-        end do
-    end function onset_point
 
     !> The intervals of the searched range where a positive mu exists: between consecutive
     !> boundary points, and from or to the ends of the range.
