@@ -34,7 +34,7 @@ module adaptive_threshold
     use sparse_cholesky, only: cholesky_t
     use threshold_analysis, only: factor_with_contact_blocks
     use critical_lambda, only: thresholds_t, pencil_thresholds, SIDE_PLUS, SIDE_MINUS, &
-                               SIDE_LABELS, SIDE_NAMES
+                               SIDE_LABELS, SIDE_NAMES, lowest_positive_mu
     use error_estimate, only: ENRICHED_CONTACT_MAX
     use threshold_estimate, only: threshold_estimate_t, threshold_displacements, &
                                   estimate_threshold_errors
@@ -90,6 +90,9 @@ module adaptive_threshold
         real(wp), allocatable :: collision_indicators(:, :)
         real(wp) :: collision_estimate(2) = -1.0_wp
         character(len=200) :: collision_skipped(2) = ''
+        !> the dofs of the last level that found both onsets at the pencil eigenvalues
+        !> (onset_search); 0: none yet
+        integer :: pencil_dofs = 0
     contains
         procedure :: solve => threshold_goal_solve
         procedure :: error => threshold_goal_error
@@ -143,8 +146,8 @@ contains
         if (stat%ok()) call threshold_displacements(chol, prob%contact, prob%dofs%n_free, &
                                                     this%thr, u, stat)
         blocks%mass = prob%contact%mass
-        if (stat%ok()) call find_critical_set(blocks, scan_lambdas(config, .false.), &
-                                              this%thr%real_lambdas, set, stat)
+        if (stat%ok()) call onset_search(config, blocks, this%thr, prob%dofs%n_free, &
+                                         this%pencil_dofs, set, stat)
         if (stat%ok()) call collision_onsets(set, onset)
         allocate (nearest(size(set%points)), source=huge(1.0_wp))
         if (stat%ok() .and. any(onset > 0)) call enriched_pair_lambdas(prob, &
@@ -229,6 +232,42 @@ contains
             end do
         end associate
     end function threshold_goal_error
+
+    !> The boundary of the positive set (find_critical_set over the analysis' scan) on a
+    !> level of `n_free` dofs, searched only where a side may have a collision onset: where
+    !> it has no pencil eigenvalue, or a positive mu just inside it (NOT confirmed). Where
+    !> both are confirmed `set` stays empty and the thresholds are the goals, and that check
+    !> (two dense p x p eigen-solves) is made again only once the dofs have doubled since
+    !> `pencil_dofs`, the last level it held on: at every level the check cost as much as
+    !> the rest of input/threshold_adapt.nml (scan: twice that), for an answer that does
+    !> not change there.
+    subroutine onset_search(config, blocks, thr, n_free, pencil_dofs, set, stat)
+        type(config_t), intent(in) :: config
+        type(reduced_blocks_t), intent(in) :: blocks
+        type(thresholds_t), intent(in) :: thr
+        integer, intent(in) :: n_free
+        integer, intent(inout) :: pencil_dofs
+        type(critical_set_t), intent(out) :: set
+        type(status_t), intent(out) :: stat
+        real(wp) :: mu, inside
+        logical :: found, search
+        integer :: side, n_positive
+
+        allocate (set%points(0))
+        search = .not. all(thr%found)
+        if (.not. search .and. pencil_dofs > 0 .and. n_free < 2*pencil_dofs) return
+        do side = SIDE_PLUS, SIDE_MINUS
+            if (search) exit
+            inside = thr%lambda(side) - sign(side_offset(thr%lambda(side)), thr%lambda(side))
+            call lowest_positive_mu(blocks, inside, mu, found, n_positive, stat)
+            if (.not. stat%ok()) return
+            search = found
+        end do
+        pencil_dofs = 0
+        if (.not. search) pencil_dofs = n_free
+        if (search) call find_critical_set(blocks, scan_lambdas(config, .false.), &
+                                           thr%real_lambdas, set, stat)
+    end subroutine onset_search
 
     !> onset(side): the index in `set` of the side's onset where it is a collision of two
     !> real mu (complex_pair), 0 where the side has none or it is a pencil eigenvalue.
