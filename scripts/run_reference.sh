@@ -3,7 +3,7 @@
 # Quick start 1: install what is missing, build (Release) and run the reference scene.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-bash "$root/scripts/install_deps.sh"
-bash "$root/scripts/build.sh" Release
+bash "$root/scripts/dev/install_deps.sh"
+bash "$root/scripts/dev/build.sh" Release
 cd "$root"
 build/nceig input/square.nml

@@ -6,11 +6,11 @@
 # any report fails the test.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-bash "$root/scripts/install_deps.sh"
+bash "$root/scripts/dev/install_deps.sh"
 status=0
 start=$SECONDS
 for type in Release Debug Asan; do
-    bash "$root/scripts/build.sh" "$type"
+    bash "$root/scripts/dev/build.sh" "$type"
     folder="$root/build-$(echo "$type" | tr '[:upper:]' '[:lower:]')"
     [[ $type != Release ]] || folder="$root/build"
     labels=()

@@ -47,7 +47,7 @@ find_nceig() {
     if [[ -n ${NCEIG:-} ]]; then exe=$NCEIG
     elif [[ -x $root/build/nceig ]]; then exe=$root/build/nceig
     elif command -v nceig >/dev/null 2>&1; then exe=$(command -v nceig)
-    else die "nceig not found: not in $root/build nor on PATH (run scripts/build.sh Release, or set NCEIG)"
+    else die "nceig not found: not in $root/build nor on PATH (run scripts/dev/build.sh Release, or set NCEIG)"
     fi
     [[ -x $exe ]] || die "NCEIG=$exe is not an executable"
     echo "$(cd "$(dirname "$exe")" && pwd)/$(basename "$exe")"

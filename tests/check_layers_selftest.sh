@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
-# scripts/check_layers.sh on the fake tree tests/data/layers (core/ below mesh/, a top
+# scripts/dev/check_layers.sh on the fake tree tests/data/layers (core/ below mesh/, a top
 # main.f90): exactly its one violation, core/low.f90 using `high` of mesh/; nothing and exit
 # 0 once that use is gone; a folder outside the layer order is an error.
 # Usage: check_layers_selftest.sh SOURCE_DIR
@@ -8,7 +8,7 @@ set -u
 source_dir=$1
 source "$(dirname "$0")/lib/cli_common.sh"
 cli_begin check_layers_selftest
-checker="$source_dir/scripts/check_layers.sh"
+checker="$source_dir/scripts/dev/check_layers.sh"
 tree="$source_dir/tests/data/layers"
 
 bash "$checker" "$tree" >"$work/out" 2>"$work/err"; rc=$?

@@ -17,7 +17,7 @@ program test_adaptive_eigen
     implicit none
 
     !> The critical c_n of the reference scene (lambda = 5), from an adaptive P3 run to the
-    !> estimate 8.7e-13 (docs/accuracy.md: 57 levels, 247596 dofs, scripts/bench_adapt.sh)
+    !> estimate 8.7e-13 (docs/accuracy.md: 57 levels, 247596 dofs, scripts/bench/bench_adapt.sh)
     real(wp), parameter :: REFERENCE_MU = 0.7528436168090319_wp
     type(test_suite_t) :: t
     t%name = 'test_adaptive_eigen'

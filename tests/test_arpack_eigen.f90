@@ -15,7 +15,8 @@ program test_arpack_eigen
     use eigen_analysis, only: eigen_result_t, solve_eigen
     use sparse_cholesky, only: cholesky_t
     use contact_reduction, only: factor_stiffness
-    use node_ordering, only: nested_dissection_last, metis_status_message
+    use node_ordering, only: nested_dissection_last
+    use metis_c, only: metis_status_message
     use arpack_eigen, only: certify_lowest, is_real_ritz, CERTIFIED_FOUND, CERTIFIED_NONE, &
                             UNDECIDED
     use arpack_interfaces, only: arpack_info_message

@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: MIT
 # The scenes of the independent truths (tests/data/truths.csv, docs/accuracy.md,
-# "Independent truths"), shared by scripts/continuum_truths.sh and scripts/bar_quality.sh.
+# "Independent truths"), shared by scripts/dev/continuum_truths.sh and scripts/dev/bar_quality.sh.
 # Sourced with $root set. E = 1, top fixed, the other sides free, contact on the bottom
 # unless said.
 truth_scenes=(ref lambda-3 nu0.45-lambda20 nu0.1 rect3x1 rect2x1-nu0.25-lambda-4 trapezoid half-contact ref-threshold

@@ -9,7 +9,7 @@ module accuracy
     use spectrum, only: spectrum_t
     implicit none
     private
-    public :: accuracy_warnings, forward_error_estimate, lame_ratio
+    public :: accuracy_warnings, forward_error_estimate, lame_ratio, roundoff_warnings
     public :: WARNING_LEN, FORWARD_ERROR_BOUND, BACKWARD_ERROR_BOUND, LOCKING_RATIO_BOUND, &
               LAMBDA_SENSITIVITY_BOUND
 
@@ -31,14 +31,43 @@ module accuracy
     !> |lambda / (lambda - lambda_c)|, so 1e4 is lambda within 1e-4 relative of lambda_c, where
     !> a change of lambda in its 6th digit moves mu by 1% or more.
     real(wp), parameter :: LAMBDA_SENSITIVITY_BOUND = 1.0e4_wp
-    !> Relative round-off error of mu per eps x L/G: K's condition grows like L/G as nu ->
-    !> 0.5, in any element. Measured (P2, 8 x 8 and 16 x 16, errors against the values at
-    !> nu = 0.4999999): 35 to 67 eps L/G on 8 x 8, 108 to 180 on 16 x 16 (it grows with
-    !> refinement); 100 makes the warning fire from L/G = 4.5e7 (nu = 0.49999999, error
-    !> 3.9e-7 measured), where the error estimate, which sees only the discretisation, does not.
-    real(wp), parameter :: ROUNDOFF_PER_LAME_RATIO = 100.0_wp
 
 contains
+
+    !> The warning, if any, on the round-off bound `roundoff` of the lowest positive mu (< 0:
+    !> unknown) against the discretisation part of its error bar (< 0: none): no correct
+    !> digit (bound >= 1, the run exits with STATUS_NO_DIGIT), fewer than 6 correct digits
+    !> (above FORWARD_ERROR_BOUND), or round-off the larger part of the bar.
+    function roundoff_warnings(roundoff, discretisation) result(warnings)
+        real(wp), intent(in) :: roundoff, discretisation
+        character(len=WARNING_LEN), allocatable :: warnings(:)
+        character(len=*), parameter :: WHY = ' (the bound grows with a nearly incompressible ' &
+            //'material, stretched or sliver cells, and lambda near a critical value)'
+        allocate (warnings(0))
+        if (.not. roundoff >= 0.0_wp) return
+        if (roundoff >= 1.0_wp) then
+            warnings = [character(len=WARNING_LEN) :: 'round-off leaves no correct digit of ' &
+                //'the lowest positive mu: its bound is '//short(roundoff)//' relative'//WHY]
+        else if (roundoff > FORWARD_ERROR_BOUND) then
+            warnings = [character(len=WARNING_LEN) :: 'round-off bound of the lowest positive ' &
+                //'mu is '//short(roundoff)//' relative: '// &
+                digits_text(floor(-log10(roundoff)))//WHY]
+        else if (discretisation >= 0.0_wp .and. roundoff > discretisation) then
+            warnings = [character(len=WARNING_LEN) :: 'round-off dominates the error bar of ' &
+                //'the lowest positive mu: '//short(roundoff)//' relative against '// &
+                short(discretisation)//' from the discretisation, which refining the mesh ' &
+                //'does not reduce'//WHY]
+        end if
+
+    contains
+
+        function digits_text(n) result(text)
+            integer, intent(in) :: n
+            character(len=:), allocatable :: text
+            text = 'only its sign is certain'
+            if (n > 0) text = 'about '//to_string(n)//' correct digits'
+        end function digits_text
+    end function roundoff_warnings
 
     !> condition x max(backward error, eps): first-order bound of the relative error of mu.
     elemental real(wp) function forward_error_estimate(condition, residual)
@@ -54,16 +83,19 @@ contains
 
     !> Every reason to distrust the result of an eigen run, one sentence each; none for a
     !> well-posed, well-resolved problem such as the reference scene.
-    function accuracy_warnings(spec, element, poisson) result(warnings)
+    !> `roundoff`: the round-off bound of the lowest positive mu (module roundoff; < 0:
+    !> unknown), which replaces the condition x backward error of the reduced problem where
+    !> it is known.
+    function accuracy_warnings(spec, element, poisson, roundoff) result(warnings)
         type(spectrum_t), intent(in) :: spec
         character(len=*), intent(in) :: element   !! 'p1', 'q1', 'p2', 'q2'
-        real(wp), intent(in) :: poisson
+        real(wp), intent(in) :: poisson, roundoff
         character(len=WARNING_LEN), allocatable :: warnings(:)
         integer :: lowest, n_bad, i, worst
 
         allocate (warnings(0))
         lowest = spec%lowest_positive()
-        if (lowest > 0) then
+        if (lowest > 0 .and. .not. roundoff >= 0.0_wp) then
             if (spec%condition(lowest) >= 0.0_wp) then
                 if (forward_error_estimate(spec%condition(lowest), spec%residual(lowest)) > &
                     FORWARD_ERROR_BOUND) call add('lowest positive mu may be inaccurate: ' &
@@ -97,15 +129,8 @@ contains
             //'the accurate eigenvalue of a discrete problem that converges slowly to the ' &
             //'continuous one; use p2 or q2 or refine much further')
 
-        associate (roundoff => ROUNDOFF_PER_LAME_RATIO*epsilon(1.0_wp)*lame_ratio(poisson))
-            if (roundoff > FORWARD_ERROR_BOUND) call add('nearly incompressible material ' &
-                //'(poisson = '//real_to_text(poisson)//', L/G = '// &
-                short(lame_ratio(poisson))//'): the condition of K grows like L/G, so mu has a ' &
-                //'round-off error of about '//short(roundoff)//' relative ('// &
-                to_string(nint(log10(roundoff/epsilon(1.0_wp))))//' of 16 digits lost; more on ' &
-                //'finer meshes), which the error estimate does not see; keep L/G below ' &
-                //short(FORWARD_ERROR_BOUND/(ROUNDOFF_PER_LAME_RATIO*epsilon(1.0_wp))))
-        end associate
+        if (roundoff > FORWARD_ERROR_BOUND) warnings = [character(len=WARNING_LEN) :: &
+            warnings, roundoff_warnings(roundoff, -1.0_wp)]
 
         if (allocated(spec%lambda_sensitivity)) then
             do i = 1, spec%n()

@@ -31,6 +31,7 @@ module adaptive_eigen
         logical :: estimated = .false.
         real(wp) :: error_estimate = 0.0_wp   !! |relative error estimate| of mu
         real(wp) :: error_bar = -1.0_wp       !! the bar at this level (error_bar); < 0: none
+        real(wp) :: roundoff = -1.0_wp        !! its round-off part (module roundoff); < 0: unknown
         real(wp) :: time_s = 0.0_wp           !! wall time from the loop's start to this level's end
     end type adapt_level_t
 
@@ -111,6 +112,7 @@ contains
             if (row%has_mu) row%mu = real(this%res%spec%mu(lowest), wp)
             row%estimated = this%res%error%computed
             if (row%estimated) row%error_estimate = abs(this%res%error%relative)
+            row%roundoff = this%res%roundoff
             row%time_s = wall_time() - loop_start
         end function level_row
 
@@ -140,7 +142,7 @@ contains
             mu(i) = levels(i)%mu
             dofs(i) = levels(i)%n_dofs
         end do
-        levels(k)%error_bar = level_bar(estimates, mu, dofs, degree, -1.0_wp)
+        levels(k)%error_bar = level_bar(estimates, mu, dofs, degree, levels(k)%roundoff)
     end subroutine set_level_bar
 
     real(wp) function eigen_goal_error(this)

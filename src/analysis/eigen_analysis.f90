@@ -17,7 +17,7 @@ module eigen_analysis
     use contact_boundary, only: assemble_b
     use spectrum, only: spectrum_t, KIND_POSITIVE
     use dense_eigen, only: dense_spectrum
-    use accuracy, only: accuracy_warnings, WARNING_LEN
+    use accuracy, only: accuracy_warnings, roundoff_warnings, WARNING_LEN, FORWARD_ERROR_BOUND
     use arpack_eigen, only: arpack_spectrum, arpack_options_t
     use error_estimate, only: error_estimate_t, estimate_lowest_error, ENRICHED_CONTACT_MAX, &
                               estimate_label
@@ -51,6 +51,9 @@ module eigen_analysis
         character(len=WARNING_LEN), allocatable :: warnings(:)
         !> the estimate of the error of the lowest positive mu (analysis 'eigen' only)
         type(error_estimate_t) :: error
+        !> bound of the relative round-off error of the lowest positive mu (module roundoff),
+        !> part of error%bar; < 0: unknown (no positive mu, or no left eigenvector)
+        real(wp) :: roundoff = -1.0_wp
     end type eigen_result_t
 
 contains
@@ -154,6 +157,10 @@ contains
         else if (len(why_not) > 0) then
             res%error%skipped = why_not
         end if
+        ! below FORWARD_ERROR_BOUND eigen_with_factor has not warned: only the bar's split
+        if (res%error%computed .and. res%roundoff <= FORWARD_ERROR_BOUND) res%warnings = &
+            [character(len=WARNING_LEN) :: res%warnings, roundoff_warnings(res%roundoff, &
+                                                           res%error%bar - res%roundoff)]
     end subroutine solve_eigen
 
     !> Whether &eigen estimate asks for the error estimates on a problem of `n_free` dofs:
@@ -198,8 +205,10 @@ contains
                             'no error estimate for the lowest positive mu: '//stat%message]
             return
         end if
-        if (res%error%computed) call timings%add(PHASE_EIGEN, res%error%seconds, &
-            ': error estimate ('//estimate_label(res%error)//')')
+        if (.not. res%error%computed) return
+        res%error%bar = single_bar(abs(res%error%relative), res%roundoff)
+        call timings%add(PHASE_EIGEN, res%error%seconds, ': error estimate ('// &
+                         estimate_label(res%error)//')')
     end subroutine add_error_estimate
 
     !> res%error for an element with no degree above it (Q1, Q2, P4): the difference to the
@@ -229,7 +238,7 @@ contains
         res%error%mu_enriched = scale(mu_fine, -prob%mu_exponent())   ! prob%k's units
         res%error%mode_cells_halved = cells_fine
         allocate (res%error%indicators(0))
-        res%error%bar = single_bar(abs(res%error%relative), -1.0_wp)
+        res%error%bar = single_bar(abs(res%error%relative), res%roundoff)
         res%error%seconds = wall_time() - start
         call timings%add(PHASE_EIGEN, res%error%seconds, ': error estimate ('// &
                          estimate_label(res%error)//')')
@@ -408,7 +417,11 @@ contains
         end if
         call to_input_units(config, prob, res%spec%mu, stat)
         if (.not. stat%ok()) return
-        res%warnings = accuracy_warnings(res%spec, element_name(prob%mesh%element), prob%poisson)
+        res%roundoff = -1.0_wp
+        if (allocated(res%spec%roundoff) .and. res%spec%lowest_positive() > 0) &
+            res%roundoff = res%spec%roundoff(res%spec%lowest_positive())
+        res%warnings = accuracy_warnings(res%spec, element_name(prob%mesh%element), prob%poisson, &
+                                         res%roundoff)
         if (len(certificate) > 0) res%warnings = [character(len=WARNING_LEN) :: certificate, &
                                                   res%warnings]
     end subroutine eigen_with_factor

@@ -4,7 +4,7 @@
 !> other analyses reuse its files, summary keys and lines for the eigen solve they contain.
 module eigen_run
     use kinds, only: wp
-    use status, only: status_t
+    use status, only: status_t, STATUS_NO_DIGIT
     use strings, only: to_string, zero_padded, short_real_text, seconds_text
     use real_format, only: real_to_text
     use timer, only: timings_t
@@ -50,6 +50,12 @@ contains
         type(status_t), intent(out) :: stat
         call solve_eigen(config, prob, config%analysis%lambda, this%res, timings, stat, &
                          with_error_estimate=.true.)
+        ! the verdict, after the outputs: the set shows what was computed, the status that
+        ! its value is none
+        if (stat%ok() .and. this%res%roundoff >= 1.0_wp) call this%verdict%fail( &
+            STATUS_NO_DIGIT, config%input_file//': round-off leaves no correct digit of the '// &
+            'lowest positive mu (bound '//short_real_text(this%res%roundoff)//' relative); '// &
+            'the output set is written')
     end subroutine eigen_run_solve
 
     subroutine eigen_run_write_files(this, stage, config, prob, stat)
@@ -105,10 +111,11 @@ contains
         type(timings_t), intent(in) :: timings
         type(eigen_result_t), intent(in), optional :: res
         type(json_object_t) :: summary
-        character(len=*), parameter :: LOWEST_KEYS(7) = [character(len=30) :: &
+        character(len=*), parameter :: LOWEST_KEYS(8) = [character(len=30) :: &
             'lowest_positive_mu', 'critical_c_n', 'critical_c_t', &
             'lowest_positive_condition', 'lowest_positive_residual', &
-            'lowest_positive_error_estimate', 'lowest_positive_error_bar']
+            'lowest_positive_error_estimate', 'lowest_positive_error_bar', &
+            'lowest_positive_roundoff']
         integer :: lowest, i, blas_threads
         real(wp) :: mu, lambda
         character(len=:), allocatable :: blas_library, blas_config
@@ -163,6 +170,9 @@ contains
             ! the relative bar quoted with c_n (error_bar); null where there is none
             call summary%add_real_or_null('lowest_positive_error_bar', res%error%bar, &
                                           res%error%computed .and. res%error%bar >= 0.0_wp)
+            ! the round-off part of that bar (module roundoff); null where unknown
+            call summary%add_real_or_null('lowest_positive_roundoff', res%roundoff, &
+                                          res%roundoff >= 0.0_wp)
         else
             do i = 1, size(LOWEST_KEYS)
                 call summary%add_null(trim(LOWEST_KEYS(i)))
@@ -195,6 +205,12 @@ contains
         call summary%add_real('time_factor_s', timings%factor)
         call summary%add_real('time_reduction_s', timings%reduction)
         call summary%add_real('time_eigen_s', timings%eigen)
+        ! part of time_eigen_s: the left eigenvector and the round-off bound
+        if (present(res)) then
+            call summary%add_real('time_roundoff_s', res%spec%roundoff_seconds)
+        else
+            call summary%add_real('time_roundoff_s', 0.0_wp)
+        end if
         call summary%add_real('time_output_s', timings%output)
         call summary%add_real('time_total_s', timings%total)
         call summary%add_string_array('warnings', [character(len=1) ::])
@@ -319,6 +335,12 @@ contains
                 short_real_text(res%error%bar)//NL
             if (allocated(res%error%skipped)) text = text//'  relative error estimate of mu: '// &
                 res%error%skipped//NL
+            if (res%roundoff >= 0.0_wp) then
+                text = text//'  round-off bound of mu: '//short_real_text(res%roundoff)// &
+                       ' relative'
+                if (res%error%computed) text = text//' (in the error bar)'
+                text = text//NL
+            end if
         else
             text = text//'  no positive real eigenvalue for this lambda'//NL
         end if

@@ -6,7 +6,7 @@ module status
     private
     public :: status_t
     public :: STATUS_SUCCESS, STATUS_BAD_INPUT, STATUS_MESH, STATUS_IO, STATUS_SOLVER, &
-              STATUS_SINGULAR, STATUS_INTERNAL, STATUS_NOT_MET
+              STATUS_SINGULAR, STATUS_INTERNAL, STATUS_NOT_MET, STATUS_NO_DIGIT
 
     integer, parameter :: STATUS_SUCCESS = 0
     integer, parameter :: STATUS_BAD_INPUT = 2   !! input file or command line is wrong
@@ -19,6 +19,9 @@ module status
     !> estimate): its set, of the last level, is written, but no script may take it for
     !> a success.
     integer, parameter :: STATUS_NOT_MET = 8
+    !> The round-off bound of the lowest positive mu is 1 or more: not one digit of it, not
+    !> even its sign, is certain. Its set is written, but no script may take the value.
+    integer, parameter :: STATUS_NO_DIGIT = 9
 
     type :: status_t
         integer :: code = STATUS_SUCCESS

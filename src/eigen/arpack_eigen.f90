@@ -24,23 +24,22 @@
 !> ARPACK keeps `save`d state inside dnaupd/dneupd: one solve at a time per process.
 module arpack_eigen
     use kinds, only: wp
-    use status, only: status_t, STATUS_SOLVER, STATUS_BAD_INPUT, STATUS_SINGULAR
-    use strings, only: to_string, short => short_real_text
-    use real_format, only: real_to_text
+    use status, only: status_t, STATUS_SOLVER, STATUS_BAD_INPUT
+    use strings, only: to_string
     use csr_matrix, only: csr_matrix_t
     use sparse_cholesky, only: cholesky_t
     use contact_boundary, only: contact_t
-    use sparse_lu, only: lu_t
     use sorting, only: sort_index
     use spectrum, only: spectrum_t, order_eigenvalues, backward_error, normalise_mode
-    use lapack_interfaces, only: dtrsv, dgetrf, dgetrs, dgeev, dgemm, dlacn2, &
-                                 lapack_info_message, lapack_eigenvector
-    use contact_reduction, only: contact_tail, flexibility_blocks, lift_eigenvectors, &
-                                 reduced_matrix, lambda_unit
+    use lapack_interfaces, only: dgeev, lapack_info_message, lapack_eigenvector
+    use contact_reduction, only: lift_eigenvectors, reduced_matrix, lambda_unit
     use arpack_interfaces, only: dnaupd, dneupd, arpack_info_message
+    use roundoff, only: left_from_reduced, lowest_roundoff
+    use timer, only: wall_time
+    use contact_operator, only: contact_operator_t
     implicit none
     private
-    public :: arpack_options_t, contact_operator_t, arpack_spectrum, is_real_ritz
+    public :: arpack_options_t, arpack_spectrum, is_real_ritz
     public :: certify_lowest, CERTIFIED_FOUND, CERTIFIED_NONE, UNDECIDED
     public :: arpack_lowest_positive, wanted_values
 
@@ -67,15 +66,6 @@ module arpack_eigen
     !> apart (neighbouring eigenvalues of the reference scene differ by more than 1e-3).
     real(wp), parameter :: AGREE_TOL = 1.0e-8_wp
 
-    !> Largest |sigma| ||A||_inf accepted for a target sigma. mu = sigma + 1/nu cancels: an
-    !> eigenvalue mu comes back with an absolute error of about eps |sigma|, i.e. a relative
-    !> error eps |sigma| / |mu| <= eps |sigma| ||A|| (every |mu| >= 1 / ||A||, as
-    !> |theta| <= ||A||), and the nu = 1/(mu - sigma) of the low eigenvalues crowd within a
-    !> relative eps |sigma| ||A|| of each other, where ARPACK cannot tell them apart. 1e6
-    !> keeps both below 2.2e-10, well inside AGREE_TOL; beyond it (e.g. target = 1e15 on the
-    !> reference scene) the answers were wrong in every digit with a certificate that held.
-    real(wp), parameter, public :: TARGET_RANGE = 1.0e6_wp
-
     type, public :: arpack_options_t
         integer :: nev = 6               !! eigenvalues per run (first attempt)
         integer :: ncv = 0               !! Krylov dimension, 0: max(2 nev + 1, 20)
@@ -95,42 +85,6 @@ module arpack_eigen
         real(wp) :: target_input = 0.0_wp
     end type arpack_options_t
 
-    !> The reduced operator on the contact nodes: theta-mode y -> A y (sigma = 0) or
-    !> shift-invert y -> (I - sigma A)^-1 A y.
-    type :: contact_operator_t
-        integer :: p = 0
-        integer :: n = 0                        !! ARPACK's dimension: p, or n_free when full
-        real(wp) :: sigma = 0.0_wp
-        real(wp) :: lambda = 0.0_wp
-        !> The operator is built on A / lambda_scale (a power of two ~ |lambda| when
-        !> |lambda| > 1, else 1): A ~ lambda overflowed ARPACK's norms from |lambda| ~ 1e160
-        real(wp) :: lambda_scale = 1.0_wp
-        real(wp) :: normal(2) = 0.0_wp, tangent(2) = 0.0_wp
-        real(wp), allocatable :: l_tail(:, :)   !! (2p, 2p) trailing block of the factor
-        integer, allocatable :: slot(:, :)      !! (2, p) row in l_tail of contact dof (c, a)
-        type(csr_matrix_t) :: mass              !! (p, p) boundary mass M
-        real(wp), allocatable :: a(:, :)        !! (p, p) A, then LU of I - sigma A (sigma /= 0)
-        integer, allocatable :: pivots(:)
-        !> `a` is A itself, given by the caller (sigma = 0): one O(p^2) product per application
-        logical :: explicit = .false.
-        !> The full operator y -> (K - sigma B)^-1 (B / lambda_scale) y: B / lambda_scale,
-        !> and the LU of K - sigma B (sigma /= 0) or the caller's factor of K (sigma = 0; a
-        !> pointer, valid while the arpack_spectrum call that set it runs)
-        logical :: full = .false.
-        type(csr_matrix_t) :: b_scaled
-        type(lu_t) :: shifted
-        type(cholesky_t), pointer :: chol => null()
-    contains
-        procedure :: setup => operator_setup
-        procedure :: setup_full => operator_setup_full
-        procedure :: apply_a => operator_apply_a
-        procedure :: apply => operator_apply
-        procedure :: dense_a => operator_dense_a
-        procedure :: mu_of => operator_mu_of
-        procedure :: norm_estimate => operator_norm_estimate
-        procedure :: check_target => operator_check_target
-    end type contact_operator_t
-
     !> One ARPACK run's result: the converged Ritz values nu of the operator and their
     !> vectors y (p), as complex numbers (conjugate pairs both present).
     type :: ritz_t
@@ -139,237 +93,11 @@ module arpack_eigen
         logical, allocatable :: is_real(:)
         integer :: info = 0
         integer :: n_operator = 0
+        !> left eigenvector (p) of the lowest positive mu, when the dense decision found it
+        real(wp), allocatable :: left(:)
     end type ritz_t
 
 contains
-
-    !> Build the reduced operator from a factor of K whose last 2p pivots are the contact
-    !> dofs (see node_ordering), and factor I - sigma A when sigma /= 0, after checking
-    !> |sigma| ||A|| <= TARGET_RANGE (STATUS_BAD_INPUT naming &eigen target otherwise).
-    subroutine operator_setup(this, chol, contact, lambda, sigma, stat, target_input, &
-                              unit_exponent)
-        class(contact_operator_t), intent(inout) :: this
-        type(cholesky_t), intent(in) :: chol
-        type(contact_t), intent(in) :: contact
-        real(wp), intent(in) :: lambda, sigma
-        type(status_t), intent(out) :: stat
-        real(wp), intent(in) :: target_input      !! sigma as the input gave it (messages)
-        integer, intent(in) :: unit_exponent      !! input mu = 2^unit_exponent mu here
-        real(wp) :: a_norm
-        integer :: a, info
-
-        this%p = contact%p()
-        this%n = this%p
-        this%lambda = lambda
-        this%sigma = sigma
-        this%lambda_scale = lambda_unit(lambda)
-        this%normal = contact%normal
-        this%tangent = contact%tangent
-        this%mass = contact%mass
-        call contact_tail(chol, contact, this%l_tail, this%slot, stat)
-        if (.not. stat%ok()) return
-        if (.not. (abs(sigma) > 0.0_wp)) return
-
-        call this%dense_a(this%a, stat)
-        if (.not. stat%ok()) return
-        ! |sigma| ||A|| > TARGET_RANGE, this%a being A / lambda_scale; written as quotients,
-        ! which cannot overflow (sigma may be clamped to huge, see eigen_analysis)
-        a_norm = maxval(sum(abs(this%a), dim=2))
-        call this%check_target(a_norm, target_input, unit_exponent, stat)
-        if (.not. stat%ok()) return
-        ! LU of I - sigma A, kept in place of A (A itself is applied through L_c)
-        this%a = -(sigma*this%lambda_scale)*this%a
-        do a = 1, this%p
-            this%a(a, a) = this%a(a, a) + 1.0_wp
-        end do
-        allocate (this%pivots(this%p))
-        call dgetrf(this%p, this%p, this%a, this%p, this%pivots, info)
-        if (info /= 0) then
-            call stat%fail(STATUS_SOLVER, 'arpack: K - sigma B is singular for sigma = '// &
-                to_string(sigma)//' (an eigenvalue equals the target; move the target)')
-        end if
-    end subroutine operator_setup
-
-    !> The full operator (K - sigma B)^-1 B / lambda_scale in the n free dofs. sigma = 0 uses
-    !> `chol`, the factor of K (no second factorization); sigma /= 0 factors K - sigma B once
-    !> with UMFPACK, after the range check of operator_setup with ||A||_inf estimated
-    !> (norm_estimate: a few sparse solves instead of forming A). Nothing of order p^2.
-    subroutine operator_setup_full(this, k, b, chol, contact, lambda, sigma, stat, &
-                                   target_input, unit_exponent)
-        class(contact_operator_t), intent(inout) :: this
-        type(csr_matrix_t), intent(in) :: k, b
-        type(cholesky_t), intent(in), target :: chol
-        type(contact_t), intent(in) :: contact
-        real(wp), intent(in) :: lambda, sigma
-        type(status_t), intent(out) :: stat
-        real(wp), intent(in) :: target_input
-        integer, intent(in) :: unit_exponent
-        real(wp) :: a_norm
-
-        this%full = .true.
-        this%p = contact%p()
-        this%n = k%n()
-        this%lambda = lambda
-        this%sigma = sigma
-        this%lambda_scale = lambda_unit(lambda)
-        this%b_scaled = b
-        this%b_scaled%val = b%val/this%lambda_scale
-        this%chol => chol
-        if (.not. (abs(sigma) > 0.0_wp)) return
-        call this%norm_estimate(contact, a_norm, stat)
-        if (.not. stat%ok()) return
-        call this%check_target(a_norm, target_input, unit_exponent, stat)
-        if (.not. stat%ok()) return
-        ! no iterative refinement: ARPACK needs a backward-stable solve, which the LU gives,
-        ! and every eigenpair's backward error on (K, B) is checked; refinement tripled the
-        ! cost of each application (measured, docs/performance.md)
-        call this%shifted%factor_shifted(k, b, sigma, stat, refinement_steps=0)
-        if (stat%code /= STATUS_SINGULAR) return
-        stat%message = 'arpack: K - sigma B for sigma = '//to_string(sigma)//': '// &
-                       stat%message//' (an eigenvalue equals the target; move the target)'
-    end subroutine operator_setup_full
-
-    !> |sigma| ||A|| <= TARGET_RANGE, with a_norm = ||A / lambda_scale||_inf; written with
-    !> quotients, which cannot overflow (sigma may be clamped to huge, see eigen_analysis).
-    !> Otherwise STATUS_BAD_INPUT in one line naming the variable (the caller adds the file).
-    subroutine operator_check_target(this, a_norm, target_input, unit_exponent, stat)
-        class(contact_operator_t), intent(in) :: this
-        real(wp), intent(in) :: a_norm, target_input
-        integer, intent(in) :: unit_exponent
-        type(status_t), intent(out) :: stat
-        if (.not. abs(this%sigma) > (TARGET_RANGE/a_norm)/this%lambda_scale) return
-        call stat%fail(STATUS_BAD_INPUT, '&eigen: target = '// &
-            real_to_text(target_input)//': expected |target| <= '// &
-            short(scale((TARGET_RANGE/a_norm)/this%lambda_scale, unit_exponent))// &
-            ' (1e6 / ||A||, the scale of the spectrum here: further out, mu = target '// &
-            '+ 1/nu cancels and loses more than 6 of the 16 digits)')
-    end subroutine operator_check_target
-
-    !> ||A / lambda_scale||_inf = ||(A / lambda_scale)'||_1 estimated by LAPACK dlacn2
-    !> (Higham's estimator: a lower bound, exact on the scenes measured), with A = N K^-1 X' M
-    !> and A' = M X K^-1 N' applied through solves with the sparse factor of K (this%chol):
-    !> about five, O(nnz(L)) each, where forming A costs O(p^3) and p^2 memory.
-    subroutine operator_norm_estimate(this, contact, estimate, stat)
-        class(contact_operator_t), intent(in) :: this
-        type(contact_t), intent(in) :: contact
-        real(wp), intent(out) :: estimate
-        type(status_t), intent(out) :: stat
-        real(wp) :: v(this%p), x(this%p), product(this%p), mx(this%p), direction(2)
-        integer :: isgn(this%p), kase, isave(3)
-        direction = this%lambda/this%lambda_scale*contact%tangent - &
-                    contact%normal/this%lambda_scale
-        estimate = 0.0_wp
-        kase = 0
-        do
-            call dlacn2(this%p, v, x, isgn, estimate, kase, isave)
-            if (kase == 0) exit
-            if (kase == 1) then   ! A' x = M (X K^-1 N' x)
-                call compliance(contact%normal, x, direction, mx)
-                call contact%mass%matvec(mx, product)
-            else                  ! A x = N K^-1 X' (M x)
-                call contact%mass%matvec(x, mx)
-                call compliance(direction, mx, contact%normal, product)
-            end if
-            if (.not. stat%ok()) return
-            x = product
-        end do
-
-    contains
-
-        !> out(a) = row . (K^-1 z)(node a) with z(node b) = column y(b), zero elsewhere.
-        subroutine compliance(column, y, row, out)
-            real(wp), intent(in) :: column(2), y(:), row(2)
-            real(wp), intent(out) :: out(:)
-            real(wp), allocatable :: z(:, :), w(:, :)
-            allocate (z(this%n, 1), source=0.0_wp)
-            allocate (w(this%n, 1))
-            call contact%scatter(column, y, z(:, 1))
-            call this%chol%solve(z, w, stat)
-            call contact%gather(row, w(:, 1), out)
-        end subroutine compliance
-    end subroutine operator_norm_estimate
-
-    !> A = (lambda Kt_nt - Kt_nn) M as a dense p x p matrix, with Kt_nn and Kt_nt formed from
-    !> L_c as the dense solver forms them (contact_reduction: dpotri, O(p^3)).
-    subroutine operator_dense_a(this, a, stat)
-        class(contact_operator_t), intent(in) :: this
-        real(wp), allocatable, intent(out) :: a(:, :)
-        type(status_t), intent(out) :: stat
-        real(wp), allocatable :: kt_nn(:, :), kt_nt(:, :)
-        if (this%explicit) then
-            allocate (a, source=this%a)
-            return
-        end if
-        call flexibility_blocks(this%l_tail, this%slot, this%normal, this%tangent, kt_nn, &
-                                kt_nt, stat)
-        if (.not. stat%ok()) return
-        ! allocated first: reallocation on assignment would read the undefined bounds that
-        ! intent(out) leaves (UBSan saw their arithmetic overflow)
-        allocate (a(this%p, this%p))
-        a(:, :) = reduced_matrix(kt_nn/this%lambda_scale, kt_nt, this%mass, &
-                                 this%lambda/this%lambda_scale)
-    end subroutine operator_dense_a
-
-    !> mu of an eigenvalue nu of the operator: A y = theta y with nu = (theta / lambda_scale)
-    !> / (1 - sigma theta), i.e. mu = 1 / theta = sigma + 1 / (lambda_scale nu).
-    elemental complex(wp) function operator_mu_of(this, nu) result(mu)
-        class(contact_operator_t), intent(in) :: this
-        complex(wp), intent(in) :: nu
-        mu = this%sigma + (1.0_wp/nu)/this%lambda_scale
-    end function operator_mu_of
-
-    !> out = A y / lambda_scale = N K^-1 (lambda T' - N') M y / lambda_scale, through two
-    !> triangular solves with L_c.
-    subroutine operator_apply_a(this, y, out)
-        class(contact_operator_t), intent(in) :: this
-        real(wp), intent(in) :: y(:)
-        real(wp), intent(out) :: out(:)
-        real(wp) :: my(this%p), z(2*this%p)
-        integer :: a
-        if (this%explicit) then
-            call dgemm('N', 'N', this%p, 1, this%p, 1.0_wp, this%a, this%p, y, this%p, 0.0_wp, &
-                       out, this%p)
-            return
-        end if
-        call this%mass%matvec(y, my)
-        z = 0.0_wp
-        do a = 1, this%p
-            z(this%slot(:, a)) = (this%lambda/this%lambda_scale*this%tangent - &
-                                  this%normal/this%lambda_scale)*my(a)
-        end do
-        call dtrsv('L', 'N', 'N', 2*this%p, this%l_tail, 2*this%p, z, 1)
-        call dtrsv('L', 'T', 'N', 2*this%p, this%l_tail, 2*this%p, z, 1)
-        do a = 1, this%p
-            out(a) = dot_product(this%normal, z(this%slot(:, a)))
-        end do
-    end subroutine operator_apply_a
-
-    !> ARPACK's OP: A (sigma = 0) or (I - sigma A)^-1 A, divided by lambda_scale; the full
-    !> operator (K - sigma B)^-1 B / lambda_scale.
-    subroutine operator_apply(this, y, out, stat)
-        class(contact_operator_t), intent(inout) :: this
-        real(wp), intent(in) :: y(:)
-        real(wp), intent(out) :: out(:)
-        type(status_t), intent(out) :: stat
-        real(wp), allocatable :: by(:, :), x(:, :)
-        integer :: info
-        if (this%full) then
-            allocate (by(this%n, 1))
-            call this%b_scaled%matvec(y, by(:, 1))
-            if (abs(this%sigma) > 0.0_wp) then
-                call this%shifted%solve(by(:, 1), out, stat)
-            else
-                allocate (x(this%n, 1))
-                call this%chol%solve(by, x, stat)
-                out = x(:, 1)
-            end if
-            return
-        end if
-        call this%apply_a(y, out)
-        if (.not. (abs(this%sigma) > 0.0_wp)) return
-        ! dgetrf succeeded in setup, so dgetrs cannot fail on these arguments
-        call dgetrs('N', this%p, 1, this%a, this%p, this%pivots, out, this%p, info)
-    end subroutine operator_apply
 
     !> Is a Ritz value nu real? ARPACK reads eigenvalues off a real Schur form, where a real
     !> eigenvalue normally has an exactly zero imaginary part. But two close real eigenvalues
@@ -539,9 +267,72 @@ contains
         else
             call fill_full_spectrum(k, b, mu, run, n_keep, spec)
         end if
+        if (.not. stat%ok()) return
         spec%n_operator = n_operator
         spec%dense_decision = .not. confirmed .and. p <= DENSE_FALLBACK_MAX
+        call add_roundoff(max(options%nev, size(run%nu)))
+    contains
+
+        !> spec%roundoff of the lowest positive mu (module roundoff)
+        !> from its left eigenvector: of the dense decision's reduced matrix when it decided,
+        !> else from one ARPACK run on the transposed operator (the last run's nev). A failure
+        !> only leaves them unknown.
+        subroutine add_roundoff(nev)
+            integer, intent(in) :: nev
+            real(wp), allocatable :: w(:), y(:)
+            type(status_t) :: left_stat
+            real(wp) :: start
+            allocate (spec%roundoff(spec%n()), source=-1.0_wp)
+            if (spec%lowest_positive() /= 1 .or. size(spec%vectors, 2) < 1) return
+            start = wall_time()
+            if (spec%dense_decision) then
+                if (allocated(run%left)) call left_from_reduced(chol, contact, k%n(), run%left, &
+                                                                y, left_stat)
+            else if (op%full) then
+                call left_eigenvector(op, options, min(nev, cap), real(spec%mu(1), wp), y, &
+                                      left_stat)
+            else
+                call left_eigenvector(op, options, min(nev, cap), real(spec%mu(1), wp), w, &
+                                      left_stat)
+                if (left_stat%ok() .and. allocated(w)) call left_from_reduced(chol, contact, &
+                    k%n(), w, y, left_stat)
+            end if
+            if (left_stat%ok()) call lowest_roundoff(k, b, contact, lambda, real(spec%mu(1), wp), &
+                real(spec%vectors(:, 1), wp), y, spec%roundoff(1))
+            spec%roundoff_seconds = wall_time() - start
+        end subroutine add_roundoff
     end subroutine arpack_spectrum
+
+    !> The eigenvector of the transposed operator (op%transposed) for the real eigenvalue
+    !> nearest `mu_lowest`, from one ARPACK run of `nev` values: the left eigenvector of
+    !> the lowest positive mu (reduced: w with A' w = theta w; full: y with K y = mu B' y).
+    !> Unallocated when no real Ritz value converged.
+    subroutine left_eigenvector(op, options, nev, mu_lowest, left, stat)
+        type(contact_operator_t), intent(inout) :: op
+        type(arpack_options_t), intent(in) :: options
+        integer, intent(in) :: nev
+        real(wp), intent(in) :: mu_lowest
+        real(wp), allocatable, intent(out) :: left(:)
+        type(status_t), intent(out) :: stat
+        type(ritz_t) :: run
+        complex(wp), allocatable :: mu(:)
+        integer :: pick, i
+        op%transposed = .true.
+        call run_arpack(op, nev, options, 1, run, stat)
+        op%transposed = .false.
+        if (.not. stat%ok()) return
+        mu = op%mu_of(run%nu)
+        pick = 0
+        do i = 1, size(mu)
+            if (.not. run%is_real(i)) cycle
+            if (pick == 0) then
+                pick = i
+            else if (abs(mu(i) - mu_lowest) < abs(mu(pick) - mu_lowest)) then
+                pick = i
+            end if
+        end do
+        if (pick > 0) left = real(run%y(:, pick), wp)
+    end subroutine left_eigenvector
 
     !> ARPACK runs on `op` until the lowest positive real mu (and with options%cn_max every
     !> one up to it) is certified (certify_lowest) by two runs from different start vectors
@@ -654,10 +445,11 @@ contains
         p = op%p
         call op%dense_a(a, stat)
         if (.not. stat%ok()) return
-        allocate (wr(p), wi(p), vr(p, p), vl(1, 1))
-        call dgeev('N', 'V', p, a, p, wr, wi, vl, 1, vr, p, query, -1, info)
+        ! left eigenvectors too: the round-off bound of the lowest positive mu needs its own
+        allocate (wr(p), wi(p), vr(p, p), vl(p, p))
+        call dgeev('V', 'V', p, a, p, wr, wi, vl, p, vr, p, query, -1, info)
         allocate (work(max(1, int(query(1)))))
-        call dgeev('N', 'V', p, a, p, wr, wi, vl, 1, vr, p, work, size(work), info)
+        call dgeev('V', 'V', p, a, p, wr, wi, vl, p, vr, p, work, size(work), info)
         if (info /= 0) then
             call stat%fail(STATUS_SOLVER, lapack_info_message('dgeev', info))
             return
@@ -677,7 +469,10 @@ contains
             j = maxloc(size_nu, dim=1, mask=.not. chosen)
             chosen(j) = .true.
         end do
-        if (lowest > 0) chosen(lowest) = .true.
+        if (lowest > 0) then
+            chosen(lowest) = .true.
+            run%left = vl(:, lowest)   ! real: the lowest positive mu is real
+        end if
         chosen = chosen .or. (is_real .and. keep .and. real(mu, wp) > 0.0_wp .and. &
                               real(mu, wp) <= cn_max)
         do j = 1, p

@@ -17,6 +17,7 @@ module dense_eigen
                                  lambda_unit
     use spectrum, only: spectrum_t, order_eigenvalues, KIND_POSITIVE, KIND_COMPLEX
     use lapack_interfaces, only: dgeevx, lapack_info_message, lapack_eigenvector
+    use roundoff, only: left_from_reduced, lowest_roundoff
     implicit none
     private
     public :: contact_flexibility, dense_spectrum
@@ -42,8 +43,10 @@ contains
                                  vr(:, :), scale(:), rconde(:), rcondv(:), work(:), condition(:)
         integer, allocatable :: iwork(:), order(:), kinds(:), keep(:)
         complex(wp), allocatable :: theta(:), mu(:), y(:, :)
-        real(wp) :: abnrm, query(1), start, lambda_scale
+        real(wp), allocatable :: left_lowest(:), left_full(:)
+        real(wp) :: abnrm, query(1), start, lambda_scale, roundoff_start
         integer :: p, ilo, ihi, info, j, i, n_ev, ierr
+        type(status_t) :: left_stat
 
         p = contact%p()
         start = wall_time()
@@ -125,6 +128,8 @@ contains
                 end if
             end do
             if (i > 0) spec%lambda_sensitivity(i) = lambda_sensitivity(keep(order(i)))
+            ! the left eigenvector of A for the round-off bound (real: mu is)
+            if (kinds(1) == KIND_POSITIVE) left_lowest = vl(:, keep(order(1)))
         end if
         deallocate (vl, kt_nt)
 
@@ -138,6 +143,16 @@ contains
         deallocate (vr)
         call lift_eigenvectors(k, b, chol, contact, lambda, spec%mu, y, n_keep, spec%residual, &
                                spec%vectors, stat)
+        if (.not. stat%ok()) return
+        ! the round-off bound of the lowest positive mu on the pencil (module roundoff), as
+        ! every solver computes it; a failed solve there only leaves it unknown
+        allocate (spec%roundoff(n_ev), source=-1.0_wp)
+        if (.not. allocated(left_lowest) .or. size(spec%vectors, 2) < 1) return
+        roundoff_start = wall_time()
+        call left_from_reduced(chol, contact, k%n(), left_lowest, left_full, left_stat)
+        if (left_stat%ok()) call lowest_roundoff(k, b, contact, lambda, real(spec%mu(1), wp), &
+            real(spec%vectors(:, 1), wp), left_full, spec%roundoff(1))
+        spec%roundoff_seconds = wall_time() - roundoff_start
 
     contains
 

@@ -24,6 +24,10 @@ module spectrum
         !> lambda; about |lambda / (lambda - lambda_c)| near a critical lambda_c. < 0: unknown
         !> (the dense solver fills it for the lowest positive and the largest real |mu|).
         real(wp), allocatable :: lambda_sensitivity(:)
+        !> Of the lowest positive mu only, < 0 elsewhere and when unknown: the bound of its
+        !> relative round-off error (module roundoff), whatever the solver.
+        real(wp), allocatable :: roundoff(:)
+        real(wp) :: roundoff_seconds = 0.0_wp      !! time spent on it (left eigenvector, bound)
         complex(wp), allocatable :: vectors(:, :)  !! (n_free, n_kept) modes of the first n_kept
         integer :: n_operator = 0                  !! operator applications (iterative solvers)
         !> the iterative solver could not certify its answer and all p eigenvalues of the

@@ -4,7 +4,8 @@
 !> chosen set of nodes forced last: the contact nodes, so that the trailing block of the
 !> Cholesky factor of K is the Schur complement of K onto the contact dofs.
 module node_ordering
-    use, intrinsic :: iso_c_binding, only: c_int, c_ptr, c_null_ptr
+    use, intrinsic :: iso_c_binding, only: c_null_ptr
+    use metis_c, only: metis_nodend, metis_status_message, IDX_T, METIS_OK
     use status, only: status_t, STATUS_SOLVER, STATUS_BAD_INPUT
     use strings, only: to_string
     use mesh, only: mesh_t
@@ -13,25 +14,7 @@ module node_ordering
     use sorting, only: sort_index
     implicit none
     private
-    public :: nested_dissection_last, metis_status_message
-
-    ! Debian's metis.h: IDXTYPEWIDTH 32, so idx_t is a 32-bit int.
-    integer(c_int), parameter :: METIS_OK = 1
-    integer(c_int), parameter :: METIS_ERROR_INPUT = -2
-    integer(c_int), parameter :: METIS_ERROR_MEMORY = -3
-
-    interface
-        function metis_nodend(nvtxs, xadj, adjncy, vwgt, options, perm, iperm) &
-                bind(C, name='METIS_NodeND') result(code)
-            import :: c_int, c_ptr
-            integer(c_int), intent(in) :: nvtxs
-            integer(c_int), intent(in) :: xadj(*), adjncy(*)   ! 0-based CSR of the graph
-            type(c_ptr), value :: vwgt                         ! NULL: unit weights
-            type(c_ptr), value :: options                      ! NULL: METIS defaults
-            integer(c_int), intent(out) :: perm(*), iperm(*)   ! perm(k) = vertex at k
-            integer(c_int) :: code
-        end function metis_nodend
-    end interface
+    public :: nested_dissection_last
 
 contains
 
@@ -55,10 +38,10 @@ contains
         integer, allocatable :: vertex(:), node_of(:), degree(:), rank(:), key(:), &
                                 candidates(:), order(:)
         logical, allocatable :: ordered(:)
-        integer(c_int), allocatable :: xadj(:), adjncy(:), perm(:), iperm(:), fill(:)
+        integer(IDX_T), allocatable :: xadj(:), adjncy(:), perm(:), iperm(:), fill(:)
         integer :: n_nodes, n_vertices, e, a, b, na, nb, k, c, node, n_corners, inner, &
                    side, anchor
-        integer(c_int) :: code
+        integer :: code
 
         n_nodes = m%n_nodes()
         n_corners = element_corners(m%element)
@@ -116,7 +99,7 @@ contains
                         nb = vertex(m%cells(b, e))
                         if (nb > 0 .and. nb /= na) then
                             fill(na) = fill(na) + 1
-                            adjncy(fill(na)) = int(nb - 1, c_int)
+                            adjncy(fill(na)) = int(nb - 1, IDX_T)
                         end if
                     end do
                 end do
@@ -124,11 +107,11 @@ contains
             call compress_rows(xadj, adjncy)
 
             allocate (perm(n_vertices), iperm(n_vertices))
-            code = metis_nodend(int(n_vertices, c_int), xadj, adjncy, c_null_ptr, c_null_ptr, &
+            code = metis_nodend(int(n_vertices, IDX_T), xadj, adjncy, c_null_ptr, c_null_ptr, &
                                 perm, iperm)
             if (code /= METIS_OK) then
                 call stat%fail(STATUS_SOLVER, 'METIS_NodeND on the node graph ('// &
-                    to_string(n_vertices)//' nodes): '//metis_status_message(int(code)))
+                    to_string(n_vertices)//' nodes): '//metis_status_message(code))
                 return
             end if
             do a = 1, n_vertices
@@ -193,10 +176,10 @@ contains
 
     !> Sort each row of a 0-based CSR graph and drop repeated neighbours, in place.
     pure subroutine compress_rows(xadj, adjncy)
-        integer(c_int), intent(inout) :: xadj(:)
-        integer(c_int), allocatable, intent(inout) :: adjncy(:)
+        integer(IDX_T), intent(inout) :: xadj(:)
+        integer(IDX_T), allocatable, intent(inout) :: adjncy(:)
         integer :: row, first, last, out, i, j
-        integer(c_int) :: key
+        integer(IDX_T) :: key
         out = 0
         first = xadj(1) + 1
         do row = 1, size(xadj) - 1
@@ -225,20 +208,4 @@ contains
         xadj(size(xadj)) = out
         adjncy = adjncy(1:out)
     end subroutine compress_rows
-
-    !> A sentence for each METIS return code.
-    pure function metis_status_message(code) result(message)
-        integer, intent(in) :: code
-        character(len=:), allocatable :: message
-        select case (code)
-        case (METIS_OK)
-            message = 'success'
-        case (METIS_ERROR_INPUT)
-            message = 'METIS rejected its input graph (METIS_ERROR_INPUT)'
-        case (METIS_ERROR_MEMORY)
-            message = 'METIS ran out of memory (METIS_ERROR_MEMORY)'
-        case default
-            message = 'METIS failed (code '//to_string(code)//')'
-        end select
-    end function metis_status_message
 end module node_ordering

@@ -8,8 +8,9 @@ module input_config
     use run_config, only: config_t
     use namelist_scan, only: group_text_t, text_t, scan_groups, has_group, &
                              split_assignments, group_list, assignment_starts, body_line
-    use input_records, only: read_record, expectation, is_text_variable, expected_value, &
-                             text_capacity, KNOWN_GROUPS
+    use input_records, only: read_record
+    use input_table, only: expectation, is_text_variable, expected_value, text_capacity, &
+                           KNOWN_GROUPS
     use run_config, only: MAX_SWEEP_LAMBDAS
     use strings, only: lowercase, printable, to_string
     use input_validation, only: validate_config

@@ -1,16 +1,16 @@
 ! SPDX-License-Identifier: MIT
-!> The text of `nceig --help`: usage, then every group and variable with its default and
-!> accepted values, taken from a default `config_t` and from input_validation, so that the
-!> documentation cannot drift from the code. test_input_records checks that it names the
-!> variables the namelists read.
+!> The text of `nceig --help`: usage, then every group and variable of input_table with its
+!> default (from a default `config_t`) and its help line, so that the documentation cannot
+!> drift from the code. test_input_records checks that it names the variables the namelists
+!> read; cli_input_reference that docs/input.md shows the same variables and defaults.
 module input_help
-    use run_config, only: config_t, MAX_SWEEP_LAMBDAS
-    use strings, only: to_string, quoted, one_of
+    use kinds, only: wp
+    use strings, only: to_string, quoted, one_of, NAME_LEN
     use real_format, only: real_to_text
-    use input_validation, only: MESH_SOURCES, ELEMENT_NAMES, DIAGONALS, RECTANGLE_SIDES, &
-                                ACCEPTED_ANALYSES, ACCEPTED_SOLVERS, MAX_CELLS_PER_SIDE, &
-                                SWEEP_SPACINGS, MAX_SWEEP_POINTS, VTK_FORMATS, SOLVE_DATA, &
-                                SOLVE_STARTS, ESTIMATE_MODES, EIGEN_OPERATORS
+    use input_table, only: input_variable_t, load_table, group_header, allowed_values, &
+                           KNOWN_GROUPS, VALUE_REAL, VALUE_INTEGER, VALUE_LOGICAL, VALUE_NAME, &
+                           VALUE_PATH, VALUE_LIST
+    use input_records, only: reader_defaults, LISTING_LINE_LEN
     implicit none
     private
     public :: help_text
@@ -19,13 +19,18 @@ module input_help
 
 contains
 
-    !> The --help text: usage, then every group and variable with its default, taken from
-    !> a default `config_t` so that the documentation cannot drift from the code. Lines
-    !> are separated by new_line('a'); the text ends with one. Lines stay under 100.
+    !> The --help text: usage, then every group and variable of input_table with its
+    !> default, taken from a namelist write of a default `config_t` so that the
+    !> documentation cannot drift from the code. Lines are separated by new_line('a'); the
+    !> text ends with one. Lines stay under 100.
     function help_text() result(text)
         character(len=:), allocatable :: text
-        type(config_t) :: d
         character(len=*), parameter :: NL = new_line('a')
+        type(input_variable_t), allocatable :: table(:)
+        character(len=NAME_LEN), allocatable :: names(:)
+        character(len=LISTING_LINE_LEN), allocatable :: values(:)
+        character(len=:), allocatable :: name, value
+        integer :: g, i
 
         text = 'Usage: nceig INPUT.nml | --help | --version'//NL &
                //'       nceig INPUT.nml --set group%variable=value [--set ...]'//NL//NL &
@@ -37,129 +42,85 @@ contains
                //'--set group%variable=value overrides one variable of INPUT.nml, with the' &
                //NL//'same checks (--set analysis%lambda=2.5 --set mesh%element=q2; names need' &
                //NL//'no quotes). A path given so is relative to the working directory.'//NL//NL
-        text = text//'&mesh'//NL &
-               //entry('source', quoted(d%mesh%source), 'one of '//one_of(MESH_SOURCES)) &
-               //entry('file', quoted(d%mesh%file), "Gmsh .msh (source = 'gmsh'), relative" &
-                       //' to the input file''s folder') &
-               //entry('width', real_to_text(d%mesh%width), 'rectangle size along x') &
-               //entry('height', real_to_text(d%mesh%height), 'rectangle size along y') &
-               //entry('nx', to_string(d%mesh%nx), 'cells along x (1 to ' &
-                       //to_string(MAX_CELLS_PER_SIDE)//')') &
-               //entry('ny', to_string(d%mesh%ny), 'cells along y') &
-               //entry('element', quoted(d%mesh%element), one_of(ELEMENT_NAMES)) &
-               //repeat(' ', HELP_COLUMN + 2) &
-               //'(p3, p4: cubic, quartic triangles; rectangle; Gmsh sets its own)'//NL &
-               //entry('diagonal', quoted(d%mesh%diagonal), one_of(DIAGONALS) &
-                       //': triangle diagonals rise to the right or left') &
-               //entry('dirichlet', quoted(d%mesh%dirichlet), 'fixed sides (' &
-                       //one_of(RECTANGLE_SIDES)//') or Gmsh groups') &
-               //entry('neumann', quoted(d%mesh%neumann), 'loaded by &solve t1, t2 (free in' &
-                       //' eigen runs); unnamed sides are free') &
-               //entry('contact', quoted(d%mesh%contact), 'the one side or group in contact')
-        text = text//'&material'//NL &
-               //entry('young', real_to_text(d%material%young), 'Young''s modulus E > 0') &
-               //entry('poisson', real_to_text(d%material%poisson), &
-                       'Poisson''s ratio, -1 < poisson < 0.5')
-        text = text//'&analysis'//NL &
-               //entry('kind', quoted(d%analysis%kind), 'one of '//one_of(ACCEPTED_ANALYSES)) &
-               //entry('lambda', real_to_text(d%analysis%lambda), &
-                       'ratio in b_lambda(phi, v) = lambda int phi_n v_t - int phi_n v_n')
-        text = text//'&eigen'//NL &
-               //entry('solver', quoted(d%eigen%solver), 'one of '//one_of(ACCEPTED_SOLVERS)) &
-               //entry('nev', to_string(d%eigen%nev), 'ARPACK: eigenvalues nearest target' &
-                       //' per run (doubled while undecided)') &
-               //entry('target', real_to_text(d%eigen%target), 'shift sigma: eigenvalues' &
-                       //' nearest to it are found first') &
-               //entry('tol', real_to_text(d%eigen%tol), 'sparse solver tolerance' &
-                       //' (0: machine precision)') &
-               //entry('maxit', to_string(d%eigen%maxit), 'sparse solver restarts') &
-               //entry('ncv', to_string(d%eigen%ncv), 'Krylov dimension, 0 or >= nev + 2' &
-                       //' (0: chosen from nev)') &
-               //entry('dense_max_contact', to_string(d%eigen%dense_max_contact), &
-                       "'auto' picks 'dense' up to this many contact nodes, else 'arpack'") &
-               //entry('estimate', quoted(d%eigen%estimate), one_of(ESTIMATE_MODES)// &
-                       ": error estimate of mu (auto: <= 40000 dofs)") &
-               //entry('operator', quoted(d%eigen%operator), one_of(EIGEN_OPERATORS)// &
-                       ": ARPACK on p x p or (K - target B)^-1 B") &
-               //entry('cn_max', real_to_text(d%eigen%cn_max), 'report every positive mu' &
-                       //' in (0, cn_max] (0: only the lowest)')
-        text = text//'&output'//NL &
-               //entry('directory', quoted(d%output%directory), "'' means output/<input" &
-                       //' file stem> (from the working directory)') &
-               //entry('vtk', logical_text(d%output%vtk), 'write mode_NNN.vtu for ParaView') &
-               //entry('modes', to_string(d%output%modes), 'how many modes to write as .vtu') &
-               //entry('matrices', logical_text(d%output%matrices), &
-                       'write K.mtx and B.mtx (Matrix Market)') &
-               //entry('vtk_format', quoted(d%output%vtk_format), one_of(VTK_FORMATS) &
-                       //" ('binary': raw appended data; 'ascii': text)") &
-               //entry('plot', logical_text(d%output%plot), 'draw mode_001.png with gnuplot' &
-                       //' (the first mode on the deformed mesh)') &
-               //entry('progress', logical_text(d%output%progress), 'a line on stdout as' &
-                       //' each phase ends (.false.: the final summary only)')
-        text = text//"&sweep  (kind = 'lambda_sweep': lowest positive mu against lambda)"//NL &
-               //entry('lambda_min', real_to_text(d%sweep%lambda_min), 'first lambda of the' &
-                       //' range (either sign)') &
-               //entry('lambda_max', real_to_text(d%sweep%lambda_max), 'last lambda, >' &
-                       //' lambda_min') &
-               //entry('n_lambda', to_string(d%sweep%n_lambda), 'points in the range (2 to ' &
-                       //to_string(MAX_SWEEP_POINTS)//')') &
-               //entry('spacing', quoted(d%sweep%spacing), one_of(SWEEP_SPACINGS) &
-                       //" ('log': one sign, geometric in |lambda|)") &
-               //entry('lambdas', 'unset', 'explicit list (up to '// &
-                       to_string(MAX_SWEEP_LAMBDAS)//'), replaces the range') &
-               //entry('plot', logical_text(d%sweep%plot), 'draw lambda_sweep.png with' &
-                       //' gnuplot when it is installed')
-        text = text//'&branch      (kind = ''branch'': U + delta phi, docs/model.md 9)'//NL &
-               //entry('alpha', real_to_text(d%branch%alpha), 'u_n of U on Gamma_C, > 0') &
-               //entry('beta', real_to_text(d%branch%beta), '|u_t| of U on Gamma_C, > 0') &
-               //entry('n_delta', to_string(d%branch%n_delta), 'deltas evenly spaced in' &
-                       //' [-delta_max, delta_max]') &
-               //entry('write_members', to_string(d%branch%write_members), &
-                       'members written as branch_NNN.vtu')
-        text = text//'&solve       (kind = ''solve'': frictional normal compliance, Newton)'//NL &
-               //entry('data', quoted(d%solve%data), one_of(SOLVE_DATA)//': the loads below,' &
-                       //' or those of &branch') &
-               //entry('c_n', real_to_text(d%solve%c_n), 'normal compliance (data = ''given'')') &
-               //entry('c_t', real_to_text(d%solve%c_t), 'tangential compliance') &
-               //entry('critical_factor', real_to_text(d%solve%critical_factor), &
-                       'data = ''branch'': c_n, c_t = factor * critical') &
-               //entry('f1, f2', real_to_text(d%solve%f1)//', '//real_to_text(d%solve%f2), &
-                       'body force') &
-               //entry('t1, t2', real_to_text(d%solve%t1)//', '//real_to_text(d%solve%t2), &
-                       'traction on every Neumann part') &
-               //entry('u_d1, u_d2', real_to_text(d%solve%u_d1)//', ' &
-                       //real_to_text(d%solve%u_d2), 'displacement on Gamma_D') &
-               //entry('start', quoted(d%solve%start), one_of(SOLVE_STARTS)) &
-               //entry('start_delta', real_to_text(d%solve%start_delta), &
-                       'start = ''branch'': U + start_delta phi') &
-               //entry('start_scale', real_to_text(d%solve%start_scale), &
-                       'start = ''random'' or ''mode'': size of the guess') &
-               //entry('start_noise', real_to_text(d%solve%start_noise), &
-                       'uniform noise of this size added to any start') &
-               //entry('seed', to_string(d%solve%seed), 'of the random start and the noise') &
-               //entry('tol', real_to_text(d%solve%tol), '||residual|| / ||load||' &
-                       //' (infinity norms) to stop at') &
-               //entry('max_iterations', to_string(d%solve%max_iterations), 'Newton iterations')
-        text = text//'&adapt       (eigen, threshold, lambda_sweep: refine until the error bar' &
-               //' is met)'//NL &
-               //entry('tolerance', real_to_text(d%adapt%tolerance), 'relative error of' &
-                       //' mu or of both critical lambdas (0: off; < 1)') &
-               //entry('max_dofs', to_string(d%adapt%max_dofs), 'no level solves on more' &
-                       //' free dofs (0: as memory allows)') &
-               //entry('max_levels', to_string(d%adapt%max_levels), 'refinement steps after' &
-                       //' the starting mesh (0: no limit)') &
-               //entry('theta', real_to_text(d%adapt%theta), 'Doerfler fraction: refine' &
-                       //' cells holding this part of the estimate')
+        call load_table(table)
+        do g = 1, size(KNOWN_GROUPS)
+            text = text//group_header(trim(KNOWN_GROUPS(g)))//NL
+            call reader_defaults(trim(KNOWN_GROUPS(g)), names, values)
+            name = ''
+            value = ''
+            do i = 1, size(table)
+                if (table(i)%group /= KNOWN_GROUPS(g)) cycle
+                name = name//trim(table(i)%name)
+                value = value//default_text(table(i))
+                if (table(i)%joined) then
+                    name = name//', '
+                    value = value//', '
+                    cycle
+                end if
+                text = text//entry(name, value, described(table(i)))
+                name = ''
+                value = ''
+            end do
+        end do
 
     contains
 
         function entry(name, value, description) result(line)
             character(len=*), intent(in) :: name, value, description
             character(len=:), allocatable :: line
+            integer :: break
             line = '    '//name//' = '//value
             if (len(line) < HELP_COLUMN) line = line//repeat(' ', HELP_COLUMN - len(line))
-            line = line//'  '//description//NL
+            break = index(description, NL)
+            if (break == 0) then
+                line = line//'  '//description//NL
+            else   ! the rest on a line of its own, under the description
+                line = line//'  '//description(:break)//repeat(' ', HELP_COLUMN + 2) &
+                       //description(break + 1:)//NL
+            end if
         end function entry
+
+        !> The help line of `variable`, its accepted values in place of '@'.
+        function described(variable) result(description)
+            type(input_variable_t), intent(in) :: variable
+            character(len=:), allocatable :: description
+            integer :: at
+            description = trim(variable%help)
+            at = index(description, '@')
+            if (at > 0) description = description(:at - 1) &
+                //one_of(allowed_values(variable%choices))//description(at + 1:)
+        end function described
+
+        !> The default of `variable` as the help shows it: from the namelist write of
+        !> `values` (names(k) its variable), in the input file's own notation.
+        function default_text(variable) result(shown)
+            type(input_variable_t), intent(in) :: variable
+            character(len=:), allocatable :: shown
+            character(len=:), allocatable :: raw
+            integer :: k, ios, n
+            real(wp) :: x
+            logical :: flag
+            shown = trim(variable%shown_default)
+            if (len(shown) > 0) return
+            shown = '?'
+            k = findloc(names, variable%name, dim=1)
+            if (k == 0) return
+            raw = trim(values(k))
+            select case (variable%value_type)
+            case (VALUE_REAL)
+                read (raw, *, iostat=ios) x
+                if (ios == 0) shown = real_to_text(x)
+            case (VALUE_INTEGER)
+                read (raw, *, iostat=ios) n
+                if (ios == 0) shown = to_string(n)
+            case (VALUE_LOGICAL)
+                read (raw, *, iostat=ios) flag
+                if (ios == 0) shown = logical_text(flag)
+            case (VALUE_NAME, VALUE_PATH, VALUE_LIST)
+                ! written between double quotes, padded with blanks; no quotes inside
+                if (len(raw) >= 2) shown = quoted(trim(raw(2:len(raw) - 1)))
+            end select
+        end function default_text
     end function help_text
 
     pure function logical_text(flag) result(text)

@@ -1,55 +1,17 @@
 ! SPDX-License-Identifier: MIT
-!> The namelist records of the input file, one group at a time: which groups exist, the
-!> namelist of each (whose variables are those of its `run_config` type), and what each
-!> variable expects, for messages. Values are read, not judged: see input_validation.
+!> The namelist records of the input file, one group at a time: the namelist of each
+!> (whose variables are those of its `run_config` type, as input_table lists them), read
+!> into a config_t or written from one. Values are read, not judged: see input_validation.
 module input_records
     use kinds, only: wp
     use run_config, only: config_t, MAX_SWEEP_LAMBDAS, PATH_LEN
     use strings, only: lowercase, normalized_list, NAME_LEN, LIST_LEN
+    use input_table, only: KNOWN_GROUPS
     use ieee_exceptions, only: ieee_status_type, ieee_get_status, ieee_set_status, &
                                ieee_set_halting_mode, ieee_support_halting, ieee_overflow
     implicit none
     private
-    public :: read_record, expectation, reader_variables, typed_variables, is_text_variable
-    public :: expected_value, text_capacity
-    public :: KNOWN_GROUPS
-
-    !> Namelist groups, in the order they are read, validated and documented.
-    character(len=*), parameter :: KNOWN_GROUPS(*) = [character(len=8) :: &
-                                   'mesh', 'material', 'analysis', 'eigen', 'output', 'sweep', &
-                                   'branch', 'solve', 'adapt']
-    !> 'group variable:expected value' of every namelist variable, for messages about a
-    !> value the runtime could not read. New groups add their lines.
-    character(len=*), parameter :: VARIABLE_TYPES(*) = [character(len=64) :: &
-        'mesh source:a quoted name', 'mesh file:a quoted path', 'mesh width:a real number', &
-        'mesh height:a real number', 'mesh nx:an integer', 'mesh ny:an integer', &
-        'mesh element:a quoted name', 'mesh diagonal:a quoted name', &
-        'mesh dirichlet:a quoted list of names', 'mesh neumann:a quoted list of names', &
-        'mesh contact:a quoted name', 'material young:a real number', &
-        'material poisson:a real number', 'analysis kind:a quoted name', &
-        'analysis lambda:a real number', 'eigen solver:a quoted name', &
-        'eigen nev:an integer', 'eigen target:a real number', 'eigen tol:a real number', &
-        'eigen maxit:an integer', 'eigen ncv:an integer', 'eigen dense_max_contact:an integer', &
-        'eigen estimate:a quoted name', 'eigen operator:a quoted name', &
-        'eigen cn_max:a real number', &
-        'output directory:a quoted path', 'output vtk:.true. or .false.', &
-        'output modes:an integer', 'output matrices:.true. or .false.', &
-        'output vtk_format:a quoted name', 'output plot:.true. or .false.', &
-        'output progress:.true. or .false.', &
-        'sweep lambda_min:a real number', 'sweep lambda_max:a real number', &
-        'sweep n_lambda:an integer', 'sweep spacing:a quoted name', &
-        'sweep lambdas:a list of real numbers', 'sweep plot:.true. or .false.', &
-        'branch alpha:a real number', 'branch beta:a real number', &
-        'branch n_delta:an integer', 'branch write_members:an integer', &
-        'solve data:a quoted name', 'solve c_n:a real number', 'solve c_t:a real number', &
-        'solve critical_factor:a real number', 'solve f1:a real number', &
-        'solve f2:a real number', 'solve t1:a real number', 'solve t2:a real number', &
-        'solve u_d1:a real number', 'solve u_d2:a real number', 'solve start:a quoted name', &
-        'solve start_delta:a real number', 'solve start_scale:a real number', &
-        'solve start_noise:a real number', 'solve seed:an integer', 'solve tol:a real number', &
-        'solve max_iterations:an integer', &
-        'adapt tolerance:a real number', 'adapt max_dofs:an integer', &
-        'adapt max_levels:an integer', 'adapt theta:a real number']
+    public :: read_record, reader_variables, reader_defaults, LISTING_LINE_LEN
 
     integer, parameter :: LISTING_LINE_LEN = 4*PATH_LEN   !! a line of a namelist write
 
@@ -89,17 +51,28 @@ contains
     end subroutine read_record
 
     !> The variables of group `group` as its namelist declares them, lowercased, in order:
-    !> taken from a namelist write, so that they can be checked against VARIABLE_TYPES and
+    !> taken from a namelist write, so that they can be checked against input_table and
     !> the help text. Empty for an unknown group.
     function reader_variables(group) result(names)
         character(len=*), intent(in) :: group
         character(len=NAME_LEN), allocatable :: names(:)
+        character(len=LISTING_LINE_LEN), allocatable :: values(:)
+        call reader_defaults(group, names, values)
+    end function reader_variables
+
+    !> The variables of group `group` (as reader_variables) and their default values as a
+    !> namelist write of a default config_t gives them ('1.0000000000000000', '"p1   "',
+    !> 'T'), so that the help shows run_config's defaults without naming each one.
+    subroutine reader_defaults(group, names, values)
+        character(len=*), intent(in) :: group
+        character(len=NAME_LEN), allocatable, intent(out) :: names(:)
+        character(len=LISTING_LINE_LEN), allocatable, intent(out) :: values(:)
         type(config_t) :: defaults
         character(len=LISTING_LINE_LEN) :: line
         character(len=256) :: msg
-        integer :: unit, ios, equals
+        integer :: unit, ios, equals, last
 
-        allocate (names(0))
+        allocate (names(0), values(0))
         open (newunit=unit, status='scratch', action='readwrite', delim='quote', &
               recl=LISTING_LINE_LEN, iostat=ios)
         if (ios /= 0) return
@@ -117,72 +90,14 @@ contains
                 if (verify(line(:equals - 1), 'abcdefghijklmnopqrstuvwxyz' &
                            //'ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_') /= 0) cycle
                 names = [character(len=NAME_LEN) :: names, lowercase(line(:equals - 1))]
+                last = len_trim(line)
+                if (line(last:last) == ',') last = last - 1
+                values = [character(len=LISTING_LINE_LEN) :: values, &
+                          adjustl(line(equals + 1:last))]
             end do
         end if
         close (unit)
-    end function reader_variables
-
-    !> The variables of group `group` in VARIABLE_TYPES, in order.
-    pure function typed_variables(group) result(names)
-        character(len=*), intent(in) :: group
-        character(len=NAME_LEN), allocatable :: names(:)
-        integer :: i, space
-        allocate (names(0))
-        do i = 1, size(VARIABLE_TYPES)
-            space = index(VARIABLE_TYPES(i), ' ')
-            if (VARIABLE_TYPES(i)(:space - 1) /= group) cycle
-            names = [character(len=NAME_LEN) :: names, &
-                     VARIABLE_TYPES(i)(space + 1:index(VARIABLE_TYPES(i), ':') - 1)]
-        end do
-    end function typed_variables
-
-    !> Whether `variable` of `group` holds text (a name, path or list of names), whose value
-    !> the namelist reads only between quotes: --set adds them when they are left out.
-    pure logical function is_text_variable(group, variable)
-        character(len=*), intent(in) :: group, variable
-        character(len=:), allocatable :: entry
-        integer :: i
-        is_text_variable = .false.
-        entry = trim(group)//' '//lowercase(trim(adjustl(variable)))//':a quoted'
-        do i = 1, size(VARIABLE_TYPES)
-            if (index(VARIABLE_TYPES(i), entry) == 1) is_text_variable = .true.
-        end do
-    end function is_text_variable
-
-    !> What `variable` of `group` expects ('a real number', 'a quoted path', ...), as in
-    !> VARIABLE_TYPES; '' for a variable the group does not have.
-    pure function expected_value(group, variable) result(text)
-        character(len=*), intent(in) :: group, variable
-        character(len=:), allocatable :: text
-        character(len=:), allocatable :: entry
-        integer :: i
-        text = ''
-        entry = trim(group)//' '//lowercase(trim(adjustl(variable)))//':'
-        do i = 1, size(VARIABLE_TYPES)
-            if (index(VARIABLE_TYPES(i), entry) == 1) then
-                text = trim(VARIABLE_TYPES(i)(len(entry) + 1:))
-                return
-            end if
-        end do
-    end function expected_value
-
-    !> Characters the text variable `variable` of `group` holds (0 for one that is not
-    !> text): the namelist read silently cuts a longer value, so it is refused before.
-    pure integer function text_capacity(group, variable)
-        character(len=*), intent(in) :: group, variable
-        type(config_t) :: defaults
-        text_capacity = 0
-        select case (expected_value(group, variable))
-        case ('a quoted path')
-            text_capacity = PATH_LEN
-        case ('a quoted list of names')
-            text_capacity = LIST_LEN
-        case ('a quoted name')
-            text_capacity = NAME_LEN
-            if (trim(group) == 'output' .and. lowercase(trim(adjustl(variable))) == &
-                'vtk_format') text_capacity = len(defaults%output%vtk_format)
-        end select
-    end function text_capacity
+    end subroutine reader_defaults
 
     ! Each reader copies the current values into locals named like the namelist variables,
     ! reads the record from the internal file `record`, and only on success copies them
@@ -496,30 +411,4 @@ contains
         config%adapt%max_levels = max_levels
         config%adapt%theta = theta
     end subroutine adapt_record
-
-    !> What a failed assignment 'name = value' of `group` should have looked like: the
-    !> type of a known variable, or the variables the group knows. The runtime's own message
-    !> ('Cannot match namelist object name 5') says what went wrong, not what was expected.
-    pure function expectation(group, assignment) result(text)
-        character(len=*), intent(in) :: group, assignment
-        character(len=:), allocatable :: text
-        character(len=:), allocatable :: name
-        integer :: i, equals, space
-        equals = index(assignment, '=')
-        name = lowercase(trim(adjustl(assignment(:max(0, equals - 1)))))
-        text = ''
-        do i = 1, size(VARIABLE_TYPES)
-            space = index(VARIABLE_TYPES(i), ' ')
-            if (VARIABLE_TYPES(i)(:space - 1) /= group) cycle
-            if (len(text) > 0) text = text//', '
-            text = text//trim(VARIABLE_TYPES(i)(space + 1:index(VARIABLE_TYPES(i), ':') - 1))
-            if (trim(VARIABLE_TYPES(i)(space + 1:index(VARIABLE_TYPES(i), ':') - 1)) == name) &
-                then
-                text = ' (expected '//trim(VARIABLE_TYPES(i)(index(VARIABLE_TYPES(i), ':') + &
-                       1:))//')'
-                return
-            end if
-        end do
-        if (len(text) > 0) text = ' (&'//group//' knows: '//text//')'
-    end function expectation
 end module input_records

@@ -26,7 +26,7 @@ module mesh_refine
                              triangle_lattice
     implicit none
     private
-    public :: refinable_mesh_t, build_refinable_mesh
+    public :: refinable_mesh_t, build_refinable_mesh, edge_table_t, build_edge_table, edge_number
 
     integer, parameter :: NAME_LEN = 64   !! as mesh_t%part_names
     integer, parameter :: N_CORNERS = 3

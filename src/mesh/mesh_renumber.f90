@@ -1,11 +1,12 @@
 ! SPDX-License-Identifier: MIT
 !> Node renumbering for locality: reverse Cuthill-McKee (our own) or METIS nested dissection
-!> (METIS_NodeND through iso_c_binding). Neighbouring nodes get nearby numbers, so the
+!> (METIS_NodeND, bound in metis_c). Neighbouring nodes get nearby numbers, so the
 !> assembly, the matrix-vector products and the sparse factorization touch memory in order.
 !> Files written by mesh generators number nodes by geometric entity, which scatters the
 !> nodes of one cell across the whole node array.
 module mesh_renumber
-    use, intrinsic :: iso_c_binding, only: c_int, c_int32_t, c_ptr, c_null_ptr
+    use, intrinsic :: iso_c_binding, only: c_null_ptr
+    use metis_c, only: metis_nodend, IDX_T, METIS_OK
     use kinds, only: wp
     use status, only: status_t, STATUS_SOLVER, STATUS_INTERNAL
     use mesh, only: mesh_t
@@ -20,23 +21,6 @@ module mesh_renumber
     integer, parameter :: RENUMBER_NONE = 0    !! keep the numbering
     integer, parameter :: RENUMBER_RCM = 1     !! reverse Cuthill-McKee
     integer, parameter :: RENUMBER_METIS = 2   !! METIS_NodeND (nested dissection)
-
-    integer(c_int), parameter :: METIS_OK = 1
-
-    interface
-        !> metis.h: int METIS_NodeND(idx_t *nvtxs, idx_t *xadj, idx_t *adjncy, idx_t *vwgt,
-        !> idx_t *options, idx_t *perm, idx_t *iperm); Debian builds idx_t as 32 bits
-        !> (IDXTYPEWIDTH 32). NULL options mean the defaults, 0-based numbering among them.
-        function metis_nodend(nvtxs, xadj, adjncy, vwgt, options, perm, iperm) &
-                bind(C, name='METIS_NodeND') result(code)
-            import :: c_int, c_int32_t, c_ptr
-            integer(c_int32_t), intent(in) :: nvtxs
-            integer(c_int32_t), intent(inout) :: xadj(*), adjncy(*)
-            type(c_ptr), value :: vwgt, options
-            integer(c_int32_t), intent(out) :: perm(*), iperm(*)   ! perm(new) = old, 0-based
-            integer(c_int) :: code
-        end function metis_nodend
-    end interface
 
 contains
 
@@ -201,10 +185,10 @@ contains
         type(csr_matrix_t), intent(in) :: graph
         integer, allocatable, intent(out) :: new_of_old(:)
         type(status_t), intent(out) :: stat
-        integer(c_int32_t), allocatable :: xadj(:), adjncy(:), perm(:), iperm(:)
-        integer(c_int32_t) :: n_vertices
+        integer(IDX_T), allocatable :: xadj(:), adjncy(:), perm(:), iperm(:)
+        integer(IDX_T) :: n_vertices
         integer :: n, row, k, pos
-        integer(c_int) :: code
+        integer :: code
 
         n = size(graph%row_start) - 1
         allocate (new_of_old(n))
@@ -219,16 +203,16 @@ contains
             do k = graph%row_start(row), graph%row_start(row + 1) - 1
                 if (graph%col(k) == row) cycle
                 pos = pos + 1
-                adjncy(pos) = int(graph%col(k) - 1, c_int32_t)
+                adjncy(pos) = int(graph%col(k) - 1, IDX_T)
             end do
-            xadj(row + 1) = int(pos, c_int32_t)
+            xadj(row + 1) = int(pos, IDX_T)
         end do
-        n_vertices = int(n, c_int32_t)
+        n_vertices = int(n, IDX_T)
         code = metis_nodend(n_vertices, xadj, adjncy, c_null_ptr, c_null_ptr, &
                             perm, iperm)
         if (code /= METIS_OK) then
             call stat%fail(STATUS_SOLVER, 'renumber: METIS_NodeND failed with code '// &
-                           to_string(int(code)))
+                           to_string(code))
             return
         end if
         new_of_old = int(iperm) + 1

@@ -14,7 +14,7 @@ module sparse_lu
     use strings, only: to_string
     use umfpack_c, only: umfpack_di_symbolic, umfpack_di_numeric, umfpack_di_solve, &
                          umfpack_di_free_symbolic, umfpack_di_free_numeric, umfpack_di_defaults, &
-                         UMFPACK_CONTROL, UMFPACK_INFO, UMFPACK_At, UMFPACK_PRL, &
+                         UMFPACK_CONTROL, UMFPACK_INFO, UMFPACK_A, UMFPACK_At, UMFPACK_PRL, &
                          UMFPACK_ORDERING, UMFPACK_IRSTEP, UMFPACK_LNZ, UMFPACK_UNZ, UMFPACK_FLOPS, &
                          UMFPACK_RCOND, UMFPACK_ORDERING_AMD, UMFPACK_ORDERING_METIS, &
                          UMFPACK_ORDERING_CHOLMOD, UMFPACK_ORDERING_NONE, &
@@ -172,13 +172,14 @@ contains
         end if
     end subroutine factor_copies
 
-    !> Solve A x = b for one right-hand side.
-    subroutine lu_solve(this, b, x, stat)
+    !> Solve A x = b for one right-hand side; A' x = b with `transposed` (the same factors).
+    subroutine lu_solve(this, b, x, stat, transposed)
         class(lu_t), intent(inout) :: this
         real(wp), intent(in) :: b(:)
         real(wp), intent(out) :: x(:)
         type(status_t), intent(out) :: stat
-        integer(c_int) :: code
+        logical, intent(in), optional :: transposed
+        integer(c_int) :: code, system
         character(len=80) :: text
         if (.not. c_associated(this%numeric)) then
             call stat%fail(STATUS_BAD_INPUT, &
@@ -192,8 +193,12 @@ contains
             return
         end if
         ! UMFPACK holds the factors of our transpose (CSR read as CSC): A x = b is its
-        ! transposed system, UMFPACK_At.
-        code = umfpack_di_solve(UMFPACK_At, this%ap, this%ai, this%ax, x, b, this%numeric, &
+        ! transposed system, UMFPACK_At, and A' x = b is UMFPACK_A.
+        system = UMFPACK_At
+        if (present(transposed)) then
+            if (transposed) system = UMFPACK_A
+        end if
+        code = umfpack_di_solve(system, this%ap, this%ai, this%ax, x, b, this%numeric, &
                                   this%control, this%info)
         if (code /= UMFPACK_OK) then
             if (code == UMFPACK_WARNING_singular_matrix) then

@@ -3,9 +3,9 @@
 # The extremes table: runs nceig over extreme cases (material, size, lambda, thresholds,
 # mesh size, cell shape) and prints a markdown table of what it returns: the lowest positive
 # mu, its condition number and backward error, the worst backward error of the spectrum, the
-# real mu of largest modulus, and the warnings. Usage: scripts/extremes_table.sh [NCEIG]
+# real mu of largest modulus, and the warnings. Usage: scripts/dev/extremes_table.sh [NCEIG]
 set -euo pipefail
-root=$(cd "$(dirname "$0")/.." && pwd)
+root=$(cd "$(dirname "$0")/../.." && pwd)
 nceig=${1:-$root/build/nceig}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT

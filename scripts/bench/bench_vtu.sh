@@ -4,15 +4,15 @@
 # unit square, P1 'right' N x N, lambda = 5, one mode): the output phase (time_output_s of
 # summary.json: eigenvalues.csv + mode_001.vtu + summary.json) and the .vtu file size.
 # A run with vtk = .false. gives the output phase without the .vtu.
-# Usage: scripts/bench_vtu.sh [REPEATS] [N ...]   (defaults: 3, and 256 512 1024)
+# Usage: scripts/bench/bench_vtu.sh [REPEATS] [N ...]   (defaults: 3, and 256 512 1024)
 set -euo pipefail
-root=$(cd "$(dirname "$0")/.." && pwd)
+root=$(cd "$(dirname "$0")/../.." && pwd)
 nceig=${NCEIG:-$root/build/nceig}
 repeats=${1:-3}
 shift || true
 sizes=("$@")
 ((${#sizes[@]} > 0)) || sizes=(256 512 1024)
-[[ -x $nceig ]] || { echo "bench_vtu: build first (scripts/build.sh Release)" >&2; exit 1; }
+[[ -x $nceig ]] || { echo "bench_vtu: build first (scripts/dev/build.sh Release)" >&2; exit 1; }
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 

@@ -4,7 +4,7 @@
 # operator = 'reduced' (p x p, O(p^2) per step after an O(p^3)-free setup) against 'full'
 # ((K - target B)^-1 B in the n free dofs), and, where python3-slepc4py is installed,
 # SLEPc's Krylov-Schur with shift-and-invert and MUMPS on the same K.mtx and B.mtx.
-# Usage: scripts/bench_operator.sh [--target T] [--slepc-max N] [REPEATS] [N ...]
+# Usage: scripts/bench/bench_operator.sh [--target T] [--slepc-max N] [REPEATS] [N ...]
 #   defaults: target 0, SLEPc up to N = 512 (the Matrix Market text of N = 1024 is 1.3 GB),
 #   3 repeats, N = 64 128 256 512 1024.
 # Every run of one N alternates the operators, so that load from other jobs falls on both;
@@ -16,7 +16,7 @@
 # matrices in memory (nev = 6 nearest the target, tol 1e-12: one run, where nceig makes
 # at least two to certify), its peak includes Python and the text reader.
 set -euo pipefail
-root=$(cd "$(dirname "$0")/.." && pwd)
+root=$(cd "$(dirname "$0")/../.." && pwd)
 nceig=${NCEIG:-$root/build/nceig}
 target=0
 slepc_max=512
@@ -85,7 +85,7 @@ for n in "${sizes[@]}"; do
         times=''
         peaks=''
         for ((r = 1; r <= repeats; r++)); do
-            /usr/bin/time -v "$python" "$root/scripts/bench_slepc.py" "$work/export" "$target" \
+            /usr/bin/time -v "$python" "$root/scripts/bench/bench_slepc.py" "$work/export" "$target" \
                 6 1e-12 >"$work/slepc" 2>"$work/time" || { cat "$work/time" >&2; exit 1; }
             read -r seconds slepc_ops slepc_mu _ <"$work/slepc"
             times="$times $seconds"

@@ -8,13 +8,13 @@
 # depend on how a mode is scaled. Rows: uniform P1, P2, Q1, Q2 for N = 8 to 64 (h = 1/N),
 # then the adaptive loop (P1 to 1e-4, P2 to 1e-7, P3 to 1e-9, from 4 x 4) with mu's error
 # estimate. Prints a Markdown table.
-# Usage: scripts/mode_convergence.sh [NU] [LAMBDA]   (defaults 0.3 and 5)
+# Usage: scripts/dev/mode_convergence.sh [NU] [LAMBDA]   (defaults 0.3 and 5)
 set -euo pipefail
-root=$(cd "$(dirname "$0")/.." && pwd)
+root=$(cd "$(dirname "$0")/../.." && pwd)
 nceig=${NCEIG:-$root/build/nceig}
 nu=${1:-0.3}
 lambda=${2:-5}
-[[ -x $nceig ]] || { echo "mode_convergence: build first (scripts/build.sh Release)" >&2; exit 1; }
+[[ -x $nceig ]] || { echo "mode_convergence: build first (scripts/dev/build.sh Release)" >&2; exit 1; }
 command -v jq >/dev/null || { echo "mode_convergence: needs jq" >&2; exit 1; }
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT

@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT
 # The adaptive loop against uniform meshes on the reference scene (unit square, top fixed,
 # contact on the bottom, E = 1, nu = 0.3, lambda = 5).
-# Usage: scripts/bench_adapt.sh [--element E] [--start N] [REPEATS] [TOLERANCE ...]
+# Usage: scripts/bench/bench_adapt.sh [--element E] [--start N] [REPEATS] [TOLERANCE ...]
 #   E: the adapted element (default p3), N: the starting N x N squares (default 4);
 #   defaults: 3 repeats, tolerances 1e-4 1e-6 1e-8 1e-10.
 # First a reference: the same loop to 1e-12 (P3; 35 s on 2 idle cores) whose own estimate
@@ -13,7 +13,7 @@
 # each tolerance the most accurate uniform P1 and P2 run that took no more wall time than
 # the adaptive one.
 set -euo pipefail
-root=$(cd "$(dirname "$0")/.." && pwd)
+root=$(cd "$(dirname "$0")/../.." && pwd)
 nceig=${NCEIG:-$root/build/nceig}
 element=p3
 start=4

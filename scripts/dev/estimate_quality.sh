@@ -4,16 +4,16 @@
 # level, along adaptive P2 runs on several scenes, and on uniform P1, P2 and P3 meshes of the
 # reference scene. The true error is against an adaptive P3 run of the same scene to
 # 1e-11 (its own estimate, printed, bounds the uncertainty of the true errors).
-# Usage: scripts/estimate_quality.sh [TOLERANCE]   (the P2 runs' tolerance, default 1e-7)
+# Usage: scripts/dev/estimate_quality.sh [TOLERANCE]   (the P2 runs' tolerance, default 1e-7)
 # Levels from the 5th on and with a true error above 100 times the reference's estimate
 # count; the table gives min / median / max of the ratio and the share of levels with the
 # ratio in [0.5, 2] and in [1, 10]. Needs gmsh (the partial-contact scene) and jq. Several
 # minutes on 2 cores (the references).
 set -euo pipefail
-root=$(cd "$(dirname "$0")/.." && pwd)
+root=$(cd "$(dirname "$0")/../.." && pwd)
 nceig=${NCEIG:-$root/build/nceig}
 tolerance=${1:-1e-7}
-[[ -x $nceig ]] || { echo "estimate_quality: build first (scripts/build.sh Release)" >&2; exit 1; }
+[[ -x $nceig ]] || { echo "estimate_quality: build first (scripts/dev/build.sh Release)" >&2; exit 1; }
 command -v jq >/dev/null || { echo "estimate_quality: needs jq" >&2; exit 1; }
 command -v gmsh >/dev/null || { echo "estimate_quality: needs gmsh" >&2; exit 1; }
 work=$(mktemp -d)

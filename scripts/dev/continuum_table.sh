@@ -9,16 +9,16 @@
 # Then, per nu, the critical lambdas lambda+ and lambda- (kind = 'threshold' with &adapt, the
 # same start and tolerance), their estimates and lambda+ + lambda-, which the mirror
 # symmetry of the square makes 0.
-# Usage: scripts/continuum_table.sh [TOLERANCE] [NU ...]   (defaults 1e-8; 0.3 0 0.45)
+# Usage: scripts/dev/continuum_table.sh [TOLERANCE] [NU ...]   (defaults 1e-8; 0.3 0 0.45)
 # Prints two Markdown tables; c_t carries the same relative error estimate as c_n.
 set -euo pipefail
-root=$(cd "$(dirname "$0")/.." && pwd)
+root=$(cd "$(dirname "$0")/../.." && pwd)
 nceig=${NCEIG:-$root/build/nceig}
 tolerance=${1:-1e-8}
 shift || true
 nus=("$@")
 ((${#nus[@]} > 0)) || nus=(0.3 0 0.45)
-[[ -x $nceig ]] || { echo "continuum_table: build first (scripts/build.sh Release)" >&2; exit 1; }
+[[ -x $nceig ]] || { echo "continuum_table: build first (scripts/dev/build.sh Release)" >&2; exit 1; }
 command -v jq >/dev/null || { echo "continuum_table: needs jq" >&2; exit 1; }
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT

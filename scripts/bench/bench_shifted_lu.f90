@@ -3,7 +3,7 @@
 !> reference scene (P1 'right', N x N, lambda = 5, sigma = 0.5): for each N given on the
 !> command line and each ordering (UMFPACK's default AMD, METIS, and CHOLMOD's choice of
 !> AMD or METIS), without and with UMFPACK's iterative refinement, the median over REPEATS
-!> of the factorization time, of one solve, and nnz(L + U). Usage: bench_shifted_lu N... (scripts/bench_operator.sh builds it).
+!> of the factorization time, of one solve, and nnz(L + U). Usage: bench_shifted_lu N... (scripts/bench/bench_operator.sh builds it).
 program bench_shifted_lu
     use iso_fortran_env, only: output_unit, error_unit
     use kinds, only: wp

@@ -2,14 +2,14 @@
 # SPDX-License-Identifier: MIT
 # Scaling table of the reference scene (model.md section 10: unit square, P1 'right' N x N,
 # lambda = 5).
-# Usage: scripts/bench_scaling.sh [--solver S] [--analysis A] [REPEATS] [N ...]
+# Usage: scripts/bench/bench_scaling.sh [--solver S] [--analysis A] [REPEATS] [N ...]
 #   S: 'auto' (default: ARPACK beyond dense_max_contact contact nodes), 'dense' or 'arpack';
 #   A: 'eigen' (default) or 'threshold'; defaults: 3 repeats, N = 64 128 256 512 1024.
 # Each N runs REPEATS times; every column is the median over the runs. Phase times come
 # from summary.json (time_*_s; `reduce` = the dense p x p blocks, `thresh` = the pencil
 # QZ and confirmations of 'threshold'), peak memory and wall time from /usr/bin/time -v.
 set -euo pipefail
-root=$(cd "$(dirname "$0")/.." && pwd)
+root=$(cd "$(dirname "$0")/../.." && pwd)
 nceig=${NCEIG:-$root/build/nceig}
 solver=auto
 analysis=eigen

@@ -18,19 +18,20 @@
 # scenes give the critical lambdas (uniform threshold runs and kind = 'threshold'
 # adaptive): lambda+ and lambda-, or where a scene's truths are collision onsets
 # (lambda_onset_*), boundary_error_bar and the adapt.csv collision columns. Values whose
-# true error is below 100 times the truth's uncertainty are skipped (counted); values with neither bar nor estimate (Q1, Q2) are counted as 'none'.
-# Usage: scripts/bar_quality.sh [-j JOBS] [SCENE...]   (JOBS parallel runs, default 2)
+# true error is below 100 times the truth's uncertainty are skipped (counted); values with
+# neither bar nor estimate are counted as 'none'.
+# Usage: scripts/dev/bar_quality.sh [-j JOBS] [SCENE...]   (JOBS parallel runs, default 2)
 # Needs gmsh and jq; about 5 to 10 minutes on 2 cores.
 set -euo pipefail
-root=$(cd "$(dirname "$0")/.." && pwd)
+root=$(cd "$(dirname "$0")/../.." && pwd)
 nceig=${NCEIG:-$root/build/nceig}
 jobs=2
 if [[ ${1:-} == -j ]]; then jobs=$2; shift 2; fi
-[[ -x $nceig ]] || { echo "bar_quality: build first (scripts/build.sh Release)" >&2; exit 1; }
+[[ -x $nceig ]] || { echo "bar_quality: build first (scripts/dev/build.sh Release)" >&2; exit 1; }
 command -v jq >/dev/null || { echo "bar_quality: needs jq" >&2; exit 1; }
 command -v gmsh >/dev/null || { echo "bar_quality: needs gmsh" >&2; exit 1; }
 truths=${TRUTHS:-$root/tests/data/truths.csv}
-[[ -f $truths ]] || { echo "bar_quality: $truths missing (scripts/continuum_truths.sh --write)" >&2; exit 1; }
+[[ -f $truths ]] || { echo "bar_quality: $truths missing (scripts/dev/continuum_truths.sh --write)" >&2; exit 1; }
 source "$root/scripts/lib/truth_scenes.sh"
 scenes=("$@")
 if ((${#scenes[@]} == 0)); then

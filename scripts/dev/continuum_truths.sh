@@ -12,17 +12,17 @@
 # extrapolations of the first three and of the last three values (or |last difference|
 # when the sequence is not geometric). Cross-check: nceig's adaptive P3 loop to 1e-10
 # (a different mesh family, a different element, its own stopping test).
-# Usage: scripts/continuum_truths.sh [--write] [SCENE...]
+# Usage: scripts/dev/continuum_truths.sh [--write] [SCENE...]
 #   --write   also write the scenes computed into tests/data/truths.csv (their rows replaced,
 #             the other scenes' rows kept)
 # Prints scene, quantity, value, uncertainty, method, adaptive value, difference, time.
 # Needs gmsh and jq; about 10 to 15 minutes on 2 shared cores (the threshold scene is most).
 set -euo pipefail
-root=$(cd "$(dirname "$0")/.." && pwd)
+root=$(cd "$(dirname "$0")/../.." && pwd)
 nceig=${NCEIG:-$root/build/nceig}
 write=0
 if [[ ${1:-} == --write ]]; then write=1; shift; fi
-[[ -x $nceig ]] || { echo "continuum_truths: build first (scripts/build.sh Release)" >&2; exit 1; }
+[[ -x $nceig ]] || { echo "continuum_truths: build first (scripts/dev/build.sh Release)" >&2; exit 1; }
 command -v jq >/dev/null || { echo "continuum_truths: needs jq" >&2; exit 1; }
 command -v gmsh >/dev/null || { echo "continuum_truths: needs gmsh" >&2; exit 1; }
 source "$root/scripts/lib/truth_scenes.sh"

@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
-# Configure and build one configuration: scripts/build.sh [Release|Debug|Asan] [cmake args].
+# Configure and build one configuration: scripts/dev/build.sh [Release|Debug|Asan] [cmake args].
 # The build folder is build/ for Release, build-debug/ for Debug and build-asan/ for Asan
 # (Debug flags plus -fsanitize=address,undefined: NCEIG_SANITIZE=ON).
 set -euo pipefail
-root=$(cd "$(dirname "$0")/.." && pwd)
+root=$(cd "$(dirname "$0")/../.." && pwd)
 type=${1:-Release}
 shift || true
 folder="$root/build"

@@ -6,13 +6,13 @@
 # skipped; a folder that is not in LAYERS is an error (place it in the order first).
 # Prints one line per violation (file, module used, that module's folder) and exits 1 if
 # there is any, 0 otherwise.
-# Usage: scripts/check_layers.sh [SRC_DIR]   (default: src/ next to this script)
+# Usage: scripts/dev/check_layers.sh [SRC_DIR]   (default: src/ next to this script)
 
 # Bottom first: each folder may use only the folders to its left (and itself).
 LAYERS=(core input sparse element mesh fem contact eigen io analysis)
 
 set -u
-src=${1:-$(cd "$(dirname "$0")/.." && pwd)/src}
+src=${1:-$(cd "$(dirname "$0")/../.." && pwd)/src}
 src=${src%/}
 [[ -d $src ]] || { echo "check_layers: $src is not a directory" >&2; exit 2; }
 # Shown paths start at the source folder's own name (src/core/kinds.f90).

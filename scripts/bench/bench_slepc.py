@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
-"""The comparison run of scripts/bench_operator.sh: SLEPc Krylov-Schur, shift-and-invert
+"""The comparison run of scripts/bench/bench_operator.sh: SLEPc Krylov-Schur, shift-and-invert
 with MUMPS, on the K.mtx and B.mtx that nceig wrote (&output matrices = .true.), for the
 eigenvalues of K phi = mu B phi nearest a target.
 

@@ -1,0 +1,112 @@
+! SPDX-License-Identifier: MIT
+!> The floating-point part of the error bar of the lowest positive mu, the same for every
+!> solver (docs/accuracy.md, "Round-off part of the bar"). First-order perturbation theory
+!> on the pencil K x = mu B x with right vector x and left vector y (K y = mu B' y): a
+!> perturbation (dK, dB) moves mu by y' (dK - mu dB) x / (y' B x). Two sources:
+!> - the solver: the computed pair leaves the residual r = K x - mu B x, which the exact
+!>   eigenvalue differs from by y' r / (y' B x) to first order, at most |y|'|r| / |y' B x|
+!>   (dgeevx's or ARPACK's backward error times the eigenvalue's condition, without norms);
+!> - the data: assembly and the factor of K perturb K entrywise by up to a few eps |K|, and
+!>   B's factors (X = lambda T - N, the contact mass M, N) by a few eps each, so
+!>   |dmu| <= ROUNDOFF_UNITS eps (|y|'|K||x| + |mu| |X y|'|M||N x|) / |y' B x|.
+!> Relative: divided by |mu|, with |mu y' B x| computed as |y' K x| (equal for an eigenpair;
+!> near a critical lambda y' B x ~ 1/mu cancels down to its own rounding, y' K x does not).
+!> Componentwise, the bound sees what makes mu ill conditioned and no more: a nearly
+!> incompressible material (|K| ~ the Lame modulus while x is nearly divergence free, so
+!> |y|'|K||x| >> |y' K x|), slivers and stretched cells (large entries of |K| that cancel in
+!> K x), lambda near a threshold (y' K x small against |mu| |X y|'|M||N x|). A normwise
+!> bound ||K|| ||x|| ||y|| grows like cond(K) instead and was measured 1e2 to 1e4 times the
+!> error.
+module roundoff
+    use kinds, only: wp
+    use status, only: status_t
+    use csr_matrix, only: csr_matrix_t
+    use sparse_cholesky, only: cholesky_t
+    use contact_boundary, only: contact_t
+    implicit none
+    private
+    public :: roundoff_bound, left_from_reduced, lowest_roundoff
+
+    !> The data term's multiple of eps. An entry of K is a sum of some 10 to 100 products
+    !> (quadrature points, cells per node, the elasticity tensor) and the factor of K adds a
+    !> growth of a few eps per entry; 4 is calibrated on measurements (docs/accuracy.md: the
+    !> spread of mu over translated, rotated and renumbered copies of the same discrete
+    !> problem and over the three solvers, reference scene, nu -> 1/2, 1000:1 cells, Gmsh
+    !> slivers, lambda near a threshold): the bound then stays above every measured error.
+    real(wp), parameter, public :: ROUNDOFF_UNITS = 4.0_wp
+
+contains
+
+    !> |mu - mu_exact| / |mu| bound for the pair (mu, x) of the pencil (K, B(lambda)) with the
+    !> left vector y (any scaling of x and y). huge() when y' K x = 0 (a defective or
+    !> infinitely ill-conditioned eigenvalue).
+    function roundoff_bound(k, b, contact, lambda, mu, x, y) result(bound)
+        type(csr_matrix_t), intent(in) :: k, b
+        type(contact_t), intent(in) :: contact
+        real(wp), intent(in) :: lambda, mu, x(:), y(:)
+        real(wp) :: bound
+        real(wp) :: xs(size(x)), ys(size(y)), kx(size(x)), bx(size(x)), ykx, k_abs, b_abs, &
+                    xy(contact%p()), nx(contact%p()), m_nx(contact%p())
+        integer :: i, first, last
+        bound = huge(1.0_wp)
+        if (.not. (maxval(abs(x)) > 0.0_wp .and. maxval(abs(y)) > 0.0_wp)) return
+        ! scaled by powers of two first (exact): the quotients are scale invariant, and the
+        ! products then cannot overflow
+        xs = scale(x, -exponent(maxval(abs(x))))
+        ys = scale(y, -exponent(maxval(abs(y))))
+        call k%matvec(xs, kx)
+        call b%matvec(xs, bx)
+        ykx = abs(dot_product(ys, kx))
+        if (.not. (ykx > 0.0_wp)) return
+        k_abs = 0.0_wp
+        do i = 1, k%n()
+            first = k%row_start(i)
+            last = k%row_start(i + 1) - 1
+            k_abs = k_abs + abs(ys(i))*sum(abs(k%val(first:last))*abs(xs(k%col(first:last))))
+        end do
+        call contact%gather(abs(lambda*contact%tangent - contact%normal), abs(ys), xy)
+        call contact%gather(abs(contact%normal), abs(xs), nx)
+        m_nx = 0.0_wp
+        do i = 1, contact%p()
+            first = contact%mass%row_start(i)
+            last = contact%mass%row_start(i + 1) - 1
+            m_nx(i) = sum(abs(contact%mass%val(first:last))*nx(contact%mass%col(first:last)))
+        end do
+        b_abs = abs(mu)*dot_product(xy, m_nx)
+        bound = (abs(dot_product(ys, kx - mu*bx)) + &
+                 ROUNDOFF_UNITS*epsilon(1.0_wp)*(k_abs + b_abs))/ykx
+    end function roundoff_bound
+
+    !> The left eigenvector y = K^-1 N' w of the pencil from w, a left eigenvector of the
+    !> reduced matrix A = (lambda Kt_nt - Kt_nn) M (A' w = theta w; module dual_eigen: y is
+    !> mu K^-1 N' w, the factor mu only scales it). One solve with any factor of K.
+    subroutine left_from_reduced(chol, contact, n_free, w, y, stat)
+        type(cholesky_t), intent(in) :: chol
+        type(contact_t), intent(in) :: contact
+        integer, intent(in) :: n_free
+        real(wp), intent(in) :: w(:)
+        real(wp), allocatable, intent(out) :: y(:)
+        type(status_t), intent(out) :: stat
+        real(wp), allocatable :: rhs(:, :), solution(:, :)
+        allocate (rhs(n_free, 1), source=0.0_wp)
+        allocate (solution(n_free, 1))
+        call contact%scatter(contact%normal, w, rhs(:, 1))
+        call chol%solve(rhs, solution, stat)
+        if (.not. stat%ok()) return
+        y = solution(:, 1)
+    end subroutine left_from_reduced
+
+    !> roundoff_bound of the lowest positive mu with right vector x and left vector y;
+    !> -1 (unknown) when y is not allocated or does not match x.
+    subroutine lowest_roundoff(k, b, contact, lambda, mu, x, y, bound)
+        type(csr_matrix_t), intent(in) :: k, b
+        type(contact_t), intent(in) :: contact
+        real(wp), intent(in) :: lambda, mu, x(:)
+        real(wp), allocatable, intent(in) :: y(:)
+        real(wp), intent(out) :: bound
+        bound = -1.0_wp
+        if (.not. allocated(y)) return
+        if (size(y) /= size(x)) return
+        bound = roundoff_bound(k, b, contact, lambda, mu, x, y)
+    end subroutine lowest_roundoff
+end module roundoff

@@ -1,0 +1,256 @@
+! SPDX-License-Identifier: MIT
+!> Element matrices of the hierarchical hp elements (hp_basis) on straight triangles and the
+!> assembly of the plane-strain stiffness K on an hp space (hp_space), with the interior
+!> (bubble) functions condensed cell by cell: K_cc - K_cb K_bb^-1 K_bc. Condensation is
+!> exact for the contact eigenproblem K phi = mu B phi, whose B involves only functions with
+!> a trace on Gamma_C, never interior ones: the Schur complement of K onto the contact dofs,
+!> hence every mu, is unchanged, and the factor shrinks by the interior dofs (about half of
+!> them at degree 8). Material conventions are elasticity.f90's (lame_coefficients).
+module hp_stiffness
+    use kinds, only: wp
+    use status, only: status_t, STATUS_MESH, STATUS_INTERNAL
+    use strings, only: to_string
+    use mesh, only: mesh_t
+    use csr_matrix, only: csr_matrix_t, csr_from_element_dofs
+    use gauss_rules, only: gauss_rule_t, triangle_rule_exact
+    use hp_basis, only: hp_triangle_shape, hp_local_count, hp_bubble_count
+    use elasticity, only: lame_coefficients
+    use hp_space, only: hp_space_t
+    implicit none
+    private
+    public :: hp_reference_tables, hp_element_stiffness, hp_element_laplace, &
+              condense_interior, assemble_hp_stiffness, configuration_key
+
+    integer, parameter :: HP_OK = 0, HP_INVERTED = 1
+    public :: HP_OK, HP_INVERTED
+
+    !> The reference integrals of one cell configuration (edge degrees, interior degree, edge
+    !> directions), shared by all cells of that configuration: on an affine cell the physical
+    !> gradients are J^-T times the reference ones, so every element matrix is a combination
+    !> of these four with the entries of J^-T and det J. A mesh has few configurations (a
+    !> degree per layer, eight direction patterns), so the basis is evaluated a few dozen
+    !> times instead of once per cell.
+    type, public :: hp_tables_t
+        integer :: key(7) = 0   !! edge degrees, interior degree, directions (0/1)
+        !> (n, n, 4): int d_xi phi_a d_xi phi_b, int d_xi phi_a d_eta phi_b,
+        !> int d_eta phi_a d_eta phi_b, int phi_a phi_b over the reference triangle
+        real(wp), allocatable :: r(:, :, :)
+    end type hp_tables_t
+
+contains
+
+    !> Key of a configuration, for hp_tables_t%key.
+    pure function configuration_key(edge_degree, p, flip) result(key)
+        integer, intent(in) :: edge_degree(3), p
+        logical, intent(in) :: flip(3)
+        integer :: key(7)
+        key = [edge_degree, p, merge(1, 0, flip)]
+    end function configuration_key
+
+    !> The reference integrals of a configuration, by the collapsed Gauss rule exact to
+    !> degree 2p (the mass; the stiffness needs 2(p - 1)).
+    pure function hp_reference_tables(edge_degree, p, flip) result(tables)
+        integer, intent(in) :: edge_degree(3), p
+        logical, intent(in) :: flip(3)
+        type(hp_tables_t) :: tables
+        type(gauss_rule_t) :: rule
+        real(wp), allocatable :: v(:, :), gxi(:, :), geta(:, :), weighted(:, :), &
+                                 value(:), gradient(:, :)
+        integer :: n, q
+        tables%key = configuration_key(edge_degree, p, flip)
+        rule = triangle_rule_exact(2*p)
+        n = hp_local_count(edge_degree, p)
+        allocate (v(rule%n_points(), n), gxi(rule%n_points(), n), geta(rule%n_points(), n), &
+                  value(n), gradient(2, n))
+        do q = 1, rule%n_points()
+            call hp_triangle_shape(edge_degree, p, flip, rule%points(:, q), value, gradient)
+            v(q, :) = value
+            gxi(q, :) = gradient(1, :)
+            geta(q, :) = gradient(2, :)
+        end do
+        allocate (tables%r(n, n, 4))
+        weighted = gxi
+        do q = 1, rule%n_points()
+            weighted(q, :) = rule%weights(q)*gxi(q, :)
+        end do
+        tables%r(:, :, 1) = matmul(transpose(weighted), gxi)
+        tables%r(:, :, 2) = matmul(transpose(weighted), geta)
+        do q = 1, rule%n_points()
+            weighted(q, :) = rule%weights(q)*geta(q, :)
+        end do
+        tables%r(:, :, 3) = matmul(transpose(weighted), geta)
+        do q = 1, rule%n_points()
+            weighted(q, :) = rule%weights(q)*v(q, :)
+        end do
+        tables%r(:, :, 4) = matmul(transpose(weighted), v)
+    end function hp_reference_tables
+
+    !> J^-T and det J of the straight triangle xy(:, 1:3); info = HP_INVERTED when it is
+    !> clockwise or flat (det J not above 1e-14 |J|^2).
+    pure subroutine affine_map(xy, inverse_t, det, info)
+        real(wp), intent(in) :: xy(:, :)
+        real(wp), intent(out) :: inverse_t(2, 2), det
+        integer, intent(out) :: info
+        real(wp) :: jacobian(2, 2)
+        jacobian(:, 1) = xy(:, 2) - xy(:, 1)
+        jacobian(:, 2) = xy(:, 3) - xy(:, 1)
+        det = jacobian(1, 1)*jacobian(2, 2) - jacobian(1, 2)*jacobian(2, 1)
+        info = HP_OK
+        inverse_t = 0.0_wp
+        if (.not. det > 1.0e-14_wp*sum(jacobian**2)) then
+            info = HP_INVERTED
+            return
+        end if
+        inverse_t = reshape([jacobian(2, 2), -jacobian(1, 2), -jacobian(2, 1), &
+                             jacobian(1, 1)], [2, 2])/det
+    end subroutine affine_map
+
+    !> int (d phi_a/d x_i)(d phi_b/d x_j) over the cell, from the reference integrals: with
+    !> C = J^-T, d/dx_i = C(i, 1) d/dxi + C(i, 2) d/deta.
+    pure function physical_products(r, c, det, i, j) result(s)
+        real(wp), intent(in) :: r(:, :, :), c(2, 2), det
+        integer, intent(in) :: i, j
+        real(wp) :: s(size(r, 1), size(r, 2))
+        s = det*(c(i, 1)*c(j, 1)*r(:, :, 1) + c(i, 1)*c(j, 2)*r(:, :, 2) + &
+                 c(i, 2)*c(j, 1)*transpose(r(:, :, 2)) + c(i, 2)*c(j, 2)*r(:, :, 3))
+    end function physical_products
+
+    !> Plane-strain element stiffness of all local functions (interior ones included) of the
+    !> straight triangle xy(:, 1:3) with the reference integrals `tables` of its
+    !> configuration, in dof order (x_1, y_1, x_2, y_2, ...).
+    pure subroutine hp_element_stiffness(xy, tables, young, poisson, ke, info)
+        real(wp), intent(in) :: xy(:, :)
+        type(hp_tables_t), intent(in) :: tables
+        real(wp), intent(in) :: young, poisson
+        real(wp), allocatable, intent(out) :: ke(:, :)
+        integer, intent(out) :: info
+        real(wp), allocatable :: sxx(:, :), syy(:, :), sxy(:, :)
+        real(wp) :: c(2, 2), det, lame_l, shear_g
+        integer :: n
+        n = size(tables%r, 1)
+        allocate (ke(2*n, 2*n), source=0.0_wp)
+        call affine_map(xy, c, det, info)
+        if (info /= HP_OK) return
+        call lame_coefficients(young, poisson, lame_l, shear_g)
+        sxx = physical_products(tables%r, c, det, 1, 1)
+        syy = physical_products(tables%r, c, det, 2, 2)
+        sxy = physical_products(tables%r, c, det, 1, 2)
+        ! (a, b) blocks of B_a' D B_b: see elasticity's element_stiffness
+        ke(1:2*n:2, 1:2*n:2) = (lame_l + 2.0_wp*shear_g)*sxx + shear_g*syy
+        ke(2:2*n:2, 2:2*n:2) = (lame_l + 2.0_wp*shear_g)*syy + shear_g*sxx
+        ke(1:2*n:2, 2:2*n:2) = lame_l*sxy + shear_g*transpose(sxy)
+        ke(2:2*n:2, 1:2*n:2) = transpose(ke(1:2*n:2, 2:2*n:2))
+    end subroutine hp_element_stiffness
+
+    !> Scalar Laplace stiffness int grad u . grad v and mass int u v of all local functions.
+    pure subroutine hp_element_laplace(xy, tables, ke, me, info)
+        real(wp), intent(in) :: xy(:, :)
+        type(hp_tables_t), intent(in) :: tables
+        real(wp), allocatable, intent(out) :: ke(:, :), me(:, :)
+        integer, intent(out) :: info
+        real(wp) :: c(2, 2), det
+        call affine_map(xy, c, det, info)
+        ke = physical_products(tables%r, c, det, 1, 1) + physical_products(tables%r, c, det, 2, 2)
+        me = det*tables%r(:, :, 4)
+    end subroutine hp_element_laplace
+
+    !> Static condensation of the last n_interior rows and columns of the symmetric positive
+    !> definite `ke`: K_cc - K_cb K_bb^-1 K_bc, by a Cholesky factor of K_bb (its own small
+    !> dense one: K_bb is at most 2 x 171 wide at degree 20). info = HP_INVERTED when K_bb
+    !> is not positive definite.
+    pure subroutine condense_interior(ke, n_interior, kc, info)
+        real(wp), intent(in) :: ke(:, :)
+        integer, intent(in) :: n_interior
+        real(wp), allocatable, intent(out) :: kc(:, :)
+        integer, intent(out) :: info
+        real(wp), allocatable :: l(:, :), x(:, :)
+        integer :: nc, nb, j, i
+        nb = n_interior
+        nc = size(ke, 1) - nb
+        info = HP_OK
+        kc = ke(1:nc, 1:nc)
+        if (nb == 0) return
+        l = ke(nc + 1:, nc + 1:)
+        do j = 1, nb   ! lower Cholesky factor, column by column
+            l(j, j) = l(j, j) - dot_product(l(j, 1:j - 1), l(j, 1:j - 1))
+            if (.not. l(j, j) > 0.0_wp) then
+                info = HP_INVERTED
+                return
+            end if
+            l(j, j) = sqrt(l(j, j))
+            do i = j + 1, nb
+                l(i, j) = (l(i, j) - dot_product(l(i, 1:j - 1), l(j, 1:j - 1)))/l(j, j)
+            end do
+        end do
+        x = ke(nc + 1:, 1:nc)   ! X = L^-1 K_bc by forward substitution
+        do j = 1, nb
+            x(j, :) = (x(j, :) - matmul(l(j, 1:j - 1), x(1:j - 1, :)))/l(j, j)
+        end do
+        kc = kc - matmul(transpose(x), x)
+        do j = 1, nc   ! exactly symmetric
+            kc(j + 1:nc, j) = kc(j, j + 1:nc)
+        end do
+    end subroutine condense_interior
+
+    !> K on the free dofs of `space` (mesh `m`, P1 vertices), interior functions condensed.
+    !> Fails with STATUS_MESH naming the first clockwise or flat cell.
+    subroutine assemble_hp_stiffness(m, space, young, poisson, k, stat)
+        type(mesh_t), intent(in) :: m
+        type(hp_space_t), intent(in) :: space
+        real(wp), intent(in) :: young, poisson
+        type(csr_matrix_t), intent(out) :: k
+        type(status_t), intent(out) :: stat
+        type(hp_tables_t), allocatable :: tables(:)
+        integer, allocatable :: element_dofs(:, :), dofs(:)
+        real(wp), allocatable :: ke(:, :), kc(:, :)
+        integer :: c, n_cells, info, p, n_dofs, n_tables, t, key(7)
+
+        n_cells = m%n_cells()
+        allocate (element_dofs(space%max_cell_dofs(), n_cells), source=0)
+        do c = 1, n_cells
+            dofs = space%cell_dofs(c, m%cells(1:3, c))
+            element_dofs(1:size(dofs), c) = dofs
+        end do
+        call csr_from_element_dofs(space%n_free(), element_dofs, k)
+        allocate (tables(16))
+        n_tables = 0
+        do c = 1, n_cells
+            p = space%cell_degree(c)
+            key = configuration_key(space%edge_degrees_of(c), p, space%cell_flip(:, c))
+            t = table_of(key)
+            call hp_element_stiffness(m%coords(:, m%cells(1:3, c)), tables(t), young, &
+                                      poisson, ke, info)
+            if (info == HP_OK) call condense_interior(ke, 2*hp_bubble_count(p), kc, info)
+            if (info /= HP_OK) then
+                call stat%fail(STATUS_MESH, 'hp stiffness: cell '//to_string(c)// &
+                               ' is clockwise or flat; expected anticlockwise cells')
+                return
+            end if
+            n_dofs = size(kc, 1)
+            call k%add_block(element_dofs(1:n_dofs, c), kc, stat)
+            if (.not. stat%ok()) then
+                stat%code = STATUS_INTERNAL
+                return
+            end if
+        end do
+
+    contains
+
+        !> Index in `tables` of the configuration `key`, computed on first use.
+        integer function table_of(key)
+            integer, intent(in) :: key(7)
+            type(hp_tables_t), allocatable :: grown(:)
+            do table_of = 1, n_tables
+                if (all(tables(table_of)%key == key)) return
+            end do
+            if (n_tables == size(tables)) then
+                allocate (grown(2*n_tables))
+                grown(1:n_tables) = tables
+                call move_alloc(grown, tables)
+            end if
+            n_tables = n_tables + 1
+            table_of = n_tables
+            tables(n_tables) = hp_reference_tables(key(1:3), key(4), key(5:7) == 1)
+        end function table_of
+    end subroutine assemble_hp_stiffness
+end module hp_stiffness

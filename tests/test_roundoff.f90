@@ -1,0 +1,112 @@
+! SPDX-License-Identifier: MIT
+!> The round-off bound against a pencil solved by hand: one contact node (p = 1) on two
+!> dofs, K = [[a, c], [c, d]] = [[2, -1], [-1, 1]], normal (0, 1), tangent (1, 0), M = [m] =
+!> [1], lambda = 4, so B = X' M N = m [[0, 4], [0, -1]] and det(K - mu B) = 0 gives
+!> mu = (c^2 - a d) / (m (a + 4 c)) = 1/2, right eigenvector x = (3, 2), left y = (1, 2).
+!> Closed form of the bound: |K||x| = (8, 5), |y|'|K||x| = 18; |X y| = 4 + 2 = 6, |N x| = 2,
+!> mu |X y| m |N x| = 6; y' K x = 2: (18 + 6) / 2 = 12 units of eps.
+program test_roundoff
+    use kinds, only: wp
+    use testing, only: test_suite_t
+    use csr_matrix, only: csr_matrix_t
+    use contact_boundary, only: contact_t
+    use roundoff, only: roundoff_bound, ROUNDOFF_UNITS
+    implicit none
+
+    real(wp), parameter :: LAMBDA = 4.0_wp, MU = 0.5_wp, X(2) = [3.0_wp, 2.0_wp], &
+                           Y(2) = [1.0_wp, 2.0_wp], EPS = epsilon(1.0_wp)
+    type(test_suite_t) :: t
+    t%name = 'test_roundoff'
+    call bound_closed_form(t)
+    call bound_holds_for_perturbed_data(t)
+    call bound_adds_residual(t)
+    call t%report()
+
+contains
+
+    subroutine two_dof_pencil(k, b, contact)
+        type(csr_matrix_t), intent(out) :: k, b
+        type(contact_t), intent(out) :: contact
+        k%row_start = [1, 3, 5]
+        k%col = [1, 2, 1, 2]
+        k%val = [2.0_wp, -1.0_wp, -1.0_wp, 1.0_wp]
+        b%row_start = [1, 2, 3]
+        b%col = [2, 2]
+        b%val = [4.0_wp, -1.0_wp]
+        contact%nodes = [1]
+        contact%dofs = reshape([1, 2], [2, 1])
+        contact%normal = [0.0_wp, 1.0_wp]
+        contact%tangent = [1.0_wp, 0.0_wp]
+        contact%mass%row_start = [1, 2]
+        contact%mass%col = [1]
+        contact%mass%val = [1.0_wp]
+    end subroutine two_dof_pencil
+
+    !> 12 ROUNDOFF_UNITS eps for the exact pair (residual exactly zero), whatever the scaling
+    !> of x and y.
+    subroutine bound_closed_form(t)
+        type(test_suite_t), intent(inout) :: t
+        type(csr_matrix_t) :: k, b
+        type(contact_t) :: contact
+        call two_dof_pencil(k, b, contact)
+        call t%check_close('bound of the 2 x 2 pencil in closed form', &
+            roundoff_bound(k, b, contact, LAMBDA, MU, X, Y), 12.0_wp*ROUNDOFF_UNITS*EPS, &
+            1.0e-14_wp)
+        call t%check_close('bound is invariant under scaling of x and y', &
+            roundoff_bound(k, b, contact, LAMBDA, MU, -1.0e-200_wp*X, 3.0e150_wp*Y), &
+            12.0_wp*ROUNDOFF_UNITS*EPS, 1.0e-14_wp)
+        call t%check('y orthogonal to K x: no bound (huge)', &
+            roundoff_bound(k, b, contact, LAMBDA, MU, X, [1.0_wp, 4.0_wp]) >= huge(1.0_wp))
+    end subroutine bound_closed_form
+
+    !> Entries of K perturbed by delta relative each (every sign pattern) and M by delta move
+    !> mu by at most (bound / (ROUNDOFF_UNITS eps)) delta to first order (18 / 2 from K,
+    !> 6 / 2 from M): the data term is that first-order bound.
+    subroutine bound_holds_for_perturbed_data(t)
+        type(test_suite_t), intent(inout) :: t
+        type(csr_matrix_t) :: k, b
+        type(contact_t) :: contact
+        real(wp) :: per_delta, delta, a, c, d, m, moved
+        integer :: i, s
+        logical :: holds
+        call two_dof_pencil(k, b, contact)
+        per_delta = roundoff_bound(k, b, contact, LAMBDA, MU, X, Y)/(ROUNDOFF_UNITS*EPS)
+        holds = .true.
+        do i = 1, 4
+            delta = 10.0_wp**(-2*i - 4)
+            do s = 0, 15
+                a = 2.0_wp*(1.0_wp + sgn(s, 0)*delta)
+                c = -1.0_wp*(1.0_wp + sgn(s, 1)*delta)
+                d = 1.0_wp*(1.0_wp + sgn(s, 2)*delta)
+                m = 1.0_wp + sgn(s, 3)*delta
+                moved = abs((c*c - a*d)/(m*(a + LAMBDA*c)) - MU)/MU
+                holds = holds .and. moved <= per_delta*delta*(1.0_wp + 1.0e-3_wp)
+            end do
+        end do
+        call t%check('perturbations 1e-6 to 1e-12 of K and M move mu by at most the bound', &
+                     holds)
+        ! the worst sign pattern moves mu by 9 delta from K and delta from M: 10 of the 12
+        call t%check('the bound is at most 12/9 of the worst first-order move', &
+                     per_delta <= 12.0_wp + 1.0e-12_wp)
+    end subroutine bound_holds_for_perturbed_data
+
+    !> A pair off by 1e-8 in mu: the residual r = -1e-8 mu B x adds |y' r| / |y' K x| =
+    !> 1e-8 |mu y' B x| / |y' K x| = 1e-8, the first-order error it stands for.
+    subroutine bound_adds_residual(t)
+        type(test_suite_t), intent(inout) :: t
+        type(csr_matrix_t) :: k, b
+        type(contact_t) :: contact
+        real(wp) :: bound
+        call two_dof_pencil(k, b, contact)
+        bound = roundoff_bound(k, b, contact, LAMBDA, MU*(1.0_wp + 1.0e-8_wp), X, Y)
+        call t%check_close('residual part of a pair off by 1e-8 in mu', bound, &
+                           1.0e-8_wp + 12.0_wp*ROUNDOFF_UNITS*EPS, 1.0e-7_wp)
+        call t%check('bound at least the relative error of mu it stands for', &
+                     bound >= 1.0e-8_wp/(1.0_wp + 1.0e-8_wp))
+    end subroutine bound_adds_residual
+
+    pure real(wp) function sgn(s, bit)
+        integer, intent(in) :: s, bit
+        sgn = merge(-1.0_wp, 1.0_wp, btest(s, bit))
+    end function sgn
+end program test_roundoff
