@@ -3,7 +3,8 @@
 !> hp_adaptive and its files: eigenvalues.csv of the last level, mode_NNN.vtu (the hp field
 !> on a linear sub-triangulation, hp_field, with the cell field `degree`), adapt.csv (one
 !> row per level: layers, degrees, dofs, mu, bar), mesh.msh (the last graded mesh) and
-!> degrees.csv (its cell degrees), summary.json with the keys of the h loop and the hp ones.
+!> degrees.csv (its cell degrees), K.mtx and B.mtx of the condensed system as &output asks,
+!> summary.json with the keys of the h loop and the hp ones.
 module hp_adapt_run
     use kinds, only: wp
     use status, only: status_t, STATUS_NOT_MET
@@ -20,6 +21,7 @@ module hp_adapt_run
     use json_writer, only: json_object_t
     use csv_writer, only: csv_writer_t
     use vtk_writer, only: write_vtu
+    use matrix_market, only: write_matrix_market
     use mesh, only: mesh_t
     use hp_field, only: sample_hp_field
     implicit none
@@ -69,6 +71,11 @@ contains
         if (stat%ok()) call write_hp_adapt_csv(stage%path('adapt.csv'), this%out, stat)
         if (stat%ok()) call write_adapted_mesh(stage, this%out%prob, stat)
         if (stat%ok()) call write_degrees(stage%path(DEGREES_FILE), this%out, stat)
+        ! the condensed hp system (vertex and edge functions), in the input's units
+        if (stat%ok() .and. config%output%matrices) &
+            call write_matrix_market(stage%path('K.mtx'), this%out%prob%k, stat)
+        if (stat%ok() .and. config%output%matrices) &
+            call write_matrix_market(stage%path('B.mtx'), this%out%res%b, stat)
     end subroutine hp_run_write_files
 
     !> mode_NNN.vtu: the real part of each kept mode, sampled on the sub-triangulation of
@@ -164,7 +171,11 @@ contains
         character(len=*), parameter :: NL = new_line('a')
         text = summary_lines(config, this%out%prob, this%out%res, this%timings)
         text = text//NL//'  adapt       hp, '//to_string(size(this%out%levels))// &
-            ' levels from the '//to_string(prob%mesh%n_cells())//'-cell input mesh; '// &
+            ' levels from the '//to_string(prob%mesh%n_cells())//'-cell input mesh'
+        if (size(this%out%space%cell_degree) > 0) text = text//' (last: degrees '// &
+            to_string(minval(this%out%space%cell_degree))//' to '// &
+            to_string(maxval(this%out%space%cell_degree))//')'
+        text = text//'; '// &
             this%out%outcome//NL//'  mesh        '//trim(config%output%directory)// &
             '/mesh.msh and '//DEGREES_FILE//' (the last graded mesh and its cell degrees)'
     end function hp_run_report
