@@ -14,7 +14,6 @@ module hp_adaptive
     use kinds, only: wp
     use status, only: status_t, STATUS_BAD_INPUT
     use strings, only: to_string, short_real_text
-    use system_memory, only: available_memory_bytes
     use timer, only: wall_time, timings_t
     use run_config, only: config_t
     use problem, only: problem_t
@@ -28,7 +27,7 @@ module hp_adaptive
     use contact_boundary, only: assemble_b
     use eigen_analysis, only: eigen_result_t, eigen_with_factor, choose_solver
     use accuracy, only: WARNING_LEN
-    use adaptive_loop, only: adaptive_dof_limit
+    use adaptive_loop, only: level_dof_limit
     use error_bar, only: hp_level_bar
     implicit none
     private
@@ -111,12 +110,7 @@ contains
                 ' cells)')
             return
         end if
-        max_dofs = config%adapt%max_dofs
-        dof_limit = 'max_dofs = '//to_string(max_dofs)
-        if (max_dofs == 0) then
-            max_dofs = adaptive_dof_limit(available_memory_bytes())
-            dof_limit = 'the '//to_string(max_dofs)//' that the memory available allows'
-        end if
+        call level_dof_limit(config, max_dofs, dof_limit)
         points = start%mesh%coords(:, singular_vertices(start%mesh))
         layers = 0
         do
