@@ -171,7 +171,8 @@ contains
         character(len=*), parameter :: NL = new_line('a')
         text = summary_lines(config, this%out%prob, this%out%res, this%timings)
         text = text//NL//'  adapt       hp, '//to_string(size(this%out%levels))// &
-            ' levels from the '//to_string(prob%mesh%n_cells())//'-cell input mesh'
+            trim(merge(' level ', ' levels', size(this%out%levels) == 1))//' from the '// &
+            to_string(prob%mesh%n_cells())//'-cell input mesh'
         if (size(this%out%space%cell_degree) > 0) text = text//' (last: degrees '// &
             to_string(minval(this%out%space%cell_degree))//' to '// &
             to_string(maxval(this%out%space%cell_degree))//')'

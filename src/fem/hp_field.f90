@@ -58,7 +58,8 @@ contains
         cell = 0
         do c = 1, m%n_cells()
             p = space%cell_degree(c)
-            t = cached_table(tables, n_tables, configuration_key(space%edge_degrees_of(c), p, space%cell_flip(:, c)))
+            t = cached_table(tables, n_tables, &
+                             configuration_key(space%edge_degrees_of(c), p, space%cell_flip(:, c)))
             call hp_element_stiffness(m%coords(:, m%cells(1:3, c)), tables(t), young, poisson, &
                                       ke, info)
             dofs = space%cell_dofs(c, m%cells(1:3, c))
