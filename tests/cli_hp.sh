@@ -3,6 +3,7 @@
 # &adapt strategy = 'hp' end to end: on the reference scene the loop meets 1e-10 and its
 # value is within its bar of the independent truth (tests/data/truths.csv); the files
 # (adapt.csv per level, mode_001.vtu with the degree field, mesh.msh and degrees.csv);
+# the dense solver's whole spectrum;
 # the same from a Gmsh mesh of the trapezoid scene; hp within the h loop's bar on a
 # second scene; the floating-point floor and a level limit end in exit 8 with a warning;
 # bad input is one stderr line naming &adapt and the variable, exit 2.
@@ -54,6 +55,17 @@ check 'degrees.csv: one row per cell of mesh.msh' \
     '[[ $(($(wc -l <"$work/out/degrees.csv") - 1)) -eq $(json "$s" n_cells) ]]'
 check 'summary lists mesh.msh, degrees.csv and adapt.csv' \
     'grep -q "\"mesh.msh\"" "$s" && grep -q "\"degrees.csv\"" "$s" && grep -q "\"adapt.csv\"" "$s"'
+
+# The dense solver on every level: the whole spectrum of the last one (one eigenvalue per
+# contact function), its lowest positive mu the same within the round-off bound.
+"$nceig" "$work/hp.nml" --set "eigen%solver='dense'" --set "output%directory='$work/dense'" \
+    >/dev/null 2>"$work/err"; rc=$?
+d=$work/dense/summary.json
+check 'dense: every eigenvalue of the last level' '[[ $rc -eq 0 && ! -s "$work/err" &&
+    $(json "$d" n_eigenvalues) -eq $(json "$d" n_contact) &&
+    $(($(wc -l <"$work/dense/eigenvalues.csv") - 1)) -eq $(json "$d" n_contact) ]]'
+check 'dense: the same mu within the round-off bound' \
+    'within "$(json "$d" lowest_positive_mu)" "$(json "$s" lowest_positive_roundoff)" "$(json "$s" lowest_positive_mu)"'
 
 # A Gmsh mesh: the trapezoid scene (its slanted side adds corners of other angles).
 if command -v gmsh >/dev/null 2>&1; then
@@ -126,6 +138,8 @@ bad strategy "&adapt: strategy = 'p': expected one of 'h', 'hp'" --set "adapt%st
 bad quads "&adapt: strategy = 'hp': expected 'h' for &mesh element = 'q1'" --set "mesh%element='q1'"
 bad degree "&adapt: p_max = 21: expected a degree from 1 to 20" --set adapt%p_max=21
 bad sigma "&adapt: sigma = 1.0: expected a grading factor" --set adapt%sigma=1.0
+bad max_dofs "&adapt: max_dofs = 100: expected at least the 220 free dofs of the first hp level" \
+    --set adapt%max_dofs=100
 bad threshold "&adapt: strategy = 'hp': expected 'h' for &analysis kind = 'threshold'" \
     --set "analysis%kind='threshold'"
 cli_end

@@ -121,6 +121,13 @@ contains
                                       config%adapt%p_max)
             call build_hp_space(graded, degree, start%dirichlet_parts, space, stat)
             if (.not. stat%ok()) return
+            if (config%adapt%max_dofs > 0 .and. space%n_free() > max_dofs .and. &
+                size(out%levels) == 0) then
+                call stat%fail(STATUS_BAD_INPUT, config%input_file//': &adapt: max_dofs = '// &
+                    to_string(max_dofs)//": expected at least the "// &
+                    to_string(space%n_free())//" free dofs of the first hp level")
+                return
+            end if
             if (space%n_free() > max_dofs .and. size(out%levels) > 0) then
                 out%outcome = 'tolerance '//short_real_text(tolerance)//' not met: the next '// &
                     'level would have '//to_string(space%n_free())//' dofs, more than '// &
