@@ -8,6 +8,7 @@ module analysis_registry
     use branch_run, only: branch_run_t
     use solve_run, only: solve_run_t
     use adapt_run, only: adapt_run_t
+    use hp_adapt_run, only: hp_adapt_run_t   ! &adapt strategy = 'hp'
     implicit none
     private
     public :: new_analysis
@@ -15,15 +16,23 @@ module analysis_registry
 contains
 
     !> The analysis of `kind`, adaptive (&adapt tolerance > 0) or not; an unknown kind
-    !> (which the input check refuses first) leaves `analysis` unallocated.
-    subroutine new_analysis(kind, adaptive, analysis)
+    !> (which the input check refuses first) leaves `analysis` unallocated. `strategy`:
+    !> &adapt strategy, 'h' (the default) or 'hp' (only 'eigen': the input check refuses
+    !> the others).
+    subroutine new_analysis(kind, adaptive, analysis, strategy)
         character(len=*), intent(in) :: kind
         logical, intent(in) :: adaptive
         class(analysis_t), allocatable, intent(out) :: analysis
+        character(len=*), intent(in), optional :: strategy
         type(threshold_run_t) :: sweep, threshold
         select case (kind)
         case ('eigen')
-            if (adaptive) then
+            if (adaptive .and. present(strategy)) then
+                if (strategy == 'hp') allocate (hp_adapt_run_t :: analysis)   ! strategy 'hp'
+            end if
+            if (allocated(analysis)) then
+                continue
+            else if (adaptive) then
                 allocate (adapt_run_t :: analysis)
             else
                 allocate (eigen_run_t :: analysis)

@@ -66,6 +66,8 @@ module error_estimate
         real(wp) :: seconds = 0.0_wp             !! wall time of the estimate
         !> why it was not computed when &eigen estimate decided so ('' otherwise)
         character(len=:), allocatable :: skipped
+        !> what the estimate is when no enrichment made it (an hp run's level differences)
+        character(len=:), allocatable :: method
     end type error_estimate_t
 
     public :: estimate_label
@@ -147,5 +149,6 @@ contains
         character(len=:), allocatable :: label
         label = element_name(est%element)//' enrichment'
         if (est%halved_mesh) label = element_name(est%element)//', halved mesh'
+        if (allocated(est%method)) label = est%method
     end function estimate_label
 end module error_estimate
