@@ -122,7 +122,7 @@ contains
             if (.not. stat%ok() .or. .not. c%tolerance > 0.0_wp) return
         end associate
         if (config%adapt%strategy == 'hp') then
-            call validate_hp(stat)
+            call validate_hp()
             return
         end if
         if (.not. any(ADAPT_ANALYSES == config%analysis%kind)) then
@@ -148,8 +148,7 @@ contains
 
         !> strategy = 'hp': analysis 'eigen' on triangles (a Gmsh file's cells are checked
         !> when it is read); it needs no error estimate of &eigen.
-        subroutine validate_hp(stat)
-            type(status_t), intent(inout) :: stat
+        subroutine validate_hp()
             if (config%analysis%kind /= 'eigen') then
                 call reject('strategy', "'hp'", "'h' for &analysis kind = '"// &
                             trim(config%analysis%kind)//"' (hp adapts kind = 'eigen' only)")
