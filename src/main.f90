@@ -48,7 +48,8 @@ program nceig
     call read_input(command%input, config, stat, command%settings)
     call stop_on_failure(stat)
 
-    call new_analysis(trim(config%analysis%kind), config%adapt%tolerance > 0.0_wp, analysis)
+    call new_analysis(trim(config%analysis%kind), config%adapt%tolerance > 0.0_wp, analysis, &
+                      trim(config%adapt%strategy))   ! &adapt strategy: 'h' or 'hp'
     if (.not. allocated(analysis)) then
         write (error_unit, '(a)') 'nceig: '//config%input_file//': &analysis: kind = '''// &
             trim(config%analysis%kind)//''' has no analysis'

@@ -147,7 +147,7 @@ check 'threshold: both confirmed' '[[ $(json "$s" lambda_critical_plus_confirmed
 check 'threshold: lambda- = -lambda+ (3e-6)' \
     'close "$(json "$s" lambda_critical_plus)" "$(awk -v m="$(json "$s" lambda_critical_minus)" "BEGIN { printf \"%.17g\", -m }")" 3e-6'
 csv=$work/threshold/adapt.csv
-check 'threshold adapt.csv: header' '[[ $(head -n 1 "$csv") == level,n_dofs,n_contact,n_cells,lambda_plus,error_estimate_plus,lambda_minus,error_estimate_minus,time_s,error_bar_plus,error_bar_minus ]]'
+check 'threshold adapt.csv: header' '[[ $(head -n 1 "$csv") == level,n_dofs,n_contact,n_cells,lambda_plus,error_estimate_plus,lambda_minus,error_estimate_minus,time_s,error_bar_plus,error_bar_minus,collision_plus,error_estimate_collision_plus,error_bar_collision_plus,collision_minus,error_estimate_collision_minus,error_bar_collision_minus ]]'
 check 'threshold adapt.csv: the last row is the summary'\''s' \
     '[[ $(tail -n 1 "$csv" | cut -d, -f2) == $(json "$s" n_dofs) &&
         $(tail -n 1 "$csv" | cut -d, -f5) == $(json "$s" lambda_critical_plus) ]]'

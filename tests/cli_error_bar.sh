@@ -7,7 +7,8 @@
 # estimates measured at 0.25 to 1 times the error), and at least the true error at the end
 # of an adaptive run (no upper limit there: a run may stop where the errors at the two ends
 # of Gamma_C cancel). A scene with no continuum value (contact on the middle of a side)
-# gets a large bar and says so.
+# gets a large bar and says so. The critical lambdas: P2, Q1 and Q2 (the halved mesh) on the
+# reference scene, and the trapezoid's collision onsets adapted to a tolerance.
 # Usage: cli_error_bar.sh NCEIG SOURCE_DIR
 set -u
 nceig=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
@@ -60,6 +61,13 @@ run ref-threshold lambda_critical_plus lambda_critical_plus_error_bar '8 p2'
 holds 'lambda+ of the reference scene, P2 8 x 8' "$(truth ref-threshold lambda_critical_plus)" 10
 run ref-threshold lambda_critical_minus lambda_critical_minus_error_bar '8 p2'
 holds 'lambda- of the reference scene, P2 8 x 8' "$(truth ref-threshold lambda_critical_minus)" 10
+# Q1 and Q2 have no degree above them: the thresholds on the halved rectangle
+run ref-threshold lambda_critical_plus lambda_critical_plus_error_bar '8 q1' "&eigen estimate = 'on' /"
+holds 'lambda+ of the reference scene, Q1 8 x 8 (the halved mesh)' \
+    "$(truth ref-threshold lambda_critical_plus)" 10
+run ref-threshold lambda_critical_minus lambda_critical_minus_error_bar '4 q2' "&eigen estimate = 'on' /"
+holds 'lambda- of the reference scene, Q2 4 x 4 (the halved mesh)' \
+    "$(truth ref-threshold lambda_critical_minus)" 10
 run rect3x1 lowest_positive_mu lowest_positive_error_bar '2 p2' \
     "&adapt tolerance = 1e-6 /"
 holds '3 x 1, adaptive P2 to 1e-6' "$(truth rect3x1 lowest_positive_mu)" 1e300
@@ -115,6 +123,39 @@ NML
         '[[ $(jq -r ".boundary_mechanism[0]" "$work/hc16/summary.json") == complex_pair ]] &&
          awk -v c="$coarse" -v f="$fine" -v b="$bar" "BEGIN { d = c - f; if (d < 0) d = -d
              m = c < 0 ? -c : c; exit !(b > 0 && d <= b * m) }"'
+
+    # Collision onsets adapted: on the trapezoid a positive mu appears at a collision of two
+    # real mu on both sides (mirror images). Adaptive P2 from h = 1/8 to 1e-4: the loop meets
+    # the tolerance, each onset's bar covers its truth, and the two onsets are mirror images
+    # within their bars.
+    scene_info trapezoid-threshold
+    scene_gmsh "$work/trap8.msh" 2 -setnumber graded 0 -clmax 0.125
+    run trapezoid-threshold lambda_onset_plus lambda_onset_plus "$work/trap8.msh" \
+        "&adapt tolerance = 1e-4 /"
+    s=$work/out/summary.json
+    check 'trapezoid, adaptive collision onsets: tolerance 1e-4 met, both onsets complex_pair' \
+        '[[ $rc -eq 0 && $(json $s adapt_converged) == true &&
+           $(json $s lambda_onset_plus_mechanism) == complex_pair &&
+           $(json $s lambda_onset_minus_mechanism) == complex_pair ]]'
+    # boundary points ascending: [0] is the onset on the minus side, [1] on the plus side
+    for i in 0 1; do
+        if ((i == 0)); then side=minus; else side=plus; fi
+        value=$(jq -r ".boundary_lambda[$i]" "$s")
+        bar=$(jq -r ".boundary_error_bar[$i]" "$s")
+        check "trapezoid, adaptive onset $side: bar $bar <= 1e-4" \
+            'awk -v b="$bar" "BEGIN { exit !(b > 0 && b <= 1e-4) }"'
+        holds "trapezoid, adaptive P2 collision onset $side" \
+            "$(truth trapezoid-threshold lambda_onset_$side)" 1e300
+    done
+    check 'trapezoid, adaptive onsets: lambda+ = -lambda- within the two bars' \
+        'jq -e "(.boundary_lambda | add | fabs) <= (.boundary_error_bar | add) * (.boundary_lambda[1])" "$s" >/dev/null'
+    # every level: the collision onset of each side (columns 12 and 15) and its bar (14, 17)
+    csv_full() {
+        awk -F, 'NR == 1 { ok = $12 == "collision_plus" && $17 == "error_bar_collision_minus" }
+            NR > 1 && ($12 == "" || $14 == "" || $15 == "" || $17 == "") { ok = 0 }
+            END { exit !ok }' "$work/out/adapt.csv"
+    }
+    check 'trapezoid, adaptive onsets: adapt.csv carries every level'"'"'s onsets and bars' csv_full
 else
     echo "SKIP  the Gmsh scenes (trapezoid, half contact, middle contact): gmsh is not installed"
 fi

@@ -5,7 +5,7 @@
 !> at least the change of the value over those levels.
 program test_error_bar
     use kinds, only: wp
-    use error_bar, only: single_bar, level_bar, BAR_FACTOR, LEVEL_FACTOR, BAR_WINDOW
+    use error_bar, only: single_bar, level_bar, hp_level_bar, BAR_FACTOR, LEVEL_FACTOR, BAR_WINDOW
     use testing, only: test_suite_t
     implicit none
     type(test_suite_t) :: t
@@ -16,6 +16,9 @@ program test_error_bar
     call check_moving_value()
     call check_window_forgets()
     call check_missing()
+    call check_hp_geometric()
+    call check_hp_dip()
+    call check_hp_start()
     call t%report()
 
 contains
@@ -69,4 +72,34 @@ contains
                            level_bar([-1.0_wp, 1.0e-3_wp], [2.0_wp, 1.0_wp], [10, 20], 1, &
                                      -1.0_wp), LEVEL_FACTOR*1.0e-3_wp, 1.0e-15_wp)
     end subroutine check_missing
+
+    !> hp levels converging tenfold per level, v_j = 1 + 10^-j: the carried changes
+    !> (9 10^-5 each) are below the last change 9 10^-4, which is the bar: 9 times the
+    !> true error 10^-4 of the last level; the round-off part is added.
+    subroutine check_hp_geometric()
+        real(wp) :: values(4)
+        integer :: j
+        values = [(1.0_wp + 10.0_wp**(-j), j=1, 4)]
+        call t%check_close('hp: tenfold convergence, the bar is the last change', &
+                           hp_level_bar(values, -1.0_wp), 9.0e-4_wp/values(4), 1.0e-12_wp)
+        call t%check_close('hp: the round-off part added', hp_level_bar(values, 1.0e-5_wp), &
+                           9.0e-4_wp/values(4) + 1.0e-5_wp, 1.0e-12_wp)
+    end subroutine check_hp_geometric
+
+    !> The last change dips to 1e-9 by cancellation after changes falling tenfold: the
+    !> previous change 9e-3 carried twice at the rate 0.1 (LEVEL_FACTOR times) is the bar.
+    subroutine check_hp_dip()
+        real(wp) :: values(4)
+        values = [1.1_wp, 1.01_wp, 1.001_wp, 1.001_wp + 1.0e-9_wp]
+        call t%check_close('hp: a dip is bridged at the observed rate', &
+                           hp_level_bar(values, -1.0_wp), &
+                           LEVEL_FACTOR*(0.009_wp/values(4))*(0.009_wp/0.09_wp)**2, 1.0e-9_wp)
+    end subroutine check_hp_dip
+
+    !> One level: no bar; two: no rate yet (1), so LEVEL_FACTOR times the change.
+    subroutine check_hp_start()
+        call t%check('hp: no bar at the first level', hp_level_bar([2.0_wp], 0.0_wp) < 0.0_wp)
+        call t%check_close('hp: two levels, LEVEL_FACTOR times the change', &
+                           hp_level_bar([2.0_wp, 1.0_wp], -1.0_wp), LEVEL_FACTOR, 1.0e-15_wp)
+    end subroutine check_hp_start
 end program test_error_bar

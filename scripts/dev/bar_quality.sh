@@ -16,8 +16,10 @@
 # error_estimate(_plus/_minus); the table says which) over its true relative error, and
 # prints min, median, max and the share in [1, 10] per family and overall. 'threshold'
 # scenes give the critical lambdas (uniform threshold runs and kind = 'threshold'
-# adaptive). Values whose true error is below 100 times the truth's uncertainty are
-# skipped (counted); values with neither bar nor estimate (Q1, Q2) are counted as 'none'.
+# adaptive): lambda+ and lambda-, or where a scene's truths are collision onsets
+# (lambda_onset_*), boundary_error_bar and the adapt.csv collision columns. Values whose
+# true error is below 100 times the truth's uncertainty are skipped (counted); values with
+# neither bar nor estimate are counted as 'none'.
 # Usage: scripts/dev/bar_quality.sh [-j JOBS] [SCENE...]   (JOBS parallel runs, default 2)
 # Needs gmsh and jq; about 5 to 10 minutes on 2 cores.
 set -euo pipefail
@@ -107,6 +109,8 @@ ratio_lines() {
                     lowest_positive_mu) vcol=mu ecol=error_estimate bcol=error_bar ;;
                     lambda_critical_plus) vcol=lambda_plus ecol=error_estimate_plus bcol=error_bar_plus ;;
                     lambda_critical_minus) vcol=lambda_minus ecol=error_estimate_minus bcol=error_bar_minus ;;
+                    lambda_onset_*) vcol=collision_${q#lambda_onset_} ecol=error_estimate_collision_${q#lambda_onset_}
+                        bcol=error_bar_collision_${q#lambda_onset_} ;;
                 esac
                 awk -F, -v v="$vcol" -v e="$ecol" -v b="$bcol" -v t="$truth" -v u="$unc" \
                     -v pre="$scene $family $q" 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
@@ -120,6 +124,8 @@ ratio_lines() {
                 jq -r --arg q "$q" --arg t "$truth" --arg u "$unc" --arg pre "$scene $family $q" '
                     (.[$q]) as $v
                     | (if $q == "lowest_positive_mu" then .lowest_positive_error_bar
+                       elif ($q | startswith("lambda_onset_")) then ([.boundary_lambda,
+                           .boundary_error_bar] | transpose | map(select(.[0] == $v)) | .[0][1])
                        else .[$q + "_error_bar"] end) as $b
                     | (if $q == "lowest_positive_mu" then .lowest_positive_error_estimate
                        else .[$q + "_error_estimate"] end) as $e
@@ -154,7 +160,7 @@ echo "# source 'bar' = *_error_bar, 'estimate' = *_error_estimate (no bar in thi
 printf '%-28s %-9s %4s %8s %8s %8s %7s %5s %5s\n' family source n min median max '[1,10]' skip none
 for group in mu lambda; do
     if [[ $group == mu ]]; then sel='$3 == "lowest_positive_mu"'; echo "critical c_n (lowest positive mu):"
-    else sel='$3 != "lowest_positive_mu"'; echo "critical lambdas (lambda+ and lambda-):"; fi
+    else sel='$3 != "lowest_positive_mu"'; echo "critical lambdas (lambda+ and lambda-, collision onsets):"; fi
     for fam in uniform-p1 uniform-p2 uniform-p3 uniform-q1 uniform-q2 adaptive-p1 adaptive-p2 adaptive-p3; do
         awk -v f="$fam" "\$2 == f && $sel" "$work/ratios" | summarise "  $fam"
     done

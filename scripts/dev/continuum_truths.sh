@@ -64,6 +64,7 @@ for name in "${scenes[@]}"; do
     start=$(date +%s)
     quantities=(lowest_positive_mu)
     [[ $kind == threshold ]] && quantities=(lambda_critical_plus lambda_critical_minus)
+    [[ -n $onsets ]] && read -r -a quantities <<<"$onsets"
     declare -A seq=()
     for hmin in "${hmins[@]}"; do
         tag=${name}_$hmin
@@ -102,6 +103,10 @@ for name in "${scenes[@]}"; do
             lowest_positive_mu) ad=$(val "$tag" lowest_positive_mu) ade=$(val "$tag" lowest_positive_error_estimate) ;;
             lambda_critical_plus) ad=$(val "$tag" lambda_critical_plus) ade=$(val "$tag" lambda_critical_plus_error_estimate) ;;
             lambda_critical_minus) ad=$(val "$tag" lambda_critical_minus) ade=$(val "$tag" lambda_critical_minus_error_estimate) ;;
+            # a collision onset: its bar (its estimate is no summary key)
+            lambda_onset_*) ad=$(val "$tag" "$q")
+                ade=$(jq -r --argjson l "$ad" '[.boundary_lambda, .boundary_error_bar] | transpose
+                    | map(select(.[0] == $l))[0][1] // empty' "$work/$tag/summary.json") ;;
         esac
         method="graded-P4-hmin-1e-4..1e-7-aitken"
         awk -v s="$name" -v q="$q" -v v="$value" -v u="$unc" -v ad="$ad" -v ade="${ade:-nan}" -v t="$elapsed" \

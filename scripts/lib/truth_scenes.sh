@@ -3,14 +3,18 @@
 # "Independent truths"), shared by scripts/dev/continuum_truths.sh and scripts/dev/bar_quality.sh.
 # Sourced with $root set. E = 1, top fixed, the other sides free, contact on the bottom
 # unless said.
-truth_scenes=(ref lambda-3 nu0.45-lambda20 nu0.1 rect3x1 rect2x1-nu0.25-lambda-4 trapezoid half-contact ref-threshold)
+truth_scenes=(ref lambda-3 nu0.45-lambda20 nu0.1 rect3x1 rect2x1-nu0.25-lambda-4 trapezoid half-contact ref-threshold
+    trapezoid-threshold trapezoid-nu0.1-threshold half-contact-threshold rect3x1-threshold
+    nu0.1-threshold)
 
 # scene_info NAME: sets geo (the .geo of tests/data/truths), gset (its -setnumber
 # arguments), W, H (rectangle size; W = '' for a shape that is not a rectangle), nu,
-# lam, kind ('eigen' or 'threshold'), contact, neumann (the physical groups)
+# lam, kind ('eigen' or 'threshold'), contact, neumann (the physical groups), onsets (for a
+# threshold scene whose critical lambdas are collision onsets, not the pencil's lambda+-: the
+# summary.json keys of its truths)
 scene_info() {
     geo=$root/tests/data/truths/rectangle.geo gset=() W=1 H=1 nu=0.3 lam=5.0 kind=eigen
-    contact=bottom neumann='left right'
+    contact=bottom neumann='left right' onsets=
     case $1 in
         ref) ;;
         lambda-3) lam=-3.0 ;;
@@ -25,6 +29,16 @@ scene_info() {
             # sliver at (1/2, 0) for hmin = 1e-6; MeshAdapt does not
             gset=(-setnumber algorithm 1) ;;
         ref-threshold) kind=threshold ;;
+        rect3x1-threshold) scene_info rect3x1; kind=threshold ;;
+        nu0.1-threshold) scene_info nu0.1; kind=threshold ;;
+        # a positive mu appears at a collision of two real mu on both sides (mirror images),
+        # inside the pencil's lambda+- (not confirmed)
+        trapezoid-threshold) geo=$root/tests/data/truths/trapezoid.geo W= kind=threshold
+            onsets='lambda_onset_plus lambda_onset_minus' ;;
+        trapezoid-nu0.1-threshold) scene_info trapezoid-threshold; nu=0.1 ;;
+        # a positive mu vanishes at a collision as lambda rises through lambda_onset_minus
+        half-contact-threshold) scene_info half-contact; kind=threshold
+            onsets=lambda_onset_minus ;;
         *) echo "truth_scenes: unknown scene $1" >&2; return 1 ;;
     esac
 }

@@ -12,6 +12,18 @@
 !> reports on it (the spectrum at &analysis lambda, the confirmations and the boundary of
 !> the set where a positive mu exists), and a side that meets the tolerance first stops
 !> asking for cells.
+!>
+!> Where a side's onset (the boundary point of {lambda : a positive mu exists} nearest zero
+!> on that side) is a collision of two real mu (complex_pair), that collision, not the
+!> pencil eigenvalue, is the side's goal: its estimate is the difference to the same point
+!> one degree higher on the same cells (boundary_estimate), its bar level_bar's, and its
+!> indicators those of the dual-weighted residual of the lowest positive mu just on the real
+!> side of it. Why they fit: at the collision A(lambda_c) has a 2 x 2 Jordan block with right
+!> and left eigenvectors x, y (y'x = 0); a perturbation E of A keeps the double eigenvalue
+!> where y'(E + A' d lambda)x = 0, so d lambda_c = -y'Ex / y'A'x, a residual of x weighted
+!> by y. Just beside the collision the two colliding eigenpairs tend to x and y, so the
+!> weighted residual of either, cell by cell, tends to that of lambda_c up to one factor;
+!> Doerfler's marking ignores the factor.
 module adaptive_threshold
     use kinds, only: wp
     use status, only: status_t
@@ -23,16 +35,24 @@ module adaptive_threshold
     use threshold_analysis, only: factor_with_contact_blocks, threshold_result_t, &
                                   solve_thresholds
     use critical_lambda, only: thresholds_t, pencil_thresholds, SIDE_PLUS, SIDE_MINUS, &
-                               SIDE_LABELS
+                               SIDE_LABELS, SIDE_NAMES, lowest_positive_mu
     use error_estimate, only: ENRICHED_CONTACT_MAX
     use threshold_estimate, only: threshold_estimate_t, threshold_displacements, &
                                   estimate_threshold_errors
     use adaptive_loop, only: adapt_goal_t, adapt_mesh, doerfler_marking
+    use threshold_analysis, only: scan_lambdas
+    use contact_reduction, only: reduced_blocks_t
+    use contact_boundary, only: assemble_b
+    use critical_set, only: critical_set_t, find_critical_set, onset_point, side_offset, &
+                            MECHANISM_COMPLEX_PAIR
+    use boundary_estimate, only: enriched_pair_lambdas
+    use eigen_analysis, only: eigen_result_t, eigen_with_factor, SOLVER_DENSE
+    use error_estimate, only: error_estimate_t, estimate_lowest_error
     use error_bar, only: level_bar
     use element_types, only: element_degree
     implicit none
     private
-    public :: adapt_thresholds, solve_adapted_thresholds
+    public :: adapt_thresholds, solve_adapted_thresholds, apply_collision_bars
 
     !> One level of the loop: a row of adapt.csv, arrays by SIDE_PLUS, SIDE_MINUS.
     type, public :: threshold_level_t
@@ -45,6 +65,12 @@ module adaptive_threshold
         logical :: estimated(2) = .false.
         real(wp) :: error_estimate(2) = 0.0_wp    !! |relative error estimate| of lambda
         real(wp) :: error_bar(2) = -1.0_wp         !! the bars at this level; < 0: none
+        !> the side's onset is a collision (complex_pair): its lambda, |relative estimate|
+        !> (< 0: none) and bar (< 0: none)
+        logical :: collision(2) = .false.
+        real(wp) :: collision_lambda(2) = 0.0_wp
+        real(wp) :: collision_estimate(2) = -1.0_wp
+        real(wp) :: collision_bar(2) = -1.0_wp
         real(wp) :: time_s = 0.0_wp
     end type threshold_level_t
 
@@ -61,6 +87,13 @@ module adaptive_threshold
         type(thresholds_t) :: thr
         type(threshold_estimate_t) :: est
         real(wp) :: tolerance = 0.0_wp   !! &adapt tolerance: the sides above it mark cells
+        !> per side, the indicators of its collision onset (n_cells, 2), summing to 1
+        real(wp), allocatable :: collision_indicators(:, :)
+        real(wp) :: collision_estimate(2) = -1.0_wp
+        character(len=200) :: collision_skipped(2) = ''
+        !> the dofs of the last level that found both onsets at the pencil eigenvalues
+        !> (onset_search); 0: none yet
+        integer :: pencil_dofs = 0
     contains
         procedure :: solve => threshold_goal_solve
         procedure :: error => threshold_goal_error
@@ -88,8 +121,9 @@ contains
     end subroutine adapt_thresholds
 
     !> The adaptive 'threshold' analysis: the loop from `start` (adapt_thresholds), then the
-    !> threshold analysis on its final problem with the loop's estimates; a limit reached
-    !> heads the warnings of `res` (out%converged false says so).
+    !> threshold analysis on its final problem with the loop's estimates and the collision
+    !> onsets' level bars (apply_collision_bars); a limit reached heads the warnings of `res`
+    !> (out%converged false says so).
     subroutine solve_adapted_thresholds(config, start, out, res, timings, stat)
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: start
@@ -100,6 +134,7 @@ contains
         call adapt_thresholds(config, start, out, timings, stat)
         if (stat%ok()) call solve_thresholds(config, out%prob, .false., res, timings, stat, &
                                              out%estimate)
+        if (stat%ok()) call apply_collision_bars(out, res%set)
         if (stat%ok() .and. .not. out%converged) res%eigen%warnings = &
             [character(len=len(res%eigen%warnings)) :: out%outcome, res%eigen%warnings]
     end subroutine solve_adapted_thresholds
@@ -114,20 +149,36 @@ contains
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
         type(cholesky_t) :: chol
-        real(wp), allocatable :: kt_nn(:, :), kt_nt(:, :), u(:, :)
+        type(reduced_blocks_t) :: blocks
+        type(critical_set_t) :: set
+        type(eigen_result_t) :: beside(2)
+        real(wp), allocatable :: u(:, :)
         real(wp) :: start
+        real(wp), allocatable :: nearest(:)
+        integer :: onset(2)
 
         this%tolerance = config%adapt%tolerance
-        call factor_with_contact_blocks(config, prob, chol, kt_nn, kt_nt, timings, stat)
+        call factor_with_contact_blocks(config, prob, chol, blocks%kt_nn, blocks%kt_nt, &
+                                        timings, stat)
         if (.not. stat%ok()) return
         start = wall_time()
-        call pencil_thresholds(kt_nn, kt_nt, this%thr, stat)
+        call pencil_thresholds(blocks%kt_nn, blocks%kt_nt, this%thr, stat)
         if (stat%ok()) call threshold_displacements(chol, prob%contact, prob%dofs%n_free, &
                                                     this%thr, u, stat)
+        blocks%mass = prob%contact%mass
+        if (stat%ok()) call onset_search(config, blocks, this%thr, prob%dofs%n_free, &
+                                         this%pencil_dofs, set, stat)
+        if (stat%ok()) call collision_onsets(set, onset)
+        allocate (nearest(size(set%points)), source=huge(1.0_wp))
+        if (stat%ok() .and. any(onset > 0)) call enriched_pair_lambdas(prob, &
+            ENRICHED_CONTACT_MAX, set, nearest, stat)
+        if (stat%ok() .and. any(onset > 0)) call collision_spectra(config, prob, chol, blocks, &
+            set, onset, nearest, beside, stat)
         call chol%free()
         if (.not. stat%ok()) return
-        deallocate (kt_nn, kt_nt)
+        deallocate (blocks%kt_nn, blocks%kt_nt)
         call estimate_threshold_errors(prob, this%thr, u, ENRICHED_CONTACT_MAX, this%est, stat)
+        if (stat%ok()) call estimate_collisions(this, prob, set, onset, nearest, beside)
         if (.not. stat%ok()) return
         call timings%add(PHASE_REDUCTION, wall_time() - start, ': thresholds and their '// &
                          'error estimates, level '//to_string(level))
@@ -146,6 +197,9 @@ contains
             row%lambda = this%thr%lambda
             row%estimated = this%est%computed
             row%error_estimate = abs(this%est%relative)
+            row%collision = onset > 0
+            where (row%collision) row%collision_lambda = set%points(max(onset, 1))%lambda
+            row%collision_estimate = this%collision_estimate
             row%time_s = wall_time() - loop_start
         end function level_row
 
@@ -162,18 +216,170 @@ contains
                     short_real_text(row%error_estimate(side))//', bar '// &
                     short_real_text(row%error_bar(side))//')'
             end do
+            do side = SIDE_PLUS, SIDE_MINUS
+                if (.not. row%collision(side)) cycle
+                line = line//', collision onset '//trim(SIDE_NAMES(side))//' = '// &
+                    short_real_text(row%collision_lambda(side), 12)
+                if (row%collision_estimate(side) >= 0.0_wp) line = line//' (estimate '// &
+                    short_real_text(row%collision_estimate(side))//', bar '// &
+                    short_real_text(row%collision_bar(side))//')'
+            end do
         end function level_line
     end subroutine threshold_goal_solve
 
-    !> The larger estimate of the sides found; negative when one of them has none, or when
-    !> there is no threshold at all.
+    !> The largest bar of the sides' goals (a collision onset, else the threshold found);
+    !> negative when one of them has none, or when there is neither.
     real(wp) function threshold_goal_error(this)
         class(threshold_goal_t), intent(in) :: this
+        integer :: side
         threshold_goal_error = -1.0_wp
-        if (.not. any(this%thr%found)) return
-        if (any(this%thr%found .and. .not. this%est%computed)) return
-        threshold_goal_error = maxval(this%est%bar, mask=this%thr%found)
+        associate (row => this%levels(size(this%levels)))
+            if (.not. any(this%thr%found .or. row%collision)) return
+            do side = SIDE_PLUS, SIDE_MINUS
+                if (row%collision(side)) then
+                    if (row%collision_bar(side) < 0.0_wp) return
+                else if (this%thr%found(side) .and. .not. this%est%computed(side)) then
+                    return
+                end if
+            end do
+            threshold_goal_error = 0.0_wp
+            do side = SIDE_PLUS, SIDE_MINUS
+                if (row%collision(side)) then
+                    threshold_goal_error = max(threshold_goal_error, row%collision_bar(side))
+                else if (this%thr%found(side)) then
+                    threshold_goal_error = max(threshold_goal_error, this%est%bar(side))
+                end if
+            end do
+        end associate
     end function threshold_goal_error
+
+    !> The boundary of the positive set (find_critical_set over the analysis' scan) on a
+    !> level of `n_free` dofs, searched only where a side may have a collision onset: where
+    !> it has no pencil eigenvalue, or a positive mu just inside it (NOT confirmed). Where
+    !> both are confirmed `set` stays empty and the thresholds are the goals, and that check
+    !> (two dense p x p eigen-solves) is made again only once the dofs have doubled since
+    !> `pencil_dofs`, the last level it held on: at every level the check cost as much as
+    !> the rest of input/threshold_adapt.nml (scan: twice that), for an answer that does
+    !> not change there.
+    subroutine onset_search(config, blocks, thr, n_free, pencil_dofs, set, stat)
+        type(config_t), intent(in) :: config
+        type(reduced_blocks_t), intent(in) :: blocks
+        type(thresholds_t), intent(in) :: thr
+        integer, intent(in) :: n_free
+        integer, intent(inout) :: pencil_dofs
+        type(critical_set_t), intent(out) :: set
+        type(status_t), intent(out) :: stat
+        real(wp) :: mu, inside
+        logical :: found, search
+        integer :: side, n_positive
+
+        allocate (set%points(0))
+        search = .not. all(thr%found)
+        if (.not. search .and. pencil_dofs > 0 .and. n_free < 2*pencil_dofs) return
+        do side = SIDE_PLUS, SIDE_MINUS
+            if (search) exit
+            inside = thr%lambda(side) - sign(side_offset(thr%lambda(side)), thr%lambda(side))
+            call lowest_positive_mu(blocks, inside, mu, found, n_positive, stat)
+            if (.not. stat%ok()) return
+            search = found
+        end do
+        pencil_dofs = 0
+        if (.not. search) pencil_dofs = n_free
+        if (search) call find_critical_set(blocks, scan_lambdas(config, .false.), &
+                                           thr%real_lambdas, set, stat)
+    end subroutine onset_search
+
+    !> onset(side): the index in `set` of the side's onset where it is a collision of two
+    !> real mu (complex_pair), 0 where the side has none or it is a pencil eigenvalue.
+    subroutine collision_onsets(set, onset)
+        type(critical_set_t), intent(in) :: set
+        integer, intent(out) :: onset(2)
+        integer :: side
+        do side = SIDE_PLUS, SIDE_MINUS
+            onset(side) = onset_point(set, side)
+            if (onset(side) == 0) cycle
+            if (set%points(onset(side))%mechanism /= MECHANISM_COMPLEX_PAIR) onset(side) = 0
+        end do
+    end subroutine collision_onsets
+
+    !> beside(side): the spectrum (dense, with vectors) where the two colliding mu of the
+    !> side's collision onset are real on this mesh and on the enriched one (`nearest`, the
+    !> enriched point; huge: none): past both points by their distance, at least
+    !> side_offset.
+    subroutine collision_spectra(config, prob, chol, blocks, set, onset, nearest, beside, stat)
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(in) :: prob
+        type(cholesky_t), intent(in) :: chol
+        type(reduced_blocks_t), intent(in) :: blocks
+        type(critical_set_t), intent(in) :: set
+        integer, intent(in) :: onset(2)
+        real(wp), intent(in) :: nearest(:)
+        type(eigen_result_t), intent(inout) :: beside(2)
+        type(status_t), intent(out) :: stat
+        type(timings_t) :: quiet
+        real(wp) :: lambda, gap
+        integer :: side
+
+        do side = SIDE_PLUS, SIDE_MINUS
+            if (onset(side) == 0) cycle
+            if (.not. nearest(onset(side)) < huge(1.0_wp)) cycle
+            lambda = set%points(onset(side))%lambda
+            gap = abs(nearest(onset(side)) - lambda)
+            if (set%points(onset(side))%appears) then   ! real above
+                lambda = max(lambda, nearest(onset(side))) + max(gap, side_offset(lambda))
+            else
+                lambda = min(lambda, nearest(onset(side))) - max(gap, side_offset(lambda))
+            end if
+            beside(side)%lambda = lambda
+            beside(side)%solver = SOLVER_DENSE
+            call assemble_b(prob%contact, prob%dofs%n_free, lambda, beside(side)%b, stat)
+            if (stat%ok()) call eigen_with_factor(config, prob, chol, beside(side), quiet, &
+                                                  stat, blocks%kt_nn, blocks%kt_nt)
+            if (.not. stat%ok()) return
+        end do
+    end subroutine collision_spectra
+
+    !> The estimate and the indicators of each collision onset: |lambda+ - lambda_h| /
+    !> |lambda_h| to the enriched point `nearest`, and the weighted-residual indicators of
+    !> the lowest positive mu of `beside` scaled to sum 1. A side that cannot be estimated
+    !> keeps estimate -1 and says why in collision_skipped (never a failure of the run).
+    subroutine estimate_collisions(this, prob, set, onset, nearest, beside)
+        type(threshold_goal_t), intent(inout) :: this
+        type(problem_t), intent(in) :: prob
+        type(critical_set_t), intent(in) :: set
+        integer, intent(in) :: onset(2)
+        real(wp), intent(in) :: nearest(:)
+        type(eigen_result_t), intent(in) :: beside(2)
+        type(error_estimate_t) :: err
+        type(status_t) :: stat
+        real(wp) :: lambda
+        integer :: side, lowest
+
+        if (allocated(this%collision_indicators)) deallocate (this%collision_indicators)
+        allocate (this%collision_indicators(prob%mesh%n_cells(), 2), source=0.0_wp)
+        this%collision_estimate = -1.0_wp
+        this%collision_skipped = ''
+        do side = SIDE_PLUS, SIDE_MINUS
+            if (onset(side) == 0) cycle
+            lambda = set%points(onset(side))%lambda
+            this%collision_skipped(side) = 'collision onset: no collision of the problem '// &
+                'one degree higher near it'
+            if (.not. nearest(onset(side)) < huge(1.0_wp)) cycle
+            this%collision_skipped(side) = 'collision onset: no positive mu beside it'
+            lowest = beside(side)%spec%lowest_positive()
+            if (lowest == 0 .or. size(beside(side)%spec%vectors, 2) < lowest) cycle
+            call estimate_lowest_error(prob, beside(side)%lambda, &
+                prob%units%mu_to_scaled(real(beside(side)%spec%mu(lowest), wp)), &
+                real(beside(side)%spec%vectors(:, lowest), wp), ENRICHED_CONTACT_MAX, err, stat)
+            this%collision_skipped(side) = 'collision onset: no indicators beside it'
+            if (.not. stat%ok()) this%collision_skipped(side) = 'collision onset: '//stat%message
+            if (.not. stat%ok() .or. .not. err%computed) cycle
+            if (.not. sum(err%indicators) > 0.0_wp) cycle
+            this%collision_indicators(:, side) = err%indicators/sum(err%indicators)
+            this%collision_estimate(side) = abs(nearest(onset(side)) - lambda)/abs(lambda)
+            this%collision_skipped(side) = ''
+        end do
+    end subroutine estimate_collisions
 
     !> Each side's bar at the last of `levels` (error_bar: the last BAR_WINDOW levels where
     !> that side was found and estimated), into the last row and `est`.
@@ -197,6 +403,17 @@ contains
             levels(k)%error_bar(side) = level_bar(estimates, lambdas, dofs, degree, -1.0_wp)
             est%bar(side) = levels(k)%error_bar(side)
         end do
+        ! the collision onsets' bars, over the levels where that side's onset was one
+        do side = SIDE_PLUS, SIDE_MINUS
+            if (.not. levels(k)%collision(side)) cycle
+            do i = 1, k
+                estimates(i) = -1.0_wp
+                if (levels(i)%collision(side)) estimates(i) = levels(i)%collision_estimate(side)
+                lambdas(i) = levels(i)%collision_lambda(side)
+                dofs(i) = levels(i)%n_dofs
+            end do
+            levels(k)%collision_bar(side) = level_bar(estimates, lambdas, dofs, degree, -1.0_wp)
+        end do
     end subroutine level_bars
 
     !> The union of the Doerfler sets of the sides still above the tolerance.
@@ -207,12 +424,19 @@ contains
         logical, allocatable :: chosen(:)
         integer :: side, i
 
-        allocate (chosen(size(this%est%indicators, 1)), source=.false.)
-        do side = SIDE_PLUS, SIDE_MINUS
-            if (.not. this%thr%found(side)) cycle
-            if (this%est%bar(side) <= this%tolerance) cycle
-            chosen(doerfler_marking(this%est%indicators(:, side), theta)) = .true.
-        end do
+        allocate (chosen(size(this%collision_indicators, 1)), source=.false.)
+        associate (row => this%levels(size(this%levels)))
+            do side = SIDE_PLUS, SIDE_MINUS
+                if (row%collision(side)) then
+                    if (row%collision_bar(side) <= this%tolerance) cycle
+                    chosen(doerfler_marking(this%collision_indicators(:, side), theta)) = .true.
+                    cycle
+                end if
+                if (.not. this%thr%found(side)) cycle
+                if (this%est%bar(side) <= this%tolerance) cycle
+                chosen(doerfler_marking(this%est%indicators(:, side), theta)) = .true.
+            end do
+        end associate
         marked = pack([(i, i=1, size(chosen))], chosen)
     end function threshold_goal_mark
 
@@ -223,6 +447,11 @@ contains
         reason = 'no real eigenvalue of the pencil Kt_nn x = lambda Kt_nt x: no threshold '// &
                  'to adapt to'
         do side = SIDE_PLUS, SIDE_MINUS
+            if (len_trim(this%collision_skipped(side)) > 0) then
+                reason = SIDE_LABELS(side)//': '//trim(this%collision_skipped(side))
+                return
+            end if
+            if (this%levels(size(this%levels))%collision(side)) cycle
             if (this%thr%found(side) .and. .not. this%est%computed(side)) then
                 reason = SIDE_LABELS(side)//': '//trim(this%est%skipped(side))
                 if (len_trim(this%est%skipped(side)) == 0) reason = reason// &
@@ -231,4 +460,24 @@ contains
             end if
         end do
     end function threshold_goal_missing
+
+    !> The bars of the final level's collision onsets into the boundary points of `set`
+    !> (the same problem's search: the same points), replacing their one-mesh bars.
+    subroutine apply_collision_bars(out, set)
+        type(adaptive_thresholds_t), intent(in) :: out
+        type(critical_set_t), intent(inout) :: set
+        integer :: side, i
+        if (size(out%levels) == 0) return
+        associate (row => out%levels(size(out%levels)))
+            do side = SIDE_PLUS, SIDE_MINUS
+                if (.not. row%collision(side)) cycle
+                i = onset_point(set, side)
+                if (i == 0) cycle
+                if (set%points(i)%mechanism == MECHANISM_COMPLEX_PAIR .and. &
+                    abs(set%points(i)%lambda - row%collision_lambda(side)) <= &
+                    1.0e-12_wp*abs(row%collision_lambda(side))) &
+                    set%points(i)%error_bar = row%collision_bar(side)
+            end do
+        end associate
+    end subroutine apply_collision_bars
 end module adaptive_threshold

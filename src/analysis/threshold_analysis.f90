@@ -15,7 +15,10 @@ module threshold_analysis
     use strings, only: to_string, seconds_text
     use real_format, only: real_to_text
     use run_config, only: config_t, sweep_lambdas
-    use problem, only: problem_t, explain_singular_k
+    use problem, only: problem_t, explain_singular_k, build_problem
+    use element_types, only: element_name
+    use enrichment, only: enriched_element
+    use error_bar, only: single_bar
     use sparse_cholesky, only: cholesky_t
     use contact_boundary, only: assemble_b
     use contact_reduction, only: factor_stiffness, contact_flexibility, reduced_blocks_t, &
@@ -23,7 +26,7 @@ module threshold_analysis
     use memory_budget, only: check_contact_memory, contact_peak_blocks
     use arpack_eigen, only: arpack_options_t, arpack_lowest_positive
     use critical_lambda, only: thresholds_t, pencil_thresholds, confirm_thresholds, &
-                               lowest_positive_mu
+                               lowest_positive_mu, SIDE_PLUS, SIDE_MINUS
     use critical_set, only: critical_set_t, find_critical_set
     use adaptive_eigen, only: adapt_eigen, adaptive_result_t
     use eigen_analysis, only: eigen_result_t, choose_solver, eigen_with_factor, SOLVER_ARPACK, &
@@ -35,7 +38,7 @@ module threshold_analysis
     use accuracy, only: WARNING_LEN
     implicit none
     private
-    public :: threshold_result_t, solve_thresholds, factor_with_contact_blocks
+    public :: threshold_result_t, solve_thresholds, factor_with_contact_blocks, scan_lambdas
 
     !> 'threshold' counts positive mu on at most this many of the &sweep lambdas (spacing 1
     !> on the default range [-20, 20]); 'lambda_sweep' on all of them (see scan_lambdas).
@@ -215,8 +218,12 @@ contains
             type(status_t) :: failed
             real(wp) :: begin
             begin = wall_time()
-            call estimate_threshold_errors(prob, res%thresholds, u_threshold, &
-                                           ENRICHED_CONTACT_MAX, res%estimate, failed)
+            if (enriched_element(prob%mesh%element) == 0) then
+                call halved_mesh_thresholds(config, prob, res%thresholds, res%estimate, failed)
+            else
+                call estimate_threshold_errors(prob, res%thresholds, u_threshold, &
+                                               ENRICHED_CONTACT_MAX, res%estimate, failed)
+            end if
             if (.not. failed%ok()) then
                 res%eigen%warnings = [character(len=WARNING_LEN) :: res%eigen%warnings, &
                     'no error estimate for the critical lambdas: '//failed%message]
@@ -279,6 +286,60 @@ contains
         call timings%add(PHASE_REDUCTION, wall_time() - start, ': contact blocks of K^-1, '// &
                          to_string(prob%contact%p())//' x '//to_string(prob%contact%p()))
     end subroutine factor_with_contact_blocks
+
+    !> `est` for an element with no degree above it (Q1, Q2, P4): the thresholds of the same
+    !> element on the rectangle of halved cells (2 nx x 2 ny), whose space holds this one's,
+    !> relative = (lambda_h/2 - lambda_h) / lambda_h and the bar from it (error_bar), as the
+    !> estimate of mu does (eigen_analysis); no cell indicators. It costs the factor and the
+    !> contact blocks of a mesh with four times the dofs and twice the contact nodes.
+    subroutine halved_mesh_thresholds(config, prob, thr, est, stat)
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(in) :: prob
+        type(thresholds_t), intent(in) :: thr
+        type(threshold_estimate_t), intent(inout) :: est
+        type(status_t), intent(out) :: stat
+        type(config_t) :: halved
+        type(problem_t) :: fine
+        type(thresholds_t) :: fine_thr
+        type(timings_t) :: quiet
+        type(cholesky_t) :: chol
+        real(wp), allocatable :: kt_nn(:, :), kt_nt(:, :)
+        real(wp) :: start
+        integer :: side
+
+        start = wall_time()
+        if (.not. any(thr%found)) return
+        if (trim(config%mesh%source) /= 'rectangle') then
+            where (thr%found) est%skipped = 'not computed: '// &
+                element_name(prob%mesh%element)//' cells of a Gmsh mesh are not halved here'
+            return
+        end if
+        halved = config
+        halved%mesh%nx = 2*config%mesh%nx
+        halved%mesh%ny = 2*config%mesh%ny
+        call build_problem(halved, fine, stat)
+        if (stat%ok()) call factor_with_contact_blocks(halved, fine, chol, kt_nn, kt_nt, &
+                                                       quiet, stat)
+        if (.not. stat%ok()) return
+        call chol%free()
+        call pencil_thresholds(kt_nn, kt_nt, fine_thr, stat)
+        if (.not. stat%ok()) return
+        est%element = prob%mesh%element
+        est%halved_mesh = .true.
+        do side = SIDE_PLUS, SIDE_MINUS
+            if (.not. thr%found(side)) cycle
+            if (.not. fine_thr%found(side)) then
+                est%skipped(side) = 'not computed: the halved mesh''s pencil has no real '// &
+                    'eigenvalue '//merge('> 0', '< 0', side == SIDE_PLUS)
+                cycle
+            end if
+            est%lambda_enriched(side) = fine_thr%lambda(side)
+            est%relative(side) = (fine_thr%lambda(side) - thr%lambda(side))/thr%lambda(side)
+            est%computed(side) = .true.
+            est%bar(side) = single_bar(abs(est%relative(side)), -1.0_wp)
+        end do
+        est%seconds = wall_time() - start
+    end subroutine halved_mesh_thresholds
 
     !> The curve with &adapt: at each lambda the adaptive loop of analysis 'eigen' until the
     !> estimate meets the tolerance, starting from the last mesh that met it at a lambda

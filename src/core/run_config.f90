@@ -131,6 +131,13 @@ module run_config
         !> Doerfler marking: refine the fewest cells whose indicators sum to at least this
         !> fraction of the total (0 < theta <= 1; 1 refines every cell with an indicator)
         real(wp) :: theta = 0.25_wp
+        !> 'h': refine the mesh (Doerfler marking); 'hp': geometric meshes toward the
+        !> singular points with degrees rising away from them (analysis 'eigen' only)
+        character(len=4) :: strategy = 'h'
+        !> 'hp': the geometric grading factor, 0 < sigma < 1 (cells shrink by sigma per layer)
+        real(wp) :: sigma = 0.15_wp
+        !> 'hp': the highest polynomial degree of a cell, 1 to 20
+        integer :: p_max = 20
     end type adapt_config_t
 
     type, public :: config_t

@@ -18,10 +18,10 @@ module critical_set
     use status, only: status_t
     use sorting, only: sort_index
     use contact_reduction, only: reduced_blocks_t, lambda_unit
-    use critical_lambda, only: reduced_eigenvalues, count_positive, CONFIRM_OFFSET
+    use critical_lambda, only: reduced_eigenvalues, count_positive, CONFIRM_OFFSET, SIDE_PLUS
     implicit none
     private
-    public :: find_critical_set, pair_discriminant, side_offset
+    public :: find_critical_set, pair_discriminant, side_offset, onset_point
 
     integer, parameter, public :: MECHANISM_PENCIL = 1
     integer, parameter, public :: MECHANISM_COMPLEX_PAIR = 2
@@ -78,6 +78,23 @@ contains
         end do
         critical_set_positive_at = this%positive_at_min .neqv. (mod(n_below, 2) == 1)
     end function critical_set_positive_at
+
+    !> The index of the boundary point nearest zero on `side` (0 when none): the onset of a
+    !> positive mu as |lambda| grows from 0 on that side.
+    pure integer function onset_point(set, side)
+        type(critical_set_t), intent(in) :: set
+        integer, intent(in) :: side
+        integer :: i
+        onset_point = 0
+        do i = 1, size(set%points)
+            if ((set%points(i)%lambda > 0.0_wp) .neqv. (side == SIDE_PLUS)) cycle
+            if (onset_point == 0) then
+                onset_point = i
+            else if (abs(set%points(i)%lambda) < abs(set%points(onset_point)%lambda)) then
+                onset_point = i
+            end if
+        end do
+    end function onset_point
 
     !> The distance CONFIRM_OFFSET |lambda| of the confirming solves from a boundary point.
     elemental real(wp) function side_offset(lambda)

@@ -19,7 +19,8 @@ module hp_stiffness
     implicit none
     private
     public :: hp_reference_tables, hp_element_stiffness, hp_element_laplace, &
-              condense_interior, assemble_hp_stiffness, configuration_key
+              condense_interior, recover_interior, assemble_hp_stiffness, &
+              configuration_key, cached_table
 
     integer, parameter :: HP_OK = 0, HP_INVERTED = 1
     public :: HP_OK, HP_INVERTED
@@ -164,14 +165,53 @@ contains
         real(wp), allocatable, intent(out) :: kc(:, :)
         integer, intent(out) :: info
         real(wp), allocatable :: l(:, :), x(:, :)
-        integer :: nc, nb, j, i
-        nb = n_interior
-        nc = size(ke, 1) - nb
+        integer :: nc, j
+        nc = size(ke, 1) - n_interior
         info = HP_OK
         kc = ke(1:nc, 1:nc)
-        if (nb == 0) return
-        l = ke(nc + 1:, nc + 1:)
-        do j = 1, nb   ! lower Cholesky factor, column by column
+        if (n_interior == 0) return
+        call interior_factor(ke(nc + 1:, nc + 1:), l, info)
+        if (info /= HP_OK) return
+        x = forward_solve(l, ke(nc + 1:, 1:nc))   ! X = L^-1 K_bc
+        kc = kc - matmul(transpose(x), x)
+        do j = 1, nc   ! exactly symmetric
+            kc(j + 1:nc, j) = kc(j, j + 1:nc)
+        end do
+    end subroutine condense_interior
+
+    !> The interior coefficients the condensation eliminated, from the others `uc`:
+    !> u_b = -K_bb^-1 K_bc u_c (the minimiser of the energy with u_c fixed), the last
+    !> n_interior rows of `ke` being the interior ones. info as condense_interior's.
+    pure subroutine recover_interior(ke, n_interior, uc, ub, info)
+        real(wp), intent(in) :: ke(:, :), uc(:)
+        integer, intent(in) :: n_interior
+        real(wp), allocatable, intent(out) :: ub(:)
+        integer, intent(out) :: info
+        real(wp), allocatable :: l(:, :), y(:, :)
+        integer :: nc, j
+        nc = size(ke, 1) - n_interior
+        info = HP_OK
+        allocate (ub(n_interior))
+        if (n_interior == 0) return
+        call interior_factor(ke(nc + 1:, nc + 1:), l, info)
+        if (info /= HP_OK) return
+        y = forward_solve(l, -reshape(matmul(ke(nc + 1:, 1:nc), uc), [n_interior, 1]))
+        do j = n_interior, 1, -1   ! back substitution with L'
+            ub(j) = (y(j, 1) - dot_product(l(j + 1:, j), ub(j + 1:)))/l(j, j)
+        end do
+    end subroutine recover_interior
+
+    !> The lower Cholesky factor of the interior block K_bb, column by column;
+    !> info = HP_INVERTED when it is not positive definite.
+    pure subroutine interior_factor(kbb, l, info)
+        real(wp), intent(in) :: kbb(:, :)
+        real(wp), allocatable, intent(out) :: l(:, :)
+        integer, intent(out) :: info
+        integer :: nb, i, j
+        nb = size(kbb, 1)
+        info = HP_OK
+        l = kbb
+        do j = 1, nb
             l(j, j) = l(j, j) - dot_product(l(j, 1:j - 1), l(j, 1:j - 1))
             if (.not. l(j, j) > 0.0_wp) then
                 info = HP_INVERTED
@@ -182,15 +222,18 @@ contains
                 l(i, j) = (l(i, j) - dot_product(l(i, 1:j - 1), l(j, 1:j - 1)))/l(j, j)
             end do
         end do
-        x = ke(nc + 1:, 1:nc)   ! X = L^-1 K_bc by forward substitution
-        do j = 1, nb
+    end subroutine interior_factor
+
+    !> L^-1 B by forward substitution (L lower triangular).
+    pure function forward_solve(l, b) result(x)
+        real(wp), intent(in) :: l(:, :), b(:, :)
+        real(wp) :: x(size(b, 1), size(b, 2))
+        integer :: j
+        x = b
+        do j = 1, size(b, 1)
             x(j, :) = (x(j, :) - matmul(l(j, 1:j - 1), x(1:j - 1, :)))/l(j, j)
         end do
-        kc = kc - matmul(transpose(x), x)
-        do j = 1, nc   ! exactly symmetric
-            kc(j + 1:nc, j) = kc(j, j + 1:nc)
-        end do
-    end subroutine condense_interior
+    end function forward_solve
 
     !> K on the free dofs of `space` (mesh `m`, P1 vertices), interior functions condensed.
     !> Fails with STATUS_MESH naming the first clockwise or flat cell.
@@ -217,7 +260,7 @@ contains
         do c = 1, n_cells
             p = space%cell_degree(c)
             key = configuration_key(space%edge_degrees_of(c), p, space%cell_flip(:, c))
-            t = table_of(key)
+            t = cached_table(tables, n_tables, key)
             call hp_element_stiffness(m%coords(:, m%cells(1:3, c)), tables(t), young, &
                                       poisson, ke, info)
             if (info == HP_OK) call condense_interior(ke, 2*hp_bubble_count(p), kc, info)
@@ -234,23 +277,26 @@ contains
             end if
         end do
 
-    contains
-
-        !> Index in `tables` of the configuration `key`, computed on first use.
-        integer function table_of(key)
-            integer, intent(in) :: key(7)
-            type(hp_tables_t), allocatable :: grown(:)
-            do table_of = 1, n_tables
-                if (all(tables(table_of)%key == key)) return
-            end do
-            if (n_tables == size(tables)) then
-                allocate (grown(2*n_tables))
-                grown(1:n_tables) = tables
-                call move_alloc(grown, tables)
-            end if
-            n_tables = n_tables + 1
-            table_of = n_tables
-            tables(n_tables) = hp_reference_tables(key(1:3), key(4), key(5:7) == 1)
-        end function table_of
     end subroutine assemble_hp_stiffness
+
+    !> Index in tables(1:n_tables) of the configuration `key`, its reference integrals
+    !> computed and appended (the array grown) on first use.
+    integer function cached_table(tables, n_tables, key) result(t)
+        type(hp_tables_t), allocatable, intent(inout) :: tables(:)
+        integer, intent(inout) :: n_tables
+        integer, intent(in) :: key(7)
+        type(hp_tables_t), allocatable :: grown(:)
+        do t = 1, n_tables
+            if (all(tables(t)%key == key)) return
+        end do
+        if (.not. allocated(tables)) allocate (tables(16))
+        if (n_tables == size(tables)) then
+            allocate (grown(2*n_tables))
+            grown(1:n_tables) = tables
+            call move_alloc(grown, tables)
+        end if
+        n_tables = n_tables + 1
+        t = n_tables
+        tables(n_tables) = hp_reference_tables(key(1:3), key(4), key(5:7) == 1)
+    end function cached_table
 end module hp_stiffness

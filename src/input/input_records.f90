@@ -392,14 +392,18 @@ contains
         integer, intent(out) :: ios
         character(len=*), intent(inout) :: msg
         integer, intent(in), optional :: listing_unit
-        real(wp) :: tolerance, theta
-        integer :: max_dofs, max_levels
-        namelist /adapt/ tolerance, max_dofs, max_levels, theta
+        real(wp) :: tolerance, theta, sigma
+        integer :: max_dofs, max_levels, p_max
+        character(len=len(config%adapt%strategy)) :: strategy
+        namelist /adapt/ tolerance, max_dofs, max_levels, theta, strategy, sigma, p_max
 
         tolerance = config%adapt%tolerance
         max_dofs = config%adapt%max_dofs
         max_levels = config%adapt%max_levels
         theta = config%adapt%theta
+        strategy = config%adapt%strategy
+        sigma = config%adapt%sigma
+        p_max = config%adapt%p_max
         if (present(listing_unit)) then
             write (listing_unit, nml=adapt, iostat=ios, iomsg=msg)
             return
@@ -410,5 +414,8 @@ contains
         config%adapt%max_dofs = max_dofs
         config%adapt%max_levels = max_levels
         config%adapt%theta = theta
+        config%adapt%strategy = strategy
+        config%adapt%sigma = sigma
+        config%adapt%p_max = p_max
     end subroutine adapt_record
 end module input_records

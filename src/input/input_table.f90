@@ -13,7 +13,8 @@ module input_table
     use input_validation, only: MESH_SOURCES, ELEMENT_NAMES, DIAGONALS, RECTANGLE_SIDES, &
                                 ACCEPTED_ANALYSES, ACCEPTED_SOLVERS, MAX_CELLS_PER_SIDE, &
                                 SWEEP_SPACINGS, MAX_SWEEP_POINTS, VTK_FORMATS, SOLVE_DATA, &
-                                SOLVE_STARTS, ESTIMATE_MODES, EIGEN_OPERATORS
+                                SOLVE_STARTS, ESTIMATE_MODES, EIGEN_OPERATORS, &
+                                ADAPT_STRATEGIES
     implicit none
     private
     public :: input_variable_t, input_variables, load_table, group_header, table_variables, &
@@ -39,7 +40,8 @@ module input_table
                           IN_RECTANGLE_SIDES = 4, IN_ACCEPTED_ANALYSES = 5, &
                           IN_ACCEPTED_SOLVERS = 6, IN_ESTIMATE_MODES = 7, &
                           IN_EIGEN_OPERATORS = 8, IN_VTK_FORMATS = 9, IN_SWEEP_SPACINGS = 10, &
-                          IN_SOLVE_DATA = 11, IN_SOLVE_STARTS = 12
+                          IN_SOLVE_DATA = 11, IN_SOLVE_STARTS = 12, &
+                          IN_ADAPT_STRATEGIES = 13
     !> A help line's description; new_line('a') in it continues under the description,
     !> '@' stands for the accepted values of its choice.
     integer, parameter :: HELP_LEN = 160
@@ -162,7 +164,12 @@ contains
             v('adapt', 'max_levels', VALUE_INTEGER, 'refinement steps after the starting' &
               //' mesh (0: no limit)'), &
             v('adapt', 'theta', VALUE_REAL, 'Doerfler fraction: refine cells holding this' &
-              //' part of the estimate')]
+              //' part of the estimate'), &
+            v('adapt', 'strategy', VALUE_NAME, '@: refine cells, or graded meshes with' &
+              //' rising degrees (eigen)', choices=IN_ADAPT_STRATEGIES), &
+            v('adapt', 'sigma', VALUE_REAL, 'hp: grading factor toward the singular points' &
+              //' (0 < sigma < 1)'), &
+            v('adapt', 'p_max', VALUE_INTEGER, 'hp: highest degree of a cell (1 to 20)')]
     end function input_variables
 
     !> The table into `table` (an allocatable of the caller: gfortran 12 at -O3 warns of
@@ -209,6 +216,7 @@ contains
         case (IN_ACCEPTED_ANALYSES); values = ACCEPTED_ANALYSES
         case (IN_ACCEPTED_SOLVERS); values = ACCEPTED_SOLVERS
         case (IN_ESTIMATE_MODES); values = ESTIMATE_MODES
+        case (IN_ADAPT_STRATEGIES); values = ADAPT_STRATEGIES
         case (IN_EIGEN_OPERATORS); values = EIGEN_OPERATORS
         case (IN_VTK_FORMATS); values = VTK_FORMATS
         case (IN_SWEEP_SPACINGS); values = SWEEP_SPACINGS

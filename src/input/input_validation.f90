@@ -20,7 +20,7 @@ module input_validation
     public :: MESH_SOURCES, ELEMENT_NAMES, DIAGONALS, RECTANGLE_SIDES, ACCEPTED_ANALYSES, &
               ACCEPTED_SOLVERS, MAX_CELLS_PER_SIDE, SWEEP_SPACINGS, MAX_SWEEP_POINTS, &
               VTK_FORMATS, SOLVE_DATA, SOLVE_STARTS, ESTIMATE_MODES, EIGEN_OPERATORS, &
-              ADAPT_ELEMENTS, ADAPT_ANALYSES
+              ADAPT_ELEMENTS, ADAPT_ANALYSES, ADAPT_STRATEGIES, MAX_HP_INPUT_DEGREE
 
     character(len=*), parameter :: MESH_SOURCES(*) = [character(len=9) :: 'rectangle', 'gmsh']
     character(len=*), parameter :: ELEMENT_NAMES(*) = [character(len=2) :: &
@@ -44,6 +44,11 @@ module input_validation
     character(len=*), parameter :: ADAPT_ELEMENTS(*) = [character(len=2) :: 'p1', 'p2', 'p3']
     character(len=*), parameter :: ADAPT_ANALYSES(*) = [character(len=12) :: 'eigen', &
                                                          'threshold', 'lambda_sweep']
+    !> &adapt strategy; 'hp' (module hp_adaptive) adapts analysis 'eigen' on triangles of any
+    !> degree (it keeps their vertices only), with cell degrees up to hp_basis's
+    !> MAX_HP_DEGREE, which this repeats (the input layer sits below the elements).
+    character(len=*), parameter :: ADAPT_STRATEGIES(*) = [character(len=2) :: 'h', 'hp']
+    integer, parameter :: MAX_HP_INPUT_DEGREE = 20
     character(len=*), parameter :: SWEEP_SPACINGS(*) = [character(len=6) :: 'linear', 'log']
     integer, parameter :: MAX_SWEEP_POINTS = 100000   !! n_lambda of a &sweep range
     !> &solve works in the input's units, where young and the mesh size keep to
@@ -106,9 +111,20 @@ contains
                 call reject('max_levels', to_string(c%max_levels), 'an integer >= 0 (0: no limit)')
             else if (.not. theta_ok) then
                 call reject('theta', real_to_text(c%theta), 'a fraction with 0 < theta <= 1')
+            else if (.not. any(ADAPT_STRATEGIES == c%strategy)) then
+                call reject('strategy', quoted(c%strategy), 'one of '//one_of(ADAPT_STRATEGIES))
+            else if (.not. (c%sigma > 0.0_wp .and. c%sigma < 1.0_wp)) then
+                call reject('sigma', real_to_text(c%sigma), 'a grading factor with 0 < sigma < 1')
+            else if (c%p_max < 1 .or. c%p_max > MAX_HP_INPUT_DEGREE) then
+                call reject('p_max', to_string(c%p_max), 'a degree from 1 to '// &
+                            to_string(MAX_HP_INPUT_DEGREE))
             end if
             if (.not. stat%ok() .or. .not. c%tolerance > 0.0_wp) return
         end associate
+        if (config%adapt%strategy == 'hp') then
+            call validate_hp()
+            return
+        end if
         if (.not. any(ADAPT_ANALYSES == config%analysis%kind)) then
             call reject('tolerance', real_to_text(config%adapt%tolerance), "0 for &analysis "// &
                         "kind = '"//trim(config%analysis%kind)//"' (only "// &
@@ -129,6 +145,19 @@ contains
             character(len=*), intent(in) :: variable, value, expected
             call fail_value(stat, path, 'adapt', variable, value, expected)
         end subroutine reject
+
+        !> strategy = 'hp': analysis 'eigen' on triangles (a Gmsh file's cells are checked
+        !> when it is read); it needs no error estimate of &eigen.
+        subroutine validate_hp()
+            if (config%analysis%kind /= 'eigen') then
+                call reject('strategy', "'hp'", "'h' for &analysis kind = '"// &
+                            trim(config%analysis%kind)//"' (hp adapts kind = 'eigen' only)")
+            else if (config%mesh%source == 'rectangle' .and. &
+                     config%mesh%element(1:1) /= 'p') then
+                call reject('strategy', "'hp'", "'h' for &mesh element = '"// &
+                            trim(config%mesh%element)//"' (hp grades triangles: p1 to p4)")
+            end if
+        end subroutine validate_hp
     end subroutine validate_adapt
 
     subroutine validate_mesh(c, path, stat)

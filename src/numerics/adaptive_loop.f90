@@ -26,7 +26,7 @@ module adaptive_loop
     use sorting, only: sort_index
     implicit none
     private
-    public :: adapt_mesh, doerfler_marking, adaptive_dof_limit
+    public :: adapt_mesh, doerfler_marking, adaptive_dof_limit, level_dof_limit
 
     !> Peak bytes per free dof of one adaptive level (its factor, the enriched problem of
     !> the estimate one degree higher and its factor, the mesh tree): 4.7 kB measured for P3
@@ -112,12 +112,7 @@ contains
                 element_name(element)//' cells (adaptation refines triangles p1, p2 or p3)')
             return
         end if
-        max_dofs = config%adapt%max_dofs
-        dof_limit = 'max_dofs = '//to_string(max_dofs)
-        if (max_dofs == 0) then
-            max_dofs = adaptive_dof_limit(available_memory_bytes())
-            dof_limit = 'the '//to_string(max_dofs)//' that the memory available allows'
-        end if
+        call level_dof_limit(config, max_dofs, dof_limit)
         if (config%adapt%max_dofs > 0 .and. start%dofs%n_free > max_dofs) then
             call stat%fail(STATUS_BAD_INPUT, config%input_file//': &adapt: max_dofs = '// &
                 to_string(config%adapt%max_dofs)//': expected at least the '// &
@@ -175,6 +170,20 @@ contains
             level = level + 1
         end do
     end subroutine adapt_mesh
+
+    !> The most free dofs a level may have (&adapt max_dofs, or what the memory available
+    !> now allows when it is 0) and the words that name that limit in an outcome.
+    subroutine level_dof_limit(config, max_dofs, dof_limit)
+        type(config_t), intent(in) :: config
+        integer, intent(out) :: max_dofs
+        character(len=:), allocatable, intent(out) :: dof_limit
+        max_dofs = config%adapt%max_dofs
+        dof_limit = 'max_dofs = '//to_string(max_dofs)
+        if (max_dofs == 0) then
+            max_dofs = adaptive_dof_limit(available_memory_bytes())
+            dof_limit = 'the '//to_string(max_dofs)//' that the memory available allows'
+        end if
+    end subroutine level_dof_limit
 
     !> The most free dofs a level may have when `available` bytes of memory are free (a
     !> negative `available`: unknown, no limit), at BYTES_PER_DOF.

@@ -20,7 +20,7 @@ module boundary_estimate
     use error_bar, only: single_bar
     implicit none
     private
-    public :: estimate_boundary_bars
+    public :: estimate_boundary_bars, enriched_pair_lambdas
 
     !> The window searched around a complex_pair point on the enriched problem, relative to
     !> |lambda|, and its scan points: wider than the difference between two degrees on any
@@ -40,14 +40,8 @@ contains
         integer, intent(in) :: max_contact
         type(critical_set_t), intent(inout) :: set
         type(status_t), intent(out) :: stat
-        type(enrichment_t) :: enr
-        type(cholesky_t) :: chol
-        type(reduced_blocks_t) :: blocks
-        type(thresholds_t) :: thr_plus
-        type(critical_set_t) :: near
-        character(len=:), allocatable :: skipped
-        real(wp) :: lambda, scan(WINDOW_POINTS), nearest
-        integer :: i, j, side
+        real(wp), allocatable :: nearest(:)
+        integer :: i, side
 
         do i = 1, size(set%points)
             if (set%points(i)%mechanism /= MECHANISM_PENCIL) cycle
@@ -59,9 +53,37 @@ contains
                     set%points(i)%error_bar = est%bar(side)
             end do
         end do
+        call enriched_pair_lambdas(prob, max_contact, set, nearest, stat)
+        if (.not. stat%ok()) return
+        do i = 1, size(set%points)
+            if (nearest(i) < huge(1.0_wp)) set%points(i)%error_bar = single_bar( &
+                abs(nearest(i) - set%points(i)%lambda)/abs(set%points(i)%lambda), -1.0_wp)
+        end do
+    end subroutine estimate_boundary_bars
+
+    !> nearest(i): the complex_pair point of the same direction of the problem one degree
+    !> higher on the cells of `prob` nearest the complex_pair point i of `set`, found by the
+    !> same search in a window around it; huge where there is none (or no enrichment, or
+    !> more than `max_contact` enriched contact nodes; stat ok).
+    subroutine enriched_pair_lambdas(prob, max_contact, set, nearest, stat)
+        type(problem_t), intent(in) :: prob
+        integer, intent(in) :: max_contact
+        type(critical_set_t), intent(in) :: set
+        real(wp), allocatable, intent(out) :: nearest(:)
+        type(status_t), intent(out) :: stat
+        type(enrichment_t) :: enr
+        type(cholesky_t) :: chol
+        type(reduced_blocks_t) :: blocks
+        type(thresholds_t) :: thr_plus
+        type(critical_set_t) :: near
+        character(len=:), allocatable :: skipped
+        real(wp) :: lambda, scan(WINDOW_POINTS)
+        integer :: i, j
+
+        allocate (nearest(size(set%points)), source=huge(1.0_wp))
         if (.not. any(set%points%mechanism == MECHANISM_COMPLEX_PAIR)) return
         call build_enrichment(prob, max_contact, enr, skipped, stat)
-        if (.not. stat%ok() .or. enr%element == 0) return
+        if (.not. stat%ok() .or. enr%element == 0 .or. len(skipped) > 0) return
         call enr%reduce(chol, blocks%kt_nn, blocks%kt_nt, stat)
         call chol%free()
         if (stat%ok()) call pencil_thresholds(blocks%kt_nn, blocks%kt_nt, thr_plus, stat)
@@ -74,16 +96,12 @@ contains
                      real(WINDOW_POINTS - 1, wp)), j=1, WINDOW_POINTS)]
             call find_critical_set(blocks, scan, thr_plus%real_lambdas, near, stat)
             if (.not. stat%ok()) return
-            ! the enriched point of the same kind and direction nearest this one
-            nearest = huge(1.0_wp)
             do j = 1, size(near%points)
                 if (near%points(j)%mechanism /= MECHANISM_COMPLEX_PAIR .or. &
                     (near%points(j)%appears .neqv. set%points(i)%appears)) cycle
-                if (abs(near%points(j)%lambda - lambda) < abs(nearest - lambda)) &
-                    nearest = near%points(j)%lambda
+                if (abs(near%points(j)%lambda - lambda) < abs(nearest(i) - lambda)) &
+                    nearest(i) = near%points(j)%lambda
             end do
-            if (nearest < huge(1.0_wp)) set%points(i)%error_bar = &
-                single_bar(abs(nearest - lambda)/abs(lambda), -1.0_wp)
         end do
-    end subroutine estimate_boundary_bars
+    end subroutine enriched_pair_lambdas
 end module boundary_estimate

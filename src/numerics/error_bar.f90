@@ -22,7 +22,7 @@ module error_bar
     use kinds, only: wp
     implicit none
     private
-    public :: single_bar, level_bar
+    public :: single_bar, level_bar, hp_level_bar
     public :: BAR_FACTOR, LEVEL_FACTOR, BAR_WINDOW
 
     real(wp), parameter :: BAR_FACTOR = 5.0_wp
@@ -50,20 +50,70 @@ contains
         real(wp), intent(in) :: estimates(:), values(:)
         integer, intent(in) :: dofs(:), degree
         real(wp), intent(in) :: roundoff
-        real(wp) :: envelope, moved
-        integer :: k, j
+        integer :: k
         bar = -1.0_wp
         k = size(estimates)
         if (k == 0) return
         if (estimates(k) < 0.0_wp) return
-        envelope = estimates(k)
+        bar = windowed_bar(estimates, (real(dofs, wp)/real(dofs(k), wp))**degree, values, &
+                           estimates >= 0.0_wp, roundoff)
+    end function level_bar
+
+    !> The bar at the last of the levels of an hp sequence (strategy 'hp'), which has no
+    !> estimate of its own: the change d_j = |values(j) - values(j - 1)| / |values(k)| stands
+    !> for the error of level j - 1, and the error falls by a fixed factor per level (each
+    !> layer and degree more: exponential convergence), observed as r, the largest ratio
+    !> d_j / d_(j-1) in the window (1 before there are two changes, at most 1). Level j's
+    !> error is then about r d_j, carried to level k by r^(k - j): LEVEL_FACTOR times the
+    !> largest over the window, and at least d_k, the change to the previous level (not the
+    !> change over the window, as level_bar: with errors falling tenfold per level that
+    !> would quote level k - 2's error), plus `roundoff`. A d_k that dips by cancellation
+    !> leaves the earlier changes, carried at the largest ratio, in the bar. Negative at the
+    !> first level.
+    pure real(wp) function hp_level_bar(values, roundoff) result(bar)
+        real(wp), intent(in) :: values(:), roundoff
+        real(wp) :: change(size(values)), estimates(size(values)), carry(size(values)), rate
+        integer :: k, j
+        bar = -1.0_wp
+        k = size(values)
+        if (k < 2) return
+        change(1) = -1.0_wp
+        change(2:k) = abs(values(2:k) - values(1:k - 1))/abs(values(k))
+        rate = 1.0_wp
+        if (k >= 3) then
+            rate = 0.0_wp
+            do j = max(3, k - BAR_WINDOW + 1), k
+                if (change(j - 1) > 0.0_wp) then
+                    rate = max(rate, change(j)/change(j - 1))
+                else if (change(j) > 0.0_wp) then
+                    rate = 1.0_wp
+                end if
+            end do
+            rate = min(rate, 1.0_wp)
+        end if
+        estimates = -1.0_wp
+        estimates(2:k) = rate*change(2:k)
+        do j = 1, k
+            carry(j) = rate**(k - j)
+        end do
+        bar = windowed_bar(estimates, carry, values, [(j >= k - 1, j=1, k)], roundoff)
+    end function hp_level_bar
+
+    !> LEVEL_FACTOR max_j estimates(j) carry(j) over the last BAR_WINDOW levels j <= k with an
+    !> estimate, at least max_j |values(k) - values(j)| / |values(k)| over those with
+    !> `valued`, plus `roundoff` (negative: unknown, nothing added).
+    pure real(wp) function windowed_bar(estimates, carry, values, valued, roundoff) result(bar)
+        real(wp), intent(in) :: estimates(:), carry(:), values(:), roundoff
+        logical, intent(in) :: valued(:)
+        real(wp) :: envelope, moved
+        integer :: k, j
+        k = size(estimates)
+        envelope = 0.0_wp
         moved = 0.0_wp
-        do j = max(1, k - BAR_WINDOW + 1), k - 1
-            if (estimates(j) < 0.0_wp) cycle
-            envelope = max(envelope, estimates(j)* &
-                           (real(dofs(j), wp)/real(dofs(k), wp))**degree)
-            moved = max(moved, abs(values(k) - values(j))/abs(values(k)))
+        do j = max(1, k - BAR_WINDOW + 1), k
+            if (estimates(j) >= 0.0_wp) envelope = max(envelope, estimates(j)*carry(j))
+            if (valued(j)) moved = max(moved, abs(values(k) - values(j))/abs(values(k)))
         end do
         bar = max(LEVEL_FACTOR*envelope, moved) + max(roundoff, 0.0_wp)
-    end function level_bar
+    end function windowed_bar
 end module error_bar

@@ -68,6 +68,8 @@ module error_estimate
         character(len=:), allocatable :: skipped
         !> why the estimate failed (the run goes on with a warning); unallocated otherwise
         character(len=:), allocatable :: failure
+        !> what the estimate is when no enrichment made it (an hp run's level differences)
+        character(len=:), allocatable :: method
     end type error_estimate_t
 
     public :: estimate_label
@@ -149,5 +151,6 @@ contains
         character(len=:), allocatable :: label
         label = element_name(est%element)//' enrichment'
         if (est%halved_mesh) label = element_name(est%element)//', halved mesh'
+        if (allocated(est%method)) label = est%method
     end function estimate_label
 end module error_estimate

@@ -39,7 +39,10 @@ module threshold_estimate
         real(wp) :: relative(2) = 0.0_wp
         !> the relative error bars quoted (error_bar); negative: none
         real(wp) :: bar(2) = -1.0_wp
-        real(wp) :: lambda_enriched(2) = 0.0_wp     !! the enriched pencil's threshold
+        real(wp) :: lambda_enriched(2) = 0.0_wp     !! the enriched (or halved) pencil's threshold
+        !> the estimate is the difference to the same element on the mesh of halved cells
+        !> (elements with no degree above them: Q1, Q2, P4 on a rectangle), no cell indicators
+        logical :: halved_mesh = .false.
         real(wp), allocatable :: indicators(:, :)   !! (n_cells, 2) eta_K relative to lambda_h
         integer :: element = 0                      !! the enriched element
         real(wp) :: seconds = 0.0_wp

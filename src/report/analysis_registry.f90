@@ -8,23 +8,31 @@ module analysis_registry
     use branch_run, only: branch_run_t
     use solve_run, only: solve_run_t
     use adapt_run, only: adapt_run_t
+    use hp_adapt_run, only: hp_adapt_run_t   ! &adapt strategy = 'hp'
     implicit none
     private
     public :: new_analysis
 
 contains
 
-    !> The analysis of `kind`, adaptive (&adapt tolerance > 0) or not: each variant is a type
-    !> of its own, chosen here once. An unknown kind (which the input check refuses first)
-    !> leaves `analysis` unallocated. 'lambda_sweep' adapts each point itself (&adapt).
-    subroutine new_analysis(kind, adaptive, analysis)
+    !> The analysis of `kind`, adaptive (&adapt tolerance > 0) or not, with the &adapt
+    !> `strategy` 'h' (the default) or 'hp' (only 'eigen': the input check refuses the
+    !> others): each variant is a type of its own, chosen here once. An unknown kind (which
+    !> the input check refuses first) leaves `analysis` unallocated. 'lambda_sweep' adapts
+    !> each point itself (&adapt).
+    subroutine new_analysis(kind, adaptive, analysis, strategy)
         character(len=*), intent(in) :: kind
         logical, intent(in) :: adaptive
         class(analysis_t), allocatable, intent(out) :: analysis
+        character(len=*), intent(in), optional :: strategy
+        logical :: hp
+        hp = .false.
+        if (present(strategy)) hp = strategy == 'hp'
         select case (kind)
         case ('eigen')
-            if (adaptive) allocate (adapt_run_t :: analysis)
             if (.not. adaptive) allocate (eigen_run_t :: analysis)
+            if (adaptive .and. hp) allocate (hp_adapt_run_t :: analysis)
+            if (adaptive .and. .not. hp) allocate (adapt_run_t :: analysis)
         case ('threshold')
             if (adaptive) allocate (adapt_threshold_run_t :: analysis)
             if (.not. adaptive) allocate (threshold_run_t :: analysis)

@@ -18,7 +18,8 @@ module threshold_run
     use adapt_files, only: add_adapt_keys, adapt_report_lines, write_adapted_mesh, ask_adapt_plot
     use element_types, only: element_name
     use critical_lambda, only: SIDE_PLUS, SIDE_MINUS, SIDE_NAMES, SIDE_LABELS, CONFIRM_OFFSET
-    use critical_set, only: critical_set_t, MECHANISM_NAMES, MECHANISM_COMPLEX_PAIR
+    use critical_set, only: critical_set_t, MECHANISM_NAMES, MECHANISM_COMPLEX_PAIR, &
+                            onset_point
     use ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use critical_point, only: slip_sign, critical_c_t
     use analysis_base, only: analysis_t
@@ -36,7 +37,9 @@ module threshold_run
 
     character(len=*), parameter, public :: THRESHOLD_ADAPT_HEADER = 'level,n_dofs,'// &
         'n_contact,n_cells,lambda_plus,error_estimate_plus,lambda_minus,'// &
-        'error_estimate_minus,time_s,error_bar_plus,error_bar_minus'
+        'error_estimate_minus,time_s,error_bar_plus,error_bar_minus,collision_plus,'// &
+        'error_estimate_collision_plus,error_bar_collision_plus,collision_minus,'// &
+        'error_estimate_collision_minus,error_bar_collision_minus'
 
     !> 'threshold': the thresholds on the mesh of &mesh.
     type, extends(analysis_t), public :: threshold_run_t
@@ -212,8 +215,9 @@ contains
     end function adapt_threshold_run_report
 
     !> level,n_dofs,n_contact,n_cells,lambda_plus,error_estimate_plus,lambda_minus,
-    !> error_estimate_minus,time_s,error_bar_plus,error_bar_minus; a side's cells empty where
-    !> it has no threshold or no estimate.
+    !> error_estimate_minus,time_s,error_bar_plus,error_bar_minus, then per side the collision
+    !> onset, its estimate and bar; a side's cells empty where it has no threshold (collision
+    !> onset) or no estimate.
     subroutine write_threshold_adapt_csv(path, out, stat)
         character(len=*), intent(in) :: path
         type(adaptive_thresholds_t), intent(in) :: out
@@ -238,6 +242,17 @@ contains
                     line = line//','
                     if (row%error_bar(side) >= 0.0_wp) line = line// &
                         real_to_text(row%error_bar(side))
+                end do
+                ! a side whose onset is a collision of two real mu: its lambda, estimate, bar
+                do side = SIDE_PLUS, SIDE_MINUS
+                    line = line//','
+                    if (row%collision(side)) line = line//real_to_text(row%collision_lambda(side))
+                    line = line//','
+                    if (row%collision_estimate(side) >= 0.0_wp) line = line// &
+                        real_to_text(row%collision_estimate(side))
+                    line = line//','
+                    if (row%collision_bar(side) >= 0.0_wp) line = line// &
+                        real_to_text(row%collision_bar(side))
                 end do
                 call csv%row(line)
             end associate
@@ -372,23 +387,6 @@ contains
         call summary%add_integer('boundary_n_evaluations', set%n_evaluations)
     end subroutine add_boundary_keys
 
-    !> The index of the boundary point nearest zero on `side` (0 when none): the onset of a
-    !> positive mu as |lambda| grows from 0 on that side.
-    pure integer function onset_point(set, side)
-        type(critical_set_t), intent(in) :: set
-        integer, intent(in) :: side
-        integer :: i
-        onset_point = 0
-        do i = 1, size(set%points)
-            if ((set%points(i)%lambda > 0.0_wp) .neqv. (side == SIDE_PLUS)) cycle
-            if (onset_point == 0) then
-                onset_point = i
-            else if (abs(set%points(i)%lambda) < abs(set%points(onset_point)%lambda)) then
-                onset_point = i
-            end if
-        end do
-    end function onset_point
-
     !> The intervals of the searched range where a positive mu exists: between consecutive
     !> boundary points, and from or to the ends of the range.
     pure subroutine positive_intervals(set, lower, upper)
@@ -520,9 +518,11 @@ contains
             character(len=:), allocatable :: s
             s = ''
             if (res%estimate%computed(side)) then
+                s = ' enrichment'
+                if (res%estimate%halved_mesh) s = ', halved mesh'
                 s = NL//'              relative error estimate '// &
                     short_real_text(abs(res%estimate%relative(side)))//' ('// &
-                    element_name(res%estimate%element)//' enrichment); error bar '// &
+                    element_name(res%estimate%element)//s//'); error bar '// &
                     short_real_text(res%estimate%bar(side))
             else if (len_trim(res%estimate%skipped(side)) > 0) then
                 s = NL//'              relative error estimate '//trim(res%estimate%skipped(side))

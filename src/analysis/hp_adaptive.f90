@@ -1,0 +1,275 @@
+! SPDX-License-Identifier: MIT
+!> &adapt strategy = 'hp' for analysis 'eigen': instead of refining where an estimate
+!> marks, level k (k = 1, 2, ...) is the input mesh (its vertices) graded geometrically in
+!> k layers toward the singular points (mesh_singular: corners, ends of the boundary parts;
+!> factor &adapt sigma), with cell degrees 1 + layer up to min(k + 1, &adapt p_max)
+!> (mesh_geometric); the space is hp_space's, the interior functions condensed. The lowest
+!> positive mu of each level is solved as the eigen analysis does (dense or ARPACK by
+!> &eigen, with its round-off bound); the bar comes from the changes between levels
+!> (error_bar: hp_level_bar). The loop stops when the bar meets &adapt tolerance, when the
+!> round-off part is at least the rest of the bar (the floating-point floor: more levels
+!> cannot lower it), or at max_levels / max_dofs / the memory available.
+!> This module computes; hp_adapt_run writes.
+module hp_adaptive
+    use kinds, only: wp
+    use status, only: status_t, STATUS_BAD_INPUT
+    use strings, only: to_string, short_real_text
+    use timer, only: wall_time, timings_t
+    use run_config, only: config_t
+    use problem, only: problem_t
+    use mesh, only: mesh_t
+    use element_types, only: element_corners, element_name
+    use mesh_singular, only: singular_vertices
+    use mesh_geometric, only: geometric_mesh, cell_layers, layer_degrees
+    use hp_space, only: hp_space_t, build_hp_space
+    use hp_eigen, only: hp_factored_problem
+    use sparse_cholesky, only: cholesky_t
+    use contact_boundary, only: assemble_b
+    use eigen_analysis, only: eigen_result_t, eigen_with_factor, choose_solver
+    use accuracy, only: WARNING_LEN
+    use adaptive_loop, only: level_dof_limit
+    use error_bar, only: hp_level_bar
+    implicit none
+    private
+    public :: hp_adapt_eigen, hp_level_degrees
+
+    !> the degrees rise by this per layer away from the singular points (bench_hp's ladder)
+    real(wp), parameter :: DEGREE_SLOPE = 1.0_wp
+    integer, parameter :: P_MIN = 1   !! the degree of the cells at a singular point
+    character(len=*), parameter, public :: HP_ESTIMATE = 'change to the previous hp level'
+
+    !> One level: a row of adapt.csv.
+    type, public :: hp_level_t
+        integer :: level = 0
+        integer :: layers = 0
+        integer :: p_min = 0
+        integer :: p_max = 0
+        integer :: n_dofs = 0        !! free dofs of the condensed system
+        integer :: n_contact = 0     !! contact functions
+        integer :: n_cells = 0
+        logical :: has_mu = .false.
+        real(wp) :: mu = 0.0_wp      !! lowest positive mu, input units
+        real(wp) :: error_bar = -1.0_wp   !! relative; < 0: none (the first level)
+        real(wp) :: roundoff = -1.0_wp    !! its round-off part; < 0: unknown
+        real(wp) :: time_s = 0.0_wp       !! wall time from the loop's start to this level's end
+    end type hp_level_t
+
+    type, public :: hp_result_t
+        type(hp_level_t), allocatable :: levels(:)
+        !> the last level: graded P1 mesh, condensed K, hp contact (nodes: basis functions),
+        !> dofs%n_free only
+        type(problem_t) :: prob
+        type(hp_space_t) :: space          !! its space (cell degrees)
+        type(eigen_result_t) :: res        !! its spectrum, bar, round-off and warnings
+        logical :: converged = .false.
+        logical :: floor_reached = .false. !! stopped by round-off, not by a limit
+        character(len=:), allocatable :: outcome
+    end type hp_result_t
+
+contains
+
+    !> The degrees of the cells of level `layers` (its graded mesh `graded`, singular
+    !> points `points`, h_min of geometric_mesh).
+    pure function hp_level_degrees(graded, points, sigma, h_min, layers, p_max) result(degree)
+        type(mesh_t), intent(in) :: graded
+        real(wp), intent(in) :: points(:, :), sigma, h_min
+        integer, intent(in) :: layers, p_max
+        integer, allocatable :: degree(:)
+        degree = layer_degrees(cell_layers(graded, points, sigma, h_min), P_MIN, DEGREE_SLOPE, &
+                               min(layers + 1, p_max))
+    end function hp_level_degrees
+
+    !> Run the loop from the problem `start` (its mesh and parts; its K is not used). A
+    !> limit reached is no failure (stat ok, out%converged false, out%outcome and a warning
+    !> of out%res say so).
+    subroutine hp_adapt_eigen(config, start, out, timings, stat)
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(in) :: start
+        type(hp_result_t), intent(out) :: out
+        type(timings_t), intent(inout) :: timings
+        type(status_t), intent(out) :: stat
+        type(mesh_t) :: graded
+        type(hp_space_t) :: space
+        type(problem_t) :: prob
+        type(eigen_result_t) :: res
+        type(cholesky_t) :: chol
+        type(hp_level_t) :: row
+        real(wp), allocatable :: points(:, :), mu(:)
+        integer, allocatable :: degree(:)
+        real(wp) :: loop_start, h_min, tolerance
+        integer :: layers, max_dofs, i
+        character(len=:), allocatable :: dof_limit
+
+        loop_start = wall_time()
+        tolerance = config%adapt%tolerance
+        allocate (out%levels(0))
+        out%outcome = ''
+        if (element_corners(start%mesh%element) /= 3) then
+            call stat%fail(STATUS_BAD_INPUT, config%input_file//": &adapt: strategy = 'hp': "// &
+                'expected triangles (the mesh has '//element_name(start%mesh%element)// &
+                ' cells)')
+            return
+        end if
+        call level_dof_limit(config, max_dofs, dof_limit)
+        points = start%mesh%coords(:, singular_vertices(start%mesh))
+        layers = 0
+        do
+            layers = layers + 1
+            call geometric_mesh(start%mesh, points, config%adapt%sigma, layers, graded, h_min, stat)
+            if (.not. stat%ok()) return
+            degree = hp_level_degrees(graded, points, config%adapt%sigma, h_min, layers, &
+                                      config%adapt%p_max)
+            call build_hp_space(graded, degree, start%dirichlet_parts, space, stat)
+            if (.not. stat%ok()) return
+            if (config%adapt%max_dofs > 0 .and. space%n_free() > max_dofs .and. &
+                size(out%levels) == 0) then
+                call stat%fail(STATUS_BAD_INPUT, config%input_file//': &adapt: max_dofs = '// &
+                    to_string(max_dofs)//": expected at least the "// &
+                    to_string(space%n_free())//" free dofs of the first hp level")
+                return
+            end if
+            if (space%n_free() > max_dofs .and. size(out%levels) > 0) then
+                out%outcome = 'tolerance '//short_real_text(tolerance)//' not met: the next '// &
+                    'level would have '//to_string(space%n_free())//' dofs, more than '// &
+                    dof_limit//'; reached error bar '//bar_text()
+                exit
+            end if
+            call solve_level(stat)
+            if (.not. stat%ok()) return
+            call timings%note(level_line(out%levels(size(out%levels))))
+            associate (last => out%levels(size(out%levels)))
+                if (.not. last%has_mu) then
+                    out%outcome = 'tolerance not met: no positive mu at level '// &
+                                  to_string(last%level)
+                    exit
+                end if
+                if (last%error_bar >= 0.0_wp .and. last%error_bar <= tolerance) then
+                    out%converged = .true.
+                    out%outcome = 'tolerance '//short_real_text(tolerance)//' met at level '// &
+                        to_string(last%level)//': error bar '//bar_text()
+                    exit
+                end if
+                ! the round-off part at least the discretisation's: more levels lower the
+                ! latter only, and the bar cannot fall below twice the round-off
+                if (last%error_bar >= 0.0_wp .and. last%roundoff >= 0.0_wp .and. &
+                    last%roundoff >= last%error_bar - last%roundoff) then
+                    out%floor_reached = .true.
+                    out%outcome = 'tolerance '//short_real_text(tolerance)//' not met: '// &
+                        'the floating-point floor is reached (round-off bound '// &
+                        short_real_text(last%roundoff)//' of the error bar '//bar_text()//')'
+                    exit
+                end if
+            end associate
+            if (config%adapt%max_levels > 0 .and. layers >= config%adapt%max_levels) then
+                out%outcome = 'tolerance '//short_real_text(tolerance)//' not met: '// &
+                    'max_levels = '//to_string(config%adapt%max_levels)// &
+                    ' reached with error bar '//bar_text()
+                exit
+            end if
+        end do
+        if (.not. out%converged) out%res%warnings = [character(len=WARNING_LEN) :: &
+                                                     out%outcome, out%res%warnings]
+
+    contains
+
+        !> Level `layers` on `graded` with `degree`: the eigen solve, its row and its bar;
+        !> the problem and result become out%prob, out%res.
+        subroutine solve_level(stat)
+            type(status_t), intent(out) :: stat
+            prob = problem_t()
+            prob%mesh = graded
+            prob%dirichlet_parts = start%dirichlet_parts
+            prob%neumann_parts = start%neumann_parts
+            prob%contact_part = start%contact_part
+            prob%young = start%young
+            prob%poisson = start%poisson
+            call hp_factored_problem(graded, degree, start%dirichlet_parts, &
+                start%contact_part, start%young, start%poisson, space, prob%contact, prob%k, &
+                chol, timings, stat)
+            if (.not. stat%ok()) then
+                stat%message = config%input_file//": &adapt: strategy = 'hp': level "// &
+                               to_string(layers)//': '//stat%message
+                return
+            end if
+            prob%dofs%n_free = space%n_free()
+            call timings%note('hp level '//to_string(layers)//': '// &
+                to_string(graded%n_cells())//' cells, degrees 1 to '// &
+                to_string(maxval(degree))//', '//to_string(space%n_free())//' dofs')
+            res = eigen_result_t()
+            res%lambda = config%analysis%lambda
+            call assemble_b(prob%contact, prob%dofs%n_free, res%lambda, res%b, stat)
+            if (.not. stat%ok()) return
+            res%solver = choose_solver(config%eigen%solver, prob%contact%p(), &
+                                       config%eigen%dense_max_contact, config%eigen%operator)
+            call eigen_with_factor(config, prob, chol, res, timings, stat)
+            call chol%free()
+            if (.not. stat%ok()) return
+
+            row%level = layers
+            row%layers = layers
+            row%p_min = minval(degree)
+            row%p_max = maxval(degree)
+            row%n_dofs = prob%dofs%n_free
+            row%n_contact = prob%contact%p()
+            row%n_cells = graded%n_cells()
+            i = res%spec%lowest_positive()
+            row%has_mu = i > 0
+            row%mu = 0.0_wp
+            if (row%has_mu) row%mu = real(res%spec%mu(i), wp)
+            row%roundoff = res%roundoff
+            out%levels = [out%levels, row]
+            call set_bar(out%levels)
+            row = out%levels(size(out%levels))
+            if (row%error_bar >= 0.0_wp) then
+                res%error%computed = .true.
+                res%error%bar = row%error_bar
+                res%error%relative = abs(row%mu - out%levels(size(out%levels) - 1)%mu)/row%mu
+                res%error%method = HP_ESTIMATE
+            end if
+            out%levels(size(out%levels))%time_s = wall_time() - loop_start
+            out%prob = prob
+            out%space = space
+            out%res = res
+        end subroutine solve_level
+
+        !> The bar of the last level from the mu of the levels since the last one without a
+        !> positive mu (plain arrays: see adaptive_eigen's set_level_bar).
+        subroutine set_bar(levels)
+            type(hp_level_t), intent(inout) :: levels(:)
+            integer :: k, first, j
+            k = size(levels)
+            levels(k)%error_bar = -1.0_wp
+            if (.not. levels(k)%has_mu) return
+            first = k
+            do while (first > 1)
+                if (.not. levels(first - 1)%has_mu) exit
+                first = first - 1
+            end do
+            allocate (mu(k - first + 1))
+            do j = first, k
+                mu(j - first + 1) = levels(j)%mu
+            end do
+            levels(k)%error_bar = hp_level_bar(mu, levels(k)%roundoff)
+            deallocate (mu)
+        end subroutine set_bar
+
+        function bar_text() result(text)
+            character(len=:), allocatable :: text
+            text = 'none'
+            if (size(out%levels) == 0) return
+            associate (last => out%levels(size(out%levels)))
+                if (last%error_bar >= 0.0_wp) text = short_real_text(last%error_bar)
+                text = text//' at '//to_string(last%n_dofs)//' dofs'
+            end associate
+        end function bar_text
+
+        function level_line(r) result(line)
+            type(hp_level_t), intent(in) :: r
+            character(len=:), allocatable :: line
+            line = 'hp level '//to_string(r%level)//': '//to_string(r%n_dofs)//' dofs, '// &
+                'degrees '//to_string(r%p_min)//' to '//to_string(r%p_max)
+            if (r%has_mu) line = line//', mu = '//short_real_text(r%mu, 12)
+            if (r%error_bar >= 0.0_wp) line = line//', bar '//short_real_text(r%error_bar)
+        end function level_line
+    end subroutine hp_adapt_eigen
+end module hp_adaptive

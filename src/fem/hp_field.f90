@@ -1,0 +1,111 @@
+! SPDX-License-Identifier: MIT
+!> A vector field of an hp space (hp_space) sampled on a linear sub-triangulation, for
+!> viewers that draw P1 cells only: each cell of degree p is cut into p x p similar
+!> triangles and the field evaluated at their corners (the points are the cell's own, so
+!> the sub-mesh repeats the points on shared sides; the field is continuous there). The
+!> coefficients given are those of the condensed system (hp_stiffness: vertex and edge
+!> functions); the interior ones are recovered cell by cell, u_b = -K_bb^-1 K_bc u_c, so
+!> the sampled field is the full discrete solution, not its condensed part.
+module hp_field
+    use kinds, only: wp
+    use status, only: status_t, STATUS_MESH
+    use strings, only: to_string
+    use mesh, only: mesh_t
+    use element_types, only: ELEMENT_P1
+    use hp_basis, only: hp_triangle_shape, hp_local_count, hp_bubble_count
+    use hp_space, only: hp_space_t
+    use hp_stiffness, only: hp_tables_t, hp_reference_tables, hp_element_stiffness, &
+                            recover_interior, configuration_key, cached_table, HP_OK
+    implicit none
+    private
+    public :: sample_hp_field
+
+contains
+
+    !> The P1 sub-triangulation `sub` of the cells of `m` (cell c cut into
+    !> space%cell_degree(c)^2 triangles), the field `u` (free dofs of `space`, interleaved
+    !> x, y) at its points as values(2, n_points), and each sub-cell's degree. Material data
+    !> (`young`, `poisson`) give the element stiffness that recovers the interior functions.
+    subroutine sample_hp_field(m, space, young, poisson, u, sub, values, degree, stat)
+        type(mesh_t), intent(in) :: m
+        type(hp_space_t), intent(in) :: space
+        real(wp), intent(in) :: young, poisson, u(:)
+        type(mesh_t), intent(out) :: sub
+        real(wp), allocatable, intent(out) :: values(:, :)
+        real(wp), allocatable, intent(out) :: degree(:)
+        type(status_t), intent(out) :: stat
+        type(hp_tables_t), allocatable :: tables(:)
+        real(wp), allocatable :: ke(:, :), coefficients(:), ub(:), shape(:), gradient(:, :)
+        integer, allocatable :: dofs(:)
+        real(wp) :: xi(2), jacobian(2, 2)
+        integer :: c, p, s, n_points, n_cells, n_local, n_condensed, i, j, a, info, &
+                   t, n_tables, point, cell
+        integer, allocatable :: index_of(:, :)
+
+        n_points = 0
+        n_cells = 0
+        do c = 1, m%n_cells()
+            s = space%cell_degree(c)
+            n_points = n_points + (s + 1)*(s + 2)/2
+            n_cells = n_cells + s*s
+        end do
+        sub%element = ELEMENT_P1
+        allocate (sub%coords(2, n_points), sub%cells(3, n_cells), values(2, n_points), &
+                  degree(n_cells))
+        allocate (sub%edges(2, 0), sub%edge_part(0), sub%part_names(0))
+        n_tables = 0
+        point = 0
+        cell = 0
+        do c = 1, m%n_cells()
+            p = space%cell_degree(c)
+            t = cached_table(tables, n_tables, &
+                             configuration_key(space%edge_degrees_of(c), p, space%cell_flip(:, c)))
+            call hp_element_stiffness(m%coords(:, m%cells(1:3, c)), tables(t), young, poisson, &
+                                      ke, info)
+            dofs = space%cell_dofs(c, m%cells(1:3, c))
+            n_condensed = size(dofs)
+            allocate (coefficients(size(ke, 1)), source=0.0_wp)
+            where (dofs > 0) coefficients(1:n_condensed) = u(max(dofs, 1))
+            if (info == HP_OK) call recover_interior(ke, 2*hp_bubble_count(p), &
+                                                     coefficients(1:n_condensed), ub, info)
+            if (info /= HP_OK) then
+                call stat%fail(STATUS_MESH, 'hp field: cell '//to_string(c)// &
+                               ' is clockwise or flat')
+                return
+            end if
+            coefficients(n_condensed + 1:) = ub
+            n_local = hp_local_count(space%edge_degrees_of(c), p)
+            allocate (shape(n_local), gradient(2, n_local))
+            jacobian(:, 1) = m%coords(:, m%cells(2, c)) - m%coords(:, m%cells(1, c))
+            jacobian(:, 2) = m%coords(:, m%cells(3, c)) - m%coords(:, m%cells(1, c))
+            allocate (index_of(0:p, 0:p), source=0)
+            do j = 0, p
+                do i = 0, p - j
+                    point = point + 1
+                    index_of(i, j) = point
+                    xi = [real(i, wp), real(j, wp)]/real(p, wp)
+                    sub%coords(:, point) = m%coords(:, m%cells(1, c)) + matmul(jacobian, xi)
+                    call hp_triangle_shape(space%edge_degrees_of(c), p, space%cell_flip(:, c), &
+                                           xi, shape, gradient)
+                    do a = 1, 2
+                        values(a, point) = dot_product(shape, coefficients(a:2*n_local:2))
+                    end do
+                end do
+            end do
+            do j = 0, p - 1   ! p^2 triangles, anticlockwise as their cell
+                do i = 0, p - 1 - j
+                    cell = cell + 1
+                    sub%cells(:, cell) = [index_of(i, j), index_of(i + 1, j), index_of(i, j + 1)]
+                    if (i + j < p - 1) then
+                        cell = cell + 1
+                        sub%cells(:, cell) = [index_of(i + 1, j), index_of(i + 1, j + 1), &
+                                              index_of(i, j + 1)]
+                    end if
+                end do
+            end do
+            degree(cell - p*p + 1:cell) = real(p, wp)
+            deallocate (coefficients, shape, gradient, index_of)
+        end do
+
+    end subroutine sample_hp_field
+end module hp_field

@@ -1,0 +1,145 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# &adapt strategy = 'hp' end to end: on the reference scene the loop meets 1e-10 and its
+# value is within its bar of the independent truth (tests/data/truths.csv); the files
+# (adapt.csv per level, mode_001.vtu with the degree field, mesh.msh and degrees.csv);
+# the dense solver's whole spectrum;
+# the same from a Gmsh mesh of the trapezoid scene; hp within the h loop's bar on a
+# second scene; the floating-point floor and a level limit end in exit 8 with a warning;
+# bad input is one stderr line naming &adapt and the variable, exit 2.
+# Usage: cli_hp.sh NCEIG SOURCE_DIR
+set -u
+nceig=$1
+root=$2
+source "$(dirname "$0")/lib/cli_common.sh"
+cli_begin cli_hp
+truth() { awk -F, -v s="$1" '$1 == s && $2 == "lowest_positive_mu" { print $3 }' \
+    "$root/tests/data/truths.csv"; }
+# within MU BAR TRUTH: |MU - TRUTH| <= BAR |MU| (the bar is relative)
+within() { awk -v m="$1" -v b="$2" -v t="$3" 'BEGIN { d = m - t; if (d < 0) d = -d
+    exit !(b > 0 && d <= b * m) }'; }
+
+# The reference scene (the rectangle's defaults) from 2 x 2 squares.
+cat >"$work/hp.nml" <<NML
+&mesh nx = 2, ny = 2, element = 'p1' /
+&analysis kind = 'eigen', lambda = 5.0 /
+&adapt tolerance = 1e-10, strategy = 'hp' /
+&output directory = '$work/out' /
+NML
+"$nceig" "$work/hp.nml" >"$work/stdout" 2>"$work/err"; rc=$?
+s=$work/out/summary.json
+check 'runs: exit 0, nothing on stderr' '[[ $rc -eq 0 && ! -s "$work/err" ]]'
+check 'summary: converged, strategy hp' \
+    '[[ $(json "$s" adapt_converged) == true && $(json "$s" adapt_strategy) == hp ]]'
+check 'summary: the bar meets the tolerance' \
+    'awk -v e="$(json "$s" lowest_positive_error_bar)" "BEGIN { exit !(e > 0 && e <= 1e-10) }"'
+check 'the value is within its bar of the truth' \
+    'within "$(json "$s" lowest_positive_mu)" "$(json "$s" lowest_positive_error_bar)" "$(truth ref)"'
+check 'stdout: the headline with its bar, the tolerance met' \
+    'grep -q "critical c_n = 0.75284361.* +- " "$work/stdout" &&
+     grep -q "tolerance 1.00E-10 met at level" "$work/stdout"'
+csv=$work/out/adapt.csv
+check 'adapt.csv: header' \
+    '[[ $(head -n 1 "$csv") == level,layers,p_min,p_max,n_dofs,n_contact,n_cells,mu,error_bar,roundoff,time_s ]]'
+check 'adapt.csv: one row per level, the last the summary'\''s' \
+    '[[ $(($(wc -l <"$csv") - 1)) -eq $(json "$s" adapt_levels) &&
+        $(tail -n 1 "$csv" | cut -d, -f5) == $(json "$s" n_dofs) ]]'
+check 'adapt.csv: level k has k layers, degrees 1 to k + 1, growing dofs' \
+    'awk -F, "NR > 1 && (\$2 != NR - 1 || \$3 != 1 || \$4 != NR || \$5 <= d) { bad = 1 }
+              NR > 1 { d = \$5 } END { exit bad }" "$csv"'
+check 'adapt.csv: no bar at the first level, one at every other' \
+    'awk -F, "NR == 2 && \$9 != \"\" { bad = 1 } NR > 2 && \$9 == \"\" { bad = 1 } END { exit bad }" "$csv"'
+check 'mode_001.vtu carries the degree field' \
+    'grep -q "Name=\"degree\"" "$work/out/mode_001.vtu"'
+check 'degrees.csv: one row per cell of mesh.msh' \
+    '[[ $(($(wc -l <"$work/out/degrees.csv") - 1)) -eq $(json "$s" n_cells) ]]'
+check 'summary lists mesh.msh, degrees.csv and adapt.csv' \
+    'grep -q "\"mesh.msh\"" "$s" && grep -q "\"degrees.csv\"" "$s" && grep -q "\"adapt.csv\"" "$s"'
+
+# The dense solver on every level: the whole spectrum of the last one (one eigenvalue per
+# contact function), its lowest positive mu the same within the round-off bound.
+"$nceig" "$work/hp.nml" --set "eigen%solver='dense'" --set "output%directory='$work/dense'" \
+    >/dev/null 2>"$work/err"; rc=$?
+d=$work/dense/summary.json
+check 'dense: every eigenvalue of the last level' '[[ $rc -eq 0 && ! -s "$work/err" &&
+    $(json "$d" n_eigenvalues) -eq $(json "$d" n_contact) &&
+    $(($(wc -l <"$work/dense/eigenvalues.csv") - 1)) -eq $(json "$d" n_contact) ]]'
+check 'dense: the same mu within the round-off bound' \
+    'within "$(json "$d" lowest_positive_mu)" "$(json "$s" lowest_positive_roundoff)" "$(json "$s" lowest_positive_mu)"'
+
+# A Gmsh mesh: the trapezoid scene (its slanted side adds corners of other angles).
+if command -v gmsh >/dev/null 2>&1; then
+    source "$root/scripts/lib/truth_scenes.sh"
+    scene_info trapezoid
+    scene_gmsh "$work/trapezoid.msh" 1 -setnumber graded 0 -clmax 0.3
+    { scene_mesh_nml "$work/trapezoid.msh"; scene_physics_nml
+      echo "&adapt tolerance = 1e-8, strategy = 'hp' /"
+      echo "&output directory = '$work/gmsh', vtk = .false. /"; } >"$work/gmsh.nml"
+    "$nceig" "$work/gmsh.nml" >/dev/null 2>"$work/err"; rc=$?
+    g=$work/gmsh/summary.json
+    check 'Gmsh mesh: meets 1e-8' '[[ $rc -eq 0 && ! -s "$work/err" &&
+        $(json "$g" adapt_converged) == true ]]'
+    check 'Gmsh mesh: within its bar of the truth' \
+        'within "$(json "$g" lowest_positive_mu)" "$(json "$g" lowest_positive_error_bar)" "$(truth trapezoid)"'
+else
+    echo 'SKIP: gmsh is not installed: the Gmsh mesh checks did not run'
+fi
+
+# hp against the h loop (P3) on the 2 x 1 rectangle, nu = 0.25, lambda = -4.
+cat >"$work/rect.nml" <<NML
+&mesh width = 2.0, nx = 4, ny = 2, element = 'p3' /
+&material poisson = 0.25 /
+&analysis kind = 'eigen', lambda = -4.0 /
+&adapt tolerance = 1e-7 /
+&output directory = '$work/h', vtk = .false., plot = .false. /
+NML
+"$nceig" "$work/rect.nml" >/dev/null 2>"$work/err"; rc_h=$?
+"$nceig" "$work/rect.nml" --set "adapt%strategy='hp'" --set "mesh%element='p1'" \
+    --set "output%directory='$work/hp_rect'" >/dev/null 2>>"$work/err"; rc_hp=$?
+h=$work/h/summary.json
+p=$work/hp_rect/summary.json
+check '2 x 1: both loops meet 1e-7' '[[ $rc_h -eq 0 && $rc_hp -eq 0 && ! -s "$work/err" &&
+    $(json "$h" adapt_converged) == true && $(json "$p" adapt_converged) == true ]]'
+check '2 x 1: hp within the h loop'\''s bar' \
+    'within "$(json "$p" lowest_positive_mu)" "$(json "$h" lowest_positive_error_bar)" "$(json "$h" lowest_positive_mu)"'
+check '2 x 1: hp within its own bar of the truth' \
+    'within "$(json "$p" lowest_positive_mu)" "$(json "$p" lowest_positive_error_bar)" "$(truth rect2x1-nu0.25-lambda-4)"'
+
+# Below the round-off bound: the loop stops at the floor instead of refining in vain.
+"$nceig" "$work/hp.nml" --set adapt%tolerance=1e-14 --set "output%directory='$work/floor'" \
+    >"$work/stdout" 2>"$work/err"; rc=$?
+f=$work/floor/summary.json
+check 'floor: exit 8, one stderr line, the set written' '[[ $rc -eq 8 && $(wc -l <"$work/err") -eq 1 &&
+    $(json "$f" adapt_converged) == false && $(json "$f" adapt_floor_reached) == true ]]'
+check 'floor: said on stdout and in the warnings' \
+    'grep -q "the floating-point floor is reached" "$work/stdout" &&
+     grep "\"warnings\"" "$f" | grep -q "the floating-point floor is reached"'
+check 'floor: the round-off part is at least half the bar' \
+    'awk -v b="$(json "$f" lowest_positive_error_bar)" -v r="$(json "$f" lowest_positive_roundoff)" \
+        "BEGIN { exit !(r > 0 && 2 * r >= b) }"'
+
+# A level limit: exit 8 with the limit named.
+"$nceig" "$work/hp.nml" --set adapt%max_levels=3 --set "output%directory='$work/limit'" \
+    >"$work/stdout" 2>"$work/err"; rc=$?
+check 'max_levels: exit 8, three levels, the limit named' '[[ $rc -eq 8 &&
+    $(json "$work/limit/summary.json" adapt_levels) -eq 3 ]] && grep -q "max_levels = 3" "$work/err"'
+
+# Bad input: one line on stderr naming &adapt and the variable, exit 2, no output.
+bad() {
+    local name=$1 pattern=$2
+    shift 2
+    "$nceig" "$work/hp.nml" --set "output%directory='$work/bad_$name'" "$@" \
+        >/dev/null 2>"$work/bad.err"; rc=$?
+    check "bad input ($name): exit 2, one line naming it, no output" \
+        '[[ $rc -eq 2 && $(wc -l <"$work/bad.err") -eq 1 && ! -e "$work/bad_$name" ]] &&
+         grep -q -- "$pattern" "$work/bad.err"'
+}
+bad strategy "&adapt: strategy = 'p': expected one of 'h', 'hp'" --set "adapt%strategy='p'"
+bad quads "&adapt: strategy = 'hp': expected 'h' for &mesh element = 'q1'" --set "mesh%element='q1'"
+bad degree "&adapt: p_max = 21: expected a degree from 1 to 20" --set adapt%p_max=21
+bad sigma "&adapt: sigma = 1.0: expected a grading factor" --set adapt%sigma=1.0
+bad max_dofs "&adapt: max_dofs = 100: expected at least the 220 free dofs of the first hp level" \
+    --set adapt%max_dofs=100
+bad threshold "&adapt: strategy = 'hp': expected 'h' for &analysis kind = 'threshold'" \
+    --set "analysis%kind='threshold'"
+cli_end
