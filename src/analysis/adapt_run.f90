@@ -143,21 +143,23 @@ contains
         type(json_object_t) :: summary
         summary = eigen_summary_json(config, this%out%prob, this%out%res, this%timings)
         call add_adapt_keys(summary, config, prob%dofs%n_free, size(this%out%levels) - 1, &
-                            this%out%converged, this%out%outcome)
+                            this%out%converged, this%out%floor_reached, this%out%outcome)
     end function adapt_run_summary
 
-    !> The keys of an adaptive loop (any goal) that started from `start_dofs` free dofs.
-    subroutine add_adapt_keys(summary, config, start_dofs, levels, converged, outcome)
+    !> The keys of an adaptive loop (any goal) that started from `start_dofs` free dofs;
+    !> `floor`: it stopped at the floating-point floor.
+    subroutine add_adapt_keys(summary, config, start_dofs, levels, converged, floor, outcome)
         type(json_object_t), intent(inout) :: summary
         type(config_t), intent(in) :: config
         integer, intent(in) :: start_dofs, levels
-        logical, intent(in) :: converged
+        logical, intent(in) :: converged, floor
         character(len=*), intent(in) :: outcome
         call summary%add_real('adapt_tolerance', config%adapt%tolerance)
         call summary%add_real('adapt_theta', config%adapt%theta)
         call summary%add_integer('adapt_levels', levels)
         call summary%add_integer('adapt_start_dofs', start_dofs)
         call summary%add_logical('adapt_converged', converged)
+        call summary%add_logical('adapt_floor_reached', floor)
         call summary%add_string('adapt_outcome', outcome)
         call summary%add_string('adapted_mesh_file', MESH_FILE)
     end subroutine add_adapt_keys

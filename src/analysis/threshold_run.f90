@@ -152,7 +152,8 @@ contains
         call add_threshold_keys(summary, this%res)
         if (allocated(this%res%sweep%lambda)) call add_sweep_keys(summary, config, this%res)
         if (this%adaptive) call add_adapt_keys(summary, config, prob%dofs%n_free, &
-            size(this%adapted%levels) - 1, this%adapted%converged, this%adapted%outcome)
+            size(this%adapted%levels) - 1, this%adapted%converged, .false., &
+            this%adapted%outcome)
     end function threshold_run_summary
 
     function threshold_run_report(this, config, prob) result(text)
