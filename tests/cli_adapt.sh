@@ -91,6 +91,22 @@ check 'max_levels reached: warning in summary.json' \
 check 'max_levels reached: warning on stdout' \
     'grep -q "^warning: tolerance 1.00E-05 not met: max_levels = 2 reached with error bar" "$work/stdout"'
 
+# Below the round-off bound (nu -> 1/2: R grows like the Lame ratio and with the dofs): the
+# loop stops at the floating-point floor, as the hp loop does, instead of refining in vain.
+"$nceig" "$work/adapt.nml" --set material%poisson=0.499999999 \
+    --set output%directory="$work/floor" >"$work/stdout" 2>"$work/err"; rc=$?
+f=$work/floor/summary.json
+check 'floor: exit 8, one stderr line, the set written' '[[ $rc -eq 8 && $(wc -l <"$work/err") -eq 1 &&
+    -s "$work/floor/mesh.msh" && $(json "$f" adapt_converged) == false &&
+    $(json "$f" adapt_floor_reached) == true ]]'
+check 'floor: said on stdout and in the warnings' \
+    'grep -q "^warning: tolerance 1.00E-05 not met: the floating-point floor is reached" "$work/stdout" &&
+     grep -A1 "\"warnings\"" "$f" | grep -q "the floating-point floor is reached"'
+check 'floor: the round-off part is at least half the bar' \
+    'awk -v b="$(json "$f" lowest_positive_error_bar)" -v r="$(json "$f" lowest_positive_roundoff)" \
+        "BEGIN { exit !(r > 0 && 2 * r >= b) }"'
+check 'not the floor when the tolerance is met' '[[ $(json "$s" adapt_floor_reached) == false ]]'
+
 # No positive mu (lambda = 1, below the threshold 1.94): nothing to adapt to, said so; the
 # set holds exactly its listed files (no picture, no leftover of one).
 "$nceig" "$work/adapt.nml" --set analysis%lambda=1 --set output%directory="$work/none" \

@@ -9,7 +9,11 @@
 # Usage: scripts/dev/roundoff_spread.sh NCEIG NAME 'MESH' 'MATERIAL' LAMBDA
 #   MESH: the &mesh body with the size left out (rectangle: width and height are set to s;
 #   'sliver DELTA N': an N x N Gmsh triangle mesh of the unit square with one cell on the
-#   contact side split around a node DELTA (relative) off its diagonal: a sliver).
+#   contact side split around a node DELTA (relative) off its diagonal: a sliver;
+#   'gmsh FILE': the Gmsh mesh FILE (an adaptive run's mesh.msh, parts bottom/right/top/left)
+#   with its nodes scaled by s and moved by 0.37).
+# ROUNDOFF_EXTRA: more namelist groups for every run (e.g. "&adapt strategy = 'hp',
+# tolerance = 1e-15, max_levels = 8 /": one hp level, whose last level is compared).
 # Prints: NAME, mu, spread (max - min) / |mu| over the variants, the largest bound, the
 # ratio, and the median time_roundoff_s and time_eigen_s of the base run.
 set -u
@@ -48,9 +52,20 @@ sliver_mesh() {
         print "$EndElements" }' >"$4"
 }
 
+# scaled_msh IN S OUT: the MSH 4.1 file IN with x, y of its nodes mapped to x S + 0.37
+scaled_msh() {
+    awk -v s="$2" '/^\$Nodes/ { inside = 1 } /^\$EndNodes/ { inside = 0 }
+        inside && NF == 3 && $1 ~ /[.eE]/ { printf "%.17g %.17g %s\n", $1 * s + 0.37, $2 * s + 0.37, $3; next }
+        { print }' "$1" >"$3"
+}
+
 run() {  # SOLVER OPERATOR E S: one run; prints mu s / E, the bound, the two times
     local body=$mesh
-    if [[ $mesh == sliver* ]]; then
+    if [[ $mesh == gmsh* ]]; then
+        read -r _ file <<<"$mesh"
+        scaled_msh "$file" "$4" "$work/m_$4.msh"
+        body="source = 'gmsh', file = '$work/m_$4.msh', dirichlet = 'top', neumann = 'left right', contact = 'bottom'"
+    elif [[ $mesh == sliver* ]]; then
         read -r _ delta n <<<"$mesh"
         sliver_mesh "$delta" "$n" "$4" "$work/m_$4.msh"
         body="source = 'gmsh', file = '$work/m_$4.msh', dirichlet = 'top', neumann = 'left right', contact = 'bottom'"
@@ -60,7 +75,8 @@ run() {  # SOLVER OPERATOR E S: one run; prints mu s / E, the bound, the two tim
     printf '%s\n' "&mesh $body /" "&material young = $3, $material /" \
         "&analysis kind = 'eigen', lambda = $lambda /" \
         "&eigen solver = '$1', operator = '$2', estimate = 'off' /" \
-        "&output directory = '$work/out', vtk = .false., plot = .false. /" >"$work/in.nml"
+        "&output directory = '$work/out', vtk = .false., plot = .false. /" \
+        ${ROUNDOFF_EXTRA:+"$ROUNDOFF_EXTRA"} >"$work/in.nml"
     rm -rf "$work/out"
     "$nceig" "$work/in.nml" >"$work/stdout" 2>&1
     local j=$work/out/summary.json

@@ -40,6 +40,7 @@ module adaptive_eigen
         type(problem_t) :: prob            !! the problem of the last level solved
         type(eigen_result_t) :: res        !! its spectrum and error estimate
         logical :: converged = .false.     !! the estimate met the tolerance
+        logical :: floor_reached = .false. !! stopped by round-off, not by a limit
         !> one line: the tolerance met, or why not and what was reached
         character(len=:), allocatable :: outcome
     end type adaptive_result_t
@@ -69,7 +70,8 @@ contains
         type(eigen_goal_t) :: goal
 
         allocate (goal%levels(0))
-        call adapt_mesh(config, start, goal, out%prob, out%converged, out%outcome, timings, stat)
+        call adapt_mesh(config, start, goal, out%prob, out%converged, out%floor_reached, &
+                        out%outcome, timings, stat)
         if (.not. stat%ok()) return
         call move_alloc(goal%levels, out%levels)
         out%res = goal%res
@@ -95,8 +97,11 @@ contains
         call estimate_eigen(level_config, prob, this%res, timings)
         this%levels = [this%levels, level_row()]
         call set_level_bar(this%levels, element_degree(prob%mesh%element))
-        if (this%levels(size(this%levels))%estimated) &
+        this%roundoff = -1.0_wp
+        if (this%levels(size(this%levels))%estimated) then
             this%res%error%bar = this%levels(size(this%levels))%error_bar
+            this%roundoff = this%res%roundoff
+        end if
         call timings%note(level_line(this%levels(size(this%levels))))
 
     contains

@@ -112,9 +112,12 @@ contains
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
         type(threshold_goal_t) :: goal
+        logical :: floor
 
         allocate (goal%levels(0))
-        call adapt_mesh(config, start, goal, out%prob, out%converged, out%outcome, timings, stat)
+        ! (its goal has no round-off part: no floor)
+        call adapt_mesh(config, start, goal, out%prob, out%converged, floor, out%outcome, &
+                        timings, stat)
         if (.not. stat%ok()) return
         call move_alloc(goal%levels, out%levels)
         out%estimate = goal%est

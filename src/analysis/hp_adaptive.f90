@@ -28,7 +28,7 @@ module hp_adaptive
     use eigen_analysis, only: eigen_result_t, eigen_with_factor, choose_solver
     use accuracy, only: WARNING_LEN
     use adaptive_loop, only: level_dof_limit
-    use error_bar, only: hp_level_bar
+    use error_bar, only: hp_level_bar, floor_reached, floor_outcome
     implicit none
     private
     public :: hp_adapt_eigen, hp_level_degrees
@@ -149,14 +149,10 @@ contains
                         to_string(last%level)//': error bar '//bar_text()
                     exit
                 end if
-                ! the round-off part at least the discretisation's: more levels lower the
-                ! latter only, and the bar cannot fall below twice the round-off
-                if (last%error_bar >= 0.0_wp .and. last%roundoff >= 0.0_wp .and. &
-                    last%roundoff >= last%error_bar - last%roundoff) then
+                if (floor_reached(last%error_bar, last%roundoff)) then
                     out%floor_reached = .true.
-                    out%outcome = 'tolerance '//short_real_text(tolerance)//' not met: '// &
-                        'the floating-point floor is reached (round-off bound '// &
-                        short_real_text(last%roundoff)//' of the error bar '//bar_text()//')'
+                    out%outcome = floor_outcome(tolerance, last%roundoff, last%error_bar, &
+                                                to_string(last%n_dofs))
                     exit
                 end if
             end associate

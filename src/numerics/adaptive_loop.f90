@@ -24,6 +24,7 @@ module adaptive_loop
     use problem, only: problem_t, build_problem
     use enrichment, only: enriched_element
     use sorting, only: sort_index
+    use error_bar, only: floor_reached, floor_outcome
     implicit none
     private
     public :: adapt_mesh, doerfler_marking, adaptive_dof_limit, level_dof_limit
@@ -36,6 +37,8 @@ module adaptive_loop
 
     !> What the loop adapts to.
     type, abstract, public :: adapt_goal_t
+        !> the round-off part of error(), set by solve; negative: unknown (no floor test)
+        real(wp) :: roundoff = -1.0_wp
     contains
         !> solve and estimate on `prob` (level `level`; `loop_start` the loop's wall_time)
         procedure(goal_solve), deferred :: solve
@@ -82,14 +85,15 @@ contains
 
     !> Run the loop from the problem `start` (level 0) of `config`; `prob` is the problem of
     !> the last level solved, whose solution `goal` holds. A limit reached is no failure (stat
-    !> ok, converged false, `outcome` says what was reached); bad input is: a starting mesh
-    !> with more free dofs than max_dofs, or cells with no refinement or no enriched space.
-    subroutine adapt_mesh(config, start, goal, prob, converged, outcome, timings, stat)
+    !> ok, converged false, `outcome` says what was reached; `floor` true when that is the
+    !> floating-point floor); bad input is: a starting mesh with more free dofs than
+    !> max_dofs, or cells with no refinement or no enriched space.
+    subroutine adapt_mesh(config, start, goal, prob, converged, floor, outcome, timings, stat)
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: start
         class(adapt_goal_t), intent(inout) :: goal
         type(problem_t), intent(out) :: prob
-        logical, intent(out) :: converged
+        logical, intent(out) :: converged, floor
         character(len=:), allocatable, intent(out) :: outcome
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
@@ -103,6 +107,7 @@ contains
 
         loop_start = wall_time()
         converged = .false.
+        floor = .false.
         outcome = ''
         allocate (marked(0))   ! (gfortran 12 warns of an unallocated one at -O3)
         element = start%mesh%element
@@ -140,6 +145,12 @@ contains
                 outcome = 'tolerance '//short_real_text(config%adapt%tolerance)// &
                     ' met at level '//to_string(level)//': error bar '// &
                     short_real_text(error)//', '//to_string(prob%dofs%n_free)//' dofs'
+                exit
+            end if
+            if (floor_reached(error, goal%roundoff)) then
+                floor = .true.
+                outcome = floor_outcome(config%adapt%tolerance, goal%roundoff, error, &
+                                        to_string(prob%dofs%n_free))
                 exit
             end if
             if (config%adapt%max_levels > 0 .and. level >= config%adapt%max_levels) then

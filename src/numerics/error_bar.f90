@@ -17,12 +17,14 @@
 !> mesh gets a large bar). Measured along adaptive P2 and P3 runs of the reference scene,
 !> LEVEL_FACTOR = 3 gives bar / true error 1.5 to 4.2 (median) where the true error does
 !> not itself cross zero.
-!> The floating-point part is added where known (roundoff >= 0).
+!> The floating-point part is added where known (roundoff >= 0); once it is at least the
+!> rest of the bar, a finer level cannot lower the bar (floor_reached).
 module error_bar
     use kinds, only: wp
+    use strings, only: short_real_text
     implicit none
     private
-    public :: single_bar, level_bar, hp_level_bar
+    public :: single_bar, level_bar, hp_level_bar, floor_reached, floor_outcome
     public :: BAR_FACTOR, LEVEL_FACTOR, BAR_WINDOW
 
     real(wp), parameter :: BAR_FACTOR = 5.0_wp
@@ -30,6 +32,26 @@ module error_bar
     integer, parameter :: BAR_WINDOW = 3
 
 contains
+
+    !> The floating-point floor, the stop both adaptive loops share: the round-off part
+    !> `roundoff` of the bar `bar` (both relative; negative: unknown) is at least the rest.
+    !> More dofs lower only the rest (the round-off part grows with them), so the bar
+    !> cannot fall below twice the round-off part.
+    elemental logical function floor_reached(bar, roundoff)
+        real(wp), intent(in) :: bar, roundoff
+        floor_reached = bar >= 0.0_wp .and. roundoff >= 0.0_wp .and. roundoff >= bar - roundoff
+    end function floor_reached
+
+    !> The outcome of a loop stopped at the floor: `tolerance` not met, the round-off part
+    !> `roundoff` of the bar `bar` reached at `dofs` free dofs.
+    function floor_outcome(tolerance, roundoff, bar, dofs) result(outcome)
+        real(wp), intent(in) :: tolerance, roundoff, bar
+        character(len=*), intent(in) :: dofs
+        character(len=:), allocatable :: outcome
+        outcome = 'tolerance '//short_real_text(tolerance)//' not met: the floating-point '// &
+            'floor is reached (round-off bound '//short_real_text(roundoff)// &
+            ' of the error bar '//short_real_text(bar)//' at '//dofs//' dofs)'
+    end function floor_outcome
 
     !> The bar of one discretisation: BAR_FACTOR |estimate| plus `roundoff` (relative; a
     !> negative value: unknown, nothing added). Negative when `estimate` is (none).

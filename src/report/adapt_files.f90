@@ -47,17 +47,18 @@ contains
     end subroutine ask_adapt_plot
 
     !> The keys of an adaptive loop (any goal) that started from `start_dofs` free dofs.
-    subroutine add_adapt_keys(summary, config, start_dofs, levels, converged, outcome)
+    subroutine add_adapt_keys(summary, config, start_dofs, levels, converged, floor, outcome)
         type(json_object_t), intent(inout) :: summary
         type(config_t), intent(in) :: config
         integer, intent(in) :: start_dofs, levels
-        logical, intent(in) :: converged
+        logical, intent(in) :: converged, floor
         character(len=*), intent(in) :: outcome
         call summary%add_real('adapt_tolerance', config%adapt%tolerance)
         call summary%add_real('adapt_theta', config%adapt%theta)
         call summary%add_integer('adapt_levels', levels)
         call summary%add_integer('adapt_start_dofs', start_dofs)
         call summary%add_logical('adapt_converged', converged)
+        call summary%add_logical('adapt_floor_reached', floor)
         call summary%add_string('adapt_outcome', outcome)
         call summary%add_string('adapted_mesh_file', MESH_FILE)
     end subroutine add_adapt_keys

@@ -107,7 +107,7 @@ contains
         type(json_object_t) :: summary
         summary = eigen_summary_json(config, this%out%prob, this%out%res, this%timings)
         call add_adapt_keys(summary, config, prob%dofs%n_free, size(this%out%levels) - 1, &
-                            this%out%converged, this%out%outcome)
+                            this%out%converged, this%out%floor_reached, this%out%outcome)
     end function adapt_run_summary
 
     function adapt_run_report(this, config, prob) result(text)

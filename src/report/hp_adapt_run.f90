@@ -163,11 +163,10 @@ contains
         type(json_object_t) :: summary
         summary = eigen_summary_json(config, this%out%prob, this%out%res, this%timings)
         call add_adapt_keys(summary, config, this%start_dofs, size(this%out%levels), &
-                            this%out%converged, this%out%outcome)
+                            this%out%converged, this%out%floor_reached, this%out%outcome)
         call summary%add_string('adapt_strategy', 'hp')
         call summary%add_real('adapt_sigma', config%adapt%sigma)
         call summary%add_integer('adapt_p_max', config%adapt%p_max)
-        call summary%add_logical('adapt_floor_reached', this%out%floor_reached)
         call summary%add_string('degrees_file', DEGREES_FILE)
         if (size(this%out%space%cell_degree) > 0) then
             call summary%add_integer('hp_degree_min', minval(this%out%space%cell_degree))

@@ -182,7 +182,8 @@ contains
         summary = eigen_summary_json(config, this%adapted%prob, this%res%eigen, this%timings)
         call add_threshold_keys(summary, this%res)
         call add_adapt_keys(summary, config, prob%dofs%n_free, &
-            size(this%adapted%levels) - 1, this%adapted%converged, this%adapted%outcome)
+            size(this%adapted%levels) - 1, this%adapted%converged, .false., &
+            this%adapted%outcome)
     end function adapt_threshold_run_summary
 
     function threshold_run_report(this, config, prob) result(text)
