@@ -8,7 +8,7 @@
 # Usage: cli_kill_loop.sh NCEIG SOURCE_DIR [TRIES]
 set -u
 nceig=$1
-source "$2/tests/output_sets.bash"
+source "$2/tests/cli/lib/output_sets.bash"
 tries=${3:-30}
 source "$(dirname "$0")/lib/cli_common.sh"
 cli_begin cli_kill_loop

@@ -6,7 +6,7 @@
 # Usage: cli_signals.sh NCEIG SOURCE_DIR [TRIES]
 set -u
 nceig=$1
-source "$2/tests/output_sets.bash"
+source "$2/tests/cli/lib/output_sets.bash"
 tries=${3:-12}
 source "$(dirname "$0")/lib/cli_common.sh"
 cli_begin cli_signals

@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: MIT
-# The harness the shell tests source (tests/cli_*.sh, tests/check_layers_selftest.sh): a
+# The harness the shell tests source (tests/cli/cli_*.sh, tests/cli/check_layers_selftest.sh): a
 # scratch folder, named checks, the closing count line and exit status. It lives in lib/ so
-# that the CTest glob tests/cli_*.sh does not run it as a test. After `set -u`:
+# that the CTest glob tests/cli/cli_*.sh does not run it as a test. After `set -u`:
 #     source "$(dirname "$0")/lib/cli_common.sh"
 #     cli_begin cli_example          # $work: a fresh scratch folder
 #     check 'what it asserts' 'bash condition'

@@ -3,7 +3,7 @@
 # Nothing lost: a run killed (SIGKILL, no chance to clean up) at several moments, into a
 # directory holding a previous complete result, must leave that result as it was, or, if
 # the kill came after the commit, the new complete result; never a visible partial file
-# nor a summary.json next to files of another set. (tests/cli_kill_loop.sh kills many more
+# nor a summary.json next to files of another set. (tests/cli/cli_kill_loop.sh kills many more
 # runs, at random moments and aimed at the commit.)
 # Usage: cli_interrupted_run.sh NCEIG SOURCE_DIR
 set -u

@@ -8,7 +8,7 @@
 # Usage: cli_output_directory.sh NCEIG SOURCE_DIR
 set -u
 nceig=$1
-source "$2/tests/output_sets.bash"
+source "$2/tests/cli/lib/output_sets.bash"
 source "$(dirname "$0")/lib/cli_common.sh"
 cli_begin cli_output_directory
 

@@ -5,7 +5,7 @@
 # the full and the reduced operator print the same numbers.
 # Tolerance 1e-10 relative between the operators: both converge to backward errors ~1e-16
 # on eigenvalues with condition numbers below 1e4, so each is within ~1e-12 of the exact
-# discrete mu (tests/test_full_operator.f90 has the detail); a wrong eigenvalue is 10x away.
+# discrete mu (tests/eigen/test_full_operator.f90 has the detail); a wrong eigenvalue is 10x away.
 # Usage: cli_full_operator.sh NCEIG SOURCE_DIR
 set -u
 nceig=$1

@@ -75,7 +75,7 @@ program test_fuzz_mesh_gmsh
 
 contains
 
-    !> Shipped meshes, grids written by tests/msh_writer.f90, and make_mesh.sh's Delaunay
+    !> Shipped meshes, grids written by tests/support/msh_writer.f90, and make_mesh.sh's Delaunay
     !> meshes when gmsh runs. Each must read as it is, or fuzzing it would prove little.
     subroutine collect_seeds(seeds)
         type(seed_file_t), allocatable, intent(out) :: seeds(:)

@@ -6,7 +6,7 @@
 # Usage: cli_concurrent_runs.sh NCEIG SOURCE_DIR [ROUNDS]
 set -u
 nceig=$1
-source "$2/tests/output_sets.bash"
+source "$2/tests/cli/lib/output_sets.bash"
 rounds=${3:-40}
 source "$(dirname "$0")/lib/cli_common.sh"
 cli_begin cli_concurrent_runs

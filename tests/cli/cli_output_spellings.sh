@@ -8,7 +8,7 @@
 # Usage: cli_output_spellings.sh NCEIG SOURCE_DIR [ROUNDS]
 set -u
 nceig=$(realpath "$1")
-source "$2/tests/output_sets.bash"
+source "$2/tests/cli/lib/output_sets.bash"
 rounds=${3:-20}
 source "$(dirname "$0")/lib/cli_common.sh"
 cli_begin cli_output_spellings
