@@ -102,12 +102,16 @@ contains
         type(output_stage_t) :: stage
         type(json_object_t) :: summary
         character(len=:), allocatable :: summary_path
+        ! a named array, not a constructor: gfortran 12 does not free a constructor's
+        ! allocatable components (LeakSanitizer reports them)
+        type(text_t) :: unlisted(1)
         real(wp) :: start
 
+        unlisted(1)%text = OLD_UNLISTED
         call this%solve(config, prob, timings, stat)
         if (.not. stat%ok()) return
         start = wall_time()
-        call stage%begin(trim(config%output%directory), stat, [text_t(OLD_UNLISTED)])
+        call stage%begin(trim(config%output%directory), stat, unlisted)
         if (.not. stat%ok()) then
             ! output_stage knows the directory, not the input file that named it.
             call stat%fail(stat%code, config%input_file//': &output directory: '//stat%message)
