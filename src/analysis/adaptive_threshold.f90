@@ -49,6 +49,7 @@ module adaptive_threshold
     use eigen_analysis, only: eigen_result_t, eigen_with_factor, SOLVER_DENSE
     use error_estimate, only: error_estimate_t, estimate_lowest_error
     use error_bar, only: level_bar
+    use roundoff, only: threshold_roundoff
     use element_types, only: element_degree
     implicit none
     private
@@ -166,6 +167,8 @@ contains
         if (.not. stat%ok()) return
         start = wall_time()
         call pencil_thresholds(blocks%kt_nn, blocks%kt_nt, this%thr, stat)
+        if (stat%ok()) call threshold_roundoff(prob%k, chol, prob%contact, blocks%kt_nn, &
+                                               blocks%kt_nt, this%thr, stat)
         if (stat%ok()) call threshold_displacements(chol, prob%contact, prob%dofs%n_free, &
                                                     this%thr, u, stat)
         blocks%mass = prob%contact%mass
@@ -186,7 +189,8 @@ contains
         call timings%add(PHASE_REDUCTION, wall_time() - start, ': thresholds and their '// &
                          'error estimates, level '//to_string(level))
         this%levels = [this%levels, level_row()]
-        call level_bars(this%levels, element_degree(prob%mesh%element), this%est)
+        call level_bars(this%levels, element_degree(prob%mesh%element), this%thr%roundoff, &
+                        this%est)
         call timings%note(level_line(this%levels(size(this%levels))))
 
     contains
@@ -386,9 +390,10 @@ contains
 
     !> Each side's bar at the last of `levels` (error_bar: the last BAR_WINDOW levels where
     !> that side was found and estimated), into the last row and `est`.
-    subroutine level_bars(levels, degree, est)
+    subroutine level_bars(levels, degree, roundoff, est)
         type(threshold_level_t), intent(inout) :: levels(:)
         integer, intent(in) :: degree
+        real(wp), intent(in) :: roundoff(2)   !! of the last level's lambdas; -1: unknown
         type(threshold_estimate_t), intent(inout) :: est
         real(wp) :: estimates(size(levels)), lambdas(size(levels))
         integer :: dofs(size(levels)), side, k, i
@@ -403,7 +408,8 @@ contains
                 lambdas(i) = levels(i)%lambda(side)
                 dofs(i) = levels(i)%n_dofs
             end do
-            levels(k)%error_bar(side) = level_bar(estimates, lambdas, dofs, degree, -1.0_wp)
+            levels(k)%error_bar(side) = level_bar(estimates, lambdas, dofs, degree, &
+                                                  roundoff(side))
             est%bar(side) = levels(k)%error_bar(side)
         end do
         ! the collision onsets' bars, over the levels where that side's onset was one

@@ -26,7 +26,8 @@ module threshold_analysis
     use memory_budget, only: check_contact_memory, contact_peak_blocks
     use arpack_eigen, only: arpack_options_t, arpack_lowest_positive
     use critical_lambda, only: thresholds_t, pencil_thresholds, confirm_thresholds, &
-                               lowest_positive_mu, SIDE_PLUS, SIDE_MINUS
+                               lowest_positive_mu, SIDE_PLUS, SIDE_MINUS, SIDE_LABELS
+    use roundoff, only: threshold_roundoff
     use critical_set, only: critical_set_t, find_critical_set
     use adaptive_eigen, only: adapt_eigen, adaptive_result_t
     use eigen_analysis, only: eigen_result_t, choose_solver, eigen_with_factor, SOLVER_ARPACK, &
@@ -116,6 +117,8 @@ contains
                                blocks%kt_nt)
         start = wall_time()
         if (stat%ok()) call pencil_thresholds(blocks%kt_nn, blocks%kt_nt, res%thresholds, stat)
+        if (stat%ok()) call threshold_roundoff(prob%k, chol, prob%contact, blocks%kt_nn, &
+                                               blocks%kt_nt, res%thresholds, stat)
         ! the displacements of the limit modes, for the estimate, while the factor is there
         estimated = .false.
         if (present(estimate)) then
@@ -128,6 +131,11 @@ contains
         call chol%free()
         if (.not. stat%ok()) return
         if (estimated) call add_threshold_estimate()
+        ! the round-off part of the one-mesh bars (the adaptive levels' carry it already)
+        if (estimated) where (res%estimate%computed .and. res%estimate%bar >= 0.0_wp .and. &
+                              res%thresholds%roundoff >= 0.0_wp) &
+            res%estimate%bar = res%estimate%bar + res%thresholds%roundoff
+        call warn_roundoff()
         blocks%mass = prob%contact%mass
         ! Dense on purpose, whatever the solver: just inside a threshold there is no positive
         ! mu, which only the complete spectrum shows, and just outside the wanted mu is huge,
@@ -204,6 +212,18 @@ contains
                           to_string(size(res%sweep%lambda))//' lambdas')
 
     contains
+
+        !> A warning per side whose round-off bound is 1 or more: no digit of it is certain.
+        subroutine warn_roundoff()
+            integer :: side
+            do side = SIDE_PLUS, SIDE_MINUS
+                if (res%thresholds%roundoff(side) < 1.0_wp) cycle
+                res%eigen%warnings = [character(len=WARNING_LEN) :: res%eigen%warnings, &
+                    trim(SIDE_LABELS(side))//': the round-off bound '// &
+                    real_to_text(res%thresholds%roundoff(side))//' is 1 or more: '// &
+                    'no digit of it is certain in floating point']
+            end do
+        end subroutine warn_roundoff
 
         !> As &eigen estimate asks (estimate_wanted); res%estimate%skipped says why not on
         !> the sides with a threshold.

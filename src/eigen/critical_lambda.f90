@@ -55,6 +55,11 @@ module critical_lambda
         !> (p, 2) the pencil eigenvector x of each side found (largest entry 1): the contact
         !> tractions of the limit mode, model.md section 7
         real(wp), allocatable :: vectors(:, :)
+        !> (p, 2) the left eigenvector w of each side (w' Kt_nn = lambda w' Kt_nt), for the
+        !> round-off bound (roundoff: threshold_roundoff)
+        real(wp), allocatable :: left_vectors(:, :)
+        !> |dlambda| / |lambda| from floating point (threshold_roundoff); -1: not computed
+        real(wp) :: roundoff(2) = -1.0_wp
     contains
         procedure :: confirmed => thresholds_confirmed
     end type thresholds_t
@@ -77,23 +82,24 @@ contains
         type(thresholds_t), intent(out) :: thr
         type(status_t), intent(out) :: stat
         real(wp), allocatable :: a(:, :), b(:, :), alphar(:), alphai(:), beta(:), vr(:, :), &
-                                 work(:)
-        real(wp) :: vl(1, 1), query(1), norm_nn, norm_nt, lambda
+                                 vl(:, :), work(:)
+        real(wp) :: query(1), norm_nn, norm_nt, lambda
         integer :: p, info, j, best(2), side, ierr
 
         p = size(kt_nn, 1)
         ! sourced allocation: assigning to an unallocated array draws false -Wuninitialized
         allocate (a, source=kt_nn, stat=ierr)
         if (ierr == 0) allocate (b, source=kt_nt, stat=ierr)
-        if (ierr == 0) allocate (alphar(p), alphai(p), beta(p), vr(p, p), stat=ierr)
+        if (ierr == 0) allocate (alphar(p), alphai(p), beta(p), vr(p, p), vl(p, p), stat=ierr)
         if (ierr /= 0) then
             call stat%fail(STATUS_SOLVER, 'critical lambda: cannot allocate the p x p pencil '// &
                            '(p = '//to_string(p)//' contact nodes): out of memory')
             return
         end if
-        call dggev('N', 'V', p, a, p, b, p, alphar, alphai, beta, vl, 1, vr, p, query, -1, info)
+        ! left vectors too: they make the first-order round-off bound (roundoff module)
+        call dggev('V', 'V', p, a, p, b, p, alphar, alphai, beta, vl, p, vr, p, query, -1, info)
         allocate (work(max(1, int(query(1)))))
-        call dggev('N', 'V', p, a, p, b, p, alphar, alphai, beta, vl, 1, vr, p, work, &
+        call dggev('V', 'V', p, a, p, b, p, alphar, alphai, beta, vl, p, vr, p, work, &
                    size(work), info)
         if (info /= 0) then
             call stat%fail(STATUS_SOLVER, 'critical lambda: '//lapack_info_message('dggev', info))
@@ -102,8 +108,9 @@ contains
 
         norm_nn = maxval(sum(abs(kt_nn), dim=2))
         norm_nt = maxval(sum(abs(kt_nt), dim=2))
-        allocate (thr%real_lambdas(0), thr%vectors(p, 2))
+        allocate (thr%real_lambdas(0), thr%vectors(p, 2), thr%left_vectors(p, 2))
         thr%vectors = 0.0_wp
+        thr%left_vectors = 0.0_wp
         best = 0
         do j = 1, p
             ! LAPACK returns an exactly zero alphai for a real eigenvalue.
@@ -134,6 +141,7 @@ contains
             thr%found(side) = .true.
             thr%lambda(side) = alphar(j)/beta(j)
             thr%vectors(:, side) = vr(:, j)/vr(maxloc(abs(vr(:, j)), dim=1), j)
+            thr%left_vectors(:, side) = vl(:, j)/vl(maxloc(abs(vl(:, j)), dim=1), j)
             thr%residual(side) = maxval(abs(matmul(kt_nn, vr(:, j)) - &
                                             thr%lambda(side)*matmul(kt_nt, vr(:, j)))) / &
                 ((norm_nn + abs(thr%lambda(side))*norm_nt)*maxval(abs(vr(:, j))))

@@ -23,9 +23,11 @@ module roundoff
     use csr_matrix, only: csr_matrix_t
     use sparse_cholesky, only: cholesky_t
     use contact_boundary, only: contact_t
+    use critical_lambda, only: thresholds_t, SIDE_PLUS, SIDE_MINUS
     implicit none
     private
     public :: roundoff_bound, left_from_reduced, lowest_roundoff
+    public :: pencil_roundoff, threshold_roundoff
 
     !> The data term's multiple of eps. An entry of K is a sum of some 10 to 100 products
     !> (quadrature points, cells per node, the elasticity tensor) and the factor of K adds a
@@ -59,12 +61,7 @@ contains
         call b%matvec(xs, bx)
         ykx = abs(dot_product(ys, kx))
         if (.not. (ykx > 0.0_wp)) return
-        k_abs = 0.0_wp
-        do i = 1, k%n()
-            first = k%row_start(i)
-            last = k%row_start(i + 1) - 1
-            k_abs = k_abs + abs(ys(i))*sum(abs(k%val(first:last))*abs(xs(k%col(first:last))))
-        end do
+        k_abs = abs_form(k, ys, xs)
         call contact%gather(abs(lambda*contact%tangent - contact%normal), abs(ys), xy)
         call contact%gather(abs(contact%normal), abs(xs), nx)
         m_nx = 0.0_wp
@@ -110,4 +107,74 @@ contains
         if (size(y) /= size(x)) return
         bound = roundoff_bound(k, b, contact, lambda, mu, x, y)
     end subroutine lowest_roundoff
+
+    !> |y|' |K| |x|, the componentwise size of y' K x.
+    real(wp) function abs_form(k, y, x)
+        type(csr_matrix_t), intent(in) :: k
+        real(wp), intent(in) :: y(:), x(:)
+        integer :: i, first, last
+        abs_form = 0.0_wp
+        do i = 1, k%n()
+            first = k%row_start(i)
+            last = k%row_start(i + 1) - 1
+            abs_form = abs_form + abs(y(i))*sum(abs(k%val(first:last))*abs(x(k%col(first:last))))
+        end do
+    end function abs_form
+
+    !> |lambda - lambda_exact| / |lambda| for the computed eigenvalue lambda of the pencil
+    !> A z = lambda B z with right vector z and left vector w, to first order: the solver's
+    !> residual r = A z - lambda B z moves it by w' r / (w' B z), and a data perturbation
+    !> (dA, dB) by w' (dA - lambda dB) z / (w' B z), whose size the caller bounds by `data`
+    !> (for entrywise |dA| <= E, |dB| <= F: |w|' E |z| + |lambda| |w|' F |z|). Relative
+    !> through lambda w' B z = w' A z; huge() when that is 0 (infinitely ill conditioned).
+    pure real(wp) function pencil_roundoff(a, b, lambda, z, w, data) result(bound)
+        real(wp), intent(in) :: a(:, :), b(:, :), lambda, z(:), w(:), data
+        real(wp) :: waz
+        bound = huge(1.0_wp)
+        waz = abs(dot_product(w, matmul(a, z)))
+        if (.not. (waz > 0.0_wp)) return
+        bound = (abs(dot_product(w, matmul(a, z) - lambda*matmul(b, z))) + data)/waz
+    end function pencil_roundoff
+
+    !> thr%roundoff: the round-off part of the bars of lambda+ and lambda-, the eigenvalues
+    !> of the pencil Kt_nn z = lambda Kt_nt z (critical_lambda). The blocks are
+    !> N K^-1 N' and N K^-1 T', so Kt_nn - lambda Kt_nt = N K^-1 (N' - lambda T'): their
+    !> data error is not eps |Kt| but that of K (assembly, factor, the dense inverse of the
+    !> contact Schur complement) seen through it, and a perturbation dK moves
+    !> w' (Kt_nn - lambda Kt_nt) z by y' dK phi with the full-space lifts y = K^-1 N' w and
+    !> phi = K^-1 (N' - lambda T') z (the limit mode). So data = ROUNDOFF_UNITS eps
+    !> |y|'|K||phi|, the same componentwise form and multiple as the bound of mu: two solves
+    !> per side with the factor there is, O(nnz) besides.
+    subroutine threshold_roundoff(k, chol, contact, kt_nn, kt_nt, thr, stat)
+        type(csr_matrix_t), intent(in) :: k
+        type(cholesky_t), intent(in) :: chol
+        type(contact_t), intent(in) :: contact
+        real(wp), intent(in) :: kt_nn(:, :), kt_nt(:, :)
+        type(thresholds_t), intent(inout) :: thr
+        type(status_t), intent(out) :: stat
+        real(wp), allocatable :: rhs(:, :), lifts(:, :)
+        real(wp) :: z(size(kt_nn, 1)), w(size(kt_nn, 1))
+        integer :: side
+
+        thr%roundoff = -1.0_wp
+        if (.not. (any(thr%found) .and. allocated(thr%left_vectors))) return
+        allocate (rhs(k%n(), 4), source=0.0_wp)
+        allocate (lifts(k%n(), 4))
+        do side = SIDE_PLUS, SIDE_MINUS
+            if (.not. thr%found(side)) cycle
+            call contact%scatter(contact%normal, thr%left_vectors(:, side), rhs(:, 2*side - 1))
+            call contact%scatter(contact%normal - thr%lambda(side)*contact%tangent, &
+                                 thr%vectors(:, side), rhs(:, 2*side))
+        end do
+        call chol%solve(rhs, lifts, stat)
+        if (.not. stat%ok()) return
+        do side = SIDE_PLUS, SIDE_MINUS
+            if (.not. thr%found(side)) cycle
+            z = thr%vectors(:, side)
+            w = thr%left_vectors(:, side)
+            thr%roundoff(side) = pencil_roundoff(kt_nn, kt_nt, thr%lambda(side), z, w, &
+                ROUNDOFF_UNITS*epsilon(1.0_wp)*abs_form(k, lifts(:, 2*side - 1), &
+                                                        lifts(:, 2*side)))
+        end do
+    end subroutine threshold_roundoff
 end module roundoff

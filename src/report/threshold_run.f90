@@ -280,6 +280,9 @@ contains
                 s = trim(SIDE_NAMES(side))
                 call summary%add_real_or_null('lambda_critical_'//s//'_residual', &
                                               thr%residual(side), thr%found(side))
+                ! |dlambda| / |lambda| from floating point (roundoff: threshold_roundoff)
+                call summary%add_real_or_null('lambda_critical_'//s//'_roundoff', &
+                    thr%roundoff(side), thr%found(side) .and. thr%roundoff(side) >= 0.0_wp)
                 call summary%add_logical('lambda_critical_'//s//'_confirmed', &
                                          thr%confirmed(side))
                 call summary%add_real_or_null('lambda_'//s//'_outside', &

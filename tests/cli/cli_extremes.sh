@@ -109,6 +109,22 @@ printf '%s\n' "&mesh nx = 8, ny = 8 /" "&analysis kind = 'threshold' /" \
     "&output directory = '$work/thr', vtk = .false., plot = .false. /" >"$work/thr.nml"
 "$nceig" "$work/thr.nml" >/dev/null 2>&1
 plus=$(json "$work/thr/summary.json" lambda_critical_plus)
+# The critical lambdas' round-off part (lambda_critical_*_roundoff) grows like L/G too: at
+# nu = 0.499999999999 (P2 8 x 8; measured 0.24, lambda+ moving by 1 % between roundings)
+# it is some 1e11 times the reference's (2e-12), and the bar of each side holds it.
+printf '%s\n' "&mesh element = 'p2' /" "&material poisson = 0.499999999999 /" \
+    "&analysis kind = 'threshold' /" \
+    "&output directory = '$work/thr_nu', vtk = .false., plot = .false. /" >"$work/thr_nu.nml"
+"$nceig" "$work/thr_nu.nml" >/dev/null 2>&1
+for side in plus minus; do
+    lo=$(json "$work/thr/summary.json" lambda_critical_${side}_roundoff)
+    hi=$(json "$work/thr_nu/summary.json" lambda_critical_${side}_roundoff)
+    bar=$(json "$work/thr_nu/summary.json" lambda_critical_${side}_error_bar)
+    check "lambda $side round-off part: nu = 0.499999999999 far above the reference ($hi, $lo)" \
+        'awk -v a="$hi" -v b="$lo" "BEGIN { exit !(b > 0 && a / b > 1e8) }"'
+    check "lambda $side: the bar holds the round-off part ($bar >= $hi)" \
+        'awk -v bar="$bar" -v r="$hi" "BEGIN { exit !(r > 0 && bar >= r) }"'
+done
 for solver in dense arpack; do
     for d in 1e-10 5e-14; do
         printf '%s\n' "&mesh nx = 8, ny = 8 /" \

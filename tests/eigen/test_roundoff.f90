@@ -5,12 +5,15 @@
 !> mu = (c^2 - a d) / (m (a + 4 c)) = 1/2, right eigenvector x = (3, 2), left y = (1, 2).
 !> Closed form of the bound: |K||x| = (8, 5), |y|'|K||x| = 18; |X y| = 4 + 2 = 6, |N x| = 2,
 !> mu |X y| m |N x| = 6; y' K x = 2: (18 + 6) / 2 = 12 units of eps.
+!> The thresholds' pencil_roundoff on A z = l B z with A = [[2, 1], [1, 3]] and
+!> B = [[1, 1], [0, -1]]: det(A - l B) = 5 - l^2, l = sqrt(5), right z = (l - 1, 2 - l),
+!> left w = (1, l - 2).
 program test_roundoff
     use kinds, only: wp
     use testing, only: test_suite_t
     use csr_matrix, only: csr_matrix_t
     use contact_boundary, only: contact_t
-    use roundoff, only: roundoff_bound, ROUNDOFF_UNITS
+    use roundoff, only: roundoff_bound, pencil_roundoff, ROUNDOFF_UNITS
     implicit none
 
     real(wp), parameter :: LAMBDA = 4.0_wp, MU = 0.5_wp, X(2) = [3.0_wp, 2.0_wp], &
@@ -20,6 +23,8 @@ program test_roundoff
     call bound_closed_form(t)
     call bound_holds_for_perturbed_data(t)
     call bound_adds_residual(t)
+    call pencil_bound_holds_for_perturbed_data(t)
+    call pencil_bound_adds_residual(t)
     call t%report()
 
 contains
@@ -104,6 +109,72 @@ contains
         call t%check('bound at least the relative error of mu it stands for', &
                      bound >= 1.0e-8_wp/(1.0_wp + 1.0e-8_wp))
     end subroutine bound_adds_residual
+
+    !> Entries of A and B perturbed by delta relative each, every one of the 256 sign
+    !> patterns: the exact eigenvalue of the perturbed pencil (the root nearest l of
+    !> det(A' - l B') = 0, a quadratic) moves by at most the first-order bound with data =
+    !> delta (|w|'|A||z| + l |w|'|B||z|), and by that bound for the worst pattern
+    !> (sign(w_i z_j) on A, -sign(w_i z_j) on B), up to the second order (delta^2).
+    subroutine pencil_bound_holds_for_perturbed_data(t)
+        type(test_suite_t), intent(inout) :: t
+        real(wp), parameter :: A(2, 2) = reshape([2.0_wp, 1.0_wp, 1.0_wp, 3.0_wp], [2, 2]), &
+                               B(2, 2) = reshape([1.0_wp, 0.0_wp, 1.0_wp, -1.0_wp], [2, 2])
+        real(wp) :: l, z(2), w(2), bound, delta, ap(2, 2), bp(2, 2), worst
+        integer :: s, i, j, bit
+        logical :: holds
+        l = sqrt(5.0_wp)
+        z = [l - 1.0_wp, 2.0_wp - l]
+        w = [1.0_wp, l - 2.0_wp]
+        holds = .true.
+        worst = 0.0_wp
+        delta = 1.0e-7_wp
+        bound = pencil_roundoff(A, B, l, z, w, delta*(dot_product(abs(w), matmul(abs(A), &
+                abs(z))) + l*dot_product(abs(w), matmul(abs(B), abs(z)))))
+        do s = 0, 255
+            do j = 1, 2
+                do i = 1, 2
+                    bit = 2*(j - 1) + i - 1
+                    ap(i, j) = A(i, j)*(1.0_wp + sgn(s, bit)*delta)
+                    bp(i, j) = B(i, j)*(1.0_wp + sgn(s, bit + 4)*delta)
+                end do
+            end do
+            worst = max(worst, abs(nearest_root(ap, bp, l) - l)/l)
+        end do
+        holds = worst <= bound*(1.0_wp + 1.0e-5_wp)
+        call t%check('perturbations 1e-7 of A and B move the pencil eigenvalue by at most '// &
+                     'the bound', holds)
+        call t%check_close('the worst sign pattern attains the bound to first order', &
+                           worst, bound, 1.0e-5_wp)
+    end subroutine pencil_bound_holds_for_perturbed_data
+
+    !> The exact vectors with l off by 1e-8 relative and no data term: the residual part is
+    !> |l_c - l| |w' B z| / |w' A z| = 1e-8.
+    subroutine pencil_bound_adds_residual(t)
+        type(test_suite_t), intent(inout) :: t
+        real(wp), parameter :: A(2, 2) = reshape([2.0_wp, 1.0_wp, 1.0_wp, 3.0_wp], [2, 2]), &
+                               B(2, 2) = reshape([1.0_wp, 0.0_wp, 1.0_wp, -1.0_wp], [2, 2])
+        real(wp) :: l, z(2), w(2)
+        l = sqrt(5.0_wp)
+        z = [l - 1.0_wp, 2.0_wp - l]
+        w = [1.0_wp, l - 2.0_wp]
+        call t%check_close('pencil bound of an eigenvalue off by 1e-8', &
+                           pencil_roundoff(A, B, l*(1.0_wp + 1.0e-8_wp), z, w, 0.0_wp), &
+                           1.0e-8_wp, 1.0e-6_wp)
+    end subroutine pencil_bound_adds_residual
+
+    !> The root nearest `near` of det(a - l b) = 0: l^2 det(b) - l (a11 b22 + a22 b11 -
+    !> a12 b21 - a21 b12) + det(a) = 0.
+    pure real(wp) function nearest_root(a, b, near) result(root)
+        real(wp), intent(in) :: a(2, 2), b(2, 2), near
+        real(wp) :: q2, q1, q0, disc, r1, r2
+        q2 = b(1, 1)*b(2, 2) - b(1, 2)*b(2, 1)
+        q1 = -(a(1, 1)*b(2, 2) + a(2, 2)*b(1, 1) - a(1, 2)*b(2, 1) - a(2, 1)*b(1, 2))
+        q0 = a(1, 1)*a(2, 2) - a(1, 2)*a(2, 1)
+        disc = sqrt(q1*q1 - 4.0_wp*q2*q0)
+        r1 = (-q1 + disc)/(2.0_wp*q2)
+        r2 = (-q1 - disc)/(2.0_wp*q2)
+        root = merge(r1, r2, abs(r1 - near) < abs(r2 - near))
+    end function nearest_root
 
     pure real(wp) function sgn(s, bit)
         integer, intent(in) :: s, bit
