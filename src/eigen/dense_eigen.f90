@@ -86,6 +86,7 @@ contains
 
         ! theta = 1/mu (here divided by lambda_scale). theta = 0 (mu infinite) happens only
         ! exactly at a critical lambda.
+        allocate (theta(p))   ! first: see hp_stiffness, condense_interior
         theta = cmplx(wr, wi, wp)
         keep = pack([(j, j=1, p)], abs(theta) > 0.0_wp)
         n_ev = size(keep)

@@ -172,6 +172,9 @@ contains
         if (n_interior == 0) return
         call interior_factor(ke(nc + 1:, nc + 1:), l, info)
         if (info /= HP_OK) return
+        ! allocated first: assigning to the unallocated x made gfortran compute its extent
+        ! from an empty descriptor, which -fsanitize=undefined reports as an overflow
+        allocate (x(n_interior, nc))
         x = forward_solve(l, ke(nc + 1:, 1:nc))   ! X = L^-1 K_bc
         kc = kc - matmul(transpose(x), x)
         do j = 1, nc   ! exactly symmetric
@@ -195,6 +198,7 @@ contains
         if (n_interior == 0) return
         call interior_factor(ke(nc + 1:, nc + 1:), l, info)
         if (info /= HP_OK) return
+        allocate (y(n_interior, 1))   ! as in condense_interior
         y = forward_solve(l, -reshape(matmul(ke(nc + 1:, 1:nc), uc), [n_interior, 1]))
         do j = n_interior, 1, -1   ! back substitution with L'
             ub(j) = (y(j, 1) - dot_product(l(j + 1:, j), ub(j + 1:)))/l(j, j)
@@ -230,7 +234,10 @@ contains
         real(wp) :: x(size(b, 1), size(b, 2))
         integer :: j
         x = b
-        do j = 1, size(b, 1)
+        ! the first row apart: gfortran's inlined matmul of the empty row l(1, 1:0) computes
+        ! bounds that overflow, which -fsanitize=undefined reports
+        if (size(b, 1) > 0) x(1, :) = x(1, :)/l(1, 1)
+        do j = 2, size(b, 1)
             x(j, :) = (x(j, :) - matmul(l(j, 1:j - 1), x(1:j - 1, :)))/l(j, j)
         end do
     end function forward_solve

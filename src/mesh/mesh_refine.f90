@@ -354,7 +354,9 @@ contains
         end if
         m%element = element
         m%part_names = this%part_names
-        m%edge_part = this%edge_part
+        ! sourced allocation, not assignment: gfortran 12's reallocation of the unallocated
+        ! component reads an extent that -fsanitize=undefined reports as an overflow
+        allocate (m%edge_part, source=this%edge_part)
         if (element == ELEMENT_P1) then
             m%coords = this%coords
             m%cells = this%cells
