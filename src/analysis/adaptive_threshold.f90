@@ -49,7 +49,7 @@ module adaptive_threshold
     use eigen_analysis, only: eigen_result_t, eigen_with_factor, SOLVER_DENSE
     use error_estimate, only: error_estimate_t, estimate_lowest_error
     use error_bar, only: level_bar
-    use roundoff, only: threshold_roundoff
+    use roundoff, only: threshold_roundoff, collision_roundoffs
     use element_types, only: element_degree
     implicit none
     private
@@ -72,6 +72,7 @@ module adaptive_threshold
         real(wp) :: collision_lambda(2) = 0.0_wp
         real(wp) :: collision_estimate(2) = -1.0_wp
         real(wp) :: collision_bar(2) = -1.0_wp
+        real(wp) :: collision_roundoff(2) = -1.0_wp   !! its round-off part; < 0: unknown
         real(wp) :: time_s = 0.0_wp
     end type threshold_level_t
 
@@ -80,6 +81,7 @@ module adaptive_threshold
         type(problem_t) :: prob                   !! the problem of the last level solved
         type(threshold_estimate_t) :: estimate    !! of its thresholds
         logical :: converged = .false.
+        logical :: floor_reached = .false.   !! stopped by round-off, not by a limit
         character(len=:), allocatable :: outcome
     end type adaptive_thresholds_t
 
@@ -113,12 +115,10 @@ contains
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
         type(threshold_goal_t) :: goal
-        logical :: floor
 
         allocate (goal%levels(0))
-        ! (its goal has no round-off part: no floor)
-        call adapt_mesh(config, start, goal, out%prob, out%converged, floor, out%outcome, &
-                        timings, stat)
+        call adapt_mesh(config, start, goal, out%prob, out%converged, out%floor_reached, &
+                        out%outcome, timings, stat)
         if (.not. stat%ok()) return
         call move_alloc(goal%levels, out%levels)
         out%estimate = goal%est
@@ -175,6 +175,8 @@ contains
         if (stat%ok()) call onset_search(config, blocks, this%thr, prob%dofs%n_free, &
                                          this%pencil_dofs, set, stat)
         if (stat%ok()) call collision_onsets(set, onset)
+        if (stat%ok() .and. any(onset > 0)) call collision_roundoffs(prob%k, chol, &
+            prob%contact, blocks, set, stat)
         allocate (nearest(size(set%points)), source=huge(1.0_wp))
         if (stat%ok() .and. any(onset > 0)) call enriched_pair_lambdas(prob, &
             ENRICHED_CONTACT_MAX, set, nearest, stat)
@@ -191,6 +193,7 @@ contains
         this%levels = [this%levels, level_row()]
         call level_bars(this%levels, element_degree(prob%mesh%element), this%thr%roundoff, &
                         this%est)
+        this%roundoff = worst_side_roundoff(this%levels(size(this%levels)), this%thr, this%est)
         call timings%note(level_line(this%levels(size(this%levels))))
 
     contains
@@ -206,6 +209,7 @@ contains
             row%error_estimate = abs(this%est%relative)
             row%collision = onset > 0
             where (row%collision) row%collision_lambda = set%points(max(onset, 1))%lambda
+            where (row%collision) row%collision_roundoff = set%points(max(onset, 1))%roundoff
             row%collision_estimate = this%collision_estimate
             row%time_s = wall_time() - loop_start
         end function level_row
@@ -421,9 +425,34 @@ contains
                 lambdas(i) = levels(i)%collision_lambda(side)
                 dofs(i) = levels(i)%n_dofs
             end do
-            levels(k)%collision_bar(side) = level_bar(estimates, lambdas, dofs, degree, -1.0_wp)
+            levels(k)%collision_bar(side) = level_bar(estimates, lambdas, dofs, degree, &
+                                                      levels(k)%collision_roundoff(side))
         end do
     end subroutine level_bars
+
+    !> The round-off part of the bar that threshold_goal_error returns for `row` (the side
+    !> with the largest bar), for the loop's floor test; -1 where unknown.
+    pure real(wp) function worst_side_roundoff(row, thr, est) result(roundoff)
+        type(threshold_level_t), intent(in) :: row
+        type(thresholds_t), intent(in) :: thr
+        type(threshold_estimate_t), intent(in) :: est
+        real(wp) :: bar, worst
+        integer :: side
+        roundoff = -1.0_wp
+        worst = -1.0_wp
+        do side = SIDE_PLUS, SIDE_MINUS
+            if (row%collision(side)) then
+                bar = row%collision_bar(side)
+                if (bar > worst) roundoff = row%collision_roundoff(side)
+            else if (thr%found(side) .and. est%computed(side)) then
+                bar = est%bar(side)
+                if (bar > worst) roundoff = thr%roundoff(side)
+            else
+                cycle
+            end if
+            worst = max(worst, bar)
+        end do
+    end function worst_side_roundoff
 
     !> The union of the Doerfler sets of the sides still above the tolerance.
     function threshold_goal_mark(this, theta) result(marked)

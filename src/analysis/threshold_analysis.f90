@@ -12,7 +12,7 @@ module threshold_analysis
     use kinds, only: wp
     use status, only: status_t
     use timer, only: wall_time, timings_t, PHASE_ASSEMBLY, PHASE_REDUCTION
-    use strings, only: to_string, seconds_text
+    use strings, only: to_string, seconds_text, short_real_text
     use real_format, only: real_to_text
     use run_config, only: config_t, sweep_lambdas
     use problem, only: problem_t, explain_singular_k, build_problem
@@ -27,8 +27,8 @@ module threshold_analysis
     use arpack_eigen, only: arpack_options_t, arpack_lowest_positive
     use critical_lambda, only: thresholds_t, pencil_thresholds, confirm_thresholds, &
                                lowest_positive_mu, SIDE_PLUS, SIDE_MINUS, SIDE_LABELS
-    use roundoff, only: threshold_roundoff
-    use critical_set, only: critical_set_t, find_critical_set
+    use roundoff, only: threshold_roundoff, collision_roundoffs
+    use critical_set, only: critical_set_t, find_critical_set, MECHANISM_COMPLEX_PAIR
     use adaptive_eigen, only: adapt_eigen, adaptive_result_t
     use eigen_analysis, only: eigen_result_t, choose_solver, eigen_with_factor, SOLVER_ARPACK, &
                               to_input_units, estimate_wanted
@@ -36,7 +36,7 @@ module threshold_analysis
     use boundary_estimate, only: estimate_boundary_bars
     use threshold_estimate, only: threshold_estimate_t, threshold_displacements, &
                                   estimate_threshold_errors
-    use accuracy, only: WARNING_LEN
+    use accuracy, only: WARNING_LEN, roundoff_warnings
     implicit none
     private
     public :: threshold_result_t, solve_thresholds, factor_with_contact_blocks, scan_lambdas
@@ -128,6 +128,14 @@ contains
             if (estimated .and. stat%ok()) call threshold_displacements(chol, prob%contact, &
                 prob%dofs%n_free, res%thresholds, u_threshold, stat)
         end if
+        ! the boundary of the positive set while the factor is there: the round-off part of
+        ! a collision needs two solves with it. Dense, whatever the solver: the count of
+        ! positive mu needs the whole spectrum.
+        blocks%mass = prob%contact%mass
+        if (stat%ok()) call find_critical_set(blocks, scan_lambdas(config, with_sweep), &
+                                              res%thresholds%real_lambdas, res%set, stat)
+        if (stat%ok()) call collision_roundoffs(prob%k, chol, prob%contact, blocks, res%set, &
+                                                stat)
         call chol%free()
         if (.not. stat%ok()) return
         if (estimated) call add_threshold_estimate()
@@ -135,8 +143,7 @@ contains
         if (estimated) where (res%estimate%computed .and. res%estimate%bar >= 0.0_wp .and. &
                               res%thresholds%roundoff >= 0.0_wp) &
             res%estimate%bar = res%estimate%bar + res%thresholds%roundoff
-        call warn_roundoff()
-        blocks%mass = prob%contact%mass
+        call warn_roundoff(.false.)
         ! Dense on purpose, whatever the solver: just inside a threshold there is no positive
         ! mu, which only the complete spectrum shows, and just outside the wanted mu is huge,
         ! deep in the spectrum; dgeev without vectors is O(p^3) with a small constant.
@@ -146,10 +153,6 @@ contains
         call real_to_input_units(res%thresholds%mu_outside, stat)
         if (stat%ok()) call real_to_input_units(res%thresholds%mu_inside, stat)
         if (.not. stat%ok()) return
-        ! Dense too, for the same reason: the count of positive mu needs the whole spectrum.
-        call find_critical_set(blocks, scan_lambdas(config, with_sweep), &
-                               res%thresholds%real_lambdas, res%set, stat)
-        if (.not. stat%ok()) return
         if (size(res%set%points) > 0) then
             mu_meet = res%set%points%mu_meet   ! a plain array: no temporary for the call
             call real_to_input_units(mu_meet, stat)
@@ -157,6 +160,7 @@ contains
             res%set%points%mu_meet = mu_meet
         end if
         if (estimated .or. present(estimate)) call add_boundary_bars()
+        call warn_roundoff(.true.)
         res%time_threshold = wall_time() - start
         call timings%note('thresholds '//seconds_text(res%time_threshold)//' s')
         if (.not. with_sweep) return
@@ -213,15 +217,33 @@ contains
 
     contains
 
-        !> A warning per side whose round-off bound is 1 or more: no digit of it is certain.
-        subroutine warn_roundoff()
-            integer :: side
-            do side = SIDE_PLUS, SIDE_MINUS
-                if (res%thresholds%roundoff(side) < 1.0_wp) cycle
-                res%eigen%warnings = [character(len=WARNING_LEN) :: res%eigen%warnings, &
-                    trim(SIDE_LABELS(side))//': the round-off bound '// &
-                    real_to_text(res%thresholds%roundoff(side))//' is 1 or more: '// &
-                    'no digit of it is certain in floating point']
+        !> The round-off warnings (accuracy: roundoff_warnings) of each critical lambda found
+        !> and, once their bars are known, of each collision point.
+        subroutine warn_roundoff(collisions)
+            logical, intent(in) :: collisions
+            real(wp) :: rest
+            integer :: side, i
+            if (.not. collisions) then
+                do side = SIDE_PLUS, SIDE_MINUS
+                    if (.not. res%thresholds%found(side)) cycle
+                    rest = -1.0_wp
+                    if (res%estimate%computed(side) .and. res%estimate%bar(side) >= 0.0_wp) &
+                        rest = res%estimate%bar(side) - res%thresholds%roundoff(side)
+                    res%eigen%warnings = [character(len=WARNING_LEN) :: res%eigen%warnings, &
+                        roundoff_warnings(res%thresholds%roundoff(side), rest, &
+                                          trim(SIDE_LABELS(side)))]
+                end do
+                return
+            end if
+            do i = 1, size(res%set%points)
+                associate (point => res%set%points(i))
+                    if (point%mechanism /= MECHANISM_COMPLEX_PAIR) cycle
+                    rest = -1.0_wp
+                    if (point%error_bar >= 0.0_wp) rest = point%error_bar - point%roundoff
+                    res%eigen%warnings = [character(len=WARNING_LEN) :: res%eigen%warnings, &
+                        roundoff_warnings(point%roundoff, rest, 'the collision point lambda = ' &
+                                          //short_real_text(point%lambda, 12))]
+                end associate
             end do
         end subroutine warn_roundoff
 

@@ -53,6 +53,9 @@ module critical_set
         !> the relative error bar of lambda against the continuum (filled by the analysis:
         !> boundary_estimate); negative: none
         real(wp) :: error_bar = -1.0_wp
+        !> complex_pair: the round-off part of that bar (roundoff: collision_roundoff);
+        !> negative: unknown
+        real(wp) :: roundoff = -1.0_wp
     end type boundary_point_t
 
     type, public :: critical_set_t

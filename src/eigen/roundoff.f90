@@ -19,15 +19,18 @@
 !> error.
 module roundoff
     use kinds, only: wp
-    use status, only: status_t
+    use status, only: status_t, STATUS_SOLVER
     use csr_matrix, only: csr_matrix_t
     use sparse_cholesky, only: cholesky_t
     use contact_boundary, only: contact_t
     use critical_lambda, only: thresholds_t, SIDE_PLUS, SIDE_MINUS
+    use contact_reduction, only: reduced_blocks_t, lambda_unit
+    use critical_set, only: critical_set_t, boundary_point_t, MECHANISM_COMPLEX_PAIR
+    use lapack_interfaces, only: dgeev, lapack_info_message
     implicit none
     private
     public :: roundoff_bound, left_from_reduced, lowest_roundoff
-    public :: pencil_roundoff, threshold_roundoff
+    public :: pencil_roundoff, threshold_roundoff, collision_bound, collision_roundoffs
 
     !> The data term's multiple of eps. An entry of K is a sum of some 10 to 100 products
     !> (quadrature points, cells per node, the elasticity tensor) and the factor of K adds a
@@ -177,4 +180,91 @@ contains
                                                         lifts(:, 2*side)))
         end do
     end subroutine threshold_roundoff
+
+    !> |lambda_c - lambda_exact| / |lambda_c| for a collision lambda_c, where two eigenvalues
+    !> of A(lambda) meet (a 2 x 2 Jordan block: right vector x, left vector y, y'x = 0). A
+    !> perturbation E keeps a double eigenvalue where y'(E + A' d lambda) x = 0 (the split of
+    !> the pair is the square root of that, to first order), so the collision moves by
+    !> d lambda = -y'Ex / y'A'x, A' = dA/dlambda; `dax` is A'x. The solver's perturbation is
+    !> normwise (dgeev, backward stable: a few eps ||A||_F, `a_norm` = ||A||_F), the data's
+    !> is bounded by the caller: |y' dA x| <= `data`. huge() when y'A'x = 0 (the pair does not
+    !> cross: no first-order bound).
+    pure real(wp) function collision_bound(a_norm, lambda, x, y, dax, data) result(bound)
+        real(wp), intent(in) :: a_norm, lambda, x(:), y(:), dax(:), data
+        real(wp) :: ydax
+        bound = huge(1.0_wp)
+        ydax = abs(dot_product(y, dax))*abs(lambda)
+        if (.not. (ydax > 0.0_wp)) return
+        bound = (ROUNDOFF_UNITS*epsilon(1.0_wp)*a_norm*norm2(x)*norm2(y) + data)/ydax
+    end function collision_bound
+
+    !> The round-off part (collision_roundoff) of every complex_pair point of `set`.
+    subroutine collision_roundoffs(k, chol, contact, blocks, set, stat)
+        type(csr_matrix_t), intent(in) :: k
+        type(cholesky_t), intent(in) :: chol
+        type(contact_t), intent(in) :: contact
+        type(reduced_blocks_t), intent(in) :: blocks
+        type(critical_set_t), intent(inout) :: set
+        type(status_t), intent(out) :: stat
+        integer :: i
+        do i = 1, size(set%points)
+            call collision_roundoff(k, chol, contact, blocks, set%points(i), stat)
+            if (.not. stat%ok()) return
+        end do
+    end subroutine collision_roundoffs
+
+    !> point%roundoff for a complex_pair boundary point of the reduced matrix A(lambda) =
+    !> (lambda Kt_nt - Kt_nn) M of `blocks` (collision_bound). Its vectors are dgeev's of the
+    !> eigenvalue nearest where the pair meets (their real parts: at the meeting point the
+    !> pair's vectors tend to x and y, a few sqrt(eps) off, which a first-order bound
+    !> tolerates). The data term is that of K, as in threshold_roundoff: A = N K^-1
+    !> (lambda T' - N') M, so dK moves y'Ax by the lifts' |K^-1 N'y|' |dK| |K^-1 (lambda T' -
+    !> N') M x|; two solves with the factor `chol`. Other points keep -1.
+    subroutine collision_roundoff(k, chol, contact, blocks, point, stat)
+        type(csr_matrix_t), intent(in) :: k
+        type(cholesky_t), intent(in) :: chol
+        type(contact_t), intent(in) :: contact
+        type(reduced_blocks_t), intent(in) :: blocks
+        type(boundary_point_t), intent(inout) :: point
+        type(status_t), intent(out) :: stat
+        real(wp), allocatable :: a(:, :), vl(:, :), vr(:, :), wr(:), wi(:), work(:), &
+                                 rhs(:, :), lifts(:, :)
+        real(wp) :: query(1), theta, unit
+        real(wp), allocatable :: x(:), y(:), mx(:)
+        integer :: p, j, info
+
+        point%roundoff = -1.0_wp
+        if (point%mechanism /= MECHANISM_COMPLEX_PAIR .or. .not. point%mu_meet > 0.0_wp) return
+        p = size(blocks%kt_nn, 1)
+        unit = lambda_unit(point%lambda)
+        allocate (a(p, p))   ! then filled: see dense_eigen on reallocation on assignment
+        a(:, :) = blocks%matrix(point%lambda)
+        allocate (wr(p), wi(p), vl(p, p), vr(p, p), x(p), y(p), mx(p))
+        call dgeev('V', 'V', p, a, p, wr, wi, vl, p, vr, p, query, -1, info)
+        allocate (work(max(1, int(query(1)))))
+        call dgeev('V', 'V', p, a, p, wr, wi, vl, p, vr, p, work, size(work), info)
+        if (info /= 0) then
+            call stat%fail(STATUS_SOLVER, 'collision round-off: '// &
+                           lapack_info_message('dgeev', info))
+            return
+        end if
+        ! mu_meet is 1 / theta of A itself; the matrix decomposed is A / unit
+        theta = 1.0_wp/(point%mu_meet*unit)
+        j = minloc(abs(cmplx(wr - theta, wi, wp)), dim=1)
+        if (wi(j) < 0.0_wp) j = j - 1   ! a conjugate pair: its real parts are in column j
+        x = vr(:, j)
+        y = vl(:, j)
+        call blocks%mass%matvec(x, mx)
+        allocate (rhs(k%n(), 2), source=0.0_wp)
+        allocate (lifts(k%n(), 2))
+        call contact%scatter(contact%normal, y, rhs(:, 1))
+        call contact%scatter(point%lambda*contact%tangent - contact%normal, mx, rhs(:, 2))
+        call chol%solve(rhs, lifts, stat)
+        if (.not. stat%ok()) return
+        ! A' x = Kt_nt M x; the norm of A = unit times that of the matrix decomposed
+        a(:, :) = blocks%matrix(point%lambda)
+        point%roundoff = collision_bound(unit*norm2(a), point%lambda, x, y, &
+            matmul(blocks%kt_nt, mx), ROUNDOFF_UNITS*epsilon(1.0_wp)*abs_form(k, lifts(:, 1), &
+                                                                              lifts(:, 2)))
+    end subroutine collision_roundoff
 end module roundoff

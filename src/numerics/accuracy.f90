@@ -35,27 +35,31 @@ module accuracy
 
 contains
 
-    !> The warning, if any, on the round-off bound `roundoff` of the lowest positive mu (< 0:
-    !> unknown) against the discretisation part of its error bar (< 0: none): no correct
-    !> digit (bound >= 1, the run exits with STATUS_NO_DIGIT), fewer than 6 correct digits
-    !> (above FORWARD_ERROR_BOUND), or round-off the larger part of the bar.
-    function roundoff_warnings(roundoff, discretisation) result(warnings)
+    !> The warning, if any, on the round-off bound `roundoff` of a critical value (< 0:
+    !> unknown), `subject` (default: the lowest positive mu), against the discretisation
+    !> part of its error bar (< 0: none): no correct digit (bound >= 1, the run exits with
+    !> STATUS_NO_DIGIT), fewer than 6 correct digits (above FORWARD_ERROR_BOUND), or
+    !> round-off the larger part of the bar.
+    function roundoff_warnings(roundoff, discretisation, subject) result(warnings)
         real(wp), intent(in) :: roundoff, discretisation
+        character(len=*), intent(in), optional :: subject
         character(len=WARNING_LEN), allocatable :: warnings(:)
         character(len=*), parameter :: WHY = ' (the bound grows with a nearly incompressible ' &
             //'material, stretched or sliver cells, and lambda near a critical value)'
+        character(len=:), allocatable :: what
         allocate (warnings(0))
         if (.not. roundoff >= 0.0_wp) return
+        what = 'the lowest positive mu'
+        if (present(subject)) what = subject
         if (roundoff >= 1.0_wp) then
             warnings = [character(len=WARNING_LEN) :: 'round-off leaves no correct digit of ' &
-                //'the lowest positive mu: its bound is '//short(roundoff)//' relative'//WHY]
+                //what//': its bound is '//short(roundoff)//' relative'//WHY]
         else if (roundoff > FORWARD_ERROR_BOUND) then
-            warnings = [character(len=WARNING_LEN) :: 'round-off bound of the lowest positive ' &
-                //'mu is '//short(roundoff)//' relative: '// &
-                digits_text(floor(-log10(roundoff)))//WHY]
+            warnings = [character(len=WARNING_LEN) :: 'round-off bound of '//what//' is ' &
+                //short(roundoff)//' relative: '//digits_text(floor(-log10(roundoff)))//WHY]
         else if (discretisation >= 0.0_wp .and. roundoff > discretisation) then
             warnings = [character(len=WARNING_LEN) :: 'round-off dominates the error bar of ' &
-                //'the lowest positive mu: '//short(roundoff)//' relative against '// &
+                //what//': '//short(roundoff)//' relative against '// &
                 short(discretisation)//' from the discretisation, which refining the mesh ' &
                 //'does not reduce'//WHY]
         end if

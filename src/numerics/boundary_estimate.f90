@@ -5,7 +5,8 @@
 !> has no weighted residual (at a double eigenvalue it has no meaning), so its estimate is
 !> the difference to the same point of the problem one degree higher on the same cells
 !> (enrichment: a space that holds this one, as for mu), found by the same search in a
-!> window around it; the bar is BAR_FACTOR times that difference (error_bar).
+!> window around it; the bar is BAR_FACTOR times that difference plus the point's round-off
+!> part (error_bar; roundoff: collision_roundoff).
 module boundary_estimate
     use kinds, only: wp
     use status, only: status_t
@@ -49,15 +50,18 @@ contains
                 ! the same pencil eigenvalue (copied, so equal up to its last bit)
                 if (thr%found(side) .and. est%computed(side) .and. &
                     abs(set%points(i)%lambda - thr%lambda(side)) <= &
-                    4.0_wp*epsilon(1.0_wp)*abs(thr%lambda(side))) &
+                    4.0_wp*epsilon(1.0_wp)*abs(thr%lambda(side))) then
                     set%points(i)%error_bar = est%bar(side)
+                    set%points(i)%roundoff = thr%roundoff(side)
+                end if
             end do
         end do
         call enriched_pair_lambdas(prob, max_contact, set, nearest, stat)
         if (.not. stat%ok()) return
         do i = 1, size(set%points)
             if (nearest(i) < huge(1.0_wp)) set%points(i)%error_bar = single_bar( &
-                abs(nearest(i) - set%points(i)%lambda)/abs(set%points(i)%lambda), -1.0_wp)
+                abs(nearest(i) - set%points(i)%lambda)/abs(set%points(i)%lambda), &
+                set%points(i)%roundoff)
         end do
     end subroutine estimate_boundary_bars
 

@@ -7,7 +7,7 @@
 !> mesh.msh as an adaptive eigen run does.
 module threshold_run
     use kinds, only: wp
-    use status, only: status_t, STATUS_NOT_MET
+    use status, only: status_t, STATUS_NOT_MET, STATUS_NO_DIGIT
     use strings, only: to_string, short_real_text
     use real_format, only: real_to_text
     use timer, only: timings_t
@@ -80,7 +80,36 @@ contains
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
         call solve_thresholds(config, prob, .false., this%res, timings, stat)
+        if (stat%ok()) call no_digit_verdict(this, config)
     end subroutine threshold_run_solve
+
+    !> The verdict STATUS_NO_DIGIT (after the outputs: the set shows what was computed)
+    !> where round-off leaves no correct digit of a critical lambda or of a collision
+    !> point: its round-off bound is 1 or more.
+    subroutine no_digit_verdict(this, config)
+        class(threshold_run_t), intent(inout) :: this
+        type(config_t), intent(in) :: config
+        real(wp) :: worst
+        integer :: side, i
+        character(len=:), allocatable :: what
+        worst = -1.0_wp
+        what = ''
+        do side = SIDE_PLUS, SIDE_MINUS
+            if (.not. this%res%thresholds%found(side)) cycle
+            if (this%res%thresholds%roundoff(side) <= worst) cycle
+            worst = this%res%thresholds%roundoff(side)
+            what = trim(SIDE_LABELS(side))
+        end do
+        do i = 1, size(this%res%set%points)
+            if (this%res%set%points(i)%roundoff <= worst) cycle
+            worst = this%res%set%points(i)%roundoff
+            what = 'the collision point lambda = '// &
+                short_real_text(this%res%set%points(i)%lambda, 12)
+        end do
+        if (worst >= 1.0_wp) call this%verdict%fail(STATUS_NO_DIGIT, config%input_file// &
+            ': round-off leaves no correct digit of '//what//' (bound '// &
+            short_real_text(worst)//' relative); the output set is written')
+    end subroutine no_digit_verdict
 
     subroutine sweep_run_solve(this, config, prob, timings, stat)
         class(sweep_run_t), intent(inout) :: this
@@ -90,6 +119,8 @@ contains
         type(status_t), intent(out) :: stat
         call solve_thresholds(config, prob, .true., this%res, timings, stat)
         if (.not. stat%ok()) return
+        call no_digit_verdict(this, config)
+        if (.not. this%verdict%ok()) return
         if (this%res%sweep%n_not_met > 0) call this%verdict%fail(STATUS_NOT_MET, &
             config%input_file//': &adapt: '//to_string(this%res%sweep%n_not_met)// &
             ' of the sweep''s points with a positive mu did not meet the tolerance, '// &
@@ -106,6 +137,7 @@ contains
         if (stat%ok() .and. .not. this%adapted%converged) call this%verdict%fail( &
             STATUS_NOT_MET, config%input_file//': &adapt: '//this%adapted%outcome// &
             ' (the set of the last level is written)')
+        if (stat%ok()) call no_digit_verdict(this, config)
     end subroutine adapt_threshold_run_solve
 
     subroutine threshold_run_write_files(this, stage, config, prob, stat)
@@ -182,7 +214,7 @@ contains
         summary = eigen_summary_json(config, this%adapted%prob, this%res%eigen, this%timings)
         call add_threshold_keys(summary, this%res)
         call add_adapt_keys(summary, config, prob%dofs%n_free, &
-            size(this%adapted%levels) - 1, this%adapted%converged, .false., &
+            size(this%adapted%levels) - 1, this%adapted%converged, this%adapted%floor_reached, &
             this%adapted%outcome)
     end function adapt_threshold_run_summary
 
@@ -328,7 +360,7 @@ contains
         type(json_object_t), intent(inout) :: summary
         type(critical_set_t), intent(in) :: set
         real(wp), allocatable :: lower(:), upper(:), lambdas(:), discriminants(:), mu_meets(:), &
-                                 bars(:)
+                                 bars(:), roundoffs(:)
         integer, allocatable :: below(:), above(:)
         logical, allocatable :: confirmed(:)
         character(len=len(MECHANISM_NAMES)), allocatable :: mechanisms(:)
@@ -339,11 +371,13 @@ contains
         ! passed as an array makes a temporary (a runtime warning under -fcheck=all).
         n = size(set%points)
         allocate (lambdas(n), discriminants(n), mu_meets(n), below(n), above(n), confirmed(n), &
-                  mechanisms(n), directions(n), bars(n))
+                  mechanisms(n), directions(n), bars(n), roundoffs(n))
         do i = 1, n
             ! the relative bar of each point (boundary_estimate); NaN is written as null
             bars(i) = set%points(i)%error_bar
             if (bars(i) < 0.0_wp) bars(i) = ieee_value(1.0_wp, ieee_quiet_nan)
+            roundoffs(i) = set%points(i)%roundoff   ! its round-off part
+            if (roundoffs(i) < 0.0_wp) roundoffs(i) = ieee_value(1.0_wp, ieee_quiet_nan)
             associate (b => set%points(i))
                 lambdas(i) = b%lambda
                 below(i) = b%n_below
@@ -379,6 +413,7 @@ contains
         call summary%add_real_array('boundary_lambda', lambdas)
         call summary%add_string_array('boundary_mechanism', mechanisms)
         call summary%add_real_array('boundary_error_bar', bars)
+        call summary%add_real_array('boundary_roundoff', roundoffs)
         call summary%add_string_array('boundary_direction', directions)
         call summary%add_logical_array('boundary_confirmed', confirmed)
         call summary%add_integer_array('boundary_n_positive_below', below)

@@ -107,6 +107,18 @@ check 'floor: the round-off part is at least half the bar' \
         "BEGIN { exit !(r > 0 && 2 * r >= b) }"'
 check 'not the floor when the tolerance is met' '[[ $(json "$s" adapt_floor_reached) == false ]]'
 
+# The threshold loop stops at the same floor: its goal's round-off part is that of the side
+# with the largest bar (lambda+- of the pencil, or a collision onset).
+"$nceig" "$work/adapt.nml" --set analysis%kind=threshold --set material%poisson=0.499999999 \
+    --set output%directory="$work/tfloor" >"$work/stdout" 2>"$work/err"; rc=$?
+f=$work/tfloor/summary.json
+check 'threshold floor: exit 8, one stderr line, the set written' '[[ $rc -eq 8 && $(wc -l <"$work/err") -eq 1 &&
+    -s "$work/tfloor/adapt.csv" && $(json "$f" adapt_floor_reached) == true ]] &&
+    grep -q "the floating-point floor is reached" "$work/err"'
+check 'threshold floor: the round-off part is at least half the bar' \
+    'awk -v b="$(json "$f" lambda_critical_plus_error_bar)" -v r="$(json "$f" lambda_critical_plus_roundoff)" \
+        "BEGIN { exit !(r > 0 && 2 * r >= b) }"'
+
 # No positive mu (lambda = 1, below the threshold 1.94): nothing to adapt to, said so; the
 # set holds exactly its listed files (no picture, no leftover of one).
 "$nceig" "$work/adapt.nml" --set analysis%lambda=1 --set output%directory="$work/none" \

@@ -123,6 +123,12 @@ NML
         '[[ $(jq -r ".boundary_mechanism[0]" "$work/hc16/summary.json") == complex_pair ]] &&
          awk -v c="$coarse" -v f="$fine" -v b="$bar" "BEGIN { d = c - f; if (d < 0) d = -d
              m = c < 0 ? -c : c; exit !(b > 0 && d <= b * m) }"'
+    # its round-off part (collision_roundoff): measured 1.7e-11 on this point, 271 times the
+    # spread over ten roundings (scripts/dev/collision_roundoff_spread.sh); a well
+    # conditioned point must be far below its bar and far above eps
+    r=$(jq -r '.boundary_roundoff[0]' "$work/hc16/summary.json")
+    check "complex_pair point: round-off part $r, inside the bar, above eps" \
+        'awk -v r="$r" -v b="$bar" "BEGIN { exit !(r > 1e-15 && r < 1e-8 && r < b) }"'
 
     # Collision onsets adapted: on the trapezoid a positive mu appears at a collision of two
     # real mu on both sides (mirror images). Adaptive P2 from h = 1/8 to 1e-4: the loop meets

@@ -141,4 +141,14 @@ for solver in dense arpack; do
         fi
     done
 done
+# The critical lambdas at nu = 0.499999999999 (P2 32 x 32): the pencil's round-off bound
+# passes 1 (measured 2.9; it is 37 times the spread of lambda+ over roundings, so no digit
+# is certain): exit 9 as for mu, one stderr line naming lambda+, the set written.
+"$nceig" "$2/input/threshold.nml" --set material%poisson=0.499999999999 \
+    --set mesh%element=p2 --set output%directory="$work/lnine" >"$work/lnine.out" \
+    2>"$work/lnine.err"; rc=$?
+check 'critical lambda with no correct digit: exit 9, one stderr line, the set written' \
+    '[[ $rc -eq 9 && $(wc -l <"$work/lnine.err") -eq 1 ]] && grep -q "no correct digit of lambda+" "$work/lnine.err" && [[ -s $work/lnine/summary.json && -s $work/lnine/eigenvalues.csv ]]'
+check 'critical lambda with no correct digit: warned on stdout' \
+    'grep -q "^warning: round-off leaves no correct digit of lambda+" "$work/lnine.out"'
 cli_end

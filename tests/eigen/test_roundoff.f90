@@ -8,12 +8,16 @@
 !> The thresholds' pencil_roundoff on A z = l B z with A = [[2, 1], [1, 3]] and
 !> B = [[1, 1], [0, -1]]: det(A - l B) = 5 - l^2, l = sqrt(5), right z = (l - 1, 2 - l),
 !> left w = (1, l - 2).
+!> The collision bound on A(lambda) = [[1, 1], [lambda - c, 1]], eigenvalues 1 +- sqrt(lambda
+!> - c): they meet at lambda = c in a Jordan block with right x = (1, 0), left y = (0, 1)
+!> and A'x = (0, 1), y'A'x = 1. A + E meets where (e11 - e22)^2 + 4 (1 + e12)(lambda - c +
+!> e21) = 0: the collision moves by -e21 to first order, y'Ex.
 program test_roundoff
     use kinds, only: wp
     use testing, only: test_suite_t
     use csr_matrix, only: csr_matrix_t
     use contact_boundary, only: contact_t
-    use roundoff, only: roundoff_bound, pencil_roundoff, ROUNDOFF_UNITS
+    use roundoff, only: roundoff_bound, pencil_roundoff, collision_bound, ROUNDOFF_UNITS
     implicit none
 
     real(wp), parameter :: LAMBDA = 4.0_wp, MU = 0.5_wp, X(2) = [3.0_wp, 2.0_wp], &
@@ -25,6 +29,7 @@ program test_roundoff
     call bound_adds_residual(t)
     call pencil_bound_holds_for_perturbed_data(t)
     call pencil_bound_adds_residual(t)
+    call collision_bound_holds_for_perturbed_data(t)
     call t%report()
 
 contains
@@ -180,4 +185,36 @@ contains
         integer, intent(in) :: s, bit
         sgn = merge(-1.0_wp, 1.0_wp, btest(s, bit))
     end function sgn
+
+    !> Entries of A(c) perturbed by delta each (every one of the 16 sign patterns): the exact
+    !> collision of A + E (closed form above) moves by at most the bound with data = delta
+    !> (|y|'|E||x| <= delta), and by that bound, up to delta^2, for the worst pattern. The
+    !> solver's part (ROUNDOFF_UNITS eps ||A||_F) is below 1e-14 of it.
+    subroutine collision_bound_holds_for_perturbed_data(t)
+        type(test_suite_t), intent(inout) :: t
+        real(wp), parameter :: C = 2.5_wp, X2(2) = [1.0_wp, 0.0_wp], Y2(2) = [0.0_wp, 1.0_wp], &
+                               DAX(2) = [0.0_wp, 1.0_wp]
+        real(wp) :: delta, bound, e(4), moved, worst
+        integer :: s, bit
+        logical :: holds
+        delta = 1.0e-8_wp
+        ! ||A(c)||_F = sqrt(3)
+        bound = collision_bound(sqrt(3.0_wp), C, X2, Y2, DAX, delta)
+        holds = .true.
+        worst = 0.0_wp
+        do s = 0, 15
+            do bit = 0, 3
+                e(bit + 1) = sgn(s, bit)*delta
+            end do
+            ! e = (e11, e12, e21, e22): lambda_c = c - e21 - (e11 - e22)^2 / (4 (1 + e12))
+            moved = abs(e(3) + (e(1) - e(4))**2/(4.0_wp*(1.0_wp + e(2))))/C
+            holds = holds .and. moved <= bound*(1.0_wp + 1.0e-6_wp)
+            worst = max(worst, moved)
+        end do
+        call t%check('perturbations 1e-8 of A move the collision by at most the bound', holds)
+        call t%check_close('the worst pattern reaches the bound (first order)', worst, bound, &
+                           1.0e-6_wp)
+        call t%check('no crossing (y''A''x = 0): no bound (huge)', &
+            collision_bound(sqrt(3.0_wp), C, X2, Y2, [1.0_wp, 0.0_wp], delta) >= huge(1.0_wp))
+    end subroutine collision_bound_holds_for_perturbed_data
 end program test_roundoff
