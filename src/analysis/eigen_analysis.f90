@@ -8,7 +8,7 @@ module eigen_analysis
     use strings, only: to_string, short_real_text
     use real_format, only: real_to_text
     use run_config, only: config_t
-    use problem, only: problem_t, explain_singular_k, build_problem
+    use problem, only: problem_t, explain_singular_k
     use element_types, only: element_name
     use csr_matrix, only: csr_matrix_t
     use sparse_cholesky, only: cholesky_t
@@ -22,10 +22,9 @@ module eigen_analysis
     use error_estimate, only: error_estimate_t, estimate_lowest_error, ENRICHED_CONTACT_MAX, &
                               estimate_label
     use enrichment, only: enriched_element
-    use mesh, only: mesh_t
-    use mesh_refine, only: refinable_mesh_t, build_refinable_mesh
     use mode_resolution, only: contact_mode_cells
     use error_bar, only: single_bar
+    use halved_mesh, only: build_halved_problem
     implicit none
     private
     public :: eigen_result_t, solve_eigen, estimate_eigen, choose_solver, eigen_with_factor, &
@@ -315,30 +314,12 @@ contains
         type(eigen_result_t) :: fine_res
         type(timings_t) :: quiet
         type(status_t) :: stat
-        type(refinable_mesh_t) :: tree
-        type(mesh_t) :: refined
-        integer :: lowest, i, pass
+        integer :: lowest
 
-        why_not = ''
         mu_fine = 0.0_wp
         cells_fine = -1.0_wp
-        halved = config
-        halved%eigen%estimate = 'off'
-        if (trim(config%mesh%source) == 'rectangle') then
-            halved%mesh%nx = 2*config%mesh%nx
-            halved%mesh%ny = 2*config%mesh%ny
-            call build_problem(halved, fine, stat)
-        else if (enriched_element(prob%mesh%element) /= 0) then   ! triangles P1 to P3
-            call build_refinable_mesh(prob%mesh, tree, stat)
-            do pass = 1, 2   ! newest-vertex bisection of every cell, twice: h / 2
-                if (stat%ok()) call tree%refine([(i, i=1, tree%n_cells())], stat)
-            end do
-            if (stat%ok()) call tree%to_mesh(prob%mesh%element, refined, stat)
-            if (stat%ok()) call build_problem(halved, fine, stat, given_mesh=refined)
-        else
-            why_not = element_name(prob%mesh%element)//' cells of a Gmsh mesh are not halved here'
-            return
-        end if
+        call build_halved_problem(config, prob, halved, fine, why_not, stat)
+        if (len(why_not) > 0) return
         if (stat%ok()) call solve_eigen(halved, fine, res%lambda, fine_res, quiet, stat)
         if (.not. stat%ok()) then
             why_not = 'the halved mesh failed: '//stat%message

@@ -15,8 +15,7 @@ module threshold_analysis
     use strings, only: to_string, seconds_text, short_real_text
     use real_format, only: real_to_text
     use run_config, only: config_t, sweep_lambdas
-    use problem, only: problem_t, explain_singular_k, build_problem
-    use element_types, only: element_name
+    use problem, only: problem_t, explain_singular_k
     use enrichment, only: enriched_element
     use error_bar, only: single_bar
     use sparse_cholesky, only: cholesky_t
@@ -37,6 +36,7 @@ module threshold_analysis
     use threshold_estimate, only: threshold_estimate_t, threshold_displacements, &
                                   estimate_threshold_errors
     use accuracy, only: WARNING_LEN, roundoff_warnings
+    use halved_mesh, only: build_halved_problem
     implicit none
     private
     public :: threshold_result_t, solve_thresholds, factor_with_contact_blocks, scan_lambdas
@@ -280,7 +280,7 @@ contains
             type(status_t) :: failed
             real(wp) :: begin
             begin = wall_time()
-            call estimate_boundary_bars(prob, res%thresholds, res%estimate, &
+            call estimate_boundary_bars(config, prob, res%thresholds, res%estimate, &
                                         ENRICHED_CONTACT_MAX, res%set, failed)
             if (.not. failed%ok()) then
                 res%eigen%warnings = [character(len=WARNING_LEN) :: res%eigen%warnings, &
@@ -346,20 +346,17 @@ contains
         type(timings_t) :: quiet
         type(cholesky_t) :: chol
         real(wp), allocatable :: kt_nn(:, :), kt_nt(:, :)
+        character(len=:), allocatable :: why_not
         real(wp) :: start
         integer :: side
 
         start = wall_time()
         if (.not. any(thr%found)) return
-        if (trim(config%mesh%source) /= 'rectangle') then
-            where (thr%found) est%skipped = 'not computed: '// &
-                element_name(prob%mesh%element)//' cells of a Gmsh mesh are not halved here'
+        call build_halved_problem(config, prob, halved, fine, why_not, stat)
+        if (len(why_not) > 0) then
+            where (thr%found) est%skipped = 'not computed: '//why_not
             return
         end if
-        halved = config
-        halved%mesh%nx = 2*config%mesh%nx
-        halved%mesh%ny = 2*config%mesh%ny
-        call build_problem(halved, fine, stat)
         if (stat%ok()) call factor_with_contact_blocks(halved, fine, chol, kt_nn, kt_nt, &
                                                        quiet, stat)
         if (.not. stat%ok()) return

@@ -2,11 +2,15 @@
 !> Error bars of the boundary points of {lambda : a positive mu exists} (critical_set).
 !> A 'pencil' point is a real eigenvalue of the pencil: where it is lambda+ or lambda-, it
 !> takes their bar (threshold_estimate). A 'complex_pair' point, where two positive mu meet,
-!> has no weighted residual (at a double eigenvalue it has no meaning), so its estimate is
-!> the difference to the same point of the problem one degree higher on the same cells
-!> (enrichment: a space that holds this one, as for mu), found by the same search in a
-!> window around it; the bar is BAR_FACTOR times that difference plus the point's round-off
-!> part (error_bar; roundoff: collision_roundoff).
+!> has no weighted residual (at a double eigenvalue it has no meaning). On one mesh its bar
+!> is the larger of two, each from the same point found by the same search in a window
+!> around it: BAR_FACTOR times the difference to the problem one degree higher on the same
+!> cells (enrichment), and the three-mesh bar of the meshes of halved and twice halved cells
+!> (halved_mesh; error_bar: three_mesh_bar). The enriched difference alone cancels on coarse
+!> meshes and the halved one misses a slow order: on Delaunay trapezoids (P2 h = 1/8, P3 h =
+!> 1/16) both were a tenth of the true error. Plus the point's round-off part (roundoff:
+!> collision_roundoff). An adaptive loop uses the enriched difference at each level and its
+!> window of levels (adaptive_threshold).
 module boundary_estimate
     use kinds, only: wp
     use status, only: status_t
@@ -17,8 +21,14 @@ module boundary_estimate
     use critical_set, only: critical_set_t, find_critical_set, MECHANISM_PENCIL, &
                             MECHANISM_COMPLEX_PAIR
     use enrichment, only: enrichment_t, build_enrichment
+    use run_config, only: config_t
+    use halved_mesh, only: build_halved_problem
+    use timer, only: timings_t
+    use contact_reduction, only: factor_stiffness, contact_flexibility
     use threshold_estimate, only: threshold_estimate_t
-    use error_bar, only: single_bar
+    use error_bar, only: single_bar, three_mesh_bar
+    use adaptive_loop, only: adaptive_dof_limit
+    use system_memory, only: available_memory_bytes
     implicit none
     private
     public :: estimate_boundary_bars, enriched_pair_lambdas
@@ -34,14 +44,16 @@ contains
     !> set%points(:)%error_bar for the points of `set`, the boundary of the positive set of
     !> `prob` whose thresholds are `thr` with bars `est`. Points it cannot estimate keep -1
     !> (stat ok); `max_contact` bounds the enriched contact nodes (dense reduction).
-    subroutine estimate_boundary_bars(prob, thr, est, max_contact, set, stat)
+    subroutine estimate_boundary_bars(config, prob, thr, est, max_contact, set, stat)
+        type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: prob
         type(thresholds_t), intent(in) :: thr
         type(threshold_estimate_t), intent(in) :: est
         integer, intent(in) :: max_contact
         type(critical_set_t), intent(inout) :: set
         type(status_t), intent(out) :: stat
-        real(wp), allocatable :: nearest(:)
+        real(wp), allocatable :: nearest(:), halved(:), quartered(:)
+        real(wp) :: lambda, bar
         integer :: i, side
 
         do i = 1, size(set%points)
@@ -57,13 +69,65 @@ contains
             end do
         end do
         call enriched_pair_lambdas(prob, max_contact, set, nearest, stat)
+        if (stat%ok()) call halved_pair_lambdas(config, prob, set, halved, quartered, stat)
         if (.not. stat%ok()) return
         do i = 1, size(set%points)
-            if (nearest(i) < huge(1.0_wp)) set%points(i)%error_bar = single_bar( &
-                abs(nearest(i) - set%points(i)%lambda)/abs(set%points(i)%lambda), &
-                set%points(i)%roundoff)
+            if (set%points(i)%mechanism /= MECHANISM_COMPLEX_PAIR) cycle
+            lambda = set%points(i)%lambda
+            bar = -1.0_wp
+            if (nearest(i) < huge(1.0_wp)) bar = single_bar(abs(nearest(i) - lambda)/ &
+                abs(lambda), set%points(i)%roundoff)
+            if (halved(i) < huge(1.0_wp)) bar = max(bar, three_mesh_bar(lambda, halved(i), &
+                quartered(i), set%points(i)%roundoff))
+            set%points(i)%error_bar = bar
         end do
     end subroutine estimate_boundary_bars
+
+    !> halved(i), quartered(i): the complex_pair point of the same direction of the problem
+    !> on the mesh of halved cells (halved_mesh) and on that mesh halved again nearest the
+    !> complex_pair point i of `set` (pair_points_near); huge where there is none, or no
+    !> halved mesh, or (quartered) where 16 times the dofs would not fit the memory
+    !> available (stat ok).
+    subroutine halved_pair_lambdas(config, prob, set, halved, quartered, stat)
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(in) :: prob
+        type(critical_set_t), intent(in) :: set
+        real(wp), allocatable, intent(out) :: halved(:), quartered(:)
+        type(status_t), intent(out) :: stat
+        type(config_t) :: half_config, quarter_config
+        type(problem_t) :: half, quarter
+        character(len=:), allocatable :: why_not
+
+        allocate (halved(size(set%points)), quartered(size(set%points)), source=huge(1.0_wp))
+        if (.not. any(set%points%mechanism == MECHANISM_COMPLEX_PAIR)) return
+        call build_halved_problem(config, prob, half_config, half, why_not, stat)
+        if (.not. stat%ok() .or. len(why_not) > 0) return
+        call points_on(half, halved, stat)
+        if (.not. stat%ok()) return
+        if (4*half%dofs%n_free > adaptive_dof_limit(available_memory_bytes())) return
+        call build_halved_problem(half_config, half, quarter_config, quarter, why_not, stat)
+        if (.not. stat%ok() .or. len(why_not) > 0) return
+        call points_on(quarter, quartered, stat)
+
+    contains
+
+        !> the points of `set` on the problem `fine`
+        subroutine points_on(fine, nearest, stat)
+            type(problem_t), intent(in) :: fine
+            real(wp), intent(inout) :: nearest(:)
+            type(status_t), intent(out) :: stat
+            type(cholesky_t) :: chol
+            type(reduced_blocks_t) :: blocks
+            type(timings_t) :: quiet
+            call factor_stiffness(fine%k, fine%mesh, fine%dofs, fine%contact, chol, quiet, stat)
+            if (stat%ok()) call contact_flexibility(chol, fine%contact, blocks%kt_nn, &
+                                                    blocks%kt_nt, stat)
+            call chol%free()
+            if (.not. stat%ok()) return
+            blocks%mass = fine%contact%mass
+            call pair_points_near(blocks, set, nearest, stat)
+        end subroutine points_on
+    end subroutine halved_pair_lambdas
 
     !> nearest(i): the complex_pair point of the same direction of the problem one degree
     !> higher on the cells of `prob` nearest the complex_pair point i of `set`, found by the
@@ -78,11 +142,7 @@ contains
         type(enrichment_t) :: enr
         type(cholesky_t) :: chol
         type(reduced_blocks_t) :: blocks
-        type(thresholds_t) :: thr_plus
-        type(critical_set_t) :: near
         character(len=:), allocatable :: skipped
-        real(wp) :: lambda, scan(WINDOW_POINTS)
-        integer :: i, j
 
         allocate (nearest(size(set%points)), source=huge(1.0_wp))
         if (.not. any(set%points%mechanism == MECHANISM_COMPLEX_PAIR)) return
@@ -90,15 +150,32 @@ contains
         if (.not. stat%ok() .or. enr%element == 0 .or. len(skipped) > 0) return
         call enr%reduce(chol, blocks%kt_nn, blocks%kt_nt, stat)
         call chol%free()
-        if (stat%ok()) call pencil_thresholds(blocks%kt_nn, blocks%kt_nt, thr_plus, stat)
         if (.not. stat%ok()) return
         blocks%mass = enr%contact%mass
+        call pair_points_near(blocks, set, nearest, stat)
+    end subroutine enriched_pair_lambdas
+
+    !> nearest(i): the complex_pair point of the same direction of the problem of `blocks`
+    !> nearest the complex_pair point i of `set`, found by the same search on a window of
+    !> WINDOW |lambda| around it; huge where there is none.
+    subroutine pair_points_near(blocks, set, nearest, stat)
+        type(reduced_blocks_t), intent(in) :: blocks
+        type(critical_set_t), intent(in) :: set
+        real(wp), intent(inout) :: nearest(:)
+        type(status_t), intent(out) :: stat
+        type(thresholds_t) :: thr
+        type(critical_set_t) :: near
+        real(wp) :: lambda, scan(WINDOW_POINTS)
+        integer :: i, j
+
+        call pencil_thresholds(blocks%kt_nn, blocks%kt_nt, thr, stat)
+        if (.not. stat%ok()) return
         do i = 1, size(set%points)
             if (set%points(i)%mechanism /= MECHANISM_COMPLEX_PAIR) cycle
             lambda = set%points(i)%lambda
             scan = [(lambda + abs(lambda)*WINDOW*(real(2*j - WINDOW_POINTS - 1, wp)/ &
                      real(WINDOW_POINTS - 1, wp)), j=1, WINDOW_POINTS)]
-            call find_critical_set(blocks, scan, thr_plus%real_lambdas, near, stat)
+            call find_critical_set(blocks, scan, thr%real_lambdas, near, stat)
             if (.not. stat%ok()) return
             do j = 1, size(near%points)
                 if (near%points(j)%mechanism /= MECHANISM_COMPLEX_PAIR .or. &
@@ -107,5 +184,5 @@ contains
                     nearest(i) = near%points(j)%lambda
             end do
         end do
-    end subroutine enriched_pair_lambdas
+    end subroutine pair_points_near
 end module boundary_estimate

@@ -5,7 +5,8 @@
 !> at least the change of the value over those levels.
 program test_error_bar
     use kinds, only: wp
-    use error_bar, only: single_bar, level_bar, hp_level_bar, BAR_FACTOR, LEVEL_FACTOR, BAR_WINDOW
+    use error_bar, only: single_bar, level_bar, hp_level_bar, three_mesh_bar, BAR_FACTOR, &
+                         LEVEL_FACTOR, BAR_WINDOW
     use testing, only: test_suite_t
     implicit none
     type(test_suite_t) :: t
@@ -19,6 +20,8 @@ program test_error_bar
     call check_hp_geometric()
     call check_hp_dip()
     call check_hp_start()
+    call check_three_mesh_orders()
+    call check_three_mesh_limits()
     call t%report()
 
 contains
@@ -102,4 +105,37 @@ contains
         call t%check_close('hp: two levels, LEVEL_FACTOR times the change', &
                            hp_level_bar([2.0_wp, 1.0_wp], -1.0_wp), LEVEL_FACTOR, 1.0e-15_wp)
     end subroutine check_hp_start
+    !> v(h) = 1 + c h^r on h = 1, 1/2, 1/4: for every order r between 0.1 and 2 the
+    !> three-mesh error d1 / (1 - q) is c exactly, so the bar is LEVEL_FACTOR c / v0; the
+    !> slow order 0.2 (a change a seventh of the error) included.
+    subroutine check_three_mesh_orders()
+        real(wp), parameter :: C = 1.0e-4_wp, ORDERS(4) = [0.2_wp, 0.5_wp, 1.0_wp, 2.0_wp]
+        real(wp) :: v(3), bar
+        integer :: i
+        logical :: exact
+        exact = .true.
+        do i = 1, size(ORDERS)
+            v = 1.0_wp + C*[1.0_wp, 0.5_wp**ORDERS(i), 0.25_wp**ORDERS(i)]
+            bar = three_mesh_bar(v(1), v(2), v(3), -1.0_wp)
+            exact = exact .and. abs(bar - LEVEL_FACTOR*C/v(1)) <= 1.0e-9_wp*bar
+        end do
+        call t%check('three meshes: the error of orders 0.2 to 2 found, times LEVEL_FACTOR', exact)
+    end subroutine check_three_mesh_orders
+
+    !> Order 4 is counted as 2 (the bar stays above the error: 3.75 c), a change that grows
+    !> (no convergence) or an unknown third mesh as order 0.1 (the error taken 15 times the
+    !> larger change), and the round-off part is added.
+    subroutine check_three_mesh_limits()
+        real(wp), parameter :: C = 1.0e-4_wp
+        real(wp) :: bar
+        bar = three_mesh_bar(1.0_wp + C, 1.0_wp + C/16.0_wp, 1.0_wp + C/256.0_wp, -1.0_wp)
+        call t%check_close('three meshes, order 4: counted as order 2', bar*(1.0_wp + C), &
+                           LEVEL_FACTOR*C*(15.0_wp/16.0_wp)/0.75_wp, 1.0e-9_wp)
+        bar = three_mesh_bar(1.0_wp, 1.0_wp + C, 1.0_wp - C, -1.0_wp)
+        call t%check_close('three meshes, a growing change: the slowest order', bar, &
+                           LEVEL_FACTOR*2.0_wp*C/(1.0_wp - 0.933_wp), 1.0e-9_wp)
+        bar = three_mesh_bar(1.0_wp, 1.0_wp + C, huge(1.0_wp), 1.0e-6_wp)
+        call t%check_close('three meshes, no third: the slowest order, round-off added', bar, &
+                           LEVEL_FACTOR*C/(1.0_wp - 0.933_wp) + 1.0e-6_wp, 1.0e-9_wp)
+    end subroutine check_three_mesh_limits
 end program test_error_bar
