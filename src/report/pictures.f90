@@ -9,11 +9,10 @@
 module pictures
     use kinds, only: wp
     use ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_nan
-    use strings, only: to_string, short_real_text, text_t
+    use strings, only: to_string, short_real_text
     use real_format, only: real_to_text
     use filesystem, only: remove_file
-    use process, only: run_program
-    use gnuplot, only: gnuplot_available, gnuplot_string, quotable, path_argument, not_run_note
+    use gnuplot, only: gnuplot_available, gnuplot_string, quotable, path_argument, run_gnuplot
     use output_stage, only: output_stage_t
     use adaptive_eigen, only: adapt_level_t
     use adaptive_threshold, only: threshold_level_t
@@ -33,6 +32,7 @@ module pictures
     public :: adapt_script, sweep_script, draw_picture, missing
     public :: eigen_adapt_curves, threshold_adapt_curves, hp_adapt_curves, hp_degree_labels
     public :: draw_eigen_adapt, draw_threshold_adapt, draw_hp_adapt, draw_sweep, draw_hp_mode
+    public :: draw_mode
 
     character(len=*), parameter :: NL = new_line('a')
     !> pngcairo with enhanced text ({/Symbol l}, c_n): the fixed labels use it; a path never
@@ -200,11 +200,12 @@ contains
         end do
         text = text//'EOD'//NL
         if (present(labels)) then
-            ! at the first curve's value, where every level with a value has a point
+            ! at the first curve's value, where every level with a value has a point; a
+            ! data file's strings are in double quotes (the labels are ours: no quote in them)
             text = text//'$labels << EOD'//NL
             do i = 1, size(dofs)
-                text = text//to_string(dofs(i))//' '//real_to_text(curves(1)%value(i))//' '// &
-                    gnuplot_string(trim(labels(i)))//NL
+                text = text//to_string(dofs(i))//' '//real_to_text(curves(1)%value(i))//' "'// &
+                    trim(labels(i))//'"'//NL
             end do
             text = text//'EOD'//NL
         end if
@@ -361,10 +362,10 @@ contains
         character(len=*), intent(in) :: directory, file
         character(len=*), intent(in) :: script   !! from adapt_script or sweep_script
         character(len=:), allocatable, intent(out) :: note
-        character(len=:), allocatable :: png, script_path, reason, path
+        character(len=:), allocatable :: png, script_path, path
         character(len=512) :: msg
-        type(text_t) :: arguments(2)
-        integer :: unit, ios, exit_status
+        integer :: unit, ios
+        logical :: drawn
 
         png = stage%scratch(file)
         if (.not. quotable(png)) then
@@ -385,18 +386,8 @@ contains
             note = 'not drawn: '//script_path//': '//trim(msg)
             return
         end if
-        ! gnuplot reads the script named by its argument; no shell parses the path. Set one
-        ! by one: gfortran 12 garbles [text_t(f(x)), ...] when f returns an allocatable string.
-        arguments(1)%text = 'gnuplot'
-        arguments(2)%text = path_argument(script_path)
-        call run_program(arguments, exit_status, reason)
-        call remove_file(script_path)
-        note = not_run_note('gnuplot', exit_status, reason)
-        if (exit_status /= 0) then
-            call remove_file(png)   ! a partial picture must not stay in the staging folder
-            if (note == '') note = 'not drawn: gnuplot failed on '//file
-            return
-        end if
+        call run_gnuplot(script_path, png, drawn, note)
+        if (.not. drawn) return
         call stage%add(file, path)   ! drawn there: part of the committed set
         note = directory//'/'//file
     end subroutine draw_picture
@@ -444,8 +435,8 @@ contains
         type(adapt_curve_t), allocatable :: curves(:)
         integer :: i
         call hp_adapt_curves(levels, curves)
-        call draw_adapt(stage, config, 'hp up to degree '//to_string(config%adapt%p_max)// &
-            ', lambda = '//real_to_text(lambda)//', start '//to_string(start_dofs)//' dofs', &
+        call draw_adapt(stage, config, 'hp, lambda = '//real_to_text(lambda)//', start '// &
+            to_string(start_dofs)//' dofs, each level labelled with its degrees', &
             MU_GOAL, [(levels(i)%n_dofs, i = 1, size(levels))], curves, note, &
             hp_degree_labels(levels))
     end subroutine draw_hp_adapt
@@ -525,8 +516,6 @@ contains
         type(status_t), intent(out) :: stat
         type(mesh_t) :: sub
         real(wp), allocatable :: values(:, :), degree(:), mode(:)
-        character(len=:), allocatable :: path
-        logical :: drawn
         note = ''
         if (.not. config%output%plot .or. config%output%modes < 1 .or. &
             size(out%res%spec%vectors, 2) < 1) return
@@ -534,12 +523,26 @@ contains
         call sample_hp_field(out%prob%mesh, out%space, out%prob%young, out%prob%poisson, mode, &
                              sub, values, degree, stat)
         if (.not. stat%ok()) return
-        call plot_mode(stage%scratch(MODE_PNG), stage%scratch('.'//MODE_PNG//'.gp'), &
-            'mode 1: mu = '//real_to_text(real(out%res%spec%mu(1), wp))//', lambda = '// &
+        call draw_mode(stage, trim(config%output%directory), 'mode 1: mu = '// &
+            real_to_text(real(out%res%spec%mu(1), wp))//', lambda = '// &
             real_to_text(out%res%lambda)//' (hp, sampled)', sub%coords, sub%cells, &
-            element_corners(sub%element), values, drawn, note)
-        if (.not. drawn) return
-        call stage%add(MODE_PNG, path)
-        note = trim(config%output%directory)//'/'//MODE_PNG
+            element_corners(sub%element), values, note)
     end subroutine draw_hp_mode
+
+    !> mode_001.png (io/mode_plot) of the nodal field `u` on the cells (`n_corners` each),
+    !> joined to the set when drawn; `note`: where it is (in `directory`), or why not.
+    subroutine draw_mode(stage, directory, title, coords, cells, n_corners, u, note)
+        type(output_stage_t), intent(inout) :: stage
+        character(len=*), intent(in) :: directory, title
+        real(wp), intent(in) :: coords(:, :), u(:, :)
+        integer, intent(in) :: cells(:, :), n_corners
+        character(len=:), allocatable, intent(out) :: note
+        character(len=:), allocatable :: path
+        logical :: drawn
+        call plot_mode(stage%scratch(MODE_PNG), stage%scratch('.'//MODE_PNG//'.gp'), title, &
+                       coords, cells, n_corners, u, drawn, note)
+        if (.not. drawn) return
+        call stage%add(MODE_PNG, path)   ! drawn there: part of the committed set
+        note = directory//'/'//MODE_PNG
+    end subroutine draw_mode
 end module pictures

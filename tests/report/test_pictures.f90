@@ -56,10 +56,12 @@ contains
                      ieee_is_nan(rows(1, 3)) .and. same(rows(2, 3), 2.25_wp*0.02_wp) .and. &
                      ieee_is_nan(rows(3, 3)))
         call t%check('eigen adapt: estimates and bars as the levels, NaN where none', &
-                     all(same(rows(1:2, 4), [0.1_wp, 0.01_wp])) .and. ieee_is_nan(rows(3, 4)) .and. &
+                     all(same(rows(1:2, 4), [0.1_wp, 0.01_wp])) .and. &
+                     ieee_is_nan(rows(3, 4)) .and. &
                      ieee_is_nan(rows(1, 5)) .and. same(rows(2, 5), 0.02_wp))
         call t%check('eigen adapt: log-log error axis, the tolerance line', &
-                     has_line(text, 'set logscale x') .and. has_line(text, 'set logscale y') .and. &
+                     has_line(text, 'set logscale x') .and. &
+                     has_line(text, 'set logscale y') .and. &
                      index(text, "0.001 with lines dashtype 2") > 0)
     end subroutine check_eigen_adapt
 
@@ -90,9 +92,11 @@ contains
         call t%check('threshold adapt: 1 + 4 x 3 columns', &
                      size(rows, 1) == 2 .and. size(rows, 2) == 13)
         call t%check('threshold adapt: lambda+ as is, lambda- negated (drawn as |lambda-|)', &
-                     all(same(rows(:, 2), [2.5_wp, 3.5_wp])) .and. all(same(rows(:, 6), [3.0_wp, 4.0_wp])))
+                     all(same(rows(:, 2), [2.5_wp, 3.5_wp])) .and. &
+                     all(same(rows(:, 6), [3.0_wp, 4.0_wp])))
         call t%check('threshold adapt: bars and estimates per side', &
-                     all(same(rows(:, 5), [0.06_wp, 0.03_wp])) .and. all(ieee_is_nan(rows(:, 9))) .and. &
+                     all(same(rows(:, 5), [0.06_wp, 0.03_wp])) .and. &
+                     all(ieee_is_nan(rows(:, 9))) .and. &
                      ieee_is_nan(rows(1, 8)) .and. same(rows(2, 8), 0.07_wp) .and. &
                      same(rows(1, 3), 2.5_wp*0.06_wp))
         call t%check('threshold adapt: the collision onset negated, its estimate and bar', &
@@ -135,7 +139,7 @@ contains
         call t%check('hp adapt: bars as the levels', ieee_is_nan(rows(1, 5)) .and. &
                      all(same(rows(2:3, 5), [0.3_wp, 0.2_wp])))
         call t%check('hp adapt: a label per level at its dofs and mu', &
-                     has_line(text, "120 3.0 'p 1-3'") .and. has_line(text, "300 2.5 'p 2'"))
+                     has_line(text, '120 3.0 "p 1-3"') .and. has_line(text, '300 2.5 "p 2"'))
     end subroutine check_hp_adapt
 
     !> Linear sweep: c_n = mu, c_t = mu |lambda|, NaN where no mu; both threshold lines.
@@ -170,7 +174,8 @@ contains
                             [.true., .true.])
         call read_block(text, '$points', rows)
         call t%check('log sweep: x = |lambda|, c_t = mu |lambda|', &
-                     all(same(rows(:, 1), [10.0_wp, 1.0_wp])) .and. all(same(rows(:, 3), [30.0_wp, 1.0_wp])))
+                     all(same(rows(:, 1), [10.0_wp, 1.0_wp])) .and. &
+                     all(same(rows(:, 3), [30.0_wp, 1.0_wp])))
         call t%check('log sweep: the absolute bars c_n bar, c_t bar where adapted', &
                      same(rows(1, 4), 0.75_wp) .and. same(rows(1, 5), 7.5_wp) .and. &
                      ieee_is_nan(rows(2, 4)) .and. index(text, 'using 1:2:4 with yerrorlines') > 0)
