@@ -1,11 +1,12 @@
 ! SPDX-License-Identifier: MIT
-!> The pictures of a run drawn from the results the report holds: adapt.png (per level of an
-!> adaptive run, the relative error against the free dofs above the goal with its bar) and
-!> lambda_sweep.png (critical c_n and c_t against lambda). The gnuplot text is built by pure
-!> functions, the data inline and every path a quoted string, so that a test reads it without
-!> running anything; draw_picture runs gnuplot on it (process: an argument vector, no shell)
-!> into the staging folder. Optional like mode_001.png: without gnuplot, or when it fails,
-!> the run goes on and the note says why there is no picture.
+!> The pictures of a run, drawn from the results the report holds: adapt.png (per level of
+!> an adaptive run, the relative error against the free dofs above the goal with its bar),
+!> lambda_sweep.png (critical c_n and c_t against lambda) and mode_001.png (io/mode_plot; of
+!> an hp run, sampled). The gnuplot text is built by functions that only build text, the
+!> data inline and every path a quoted string, so that a test reads it without running
+!> anything; draw_picture runs gnuplot on it (an argument vector, no shell) into the staging
+!> folder. Optional: without gnuplot, or when it fails, the run goes on and the note says
+!> why there is no picture.
 module pictures
     use kinds, only: wp
     use ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_nan
@@ -16,8 +17,7 @@ module pictures
     use output_stage, only: output_stage_t
     use adaptive_eigen, only: adapt_level_t
     use adaptive_threshold, only: threshold_level_t
-    use hp_adaptive, only: hp_level_t
-    use hp_adaptive, only: hp_result_t
+    use hp_adaptive, only: hp_level_t, hp_result_t
     use threshold_analysis, only: threshold_result_t
     use critical_point, only: critical_c_t
     use run_config, only: config_t
@@ -29,7 +29,7 @@ module pictures
     use mode_plot, only: plot_mode
     implicit none
     private
-    public :: adapt_script, sweep_script, draw_picture, missing
+    public :: adapt_script, sweep_script, draw_picture
     public :: eigen_adapt_curves, threshold_adapt_curves, hp_adapt_curves, hp_degree_labels
     public :: draw_eigen_adapt, draw_threshold_adapt, draw_hp_adapt, draw_sweep, draw_hp_mode
     public :: draw_mode
