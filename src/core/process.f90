@@ -1,5 +1,5 @@
 ! SPDX-License-Identifier: MIT
-!> Running a helper program (gnuplot, a plot script) with an argument vector, through no
+!> Running a helper program (gnuplot) with an argument vector, through no
 !> shell: a path holding a quote or `;` is one argument, never a command. Also whether a
 !> program is on the PATH, and SIGPIPE. The C side is process_c.c (posix_spawnp, waitpid).
 module process

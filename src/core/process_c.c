@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* Starting a helper program (gnuplot, a plot script) without a shell: the arguments go to
+/* Starting a helper program (gnuplot) without a shell: the arguments go to
    posix_spawnp as a vector, so no byte of a path (a quote, `;`, `$(...)`) is ever parsed as
    a command. Fortran's execute_command_line hands one string to /bin/sh, and cannot say why
    a program did not start. Also here: looking a program up on PATH, and SIGPIPE. */
@@ -77,7 +77,7 @@ int nceig_run_program(const char *args, int count, const char *output, int *erro
         if (status == 0) status = posix_spawn_file_actions_adddup2(&actions, out_fd, 1);
         if (status == 0) status = posix_spawn_file_actions_adddup2(&actions, out_fd, 2);
         /* nceig ignores SIGPIPE, and exec keeps an ignored signal ignored: give the child
-           the default back (a pipeline in a plot script must end as usual), and an empty
+           the default back (a pipeline the child runs must end as usual), and an empty
            signal mask. Other ignored signals (SIGINT of a background job) stay ignored. */
         sigemptyset(&signals);
         sigaddset(&signals, SIGPIPE);

@@ -90,7 +90,7 @@ module run_config
         character(len=NAME_LEN) :: spacing = 'linear'   !! 'linear' | 'log' (one sign)
         !> explicit list; entries equal to huge() are unset (the namelist fills a prefix)
         real(wp) :: lambdas(MAX_SWEEP_LAMBDAS) = huge(1.0_wp)
-        logical :: plot = .true.                        !! run scripts/plot_lambda_sweep.sh
+        logical :: plot = .true.                        !! draw lambda_sweep.png (gnuplot)
     end type sweep_config_t
     !> analysis = 'branch' (model.md section 9): the base solution U and the members U + delta phi.
     type, public :: branch_config_t

@@ -1,12 +1,15 @@
 ! SPDX-License-Identifier: MIT
-!> gnuplot draws the pictures (mode_001.png, lambda_sweep.png) when it is installed; it is
-!> optional at run time, so every picture first asks whether it is there. Paths reach it as
-!> program arguments or as gnuplot strings, never through a shell.
+!> gnuplot draws the pictures (mode_001.png, adapt.png, lambda_sweep.png) when it is
+!> installed; it is optional at run time, so every picture first asks whether it is there.
+!> Paths reach it as program arguments or as gnuplot strings, never through a shell.
 module gnuplot
-    use process, only: program_on_path, PROGRAM_NOT_FOUND, PROGRAM_NOT_STARTED
+    use process, only: program_on_path, run_program, PROGRAM_NOT_FOUND, PROGRAM_NOT_STARTED
+    use filesystem, only: remove_file
+    use strings, only: text_t
     implicit none
     private
     public :: gnuplot_available, gnuplot_string, quotable, path_argument, not_run_note
+    public :: run_gnuplot
 
 contains
 
@@ -68,4 +71,27 @@ contains
             note = 'not drawn: '//program//' could not be started: '//reason
         end if
     end function not_run_note
+
+    !> Run gnuplot on the file `script` (removed afterwards), which draws `picture`.
+    !> `drawn` tells whether it did; otherwise `note` says why, and a partial picture is
+    !> removed.
+    subroutine run_gnuplot(script, picture, drawn, note)
+        character(len=*), intent(in) :: script, picture
+        logical, intent(out) :: drawn
+        character(len=:), allocatable, intent(out) :: note
+        character(len=:), allocatable :: reason
+        type(text_t) :: arguments(2)
+        integer :: exit_status
+        ! gnuplot reads the script named by its argument; no shell parses the path. Set one
+        ! by one: gfortran 12 garbles [text_t(f(x)), ...] when f returns an allocatable string.
+        arguments(1)%text = 'gnuplot'
+        arguments(2)%text = path_argument(script)
+        call run_program(arguments, exit_status, reason)
+        call remove_file(script)
+        drawn = exit_status == 0
+        note = not_run_note('gnuplot', exit_status, reason)
+        if (drawn) return
+        call remove_file(picture)
+        if (note == '') note = 'not drawn: gnuplot failed on '//picture
+    end subroutine run_gnuplot
 end module gnuplot

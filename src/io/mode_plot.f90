@@ -5,10 +5,9 @@
 !> the run still succeeds and `note` says why there is no picture.
 module mode_plot
     use kinds, only: wp
-    use strings, only: to_string, short_real_text, text_t
+    use strings, only: to_string, short_real_text
     use filesystem, only: remove_file
-    use process, only: run_program
-    use gnuplot, only: gnuplot_available, gnuplot_string, quotable, path_argument, not_run_note
+    use gnuplot, only: gnuplot_available, gnuplot_string, quotable, path_argument, run_gnuplot
     implicit none
     private
     public :: plot_mode, MAX_PLOT_CELLS
@@ -32,10 +31,8 @@ contains
         logical, intent(out) :: drawn
         character(len=:), allocatable, intent(out) :: note
         real(wp) :: scale, diameter, u_max, magnitude
-        integer :: unit, ios, cell, a, exit_status
+        integer :: unit, ios, cell, a
         character(len=512) :: msg
-        character(len=:), allocatable :: reason
-        type(text_t) :: arguments(2)
 
         drawn = .false.
         if (size(cells, 2) > MAX_PLOT_CELLS) then
@@ -88,14 +85,6 @@ contains
             note = 'not drawn: the gnuplot script could not be written'
             return
         end if
-        ! gnuplot reads the script named by its argument; no shell parses the path. Set one
-        ! by one: gfortran 12 garbles [text_t(f(x)), ...] when f returns an allocatable string.
-        arguments(1)%text = 'gnuplot'
-        arguments(2)%text = path_argument(script)
-        call run_program(arguments, exit_status, reason)
-        call remove_file(script)
-        drawn = exit_status == 0
-        note = not_run_note('gnuplot', exit_status, reason)
-        if (.not. drawn .and. note == '') note = 'not drawn: gnuplot failed on '//png
+        call run_gnuplot(script, png, drawn, note)
     end subroutine plot_mode
 end module mode_plot

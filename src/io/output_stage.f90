@@ -355,7 +355,7 @@ contains
         folder = this%staging
     end function output_stage_folder
 
-    !> Where to put a scratch file while staging (a plot script, a picture not yet known to
+    !> Where to put a scratch file while staging (a gnuplot script, a picture not yet known to
     !> be drawn): in the staging folder, NOT part of the set; remove it before the commit, or
     !> register it with path() once it is complete.
     function output_stage_scratch(this, name) result(file_path)

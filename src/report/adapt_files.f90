@@ -1,19 +1,18 @@
 ! SPDX-License-Identifier: MIT
 !> What every adaptive run writes besides the files of its goal: mesh.msh (the final mesh),
-!> adapt.png (asked of run_analysis), the summary.json keys and the stdout lines of the
-!> loop. The adaptive eigen and threshold runs share them.
+!> the summary.json keys and the stdout lines of the loop (adapt.png: module pictures). The
+!> adaptive eigen and threshold runs share them.
 module adapt_files
     use status, only: status_t
     use strings, only: to_string
     use run_config, only: config_t
     use problem, only: problem_t
-    use analysis_base, only: analysis_t
     use output_stage, only: output_stage_t
     use json_writer, only: json_object_t
     use gmsh_writer, only: write_gmsh
     implicit none
     private
-    public :: add_adapt_keys, adapt_report_lines, write_adapted_mesh, ask_adapt_plot
+    public :: add_adapt_keys, adapt_report_lines, write_adapted_mesh
 
     character(len=*), parameter :: MESH_FILE = 'mesh.msh'
 
@@ -28,23 +27,6 @@ contains
         call stage%add(MESH_FILE, path)
         call write_gmsh(path, prob%mesh, stat)
     end subroutine write_adapted_mesh
-
-    !> Ask run_analysis for adapt.png (plot_adapt.sh on adapt.csv and summary.json) when
-    !> &output plot is on; `any_estimated` false (no level has an estimate): nothing to draw,
-    !> and the note says so.
-    subroutine ask_adapt_plot(run, config, any_estimated)
-        class(analysis_t), intent(inout) :: run
-        type(config_t), intent(in) :: config
-        logical, intent(in) :: any_estimated
-        run%picture_note = ''
-        if (.not. config%output%plot) return
-        if (.not. any_estimated) then
-            run%picture_note = 'not drawn: no level has an error estimate'
-            return
-        end if
-        run%picture_script = 'plot_adapt.sh'
-        run%picture_file = 'adapt.png'
-    end subroutine ask_adapt_plot
 
     !> The keys of an adaptive loop (any goal) that started from `start_dofs` free dofs.
     subroutine add_adapt_keys(summary, config, start_dofs, levels, converged, floor, outcome)

@@ -17,8 +17,8 @@ module adapt_run
     use output_stage, only: output_stage_t
     use json_writer, only: json_object_t
     use csv_writer, only: csv_writer_t
-    use adapt_files, only: add_adapt_keys, adapt_report_lines, write_adapted_mesh, &
-                           ask_adapt_plot
+    use adapt_files, only: add_adapt_keys, adapt_report_lines, write_adapted_mesh
+    use pictures, only: draw_eigen_adapt
     implicit none
     private
     character(len=*), parameter, public :: ADAPT_HEADER = &
@@ -65,10 +65,9 @@ contains
             call write_adapt_csv(path, this%out, stat)
         end if
         if (stat%ok()) call write_adapted_mesh(stage, this%out%prob, stat)
-        if (stat%ok()) call ask_adapt_plot(this, config, any(this%out%levels%estimated))
-        ! the files describe the final level: the starting problem `prob` has no part in them
-        associate (start => prob)
-        end associate
+        ! the files describe the final level; of the starting problem `prob` only its dofs
+        if (stat%ok()) call draw_eigen_adapt(stage, config, this%out%prob%mesh%element, &
+            this%out%res%lambda, prob%dofs%n_free, this%out%levels, this%picture_note)
     end subroutine adapt_run_write_files
 
     !> level,n_dofs,n_contact,n_cells,mu,error_estimate,time_s,error_bar (the bar is last so

@@ -11,8 +11,7 @@ module analysis_base
     use problem, only: problem_t
     use output_stage, only: output_stage_t
     use json_writer, only: json_object_t
-    use filesystem, only: MAX_NAME_LEN, remove_file
-    use plot_script, only: run_plot_script
+    use filesystem, only: MAX_NAME_LEN
     use strings, only: text_t
     implicit none
     private
@@ -31,10 +30,9 @@ module analysis_base
         type(timings_t) :: timings
         !> The problem must carry K and Gamma_C on all dofs too (non-zero Dirichlet data).
         logical :: needs_all_dofs = .false.
-        !> A picture that a plot script draws from the staged CSV files and summary.json
-        !> (adapt.png, lambda_sweep.png): the script and the picture's file name, asked for by
-        !> write_files (unallocated: none); picture_note says where it is, or why it is not.
-        character(len=:), allocatable :: picture_script, picture_file, picture_note
+        !> Where the picture write_files drew (adapt.png, lambda_sweep.png; module pictures)
+        !> is, or why it is not drawn; unallocated: none was asked for.
+        character(len=:), allocatable :: picture_note
     contains
         procedure(solve_interface), deferred :: solve
         procedure(write_interface), deferred :: write_files
@@ -86,12 +84,10 @@ module analysis_base
 contains
 
     !> Solve, then write every output to the output directory or none of them: the files are
-    !> staged; summary.json is built once, after the timings are final, and the picture the
-    !> analysis asked for is drawn from the files and that summary; then summary.json is
+    !> staged, pictures included; summary.json is built once, after the timings are final,
     !> registered last as the commit's completion marker and lists the files of its set (an
     !> older run may have left other mode_NNN.vtu), and the set moves into place together.
-    !> The output time covers the files summary.json describes, not the picture drawn
-    !> after it was built.
+    !> The output time covers every file but summary.json.
     subroutine run_analysis(this, config, prob, run_start, timings, stat)
         class(analysis_t), intent(inout) :: this
         type(config_t), intent(in) :: config
@@ -123,8 +119,6 @@ contains
             timings%total = wall_time() - run_start
             this%timings = timings
             summary = this%summary(config, prob)
-            if (allocated(this%picture_script)) call draw_picture(stage, config, summary, &
-                this%picture_script, this%picture_file, this%picture_note, stat)
         end if
         if (stat%ok()) then
             call stage%add('summary.json', summary_path)
@@ -134,28 +128,4 @@ contains
         end if
         if (.not. stat%ok()) call stage%abort()
     end subroutine run_analysis
-
-    !> `file` (a .png) into the staging folder, so that it joins the set: the plot script
-    !> `script` reads the staged CSV files and `summary`, written for it as a scratch
-    !> summary.json (the set's own is written at the commit). `note`: where the picture
-    !> is, or why it is not drawn (plotting is optional: the run goes on).
-    subroutine draw_picture(stage, config, summary, script, file, note, stat)
-        type(output_stage_t), intent(inout) :: stage
-        type(config_t), intent(in) :: config
-        type(json_object_t), intent(in) :: summary
-        character(len=*), intent(in) :: script, file
-        character(len=:), allocatable, intent(inout) :: note
-        type(status_t), intent(out) :: stat
-        character(len=:), allocatable :: summary_path, picture_path
-        logical :: drawn
-
-        summary_path = stage%scratch('.plot-summary.json')
-        call summary%write(summary_path, stat)
-        if (.not. stat%ok()) return
-        call run_plot_script(script, stage%folder(), summary_path, drawn, note)
-        call remove_file(summary_path)
-        if (.not. drawn) return
-        call stage%add(file, picture_path)   ! drawn there: part of the committed set
-        note = trim(config%output%directory)//'/'//file
-    end subroutine draw_picture
 end module analysis_base

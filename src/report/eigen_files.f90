@@ -21,7 +21,7 @@ module eigen_files
     use vtk_writer, only: write_vtu
     use matrix_market, only: write_matrix_market
     use element_types, only: element_name, element_corners
-    use mode_plot, only: plot_mode
+    use pictures, only: draw_mode
     use blas_info, only: blas_in_use
     use error_estimate, only: error_estimate_t, estimate_label
     implicit none
@@ -365,16 +365,9 @@ contains
         type(problem_t), intent(in) :: prob
         type(eigen_result_t), intent(in) :: res
         character(len=:), allocatable, intent(out) :: note
-        character(len=*), parameter :: PNG = 'mode_001.png'
-        character(len=:), allocatable :: png_path
-        logical :: drawn
-
-        call plot_mode(stage%scratch(PNG), stage%scratch('.mode_001.gp'), 'mode 1: mu = '// &
+        call draw_mode(stage, trim(config%output%directory), 'mode 1: mu = '// &
             real_to_text(real(res%spec%mu(1), wp))//', lambda = '//real_to_text(res%lambda), &
             prob%mesh%coords, prob%mesh%cells, element_corners(prob%mesh%element), &
-            prob%dofs%nodal_field(real(res%spec%vectors(:, 1), wp)), drawn, note)
-        if (.not. drawn) return
-        call stage%add(PNG, png_path)   ! drawn there: part of the committed set
-        note = trim(config%output%directory)//'/'//PNG
+            prob%dofs%nodal_field(real(res%spec%vectors(:, 1), wp)), note)
     end subroutine draw_first_mode
 end module eigen_files

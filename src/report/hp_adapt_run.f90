@@ -4,7 +4,8 @@
 !> on a linear sub-triangulation, hp_field, with the cell field `degree`), adapt.csv (one
 !> row per level: layers, degrees, dofs, mu, bar), mesh.msh (the last graded mesh) and
 !> degrees.csv (its cell degrees), K.mtx and B.mtx of the condensed system as &output asks,
-!> summary.json with the keys of the h loop and the hp ones.
+!> mode_001.png and adapt.png (module pictures), summary.json with the keys of the h loop
+!> and the hp ones.
 module hp_adapt_run
     use kinds, only: wp
     use status, only: status_t, STATUS_NOT_MET
@@ -24,6 +25,7 @@ module hp_adapt_run
     use matrix_market, only: write_matrix_market
     use mesh, only: mesh_t
     use hp_field, only: sample_hp_field
+    use pictures, only: draw_hp_mode, draw_hp_adapt
     implicit none
     private
 
@@ -34,6 +36,7 @@ module hp_adapt_run
     type, extends(analysis_t), public :: hp_adapt_run_t
         type(hp_result_t) :: out
         integer :: start_dofs = 0   !! free dofs of the input mesh (P1 to P4 as given)
+        character(len=:), allocatable :: plot_note   !! mode_001.png: where, or why not
     contains
         procedure :: solve => hp_run_solve
         procedure :: write_files => hp_run_write_files
@@ -87,6 +90,9 @@ contains
             call stage%add('B.mtx', path)
             call write_matrix_market(path, this%out%res%b, stat)
         end if
+        if (stat%ok()) call draw_hp_mode(stage, config, this%out, this%plot_note, stat)
+        if (stat%ok()) call draw_hp_adapt(stage, config, this%out%res%lambda, &
+                                          this%start_dofs, this%out%levels, this%picture_note)
     end subroutine hp_run_write_files
 
     !> mode_NNN.vtu: the real part of each kept mode, sampled on the sub-triangulation of
@@ -181,7 +187,7 @@ contains
         type(problem_t), intent(in) :: prob
         character(len=:), allocatable :: text
         character(len=*), parameter :: NL = new_line('a')
-        text = summary_lines(config, this%out%prob, this%out%res, this%timings)
+        text = summary_lines(config, this%out%prob, this%out%res, this%timings, this%plot_note)
         text = text//NL//'  adapt       hp, '//to_string(size(this%out%levels))// &
             trim(merge(' level ', ' levels', size(this%out%levels) == 1))//' from the '// &
             to_string(prob%mesh%n_cells())//'-cell input mesh'
@@ -191,5 +197,8 @@ contains
         text = text//'; '// &
             this%out%outcome//NL//'  mesh        '//trim(config%output%directory)// &
             '/mesh.msh and '//DEGREES_FILE//' (the last graded mesh and its cell degrees)'
+        if (allocated(this%picture_note)) then
+            if (len(this%picture_note) > 0) text = text//NL//'  adapt plot  '//this%picture_note
+        end if
     end function hp_run_report
 end module hp_adapt_run

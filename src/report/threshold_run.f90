@@ -15,7 +15,8 @@ module threshold_run
     use problem, only: problem_t
     use threshold_analysis, only: threshold_result_t, sweep_curve_t, solve_thresholds
     use adaptive_threshold, only: adaptive_thresholds_t, solve_adapted_thresholds
-    use adapt_files, only: add_adapt_keys, adapt_report_lines, write_adapted_mesh, ask_adapt_plot
+    use adapt_files, only: add_adapt_keys, adapt_report_lines, write_adapted_mesh
+    use pictures, only: draw_sweep, draw_threshold_adapt
     use element_types, only: element_name
     use critical_lambda, only: SIDE_PLUS, SIDE_MINUS, SIDE_NAMES, SIDE_LABELS, CONFIRM_OFFSET
     use critical_set, only: critical_set_t, MECHANISM_NAMES, MECHANISM_COMPLEX_PAIR, &
@@ -161,10 +162,8 @@ contains
             call stage%add(SWEEP_FILE, path)
             call write_sweep_csv(path, this%res%sweep, stat)
         end if
-        if (stat%ok() .and. allocated(this%res%sweep%lambda) .and. config%sweep%plot) then
-            this%picture_script = 'plot_lambda_sweep.sh'
-            this%picture_file = 'lambda_sweep.png'
-        end if
+        if (stat%ok() .and. allocated(this%res%sweep%lambda)) &
+            call draw_sweep(stage, config, prob, this%res, this%picture_note)
     end subroutine sweep_run_write_files
 
     subroutine adapt_threshold_run_write_files(this, stage, config, prob, stat)
@@ -181,11 +180,10 @@ contains
             call write_threshold_adapt_csv(path, this%adapted, stat)
         end if
         if (stat%ok()) call write_adapted_mesh(stage, this%adapted%prob, stat)
-        if (stat%ok()) call ask_adapt_plot(this, config, &
-            any(this%adapted%levels%estimated(1)) .or. any(this%adapted%levels%estimated(2)))
-        ! the files describe the final level: the starting problem `prob` has no part in them
-        associate (start => prob)
-        end associate
+        ! the files describe the final level; of the starting problem `prob` only its dofs
+        if (stat%ok()) call draw_threshold_adapt(stage, config, &
+            this%adapted%prob%mesh%element, prob%dofs%n_free, this%adapted%levels, &
+            this%picture_note)
     end subroutine adapt_threshold_run_write_files
 
     function threshold_run_summary(this, config, prob) result(summary)

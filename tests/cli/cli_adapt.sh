@@ -2,7 +2,8 @@
 # SPDX-License-Identifier: MIT
 # &adapt end to end: the loop meets its tolerance and writes adapt.csv, adapt.png, the final
 # mode with its error indicators and mesh.msh, which nceig reads back to the same problem
-# and eigenvalue and can adapt further; the same for the critical lambdas and a sweep; a limit reached is exit 0 with a warning in
+# and eigenvalue and can adapt further; the same for the critical lambdas and a sweep (with
+# their pictures; without gnuplot a note and exit 0); a limit reached is exit 0 with a warning in
 # summary.json and on stdout; bad input is one stderr line naming &adapt and the variable,
 # exit 2, no output. Usage: cli_adapt.sh NCEIG SOURCE_DIR
 set -u
@@ -39,9 +40,10 @@ check 'mode_001.vtu carries the error indicators' \
     'grep -q "Name=\"error_indicator\"" "$work/out/mode_001.vtu"'
 check 'summary lists mesh.msh and adapt.csv' \
     'grep -q "\"mesh.msh\"" "$s" && grep -q "\"adapt.csv\"" "$s"'
-if command -v gnuplot >/dev/null && command -v jq >/dev/null; then
-    check 'adapt.png drawn and listed' \
-        '[[ -s "$work/out/adapt.png" ]] && grep -q "\"adapt.png\"" "$s"'
+if command -v gnuplot >/dev/null; then
+    check 'adapt.png and mode_001.png drawn and listed, stdout names them' \
+        'drawn "$work/out" adapt.png && drawn "$work/out" mode_001.png &&
+         grep -q "adapt plot  $work/out/adapt.png" "$work/stdout"'
 fi
 
 # mesh.msh read back: the same problem and eigenvalue (another node order: round-off).
@@ -148,6 +150,10 @@ check 'sweep: no positive mu at lambda = 1 (below the threshold), no estimate' \
     '[[ $(sed -n 5p "$w" | cut -d, -f2,6) == "," ]]'
 check 'sweep: summary counts the adapted rows and the reused meshes' \
     '[[ $(json "$work/sweep/summary.json" sweep_n_adapted) == 4 && -n $(json "$work/sweep/summary.json" sweep_n_mesh_reused) ]]'
+if command -v gnuplot >/dev/null; then
+    check 'sweep: lambda_sweep.png (with the bars) drawn and listed' \
+        'drawn "$work/sweep" lambda_sweep.png'
+fi
 # lambda = 5 from the mesh of lambda = 4 against lambda = 5 alone: each within its estimate
 # (1e-5), so within 2e-5 of each other plus the ratio's spread: 5e-5 relative
 check 'sweep: lambda = 5 agrees with the single adaptive run (5e-5)' \
@@ -181,6 +187,18 @@ check 'threshold adapt.csv: the last row is the summary'\''s' \
         $(tail -n 1 "$csv" | cut -d, -f5) == $(json "$s" lambda_critical_plus) ]]'
 check 'threshold: stdout gives each estimate' \
     '[[ $(grep -c "relative error estimate .* (p3 enrichment)" "$work/stdout") -eq 2 ]]'
+if command -v gnuplot >/dev/null; then
+    check 'threshold: adapt.png and mode_001.png drawn and listed' \
+        'drawn "$work/threshold" adapt.png && drawn "$work/threshold" mode_001.png'
+fi
+# Pictures are optional: gnuplot off the PATH leaves a note, exit 0 and the rest of the set.
+PATH=/nonexistent "$nceig" "$work/threshold.nml" --set adapt%tolerance=1e-3 \
+    --set output%directory="$work/no_gnuplot" >"$work/stdout" 2>"$work/err"; rc=$?
+check 'threshold without gnuplot: exit 0, notes for both pictures, no png' \
+    '[[ $rc -eq 0 && ! -s "$work/err" && -s "$work/no_gnuplot/adapt.csv" ]] &&
+     grep -q "adapt plot  not drawn: gnuplot is not installed" "$work/stdout" &&
+     grep -q "mode plot   not drawn: gnuplot is not installed" "$work/stdout" &&
+     [[ -z $(ls "$work/no_gnuplot" | grep "png$") ]]'
 cp "$work/threshold/mesh.msh" "$work/threshold.msh"
 cat >"$work/threshold_back.nml" <<NML
 &mesh source = 'gmsh', file = '$work/threshold.msh', dirichlet = 'top',

@@ -2,7 +2,8 @@
 # SPDX-License-Identifier: MIT
 # &adapt strategy = 'hp' end to end: on the reference scene the loop meets 1e-10 and its
 # value is within its bar of the independent truth (tests/data/truths.csv); the files
-# (adapt.csv per level, mode_001.vtu with the degree field, mesh.msh and degrees.csv);
+# (adapt.csv per level, mode_001.vtu with the degree field, mesh.msh and degrees.csv, and
+# with gnuplot mode_001.png and adapt.png; without it notes and exit 0);
 # the dense solver's whole spectrum;
 # the same from a Gmsh mesh of the trapezoid scene; hp within the h loop's bar on a
 # second scene; the floating-point floor and a level limit end in exit 8 with a warning;
@@ -55,6 +56,19 @@ check 'degrees.csv: one row per cell of mesh.msh' \
     '[[ $(($(wc -l <"$work/out/degrees.csv") - 1)) -eq $(json "$s" n_cells) ]]'
 check 'summary lists mesh.msh, degrees.csv and adapt.csv' \
     'grep -q "\"mesh.msh\"" "$s" && grep -q "\"degrees.csv\"" "$s" && grep -q "\"adapt.csv\"" "$s"'
+if command -v gnuplot >/dev/null 2>&1; then
+    check 'mode_001.png and adapt.png drawn and listed, stdout names them' \
+        'drawn "$work/out" mode_001.png && drawn "$work/out" adapt.png &&
+         grep -q "mode plot   $work/out/mode_001.png" "$work/stdout" &&
+         grep -q "adapt plot  $work/out/adapt.png" "$work/stdout"'
+fi
+PATH=/nonexistent "$nceig" "$work/hp.nml" --set adapt%tolerance=1e-4 \
+    --set "output%directory='$work/no_gnuplot'" >"$work/stdout" 2>"$work/err"; rc=$?
+check 'no gnuplot: exit 0, a note for each picture, no png' \
+    '[[ $rc -eq 0 && ! -s "$work/err" && -s "$work/no_gnuplot/adapt.csv" ]] &&
+     grep -q "mode plot   not drawn: gnuplot is not installed" "$work/stdout" &&
+     grep -q "adapt plot  not drawn: gnuplot is not installed" "$work/stdout" &&
+     [[ -z $(ls "$work/no_gnuplot" | grep "png$") ]]'
 
 # The dense solver on every level: the whole spectrum of the last one (one eigenvalue per
 # contact function), its lowest positive mu the same within the round-off bound.

@@ -57,7 +57,7 @@ NML
 check 'log range sweep runs' '[[ $rc -eq 0 && ! -s "$work/stderr" ]]'
 check 'log range: 7 rows from -1000 to -1' '[[ $(tail -n +2 "$work/range/lambda_sweep.csv" | wc -l) -eq 7 && $(sed -n 2p "$work/range/lambda_sweep.csv" | cut -d, -f1) == -1000.0 && $(tail -1 "$work/range/lambda_sweep.csv" | cut -d, -f1) == -1.0 ]]'
 if command -v gnuplot >/dev/null; then
-    check 'gnuplot installed: lambda_sweep.png is a PNG' '[[ $(head -c 4 "$work/range/lambda_sweep.png" | tail -c 3) == PNG ]]'
+    check 'gnuplot installed: lambda_sweep.png is a non-empty PNG, listed' 'drawn "$work/range" lambda_sweep.png'
     check 'gnuplot installed: stdout names the plot' 'grep -q "plot .*lambda_sweep.png" "$work/stdout"'
 else
     check 'no gnuplot: a note, no png, success' 'grep -q "plot .*not drawn" "$work/stdout" && [[ ! -e "$work/range/lambda_sweep.png" ]]'

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
-# nceig starts gnuplot and the plot scripts with an argument vector, through no shell, and
-# writes paths into gnuplot text as quoted strings: an output directory holding quotes, `;`
-# or gnuplot's system() runs nothing, and "Bob's results" gets its pictures. Under a low
+# nceig starts gnuplot with an argument vector, through no shell, and writes paths into
+# gnuplot text as quoted strings: an output directory holding quotes, `;` or gnuplot's
+# system() runs nothing, and "Bob's results" gets its pictures (mode_001.png,
+# lambda_sweep.png, adapt.png). Under a low
 # descriptor limit the note says why gnuplot did not start, not that it is missing. A reader
 # that closes stdout early (`| head`) neither kills the run (SIGPIPE) nor loses its set.
 # Usage: cli_no_shell.sh NCEIG SOURCE_DIR
@@ -16,10 +17,7 @@ cd "$work" || exit 1
 
 have_gnuplot=0
 command -v gnuplot >/dev/null 2>&1 && have_gnuplot=1
-have_jq=0
-command -v jq >/dev/null 2>&1 && have_jq=1
 [[ $have_gnuplot -eq 1 ]] || echo "      gnuplot is not installed: the pictures are not checked"
-[[ $have_jq -eq 1 ]] || echo "      jq is not installed: lambda_sweep.png is not checked"
 
 # eigen DIRECTORY [how]: a small eigen run into DIRECTORY, named in the input file (or, with
 # `set`, by --set); its exit status in $rc, stdout in $work/stdout
@@ -64,11 +62,17 @@ eigen "-dash" set
 check 'a relative directory starting with "-": mode_001.png drawn' \
     '[[ $rc -eq 0 ]] && picture -dash mode_001.png'
 
-# The plot scripts: lambda_sweep.png through scripts/plot_lambda_sweep.sh
+# The other pictures, whose gnuplot text holds data and titles besides the path:
+# lambda_sweep.png and adapt.png
 cat >"$work/sweep.nml" <<'NML'
 &mesh nx = 6, ny = 6 /
 &analysis kind = 'lambda_sweep' /
 &sweep lambda_min = -20.0, lambda_max = 20.0, n_lambda = 21 /
+&output vtk = .false. /
+NML
+cat >"$work/adapt.nml" <<'NML'
+&mesh nx = 2, ny = 2, element = 'p2' /
+&adapt tolerance = 1e-3 /
 &output vtk = .false. /
 NML
 for dir in "Bob's sweep" "s'.system('touch INJECTED').'"; do
@@ -76,8 +80,13 @@ for dir in "Bob's sweep" "s'.system('touch INJECTED').'"; do
     rc=$?
     echo "      $(grep '  plot ' "$work/stdout")"
     check "lambda_sweep into \"$dir\": exit 0, nothing ran" '[[ $rc -eq 0 && ! -e INJECTED ]]'
-    check "lambda_sweep into \"$dir\": lambda_sweep.png drawn" \
-        '[[ $have_jq -eq 0 ]] || picture "$dir" lambda_sweep.png'
+    check "lambda_sweep into \"$dir\": lambda_sweep.png drawn" 'picture "$dir" lambda_sweep.png'
+    rm -rf INJECTED "$dir"
+    "$nceig" "$work/adapt.nml" --set "output%directory=$dir" >"$work/stdout" 2>&1
+    rc=$?
+    echo "      $(grep 'adapt plot' "$work/stdout")"
+    check "adaptive eigen into \"$dir\": exit 0, nothing ran, adapt.png drawn" \
+        '[[ $rc -eq 0 && ! -e INJECTED ]] && picture "$dir" adapt.png'
     rm -rf INJECTED
 done
 

@@ -56,6 +56,11 @@ json() {
     sed -n "s/^ *\"$2\": *\(.*\)$/\1/p" "$1" | head -n 1 | sed 's/,$//; s/^"\([^"]*\)"$/\1/'
 }
 
+# drawn DIR FILE: the picture FILE is a non-empty PNG in DIR, listed in DIR/summary.json.
+drawn() {
+    [[ -s $1/$2 && $(head -c 4 "$1/$2" | tail -c 3) == PNG ]] && grep -q "\"$2\"" "$1/summary.json"
+}
+
 # close A B TOL: |A - B| <= TOL |B|, and A is not empty.
 close() {
     awk -v a="$1" -v b="$2" -v tol="$3" 'BEGIN {
