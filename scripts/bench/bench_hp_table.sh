@@ -148,6 +148,7 @@ uniform() {
         first_wall[u${el}_$n]=$wall first_peak[u${el}_$n]=$peak
         n_err[$n]=$(relerr "$(key "$s" lowest_positive_mu)" "$mu_true")
         n_dofs[$n]=$(key "$s" n_dofs)
+        echo "# ladder uniform ${el^^} N = $n: ${n_dofs[$n]} dofs, error ${n_err[$n]}, $wall s"
         last=$n
         meets "${n_err[$n]}" "${tolerances[-1]}" "$mu_true" "$mu_unc" && break
     done
@@ -216,6 +217,8 @@ NML
         first_wall[ff_$cfg]=$wall first_peak[ff_$cfg]=$peak
         ff_err[$cfg]=$(relerr "$(awk '/^mu / { print $2 }' "$work/ff_$cfg.out")" "$mu_true")
         ff_dofs[$cfg]=$(awk '/^mu / { print $4 }' "$work/ff_$cfg.out")
+        echo "# ladder FreeFEM layers:split $cfg: ${ff_dofs[$cfg]} dofs, error ${ff_err[$cfg]}," \
+            "$wall s ($(awk '/^mu / { printf "%.1f", $8 }' "$work/ff_$cfg.out") s on FreeFEM's clock)"
         ff_last=$cfg
         meets "${ff_err[$cfg]}" "${tolerances[-1]}" "$mu_true" "$mu_unc" && break
     done
