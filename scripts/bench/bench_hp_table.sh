@@ -131,6 +131,23 @@ for tol in "${tolerances[@]}"; do
         "${hp_wall[$tol]}"
 done
 
+# choose ERRORS TOLERANCE LAST KEY...: of the ladder KEY... (in order; ERRORS names the
+# associative array of the errors of the candidates run), sets pick to the first whose error
+# meets the tolerance and met=yes, else pick=LAST and met=no
+choose() {
+    local -n errors=$1
+    local tol=$2 candidate
+    pick=$3 met=no
+    shift 3
+    for candidate in "$@"; do
+        [[ -n ${errors[$candidate]:-} ]] || break
+        if meets "${errors[$candidate]}" "$tol" "$mu_true" "$mu_unc"; then
+            pick=$candidate met=yes
+            break
+        fi
+    done
+}
+
 # --- uniform P2, P4 -------------------------------------------------------------------------
 # ladder: each N once, in order, until the finest tolerance is met
 uniform() {
@@ -153,15 +170,9 @@ uniform() {
         meets "${n_err[$n]}" "${tolerances[-1]}" "$mu_true" "$mu_unc" && break
     done
     for tol in "${tolerances[@]}"; do
-        local pick=$last note
+        choose n_err "$tol" "$last" "$@"
         note="stalls at ${n_err[$last]} with ${n_dofs[$last]} dofs (N = $last, the ladder's largest)"
-        for n in "$@"; do
-            [[ -n ${n_err[$n]:-} ]] || break
-            if meets "${n_err[$n]}" "$tol" "$mu_true" "$mu_unc"; then
-                pick=$n note="met at N = $n"
-                break
-            fi
-        done
+        [[ $met == yes ]] && note="met at N = $pick"
         repeat "u${el}_$pick" "$nceig" "$root/input/square.nml" --set mesh%element="$el" \
             --set mesh%nx="$pick" --set mesh%ny="$pick" --set eigen%estimate=off \
             --set output%vtk=.false. --set output%plot=.false. \
@@ -223,15 +234,9 @@ NML
         meets "${ff_err[$cfg]}" "${tolerances[-1]}" "$mu_true" "$mu_unc" && break
     done
     for tol in "${tolerances[@]}"; do
-        pick=$ff_last
+        choose ff_err "$tol" "$ff_last" "${ff_ladder[@]}"
         note="stalls at ${ff_err[$pick]} with ${ff_dofs[$pick]} dofs (layers:split $pick, the ladder's last)"
-        for cfg in "${ff_ladder[@]}"; do
-            [[ -n ${ff_err[$cfg]:-} ]] || break
-            if meets "${ff_err[$cfg]}" "$tol" "$mu_true" "$mu_unc"; then
-                pick=$cfg note="met at layers:split $cfg"
-                break
-            fi
-        done
+        [[ $met == yes ]] && note="met at layers:split $pick"
         repeat "ff_$pick" "$freefem" -nw "$edp" -layers "${pick%:*}" -split "${pick#*:}"
         row "FreeFEM graded P4" "$tol" "${ff_dofs[$pick]}" "$med_wall" "$med_peak" \
             "${ff_err[$pick]}" - "$note" "${hp_wall[$tol]}"
