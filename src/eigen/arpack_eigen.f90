@@ -41,7 +41,7 @@ module arpack_eigen
     use unit_scaling, only: units_t
     implicit none
     private
-    public :: arpack_options_t, arpack_spectrum, arpack_search, arpack_finish, is_real_ritz
+    public :: arpack_options_t, arpack_search, arpack_finish, is_real_ritz
     public :: certify_lowest, CERTIFIED_FOUND, CERTIFIED_NONE, UNDECIDED
     public :: arpack_lowest_positive, wanted_values
 
@@ -179,39 +179,18 @@ contains
         values = pack(values, values <= cn_max .or. values <= values(1))
     end function wanted_values
 
-    !> Eigenvalues of K phi = mu B phi nearest the target (0: smallest in modulus), always
-    !> including the lowest positive real one when it is found, in output order, with full
-    !> eigenvectors of the first `n_keep` and the backward error of every pair on (K, B).
-    !> `chol` is the factor of K with the contact dofs last. `warning` is empty when the
-    !> lowest positive eigenvalue (or its absence) is certified, and says why not otherwise.
+    !> The first step towards the eigenvalues of K phi = mu B phi nearest the target (0:
+    !> smallest in modulus), always including the lowest positive real one when it is
+    !> found; arpack_finish then gives them in output order, with full eigenvectors of the
+    !> first `n_keep`, the backward error of every pair on (K, B), and a `warning` that is
+    !> empty when the lowest positive eigenvalue (or its absence) is certified.
     !> Strategy (docs/numerics.md, "ARPACK solver"): ARPACK on nev eigenvalues nearest the target;
     !> a certified answer is confirmed by a second run from another start vector; nev
     !> doubles while undecided; past p/4 (or if runs keep disagreeing) all p eigenvalues of
-    !> the reduced matrix are computed densely, which decides every case. The same holds for
-    !> both operators (options%full); the full one's eigenvectors come from ARPACK itself.
-    !> The two steps, arpack_search then arpack_finish, on the one factor.
-    subroutine arpack_spectrum(k, b, chol, contact, lambda, options, n_keep, spec, warning, &
-                               stat)
-        type(csr_matrix_t), intent(in) :: k, b
-        type(cholesky_t), intent(in) :: chol
-        type(contact_t), intent(in) :: contact
-        real(wp), intent(in) :: lambda
-        type(arpack_options_t), intent(in) :: options
-        integer, intent(in) :: n_keep
-        type(spectrum_t), intent(out) :: spec
-        character(len=:), allocatable, intent(out) :: warning
-        type(status_t), intent(out) :: stat
-        type(arpack_search_t) :: search
-        warning = ''
-        call arpack_search(k, b, chol, contact, lambda, options, search, stat)
-        if (.not. stat%ok()) return
-        call arpack_finish(k, b, chol, contact, lambda, options, n_keep, search, spec, &
-                           warning, stat)
-    end subroutine arpack_spectrum
-
-    !> The certified ARPACK search of arpack_spectrum on the operator options%full chooses,
-    !> set up from `chol`, a factor of K: the full operator only solves with it (any
-    !> ordering), the reduced one reads its trailing block (contact dofs last).
+    !> the reduced matrix are computed densely (arpack_finish), which decides every case.
+    !> The same holds for both operators (options%full); the full one's eigenvectors come
+    !> from ARPACK itself. `chol` is a factor of K: the full operator only solves with it
+    !> (any ordering), the reduced one reads its trailing block (contact dofs last).
     subroutine arpack_search(k, b, chol, contact, lambda, options, search, stat)
         type(csr_matrix_t), intent(in) :: k, b
         type(cholesky_t), intent(in) :: chol
@@ -254,7 +233,7 @@ contains
                                       this%op%p <= DENSE_FALLBACK_MAX
     end function search_needs_dense_decision
 
-    !> The spectrum of arpack_spectrum from a finished search: the dense decision when the
+    !> The spectrum from a finished search (arpack_search): the dense decision when the
     !> search is undecided, the eigenvectors and the round-off bound of the lowest. `chol`
     !> is the search's factor, or one with the contact dofs last when
     !> search%needs_dense_decision() and the search's factor is not (the full operator's).
