@@ -390,18 +390,20 @@ contains
             refactor_seconds = 0.0_wp
             call arpack_search(prob%k, res%b, chol, prob%contact, res%lambda, options, search, &
                                stat)
-            if (stat%ok() .and. search%needs_dense_decision() .and. .not. chol_contact_last) then
-                refactor_start = wall_time()
-                call check_contact_memory(config, prob%contact%p(), contact_peak_blocks( &
-                    .not. abs(config%eigen%target) > 0.0_wp), stat)
-                if (stat%ok()) call factor_stiffness(prob%k, prob%mesh, prob%dofs, &
-                                                     prob%contact, ordered, timings, stat)
-                refactor_seconds = wall_time() - refactor_start
-                if (stat%ok()) call arpack_finish(prob%k, res%b, ordered, prob%contact, &
-                    res%lambda, options, n_keep, search, res%spec, certificate, stat)
-            else if (stat%ok()) then
-                call arpack_finish(prob%k, res%b, chol, prob%contact, res%lambda, options, &
-                                   n_keep, search, res%spec, certificate, stat)
+            if (stat%ok()) then
+                if (search%needs_dense_decision() .and. .not. chol_contact_last) then
+                    refactor_start = wall_time()
+                    call check_contact_memory(config, prob%contact%p(), contact_peak_blocks( &
+                        .not. abs(config%eigen%target) > 0.0_wp), stat)
+                    if (stat%ok()) call factor_stiffness(prob%k, prob%mesh, prob%dofs, &
+                                                         prob%contact, ordered, timings, stat)
+                    refactor_seconds = wall_time() - refactor_start
+                    if (stat%ok()) call arpack_finish(prob%k, res%b, ordered, prob%contact, &
+                        res%lambda, options, n_keep, search, res%spec, certificate, stat)
+                else
+                    call arpack_finish(prob%k, res%b, chol, prob%contact, res%lambda, options, &
+                                       n_keep, search, res%spec, certificate, stat)
+                end if
             end if
             if (stat%code == STATUS_BAD_INPUT) stat%message = config%input_file//': '// &
                                                               stat%message

@@ -229,6 +229,8 @@ contains
     !> The dense decision reads the trailing block of a factor with the contact dofs last.
     pure logical function search_needs_dense_decision(this)
         class(arpack_search_t), intent(in) :: this
+        search_needs_dense_decision = .false.
+        if (.not. allocated(this%op)) return   ! the search failed before its operator
         search_needs_dense_decision = .not. this%confirmed .and. &
                                       this%op%p <= DENSE_FALLBACK_MAX
     end function search_needs_dense_decision
