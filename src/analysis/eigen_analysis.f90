@@ -18,7 +18,7 @@ module eigen_analysis
     use spectrum, only: spectrum_t, KIND_POSITIVE
     use dense_eigen, only: dense_spectrum
     use accuracy, only: accuracy_warnings, roundoff_warnings, WARNING_LEN, FORWARD_ERROR_BOUND
-    use arpack_eigen, only: arpack_spectrum, arpack_options_t
+    use arpack_eigen, only: arpack_search, arpack_finish, arpack_search_t, arpack_options_t
     use error_estimate, only: error_estimate_t, estimate_lowest_error, ENRICHED_CONTACT_MAX, &
                               estimate_label
     use enrichment, only: enriched_element
@@ -106,7 +106,7 @@ contains
         type(status_t), intent(out) :: stat
         type(cholesky_t) :: chol
         real(wp) :: start
-        logical :: contact_last, refactor
+        logical :: contact_last
 
         res%lambda = lambda
         start = wall_time()
@@ -119,26 +119,20 @@ contains
                                    config%eigen%dense_max_contact, config%eigen%operator)
         ! The full operator only solves with K: CHOLMOD's own ordering, without the dense
         ! 2p x 2p block of the contact dofs last, which costs O(p^3) and dominates when p is
-        ! a large part of n. The contact-last factor follows only if the dense decision needs
-        ! it; every other run makes that one from the start.
+        ! a large part of n (eigen_with_factor makes that factor only if the dense decision
+        ! needs it). Every other run reads that block: factored so from the start.
         contact_last = operator_name(res%solver, config%eigen%operator) /= 'full'
-        do
-            if (contact_last) then
-                call check_contact_memory(config, prob%contact%p(), contact_peak_blocks( &
-                    res%solver == SOLVER_ARPACK .and. .not. abs(config%eigen%target) > 0.0_wp), &
-                    stat)
-                if (.not. stat%ok()) return
-            end if
-            call factor_stiffness(prob%k, prob%mesh, prob%dofs, prob%contact, chol, timings, &
-                                  stat, contact_last)
-            call explain_singular_k(config, prob%mesh, stat)
+        if (contact_last) then
+            call check_contact_memory(config, prob%contact%p(), contact_peak_blocks( &
+                res%solver == SOLVER_ARPACK .and. .not. abs(config%eigen%target) > 0.0_wp), stat)
             if (.not. stat%ok()) return
-            call eigen_with_factor(config, prob, chol, res, timings, stat, &
-                                   contact_last=contact_last, needs_contact_last=refactor)
-            call chol%free()
-            if (.not. (stat%ok() .and. refactor)) exit
-            contact_last = .true.
-        end do
+        end if
+        call factor_stiffness(prob%k, prob%mesh, prob%dofs, prob%contact, chol, timings, stat, &
+                              contact_last)
+        call explain_singular_k(config, prob%mesh, stat)
+        if (.not. stat%ok()) return
+        call eigen_with_factor(config, prob, chol, res, timings, stat, contact_last=contact_last)
+        call chol%free()
     end subroutine solve_eigen
 
     !> res%error of a spectrum solve_eigen found, as &eigen estimate asks: the enriched
@@ -340,7 +334,7 @@ contains
     !> contact dofs last). A caller that already has Kt_nn and Kt_nt
     !> passes them to spare the dense solver forming them again.
     subroutine eigen_with_factor(config, prob, chol, res, timings, stat, kt_nn, kt_nt, &
-                                 contact_last, needs_contact_last)
+                                 contact_last)
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: prob
         type(cholesky_t), intent(in) :: chol
@@ -349,16 +343,17 @@ contains
         type(status_t), intent(out) :: stat
         real(wp), intent(in), optional :: kt_nn(:, :), kt_nt(:, :)   !! (p, p) both
         !> `chol` has the contact dofs last (default); without, only the full operator runs,
-        !> and `needs_contact_last` tells that it needs that factor to decide (see
-        !> arpack_spectrum: nothing else is computed then)
+        !> and the dense decision, if its search needs one, gets a contact-last factor here
         logical, intent(in), optional :: contact_last
-        logical, intent(out), optional :: needs_contact_last
         type(arpack_options_t) :: options
+        type(arpack_search_t) :: search
+        type(cholesky_t) :: ordered   !! contact dofs last, for the full operator's decision
+        logical :: chol_contact_last
+        real(wp) :: refactor_start, refactor_seconds
         real(wp) :: start, reduction_seconds
         character(len=:), allocatable :: certificate   !! why ARPACK's answer is not certified
         integer :: n_keep
 
-        if (present(needs_contact_last)) needs_contact_last = .false.
         n_keep = max(1, config%output%modes)
         start = wall_time()
         certificate = ''
@@ -371,20 +366,31 @@ contains
                 cn_max=prob%units%mu_to_scaled(config%eigen%cn_max), &
                 full=config%eigen%operator == 'full', &
                 units=prob%units, target_input=config%eigen%target)
-            if (present(contact_last)) options%contact_last = contact_last
-            call arpack_spectrum(prob%k, res%b, chol, prob%contact, res%lambda, options, n_keep, &
-                                 res%spec, certificate, stat, needs_contact_last)
+            chol_contact_last = .true.
+            if (present(contact_last)) chol_contact_last = contact_last
+            refactor_seconds = 0.0_wp
+            call arpack_search(prob%k, res%b, chol, prob%contact, res%lambda, options, search, &
+                               stat)
+            if (stat%ok()) then
+                if (search%needs_dense_decision() .and. .not. chol_contact_last) then
+                    refactor_start = wall_time()
+                    call check_contact_memory(config, prob%contact%p(), contact_peak_blocks( &
+                        .not. abs(config%eigen%target) > 0.0_wp), stat)
+                    if (stat%ok()) call factor_stiffness(prob%k, prob%mesh, prob%dofs, &
+                                                         prob%contact, ordered, timings, stat)
+                    refactor_seconds = wall_time() - refactor_start
+                    if (stat%ok()) call arpack_finish(prob%k, res%b, ordered, prob%contact, &
+                        res%lambda, options, n_keep, search, res%spec, certificate, stat)
+                else
+                    call arpack_finish(prob%k, res%b, chol, prob%contact, res%lambda, options, &
+                                       n_keep, search, res%spec, certificate, stat)
+                end if
+            end if
             if (stat%code == STATUS_BAD_INPUT) stat%message = config%input_file//': '// &
                                                               stat%message
             if (.not. stat%ok()) return
-            if (present(needs_contact_last)) then
-                if (needs_contact_last) then   ! nothing computed: the caller factors again
-                    call timings%add(PHASE_EIGEN, wall_time() - start, ': arpack on the '// &
-                        'full operator, undecided: the dense decision needs the contact dofs last')
-                    return
-                end if
-            end if
-            call timings%add(PHASE_EIGEN, wall_time() - start, ': arpack on the '// &
+            call timings%add(PHASE_EIGEN, wall_time() - start - refactor_seconds, &
+                             ': arpack on the '// &
                              operator_name(res%solver, config%eigen%operator)//' operator, '// &
                              to_string(res%spec%n())//' eigenvalues')
         else

@@ -36,11 +36,12 @@ module arpack_eigen
     use arpack_interfaces, only: dnaupd, dneupd, arpack_info_message
     use roundoff, only: left_from_reduced, lowest_roundoff
     use timer, only: wall_time
-    use contact_operator, only: contact_operator_t
+    use contact_operator, only: contact_operator_t, reduced_operator_t, full_operator_t, &
+                                explicit_operator_t
     use unit_scaling, only: units_t
     implicit none
     private
-    public :: arpack_options_t, arpack_spectrum, is_real_ritz
+    public :: arpack_options_t, arpack_search, arpack_finish, is_real_ritz
     public :: certify_lowest, CERTIFIED_FOUND, CERTIFIED_NONE, UNDECIDED
     public :: arpack_lowest_positive, wanted_values
 
@@ -77,9 +78,6 @@ module arpack_eigen
         real(wp) :: cn_max = 0.0_wp
         !> ARPACK on (K - sigma B)^-1 B in the n free dofs instead of the p x p reduction
         logical :: full = .false.
-        !> the factor of K has the contact dofs last (factor_stiffness): the reduced operator
-        !> and the dense decision read its trailing block; the full operator only solves
-        logical :: contact_last = .true.
         !> For messages: the problem solved is the input one in the scaled `units`
         !> (problem_t), and `target_input` is &eigen target as given.
         type(units_t) :: units
@@ -97,6 +95,21 @@ module arpack_eigen
         !> left eigenvector (p) of the lowest positive mu, when the dense decision found it
         real(wp), allocatable :: left(:)
     end type ritz_t
+
+    !> A certified ARPACK search (arpack_search), kept for arpack_finish: the operator it
+    !> ran on (full_operator_t or reduced_operator_t, as options%full chose), the last run
+    !> and its mu, and whether two runs confirmed the answer.
+    type, public :: arpack_search_t
+        private
+        class(contact_operator_t), allocatable :: op
+        type(ritz_t) :: run
+        complex(wp), allocatable :: mu(:)
+        logical :: confirmed = .false.
+        logical :: found_before = .false.
+        integer :: n_operator = 0
+    contains
+        procedure :: needs_dense_decision => search_needs_dense_decision
+    end type arpack_search_t
 
 contains
 
@@ -166,112 +179,136 @@ contains
         values = pack(values, values <= cn_max .or. values <= values(1))
     end function wanted_values
 
-    !> Eigenvalues of K phi = mu B phi nearest the target (0: smallest in modulus), always
-    !> including the lowest positive real one when it is found, in output order, with full
-    !> eigenvectors of the first `n_keep` and the backward error of every pair on (K, B).
-    !> `chol` is the factor of K with the contact dofs last. `warning` is empty when the
-    !> lowest positive eigenvalue (or its absence) is certified, and says why not otherwise.
+    !> The first step towards the eigenvalues of K phi = mu B phi nearest the target (0:
+    !> smallest in modulus), always including the lowest positive real one when it is
+    !> found; arpack_finish then gives them in output order, with full eigenvectors of the
+    !> first `n_keep`, the backward error of every pair on (K, B), and a `warning` that is
+    !> empty when the lowest positive eigenvalue (or its absence) is certified.
     !> Strategy (docs/numerics.md, "ARPACK solver"): ARPACK on nev eigenvalues nearest the target;
     !> a certified answer is confirmed by a second run from another start vector; nev
     !> doubles while undecided; past p/4 (or if runs keep disagreeing) all p eigenvalues of
-    !> the reduced matrix are computed densely, which decides every case. The same holds for
-    !> both operators (options%full); the full one's eigenvectors come from ARPACK itself.
-    subroutine arpack_spectrum(k, b, chol, contact, lambda, options, n_keep, spec, warning, &
-                               stat, needs_contact_last)
+    !> the reduced matrix are computed densely (arpack_finish), which decides every case.
+    !> The same holds for both operators (options%full); the full one's eigenvectors come
+    !> from ARPACK itself. `chol` is a factor of K: the full operator only solves with it
+    !> (any ordering), the reduced one reads its trailing block (contact dofs last).
+    subroutine arpack_search(k, b, chol, contact, lambda, options, search, stat)
         type(csr_matrix_t), intent(in) :: k, b
-        type(cholesky_t), intent(in), target :: chol
+        type(cholesky_t), intent(in) :: chol
         type(contact_t), intent(in) :: contact
         real(wp), intent(in) :: lambda
         type(arpack_options_t), intent(in) :: options
-        integer, intent(in) :: n_keep
-        type(spectrum_t), intent(out) :: spec
-        character(len=:), allocatable, intent(out) :: warning
+        type(arpack_search_t), intent(out) :: search
         type(status_t), intent(out) :: stat
-        !> set (and nothing computed) when the full operator on a factor without the contact
-        !> dofs last (options%contact_last false) is undecided: the dense decision needs that
-        !> factor, which the caller makes and calls again with
-        logical, intent(out), optional :: needs_contact_last
-        type(contact_operator_t) :: op, reduced
-        type(ritz_t) :: run
-        complex(wp), allocatable :: mu(:)
-        real(wp) :: radius
-        integer :: p, cap, n_operator
-        logical :: found_before, confirmed, lifted
+        integer :: p
 
-        warning = ''
-        if (present(needs_contact_last)) needs_contact_last = .false.
         p = contact%p()
-        cap = p - 2   ! ARPACK needs nev + 2 <= ncv <= n
-        if (cap < 1) then
+        if (p - 2 < 1) then   ! ARPACK needs nev + 2 <= ncv <= n
             call stat%fail(STATUS_BAD_INPUT, 'arpack: '//to_string(p)//' contact nodes: '// &
                 'ARPACK needs at least 3 (nev + 2 <= ncv <= p); use solver = ''dense''')
             return
         end if
         if (options%full) then
-            call op%setup_full(k, b, chol, contact, lambda, options%target, stat, &
-                               options%target_input, options%units)
+            allocate (full_operator_t :: search%op)
         else
+            allocate (reduced_operator_t :: search%op)
+        end if
+        select type (op => search%op)
+        type is (full_operator_t)
+            call op%setup(k, b, chol, contact, lambda, options%target, stat, &
+                          options%target_input, options%units)
+        type is (reduced_operator_t)
             call op%setup(chol, contact, lambda, options%target, stat, options%target_input, &
                           options%units)
-        end if
+        end select
         if (.not. stat%ok()) return
+        call certified_search(search%op, chol, options, search%run, search%mu, &
+                              search%confirmed, search%found_before, search%n_operator, stat)
+    end subroutine arpack_search
 
-        call certified_search(op, options, run, mu, confirmed, found_before, n_operator, stat)
-        if (.not. stat%ok()) return
+    !> Whether arpack_finish decides densely: the search is unconfirmed and p is small enough.
+    !> The dense decision reads the trailing block of a factor with the contact dofs last.
+    pure logical function search_needs_dense_decision(this)
+        class(arpack_search_t), intent(in) :: this
+        search_needs_dense_decision = .false.
+        if (.not. allocated(this%op)) return   ! the search failed before its operator
+        search_needs_dense_decision = .not. this%confirmed .and. &
+                                      this%op%p <= DENSE_FALLBACK_MAX
+    end function search_needs_dense_decision
 
+    !> The spectrum from a finished search (arpack_search): the dense decision when the
+    !> search is undecided, the eigenvectors and the round-off bound of the lowest. `chol`
+    !> is the search's factor, or one with the contact dofs last when
+    !> search%needs_dense_decision() and the search's factor is not (the full operator's).
+    subroutine arpack_finish(k, b, chol, contact, lambda, options, n_keep, search, spec, &
+                             warning, stat)
+        type(csr_matrix_t), intent(in) :: k, b
+        type(cholesky_t), intent(in) :: chol
+        type(contact_t), intent(in) :: contact
+        real(wp), intent(in) :: lambda
+        type(arpack_options_t), intent(in) :: options
+        integer, intent(in) :: n_keep
+        type(arpack_search_t), intent(inout) :: search
+        type(spectrum_t), intent(out) :: spec
+        character(len=:), allocatable, intent(out) :: warning
+        type(status_t), intent(out) :: stat
+        type(reduced_operator_t) :: decision
+        real(wp) :: radius
+        integer :: cap
+        logical :: lifted
+
+        warning = ''
+        cap = search%op%p - 2
         ! reduced eigenvectors y are lifted to phi; the full operator's are phi already
-        lifted = .not. op%full
-        if (.not. confirmed) then
-            ! Undecided: all p eigenvalues of the reduced p x p matrix decide (O(p^3)).
-            if (p <= DENSE_FALLBACK_MAX) then
-                if (op%full .and. .not. options%contact_last) then
-                    if (present(needs_contact_last)) needs_contact_last = .true.
-                    if (.not. present(needs_contact_last)) call stat%fail(STATUS_SOLVER, &
-                        'arpack: the dense decision needs a factor of K with the contact ' &
-                        //'dofs last')
-                    return
-                end if
-                if (op%full) then
-                    call reduced%setup(chol, contact, lambda, options%target, stat, &
-                                       options%target_input, options%units)
-                    if (.not. stat%ok()) return
-                    call dense_ritz(reduced, options%nev, options%cn_max, run, stat)
-                    if (.not. stat%ok()) return
-                    mu = reduced%mu_of(run%nu)
-                    lifted = .true.
-                else
-                    call dense_ritz(op, options%nev, options%cn_max, run, stat)
-                    if (.not. stat%ok()) return
-                    mu = op%mu_of(run%nu)
-                end if
+        select type (op => search%op)
+        type is (full_operator_t)
+            lifted = .false.
+        class default
+            lifted = .true.
+        end select
+        if (search%needs_dense_decision()) then
+            ! all p eigenvalues of the reduced p x p matrix decide (O(p^3))
+            select type (op => search%op)
+            type is (reduced_operator_t)
+                call dense_ritz(op, options%nev, options%cn_max, search%run, stat)
+                if (.not. stat%ok()) return
+                search%mu = op%mu_of(search%run%nu)
+            class default
+                call decision%setup(chol, contact, lambda, options%target, stat, &
+                                    options%target_input, options%units)
+                if (.not. stat%ok()) return
+                call dense_ritz(decision, options%nev, options%cn_max, search%run, stat)
+                if (.not. stat%ok()) return
+                search%mu = decision%mu_of(search%run%nu)
+                lifted = .true.
+            end select
+        else if (.not. search%confirmed) then
+            radius = 0.0_wp
+            if (size(search%mu) > 0) radius = maxval(abs(search%mu - options%target))
+            if (search%found_before) then
+                warning = 'the lowest positive eigenvalue is not certified: ARPACK runs '// &
+                    'from different start vectors disagree on it'
             else
-                radius = 0.0_wp
-                if (size(mu) > 0) radius = maxval(abs(mu - options%target))
-                if (found_before) then
-                    warning = 'the lowest positive eigenvalue is not certified: ARPACK runs '// &
-                        'from different start vectors disagree on it'
-                else
-                    warning = 'the lowest positive eigenvalue is not certified: none found '// &
-                        'with |mu - target| <= '//to_string(radius)
-                end if
-                if (run%info /= 0) warning = warning//'; '//arpack_info_message('dnaupd', &
-                                                                                 run%info)
+                warning = 'the lowest positive eigenvalue is not certified: none found '// &
+                    'with |mu - target| <= '//to_string(radius)
             end if
+            if (search%run%info /= 0) warning = warning//'; '// &
+                arpack_info_message('dnaupd', search%run%info)
         end if
-        if (size(run%nu) == 0) then
+        if (size(search%run%nu) == 0) then
             call stat%fail(STATUS_SOLVER, 'arpack: no Ritz value converged ('// &
-                arpack_info_message('dnaupd', run%info)//'); raise maxit or ncv')
+                arpack_info_message('dnaupd', search%run%info)//'); raise maxit or ncv')
             return
         end if
         if (lifted) then
-            call fill_spectrum(k, b, chol, contact, lambda, mu, run, n_keep, spec, stat)
+            call fill_spectrum(k, b, chol, contact, lambda, search%mu, search%run, n_keep, &
+                               spec, stat)
         else
-            call fill_full_spectrum(k, b, mu, run, n_keep, spec)
+            call fill_full_spectrum(k, b, search%mu, search%run, n_keep, spec)
         end if
         if (.not. stat%ok()) return
-        spec%n_operator = n_operator
-        spec%dense_decision = .not. confirmed .and. p <= DENSE_FALLBACK_MAX
-        call add_roundoff(max(options%nev, size(run%nu)))
+        spec%n_operator = search%n_operator
+        spec%dense_decision = search%needs_dense_decision()
+        call add_roundoff(max(options%nev, size(search%run%nu)))
     contains
 
         !> spec%roundoff of the lowest positive mu (module roundoff)
@@ -287,29 +324,30 @@ contains
             if (spec%lowest_positive() /= 1 .or. size(spec%vectors, 2) < 1) return
             start = wall_time()
             if (spec%dense_decision) then
-                if (allocated(run%left)) call left_from_reduced(chol, contact, k%n(), run%left, &
-                                                                y, left_stat)
-            else if (op%full) then
-                call left_eigenvector(op, options, min(nev, cap), real(spec%mu(1), wp), y, &
-                                      left_stat)
-            else
-                call left_eigenvector(op, options, min(nev, cap), real(spec%mu(1), wp), w, &
-                                      left_stat)
+                if (allocated(search%run%left)) call left_from_reduced(chol, contact, k%n(), &
+                    search%run%left, y, left_stat)
+            else if (lifted) then
+                call left_eigenvector(search%op, chol, options, min(nev, cap), &
+                                      real(spec%mu(1), wp), w, left_stat)
                 if (left_stat%ok() .and. allocated(w)) call left_from_reduced(chol, contact, &
                     k%n(), w, y, left_stat)
+            else
+                call left_eigenvector(search%op, chol, options, min(nev, cap), &
+                                      real(spec%mu(1), wp), y, left_stat)
             end if
             if (left_stat%ok()) call lowest_roundoff(k, b, contact, lambda, real(spec%mu(1), wp), &
                 real(spec%vectors(:, 1), wp), y, spec%roundoff(1))
             spec%roundoff_seconds = wall_time() - start
         end subroutine add_roundoff
-    end subroutine arpack_spectrum
+    end subroutine arpack_finish
 
-    !> The eigenvector of the transposed operator (op%transposed) for the real eigenvalue
+    !> The eigenvector of the transposed operator for the real eigenvalue
     !> nearest `mu_lowest`, from one ARPACK run of `nev` values: the left eigenvector of
     !> the lowest positive mu (reduced: w with A' w = theta w; full: y with K y = mu B' y).
     !> Unallocated when no real Ritz value converged.
-    subroutine left_eigenvector(op, options, nev, mu_lowest, left, stat)
-        type(contact_operator_t), intent(inout) :: op
+    subroutine left_eigenvector(op, factor, options, nev, mu_lowest, left, stat)
+        class(contact_operator_t), intent(inout) :: op
+        type(cholesky_t), intent(in) :: factor   !! of K, for the operator's apply
         type(arpack_options_t), intent(in) :: options
         integer, intent(in) :: nev
         real(wp), intent(in) :: mu_lowest
@@ -318,9 +356,7 @@ contains
         type(ritz_t) :: run
         complex(wp), allocatable :: mu(:)
         integer :: pick, i
-        op%transposed = .true.
-        call run_arpack(op, nev, options, 1, run, stat)
-        op%transposed = .false.
+        call run_arpack(op, factor, nev, options, 1, run, stat, transposed=.true.)
         if (.not. stat%ok()) return
         mu = op%mu_of(run%nu)
         pick = 0
@@ -341,8 +377,10 @@ contains
     !> while undecided; stops undecided past nev > p/4 or NEV_SEARCH_MAX. `run` and `mu` are
     !> the last run's Ritz values and mu = target + 1/nu; `found_before`: the last run
     !> certified a value that the one before did not confirm.
-    subroutine certified_search(op, options, run, mu, confirmed, found_before, n_operator, stat)
-        type(contact_operator_t), intent(inout) :: op
+    subroutine certified_search(op, factor, options, run, mu, confirmed, found_before, &
+                                n_operator, stat)
+        class(contact_operator_t), intent(inout) :: op
+        type(cholesky_t), intent(in) :: factor   !! of K, for the operator's apply
         type(arpack_options_t), intent(in) :: options
         type(ritz_t), intent(out) :: run
         complex(wp), allocatable, intent(out) :: mu(:)
@@ -359,7 +397,7 @@ contains
         found_before = .false.
         confirmed = .false.
         do attempt = 1, MAX_ATTEMPTS
-            call run_arpack(op, nev, options, attempt, run, stat)
+            call run_arpack(op, factor, nev, options, attempt, run, stat)
             if (.not. stat%ok()) return
             n_operator = n_operator + run%n_operator
             mu = op%mu_of(run%nu)
@@ -401,7 +439,8 @@ contains
         logical, intent(out) :: found, certified
         integer, intent(out) :: n_operator
         type(status_t), intent(out) :: stat
-        type(contact_operator_t) :: op
+        type(explicit_operator_t) :: op
+        type(cholesky_t) :: no_factor   ! the explicit operator solves nothing
         type(arpack_options_t) :: unshifted
         type(ritz_t) :: run
         complex(wp), allocatable :: mu_all(:)
@@ -412,14 +451,11 @@ contains
         found = .false.
         certified = .false.
         n_operator = 0
-        op%p = size(a, 1)
-        op%n = op%p
-        if (op%p - 2 < 1) return   ! too small for ARPACK: the caller goes dense
-        op%explicit = .true.
-        allocate (op%a, source=a)
+        if (size(a, 1) - 2 < 1) return   ! too small for ARPACK: the caller goes dense
+        call op%setup(a)
         unshifted = options
         unshifted%target = 0.0_wp
-        call certified_search(op, unshifted, run, mu_all, certified, found_before, n_operator, &
+        call certified_search(op, no_factor, unshifted, run, mu_all, certified, found_before, n_operator, &
                               stat)
         if (.not. stat%ok() .or. .not. certified) return
         call certify_lowest(mu_all, run%is_real, 0.0_wp, .false., outcome, lowest)
@@ -432,7 +468,7 @@ contains
     !> the lowest positive real mu, and every positive real mu up to cn_max; the rest are
     !> dropped before eigenvectors are formed.
     subroutine dense_ritz(op, n_report, cn_max, run, stat)
-        type(contact_operator_t), intent(in) :: op
+        type(reduced_operator_t), intent(in) :: op
         integer, intent(in) :: n_report
         real(wp), intent(in) :: cn_max
         type(ritz_t), intent(out) :: run
@@ -493,16 +529,20 @@ contains
     end subroutine dense_ritz
 
     !> One ARPACK run: standard mode on `op`, nev wanted ('LR' without shift, 'LM' with),
-    !> from a deterministic start vector that differs between attempts.
-    subroutine run_arpack(op, nev_wanted, options, attempt, run, stat)
-        type(contact_operator_t), intent(inout) :: op
+    !> from a deterministic start vector that differs between attempts; on the transposed
+    !> operator with `transposed` (default false).
+    subroutine run_arpack(op, factor, nev_wanted, options, attempt, run, stat, transposed)
+        class(contact_operator_t), intent(inout) :: op
+        type(cholesky_t), intent(in) :: factor   !! of K, for the operator's apply
         integer, intent(in) :: nev_wanted, attempt
         type(arpack_options_t), intent(in) :: options
         type(ritz_t), intent(out) :: run
         type(status_t), intent(out) :: stat
+        logical, intent(in), optional :: transposed
         real(wp), allocatable :: resid(:), v(:, :), workd(:), workl(:), dr(:), di(:), z(:, :), &
                                  workev(:), start(:)
         logical, allocatable :: select(:)
+        logical :: left
         integer :: iparam(11), ipntr(14), ido, info, n, ncv, lworkl, nconv, j, i, nev
         character(len=2) :: which
         real(wp) :: tol
@@ -510,6 +550,8 @@ contains
         ! ARPACK may adjust nev in place to keep a conjugate pair together (seen with arpack-ng
         ! 3.8 on tiny n): give it a private copy.
         nev = nev_wanted
+        left = .false.
+        if (present(transposed)) left = transposed
         n = op%n
         ncv = options%ncv
         if (ncv == 0) ncv = max(2*nev + 1, 20)
@@ -523,11 +565,9 @@ contains
         ! Start vector: smooth plus oscillating parts, nonzero in every component and in
         ! every eigendirection generically; the phase changes with the attempt.
         resid = [(1.0_wp + 0.5_wp*sin(real(i*attempt, wp)*0.7548776662466927_wp), i=1, n)]
-        if (op%full) then
-            ! into the range of OP: its null space (that of B, n - p wide) holds no eigenvector
-            ! of a finite mu, and a start vector inside it would only feed round-off back
+        if (op%start_in_range) then
             start = resid
-            call op%apply(start, resid, stat)
+            call op%apply(factor, start, resid, left, stat)
             if (.not. stat%ok()) return
             run%n_operator = 1
         end if
@@ -543,8 +583,8 @@ contains
                         workd, workl, lworkl, info)
             if (ido /= 1 .and. ido /= -1) exit   ! 99: done; no other request in mode 1
             run%n_operator = run%n_operator + 1
-            call op%apply(workd(ipntr(1):ipntr(1) + n - 1), workd(ipntr(2):ipntr(2) + n - 1), &
-                          stat)
+            call op%apply(factor, workd(ipntr(1):ipntr(1) + n - 1), &
+                          workd(ipntr(2):ipntr(2) + n - 1), left, stat)
             if (.not. stat%ok()) return
         end do
         run%info = info

@@ -1,8 +1,13 @@
 ! SPDX-License-Identifier: MIT
-!> The operator ARPACK runs on (module arpack_eigen): the reduced operator on the contact
-!> nodes, A = N K^-1 X' M from the trailing block of a contact-last factor of K, shift-
-!> inverted as (I - sigma A)^-1 A for a target sigma; or the full one, (K - sigma B)^-1 B in
-!> the n free dofs; and the transposes of both, whose eigenvectors are the left ones.
+!> The operators ARPACK runs on (module arpack_eigen), one type each behind the abstract
+!> contact_operator_t, whose `apply` is what the reverse communication asks for:
+!> - reduced_operator_t: A = N K^-1 X' M on the contact nodes, from the trailing block of a
+!>   contact-last factor of K, shift-inverted as (I - sigma A)^-1 A for a target sigma;
+!> - full_operator_t: (K - sigma B)^-1 B in the n free dofs;
+!> - explicit_operator_t: a p x p matrix A the caller formed (a lambda sweep), sigma = 0.
+!> Each also applies its transpose, whose eigenvectors are the left ones. Every type owns
+!> what it reads; the factor of K, which only the unshifted full operator solves with, is
+!> an argument of `apply`, never kept.
 module contact_operator
     use kinds, only: wp
     use status, only: status_t, STATUS_SOLVER, STATUS_BAD_INPUT, STATUS_SINGULAR
@@ -28,58 +33,97 @@ module contact_operator
     !> reference scene) the answers were wrong in every digit with a certificate that held.
     real(wp), parameter, public :: TARGET_RANGE = 1.0e6_wp
 
-    !> The reduced operator on the contact nodes: theta-mode y -> A y (sigma = 0) or
-    !> shift-invert y -> (I - sigma A)^-1 A y.
-    type, public :: contact_operator_t
-        integer :: p = 0
-        integer :: n = 0                        !! ARPACK's dimension: p, or n_free when full
+    !> What every operator shares: its dimension, the shift, and mu of an eigenvalue nu.
+    type, abstract, public :: contact_operator_t
+        integer :: p = 0                        !! contact nodes (the rank of B)
+        integer :: n = 0                        !! ARPACK's dimension
         real(wp) :: sigma = 0.0_wp
         real(wp) :: lambda = 0.0_wp
         !> The operator is built on A / lambda_scale (a power of two ~ |lambda| when
         !> |lambda| > 1, else 1): A ~ lambda overflowed ARPACK's norms from |lambda| ~ 1e160
         real(wp) :: lambda_scale = 1.0_wp
+        !> ARPACK's start vector goes through the operator first: the full operator's null
+        !> space, that of B (n - p wide), holds no eigenvector of a finite mu, and a start
+        !> vector inside it would only feed round-off back
+        logical :: start_in_range = .false.
+    contains
+        procedure(apply_interface), deferred :: apply
+        procedure :: mu_of => operator_mu_of
+        procedure :: check_target => operator_check_target
+    end type contact_operator_t
+
+    abstract interface
+        !> ARPACK's OP (or its transpose, `transposed`): out = OP y. `factor` is the factor
+        !> of K the operator was set up from.
+        subroutine apply_interface(this, factor, y, out, transposed, stat)
+            import :: contact_operator_t, cholesky_t, wp, status_t
+            class(contact_operator_t), intent(inout) :: this   !! (UMFPACK's solve updates its record)
+            type(cholesky_t), intent(in) :: factor
+            real(wp), intent(in) :: y(:)
+            real(wp), intent(out) :: out(:)
+            logical, intent(in) :: transposed
+            type(status_t), intent(out) :: stat
+        end subroutine apply_interface
+    end interface
+
+    !> The reduced operator on the contact nodes: theta-mode y -> A y (sigma = 0) or
+    !> shift-invert y -> (I - sigma A)^-1 A y, from L_c, the trailing 2p x 2p block of a
+    !> contact-last factor of K.
+    type, extends(contact_operator_t), public :: reduced_operator_t
         real(wp) :: normal(2) = 0.0_wp, tangent(2) = 0.0_wp
         real(wp) :: direction(2) = 0.0_wp      !! (lambda t - n) / lambda_scale
         real(wp), allocatable :: l_tail(:, :)   !! (2p, 2p) trailing block of the factor
         integer, allocatable :: slot(:, :)      !! (2, p) row in l_tail of contact dof (c, a)
         type(csr_matrix_t) :: mass              !! (p, p) boundary mass M
-        real(wp), allocatable :: a(:, :)        !! (p, p) A, then LU of I - sigma A (sigma /= 0)
+        real(wp), allocatable :: lu(:, :)       !! (p, p) LU of I - sigma A (sigma /= 0)
         integer, allocatable :: pivots(:)
-        !> `a` is A itself, given by the caller (sigma = 0): one O(p^2) product per application
-        logical :: explicit = .false.
-        !> The full operator y -> (K - sigma B)^-1 (B / lambda_scale) y: B / lambda_scale,
-        !> and the LU of K - sigma B (sigma /= 0) or the caller's factor of K (sigma = 0; a
-        !> pointer, valid while the arpack_spectrum call that set it runs)
-        logical :: full = .false.
-        type(csr_matrix_t) :: b_scaled
-        type(lu_t) :: shifted
-        type(cholesky_t), pointer :: chol => null()
-        !> Apply the transposed operator instead: same eigenvalues, and its eigenvectors are
-        !> the left ones (of A, or of the pencil for the full operator), for the round-off
-        !> bound. The full one needs the contact (B' = N' M X) kept here.
-        logical :: transposed = .false.
-        type(contact_t) :: contact
     contains
-        procedure :: setup => operator_setup
-        procedure :: setup_full => operator_setup_full
-        procedure :: apply_a => operator_apply_a
-        procedure :: x_direction => operator_x_direction
-        procedure :: contact_compliance => operator_contact_compliance
-        procedure :: apply => operator_apply
-        procedure :: dense_a => operator_dense_a
-        procedure :: mu_of => operator_mu_of
-        procedure :: norm_estimate => operator_norm_estimate
-        procedure :: check_target => operator_check_target
-    end type contact_operator_t
+        procedure :: setup => reduced_setup
+        procedure :: apply => reduced_apply
+        procedure :: dense_a => reduced_dense_a
+    end type reduced_operator_t
+
+    !> A p x p matrix A given by the caller (sigma = 0): one O(p^2) product per application.
+    type, extends(contact_operator_t), public :: explicit_operator_t
+        real(wp), allocatable :: a(:, :)
+    contains
+        procedure :: setup => explicit_setup
+        procedure :: apply => explicit_apply
+    end type explicit_operator_t
+
+    !> The full operator y -> (K - sigma B)^-1 (B / lambda_scale) y in the n free dofs: the
+    !> LU of K - sigma B (sigma /= 0) or solves with the factor of K (sigma = 0). The
+    !> transposed one needs the contact (B' = N' M X).
+    type, extends(contact_operator_t), public :: full_operator_t
+        type(csr_matrix_t) :: b_scaled          !! B / lambda_scale
+        type(lu_t) :: shifted                   !! LU of K - sigma B (sigma /= 0)
+        type(contact_t) :: contact
+        real(wp) :: direction(2) = 0.0_wp      !! (lambda t - n) / lambda_scale
+    contains
+        procedure :: setup => full_setup
+        procedure :: apply => full_apply
+        procedure :: norm_estimate => full_norm_estimate
+    end type full_operator_t
 
 contains
+
+    !> The shared part of every setup.
+    subroutine operator_init(this, p, n, lambda, sigma)
+        class(contact_operator_t), intent(inout) :: this
+        integer, intent(in) :: p, n
+        real(wp), intent(in) :: lambda, sigma
+        this%p = p
+        this%n = n
+        this%lambda = lambda
+        this%sigma = sigma
+        this%lambda_scale = lambda_unit(lambda)
+    end subroutine operator_init
 
     !> Build the reduced operator from a factor of K whose last 2p pivots are the contact
     !> dofs (see node_ordering), and factor I - sigma A when sigma /= 0, after checking
     !> |sigma| ||A|| <= TARGET_RANGE (STATUS_BAD_INPUT naming &eigen target otherwise).
-    subroutine operator_setup(this, chol, contact, lambda, sigma, stat, target_input, &
-                              units)
-        class(contact_operator_t), intent(inout) :: this
+    subroutine reduced_setup(this, chol, contact, lambda, sigma, stat, target_input, units)
+        class(reduced_operator_t), intent(inout) :: this
         type(cholesky_t), intent(in) :: chol
         type(contact_t), intent(in) :: contact
         real(wp), intent(in) :: lambda, sigma
@@ -89,11 +133,7 @@ contains
         real(wp) :: a_norm
         integer :: a, info
 
-        this%p = contact%p()
-        this%n = this%p
-        this%lambda = lambda
-        this%sigma = sigma
-        this%lambda_scale = lambda_unit(lambda)
+        call operator_init(this, contact%p(), contact%p(), lambda, sigma)
         this%normal = contact%normal
         this%tangent = contact%tangent
         this%direction = contact%slip_direction(lambda, this%lambda_scale)
@@ -102,35 +142,42 @@ contains
         if (.not. stat%ok()) return
         if (.not. (abs(sigma) > 0.0_wp)) return
 
-        call this%dense_a(this%a, stat)
+        call this%dense_a(this%lu, stat)
         if (.not. stat%ok()) return
-        ! |sigma| ||A|| > TARGET_RANGE, this%a being A / lambda_scale; written as quotients,
-        ! which cannot overflow (sigma may be clamped to huge, see eigen_analysis)
-        a_norm = maxval(sum(abs(this%a), dim=2))
+        ! this%lu is A / lambda_scale here
+        a_norm = maxval(sum(abs(this%lu), dim=2))
         call this%check_target(a_norm, target_input, units, stat)
         if (.not. stat%ok()) return
-        ! LU of I - sigma A, kept in place of A (A itself is applied through L_c)
-        this%a = -(sigma*this%lambda_scale)*this%a
+        ! LU of I - sigma A (A itself is applied through L_c)
+        this%lu = -(sigma*this%lambda_scale)*this%lu
         do a = 1, this%p
-            this%a(a, a) = this%a(a, a) + 1.0_wp
+            this%lu(a, a) = this%lu(a, a) + 1.0_wp
         end do
         allocate (this%pivots(this%p))
-        call dgetrf(this%p, this%p, this%a, this%p, this%pivots, info)
+        call dgetrf(this%p, this%p, this%lu, this%p, this%pivots, info)
         if (info /= 0) then
             call stat%fail(STATUS_SOLVER, 'arpack: K - sigma B is singular for sigma = '// &
                 to_string(sigma)//' (an eigenvalue equals the target; move the target)')
         end if
-    end subroutine operator_setup
+    end subroutine reduced_setup
 
-    !> The full operator (K - sigma B)^-1 B / lambda_scale in the n free dofs. sigma = 0 uses
-    !> `chol`, the factor of K (no second factorization); sigma /= 0 factors K - sigma B once
-    !> with UMFPACK, after the range check of operator_setup with ||A||_inf estimated
-    !> (norm_estimate: a few sparse solves instead of forming A). Nothing of order p^2.
-    subroutine operator_setup_full(this, k, b, chol, contact, lambda, sigma, stat, &
-                                   target_input, units)
-        class(contact_operator_t), intent(inout) :: this
+    !> The explicit operator on a copy of `a`.
+    subroutine explicit_setup(this, a)
+        class(explicit_operator_t), intent(inout) :: this
+        real(wp), intent(in) :: a(:, :)
+        call operator_init(this, size(a, 1), size(a, 1), 0.0_wp, 0.0_wp)
+        this%a = a
+    end subroutine explicit_setup
+
+    !> The full operator (K - sigma B)^-1 B / lambda_scale in the n free dofs. sigma = 0
+    !> solves with `chol`, the factor of K, passed to every `apply` (no second
+    !> factorization); sigma /= 0 factors K - sigma B once with UMFPACK, after the range
+    !> check of reduced_setup with ||A||_inf estimated (norm_estimate: a few sparse solves
+    !> with `chol` instead of forming A). Nothing of order p^2.
+    subroutine full_setup(this, k, b, chol, contact, lambda, sigma, stat, target_input, units)
+        class(full_operator_t), intent(inout) :: this
         type(csr_matrix_t), intent(in) :: k, b
-        type(cholesky_t), intent(in), target :: chol
+        type(cholesky_t), intent(in) :: chol
         type(contact_t), intent(in) :: contact
         real(wp), intent(in) :: lambda, sigma
         type(status_t), intent(out) :: stat
@@ -138,22 +185,14 @@ contains
         type(units_t), intent(in) :: units
         real(wp) :: a_norm
 
-        this%full = .true.
-        this%p = contact%p()
-        this%n = k%n()
-        this%lambda = lambda
-        this%sigma = sigma
-        this%lambda_scale = lambda_unit(lambda)
+        call operator_init(this, contact%p(), k%n(), lambda, sigma)
+        this%start_in_range = .true.
         this%b_scaled = b
         this%b_scaled%val = b%val/this%lambda_scale
-        this%chol => chol
         this%contact = contact
-        this%mass = contact%mass
-        this%normal = contact%normal
-        this%tangent = contact%tangent
         this%direction = contact%slip_direction(lambda, this%lambda_scale)
         if (.not. (abs(sigma) > 0.0_wp)) return
-        call this%norm_estimate(contact, a_norm, stat)
+        call this%norm_estimate(chol, a_norm, stat)
         if (.not. stat%ok()) return
         call this%check_target(a_norm, target_input, units, stat)
         if (.not. stat%ok()) return
@@ -164,7 +203,7 @@ contains
         if (stat%code /= STATUS_SINGULAR) return
         stat%message = 'arpack: K - sigma B for sigma = '//to_string(sigma)//': '// &
                        stat%message//' (an eigenvalue equals the target; move the target)'
-    end subroutine operator_setup_full
+    end subroutine full_setup
 
     !> |sigma| ||A|| <= TARGET_RANGE, with a_norm = ||A / lambda_scale||_inf; written with
     !> quotients, which cannot overflow (sigma may be clamped to huge, see eigen_analysis).
@@ -184,27 +223,26 @@ contains
 
     !> ||A / lambda_scale||_inf = ||(A / lambda_scale)'||_1 estimated by LAPACK dlacn2
     !> (Higham's estimator: a lower bound, exact on the scenes measured), with A = N K^-1 X' M
-    !> and A' = M X K^-1 N' applied through solves with the sparse factor of K (this%chol):
+    !> and A' = M X K^-1 N' applied through solves with the sparse factor `chol` of K:
     !> about five, O(nnz(L)) each, where forming A costs O(p^3) and p^2 memory.
-    subroutine operator_norm_estimate(this, contact, estimate, stat)
-        class(contact_operator_t), intent(in) :: this
-        type(contact_t), intent(in) :: contact
+    subroutine full_norm_estimate(this, chol, estimate, stat)
+        class(full_operator_t), intent(in) :: this
+        type(cholesky_t), intent(in) :: chol
         real(wp), intent(out) :: estimate
         type(status_t), intent(out) :: stat
-        real(wp) :: v(this%p), x(this%p), product(this%p), mx(this%p), direction(2)
+        real(wp) :: v(this%p), x(this%p), product(this%p), mx(this%p)
         integer :: isgn(this%p), kase, isave(3)
-        direction = contact%slip_direction(this%lambda, this%lambda_scale)
         estimate = 0.0_wp
         kase = 0
         do
             call dlacn2(this%p, v, x, isgn, estimate, kase, isave)
             if (kase == 0) exit
             if (kase == 1) then   ! A' x = M (X K^-1 N' x)
-                call compliance(contact%normal, x, direction, mx)
-                call contact%mass%matvec(mx, product)
+                call compliance(this%contact%normal, x, this%direction, mx)
+                call this%contact%mass%matvec(mx, product)
             else                  ! A x = N K^-1 X' (M x)
-                call contact%mass%matvec(x, mx)
-                call compliance(direction, mx, contact%normal, product)
+                call this%contact%mass%matvec(x, mx)
+                call compliance(this%direction, mx, this%contact%normal, product)
             end if
             if (.not. stat%ok()) return
             x = product
@@ -219,23 +257,20 @@ contains
             real(wp), allocatable :: z(:, :), w(:, :)
             allocate (z(this%n, 1), source=0.0_wp)
             allocate (w(this%n, 1))
-            call contact%scatter(column, y, z(:, 1))
-            call this%chol%solve(z, w, stat)
-            call contact%gather(row, w(:, 1), out)
+            call this%contact%scatter(column, y, z(:, 1))
+            call chol%solve(z, w, stat)
+            call this%contact%gather(row, w(:, 1), out)
         end subroutine compliance
-    end subroutine operator_norm_estimate
+    end subroutine full_norm_estimate
 
-    !> A = (lambda Kt_nt - Kt_nn) M as a dense p x p matrix, with Kt_nn and Kt_nt formed from
-    !> L_c as the dense solver forms them (contact_reduction: dpotri, O(p^3)).
-    subroutine operator_dense_a(this, a, stat)
-        class(contact_operator_t), intent(in) :: this
+    !> A = (lambda Kt_nt - Kt_nn) M / lambda_scale as a dense p x p matrix, with Kt_nn and
+    !> Kt_nt formed from L_c as the dense solver forms them (contact_reduction: dpotri,
+    !> O(p^3)).
+    subroutine reduced_dense_a(this, a, stat)
+        class(reduced_operator_t), intent(in) :: this
         real(wp), allocatable, intent(out) :: a(:, :)
         type(status_t), intent(out) :: stat
         real(wp), allocatable :: kt_nn(:, :), kt_nt(:, :)
-        if (this%explicit) then
-            allocate (a, source=this%a)
-            return
-        end if
         call flexibility_blocks(this%l_tail, this%slot, this%normal, this%tangent, kt_nn, &
                                 kt_nt, stat)
         if (.not. stat%ok()) return
@@ -243,7 +278,7 @@ contains
         ! intent(out) leaves (UBSan saw their arithmetic overflow)
         allocate (a(this%p, this%p))
         a(:, :) = scaled_reduced_matrix(kt_nn, kt_nt, this%mass, this%lambda)
-    end subroutine operator_dense_a
+    end subroutine reduced_dense_a
 
     !> mu of an eigenvalue nu of the operator: A y = theta y with nu = (theta / lambda_scale)
     !> / (1 - sigma theta), i.e. mu = 1 / theta = sigma + 1 / (lambda_scale nu).
@@ -253,38 +288,10 @@ contains
         mu = this%sigma + mu_of_theta(nu, this%lambda_scale)
     end function operator_mu_of
 
-    !> out = A y / lambda_scale = N K^-1 (lambda T' - N') M y / lambda_scale, through two
-    !> triangular solves with L_c; with `transposed`, A' y / lambda_scale = M X K^-1 N' y /
-    !> lambda_scale (X = lambda T - N) through the same solves.
-    subroutine operator_apply_a(this, y, out, transposed)
-        class(contact_operator_t), intent(in) :: this
-        real(wp), intent(in) :: y(:)
-        real(wp), intent(out) :: out(:)
-        logical, intent(in) :: transposed
-        real(wp) :: v(this%p)
-        if (this%explicit) then
-            call dgemm(merge('T', 'N', transposed), 'N', this%p, 1, this%p, 1.0_wp, this%a, &
-                       this%p, y, this%p, 0.0_wp, out, this%p)
-        else if (transposed) then
-            call this%contact_compliance(this%normal, this%x_direction(), y, v)
-            call this%mass%matvec(v, out)
-        else
-            call this%mass%matvec(y, v)
-            call this%contact_compliance(this%x_direction(), this%normal, v, out)
-        end if
-    end subroutine operator_apply_a
-
-    !> (lambda t - n) / lambda_scale: the direction of X (X y(a) = it . y(dofs(:, a))).
-    pure function operator_x_direction(this) result(direction)
-        class(contact_operator_t), intent(in) :: this
-        real(wp) :: direction(2)
-        direction = this%direction
-    end function operator_x_direction
-
     !> out(a) = d_out . (K^-1 f)(dofs(:, a)) for the contact forces f(dofs(:, b)) = d_in v(b):
     !> K^-1 on the contact dofs as L_c^-T L_c^-1.
-    subroutine operator_contact_compliance(this, d_in, d_out, v, out)
-        class(contact_operator_t), intent(in) :: this
+    subroutine reduced_compliance(this, d_in, d_out, v, out)
+        class(reduced_operator_t), intent(in) :: this
         real(wp), intent(in) :: d_in(2), d_out(2), v(:)
         real(wp), intent(out) :: out(:)
         real(wp) :: z(2*this%p)
@@ -298,52 +305,76 @@ contains
         do a = 1, this%p
             out(a) = dot_product(d_out, z(this%slot(:, a)))
         end do
-    end subroutine operator_contact_compliance
+    end subroutine reduced_compliance
 
-    !> ARPACK's OP: A (sigma = 0) or (I - sigma A)^-1 A, divided by lambda_scale; the full
-    !> operator (K - sigma B)^-1 B / lambda_scale. With `transposed` their transposes, whose
-    !> eigenvalues are the same: A' (I - sigma A)^-T, and for the full operator
-    !> (K - sigma B)^-T B' = (K - sigma B')^-1 B' (K symmetric; UMFPACK solves with the
-    !> transpose of the same LU), the shift-invert operator of the pencil (K, B'), whose
-    !> eigenvectors are the left eigenvectors y of (K, B): K y = mu B' y.
-    subroutine operator_apply(this, y, out, stat)
-        class(contact_operator_t), intent(inout) :: this
+    !> A (sigma = 0) or (I - sigma A)^-1 A, divided by lambda_scale, through two triangular
+    !> solves with L_c: A y = N K^-1 X' M y. Transposed: A' (I - sigma A)^-T, with
+    !> A' y = M X K^-1 N' y through the same solves. `factor` is not read (L_c is kept).
+    subroutine reduced_apply(this, factor, y, out, transposed, stat)
+        class(reduced_operator_t), intent(inout) :: this
+        type(cholesky_t), intent(in) :: factor
         real(wp), intent(in) :: y(:)
         real(wp), intent(out) :: out(:)
+        logical, intent(in) :: transposed
         type(status_t), intent(out) :: stat
-        real(wp), allocatable :: by(:, :), x(:, :), xy(:), mxy(:), w(:)
+        real(wp) :: v(this%p), w(this%p)
         integer :: info
-        if (this%full) then
-            allocate (by(this%n, 1))
-            if (this%transposed) then
-                ! left: (K - sigma B)^-T B' y / lambda_scale, B' = N' M X
-                allocate (xy(this%p), mxy(this%p))
-                call this%contact%gather(this%x_direction(), y, xy)
-                call this%mass%matvec(xy, mxy)
-                by = 0.0_wp
-                call this%contact%scatter(this%normal, mxy, by(:, 1))
-            else
-                call this%b_scaled%matvec(y, by(:, 1))
-            end if
-            if (abs(this%sigma) > 0.0_wp) then
-                call this%shifted%solve(by(:, 1), out, stat, transposed=this%transposed)
-            else
-                allocate (x(this%n, 1))
-                call this%chol%solve(by, x, stat)
-                out = x(:, 1)
-            end if
-            return
-        end if
-        if (this%transposed) then
+        if (transposed) then
             w = y
-            if (abs(this%sigma) > 0.0_wp) call dgetrs('T', this%p, 1, this%a, this%p, &
+            if (abs(this%sigma) > 0.0_wp) call dgetrs('T', this%p, 1, this%lu, this%p, &
                                                        this%pivots, w, this%p, info)
-            call this%apply_a(w, out, transposed=.true.)
+            call reduced_compliance(this, this%normal, this%direction, w, v)
+            call this%mass%matvec(v, out)
             return
         end if
-        call this%apply_a(y, out, transposed=.false.)
+        call this%mass%matvec(y, v)
+        call reduced_compliance(this, this%direction, this%normal, v, out)
         if (.not. (abs(this%sigma) > 0.0_wp)) return
         ! dgetrf succeeded in setup, so dgetrs cannot fail on these arguments
-        call dgetrs('N', this%p, 1, this%a, this%p, this%pivots, out, this%p, info)
-    end subroutine operator_apply
+        call dgetrs('N', this%p, 1, this%lu, this%p, this%pivots, out, this%p, info)
+    end subroutine reduced_apply
+
+    !> A y or A' y by one dense product. `factor` is not read.
+    subroutine explicit_apply(this, factor, y, out, transposed, stat)
+        class(explicit_operator_t), intent(inout) :: this
+        type(cholesky_t), intent(in) :: factor
+        real(wp), intent(in) :: y(:)
+        real(wp), intent(out) :: out(:)
+        logical, intent(in) :: transposed
+        type(status_t), intent(out) :: stat
+        call dgemm(merge('T', 'N', transposed), 'N', this%p, 1, this%p, 1.0_wp, this%a, &
+                   this%p, y, this%p, 0.0_wp, out, this%p)
+    end subroutine explicit_apply
+
+    !> (K - sigma B)^-1 B / lambda_scale. Transposed: (K - sigma B)^-T B' =
+    !> (K - sigma B')^-1 B' (K symmetric; UMFPACK solves with the transpose of the same LU),
+    !> the shift-invert operator of the pencil (K, B'), whose eigenvectors are the left
+    !> eigenvectors y of (K, B): K y = mu B' y. sigma = 0 solves with `factor`.
+    subroutine full_apply(this, factor, y, out, transposed, stat)
+        class(full_operator_t), intent(inout) :: this
+        type(cholesky_t), intent(in) :: factor
+        real(wp), intent(in) :: y(:)
+        real(wp), intent(out) :: out(:)
+        logical, intent(in) :: transposed
+        type(status_t), intent(out) :: stat
+        real(wp), allocatable :: by(:, :), x(:, :), xy(:), mxy(:)
+        allocate (by(this%n, 1))
+        if (transposed) then
+            ! left: (K - sigma B)^-T B' y / lambda_scale, B' = N' M X
+            allocate (xy(this%p), mxy(this%p))
+            call this%contact%gather(this%direction, y, xy)
+            call this%contact%mass%matvec(xy, mxy)
+            by = 0.0_wp
+            call this%contact%scatter(this%contact%normal, mxy, by(:, 1))
+        else
+            call this%b_scaled%matvec(y, by(:, 1))
+        end if
+        if (abs(this%sigma) > 0.0_wp) then
+            call this%shifted%solve(by(:, 1), out, stat, transposed=transposed)
+        else
+            allocate (x(this%n, 1))
+            call factor%solve(by, x, stat)
+            out = x(:, 1)
+        end if
+    end subroutine full_apply
 end module contact_operator

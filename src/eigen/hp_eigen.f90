@@ -2,7 +2,7 @@
 !> The contact eigenproblem K phi = mu B phi on an hp space. The factor of K uses the hp
 !> space's ordering with the contact functions' dofs last (hp_ordering), then CHOLMOD, so
 !> that contact_reduction reads K^-1 on the contact dofs off the trailing block, as
-!> factor_stiffness does for the Lagrange elements: dense_spectrum and arpack_spectrum then
+!> factor_stiffness does for the Lagrange elements: dense_spectrum and arpack_search then
 !> run unchanged on hp data. hp_dense_spectrum is the whole chain from a P1 mesh and its
 !> degrees to the spectrum, what an analysis calls.
 module hp_eigen

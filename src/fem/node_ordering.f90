@@ -75,35 +75,14 @@ contains
             ! Cell cliques give each edge several times; METIS accepts only simple graphs,
             ! so build the adjacency with duplicates, then sort and compress each row.
             allocate (degree(n_vertices), source=0)
-            do e = 1, size(m%cells, 2)
-                do a = 1, n_corners
-                    na = vertex(m%cells(a, e))
-                    if (na <= 0) cycle
-                    do b = 1, n_corners
-                        nb = vertex(m%cells(b, e))
-                        if (nb > 0 .and. nb /= na) degree(na) = degree(na) + 1
-                    end do
-                end do
-            end do
+            call corner_pairs(.false.)
             allocate (xadj(n_vertices + 1), adjncy(sum(degree)), fill(n_vertices))
             xadj(1) = 0
             do a = 1, n_vertices
                 xadj(a + 1) = xadj(a) + degree(a)
             end do
             fill = xadj(1:n_vertices)
-            do e = 1, size(m%cells, 2)
-                do a = 1, n_corners
-                    na = vertex(m%cells(a, e))
-                    if (na <= 0) cycle
-                    do b = 1, n_corners
-                        nb = vertex(m%cells(b, e))
-                        if (nb > 0 .and. nb /= na) then
-                            fill(na) = fill(na) + 1
-                            adjncy(fill(na)) = int(nb - 1, IDX_T)
-                        end if
-                    end do
-                end do
-            end do
+            call corner_pairs(.true.)
             call compress_rows(xadj, adjncy)
 
             allocate (perm(n_vertices), iperm(n_vertices))
@@ -172,6 +151,29 @@ contains
             first_ranked = minval(rank(corners), mask=rank(corners) > 0)
             if (first_ranked == huge(first_ranked)) first_ranked = 0
         end function first_ranked
+
+        !> Every ordered pair of distinct graph vertices (na, nb) that share a cell: counted
+        !> in degree(na), or with `store` written into adjncy after fill(na) (METIS's 0-based
+        !> numbers). Pairs repeat across cells; compress_rows removes the repeats.
+        subroutine corner_pairs(store)
+            logical, intent(in) :: store
+            do e = 1, size(m%cells, 2)
+                do a = 1, n_corners
+                    na = vertex(m%cells(a, e))
+                    if (na <= 0) cycle
+                    do b = 1, n_corners
+                        nb = vertex(m%cells(b, e))
+                        if (nb <= 0 .or. nb == na) cycle
+                        if (store) then
+                            fill(na) = fill(na) + 1
+                            adjncy(fill(na)) = int(nb - 1, IDX_T)
+                        else
+                            degree(na) = degree(na) + 1
+                        end if
+                    end do
+                end do
+            end do
+        end subroutine corner_pairs
     end subroutine nested_dissection_last
 
     !> Sort each row of a 0-based CSR graph and drop repeated neighbours, in place.

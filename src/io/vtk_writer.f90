@@ -358,7 +358,7 @@ contains
         character(len=*), intent(inout) :: msg
         integer, allocatable :: order(:)
         integer(i8), allocatable :: offsets(:)
-        integer :: e, i, k
+        integer :: e, k
 
         write (unit, '(a)', iostat=ios, iomsg=msg) xml_prolog(), '  <UnstructuredGrid>', &
             piece_tag(m)
@@ -369,14 +369,7 @@ contains
                 '      <PointData Vectors="'//xml_escaped(trim(names(1)))//'">'
             if (ios /= 0) return
             do k = 1, size(names)
-                write (unit, '(a)', iostat=ios, iomsg=msg) &
-                    data_array_tag('Float64', trim(names(k)), 3, INLINE)
-                if (ios /= 0) return
-                do i = 1, m%n_nodes()
-                    write (unit, REAL_FORMAT, iostat=ios, iomsg=msg) vectors(:, i, k), 0.0_wp
-                    if (ios /= 0) return
-                end do
-                write (unit, '(a)', iostat=ios, iomsg=msg) '        </DataArray>'
+                call write_ascii_reals(unit, trim(names(k)), vectors(:, :, k), ios, msg)
                 if (ios /= 0) return
             end do
             write (unit, '(a)', iostat=ios, iomsg=msg) '      </PointData>'
@@ -387,28 +380,19 @@ contains
                 '      <CellData Scalars="'//xml_escaped(trim(cell_names(1)))//'">'
             if (ios /= 0) return
             do k = 1, size(cell_names)
-                write (unit, '(a)', iostat=ios, iomsg=msg) &
-                    data_array_tag('Float64', trim(cell_names(k)), 0, INLINE)
-                if (ios /= 0) return
-                do i = 1, m%n_cells()
-                    write (unit, REAL_FORMAT, iostat=ios, iomsg=msg) cell_values(i, k)
-                    if (ios /= 0) return
-                end do
-                write (unit, '(a)', iostat=ios, iomsg=msg) '        </DataArray>'
+                call write_ascii_reals(unit, trim(cell_names(k)), &
+                                       reshape(cell_values(:, k), [1, m%n_cells()]), ios, msg)
                 if (ios /= 0) return
             end do
             write (unit, '(a)', iostat=ios, iomsg=msg) '      </CellData>'
             if (ios /= 0) return
         end if
 
-        write (unit, '(a)', iostat=ios, iomsg=msg) '      <Points>', &
-            data_array_tag('Float64', '', 3, INLINE)
+        write (unit, '(a)', iostat=ios, iomsg=msg) '      <Points>'
         if (ios /= 0) return
-        do i = 1, m%n_nodes()
-            write (unit, REAL_FORMAT, iostat=ios, iomsg=msg) m%coords(:, i), 0.0_wp
-            if (ios /= 0) return
-        end do
-        write (unit, '(a)', iostat=ios, iomsg=msg) '        </DataArray>', '      </Points>', &
+        call write_ascii_reals(unit, '', m%coords, ios, msg)
+        if (ios /= 0) return
+        write (unit, '(a)', iostat=ios, iomsg=msg) '      </Points>', &
             '      <Cells>', data_array_tag('Int64', 'connectivity', 0, INLINE)
         if (ios /= 0) return
         order = vtk_node_order(m%element)
@@ -433,6 +417,31 @@ contains
         write (unit, '(a)', iostat=ios, iomsg=msg) '        </DataArray>', '      </Cells>', &
             '    </Piece>', '  </UnstructuredGrid>', '</VTKFile>'
     end subroutine write_ascii_grid
+
+    !> One inline Float64 DataArray `name` of `columns` (components x n), a line per column:
+    !> a 2-d vector gets a zero z (VTK's vectors have three components), a scalar stays one.
+    subroutine write_ascii_reals(unit, name, columns, ios, msg)
+        integer, intent(in) :: unit
+        character(len=*), intent(in) :: name
+        real(wp), intent(in) :: columns(:, :)
+        integer, intent(out) :: ios
+        character(len=*), intent(inout) :: msg
+        logical :: vector
+        integer :: i
+        vector = size(columns, 1) == 2
+        write (unit, '(a)', iostat=ios, iomsg=msg) &
+            data_array_tag('Float64', name, merge(3, 0, vector), INLINE)
+        if (ios /= 0) return
+        do i = 1, size(columns, 2)
+            if (vector) then
+                write (unit, REAL_FORMAT, iostat=ios, iomsg=msg) columns(:, i), 0.0_wp
+            else
+                write (unit, REAL_FORMAT, iostat=ios, iomsg=msg) columns(:, i)
+            end if
+            if (ios /= 0) return
+        end do
+        write (unit, '(a)', iostat=ios, iomsg=msg) '        </DataArray>'
+    end subroutine write_ascii_reals
 
     !> VTK cell type of an ELEMENT_* code; 0 for an unknown code.
     pure integer function vtk_cell_type(element)

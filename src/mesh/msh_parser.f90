@@ -323,12 +323,8 @@ contains
             call read_counts(f, 4, 'node block '//to_string(b)//' of '//to_string(header(1)) &
                              //' (entityDim entityTag parametric numNodesInBlock)', block, stat)
             if (.not. stat%ok()) return
-            ! Compared so, not as n_nodes + block(4) > n, which can overflow.
-            if (block(4) > n - raw%n_nodes) then
-                call fail_here(f, stat, 'more nodes than the '//to_string(n)// &
-                               ' of the $Nodes header')
-                return
-            end if
+            call check_block_fits(f, block(4), raw%n_nodes, n, 'node', stat)
+            if (.not. stat%ok()) return
             do i = 1, block(4)
                 ! The message is built only on failure: this runs once per line of the file.
                 if (.not. next_line(f, line)) then
@@ -361,12 +357,8 @@ contains
             end do
             raw%n_nodes = raw%n_nodes + block(4)
         end do
-        if (raw%n_nodes /= n) then
-            call fail_here(f, stat, 'the node blocks hold '//to_string(raw%n_nodes)// &
-                           ' nodes, the $Nodes header announced '//to_string(n))
-            return
-        end if
-        call expect_end(f, '$EndNodes', stat)
+        call check_blocks_hold(f, raw%n_nodes, n, 'node', stat)
+        if (stat%ok()) call expect_end(f, '$EndNodes', stat)
     end subroutine parse_nodes_4
 
     !> MSH 2.2 $Nodes: count, then 'tag x y z' per line.
@@ -428,12 +420,8 @@ contains
             if (.not. stat%ok()) return
             call check_type(f, block(3), dim, k, stat)
             if (.not. stat%ok()) return
-            ! Compared so, not as n_done + block(4) > header(2), which can overflow.
-            if (block(4) > header(2) - n_done) then
-                call fail_here(f, stat, 'more elements than the '//to_string(header(2))// &
-                               ' of the $Elements header')
-                return
-            end if
+            call check_block_fits(f, block(4), n_done, header(2), 'element', stat)
+            if (.not. stat%ok()) return
             do i = 1, block(4)
                 ! The message is built only on failure: this runs once per line of the file.
                 if (.not. next_line(f, line)) then
@@ -455,13 +443,39 @@ contains
             end do
             n_done = n_done + block(4)
         end do
-        if (n_done /= header(2)) then
-            call fail_here(f, stat, 'the element blocks hold '//to_string(n_done)// &
-                           ' elements, the $Elements header announced '//to_string(header(2)))
-            return
-        end if
-        call expect_end(f, '$EndElements', stat)
+        call check_blocks_hold(f, n_done, header(2), 'element', stat)
+        if (stat%ok()) call expect_end(f, '$EndElements', stat)
     end subroutine parse_elements_4
+
+    !> MSH 4.1: a block of `block_size` nodes or elements (`noun`) after `done` of them must
+    !> fit in the `announced` of the section header ($Nodes, $Elements).
+    subroutine check_block_fits(f, block_size, done, announced, noun, stat)
+        type(text_file_t), intent(in) :: f
+        integer, intent(in) :: block_size, done, announced
+        character(len=*), intent(in) :: noun   !! 'node' or 'element'
+        type(status_t), intent(inout) :: stat
+        ! Compared so, not as done + block_size > announced, which can overflow.
+        if (block_size > announced - done) call fail_here(f, stat, 'more '//noun//'s than the ' &
+            //to_string(announced)//' of the '//section_of(noun)//' header')
+    end subroutine check_block_fits
+
+    !> MSH 4.1: the blocks of a section hold the `announced` nodes or elements (`noun`).
+    subroutine check_blocks_hold(f, done, announced, noun, stat)
+        type(text_file_t), intent(in) :: f
+        integer, intent(in) :: done, announced
+        character(len=*), intent(in) :: noun   !! 'node' or 'element'
+        type(status_t), intent(inout) :: stat
+        if (done /= announced) call fail_here(f, stat, 'the '//noun//' blocks hold '// &
+            to_string(done)//' '//noun//'s, the '//section_of(noun)//' header announced '// &
+            to_string(announced))
+    end subroutine check_blocks_hold
+
+    !> '$Nodes' or '$Elements' for 'node' or 'element'.
+    pure function section_of(noun) result(section)
+        character(len=*), intent(in) :: noun
+        character(len=:), allocatable :: section
+        section = trim(merge('$Nodes   ', '$Elements', noun == 'node'))
+    end function section_of
 
     !> MSH 2.2 $Elements: count, then 'tag type numTags tag... node...' per line; the first
     !> tag is the physical group, the second the elementary entity.
@@ -580,9 +594,18 @@ contains
         type(status_t), intent(inout) :: stat
         integer :: alloc_status
         allocate (raw%node_tag(n), raw%node_xyz(3, n), stat=alloc_status)
-        if (alloc_status /= 0) call fail_here(f, stat, 'out of memory for the '// &
-                                              to_string(n)//' nodes announced here')
+        call check_allocated(f, alloc_status, n, 'node', stat)
     end subroutine allocate_nodes
+
+    !> An allocation for the `n` nodes or elements (`noun`) announced at the current line.
+    subroutine check_allocated(f, alloc_status, n, noun, stat)
+        type(text_file_t), intent(in) :: f
+        integer, intent(in) :: alloc_status, n
+        character(len=*), intent(in) :: noun
+        type(status_t), intent(inout) :: stat
+        if (alloc_status /= 0) call fail_here(f, stat, 'out of memory for the '// &
+                                              to_string(n)//' '//noun//'s announced here')
+    end subroutine check_allocated
 
     subroutine allocate_elements(f, raw, n, stat)
         type(text_file_t), intent(in) :: f
@@ -593,11 +616,8 @@ contains
         allocate (raw%cell_type(n), raw%cell_nodes(MAX_CELL_NODES, n), raw%cell_entity(n), &
                   raw%cell_line(n), raw%edge_type(n), raw%edge_nodes(MAX_LINE_NODES, n), &
                   raw%edge_group(n), raw%edge_line(n), stat=alloc_status)
-        if (alloc_status /= 0) then
-            call fail_here(f, stat, 'out of memory for the '//to_string(n)// &
-                           ' elements announced here')
-            return
-        end if
+        call check_allocated(f, alloc_status, n, 'element', stat)
+        if (.not. stat%ok()) return
         raw%cell_nodes = 0
         raw%edge_nodes = 0
     end subroutine allocate_elements

@@ -244,14 +244,21 @@ static void copy_and_free(cholmod_dense **x, double *out, cholmod_common *c)
     cholmod_free_dense(x, c);
 }
 
-/* X = A^{-1} B for dense column-major n x nrhs B and X. */
-int nceig_cholmod_solve(void *handle, int nrhs, const double *b, double *x)
+/* X = S2 S1 B into caller memory for the CHOLMOD systems S1 = first and S2 = second
+ * (second < 0: S1 alone), dense column-major n x nrhs B and X. */
+static int solve_in_steps(void *handle, int nrhs, const double *b, double *x, int first,
+                          int second)
 {
     nceig_cholmod_t *h = handle;
     if (h == NULL) return NCEIG_CHOLMOD_NOT_FACTORED;
     if (nrhs < 1) return nrhs == 0 ? NCEIG_CHOLMOD_OK : NCEIG_CHOLMOD_INVALID;
     cholmod_dense bview = dense_view(h->n, nrhs, b);
-    cholmod_dense *result = cholmod_solve(CHOLMOD_A, h->factor, &bview, &h->common);
+    cholmod_dense *result = cholmod_solve(first, h->factor, &bview, &h->common);
+    if (result != NULL && second >= 0) {
+        cholmod_dense *step = result;
+        result = cholmod_solve(second, h->factor, step, &h->common);
+        cholmod_free_dense(&step, &h->common);
+    }
     if (result == NULL) {
         int code = code_from_common(&h->common);
         return code == NCEIG_CHOLMOD_OK ? NCEIG_CHOLMOD_FAILED : code;
@@ -260,49 +267,23 @@ int nceig_cholmod_solve(void *handle, int nrhs, const double *b, double *x)
     return NCEIG_CHOLMOD_OK;
 }
 
+/* X = A^{-1} B for dense column-major n x nrhs B and X. */
+int nceig_cholmod_solve(void *handle, int nrhs, const double *b, double *x)
+{
+    return solve_in_steps(handle, nrhs, b, x, CHOLMOD_A, -1);
+}
+
 /* W = L^{-1} P B, so that B1' A^{-1} B2 = W1' W2. */
 int nceig_cholmod_forward(void *handle, int nrhs, const double *b, double *w)
 {
-    nceig_cholmod_t *h = handle;
-    if (h == NULL) return NCEIG_CHOLMOD_NOT_FACTORED;
-    if (nrhs < 1) return nrhs == 0 ? NCEIG_CHOLMOD_OK : NCEIG_CHOLMOD_INVALID;
-    cholmod_dense bview = dense_view(h->n, nrhs, b);
-    cholmod_dense *permuted = cholmod_solve(CHOLMOD_P, h->factor, &bview, &h->common);
-    if (permuted == NULL) {
-        int code = code_from_common(&h->common);
-        return code == NCEIG_CHOLMOD_OK ? NCEIG_CHOLMOD_FAILED : code;
-    }
-    cholmod_dense *result = cholmod_solve(CHOLMOD_L, h->factor, permuted, &h->common);
-    cholmod_free_dense(&permuted, &h->common);
-    if (result == NULL) {
-        int code = code_from_common(&h->common);
-        return code == NCEIG_CHOLMOD_OK ? NCEIG_CHOLMOD_FAILED : code;
-    }
-    copy_and_free(&result, w, &h->common);
-    return NCEIG_CHOLMOD_OK;
+    return solve_in_steps(handle, nrhs, b, w, CHOLMOD_P, CHOLMOD_L);
 }
 
 /* X = P' L^{-T} W: the second half of a solve, for a W = L^{-1} P B known otherwise (e.g.
  * B supported on unknowns ordered last, where W is zero but for a small trailing part). */
 int nceig_cholmod_backward(void *handle, int nrhs, const double *w, double *x)
 {
-    nceig_cholmod_t *h = handle;
-    if (h == NULL) return NCEIG_CHOLMOD_NOT_FACTORED;
-    if (nrhs < 1) return nrhs == 0 ? NCEIG_CHOLMOD_OK : NCEIG_CHOLMOD_INVALID;
-    cholmod_dense wview = dense_view(h->n, nrhs, w);
-    cholmod_dense *solved = cholmod_solve(CHOLMOD_Lt, h->factor, &wview, &h->common);
-    if (solved == NULL) {
-        int code = code_from_common(&h->common);
-        return code == NCEIG_CHOLMOD_OK ? NCEIG_CHOLMOD_FAILED : code;
-    }
-    cholmod_dense *result = cholmod_solve(CHOLMOD_Pt, h->factor, solved, &h->common);
-    cholmod_free_dense(&solved, &h->common);
-    if (result == NULL) {
-        int code = code_from_common(&h->common);
-        return code == NCEIG_CHOLMOD_OK ? NCEIG_CHOLMOD_FAILED : code;
-    }
-    copy_and_free(&result, x, &h->common);
-    return NCEIG_CHOLMOD_OK;
+    return solve_in_steps(handle, nrhs, w, x, CHOLMOD_Lt, CHOLMOD_Pt);
 }
 
 /*

@@ -34,7 +34,7 @@ contains
         integer, intent(in) :: element_dofs(:, :)   !! (dofs_per_element, n_elements)
         type(csr_matrix_t), intent(out) :: a
         integer, allocatable :: elem_start(:), elem_of_dof(:), marker(:), row_len(:)
-        integer :: e, i, j, k, row, column, pos
+        integer :: e, i, row, found
 
         ! Incidence dof -> elements, in CSR form.
         allocate (elem_start(n + 1), source=0)
@@ -65,41 +65,39 @@ contains
         allocate (a%row_start(n + 1))
         a%row_start(1) = 1
         do row = 1, n
-            row_len(row) = 0
-            do k = elem_start(row), elem_start(row + 1) - 1
-                e = elem_of_dof(k)
-                do j = 1, size(element_dofs, 1)
-                    column = element_dofs(j, e)
-                    if (column > 0) then
-                        if (marker(column) /= row) then
-                            marker(column) = row
-                            row_len(row) = row_len(row) + 1
-                        end if
-                    end if
-                end do
-            end do
+            call distinct_columns(row, row_len(row))
             a%row_start(row + 1) = a%row_start(row) + row_len(row)
         end do
         allocate (a%col(a%row_start(n + 1) - 1))
         marker = 0
         do row = 1, n
-            pos = a%row_start(row)
-            do k = elem_start(row), elem_start(row + 1) - 1
-                e = elem_of_dof(k)
-                do j = 1, size(element_dofs, 1)
-                    column = element_dofs(j, e)
-                    if (column > 0) then
-                        if (marker(column) /= row) then
-                            marker(column) = row
-                            a%col(pos) = column
-                            pos = pos + 1
-                        end if
-                    end if
-                end do
-            end do
+            call distinct_columns(row, found, a%col(a%row_start(row):a%row_start(row + 1) - 1))
             call sort(a%col(a%row_start(row):a%row_start(row + 1) - 1))
         end do
         allocate (a%val(size(a%col)), source=0.0_wp)
+
+    contains
+
+        !> The `n_found` distinct columns of row `row` (the dofs of the elements at dof `row`)
+        !> into `columns` in the order met, or only counted without it; marks them in
+        !> `marker` with the row.
+        subroutine distinct_columns(row, n_found, columns)
+            integer, intent(in) :: row
+            integer, intent(out) :: n_found
+            integer, intent(inout), optional :: columns(:)
+            integer :: k, j, column
+            n_found = 0
+            do k = elem_start(row), elem_start(row + 1) - 1
+                do j = 1, size(element_dofs, 1)
+                    column = element_dofs(j, elem_of_dof(k))
+                    if (column <= 0) cycle
+                    if (marker(column) == row) cycle
+                    marker(column) = row
+                    n_found = n_found + 1
+                    if (present(columns)) columns(n_found) = column
+                end do
+            end do
+        end subroutine distinct_columns
     end subroutine csr_from_element_dofs
 
     pure integer function csr_matrix_n(this)

@@ -160,17 +160,22 @@ contains
         call umfpack_di_free_symbolic(symbolic)
         if (code /= UMFPACK_OK) then
             ! A singular matrix still yields a Numeric object, but its solves divide by zero.
-            if (code == UMFPACK_WARNING_singular_matrix) then
-                call stat%fail(STATUS_SINGULAR, 'sparse_lu: numeric factorization: '// &
-                               umfpack_status_message(code))
-            else
-                call stat%fail(STATUS_SOLVER, 'sparse_lu: numeric factorization: '// &
-                               umfpack_status_message(code))
-            end if
+            call fail_umfpack(stat, 'numeric factorization', code)
             call this%free()
             return
         end if
     end subroutine factor_copies
+
+    !> stat for the UMFPACK status `code` of step `what`: STATUS_SINGULAR for a singular
+    !> matrix, STATUS_SOLVER for every other failure.
+    subroutine fail_umfpack(stat, what, code)
+        type(status_t), intent(inout) :: stat
+        character(len=*), intent(in) :: what
+        integer(c_int), intent(in) :: code
+        call stat%fail(merge(STATUS_SINGULAR, STATUS_SOLVER, &
+                             code == UMFPACK_WARNING_singular_matrix), &
+                       'sparse_lu: '//what//': '//umfpack_status_message(code))
+    end subroutine fail_umfpack
 
     !> Solve A x = b for one right-hand side; A' x = b with `transposed` (the same factors).
     subroutine lu_solve(this, b, x, stat, transposed)
@@ -200,15 +205,7 @@ contains
         end if
         code = umfpack_di_solve(system, this%ap, this%ai, this%ax, x, b, this%numeric, &
                                   this%control, this%info)
-        if (code /= UMFPACK_OK) then
-            if (code == UMFPACK_WARNING_singular_matrix) then
-                call stat%fail(STATUS_SINGULAR, 'sparse_lu: solve: '// &
-                               umfpack_status_message(code))
-            else
-                call stat%fail(STATUS_SOLVER, 'sparse_lu: solve: '// &
-                               umfpack_status_message(code))
-            end if
-        end if
+        if (code /= UMFPACK_OK) call fail_umfpack(stat, 'solve', code)
     end subroutine lu_solve
 
     !> Release the Numeric object and the copies. Safe on an unfactored or freed object.

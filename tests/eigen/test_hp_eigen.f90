@@ -23,7 +23,7 @@ program test_hp_eigen
     use hp_space, only: hp_space_t, build_hp_space
     use hp_stiffness, only: hp_element_laplace, hp_reference_tables, HP_OK
     use hp_eigen, only: hp_dense_spectrum, hp_lowest_positive, hp_factored_problem
-    use arpack_eigen, only: arpack_options_t, arpack_spectrum
+    use arpack_eigen, only: arpack_options_t, arpack_search, arpack_finish, arpack_search_t
     use mesh_singular, only: singular_vertices
     use mesh_geometric, only: geometric_mesh, cell_layers, layer_degrees
     implicit none
@@ -201,6 +201,7 @@ contains
         type(csr_matrix_t) :: k, b
         type(cholesky_t) :: chol
         type(arpack_options_t) :: options
+        type(arpack_search_t) :: search
         character(len=:), allocatable :: warning
         real(wp), allocatable :: points(:, :)
         integer, allocatable :: degree(:)
@@ -233,7 +234,9 @@ contains
         if (.not. stat%ok()) return
         do i = 1, 2
             options%full = i == 2
-            call arpack_spectrum(k, b, chol, contact, 5.0_wp, options, 1, arpack, warning, stat)
+            call arpack_search(k, b, chol, contact, 5.0_wp, options, search, stat)
+            if (stat%ok()) call arpack_finish(k, b, chol, contact, 5.0_wp, options, 1, search, &
+                                              arpack, warning, stat)
             write (what, '(a, l1)') 'graded mesh: ARPACK equals dense, full operator ', &
                 options%full
             call t%check(trim(what)//': certified', stat%ok() .and. len(warning) == 0 .and. &
