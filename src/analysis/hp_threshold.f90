@@ -24,14 +24,14 @@ module hp_threshold
     use contact_boundary, only: assemble_b
     use contact_reduction, only: reduced_blocks_t, contact_flexibility
     use memory_budget, only: check_contact_memory, contact_peak_blocks, contact_blocks_bytes
-    use critical_lambda, only: thresholds_t, pencil_thresholds, confirm_thresholds, &
+    use critical_lambda, only: thresholds_t, pencil_thresholds, &
                                SIDE_PLUS, SIDE_MINUS, SIDE_LABELS, SIDE_NAMES
-    use critical_set, only: critical_set_t, find_critical_set, MECHANISM_PENCIL
+    use critical_set, only: critical_set_t, MECHANISM_PENCIL
     use roundoff, only: threshold_roundoff
-    use threshold_analysis, only: threshold_result_t, scan_lambdas
+    use threshold_analysis, only: threshold_result_t, confirm_and_bound
     use adaptive_threshold, only: adaptive_thresholds_t, threshold_level_t, onset_search, &
                                   collision_onsets, apply_collision_bars
-    use eigen_analysis, only: eigen_with_factor, choose_solver, to_input_units
+    use eigen_analysis, only: eigen_with_factor, choose_solver
     use error_bar, only: hp_level_bar, floor_reached, floor_outcome
     use accuracy, only: WARNING_LEN
     implicit none
@@ -205,7 +205,6 @@ contains
         subroutine report_last_level(stat)
             type(status_t), intent(out) :: stat
             real(wp) :: begin, bar(2), roundoff(2)
-            real(wp), allocatable :: mu_meet(:)
             integer :: side, i, k
             begin = wall_time()
             res%eigen%solver = choose_solver(config%eigen%solver, prob%contact%p(), &
@@ -215,18 +214,9 @@ contains
             if (stat%ok()) call eigen_with_factor(config, prob, chol, res%eigen, timings, stat, &
                                                   blocks%kt_nn, blocks%kt_nt)
             res%thresholds = thr
-            if (stat%ok()) call confirm_thresholds(blocks, res%thresholds, stat)
-            if (stat%ok()) call real_to_input_units(res%thresholds%mu_outside, stat)
-            if (stat%ok()) call real_to_input_units(res%thresholds%mu_inside, stat)
-            if (stat%ok()) call find_critical_set(blocks, scan_lambdas(config, .false.), &
-                                                  thr%real_lambdas, res%set, stat)
+            if (stat%ok()) call confirm_and_bound(config, prob, blocks, .false., &
+                                                  res%thresholds, res%set, stat)
             if (.not. stat%ok()) return
-            if (size(res%set%points) > 0) then
-                mu_meet = res%set%points%mu_meet   ! a plain array: no temporary for the call
-                call real_to_input_units(mu_meet, stat)
-                if (.not. stat%ok()) return
-                res%set%points%mu_meet = mu_meet
-            end if
             k = size(out%adapted%levels)
             call goal_bars(out%adapted%levels(k), thr%roundoff, bar, roundoff)
             res%estimate%method = HP_ESTIMATE
@@ -254,15 +244,6 @@ contains
             res%time_threshold = wall_time() - begin
             call timings%note('thresholds '//seconds_text(res%time_threshold)//' s')
         end subroutine report_last_level
-
-        subroutine real_to_input_units(mu, stat)
-            real(wp), intent(inout) :: mu(:)
-            type(status_t), intent(out) :: stat
-            complex(wp) :: values(size(mu))
-            values = cmplx(mu, 0.0_wp, wp)
-            call to_input_units(config, prob, values, stat)
-            if (stat%ok()) mu = real(values, wp)
-        end subroutine real_to_input_units
 
         !> The next level's contact blocks against the memory available.
         function memory_text() result(text)
