@@ -54,6 +54,7 @@ module adaptive_threshold
     implicit none
     private
     public :: adapt_thresholds, solve_adapted_thresholds, apply_collision_bars
+    public :: onset_search, collision_onsets   ! (hp_threshold too)
 
     !> One level of the loop: a row of adapt.csv, arrays by SIDE_PLUS, SIDE_MINUS.
     type, public :: threshold_level_t

@@ -1,9 +1,7 @@
 ! SPDX-License-Identifier: MIT
 !> &adapt strategy = 'hp' for analysis 'eigen': instead of refining where an estimate
-!> marks, level k (k = 1, 2, ...) is the input mesh (its vertices) graded geometrically in
-!> k layers toward the singular points (mesh_singular: corners, ends of the boundary parts;
-!> factor &adapt sigma), with cell degrees 1 + layer up to min(k + 1, &adapt p_max)
-!> (mesh_geometric); the space is hp_space's, the interior functions condensed. The lowest
+!> marks, the loop climbs the levels of hp_levels (level k: the input mesh graded in k
+!> layers toward the singular points, degrees 1 + layer). The lowest
 !> positive mu of each level is solved as the eigen analysis does (dense or ARPACK by
 !> &eigen, with its round-off bound); the bar comes from the changes between levels
 !> (error_bar: hp_level_bar). The loop stops when the bar meets &adapt tolerance, when the
@@ -17,25 +15,17 @@ module hp_adaptive
     use timer, only: wall_time, timings_t
     use run_config, only: config_t
     use problem, only: problem_t
-    use mesh, only: mesh_t
-    use element_types, only: element_corners, element_name
-    use mesh_singular, only: singular_vertices
-    use mesh_geometric, only: geometric_mesh, cell_layers, layer_degrees
-    use hp_space, only: hp_space_t, build_hp_space
-    use hp_eigen, only: hp_factored_problem
+    use hp_space, only: hp_space_t
+    use hp_levels, only: hp_ladder_t
     use sparse_cholesky, only: cholesky_t
     use contact_boundary, only: assemble_b
     use eigen_analysis, only: eigen_result_t, eigen_with_factor, choose_solver
     use accuracy, only: WARNING_LEN
-    use adaptive_loop, only: level_dof_limit
     use error_bar, only: hp_level_bar, floor_reached, floor_outcome
     implicit none
     private
-    public :: hp_adapt_eigen, hp_level_degrees
+    public :: hp_adapt_eigen
 
-    !> the degrees rise by this per layer away from the singular points (bench_hp's ladder)
-    real(wp), parameter :: DEGREE_SLOPE = 1.0_wp
-    integer, parameter :: P_MIN = 1   !! the degree of the cells at a singular point
     character(len=*), parameter, public :: HP_ESTIMATE = 'change to the previous hp level'
 
     !> One level: a row of adapt.csv.
@@ -68,17 +58,6 @@ module hp_adaptive
 
 contains
 
-    !> The degrees of the cells of level `layers` (its graded mesh `graded`, singular
-    !> points `points`, h_min of geometric_mesh).
-    pure function hp_level_degrees(graded, points, sigma, h_min, layers, p_max) result(degree)
-        type(mesh_t), intent(in) :: graded
-        real(wp), intent(in) :: points(:, :), sigma, h_min
-        integer, intent(in) :: layers, p_max
-        integer, allocatable :: degree(:)
-        degree = layer_degrees(cell_layers(graded, points, sigma, h_min), P_MIN, DEGREE_SLOPE, &
-                               min(layers + 1, p_max))
-    end function hp_level_degrees
-
     !> Run the loop from the problem `start` (its mesh and parts; its K is not used). A
     !> limit reached is no failure (stat ok, out%converged false, out%outcome and a warning
     !> of out%res say so).
@@ -88,50 +67,28 @@ contains
         type(hp_result_t), intent(out) :: out
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
-        type(mesh_t) :: graded
-        type(hp_space_t) :: space
+        type(hp_ladder_t) :: ladder
         type(problem_t) :: prob
         type(eigen_result_t) :: res
         type(cholesky_t) :: chol
         type(hp_level_t) :: row
-        real(wp), allocatable :: points(:, :), mu(:)
-        integer, allocatable :: degree(:)
-        real(wp) :: loop_start, h_min, tolerance
-        integer :: layers, max_dofs, i
-        character(len=:), allocatable :: dof_limit
+        real(wp), allocatable :: mu(:)
+        real(wp) :: loop_start, tolerance
+        integer :: layers, i
+        logical :: too_big
 
         loop_start = wall_time()
         tolerance = config%adapt%tolerance
         allocate (out%levels(0))
         out%outcome = ''
-        if (element_corners(start%mesh%element) /= 3) then
-            call stat%fail(STATUS_BAD_INPUT, config%input_file//": &adapt: strategy = 'hp': "// &
-                'expected triangles (the mesh has '//element_name(start%mesh%element)// &
-                ' cells)')
-            return
-        end if
-        call level_dof_limit(config, max_dofs, dof_limit)
-        points = start%mesh%coords(:, singular_vertices(start%mesh))
-        layers = 0
+        call ladder%begin(config, start, stat)
+        if (.not. stat%ok()) return
         do
-            layers = layers + 1
-            call geometric_mesh(start%mesh, points, config%adapt%sigma, layers, graded, h_min, stat)
+            call ladder%climb(config, start, size(out%levels), too_big, stat)
             if (.not. stat%ok()) return
-            degree = hp_level_degrees(graded, points, config%adapt%sigma, h_min, layers, &
-                                      config%adapt%p_max)
-            call build_hp_space(graded, degree, start%dirichlet_parts, space, stat)
-            if (.not. stat%ok()) return
-            if (config%adapt%max_dofs > 0 .and. space%n_free() > max_dofs .and. &
-                size(out%levels) == 0) then
-                call stat%fail(STATUS_BAD_INPUT, config%input_file//': &adapt: max_dofs = '// &
-                    to_string(max_dofs)//": expected at least the "// &
-                    to_string(space%n_free())//" free dofs of the first hp level")
-                return
-            end if
-            if (space%n_free() > max_dofs .and. size(out%levels) > 0) then
-                out%outcome = 'tolerance '//short_real_text(tolerance)//' not met: the next '// &
-                    'level would have '//to_string(space%n_free())//' dofs, more than '// &
-                    dof_limit//'; reached error bar '//bar_text()
+            layers = ladder%layers
+            if (too_big) then
+                out%outcome = ladder%limit_outcome(tolerance, bar_text())
                 exit
             end if
             call solve_level(stat)
@@ -168,29 +125,13 @@ contains
 
     contains
 
-        !> Level `layers` on `graded` with `degree`: the eigen solve, its row and its bar;
+        !> The ladder's current level: the eigen solve, its row and its bar;
         !> the problem and result become out%prob, out%res.
         subroutine solve_level(stat)
             type(status_t), intent(out) :: stat
-            prob = problem_t()
-            prob%mesh = graded
-            prob%dirichlet_parts = start%dirichlet_parts
-            prob%neumann_parts = start%neumann_parts
-            prob%contact_part = start%contact_part
-            prob%young = start%young
-            prob%poisson = start%poisson
-            call hp_factored_problem(graded, degree, start%dirichlet_parts, &
-                start%contact_part, start%young, start%poisson, space, prob%contact, prob%k, &
-                chol, timings, stat)
-            if (.not. stat%ok()) then
-                stat%message = config%input_file//": &adapt: strategy = 'hp': level "// &
-                               to_string(layers)//': '//stat%message
-                return
-            end if
-            prob%dofs%n_free = space%n_free()
-            call timings%note('hp level '//to_string(layers)//': '// &
-                to_string(graded%n_cells())//' cells, degrees 1 to '// &
-                to_string(maxval(degree))//', '//to_string(space%n_free())//' dofs')
+            call ladder%problem(config, start, prob, timings, stat)
+            if (stat%ok()) call ladder%factor(config, prob, chol, timings, stat)
+            if (.not. stat%ok()) return
             res = eigen_result_t()
             res%lambda = config%analysis%lambda
             call assemble_b(prob%contact, prob%dofs%n_free, res%lambda, res%b, stat)
@@ -203,11 +144,11 @@ contains
 
             row%level = layers
             row%layers = layers
-            row%p_min = minval(degree)
-            row%p_max = maxval(degree)
+            row%p_min = minval(ladder%degree)
+            row%p_max = maxval(ladder%degree)
             row%n_dofs = prob%dofs%n_free
             row%n_contact = prob%contact%p()
-            row%n_cells = graded%n_cells()
+            row%n_cells = prob%mesh%n_cells()
             i = res%spec%lowest_positive()
             row%has_mu = i > 0
             row%mu = 0.0_wp
@@ -224,7 +165,7 @@ contains
             end if
             out%levels(size(out%levels))%time_s = wall_time() - loop_start
             out%prob = prob
-            out%space = space
+            out%space = ladder%space
             out%res = res
         end subroutine solve_level
 

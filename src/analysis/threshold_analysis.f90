@@ -39,7 +39,8 @@ module threshold_analysis
     use halved_mesh, only: build_halved_problem
     implicit none
     private
-    public :: threshold_result_t, solve_thresholds, factor_with_contact_blocks, scan_lambdas
+    public :: threshold_result_t, solve_thresholds, factor_with_contact_blocks, scan_lambdas, &
+              confirm_and_bound
 
     !> 'threshold' counts positive mu on at most this many of the &sweep lambdas (spacing 1
     !> on the default range [-20, 20]); 'lambda_sweep' on all of them (see scan_lambdas).
@@ -97,7 +98,7 @@ contains
         type(reduced_blocks_t) :: blocks
         type(arpack_options_t) :: options
         real(wp) :: start
-        real(wp), allocatable :: mu_meet(:), u_threshold(:, :)
+        real(wp), allocatable :: u_threshold(:, :)
         integer :: i, n_operator
         logical :: certified, estimated
 
@@ -128,14 +129,11 @@ contains
             if (estimated .and. stat%ok()) call threshold_displacements(chol, prob%contact, &
                 prob%dofs%n_free, res%thresholds, u_threshold, stat)
         end if
-        ! the boundary of the positive set while the factor is there: the round-off part of
-        ! a collision needs two solves with it. Dense, whatever the solver: the count of
-        ! positive mu needs the whole spectrum.
+        ! the confirmations and the boundary of the positive set while the factor is there:
+        ! the round-off part of a collision needs two solves with it
         blocks%mass = prob%contact%mass
-        if (stat%ok()) call find_critical_set(blocks, scan_lambdas(config, with_sweep), &
-                                              res%thresholds%real_lambdas, res%set, stat)
-        if (stat%ok()) call collision_roundoffs(prob%k, chol, prob%contact, blocks, res%set, &
-                                                stat)
+        if (stat%ok()) call confirm_and_bound(config, prob, chol, blocks, with_sweep, &
+                                              res%thresholds, res%set, stat)
         call chol%free()
         if (.not. stat%ok()) return
         if (estimated) call add_threshold_estimate()
@@ -144,21 +142,6 @@ contains
                               res%thresholds%roundoff >= 0.0_wp) &
             res%estimate%bar = res%estimate%bar + res%thresholds%roundoff
         call warn_roundoff(.false.)
-        ! Dense on purpose, whatever the solver: just inside a threshold there is no positive
-        ! mu, which only the complete spectrum shows, and just outside the wanted mu is huge,
-        ! deep in the spectrum; dgeev without vectors is O(p^3) with a small constant.
-        call confirm_thresholds(blocks, res%thresholds, stat)
-        if (.not. stat%ok()) return
-        ! mu of the confirmations, in the units of prob%k, to the input's (lambda has none)
-        call real_to_input_units(res%thresholds%mu_outside, stat)
-        if (stat%ok()) call real_to_input_units(res%thresholds%mu_inside, stat)
-        if (.not. stat%ok()) return
-        if (size(res%set%points) > 0) then
-            mu_meet = res%set%points%mu_meet   ! a plain array: no temporary for the call
-            call real_to_input_units(mu_meet, stat)
-            if (.not. stat%ok()) return
-            res%set%points%mu_meet = mu_meet
-        end if
         if (estimated .or. present(estimate)) call add_boundary_bars()
         call warn_roundoff(.true.)
         res%time_threshold = wall_time() - start
@@ -209,7 +192,7 @@ contains
                 res%sweep%n_dense = res%sweep%n_dense + 1
             end if
         end do
-        call real_to_input_units(res%sweep%mu, stat, maxval(abs(res%sweep%lambda)))
+        call mu_to_input_units(config, prob, res%sweep%mu, stat, maxval(abs(res%sweep%lambda)))
         if (.not. stat%ok()) return
         res%time_sweep = wall_time() - start
         call timings%note('sweep      '//seconds_text(res%time_sweep)//' s: '// &
@@ -290,17 +273,54 @@ contains
             if (any(res%set%points%error_bar >= 0.0_wp)) call timings%add(PHASE_REDUCTION, &
                 wall_time() - begin, ': error bars of the boundary points')
         end subroutine add_boundary_bars
-
-        subroutine real_to_input_units(mu, stat, sweep_lambda)
-            real(wp), intent(inout) :: mu(:)
-            type(status_t), intent(out) :: stat
-            real(wp), intent(in), optional :: sweep_lambda
-            complex(wp) :: values(size(mu))
-            values = cmplx(mu, 0.0_wp, wp)
-            call to_input_units(config, prob, values, stat, sweep_lambda)
-            if (stat%ok()) mu = real(values, wp)
-        end subroutine real_to_input_units
     end subroutine solve_thresholds
+
+    !> The confirmations of the thresholds `thr` and the boundary `set` of {lambda : a
+    !> positive mu exists} over the scan of `config` (scan_lambdas), from the contact
+    !> `blocks` (mass set) of `prob`, their mu in the input's units, and the round-off part
+    !> of each collision point (two solves each with `chol`, the factor of K with the contact
+    !> dofs last): what every threshold report gives on its (last) problem. Dense on purpose, whatever the solver: just
+    !> inside a threshold there is no positive mu, which only the complete spectrum shows,
+    !> and just outside the wanted mu is huge, deep in the spectrum; dgeev without vectors
+    !> is O(p^3) with a small constant. The count of positive mu needs the whole spectrum too.
+    subroutine confirm_and_bound(config, prob, chol, blocks, with_sweep, thr, set, stat)
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(in) :: prob
+        type(cholesky_t), intent(in) :: chol
+        type(reduced_blocks_t), intent(in) :: blocks
+        logical, intent(in) :: with_sweep
+        type(thresholds_t), intent(inout) :: thr
+        type(critical_set_t), intent(out) :: set
+        type(status_t), intent(out) :: stat
+        real(wp), allocatable :: mu_meet(:)
+        call confirm_thresholds(blocks, thr, stat)
+        if (.not. stat%ok()) return
+        ! mu of the confirmations, in the units of prob%k, to the input's (lambda has none)
+        call mu_to_input_units(config, prob, thr%mu_outside, stat)
+        if (stat%ok()) call mu_to_input_units(config, prob, thr%mu_inside, stat)
+        if (stat%ok()) call find_critical_set(blocks, scan_lambdas(config, with_sweep), &
+                                              thr%real_lambdas, set, stat)
+        ! before mu_meet leaves the units of the blocks: the bound reads it
+        if (stat%ok()) call collision_roundoffs(prob%k, chol, prob%contact, blocks, set, stat)
+        if (.not. stat%ok()) return
+        if (size(set%points) == 0) return
+        mu_meet = set%points%mu_meet   ! a plain array: no temporary for the call
+        call mu_to_input_units(config, prob, mu_meet, stat)
+        if (stat%ok()) set%points%mu_meet = mu_meet
+    end subroutine confirm_and_bound
+
+    !> Real mu of `prob` (its units) to the input's (to_input_units).
+    subroutine mu_to_input_units(config, prob, mu, stat, sweep_lambda)
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(in) :: prob
+        real(wp), intent(inout) :: mu(:)
+        type(status_t), intent(out) :: stat
+        real(wp), intent(in), optional :: sweep_lambda
+        complex(wp) :: values(size(mu))
+        values = cmplx(mu, 0.0_wp, wp)
+        call to_input_units(config, prob, values, stat, sweep_lambda)
+        if (stat%ok()) mu = real(values, wp)
+    end subroutine mu_to_input_units
 
     !> Factor K with the contact dofs last and form Kt_nn and Kt_nt, which every threshold
     !> computation needs (their memory checked first); `chol` stays factored for the

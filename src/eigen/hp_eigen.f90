@@ -28,8 +28,8 @@ module hp_eigen
     use timer, only: PHASE_ASSEMBLY, PHASE_REDUCTION, PHASE_EIGEN
     implicit none
     private
-    public :: factor_hp_stiffness, hp_factored_problem, hp_dense_spectrum, hp_lowest_positive, &
-              lowest_positive_of
+    public :: factor_hp_stiffness, hp_factored_problem, hp_assembled_problem, &
+              hp_dense_spectrum, hp_lowest_positive, lowest_positive_of
 
 contains
 
@@ -79,17 +79,33 @@ contains
         type(cholesky_t), intent(inout) :: chol
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
+        call build_hp_space(m, degree, dirichlet_parts, space, stat)
+        if (stat%ok()) call hp_assembled_problem(m, space, contact_part, young, poisson, &
+                                                 contact, k, timings, stat)
+        if (stat%ok()) call factor_hp_stiffness(k, m, space, contact, chol, timings, stat)
+    end subroutine hp_factored_problem
+
+    !> K (interior condensed) and the contact data of part `contact_part` on the hp space
+    !> `space` of the P1 mesh `m`, not factored: a caller that must check the contact
+    !> blocks' memory first (p is known only now) factors after (factor_hp_stiffness).
+    subroutine hp_assembled_problem(m, space, contact_part, young, poisson, contact, k, &
+                                    timings, stat)
+        type(mesh_t), intent(in) :: m
+        type(hp_space_t), intent(in) :: space
+        integer, intent(in) :: contact_part
+        real(wp), intent(in) :: young, poisson
+        type(contact_t), intent(out) :: contact
+        type(csr_matrix_t), intent(out) :: k
+        type(timings_t), intent(inout) :: timings
+        type(status_t), intent(out) :: stat
         real(wp) :: start
         start = wall_time()
-        call build_hp_space(m, degree, dirichlet_parts, space, stat)
-        if (.not. stat%ok()) return
         call assemble_hp_stiffness(m, space, young, poisson, k, stat)
         if (.not. stat%ok()) return
         call build_hp_contact(m, space, contact_part, contact, stat)
         if (.not. stat%ok()) return
         call timings%add(PHASE_ASSEMBLY, wall_time() - start, ': hp space, K, M')
-        call factor_hp_stiffness(k, m, space, contact, chol, timings, stat)
-    end subroutine hp_factored_problem
+    end subroutine hp_assembled_problem
 
     !> All nonzero eigenvalues of K phi = mu B phi (B for `lambda`) on the hp space of the P1
     !> mesh `m` with cell degrees `degree`, `dirichlet_parts` clamped and Gamma_C the part

@@ -45,6 +45,8 @@ module threshold_estimate
         logical :: halved_mesh = .false.
         real(wp), allocatable :: indicators(:, :)   !! (n_cells, 2) eta_K relative to lambda_h
         integer :: element = 0                      !! the enriched element
+        !> the estimate's name where it is neither enrichment nor halving ('': one of them)
+        character(len=40) :: method = ''
         real(wp) :: seconds = 0.0_wp
         !> per side, why it was not computed ('' where it was, or where there is no threshold)
         character(len=200) :: skipped(2) = ''

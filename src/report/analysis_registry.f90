@@ -9,6 +9,7 @@ module analysis_registry
     use solve_run, only: solve_run_t
     use adapt_run, only: adapt_run_t
     use hp_adapt_run, only: hp_adapt_run_t   ! &adapt strategy = 'hp'
+    use hp_threshold_run, only: hp_threshold_run_t
     implicit none
     private
     public :: new_analysis
@@ -16,8 +17,8 @@ module analysis_registry
 contains
 
     !> The analysis of `kind`, adaptive (&adapt tolerance > 0) or not, with the &adapt
-    !> `strategy` 'h' (the default) or 'hp' (only 'eigen': the input check refuses the
-    !> others): each variant is a type of its own, chosen here once. An unknown kind (which
+    !> `strategy` 'h' (the default) or 'hp' (only 'eigen' and 'threshold': the input
+    !> check refuses the others): each variant is a type of its own, chosen here once. An unknown kind (which
     !> the input check refuses first) leaves `analysis` unallocated. 'lambda_sweep' adapts
     !> each point itself (&adapt).
     subroutine new_analysis(kind, adaptive, analysis, strategy)
@@ -34,7 +35,8 @@ contains
             if (adaptive .and. hp) allocate (hp_adapt_run_t :: analysis)
             if (adaptive .and. .not. hp) allocate (adapt_run_t :: analysis)
         case ('threshold')
-            if (adaptive) allocate (adapt_threshold_run_t :: analysis)
+            if (adaptive .and. hp) allocate (hp_threshold_run_t :: analysis)
+            if (adaptive .and. .not. hp) allocate (adapt_threshold_run_t :: analysis)
             if (.not. adaptive) allocate (threshold_run_t :: analysis)
         case ('lambda_sweep'); allocate (sweep_run_t :: analysis)
         case ('branch'); allocate (branch_run_t :: analysis)

@@ -26,12 +26,15 @@ module hp_adapt_run
     use mesh, only: mesh_t
     use hp_field, only: sample_hp_field
     use pictures, only: draw_hp_mode, draw_hp_adapt
+    use hp_space, only: hp_space_t
+    use spectrum, only: spectrum_t
     implicit none
     private
 
     character(len=*), parameter, public :: HP_ADAPT_HEADER = &
         'level,layers,p_min,p_max,n_dofs,n_contact,n_cells,mu,error_bar,roundoff,time_s'
-    character(len=*), parameter :: DEGREES_FILE = 'degrees.csv'
+    character(len=*), parameter, public :: DEGREES_FILE = 'degrees.csv'
+    public :: write_hp_modes, write_degrees, add_hp_keys, hp_report_lines
 
     type, extends(analysis_t), public :: hp_adapt_run_t
         type(hp_result_t) :: out
@@ -71,7 +74,8 @@ contains
         if (prob%mesh%n_cells() == 0) return   ! no input mesh: nothing was solved
         call stage%add('eigenvalues.csv', path)
         call write_eigenvalues_csv(path, this%out%res%spec, stat, this%out%res%error)
-        if (stat%ok() .and. config%output%vtk) call write_hp_modes(stage, config, this%out, stat)
+        if (stat%ok() .and. config%output%vtk) call write_hp_modes(stage, config, &
+            this%out%prob, this%out%space, this%out%res%spec, stat)
         if (stat%ok()) then
             call stage%add('adapt.csv', path)
             call write_hp_adapt_csv(path, this%out, stat)
@@ -79,7 +83,7 @@ contains
         if (stat%ok()) call write_adapted_mesh(stage, this%out%prob, stat)
         if (stat%ok()) then
             call stage%add(DEGREES_FILE, path)
-            call write_degrees(path, this%out, stat)
+            call write_degrees(path, this%out%space, stat)
         end if
         ! the condensed hp system (vertex and edge functions), in the input's units
         if (stat%ok() .and. config%output%matrices) then
@@ -95,20 +99,23 @@ contains
                                           this%start_dofs, this%out%levels, this%picture_note)
     end subroutine hp_run_write_files
 
-    !> mode_NNN.vtu: the real part of each kept mode, sampled on the sub-triangulation of
-    !> hp_field, with each sub-cell's degree.
-    subroutine write_hp_modes(stage, config, out, stat)
+    !> mode_NNN.vtu: the real part of each kept mode of `spec` (on the hp problem `prob`
+    !> with space `space`), sampled on the sub-triangulation of hp_field, with each
+    !> sub-cell's degree.
+    subroutine write_hp_modes(stage, config, prob, space, spec, stat)
         type(output_stage_t), intent(inout) :: stage
         type(config_t), intent(in) :: config
-        type(hp_result_t), intent(in) :: out
+        type(problem_t), intent(in) :: prob
+        type(hp_space_t), intent(in) :: space
+        type(spectrum_t), intent(in) :: spec
         type(status_t), intent(out) :: stat
         type(mesh_t) :: sub
         real(wp), allocatable :: values(:, :), degree(:), mode(:)
         integer :: i
         character(len=:), allocatable :: path
-        do i = 1, min(config%output%modes, size(out%res%spec%vectors, 2))
-            mode = real(out%res%spec%vectors(:, i), wp)
-            call sample_hp_field(out%prob%mesh, out%space, out%prob%young, out%prob%poisson, &
+        do i = 1, min(config%output%modes, size(spec%vectors, 2))
+            mode = real(spec%vectors(:, i), wp)
+            call sample_hp_field(prob%mesh, space, prob%young, prob%poisson, &
                                  mode, sub, values, degree, stat)
             if (.not. stat%ok()) return
             call stage%add('mode_'//zero_padded(i, 3)//'.vtu', path)
@@ -149,15 +156,15 @@ contains
     end subroutine write_hp_adapt_csv
 
     !> degrees.csv: cell,degree for the cells of mesh.msh, in its order.
-    subroutine write_degrees(path, out, stat)
+    subroutine write_degrees(path, space, stat)
         character(len=*), intent(in) :: path
-        type(hp_result_t), intent(in) :: out
+        type(hp_space_t), intent(in) :: space
         type(status_t), intent(out) :: stat
         type(csv_writer_t) :: csv
         integer :: c
         call csv%open(path, 'cell,degree')
-        do c = 1, size(out%space%cell_degree)
-            call csv%row(to_string(c)//','//to_string(out%space%cell_degree(c)))
+        do c = 1, size(space%cell_degree)
+            call csv%row(to_string(c)//','//to_string(space%cell_degree(c)))
         end do
         call csv%close(stat)
     end subroutine write_degrees
@@ -170,16 +177,26 @@ contains
         summary = eigen_summary_json(config, this%out%prob, this%out%res, this%timings)
         call add_adapt_keys(summary, config, this%start_dofs, size(this%out%levels), &
                             this%out%converged, this%out%floor_reached, this%out%outcome)
+        call add_hp_keys(summary, config, this%out%space, prob%mesh%n_cells())
+    end function hp_run_summary
+
+    !> The keys every hp loop adds: its strategy and parameters, the degrees of the last
+    !> level's `space`, the cells of the input mesh.
+    subroutine add_hp_keys(summary, config, space, start_cells)
+        type(json_object_t), intent(inout) :: summary
+        type(config_t), intent(in) :: config
+        type(hp_space_t), intent(in) :: space
+        integer, intent(in) :: start_cells
         call summary%add_string('adapt_strategy', 'hp')
         call summary%add_real('adapt_sigma', config%adapt%sigma)
         call summary%add_integer('adapt_p_max', config%adapt%p_max)
         call summary%add_string('degrees_file', DEGREES_FILE)
-        if (size(this%out%space%cell_degree) > 0) then
-            call summary%add_integer('hp_degree_min', minval(this%out%space%cell_degree))
-            call summary%add_integer('hp_degree_max', maxval(this%out%space%cell_degree))
+        if (size(space%cell_degree) > 0) then
+            call summary%add_integer('hp_degree_min', minval(space%cell_degree))
+            call summary%add_integer('hp_degree_max', maxval(space%cell_degree))
         end if
-        call summary%add_integer('adapt_start_cells', prob%mesh%n_cells())
-    end function hp_run_summary
+        call summary%add_integer('adapt_start_cells', start_cells)
+    end subroutine add_hp_keys
 
     function hp_run_report(this, config, prob) result(text)
         class(hp_adapt_run_t), intent(in) :: this
@@ -188,17 +205,29 @@ contains
         character(len=:), allocatable :: text
         character(len=*), parameter :: NL = new_line('a')
         text = summary_lines(config, this%out%prob, this%out%res, this%timings, this%plot_note)
-        text = text//NL//'  adapt       hp, '//to_string(size(this%out%levels))// &
-            trim(merge(' level ', ' levels', size(this%out%levels) == 1))//' from the '// &
-            to_string(prob%mesh%n_cells())//'-cell input mesh'
-        if (size(this%out%space%cell_degree) > 0) text = text//' (last: degrees '// &
-            to_string(minval(this%out%space%cell_degree))//' to '// &
-            to_string(maxval(this%out%space%cell_degree))//')'
-        text = text//'; '// &
-            this%out%outcome//NL//'  mesh        '//trim(config%output%directory)// &
-            '/mesh.msh and '//DEGREES_FILE//' (the last graded mesh and its cell degrees)'
+        text = text//hp_report_lines(config, size(this%out%levels), this%out%space, &
+                                     prob%mesh%n_cells(), this%out%outcome)
         if (allocated(this%picture_note)) then
             if (len(this%picture_note) > 0) text = text//NL//'  adapt plot  '//this%picture_note
         end if
     end function hp_run_report
+
+    !> The stdout lines every hp loop adds: its `levels` from the `start_cells`-cell input
+    !> mesh, the last `space`'s degrees, the `outcome`, and the mesh files.
+    function hp_report_lines(config, levels, space, start_cells, outcome) result(text)
+        type(config_t), intent(in) :: config
+        integer, intent(in) :: levels, start_cells
+        type(hp_space_t), intent(in) :: space
+        character(len=*), intent(in) :: outcome
+        character(len=:), allocatable :: text
+        character(len=*), parameter :: NL = new_line('a')
+        text = NL//'  adapt       hp, '//to_string(levels)// &
+            trim(merge(' level ', ' levels', levels == 1))//' from the '// &
+            to_string(start_cells)//'-cell input mesh'
+        if (size(space%cell_degree) > 0) text = text//' (last: degrees '// &
+            to_string(minval(space%cell_degree))//' to '// &
+            to_string(maxval(space%cell_degree))//')'
+        text = text//'; '//outcome//NL//'  mesh        '//trim(config%output%directory)// &
+            '/mesh.msh and '//DEGREES_FILE//' (the last graded mesh and its cell degrees)'
+    end function hp_report_lines
 end module hp_adapt_run

@@ -409,16 +409,20 @@ contains
     end subroutine draw_eigen_adapt
 
     !> adapt.png of the threshold loop: both critical lambdas, and the collision onsets.
-    subroutine draw_threshold_adapt(stage, config, element, start_dofs, levels, note)
+    subroutine draw_threshold_adapt(stage, config, element, start_dofs, levels, note, method)
         type(output_stage_t), intent(inout) :: stage
         type(config_t), intent(in) :: config
         integer, intent(in) :: element, start_dofs
         type(threshold_level_t), intent(in) :: levels(:)
         character(len=:), allocatable, intent(out) :: note
+        character(len=*), intent(in), optional :: method   !! the title's (default: element)
         type(adapt_curve_t), allocatable :: curves(:)
+        character(len=:), allocatable :: by
         integer :: i
+        by = element_name(element)
+        if (present(method)) by = method
         call threshold_adapt_curves(levels, curves)
-        call draw_adapt(stage, config, element_name(element)//', the critical lambdas, start '// &
+        call draw_adapt(stage, config, by//', the critical lambdas, start '// &
             to_string(start_dofs)//' dofs', 'critical {/Symbol l}  (dimensionless)', &
             [(levels(i)%n_dofs, i = 1, size(levels))], curves, note)
     end subroutine draw_threshold_adapt

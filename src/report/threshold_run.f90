@@ -30,7 +30,8 @@ module threshold_run
     use csv_writer, only: csv_writer_t
     implicit none
     private
-    public :: write_sweep_csv
+    public :: write_sweep_csv, no_digit_verdict, write_threshold_adapt_csv, add_threshold_keys, &
+              threshold_summary_lines
 
     character(len=*), parameter :: SWEEP_FILE = 'lambda_sweep.csv'
     character(len=*), parameter :: SWEEP_HEADER = &
@@ -249,15 +250,21 @@ contains
     !> error_estimate_minus,time_s,error_bar_plus,error_bar_minus, then per side the collision
     !> onset, its estimate and bar; a side's cells empty where it has no threshold (collision
     !> onset) or no estimate.
-    subroutine write_threshold_adapt_csv(path, out, stat)
+    !> `extra_header`, `extra`: columns appended to the header and to each row (hp).
+    subroutine write_threshold_adapt_csv(path, out, stat, extra_header, extra)
         character(len=*), intent(in) :: path
         type(adaptive_thresholds_t), intent(in) :: out
         type(status_t), intent(out) :: stat
+        character(len=*), intent(in), optional :: extra_header, extra(:)
         type(csv_writer_t) :: csv
         character(len=:), allocatable :: line
         integer :: i, side
 
-        call csv%open(path, THRESHOLD_ADAPT_HEADER)
+        if (present(extra_header)) then
+            call csv%open(path, THRESHOLD_ADAPT_HEADER//extra_header)
+        else
+            call csv%open(path, THRESHOLD_ADAPT_HEADER)
+        end if
         do i = 1, size(out%levels)
             associate (row => out%levels(i))
                 line = to_string(row%level)//','//to_string(row%n_dofs)//','// &
@@ -285,6 +292,7 @@ contains
                     if (row%collision_bar(side) >= 0.0_wp) line = line// &
                         real_to_text(row%collision_bar(side))
                 end do
+                if (present(extra)) line = line//trim(extra(i))
                 call csv%row(line)
             end associate
         end do
@@ -555,11 +563,15 @@ contains
             character(len=:), allocatable :: s
             s = ''
             if (res%estimate%computed(side)) then
-                s = ' enrichment'
-                if (res%estimate%halved_mesh) s = ', halved mesh'
+                if (len_trim(res%estimate%method) > 0) then
+                    s = trim(res%estimate%method)
+                else
+                    s = ' enrichment'
+                    if (res%estimate%halved_mesh) s = ', halved mesh'
+                    s = element_name(res%estimate%element)//s
+                end if
                 s = NL//'              relative error estimate '// &
-                    short_real_text(abs(res%estimate%relative(side)))//' ('// &
-                    element_name(res%estimate%element)//s//'); error bar '// &
+                    short_real_text(abs(res%estimate%relative(side)))//' ('//s//'); error bar '// &
                     short_real_text(res%estimate%bar(side))
             else if (len_trim(res%estimate%skipped(side)) > 0) then
                 s = NL//'              relative error estimate '//trim(res%estimate%skipped(side))

@@ -7,7 +7,9 @@
 # the dense solver's whole spectrum;
 # the same from a Gmsh mesh of the trapezoid scene; hp within the h loop's bar on a
 # second scene; the floating-point floor and a level limit end in exit 8 with a warning;
-# bad input is one stderr line naming &adapt and the variable, exit 2.
+# bad input is one stderr line naming &adapt and the variable, exit 2. kind = 'threshold':
+# both critical lambdas of the reference scene and the collision onsets of the trapezoid and
+# half-contact scenes within their bars of the truths, the floor; hp refused for the others.
 # Usage: cli_hp.sh NCEIG SOURCE_DIR
 set -u
 nceig=$1
@@ -154,6 +156,85 @@ bad degree "&adapt: p_max = 21: expected a degree from 1 to 20" --set adapt%p_ma
 bad sigma "&adapt: sigma = 1.0: expected a grading factor" --set adapt%sigma=1.0
 bad max_dofs "&adapt: max_dofs = 100: expected at least the 220 free dofs of the first hp level" \
     --set adapt%max_dofs=100
-bad threshold "&adapt: strategy = 'hp': expected 'h' for &analysis kind = 'threshold'" \
-    --set "analysis%kind='threshold'"
+bad branch "&adapt: strategy = 'hp': expected 'h' for &analysis kind = 'branch'" \
+    --set "analysis%kind='branch'"
+bad solve "&adapt: strategy = 'hp': expected 'h' for &analysis kind = 'solve'" \
+    --set "analysis%kind='solve'"
+bad sweep "&adapt: strategy = 'hp': expected 'h' for &analysis kind = 'lambda_sweep'" \
+    --set "analysis%kind='lambda_sweep'"
+
+# kind = 'threshold': both critical lambdas of the reference scene to 1e-10, each within its
+# bar (relative) plus the truth's own uncertainty of the truth.
+tvalue() { awk -F, -v s="$1" -v q="$2" '$1 == s && $2 == q { print $3 }' "$root/tests/data/truths.csv"; }
+tuncertainty() { awk -F, -v s="$1" -v q="$2" '$1 == s && $2 == q { print $4 }' "$root/tests/data/truths.csv"; }
+# near VALUE BAR TRUTH UNCERTAINTY: |VALUE - TRUTH| <= BAR |VALUE| + UNCERTAINTY, BAR > 0
+near() { awk -v v="$1" -v b="$2" -v t="$3" -v u="$4" 'BEGIN { d = v - t; if (d < 0) d = -d
+    m = v < 0 ? -v : v; exit !(b > 0 && d <= b * m + u) }'; }
+# onset_bar SUMMARY KEY: the boundary_error_bar of the boundary point at the onset KEY
+onset_bar() { awk -v want="$(json "$1" "$2")" '
+    /"boundary_lambda":/ { gsub(/.*\[|\].*/, ""); n = split($0, l, ", ") }
+    /"boundary_error_bar":/ { gsub(/.*\[|\].*/, ""); split($0, b, ", ") }
+    END { for (i = 1; i <= n; i++) if (l[i] == want) print b[i] }' "$1"; }
+cat >"$work/thr.nml" <<NML
+&mesh nx = 2, ny = 2, element = 'p1' /
+&analysis kind = 'threshold', lambda = 5.0 /
+&adapt tolerance = 1e-10, strategy = 'hp' /
+&output directory = '$work/thr', vtk = .false. /
+NML
+"$nceig" "$work/thr.nml" >"$work/stdout" 2>"$work/err"; rc=$?
+s=$work/thr/summary.json
+check 'threshold: exit 0, nothing on stderr, converged by hp' '[[ $rc -eq 0 && ! -s "$work/err" &&
+    $(json "$s" adapt_converged) == true && $(json "$s" adapt_strategy) == hp &&
+    $(json "$s" adapt_floor_reached) == false ]]'
+for side in plus minus; do
+    check "threshold: lambda_$side's bar meets 1e-10" \
+        'awk -v e="$(json "$s" lambda_critical_${side}_error_bar)" "BEGIN { exit !(e > 0 && e <= 1e-10) }"'
+    check "threshold: lambda_$side within its bar of the truth" \
+        'near "$(json "$s" lambda_critical_$side)" "$(json "$s" lambda_critical_${side}_error_bar)" \
+            "$(tvalue ref-threshold lambda_critical_$side)" "$(tuncertainty ref-threshold lambda_critical_$side)"'
+done
+check 'threshold: the headline lambda+ X +- B, the tolerance met' \
+    'grep -q "lambda+     1.94471144.* +- " "$work/stdout" &&
+     grep -q "tolerance 1.00E-10 met at level" "$work/stdout"'
+csv=$work/thr/adapt.csv
+check 'threshold: adapt.csv has the h loop'\''s columns, then layers, p_min, p_max' \
+    '[[ $(head -n 1 "$csv") == level,n_dofs,n_contact,n_cells,lambda_plus,*,error_bar_collision_minus,layers,p_min,p_max &&
+        $(($(wc -l <"$csv") - 1)) -eq $(json "$s" adapt_levels) ]]'
+check 'threshold: degrees.csv and mesh.msh of the last level' \
+    '[[ $(($(wc -l <"$work/thr/degrees.csv") - 1)) -eq $(json "$s" n_cells) && -s "$work/thr/mesh.msh" ]]'
+
+# Below the round-off bound of the thresholds: the floor, exit 8.
+"$nceig" "$work/thr.nml" --set adapt%tolerance=1e-13 --set "output%directory='$work/thr_floor'" \
+    >"$work/stdout" 2>"$work/err"; rc=$?
+check 'threshold floor: exit 8, one stderr line, the floor named' '[[ $rc -eq 8 && $(wc -l <"$work/err") -eq 1 &&
+    $(json "$work/thr_floor/summary.json" adapt_floor_reached) == true ]] &&
+    grep -q "the floating-point floor is reached" "$work/err"'
+
+# Collision onsets (complex_pair) as the goals: the trapezoid's (both sides, to 1e-8) and
+# the half-contact scene's (minus), each within its bar of the truth; the boundary search
+# over [-3, 3] only (the onsets are inside). The half-contact scene's lambda+ (a pencil
+# eigenvalue at the free end of the contact part) converges slowly: its run stops at
+# max_levels = 5 (exit 8), which leaves the onset's bar to check.
+if command -v gmsh >/dev/null 2>&1; then
+    for scene in trapezoid-threshold half-contact-threshold; do
+        scene_info $scene
+        levels=0 want=0
+        [[ $scene == half-contact-threshold ]] && levels=5 want=8
+        scene_gmsh "$work/$scene.msh" 1 -setnumber graded 0 -clmax 0.3
+        { scene_mesh_nml "$work/$scene.msh"; scene_physics_nml
+          echo "&adapt tolerance = 1e-8, strategy = 'hp', max_levels = $levels /"
+          echo "&sweep lambda_min = -3.0, lambda_max = 3.0 /"
+          echo "&output directory = '$work/$scene', vtk = .false. /"; } >"$work/$scene.nml"
+        "$nceig" "$work/$scene.nml" >/dev/null 2>"$work/err"; rc=$?
+        g=$work/$scene/summary.json
+        check "$scene: exit $want" '[[ $rc -eq $want && -s "$g" ]]'
+        for key in $onsets; do
+            check "$scene: $key a collision within its bar of the truth" \
+                '[[ $(json "$g" ${key}_mechanism) == complex_pair ]] &&
+                 near "$(json "$g" $key)" "$(onset_bar "$g" $key)" "$(tvalue $scene $key)" "$(tuncertainty $scene $key)"'
+        done
+    done
+else
+    echo 'SKIP: gmsh is not installed: the collision onset checks did not run'
+fi
 cli_end

@@ -1,0 +1,133 @@
+! SPDX-License-Identifier: MIT
+!> &adapt strategy = 'hp' for analysis 'threshold' (hp_threshold): on the reference scene the
+!> loop meets 1e-10 with both critical lambdas within their bars of the independent truth
+!> and of each other's mirror image; its levels climb the hp ladder; a level whose contact
+!> blocks do not fit the memory stops the loop (before the first level: STATUS_NOT_MET), as
+!> max_levels does.
+program test_hp_threshold
+    use kinds, only: wp, i8
+    use status, only: status_t, STATUS_NOT_MET
+    use testing, only: test_suite_t
+    use fixtures, only: square_scene
+    use run_config, only: config_t
+    use timer, only: timings_t
+    use problem, only: problem_t, build_problem
+    use threshold_analysis, only: threshold_result_t
+    use hp_threshold, only: hp_thresholds_t, hp_adapt_thresholds
+    use critical_lambda, only: SIDE_PLUS, SIDE_MINUS
+    implicit none
+
+    !> lambda+ of the reference scene and its uncertainty (tests/data/truths.csv,
+    !> ref-threshold: graded P4 meshes, an independent computation); lambda- is its mirror
+    !> image (x -> 1 - x reverses t, so lambda -> -lambda)
+    real(wp), parameter :: TRUTH_PLUS = 1.9447114426738574_wp, TRUTH_UNCERTAINTY = 5.65e-10_wp
+    type(test_suite_t) :: t
+    t%name = 'test_hp_threshold'
+    call reference_meets_tolerance(t)
+    call memory_stops_the_loop(t)
+    call max_levels_stops_the_loop(t)
+    call t%report()
+
+contains
+
+    !> The reference scene (unit square, nu = 0.3) from 2 x 2 P1 squares, adapted by hp to
+    !> `tolerance`; the boundary search only over [-3, 3] (both thresholds inside).
+    function reference_config(tolerance) result(config)
+        real(wp), intent(in) :: tolerance
+        type(config_t) :: config
+        call square_scene(2, 'p1', 'right', config)
+        config%analysis%kind = 'threshold'
+        config%analysis%lambda = 5.0_wp
+        config%adapt%tolerance = tolerance
+        config%adapt%strategy = 'hp'
+        config%sweep%lambda_min = -3.0_wp
+        config%sweep%lambda_max = 3.0_wp
+        config%sweep%n_lambda = 7
+    end function reference_config
+
+    subroutine run(config, out, res, stat, available)
+        type(config_t), intent(in) :: config
+        type(hp_thresholds_t), intent(out) :: out
+        type(threshold_result_t), intent(out) :: res
+        type(status_t), intent(out) :: stat
+        integer(i8), intent(in), optional :: available
+        type(problem_t) :: start
+        type(timings_t) :: timings
+        call build_problem(config, start, stat)
+        if (stat%ok()) call hp_adapt_thresholds(config, start, out, res, timings, stat, available)
+    end subroutine run
+
+    !> The bar is meant to hold: |lambda - truth| <= bar |lambda| plus the truth's own
+    !> uncertainty; the two sides are mirror images, so they agree within both bars. Level
+    !> k has k layers and degrees 1 to k + 1, more dofs than level k - 1, and a bar from
+    !> level 2 on.
+    subroutine reference_meets_tolerance(t)
+        type(test_suite_t), intent(inout) :: t
+        type(hp_thresholds_t) :: out
+        type(threshold_result_t) :: res
+        type(status_t) :: stat
+        real(wp) :: plus, minus, bar(2)
+        integer :: k
+        logical :: ladder
+        call run(reference_config(1.0e-10_wp), out, res, stat)
+        call t%check('reference: runs', stat%ok())
+        if (.not. stat%ok()) return
+        call t%check('reference: 1e-10 met', out%adapted%converged .and. &
+                     all(res%estimate%computed) .and. all(res%estimate%bar <= 1.0e-10_wp))
+        plus = res%thresholds%lambda(SIDE_PLUS)
+        minus = res%thresholds%lambda(SIDE_MINUS)
+        bar = res%estimate%bar*abs(res%thresholds%lambda)
+        call t%check('reference: lambda+ within its bar of the truth', &
+                     abs(plus - TRUTH_PLUS) <= bar(SIDE_PLUS) + TRUTH_UNCERTAINTY)
+        call t%check('reference: lambda- within its bar of the truth', &
+                     abs(minus + TRUTH_PLUS) <= bar(SIDE_MINUS) + TRUTH_UNCERTAINTY)
+        call t%check('reference: lambda- mirrors lambda+ within the bars', &
+                     abs(plus + minus) <= sum(bar))
+        ladder = .true.
+        do k = 1, size(out%layers)
+            ladder = ladder .and. out%layers(k) == k .and. out%p_min(k) == 1 .and. &
+                     out%p_max(k) == k + 1
+            if (k > 1) ladder = ladder .and. out%adapted%levels(k)%n_dofs > &
+                                out%adapted%levels(k - 1)%n_dofs .and. &
+                                all(out%adapted%levels(k)%error_bar >= 0.0_wp)
+        end do
+        call t%check('reference: the levels climb the hp ladder, bars from level 2', ladder .and. &
+                     all(out%adapted%levels(1)%error_bar < 0.0_wp))
+    end subroutine reference_meets_tolerance
+
+    !> Level 1 has 15 contact functions (10 p^2 doubles: 18000 bytes), level 2 has 27
+    !> (58320 bytes): with 30000 bytes the loop stops after level 1 and says why; with
+    !> 1000 bytes nothing is solved.
+    subroutine memory_stops_the_loop(t)
+        type(test_suite_t), intent(inout) :: t
+        type(hp_thresholds_t) :: out
+        type(threshold_result_t) :: res
+        type(status_t) :: stat
+        call run(reference_config(1.0e-10_wp), out, res, stat, available=30000_i8)
+        call t%check('memory: stops after level 1', stat%ok() .and. &
+                     .not. out%adapted%converged .and. size(out%layers) == 1)
+        if (.not. stat%ok()) return
+        call t%check('memory: the outcome says so, and what the level needs', &
+                     index(out%adapted%outcome, 'level 2 has p = 27 contact functions') > 0 &
+                     .and. index(out%adapted%outcome, 'more than the memory available') > 0)
+        call t%check('memory: the last level is reported', &
+                     res%thresholds%found(SIDE_PLUS) .and. res%thresholds%found(SIDE_MINUS))
+        call run(reference_config(1.0e-10_wp), out, res, stat, available=1000_i8)
+        call t%check('memory: no level fits: STATUS_NOT_MET naming level 1', &
+                     stat%code == STATUS_NOT_MET .and. index(stat%message, 'level 1 has p') > 0)
+    end subroutine memory_stops_the_loop
+
+    subroutine max_levels_stops_the_loop(t)
+        type(test_suite_t), intent(inout) :: t
+        type(hp_thresholds_t) :: out
+        type(threshold_result_t) :: res
+        type(status_t) :: stat
+        type(config_t) :: config
+        config = reference_config(1.0e-10_wp)
+        config%adapt%max_levels = 2
+        call run(config, out, res, stat)
+        call t%check('max_levels: two levels, not converged, the limit named', stat%ok() .and. &
+                     size(out%layers) == 2 .and. .not. out%adapted%converged .and. &
+                     index(out%adapted%outcome, 'max_levels = 2') > 0)
+    end subroutine max_levels_stops_the_loop
+end program test_hp_threshold
