@@ -34,6 +34,9 @@ module error_bar
     !> order 2 counted (a faster one seen on two changes is more likely a cancellation), at
     !> least order 0.1 (slower is no convergence: the error is then 15 times the change)
     real(wp), parameter :: Q_FAST = 0.25_wp, Q_SLOW = 0.933_wp
+    !> q where the third mesh is unknown: the slowest convergence measured where it was
+    !> known (a collision onset of a Delaunay trapezoid, 13 % per halving)
+    real(wp), parameter :: Q_UNKNOWN = 0.87_wp
 
 contains
 
@@ -133,14 +136,15 @@ contains
     !> the two-mesh difference alone: near a strong corner singularity the error falls by
     !> 13 % per halving (r ~ 0.2: a collision onset of the trapezoid on uniform P3), so the
     !> change to the halved mesh is a seventh of the error. An unknown v2 (not finite:
-    !> the finest mesh did not fit the memory) counts as q = Q_SLOW.
+    !> the finest mesh was left out) counts as q = Q_UNKNOWN.
     pure real(wp) function three_mesh_bar(v0, v1, v2, roundoff) result(bar)
         real(wp), intent(in) :: v0, v1, v2, roundoff
         real(wp) :: d1, d2, q
         d1 = abs(v1 - v0)
         d2 = huge(1.0_wp)
         if (abs(v2) < huge(1.0_wp)) d2 = abs(v2 - v1)
-        q = Q_SLOW
+        q = Q_UNKNOWN
+        if (d2 < huge(1.0_wp)) q = Q_SLOW
         if (d2 < huge(1.0_wp) .and. d1 > 0.0_wp) q = min(max(d2/d1, Q_FAST), Q_SLOW)
         if (d2 >= huge(1.0_wp)) d2 = d1
         bar = LEVEL_FACTOR*max(d1, d2)/(1.0_wp - q)/abs(v0) + max(roundoff, 0.0_wp)
