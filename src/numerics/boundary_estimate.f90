@@ -40,8 +40,8 @@ module boundary_estimate
     integer, parameter :: WINDOW_POINTS = 41
     !> The twice halved mesh of a collision's three-mesh bar has 16 times the dofs and 4
     !> times the contact nodes of the mesh; beyond this many free dofs it is left out (its
-    !> dense search alone took minutes for a P3 mesh of 23 000 dofs) and the bar counts the
-    !> slowest order measured instead (error_bar: three_mesh_bar).
+    !> dense search alone took minutes for a P3 mesh of 23 000 dofs) and the bar counts
+    !> a slow order instead (error_bar: three_mesh_bar, Q_UNKNOWN).
     integer, parameter :: QUARTER_MAX_DOFS = 160000
 
 contains
