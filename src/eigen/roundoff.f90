@@ -229,7 +229,7 @@ contains
         type(status_t), intent(out) :: stat
         real(wp), allocatable :: a(:, :), vl(:, :), vr(:, :), wr(:), wi(:), work(:), &
                                  rhs(:, :), lifts(:, :)
-        real(wp) :: query(1), theta, unit
+        real(wp) :: query(1), theta, unit, a_norm
         real(wp), allocatable :: x(:), y(:), mx(:)
         integer :: p, j, info
 
@@ -239,6 +239,7 @@ contains
         unit = lambda_unit(point%lambda)
         allocate (a(p, p))   ! then filled: see dense_eigen on reallocation on assignment
         a(:, :) = blocks%matrix(point%lambda)
+        a_norm = unit*norm2(a)   ! ||A||: unit times that of the matrix decomposed
         allocate (wr(p), wi(p), vl(p, p), vr(p, p), x(p), y(p), mx(p))
         call dgeev('V', 'V', p, a, p, wr, wi, vl, p, vr, p, query, -1, info)
         allocate (work(max(1, int(query(1)))))
@@ -261,9 +262,8 @@ contains
         call contact%scatter(point%lambda*contact%tangent - contact%normal, mx, rhs(:, 2))
         call chol%solve(rhs, lifts, stat)
         if (.not. stat%ok()) return
-        ! A' x = Kt_nt M x; the norm of A = unit times that of the matrix decomposed
-        a(:, :) = blocks%matrix(point%lambda)
-        point%roundoff = collision_bound(unit*norm2(a), point%lambda, x, y, &
+        ! A' x = Kt_nt M x
+        point%roundoff = collision_bound(a_norm, point%lambda, x, y, &
             matmul(blocks%kt_nt, mx), ROUNDOFF_UNITS*epsilon(1.0_wp)*abs_form(k, lifts(:, 1), &
                                                                               lifts(:, 2)))
     end subroutine collision_roundoff

@@ -58,6 +58,7 @@ contains
         type(critical_set_t), intent(inout) :: set
         type(status_t), intent(out) :: stat
         real(wp), allocatable :: nearest(:), halved(:), quartered(:)
+        type(status_t) :: halved_stat
         real(wp) :: lambda, bar
         integer :: i, side
 
@@ -74,8 +75,10 @@ contains
             end do
         end do
         call enriched_pair_lambdas(prob, max_contact, set, nearest, stat)
-        if (stat%ok()) call halved_pair_lambdas(config, prob, set, halved, quartered, stat)
         if (.not. stat%ok()) return
+        ! the halved meshes are a second opinion: where they fail (memory), the enriched
+        ! difference alone makes the bar
+        call halved_pair_lambdas(config, prob, set, halved, quartered, halved_stat)
         do i = 1, size(set%points)
             if (set%points(i)%mechanism /= MECHANISM_COMPLEX_PAIR) cycle
             lambda = set%points(i)%lambda
@@ -92,7 +95,8 @@ contains
     !> on the mesh of halved cells (halved_mesh) and on that mesh halved again nearest the
     !> complex_pair point i of `set` (pair_points_near); huge where there is none, or no
     !> halved mesh, or (quartered) where 16 times the dofs are more than QUARTER_MAX_DOFS or
-    !> would not fit the memory available (stat ok).
+    !> would not fit the memory available (stat ok); where a fine problem fails, the points
+    !> not found stay huge.
     subroutine halved_pair_lambdas(config, prob, set, halved, quartered, stat)
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: prob
