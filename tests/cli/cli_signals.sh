@@ -16,6 +16,16 @@ out="$work/out"
 set -m
 
 make_reference_sets "$nceig" "$work" "$out"
+# The judge of the sets: a file of the other set makes a mix; a changed digit does not.
+cp -a "$work/ref_4" "$work/judge"
+cp "$work/ref_5/mode_007.vtu" "$work/judge/"
+check 'a set holding a file of the other run is a mix' \
+    '[[ $(set_state "$work/judge" "$work/ref_4" "$work/ref_5") == "broken: a mix"* ]]'
+cp "$work/ref_4/mode_007.vtu" "$work/judge/"
+sed -i '2s/[0-9],/0,/' "$work/judge/eigenvalues.csv"
+check 'a set whose digits differ is its run'"'"'s' \
+    '! cmp -s "$work/judge/eigenvalues.csv" "$work/ref_4/eigenvalues.csv" && [[ $(set_state "$work/judge" "$work/ref_4" "$work/ref_5" 2>/dev/null) == "ref 0" ]]'
+rm -rf "$work/judge"
 "$nceig" "$work/run_5.nml" >/dev/null 2>&1
 duration=999999999
 for i in 1 2 3; do
