@@ -43,7 +43,8 @@ module adaptive_threshold
     use threshold_analysis, only: scan_lambdas
     use contact_reduction, only: reduced_blocks_t
     use contact_boundary, only: assemble_b
-    use critical_set, only: critical_set_t, find_critical_set, onset_point, side_offset, &
+    use critical_set, only: critical_set_t, find_critical_set, carry_critical_set, &
+                            onset_point, side_offset, &
                             MECHANISM_COMPLEX_PAIR
     use boundary_estimate, only: enriched_pair_lambdas
     use eigen_analysis, only: eigen_result_t, eigen_with_factor, SOLVER_DENSE
@@ -272,8 +273,9 @@ contains
     !> (two dense p x p eigen-solves) is made again only once the dofs have doubled since
     !> `pencil_dofs`, the last level it held on: at every level the check cost as much as
     !> the rest of input/threshold_adapt.nml (scan: twice that), for an answer that does
-    !> not change there.
-    subroutine onset_search(config, blocks, thr, n_free, pencil_dofs, set, stat)
+    !> not change there. With `previous` (the set a coarser level found, if it searched),
+    !> its points are carried (carry_critical_set) unless the structure differs here.
+    subroutine onset_search(config, blocks, thr, n_free, pencil_dofs, set, stat, previous)
         type(config_t), intent(in) :: config
         type(reduced_blocks_t), intent(in) :: blocks
         type(thresholds_t), intent(in) :: thr
@@ -281,9 +283,10 @@ contains
         integer, intent(inout) :: pencil_dofs
         type(critical_set_t), intent(out) :: set
         type(status_t), intent(out) :: stat
+        type(critical_set_t), intent(in), optional :: previous
         real(wp) :: mu, inside
-        logical :: found, search
-        integer :: side, n_positive
+        logical :: found, search, carried
+        integer :: side, n_positive, tried
 
         allocate (set%points(0))
         search = .not. all(thr%found)
@@ -297,8 +300,16 @@ contains
         end do
         pencil_dofs = 0
         if (.not. search) pencil_dofs = n_free
-        if (search) call find_critical_set(blocks, scan_lambdas(config, .false.), &
-                                           thr%real_lambdas, set, stat)
+        if (.not. search) return
+        carried = .false.
+        if (present(previous)) then
+            if (previous%scan_contact > 0) call carry_critical_set(blocks, previous, &
+                thr%real_lambdas, set, carried, stat)
+        end if
+        if (.not. stat%ok() .or. carried) return
+        tried = set%n_evaluations   ! the carry's solves count too
+        call find_critical_set(blocks, scan_lambdas(config, .false.), thr%real_lambdas, set, stat)
+        set%n_evaluations = set%n_evaluations + tried
     end subroutine onset_search
 
     !> onset(side): the index in `set` of the side's onset where it is a collision of two

@@ -27,7 +27,8 @@ module threshold_analysis
     use critical_lambda, only: thresholds_t, pencil_thresholds, confirm_thresholds, &
                                lowest_positive_mu, SIDE_PLUS, SIDE_MINUS, SIDE_LABELS
     use roundoff, only: threshold_roundoff, collision_roundoffs
-    use critical_set, only: critical_set_t, find_critical_set, MECHANISM_COMPLEX_PAIR
+    use critical_set, only: critical_set_t, find_critical_set, carry_critical_set, &
+                            MECHANISM_COMPLEX_PAIR
     use adaptive_eigen, only: adapt_eigen, adaptive_result_t
     use eigen_analysis, only: eigen_result_t, choose_solver, eigen_with_factor, SOLVER_ARPACK, &
                               to_input_units, estimate_wanted
@@ -283,7 +284,11 @@ contains
     !> inside a threshold there is no positive mu, which only the complete spectrum shows,
     !> and just outside the wanted mu is huge, deep in the spectrum; dgeev without vectors
     !> is O(p^3) with a small constant. The count of positive mu needs the whole spectrum too.
-    subroutine confirm_and_bound(config, prob, chol, blocks, with_sweep, thr, set, stat)
+    !> With `coarse` (the set a coarser discretisation of the scene found over the same
+    !> scan), its points are carried (carry_critical_set) unless the structure differs here;
+    !> with `known` (found on these blocks over the same scan), that set is taken.
+    subroutine confirm_and_bound(config, prob, chol, blocks, with_sweep, thr, set, stat, &
+                                 coarse, known)
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: prob
         type(cholesky_t), intent(in) :: chol
@@ -292,14 +297,27 @@ contains
         type(thresholds_t), intent(inout) :: thr
         type(critical_set_t), intent(out) :: set
         type(status_t), intent(out) :: stat
+        type(critical_set_t), intent(in), optional :: coarse, known
         real(wp), allocatable :: mu_meet(:)
+        logical :: carried
+        integer :: tried
         call confirm_thresholds(blocks, thr, stat)
         if (.not. stat%ok()) return
         ! mu of the confirmations, in the units of prob%k, to the input's (lambda has none)
         call mu_to_input_units(config, prob, thr%mu_outside, stat)
         if (stat%ok()) call mu_to_input_units(config, prob, thr%mu_inside, stat)
-        if (stat%ok()) call find_critical_set(blocks, scan_lambdas(config, with_sweep), &
-                                              thr%real_lambdas, set, stat)
+        if (.not. stat%ok()) return
+        carried = present(known)
+        if (carried) set = known
+        tried = 0
+        if (present(coarse) .and. .not. carried) call carry_critical_set(blocks, coarse, thr%real_lambdas, set, &
+                                                     carried, stat)
+        if (stat%ok() .and. .not. carried) then
+            tried = set%n_evaluations   ! the carry's solves count too
+            call find_critical_set(blocks, scan_lambdas(config, with_sweep), &
+                                   thr%real_lambdas, set, stat)
+            set%n_evaluations = set%n_evaluations + tried
+        end if
         ! before mu_meet leaves the units of the blocks: the bound reads it
         if (stat%ok()) call collision_roundoffs(prob%k, chol, prob%contact, blocks, set, stat)
         if (.not. stat%ok()) return

@@ -13,6 +13,9 @@
 !> (pair_discriminant), a smooth function of lambda with a simple root, to round-off.
 !> Two boundary points closer together than the scan spacing, with no pencil eigenvalue
 !> between, can be missed (the count is the same at both ends): the scan sets the resolution.
+!> A finer discretisation of the same scene can take the points of a coarser one's scan
+!> (carry_critical_set): each located again on the finer blocks, the structure checked there,
+!> at a few p x p solves instead of the scan's hundred.
 module critical_set
     use kinds, only: wp
     use status, only: status_t
@@ -21,7 +24,7 @@ module critical_set
     use critical_lambda, only: reduced_eigenvalues, count_positive, CONFIRM_OFFSET, SIDE_PLUS
     implicit none
     private
-    public :: find_critical_set, pair_discriminant, side_offset, onset_point
+    public :: find_critical_set, carry_critical_set, pair_discriminant, side_offset, onset_point
 
     integer, parameter, public :: MECHANISM_PENCIL = 1
     integer, parameter, public :: MECHANISM_COMPLEX_PAIR = 2
@@ -32,6 +35,9 @@ module critical_set
     !> for a near-double eigenvalue, so the count is still right; the discriminant does the rest.
     real(wp), parameter :: BISECTION_WIDTH = 1.0e-10_wp
     integer, parameter :: MAX_REFINE = 200   !! Illinois steps; about 10 are used
+    !> A carried collision point is first bracketed this close (relative): a coarse point is
+    !> nearer than that to the fine one where the coarse thresholds have a few digits.
+    real(wp), parameter :: CARRY_WIDTH = 1.0e-3_wp
 
     !> One boundary point of {lambda : a positive real mu exists}.
     type, public :: boundary_point_t
@@ -50,6 +56,9 @@ module critical_set
         !> the counts just below and above differ by one from/to zero (pencil) or by two
         !> with the discriminant changing sign (complex_pair)
         logical :: confirmed = .false.
+        !> where the search bracketed it: the scan points around a complex_pair point, the
+        !> confirming sides of a pencil point
+        real(wp) :: bracket(2) = 0.0_wp
         !> the relative error bar of lambda against the continuum (filled by the analysis:
         !> boundary_estimate); negative: none
         real(wp) :: error_bar = -1.0_wp
@@ -62,6 +71,10 @@ module critical_set
         real(wp) :: lambda_min = 0.0_wp, lambda_max = 0.0_wp   !! the range searched
         logical :: positive_at_min = .false.   !! a positive mu exists at lambda_min
         integer :: n_evaluations = 0           !! p x p eigen-solves used
+        !> p of the blocks the points were located on, and of those whose scan found them:
+        !> the same, or a coarser discretisation's where the points were carried
+        !> (carry_critical_set); 0: no search
+        integer :: contact = 0, scan_contact = 0
         type(boundary_point_t), allocatable :: points(:)   !! ascending lambda
     contains
         procedure :: positive_at => critical_set_positive_at
@@ -122,6 +135,8 @@ contains
         call scan_points(scan, pencil_lambdas, x, pencil_left)
         set%lambda_min = x(1)
         set%lambda_max = x(size(x))
+        set%contact = size(blocks%kt_nn, 1)
+        set%scan_contact = set%contact
         allocate (set%points(0), counts(size(x)))
         do i = 1, size(x)
             call positive_count(blocks, x(i), counts(i), set, stat)
@@ -137,9 +152,92 @@ contains
                                 stat)
             end if
             if (.not. stat%ok()) return
+            point%bracket = [x(i), x(i + 1)]
             set%points = [set%points, point]
         end do
     end subroutine find_critical_set
+
+    !> The points of `coarse` (find_critical_set on a coarser discretisation of the same
+    !> scene) located on `blocks`: each pencil point at the nearest of `pencil_lambdas`, each
+    !> complex_pair point by bisection from a bracket CARRY_WIDTH around it (else its scan
+    !> bracket). `carried` is false, and `set` is to be searched afresh, where the finer
+    !> blocks disagree with the coarse structure: another answer at the range's start or
+    !> in the middle of an interval between points, a point that moves the other way, is
+    !> not bracketed, or is not confirmed where it was. A change inside an interval that
+    !> leaves its middle as it was (two points that only the finer blocks have) is not seen.
+    subroutine carry_critical_set(blocks, coarse, pencil_lambdas, set, carried, stat)
+        type(reduced_blocks_t), intent(in) :: blocks
+        type(critical_set_t), intent(in) :: coarse
+        real(wp), intent(in) :: pencil_lambdas(:)   !! ascending
+        type(critical_set_t), intent(out) :: set
+        logical, intent(out) :: carried
+        type(status_t), intent(out) :: stat
+        type(boundary_point_t) :: point
+        real(wp) :: lambda_c, lambda_f, width, a, b
+        integer :: i, n_start, count_a, count_b
+
+        carried = .false.
+        set%lambda_min = coarse%lambda_min
+        set%lambda_max = coarse%lambda_max
+        set%contact = size(blocks%kt_nn, 1)
+        set%scan_contact = coarse%scan_contact
+        allocate (set%points(0))
+        call positive_count(blocks, set%lambda_min, n_start, set, stat)
+        if (.not. stat%ok()) return
+        set%positive_at_min = n_start > 0
+        if (set%positive_at_min .neqv. coarse%positive_at_min) return
+        ! the middle of every interval between the points (and the range's ends)
+        do i = 0, size(coarse%points)
+            a = set%lambda_min
+            b = set%lambda_max
+            if (i > 0) a = coarse%points(i)%lambda
+            if (i < size(coarse%points)) b = coarse%points(i + 1)%lambda
+            call positive_count(blocks, a + 0.5_wp*(b - a), count_a, set, stat)
+            if (.not. stat%ok()) return
+            if ((count_a > 0) .neqv. coarse%positive_at(a + 0.5_wp*(b - a))) return
+        end do
+        do i = 1, size(coarse%points)
+            lambda_c = coarse%points(i)%lambda
+            if (coarse%points(i)%mechanism == MECHANISM_PENCIL) then
+                if (size(pencil_lambdas) == 0) return
+                lambda_f = pencil_lambdas(minloc(abs(pencil_lambdas - lambda_c), dim=1))
+                a = lambda_f - side_offset(lambda_f)
+                b = lambda_f + side_offset(lambda_f)
+                call pencil_point(blocks, [lambda_f], a, b, point, set, stat)
+                if (.not. stat%ok()) return
+                point%bracket = [a, b]
+            else
+                width = CARRY_WIDTH*max(1.0_wp, abs(lambda_c))
+                a = max(lambda_c - width, coarse%points(i)%bracket(1))
+                b = min(lambda_c + width, coarse%points(i)%bracket(2))
+                call bracket_counts(a, b)
+                if (.not. stat%ok()) return
+                if ((count_a > 0) .eqv. (count_b > 0)) then
+                    a = coarse%points(i)%bracket(1)
+                    b = coarse%points(i)%bracket(2)
+                    call bracket_counts(a, b)
+                    if (.not. stat%ok()) return
+                    if ((count_a > 0) .eqv. (count_b > 0)) return
+                end if
+                call pair_point(blocks, a, b, count_a, count_b, point, set, stat)
+                if (.not. stat%ok()) return
+                point%bracket = coarse%points(i)%bracket
+            end if
+            if (point%appears .neqv. coarse%points(i)%appears) return
+            if (coarse%points(i)%confirmed .and. .not. point%confirmed) return
+            set%points = [set%points, point]
+        end do
+        carried = .true.
+
+    contains
+
+        subroutine bracket_counts(a, b)
+            real(wp), intent(in) :: a, b
+            call positive_count(blocks, a, count_a, set, stat)
+            if (stat%ok()) call positive_count(blocks, b, count_b, set, stat)
+        end subroutine bracket_counts
+    end subroutine carry_critical_set
+
 
     !> The scan sorted, with both sides lambda -+ side_offset of every pencil eigenvalue inside
     !> it; scan points inside such a bracket are dropped, and so is a bracket that would

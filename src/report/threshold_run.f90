@@ -430,6 +430,7 @@ contains
         call summary%add_real_array('positive_mu_intervals_lower', lower)
         call summary%add_real_array('positive_mu_intervals_upper', upper)
         call summary%add_integer('boundary_n_evaluations', set%n_evaluations)
+        call summary%add_integer('boundary_scan_contact', set%scan_contact)
     end subroutine add_boundary_keys
 
     !> The intervals of the searched range where a positive mu exists: between consecutive
@@ -598,6 +599,8 @@ contains
         text = NL//'  boundary    of {lambda : a positive mu exists} in ['// &
             real_to_text(set%lambda_min)//', '//real_to_text(set%lambda_max)//']: '// &
             to_string(size(set%points))//' points'
+        if (set%scan_contact /= set%contact) text = text//' (scanned on a coarser level, '// &
+            to_string(set%scan_contact)//' contact functions; located on this one)'
         do i = 1, size(set%points)
             associate (b => set%points(i))
                 text = text//NL//'              lambda = '//real_to_text(b%lambda)

@@ -4,6 +4,7 @@
 !> discriminant), the reference scene gives its two pencil thresholds (mirror-symmetric on
 !> Q1), and at a pencil threshold the limit mode is the Signorini-Coulomb eigenmode: no
 !> normal displacement on Gamma_C and tangential nodal forces -lambda* times the normal ones.
+!> Points carried from a coarser mesh are the finer mesh's own; a structure it lacks is refused.
 program test_critical_set
     use kinds, only: wp
     use status, only: status_t
@@ -20,8 +21,8 @@ program test_critical_set
     use lapack_interfaces, only: dgeev
     use critical_lambda, only: thresholds_t, pencil_thresholds, reduced_eigenvalues, &
                                count_positive, SIDE_PLUS, SIDE_MINUS
-    use critical_set, only: critical_set_t, find_critical_set, pair_discriminant, &
-                            MECHANISM_PENCIL, MECHANISM_COMPLEX_PAIR
+    use critical_set, only: critical_set_t, find_critical_set, carry_critical_set, &
+                            pair_discriminant, MECHANISM_PENCIL, MECHANISM_COMPLEX_PAIR
     implicit none
 
     !> The scan of the default &sweep: -20 to 20 by 0.1.
@@ -36,6 +37,8 @@ program test_critical_set
     call quadrilaterals_give_symmetric_points(t)
     call threshold_mode_is_signorini_coulomb(t)
     call limit_of_the_modes_is_the_threshold_mode(t)
+    call carried_points_are_the_scan_points(t)
+    call carry_refuses_another_structure(t)
     call t%report()
 
 contains
@@ -378,4 +381,72 @@ contains
         call blocks%mass%matvec(vr(:, best), g)
         traction_gap = 1.0_wp - abs(dot_product(g, x))/(norm2(g)*norm2(x))
     end function traction_gap
+
+    !> The partial-contact points carried to the blocks that found them are the scan's points:
+    !> a pencil point the same QZ number, a pair point the discriminant's root again (each
+    !> to round-off, about 1e-14 relative: 1e-10 allows the bracket's width of the count
+    !> bisection, BISECTION_WIDTH, should the refinement stop there); each confirmed; at
+    !> fewer than half the scan's solves.
+    subroutine carried_points_are_the_scan_points(t)
+        type(test_suite_t), intent(inout) :: t
+        type(reduced_blocks_t) :: blocks
+        type(thresholds_t) :: thr
+        type(critical_set_t) :: set, carried_set
+        type(status_t) :: stat
+        logical :: carried
+        integer :: n
+        call partial_contact_scene(16, blocks, thr, set)
+        call carry_critical_set(blocks, set, thr%real_lambdas, carried_set, carried, stat)
+        call require(stat)
+        n = size(set%points)
+        call t%check('carry: carried, as many points as the scan', &
+                     carried .and. size(carried_set%points) == n .and. n >= 1)
+        if (.not. carried .or. size(carried_set%points) /= n) return
+        call t%check('carry: the same mechanisms and directions', &
+                     all(carried_set%points%mechanism == set%points%mechanism) .and. &
+                     all(carried_set%points%appears .eqv. set%points%appears))
+        call t%check('carry: the same points (1e-10 relative)', &
+                     all(abs(carried_set%points%lambda - set%points%lambda) <= &
+                         1.0e-10_wp*abs(set%points%lambda)))
+        call t%check('carry: every point confirmed', all(carried_set%points%confirmed))
+        call t%check('carry: the range and its start', &
+                     carried_set%lambda_min == set%lambda_min .and. &
+                     (carried_set%positive_at_min .eqv. set%positive_at_min))
+        call t%check('carry: fewer than half the solves of the scan', &
+                     2*carried_set%n_evaluations < set%n_evaluations)
+    end subroutine carried_points_are_the_scan_points
+
+    !> A structure the blocks do not have is refused: the 8 x 8 mesh's, whose last pair point
+    !> (lambda near 8.7) lies at 12.0 on the 16 x 16 mesh, far outside its scan bracket (the
+    !> mode that makes it is resolved by neither mesh); a point whose direction is flipped;
+    !> and no point at all with a positive mu claimed everywhere (at lambda = 0 there is
+    !> none: A(0) = -Kt_nn M has only negative eigenvalues, Kt_nn and M being SPD).
+    subroutine carry_refuses_another_structure(t)
+        type(test_suite_t), intent(inout) :: t
+        type(reduced_blocks_t) :: blocks, coarse_blocks
+        type(thresholds_t) :: thr, coarse_thr
+        type(critical_set_t) :: set, wrong, carried_set, coarse
+        type(status_t) :: stat
+        logical :: carried
+        call partial_contact_scene(8, coarse_blocks, coarse_thr, coarse)
+        call partial_contact_scene(16, blocks, thr, set)
+        call t%check('carry: the meshes disagree on the last point', &
+                     abs(coarse%points(size(coarse%points))%lambda - &
+                         set%points(size(set%points))%lambda) > 1.0_wp)
+        call carry_critical_set(blocks, coarse, thr%real_lambdas, carried_set, carried, stat)
+        call require(stat)
+        call t%check('carry: the 8 x 8 structure is refused on 16 x 16', .not. carried)
+        wrong = set
+        wrong%points(1)%appears = .not. wrong%points(1)%appears
+        call carry_critical_set(blocks, wrong, thr%real_lambdas, carried_set, carried, stat)
+        call require(stat)
+        call t%check('carry: a point with the other direction is refused', .not. carried)
+        wrong = set
+        deallocate (wrong%points)
+        allocate (wrong%points(0))
+        wrong%positive_at_min = .true.
+        call carry_critical_set(blocks, wrong, thr%real_lambdas, carried_set, carried, stat)
+        call require(stat)
+        call t%check('carry: a positive mu everywhere is refused', .not. carried)
+    end subroutine carry_refuses_another_structure
 end program test_critical_set
