@@ -30,6 +30,7 @@ module threshold_analysis
     use critical_set, only: critical_set_t, find_critical_set, carry_critical_set, &
                             MECHANISM_COMPLEX_PAIR
     use adaptive_eigen, only: adapt_eigen, adaptive_result_t
+    use hp_adaptive, only: hp_adapt_eigen, hp_result_t
     use eigen_analysis, only: eigen_result_t, choose_solver, eigen_with_factor, SOLVER_ARPACK, &
                               to_input_units, estimate_wanted
     use error_estimate, only: ENRICHED_CONTACT_MAX
@@ -419,10 +420,11 @@ contains
     end subroutine halved_mesh_thresholds
 
     !> The curve with &adapt: at each lambda the adaptive loop of analysis 'eigen' until the
-    !> estimate meets the tolerance, starting from the last mesh that met it at a lambda
-    !> before (the mesh of a neighbouring lambda is usually fine already: the point then
-    !> costs one solve and one estimate). A point whose loop stops short keeps its last mu
-    !> and estimate, and its mesh is not passed on.
+    !> bar meets the tolerance. With strategy 'h' it starts from the last mesh that met it
+    !> at a lambda before (the mesh of a neighbouring lambda is usually fine already: the
+    !> point then costs one solve and one estimate), and a point whose loop stops short
+    !> keeps its last mu and estimate, its mesh not passed on. With 'hp' each point climbs
+    !> the hp levels of the input mesh (hp_adapt_eigen), which do not depend on lambda.
     subroutine adaptive_sweep(config, prob, curve, timings, stat)
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: prob
@@ -432,33 +434,54 @@ contains
         type(config_t) :: point_config
         type(problem_t) :: current
         type(adaptive_result_t) :: out
+        type(hp_result_t) :: hp_out
         !> a point's phases would flood the progress lines; the sweep's time is time_sweep
         type(timings_t) :: quiet
-        integer :: i, lowest
+        integer :: i
 
         current = prob
         point_config = config
         do i = 1, size(curve%lambda)
             call timings%tick('sweep, lambda', i, size(curve%lambda))
             point_config%analysis%lambda = curve%lambda(i)
-            call adapt_eigen(point_config, current, out, quiet, stat)
-            if (.not. stat%ok()) return
-            lowest = out%res%spec%lowest_positive()
+            if (config%adapt%strategy == 'hp') then
+                call hp_adapt_eigen(point_config, prob, hp_out, quiet, stat)
+                if (.not. stat%ok()) return
+                call record(hp_out%res, hp_out%prob%dofs%n_free, hp_out%converged, .false., &
+                            hp_out%outcome)
+            else
+                call adapt_eigen(point_config, current, out, quiet, stat)
+                if (.not. stat%ok()) return
+                call record(out%res, out%prob%dofs%n_free, out%converged, &
+                            size(out%levels) == 1, out%outcome)
+                if (out%converged) current = out%prob
+            end if
+        end do
+
+    contains
+
+        !> Point i from the result `res` of its loop on `n_free` dofs.
+        subroutine record(res, n_free, converged, reused, outcome)
+            type(eigen_result_t), intent(in) :: res
+            integer, intent(in) :: n_free
+            logical, intent(in) :: converged, reused
+            character(len=*), intent(in) :: outcome
+            integer :: lowest
+            lowest = res%spec%lowest_positive()
             curve%found(i) = lowest > 0
             curve%mu(i) = 0.0_wp
-            if (curve%found(i)) curve%mu(i) = real(out%res%spec%mu(lowest), wp)
+            if (curve%found(i)) curve%mu(i) = real(res%spec%mu(lowest), wp)
             curve%n_positive(i) = -1
-            if (out%res%error%computed) curve%error_estimate(i) = abs(out%res%error%relative)
-            if (out%res%error%computed) curve%error_bar(i) = out%res%error%bar
-            curve%n_dofs(i) = out%prob%dofs%n_free
-            if (out%converged .and. size(out%levels) == 1) curve%n_reused = curve%n_reused + 1
-            if (curve%found(i) .and. .not. out%converged) then
+            if (res%error%computed) curve%error_estimate(i) = abs(res%error%relative)
+            if (res%error%computed) curve%error_bar(i) = res%error%bar
+            curve%n_dofs(i) = n_free
+            if (converged .and. reused) curve%n_reused = curve%n_reused + 1
+            if (curve%found(i) .and. .not. converged) then
                 curve%n_not_met = curve%n_not_met + 1
                 if (.not. allocated(curve%not_met)) curve%not_met = 'lambda = '// &
-                    real_to_text(curve%lambda(i))//': '//out%outcome
+                    real_to_text(curve%lambda(i))//': '//outcome
             end if
-            if (out%converged) current = out%prob
-        end do
+        end subroutine record
     end subroutine adaptive_sweep
 
     !> The lambdas the boundary search counts positive mu at: a sweep's own lambdas (it solves

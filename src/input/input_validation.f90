@@ -44,12 +44,11 @@ module input_validation
     character(len=*), parameter :: ADAPT_ELEMENTS(*) = [character(len=2) :: 'p1', 'p2', 'p3']
     character(len=*), parameter :: ADAPT_ANALYSES(*) = [character(len=12) :: 'eigen', &
                                                          'threshold', 'lambda_sweep']
-    !> &adapt strategy; 'hp' (modules hp_adaptive, hp_threshold) adapts analyses 'eigen' and
-    !> 'threshold' on triangles of any degree (it keeps their vertices only), with cell
+    !> &adapt strategy; 'hp' (modules hp_adaptive, hp_threshold) adapts the same analyses
+    !> on triangles of any degree (it keeps their vertices only), with cell
     !> degrees up to hp_basis's
     !> MAX_HP_DEGREE, which this repeats (the input layer sits below the elements).
     character(len=*), parameter :: ADAPT_STRATEGIES(*) = [character(len=2) :: 'h', 'hp']
-    character(len=*), parameter :: HP_ANALYSES(*) = [character(len=9) :: 'eigen', 'threshold']
     integer, parameter :: MAX_HP_INPUT_DEGREE = 20
     character(len=*), parameter :: SWEEP_SPACINGS(*) = [character(len=6) :: 'linear', 'log']
     integer, parameter :: MAX_SWEEP_POINTS = 100000   !! n_lambda of a &sweep range
@@ -148,14 +147,14 @@ contains
             call fail_value(stat, path, 'adapt', variable, value, expected)
         end subroutine reject
 
-        !> strategy = 'hp': analysis 'eigen' or 'threshold' on triangles (a Gmsh file's cells
-        !> are checked when it is read); it needs no error estimate of &eigen. A sweep's
-        !> points adapt with the h loop only (each point would climb the hp levels anew).
+        !> strategy = 'hp': analysis 'eigen', 'threshold' or 'lambda_sweep' on triangles (a
+        !> Gmsh file's cells are checked when it is read); it needs no error estimate of
+        !> &eigen.
         subroutine validate_hp()
-            if (.not. any(HP_ANALYSES == config%analysis%kind)) then
+            if (.not. any(ADAPT_ANALYSES == config%analysis%kind)) then
                 call reject('strategy', "'hp'", "'h' for &analysis kind = '"// &
                             trim(config%analysis%kind)//"' (hp adapts kind = "// &
-                            one_of(HP_ANALYSES)//' only)')
+                            one_of(ADAPT_ANALYSES)//' only)')
             else if (config%mesh%source == 'rectangle' .and. &
                      config%mesh%element(1:1) /= 'p') then
                 call reject('strategy', "'hp'", "'h' for &mesh element = '"// &

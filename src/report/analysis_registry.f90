@@ -17,10 +17,10 @@ module analysis_registry
 contains
 
     !> The analysis of `kind`, adaptive (&adapt tolerance > 0) or not, with the &adapt
-    !> `strategy` 'h' (the default) or 'hp' (only 'eigen' and 'threshold': the input
-    !> check refuses the others): each variant is a type of its own, chosen here once. An unknown kind (which
+    !> `strategy` 'h' (the default) or 'hp' (the input check refuses it for 'branch' and
+    !> 'solve'): each variant is a type of its own, chosen here once. An unknown kind (which
     !> the input check refuses first) leaves `analysis` unallocated. 'lambda_sweep' adapts
-    !> each point itself (&adapt).
+    !> each point itself (&adapt, either strategy).
     subroutine new_analysis(kind, adaptive, analysis, strategy)
         character(len=*), intent(in) :: kind
         logical, intent(in) :: adaptive

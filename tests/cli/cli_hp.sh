@@ -9,7 +9,9 @@
 # second scene; the floating-point floor and a level limit end in exit 8 with a warning;
 # bad input is one stderr line naming &adapt and the variable, exit 2. kind = 'threshold':
 # both critical lambdas of the reference scene and the collision onsets of the trapezoid and
-# half-contact scenes within their bars of the truths, the floor; hp refused for the others.
+# half-contact scenes within their bars of the truths, the floor; kind = 'lambda_sweep': every
+# point within its bar of the truth (mirror symmetry gives the truths at -lambda); hp refused
+# for the others.
 # Usage: cli_hp.sh NCEIG SOURCE_DIR
 set -u
 nceig=$1
@@ -160,8 +162,30 @@ bad branch "&adapt: strategy = 'hp': expected 'h' for &analysis kind = 'branch'"
     --set "analysis%kind='branch'"
 bad solve "&adapt: strategy = 'hp': expected 'h' for &analysis kind = 'solve'" \
     --set "analysis%kind='solve'"
-bad sweep "&adapt: strategy = 'hp': expected 'h' for &analysis kind = 'lambda_sweep'" \
-    --set "analysis%kind='lambda_sweep'"
+
+# kind = 'lambda_sweep': every point climbs the hp levels to 1e-9. The square is its own
+# mirror image (x -> 1 - x turns t into -t and lambda into -lambda), so c_n at -5 and +5
+# are the truth of lambda = 5, at -3 and +3 that of lambda = -3: each within its bar.
+cat >"$work/sweep.nml" <<NML
+&mesh nx = 2, ny = 2, element = 'p1' /
+&analysis kind = 'lambda_sweep', lambda = 5.0 /
+&sweep lambdas = -5.0, -3.0, 3.0, 5.0 /
+&adapt tolerance = 1e-9, strategy = 'hp' /
+&output directory = '$work/sweep', vtk = .false. /
+NML
+"$nceig" "$work/sweep.nml" >"$work/stdout" 2>"$work/err"; rc=$?
+s=$work/sweep/summary.json
+csv=$work/sweep/lambda_sweep.csv
+check 'sweep: exit 0, nothing on stderr, every point met 1e-9' '[[ $rc -eq 0 && ! -s "$work/err" &&
+    $(json "$s" sweep_n_not_met) -eq 0 ]] &&
+    awk -v e="$(json "$s" sweep_max_error_bar)" "BEGIN { exit !(e > 0 && e <= 1e-9) }"'
+sweep_point() { awk -F, -v l="$1" 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
+    $1 + 0 == l { print $c["critical_c_n"], $c["error_bar"] }' "$csv"; }
+for pair in "-5 ref" "5 ref" "-3 lambda-3" "3 lambda-3"; do
+    read -r lam scene <<<"$pair"
+    check "sweep: c_n at lambda = $lam within its bar of the truth" \
+        'within $(sweep_point $lam) "$(truth $scene)"'
+done
 
 # kind = 'threshold': both critical lambdas of the reference scene to 1e-10, each within its
 # bar (relative) plus the truth's own uncertainty of the truth.
