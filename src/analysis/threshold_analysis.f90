@@ -299,7 +299,8 @@ contains
         type(critical_set_t), intent(out) :: set
         type(status_t), intent(out) :: stat
         type(critical_set_t), intent(in), optional :: coarse, known
-        real(wp), allocatable :: mu_meet(:)
+        real(wp), allocatable :: mu_meet(:), confirmed_lambda(:)
+        integer, allocatable :: confirmed_count(:)
         logical :: carried
         integer :: tried
         call confirm_thresholds(blocks, thr, stat)
@@ -308,15 +309,19 @@ contains
         call mu_to_input_units(config, prob, thr%mu_outside, stat)
         if (stat%ok()) call mu_to_input_units(config, prob, thr%mu_inside, stat)
         if (.not. stat%ok()) return
+        ! the confirmations' counts bracket the pencil points: the search need not redo them
+        confirmed_lambda = pack([thr%lambda_outside, thr%lambda_inside], &
+                                [thr%n_outside, thr%n_inside] >= 0)
+        confirmed_count = pack([thr%n_outside, thr%n_inside], [thr%n_outside, thr%n_inside] >= 0)
         carried = present(known)
         if (carried) set = known
         tried = 0
-        if (present(coarse) .and. .not. carried) call carry_critical_set(blocks, coarse, thr%real_lambdas, set, &
-                                                     carried, stat)
+        if (present(coarse) .and. .not. carried) call carry_critical_set(blocks, coarse, &
+            thr%real_lambdas, set, carried, stat, confirmed_lambda, confirmed_count)
         if (stat%ok() .and. .not. carried) then
             tried = set%n_evaluations   ! the carry's solves count too
             call find_critical_set(blocks, scan_lambdas(config, with_sweep), &
-                                   thr%real_lambdas, set, stat)
+                                   thr%real_lambdas, set, stat, confirmed_lambda, confirmed_count)
             set%n_evaluations = set%n_evaluations + tried
         end if
         ! before mu_meet leaves the units of the blocks: the bound reads it

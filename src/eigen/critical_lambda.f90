@@ -44,8 +44,12 @@ module critical_lambda
         integer :: n_real = 0                      !! finite real pencil eigenvalues
         integer :: n_complex = 0                   !! complex ones (conjugate pairs count 2)
         integer :: n_infinite = 0                  !! beta = 0 to working precision
-        real(wp) :: lambda_outside(2) = 0.0_wp     !! lambda* (1 + CONFIRM_OFFSET)
-        real(wp) :: lambda_inside(2) = 0.0_wp      !! lambda* (1 - CONFIRM_OFFSET)
+        !> lambda* +- CONFIRM_OFFSET |lambda*|, away from zero and toward it: the very numbers
+        !> the boundary search brackets a pencil point with (critical_set: side_offset)
+        real(wp) :: lambda_outside(2) = 0.0_wp
+        real(wp) :: lambda_inside(2) = 0.0_wp
+        !> positive real mu there (-1: not solved), which that search then need not count again
+        integer :: n_outside(2) = -1, n_inside(2) = -1
         logical :: has_mu_outside(2) = .false.     !! a positive mu exists there (expected)
         logical :: has_mu_inside(2) = .false.      !! a positive mu exists there (not expected)
         real(wp) :: mu_outside(2) = 0.0_wp         !! lowest positive mu there, if any
@@ -255,19 +259,21 @@ contains
         type(reduced_blocks_t), intent(in) :: blocks
         type(thresholds_t), intent(inout) :: thr
         type(status_t), intent(out) :: stat
-        integer :: side, n_positive
+        integer :: side
+        real(wp) :: offset
 
         do side = SIDE_PLUS, SIDE_MINUS
             if (.not. thr%found(side)) cycle
-            thr%lambda_outside(side) = thr%lambda(side)*(1.0_wp + CONFIRM_OFFSET)
-            thr%lambda_inside(side) = thr%lambda(side)*(1.0_wp - CONFIRM_OFFSET)
+            offset = sign(CONFIRM_OFFSET*abs(thr%lambda(side)), thr%lambda(side))
+            thr%lambda_outside(side) = thr%lambda(side) + offset
+            thr%lambda_inside(side) = thr%lambda(side) - offset
             call lowest_positive_mu(blocks, thr%lambda_outside(side), &
                                     thr%mu_outside(side), thr%has_mu_outside(side), &
-                                    n_positive, stat)
+                                    thr%n_outside(side), stat)
             if (.not. stat%ok()) return
             call lowest_positive_mu(blocks, thr%lambda_inside(side), &
                                     thr%mu_inside(side), thr%has_mu_inside(side), &
-                                    n_positive, stat)
+                                    thr%n_inside(side), stat)
             if (.not. stat%ok()) return
         end do
     end subroutine confirm_thresholds

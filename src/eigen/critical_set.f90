@@ -75,6 +75,10 @@ module critical_set
         !> the same, or a coarser discretisation's where the points were carried
         !> (carry_critical_set); 0: no search
         integer :: contact = 0, scan_contact = 0
+        !> counts known before the search (the confirmations of the thresholds, at the very
+        !> lambdas that bracket their pencil points): not solved again
+        real(wp), allocatable :: known_lambda(:)
+        integer, allocatable :: known_count(:)
         type(boundary_point_t), allocatable :: points(:)   !! ascending lambda
     contains
         procedure :: positive_at => critical_set_positive_at
@@ -120,18 +124,26 @@ contains
 
     !> The boundary points of {lambda : A(lambda) has a positive real eigenvalue} in
     !> [minval(scan), maxval(scan)], from the scan points and the pencil's real eigenvalues.
-    subroutine find_critical_set(blocks, scan, pencil_lambdas, set, stat)
+    !> `known_lambda`, `known_count`: counts already solved (critical_set_t%known_lambda).
+    subroutine find_critical_set(blocks, scan, pencil_lambdas, set, stat, known_lambda, &
+                                 known_count)
         type(reduced_blocks_t), intent(in) :: blocks
         real(wp), intent(in) :: scan(:)             !! any order, at least one point
         real(wp), intent(in) :: pencil_lambdas(:)   !! ascending
         type(critical_set_t), intent(out) :: set
         type(status_t), intent(out) :: stat
+        real(wp), intent(in), optional :: known_lambda(:)
+        integer, intent(in), optional :: known_count(:)
         real(wp), allocatable :: x(:)
         integer, allocatable :: counts(:)
         logical, allocatable :: pencil_left(:)   !! x(i), x(i+1) bracket a pencil eigenvalue
         type(boundary_point_t) :: point
         integer :: i
 
+        if (present(known_lambda) .and. present(known_count)) then
+            set%known_lambda = known_lambda
+            set%known_count = known_count
+        end if
         call scan_points(scan, pencil_lambdas, x, pencil_left)
         set%lambda_min = x(1)
         set%lambda_max = x(size(x))
@@ -165,18 +177,25 @@ contains
     !> in the middle of an interval between points, a point that moves the other way, is
     !> not bracketed, or is not confirmed where it was. A change inside an interval that
     !> leaves its middle as it was (two points that only the finer blocks have) is not seen.
-    subroutine carry_critical_set(blocks, coarse, pencil_lambdas, set, carried, stat)
+    subroutine carry_critical_set(blocks, coarse, pencil_lambdas, set, carried, stat, &
+                                  known_lambda, known_count)
         type(reduced_blocks_t), intent(in) :: blocks
         type(critical_set_t), intent(in) :: coarse
         real(wp), intent(in) :: pencil_lambdas(:)   !! ascending
         type(critical_set_t), intent(out) :: set
         logical, intent(out) :: carried
         type(status_t), intent(out) :: stat
+        real(wp), intent(in), optional :: known_lambda(:)   !! as find_critical_set's
+        integer, intent(in), optional :: known_count(:)
         type(boundary_point_t) :: point
         real(wp) :: lambda_c, lambda_f, width, a, b
         integer :: i, n_start, count_a, count_b
 
         carried = .false.
+        if (present(known_lambda) .and. present(known_count)) then
+            set%known_lambda = known_lambda
+            set%known_count = known_count
+        end if
         set%lambda_min = coarse%lambda_min
         set%lambda_max = coarse%lambda_max
         set%contact = size(blocks%kt_nn, 1)
@@ -313,7 +332,15 @@ contains
         type(critical_set_t), intent(inout) :: set
         type(status_t), intent(out) :: stat
         real(wp), allocatable :: wr(:), wi(:)
+        integer :: k
         n_positive = 0
+        if (allocated(set%known_lambda)) then
+            do k = 1, size(set%known_lambda)
+                if (abs(set%known_lambda(k) - lambda) > 0.0_wp) cycle
+                n_positive = set%known_count(k)
+                return
+            end do
+        end if
         call reduced_eigenvalues(blocks, lambda, wr, wi, stat)
         if (stat%ok()) n_positive = count_positive(wr, wi)
         set%n_evaluations = set%n_evaluations + 1
