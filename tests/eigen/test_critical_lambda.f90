@@ -175,6 +175,15 @@ contains
                 info == 0 .and. minval(abs(cmplx(wr, wi, wp))) < 1.0e-11_wp*norm_a)
             call t%check('pencil backward error below 1e-14 at threshold '// &
                          merge('+', '-', side == 1), thr%residual(side) < 1.0e-14_wp)
+            ! the left null vector (inverse iteration with the transpose): the same bound
+            associate (y => thr%left_vectors(:, side))
+                call t%check('left vector backward error below 1e-14 at threshold '// &
+                             merge('+', '-', side == 1), &
+                             maxval(abs(matmul(y, s%kt_nn) - thr%lambda(side)* &
+                                        matmul(y, s%kt_nt)))/ &
+                             ((maxval(sum(abs(s%kt_nn), dim=1)) + abs(thr%lambda(side))* &
+                               maxval(sum(abs(s%kt_nt), dim=1)))*maxval(abs(y))) < 1.0e-14_wp)
+            end associate
         end do
     end subroutine reduced_matrix_singular_at_thresholds
 
