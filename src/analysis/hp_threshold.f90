@@ -27,11 +27,11 @@ module hp_threshold
     use memory_budget, only: check_contact_memory, contact_peak_blocks, contact_blocks_bytes
     use critical_lambda, only: thresholds_t, pencil_thresholds, &
                                SIDE_PLUS, SIDE_MINUS, SIDE_LABELS, SIDE_NAMES
-    use critical_set, only: critical_set_t, find_critical_set, MECHANISM_PENCIL
+    use critical_set, only: critical_set_t, MECHANISM_PENCIL
     use roundoff, only: threshold_roundoff, collision_roundoffs
-    use threshold_analysis, only: threshold_result_t, confirm_and_bound, scan_lambdas
+    use threshold_analysis, only: threshold_result_t, confirm_and_bound
     use adaptive_threshold, only: adaptive_thresholds_t, threshold_level_t, onset_search, &
-                                  collision_onsets, apply_collision_bars
+                                  collision_onsets, apply_collision_bars, coarse_scan_t
     use eigen_analysis, only: eigen_with_factor, choose_solver
     use error_bar, only: hp_level_bar, floor_reached, floor_outcome
     use accuracy, only: WARNING_LEN
@@ -40,11 +40,6 @@ module hp_threshold
     public :: hp_adapt_thresholds
 
     character(len=*), parameter :: HP_ESTIMATE = 'change to the previous hp level'
-    !> The boundary of the positive set is scanned on the last level with at most this many
-    !> contact functions and carried to the last level (carry_critical_set): the scan's
-    !> hundred dense solves cost 1/8 or less of the last level's (reference scene: 85 of
-    !> 251 contact functions, level 4 of 8 to 1e-10).
-    integer, parameter :: SCAN_CONTACT_MAX = 100
 
     type, public :: hp_thresholds_t
         !> the rows of the h loop's adapt.csv (levels numbered from 1), the last level's
@@ -73,13 +68,10 @@ contains
         type(problem_t) :: prob, next
         type(cholesky_t) :: chol
         type(reduced_blocks_t) :: blocks
-        !> the contact blocks and pencil eigenvalues of the level to scan on (SCAN_CONTACT_MAX)
-        type(reduced_blocks_t) :: scan_blocks
-        real(wp), allocatable :: scan_pencil(:)
+        !> what the next level and the last level's report carry the boundary from
+        type(coarse_scan_t) :: scan
         type(thresholds_t) :: thr
-        !> the boundary of the positive set on the last level that searched it (onset_search),
-        !> carried to the next one
-        type(critical_set_t) :: set, previous
+        type(critical_set_t) :: set
         type(status_t) :: memory
         real(wp) :: loop_start, tolerance
         integer :: onset(2), pencil_dofs
@@ -151,17 +143,13 @@ contains
             if (.not. stat%ok()) return
             blocks%mass = prob%contact%mass
             call onset_search(config, blocks, thr, prob%dofs%n_free, pencil_dofs, set, stat, &
-                              previous)
+                              scan%searched)
             if (.not. stat%ok()) return
-            if (set%scan_contact > 0) previous = set
+            call scan%note(blocks, thr%real_lambdas, set)
             call collision_onsets(set, onset)
             if (any(onset > 0)) call collision_roundoffs(prob%k, chol, prob%contact, blocks, &
                                                          set, stat)
             if (.not. stat%ok()) return
-            if (prob%contact%p() <= SCAN_CONTACT_MAX) then
-                scan_blocks = blocks
-                scan_pencil = thr%real_lambdas
-            end if
             row%level = ladder%layers
             row%n_dofs = prob%dofs%n_free
             row%n_contact = prob%contact%p()
@@ -239,17 +227,10 @@ contains
             if (set%scan_contact > 0) then   ! the last level searched: its set stands
                 call confirm_and_bound(config, prob, chol, blocks, .false., res%thresholds, &
                                        res%set, stat, known=set)
-            else if (allocated(scan_pencil) .and. &
-                     2*size(scan_blocks%kt_nn, 1) <= prob%contact%p()) then
-                call find_critical_set(scan_blocks, scan_lambdas(config, .false.), scan_pencil, &
-                                       coarse, stat)
+            else
+                call scan%coarse_set(config, prob%contact%p(), coarse, stat)
                 if (stat%ok()) call confirm_and_bound(config, prob, chol, blocks, .false., &
                                                       res%thresholds, res%set, stat, coarse)
-                if (stat%ok()) res%set%n_evaluations = res%set%n_evaluations + &
-                                                       coarse%n_evaluations
-            else
-                call confirm_and_bound(config, prob, chol, blocks, .false., res%thresholds, &
-                                       res%set, stat)
             end if
             if (.not. stat%ok()) return
             k = size(out%adapted%levels)

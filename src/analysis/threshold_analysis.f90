@@ -88,7 +88,7 @@ contains
     !> thresholds with their error estimates and confirmations, and (with `with_sweep`) the
     !> &sweep curve. `estimate`: the thresholds' estimate on this very problem, known
     !> already (the adaptive loop's last level), not computed again.
-    subroutine solve_thresholds(config, prob, with_sweep, res, timings, stat, estimate)
+    subroutine solve_thresholds(config, prob, with_sweep, res, timings, stat, estimate, coarse)
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: prob
         logical, intent(in) :: with_sweep
@@ -96,6 +96,8 @@ contains
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
         type(threshold_estimate_t), intent(in), optional :: estimate
+        !> the boundary a coarser level found, to carry (confirm_and_bound)
+        type(critical_set_t), intent(in), optional :: coarse
         type(cholesky_t) :: chol
         type(reduced_blocks_t) :: blocks
         type(arpack_options_t) :: options
@@ -135,7 +137,7 @@ contains
         ! the round-off part of a collision needs two solves with it
         blocks%mass = prob%contact%mass
         if (stat%ok()) call confirm_and_bound(config, prob, chol, blocks, with_sweep, &
-                                              res%thresholds, res%set, stat)
+                                              res%thresholds, res%set, stat, coarse)
         call chol%free()
         if (.not. stat%ok()) return
         if (estimated) call add_threshold_estimate()
@@ -286,7 +288,8 @@ contains
     !> and just outside the wanted mu is huge, deep in the spectrum; dgeev without vectors
     !> is O(p^3) with a small constant. The count of positive mu needs the whole spectrum too.
     !> With `coarse` (the set a coarser discretisation of the scene found over the same
-    !> scan), its points are carried (carry_critical_set) unless the structure differs here;
+    !> scan; scan_contact 0: none), its points are carried (carry_critical_set) unless the
+    !> structure differs here (its own solves, n_evaluations, are counted with these);
     !> with `known` (found on these blocks over the same scan), that set is taken.
     subroutine confirm_and_bound(config, prob, chol, blocks, with_sweep, thr, set, stat, &
                                  coarse, known)
@@ -316,8 +319,11 @@ contains
         carried = present(known)
         if (carried) set = known
         tried = 0
-        if (present(coarse) .and. .not. carried) call carry_critical_set(blocks, coarse, &
-            thr%real_lambdas, set, carried, stat, confirmed_lambda, confirmed_count)
+        if (present(coarse) .and. .not. carried) then
+            if (coarse%scan_contact > 0) call carry_critical_set(blocks, coarse, &
+                thr%real_lambdas, set, carried, stat, confirmed_lambda, confirmed_count)
+            if (stat%ok()) set%n_evaluations = set%n_evaluations + coarse%n_evaluations
+        end if
         if (stat%ok() .and. .not. carried) then
             tried = set%n_evaluations   ! the carry's solves count too
             call find_critical_set(blocks, scan_lambdas(config, with_sweep), &
