@@ -54,7 +54,7 @@ module adaptive_threshold
     implicit none
     private
     public :: adapt_thresholds, solve_adapted_thresholds, apply_collision_bars
-    public :: onset_search, collision_onsets   ! (hp_threshold too)
+    public :: onset_search, collision_onsets, goal_bars, level_line   ! (hp_threshold too)
 
     !> One level of the loop: a row of adapt.csv, arrays by SIDE_PLUS, SIDE_MINUS.
     type, public :: threshold_level_t
@@ -158,7 +158,7 @@ contains
         type(critical_set_t) :: set
         type(eigen_result_t) :: beside(2)
         real(wp), allocatable :: u(:, :)
-        real(wp) :: start
+        real(wp) :: start, bar(2), roundoff(2)
         real(wp), allocatable :: nearest(:)
         integer :: onset(2)
 
@@ -194,8 +194,11 @@ contains
         this%levels = [this%levels, level_row()]
         call level_bars(this%levels, element_degree(prob%mesh%element), this%thr%roundoff, &
                         this%est)
-        this%roundoff = worst_side_roundoff(this%levels(size(this%levels)), this%thr, this%est)
-        call timings%note(level_line(this%levels(size(this%levels))))
+        ! the floor test's round-off part: that of the side with the largest bar
+        call goal_bars(this%levels(size(this%levels)), this%thr%roundoff, bar, roundoff)
+        this%roundoff = -1.0_wp
+        if (maxval(bar) >= 0.0_wp) this%roundoff = roundoff(maxloc(bar, 1))
+        call timings%note(level_line(this%levels(size(this%levels)), 'adapt level'))
 
     contains
 
@@ -214,54 +217,19 @@ contains
             row%collision_estimate = this%collision_estimate
             row%time_s = wall_time() - loop_start
         end function level_row
-
-        function level_line(row) result(line)
-            type(threshold_level_t), intent(in) :: row
-            character(len=:), allocatable :: line
-            integer :: side
-            line = 'adapt level '//to_string(row%level)//': '//to_string(row%n_dofs)//' dofs'
-            do side = SIDE_PLUS, SIDE_MINUS
-                if (.not. row%found(side)) cycle
-                line = line//', '//SIDE_LABELS(side)//' = '// &
-                    short_real_text(row%lambda(side), 12)
-                if (row%estimated(side)) line = line//' (estimate '// &
-                    short_real_text(row%error_estimate(side))//', bar '// &
-                    short_real_text(row%error_bar(side))//')'
-            end do
-            do side = SIDE_PLUS, SIDE_MINUS
-                if (.not. row%collision(side)) cycle
-                line = line//', collision onset '//trim(SIDE_NAMES(side))//' = '// &
-                    short_real_text(row%collision_lambda(side), 12)
-                if (row%collision_estimate(side) >= 0.0_wp) line = line//' (estimate '// &
-                    short_real_text(row%collision_estimate(side))//', bar '// &
-                    short_real_text(row%collision_bar(side))//')'
-            end do
-        end function level_line
     end subroutine threshold_goal_solve
 
-    !> The largest bar of the sides' goals (a collision onset, else the threshold found);
-    !> negative when one of them has none, or when there is neither.
+    !> The largest bar of the sides' goals (goal_bars); negative when one of them has none,
+    !> or when there is neither.
     real(wp) function threshold_goal_error(this)
         class(threshold_goal_t), intent(in) :: this
-        integer :: side
+        real(wp) :: bar(2), roundoff(2)
         threshold_goal_error = -1.0_wp
         associate (row => this%levels(size(this%levels)))
-            if (.not. any(this%thr%found .or. row%collision)) return
-            do side = SIDE_PLUS, SIDE_MINUS
-                if (row%collision(side)) then
-                    if (row%collision_bar(side) < 0.0_wp) return
-                else if (this%thr%found(side) .and. .not. this%est%computed(side)) then
-                    return
-                end if
-            end do
-            threshold_goal_error = 0.0_wp
-            do side = SIDE_PLUS, SIDE_MINUS
-                if (row%collision(side)) then
-                    threshold_goal_error = max(threshold_goal_error, row%collision_bar(side))
-                else if (this%thr%found(side)) then
-                    threshold_goal_error = max(threshold_goal_error, this%est%bar(side))
-                end if
-            end do
+            if (.not. any(row%found .or. row%collision)) return
+            call goal_bars(row, this%thr%roundoff, bar, roundoff)
+            if (any(bar < 0.0_wp)) return
+            threshold_goal_error = maxval(bar)
         end associate
     end function threshold_goal_error
 
@@ -431,29 +399,53 @@ contains
         end do
     end subroutine level_bars
 
-    !> The round-off part of the bar that threshold_goal_error returns for `row` (the side
-    !> with the largest bar), for the loop's floor test; -1 where unknown.
-    pure real(wp) function worst_side_roundoff(row, thr, est) result(roundoff)
+    !> The progress line of a level: each threshold found, then each collision onset, with
+    !> its estimate and bar where it has them.
+    function level_line(row, name) result(line)
         type(threshold_level_t), intent(in) :: row
-        type(thresholds_t), intent(in) :: thr
-        type(threshold_estimate_t), intent(in) :: est
-        real(wp) :: bar, worst
+        character(len=*), intent(in) :: name   !! of the level: 'adapt level', 'hp level'
+        character(len=:), allocatable :: line
         integer :: side
-        roundoff = -1.0_wp
-        worst = -1.0_wp
+        line = name//' '//to_string(row%level)//': '//to_string(row%n_dofs)//' dofs'
         do side = SIDE_PLUS, SIDE_MINUS
-            if (row%collision(side)) then
-                bar = row%collision_bar(side)
-                if (bar > worst) roundoff = row%collision_roundoff(side)
-            else if (thr%found(side) .and. est%computed(side)) then
-                bar = est%bar(side)
-                if (bar > worst) roundoff = thr%roundoff(side)
-            else
-                cycle
-            end if
-            worst = max(worst, bar)
+            if (.not. row%found(side)) cycle
+            line = line//', '//SIDE_LABELS(side)//' = '// &
+                short_real_text(row%lambda(side), 12)
+            if (row%estimated(side)) line = line//' (estimate '// &
+                short_real_text(row%error_estimate(side))//', bar '// &
+                short_real_text(row%error_bar(side))//')'
         end do
-    end function worst_side_roundoff
+        do side = SIDE_PLUS, SIDE_MINUS
+            if (.not. row%collision(side)) cycle
+            line = line//', collision onset '//trim(SIDE_NAMES(side))//' = '// &
+                short_real_text(row%collision_lambda(side), 12)
+            if (row%collision_estimate(side) >= 0.0_wp) line = line//' (estimate '// &
+                short_real_text(row%collision_estimate(side))//', bar '// &
+                short_real_text(row%collision_bar(side))//')'
+        end do
+    end function level_line
+
+    !> Per side, the bar of its goal at level `row` (the collision onset where its onset is
+    !> one, else the threshold; 0 where the side has neither: nothing to meet; -1 where the
+    !> goal has no bar yet) and that bar's round-off part (-1: unknown).
+    pure subroutine goal_bars(row, threshold_roundoff, bar, roundoff)
+        type(threshold_level_t), intent(in) :: row
+        real(wp), intent(in) :: threshold_roundoff(2)
+        real(wp), intent(out) :: bar(2), roundoff(2)
+        integer :: side
+        do side = SIDE_PLUS, SIDE_MINUS
+            bar(side) = 0.0_wp
+            roundoff(side) = -1.0_wp
+            if (row%collision(side)) then
+                bar(side) = row%collision_bar(side)
+                roundoff(side) = row%collision_roundoff(side)
+            else if (row%found(side)) then
+                bar(side) = row%error_bar(side)
+                roundoff(side) = threshold_roundoff(side)
+            end if
+            if (bar(side) < 0.0_wp) bar(side) = -1.0_wp
+        end do
+    end subroutine goal_bars
 
     !> The union of the Doerfler sets of the sides still above the tolerance.
     function threshold_goal_mark(this, theta) result(marked)
