@@ -20,7 +20,7 @@ module threshold_analysis
     use error_bar, only: single_bar
     use sparse_cholesky, only: cholesky_t
     use contact_boundary, only: assemble_b
-    use contact_reduction, only: factor_stiffness, contact_flexibility, reduced_blocks_t, &
+    use contact_reduction, only: factor_contact_blocks, reduced_blocks_t, &
                                  lambda_unit
     use memory_budget, only: check_contact_memory, contact_peak_blocks
     use arpack_eigen, only: arpack_options_t, arpack_lowest_positive
@@ -332,21 +332,12 @@ contains
         real(wp), allocatable, intent(out) :: kt_nn(:, :), kt_nt(:, :)
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
-        real(wp) :: start
-
         call check_contact_memory(config, prob%contact%p(), contact_peak_blocks(.false.), stat)
         if (.not. stat%ok()) return
-        call factor_stiffness(prob%k, prob%mesh, prob%dofs, prob%contact, chol, timings, stat)
+        call factor_contact_blocks(prob%k, prob%mesh, prob%dofs, prob%contact, chol, kt_nn, &
+                                   kt_nt, timings, stat)
         call explain_singular_k(config, prob%mesh, stat)
-        if (.not. stat%ok()) return
-        start = wall_time()
-        call contact_flexibility(chol, prob%contact, kt_nn, kt_nt, stat)
-        if (.not. stat%ok()) then
-            call chol%free()
-            return
-        end if
-        call timings%add(PHASE_REDUCTION, wall_time() - start, ': contact blocks of K^-1, '// &
-                         to_string(prob%contact%p())//' x '//to_string(prob%contact%p()))
+        if (.not. stat%ok()) call chol%free()
     end subroutine factor_with_contact_blocks
 
     !> `est` for an element with no degree above it (Q1, Q2, P4): the thresholds of the same

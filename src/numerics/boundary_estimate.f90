@@ -24,7 +24,7 @@ module boundary_estimate
     use run_config, only: config_t
     use halved_mesh, only: build_halved_problem
     use timer, only: timings_t
-    use contact_reduction, only: factor_stiffness, contact_flexibility
+    use contact_reduction, only: factor_contact_blocks
     use threshold_estimate, only: threshold_estimate_t
     use error_bar, only: single_bar, three_mesh_bar
     use adaptive_loop, only: adaptive_dof_limit
@@ -129,9 +129,8 @@ contains
             type(cholesky_t) :: chol
             type(reduced_blocks_t) :: blocks
             type(timings_t) :: quiet
-            call factor_stiffness(fine%k, fine%mesh, fine%dofs, fine%contact, chol, quiet, stat)
-            if (stat%ok()) call contact_flexibility(chol, fine%contact, blocks%kt_nn, &
-                                                    blocks%kt_nt, stat)
+            call factor_contact_blocks(fine%k, fine%mesh, fine%dofs, fine%contact, chol, &
+                                       blocks%kt_nn, blocks%kt_nt, quiet, stat)
             call chol%free()
             if (.not. stat%ok()) return
             blocks%mass = fine%contact%mass
