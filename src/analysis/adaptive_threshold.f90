@@ -45,7 +45,7 @@ module adaptive_threshold
     use contact_boundary, only: assemble_b
     use critical_set, only: critical_set_t, find_critical_set, onset_point, side_offset, &
                             MECHANISM_COMPLEX_PAIR
-    use boundary_estimate, only: enriched_pair_lambdas
+    use boundary_estimate, only: enriched_pair_lambdas, onset_bars_t
     use eigen_analysis, only: eigen_result_t, eigen_with_factor, SOLVER_DENSE
     use error_estimate, only: error_estimate_t, estimate_lowest_error
     use error_bar, only: level_bar
@@ -127,8 +127,8 @@ contains
 
     !> The adaptive 'threshold' analysis: the loop from `start` (adapt_thresholds), then the
     !> threshold analysis on its final problem with the loop's estimates and the collision
-    !> onsets' level bars (apply_collision_bars); a limit reached heads the warnings of `res`
-    !> (out%converged false says so).
+    !> onsets' level bars (last_onset_bars: their one-mesh bars are not computed); a limit
+    !> reached heads the warnings of `res` (out%converged false says so).
     subroutine solve_adapted_thresholds(config, start, out, res, timings, stat)
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: start
@@ -138,8 +138,7 @@ contains
         type(status_t), intent(out) :: stat
         call adapt_thresholds(config, start, out, timings, stat)
         if (stat%ok()) call solve_thresholds(config, out%prob, .false., res, timings, stat, &
-                                             out%estimate)
-        if (stat%ok()) call apply_collision_bars(out, res%set)
+                                             out%estimate, last_onset_bars(out))
         if (stat%ok() .and. .not. out%converged) res%eigen%warnings = &
             [character(len=len(res%eigen%warnings)) :: out%outcome, res%eigen%warnings]
     end subroutine solve_adapted_thresholds
@@ -497,18 +496,21 @@ contains
     subroutine apply_collision_bars(out, set)
         type(adaptive_thresholds_t), intent(in) :: out
         type(critical_set_t), intent(inout) :: set
-        integer :: side, i
+        logical :: known(size(set%points))
+        type(onset_bars_t) :: onsets
+        onsets = last_onset_bars(out)
+        known = .false.
+        call onsets%apply(set, known)
+    end subroutine apply_collision_bars
+
+    !> The collision onsets of the final level and their bars (none before a level).
+    type(onset_bars_t) function last_onset_bars(out) result(onsets)
+        type(adaptive_thresholds_t), intent(in) :: out
         if (size(out%levels) == 0) return
         associate (row => out%levels(size(out%levels)))
-            do side = SIDE_PLUS, SIDE_MINUS
-                if (.not. row%collision(side)) cycle
-                i = onset_point(set, side)
-                if (i == 0) cycle
-                if (set%points(i)%mechanism == MECHANISM_COMPLEX_PAIR .and. &
-                    abs(set%points(i)%lambda - row%collision_lambda(side)) <= &
-                    1.0e-12_wp*abs(row%collision_lambda(side))) &
-                    set%points(i)%error_bar = row%collision_bar(side)
-            end do
+            onsets%collision = row%collision
+            onsets%lambda = row%collision_lambda
+            onsets%bar = row%collision_bar
         end associate
-    end subroutine apply_collision_bars
+    end function last_onset_bars
 end module adaptive_threshold

@@ -32,7 +32,7 @@ module threshold_analysis
     use eigen_analysis, only: eigen_result_t, choose_solver, eigen_with_factor, SOLVER_ARPACK, &
                               to_input_units, estimate_wanted
     use error_estimate, only: ENRICHED_CONTACT_MAX
-    use boundary_estimate, only: estimate_boundary_bars
+    use boundary_estimate, only: estimate_boundary_bars, onset_bars_t
     use threshold_estimate, only: threshold_estimate_t, threshold_displacements, &
                                   estimate_threshold_errors
     use accuracy, only: WARNING_LEN, roundoff_warnings
@@ -85,8 +85,9 @@ contains
     !> Factor K, form Kt_nn and Kt_nt, and compute the spectrum at &analysis lambda, the
     !> thresholds with their error estimates and confirmations, and (with `with_sweep`) the
     !> &sweep curve. `estimate`: the thresholds' estimate on this very problem, known
-    !> already (the adaptive loop's last level), not computed again.
-    subroutine solve_thresholds(config, prob, with_sweep, res, timings, stat, estimate)
+    !> already (the adaptive loop's last level), not computed again; `onsets` likewise the
+    !> bars of its collision onsets.
+    subroutine solve_thresholds(config, prob, with_sweep, res, timings, stat, estimate, onsets)
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: prob
         logical, intent(in) :: with_sweep
@@ -94,6 +95,7 @@ contains
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
         type(threshold_estimate_t), intent(in), optional :: estimate
+        type(onset_bars_t), intent(in), optional :: onsets
         type(cholesky_t) :: chol
         type(reduced_blocks_t) :: blocks
         type(arpack_options_t) :: options
@@ -264,7 +266,7 @@ contains
             real(wp) :: begin
             begin = wall_time()
             call estimate_boundary_bars(config, prob, res%thresholds, res%estimate, &
-                                        ENRICHED_CONTACT_MAX, res%set, failed)
+                                        ENRICHED_CONTACT_MAX, res%set, failed, onsets)
             if (.not. failed%ok()) then
                 res%eigen%warnings = [character(len=WARNING_LEN) :: res%eigen%warnings, &
                     'no error bars for the boundary points: '//failed%message]
