@@ -34,7 +34,7 @@ module hp_threshold
                                   collision_onsets, apply_collision_bars, goal_bars, &
                                   level_line
     use eigen_analysis, only: eigen_with_factor, choose_solver
-    use error_bar, only: hp_level_bar, floor_reached, floor_outcome
+    use error_bar, only: hp_run_bar, floor_reached, floor_outcome
     use accuracy, only: WARNING_LEN
     implicit none
     private
@@ -282,8 +282,8 @@ contains
     subroutine set_bars(levels, roundoff)
         type(threshold_level_t), intent(inout) :: levels(:)
         real(wp), intent(in) :: roundoff(2)
-        real(wp) :: values(size(levels))
-        logical :: have(size(levels)), estimated
+        real(wp) :: values(size(levels)), change
+        logical :: have(size(levels))
         integer :: k, side, i
         k = size(levels)
         do side = SIDE_PLUS, SIDE_MINUS
@@ -292,45 +292,16 @@ contains
                 have(i) = levels(i)%found(side)
                 values(i) = levels(i)%lambda(side)
             end do
-            call side_bar(have, values, roundoff(side), levels(k)%error_bar(side), &
-                          levels(k)%estimated(side), levels(k)%error_estimate(side))
+            call hp_run_bar(have, values, roundoff(side), levels(k)%error_bar(side), change)
+            levels(k)%estimated(side) = levels(k)%error_bar(side) >= 0.0_wp
+            if (levels(k)%estimated(side)) levels(k)%error_estimate(side) = change
             do i = 1, k
                 have(i) = levels(i)%collision(side)
                 values(i) = levels(i)%collision_lambda(side)
             end do
-            levels(k)%collision_estimate(side) = -1.0_wp
-            call side_bar(have, values, levels(k)%collision_roundoff(side), &
-                          levels(k)%collision_bar(side), &
-                          estimated, levels(k)%collision_estimate(side))
-            if (levels(k)%collision_bar(side) < 0.0_wp) levels(k)%collision_estimate(side) = -1.0_wp
+            call hp_run_bar(have, values, levels(k)%collision_roundoff(side), &
+                            levels(k)%collision_bar(side), levels(k)%collision_estimate(side))
         end do
-
-    contains
-
-        !> bar, and the relative change `change` to the previous level (`estimated`), of the
-        !> values `values` over the trailing run of levels with `have`; bar < 0 where that
-        !> run is one level long.
-        subroutine side_bar(have, values, roundoff, bar, estimated, change)
-            logical, intent(in) :: have(:)
-            real(wp), intent(in) :: values(:), roundoff
-            real(wp), intent(out) :: bar
-            logical, intent(inout) :: estimated
-            real(wp), intent(inout) :: change
-            integer :: first, n
-            n = size(have)
-            bar = -1.0_wp
-            estimated = .false.
-            if (.not. have(n)) return
-            first = n
-            do while (first > 1)
-                if (.not. have(first - 1)) exit
-                first = first - 1
-            end do
-            if (first == n) return
-            bar = hp_level_bar(values(first:n), roundoff)
-            estimated = .true.
-            change = abs(values(n) - values(n - 1))/abs(values(n))
-        end subroutine side_bar
     end subroutine set_bars
 
 end module hp_threshold
