@@ -46,7 +46,7 @@ module adaptive_threshold
     use critical_set, only: critical_set_t, find_critical_set, carry_critical_set, &
                             onset_point, side_offset, &
                             MECHANISM_COMPLEX_PAIR
-    use boundary_estimate, only: enriched_pair_lambdas
+    use boundary_estimate, only: enriched_pair_lambdas, onset_bars_t
     use eigen_analysis, only: eigen_result_t, eigen_with_factor, SOLVER_DENSE
     use error_estimate, only: error_estimate_t, estimate_lowest_error
     use error_bar, only: level_bar
@@ -55,7 +55,7 @@ module adaptive_threshold
     implicit none
     private
     public :: adapt_thresholds, solve_adapted_thresholds, apply_collision_bars
-    public :: onset_search, collision_onsets   ! (hp_threshold too)
+    public :: onset_search, collision_onsets, goal_bars, level_line   ! (hp_threshold too)
 
     !> coarse_scan_t: the largest level scanned at the end, in contact functions
     integer, parameter :: SCAN_CONTACT_MAX = 100
@@ -151,8 +151,8 @@ contains
 
     !> The adaptive 'threshold' analysis: the loop from `start` (adapt_thresholds), then the
     !> threshold analysis on its final problem with the loop's estimates and the collision
-    !> onsets' level bars (apply_collision_bars); a limit reached heads the warnings of `res`
-    !> (out%converged false says so).
+    !> onsets' level bars (last_onset_bars: their one-mesh bars are not computed); a limit
+    !> reached heads the warnings of `res` (out%converged false says so).
     subroutine solve_adapted_thresholds(config, start, out, res, timings, stat)
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: start
@@ -162,8 +162,7 @@ contains
         type(status_t), intent(out) :: stat
         call adapt_thresholds(config, start, out, timings, stat)
         if (stat%ok()) call solve_thresholds(config, out%prob, .false., res, timings, stat, &
-                                             out%estimate, out%coarse)
-        if (stat%ok()) call apply_collision_bars(out, res%set)
+                                             out%estimate, last_onset_bars(out), out%coarse)
         if (stat%ok() .and. .not. out%converged) res%eigen%warnings = &
             [character(len=len(res%eigen%warnings)) :: out%outcome, res%eigen%warnings]
     end subroutine solve_adapted_thresholds
@@ -182,7 +181,7 @@ contains
         type(critical_set_t) :: set
         type(eigen_result_t) :: beside(2)
         real(wp), allocatable :: u(:, :)
-        real(wp) :: start
+        real(wp) :: start, bar(2), roundoff(2)
         real(wp), allocatable :: nearest(:)
         integer :: onset(2)
 
@@ -219,8 +218,11 @@ contains
         this%levels = [this%levels, level_row()]
         call level_bars(this%levels, element_degree(prob%mesh%element), this%thr%roundoff, &
                         this%est)
-        this%roundoff = worst_side_roundoff(this%levels(size(this%levels)), this%thr, this%est)
-        call timings%note(level_line(this%levels(size(this%levels))))
+        ! the floor test's round-off part: that of the side with the largest bar
+        call goal_bars(this%levels(size(this%levels)), this%thr%roundoff, bar, roundoff)
+        this%roundoff = -1.0_wp
+        if (maxval(bar) >= 0.0_wp) this%roundoff = roundoff(maxloc(bar, 1))
+        call timings%note(level_line(this%levels(size(this%levels)), 'adapt level'))
 
     contains
 
@@ -239,54 +241,19 @@ contains
             row%collision_estimate = this%collision_estimate
             row%time_s = wall_time() - loop_start
         end function level_row
-
-        function level_line(row) result(line)
-            type(threshold_level_t), intent(in) :: row
-            character(len=:), allocatable :: line
-            integer :: side
-            line = 'adapt level '//to_string(row%level)//': '//to_string(row%n_dofs)//' dofs'
-            do side = SIDE_PLUS, SIDE_MINUS
-                if (.not. row%found(side)) cycle
-                line = line//', '//SIDE_LABELS(side)//' = '// &
-                    short_real_text(row%lambda(side), 12)
-                if (row%estimated(side)) line = line//' (estimate '// &
-                    short_real_text(row%error_estimate(side))//', bar '// &
-                    short_real_text(row%error_bar(side))//')'
-            end do
-            do side = SIDE_PLUS, SIDE_MINUS
-                if (.not. row%collision(side)) cycle
-                line = line//', collision onset '//trim(SIDE_NAMES(side))//' = '// &
-                    short_real_text(row%collision_lambda(side), 12)
-                if (row%collision_estimate(side) >= 0.0_wp) line = line//' (estimate '// &
-                    short_real_text(row%collision_estimate(side))//', bar '// &
-                    short_real_text(row%collision_bar(side))//')'
-            end do
-        end function level_line
     end subroutine threshold_goal_solve
 
-    !> The largest bar of the sides' goals (a collision onset, else the threshold found);
-    !> negative when one of them has none, or when there is neither.
+    !> The largest bar of the sides' goals (goal_bars); negative when one of them has none,
+    !> or when there is neither.
     real(wp) function threshold_goal_error(this)
         class(threshold_goal_t), intent(in) :: this
-        integer :: side
+        real(wp) :: bar(2), roundoff(2)
         threshold_goal_error = -1.0_wp
         associate (row => this%levels(size(this%levels)))
-            if (.not. any(this%thr%found .or. row%collision)) return
-            do side = SIDE_PLUS, SIDE_MINUS
-                if (row%collision(side)) then
-                    if (row%collision_bar(side) < 0.0_wp) return
-                else if (this%thr%found(side) .and. .not. this%est%computed(side)) then
-                    return
-                end if
-            end do
-            threshold_goal_error = 0.0_wp
-            do side = SIDE_PLUS, SIDE_MINUS
-                if (row%collision(side)) then
-                    threshold_goal_error = max(threshold_goal_error, row%collision_bar(side))
-                else if (this%thr%found(side)) then
-                    threshold_goal_error = max(threshold_goal_error, this%est%bar(side))
-                end if
-            end do
+            if (.not. any(row%found .or. row%collision)) return
+            call goal_bars(row, this%thr%roundoff, bar, roundoff)
+            if (any(bar < 0.0_wp)) return
+            threshold_goal_error = maxval(bar)
         end associate
     end function threshold_goal_error
 
@@ -466,29 +433,53 @@ contains
         end do
     end subroutine level_bars
 
-    !> The round-off part of the bar that threshold_goal_error returns for `row` (the side
-    !> with the largest bar), for the loop's floor test; -1 where unknown.
-    pure real(wp) function worst_side_roundoff(row, thr, est) result(roundoff)
+    !> The progress line of a level: each threshold found, then each collision onset, with
+    !> its estimate and bar where it has them.
+    function level_line(row, name) result(line)
         type(threshold_level_t), intent(in) :: row
-        type(thresholds_t), intent(in) :: thr
-        type(threshold_estimate_t), intent(in) :: est
-        real(wp) :: bar, worst
+        character(len=*), intent(in) :: name   !! of the level: 'adapt level', 'hp level'
+        character(len=:), allocatable :: line
         integer :: side
-        roundoff = -1.0_wp
-        worst = -1.0_wp
+        line = name//' '//to_string(row%level)//': '//to_string(row%n_dofs)//' dofs'
         do side = SIDE_PLUS, SIDE_MINUS
-            if (row%collision(side)) then
-                bar = row%collision_bar(side)
-                if (bar > worst) roundoff = row%collision_roundoff(side)
-            else if (thr%found(side) .and. est%computed(side)) then
-                bar = est%bar(side)
-                if (bar > worst) roundoff = thr%roundoff(side)
-            else
-                cycle
-            end if
-            worst = max(worst, bar)
+            if (.not. row%found(side)) cycle
+            line = line//', '//SIDE_LABELS(side)//' = '// &
+                short_real_text(row%lambda(side), 12)
+            if (row%estimated(side)) line = line//' (estimate '// &
+                short_real_text(row%error_estimate(side))//', bar '// &
+                short_real_text(row%error_bar(side))//')'
         end do
-    end function worst_side_roundoff
+        do side = SIDE_PLUS, SIDE_MINUS
+            if (.not. row%collision(side)) cycle
+            line = line//', collision onset '//trim(SIDE_NAMES(side))//' = '// &
+                short_real_text(row%collision_lambda(side), 12)
+            if (row%collision_estimate(side) >= 0.0_wp) line = line//' (estimate '// &
+                short_real_text(row%collision_estimate(side))//', bar '// &
+                short_real_text(row%collision_bar(side))//')'
+        end do
+    end function level_line
+
+    !> Per side, the bar of its goal at level `row` (the collision onset where its onset is
+    !> one, else the threshold; 0 where the side has neither: nothing to meet; -1 where the
+    !> goal has no bar yet) and that bar's round-off part (-1: unknown).
+    pure subroutine goal_bars(row, threshold_roundoff, bar, roundoff)
+        type(threshold_level_t), intent(in) :: row
+        real(wp), intent(in) :: threshold_roundoff(2)
+        real(wp), intent(out) :: bar(2), roundoff(2)
+        integer :: side
+        do side = SIDE_PLUS, SIDE_MINUS
+            bar(side) = 0.0_wp
+            roundoff(side) = -1.0_wp
+            if (row%collision(side)) then
+                bar(side) = row%collision_bar(side)
+                roundoff(side) = row%collision_roundoff(side)
+            else if (row%found(side)) then
+                bar(side) = row%error_bar(side)
+                roundoff(side) = threshold_roundoff(side)
+            end if
+            if (bar(side) < 0.0_wp) bar(side) = -1.0_wp
+        end do
+    end subroutine goal_bars
 
     !> The union of the Doerfler sets of the sides still above the tolerance.
     function threshold_goal_mark(this, theta) result(marked)
@@ -540,20 +531,23 @@ contains
     subroutine apply_collision_bars(out, set)
         type(adaptive_thresholds_t), intent(in) :: out
         type(critical_set_t), intent(inout) :: set
-        integer :: side, i
+        logical :: known(size(set%points))
+        type(onset_bars_t) :: onsets
+        onsets = last_onset_bars(out)
+        known = .false.
+        call onsets%apply(set, known)
+    end subroutine apply_collision_bars
+
+    !> The collision onsets of the final level and their bars (none before a level).
+    type(onset_bars_t) function last_onset_bars(out) result(onsets)
+        type(adaptive_thresholds_t), intent(in) :: out
         if (size(out%levels) == 0) return
         associate (row => out%levels(size(out%levels)))
-            do side = SIDE_PLUS, SIDE_MINUS
-                if (.not. row%collision(side)) cycle
-                i = onset_point(set, side)
-                if (i == 0) cycle
-                if (set%points(i)%mechanism == MECHANISM_COMPLEX_PAIR .and. &
-                    abs(set%points(i)%lambda - row%collision_lambda(side)) <= &
-                    1.0e-12_wp*abs(row%collision_lambda(side))) &
-                    set%points(i)%error_bar = row%collision_bar(side)
-            end do
+            onsets%collision = row%collision
+            onsets%lambda = row%collision_lambda
+            onsets%bar = row%collision_bar
         end associate
-    end subroutine apply_collision_bars
+    end function last_onset_bars
 
     !> A level's contact `blocks` (mass set) and pencil eigenvalues, and its boundary `set`
     !> if it searched (set%scan_contact > 0).

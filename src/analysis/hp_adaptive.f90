@@ -21,7 +21,7 @@ module hp_adaptive
     use contact_boundary, only: assemble_b
     use eigen_analysis, only: eigen_result_t, eigen_with_factor, choose_solver
     use accuracy, only: WARNING_LEN
-    use error_bar, only: hp_level_bar, floor_reached, floor_outcome
+    use error_bar, only: hp_run_bar, floor_reached, floor_outcome
     implicit none
     private
     public :: hp_adapt_eigen
@@ -40,6 +40,8 @@ module hp_adaptive
         logical :: has_mu = .false.
         real(wp) :: mu = 0.0_wp      !! lowest positive mu, input units
         real(wp) :: error_bar = -1.0_wp   !! relative; < 0: none (the first level)
+        !> |mu - mu of the previous level| / |mu|, what the bar is made of; < 0: none
+        real(wp) :: change = -1.0_wp
         real(wp) :: roundoff = -1.0_wp    !! its round-off part; < 0: unknown
         real(wp) :: time_s = 0.0_wp       !! wall time from the loop's start to this level's end
     end type hp_level_t
@@ -72,7 +74,6 @@ contains
         type(eigen_result_t) :: res
         type(cholesky_t) :: chol
         type(hp_level_t) :: row
-        real(wp), allocatable :: mu(:)
         real(wp) :: loop_start, tolerance
         integer :: layers, i
         logical :: too_big
@@ -160,7 +161,7 @@ contains
             if (row%error_bar >= 0.0_wp) then
                 res%error%computed = .true.
                 res%error%bar = row%error_bar
-                res%error%relative = abs(row%mu - out%levels(size(out%levels) - 1)%mu)/row%mu
+                res%error%relative = row%change
                 res%error%method = HP_ESTIMATE
             end if
             out%levels(size(out%levels))%time_s = wall_time() - loop_start
@@ -169,25 +170,21 @@ contains
             out%res = res
         end subroutine solve_level
 
-        !> The bar of the last level from the mu of the levels since the last one without a
-        !> positive mu (plain arrays: see adaptive_eigen's set_level_bar).
+        !> The bar and the change of the last level from the mu of the levels since the last
+        !> one without a positive mu (hp_run_bar; plain arrays: see adaptive_eigen's
+        !> set_level_bar).
         subroutine set_bar(levels)
             type(hp_level_t), intent(inout) :: levels(:)
-            integer :: k, first, j
-            k = size(levels)
-            levels(k)%error_bar = -1.0_wp
-            if (.not. levels(k)%has_mu) return
-            first = k
-            do while (first > 1)
-                if (.not. levels(first - 1)%has_mu) exit
-                first = first - 1
+            logical :: have(size(levels))
+            real(wp) :: mu(size(levels))
+            integer :: j
+            do j = 1, size(levels)
+                have(j) = levels(j)%has_mu
+                mu(j) = levels(j)%mu
             end do
-            allocate (mu(k - first + 1))
-            do j = first, k
-                mu(j - first + 1) = levels(j)%mu
-            end do
-            levels(k)%error_bar = hp_level_bar(mu, levels(k)%roundoff)
-            deallocate (mu)
+            associate (last => levels(size(levels)))
+                call hp_run_bar(have, mu, last%roundoff, last%error_bar, last%change)
+            end associate
         end subroutine set_bar
 
         function bar_text() result(text)

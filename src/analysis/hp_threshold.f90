@@ -26,14 +26,15 @@ module hp_threshold
     use contact_reduction, only: reduced_blocks_t, contact_flexibility
     use memory_budget, only: check_contact_memory, contact_peak_blocks, contact_blocks_bytes
     use critical_lambda, only: thresholds_t, pencil_thresholds, &
-                               SIDE_PLUS, SIDE_MINUS, SIDE_LABELS, SIDE_NAMES
+                               SIDE_PLUS, SIDE_MINUS
     use critical_set, only: critical_set_t, MECHANISM_PENCIL
     use roundoff, only: threshold_roundoff, collision_roundoffs
     use threshold_analysis, only: threshold_result_t, confirm_and_bound
     use adaptive_threshold, only: adaptive_thresholds_t, threshold_level_t, onset_search, &
-                                  collision_onsets, apply_collision_bars, coarse_scan_t
+                                  collision_onsets, apply_collision_bars, goal_bars, &
+                                  level_line, coarse_scan_t
     use eigen_analysis, only: eigen_with_factor, choose_solver
-    use error_bar, only: hp_level_bar, floor_reached, floor_outcome
+    use error_bar, only: hp_run_bar, floor_reached, floor_outcome
     use accuracy, only: WARNING_LEN
     implicit none
     private
@@ -167,7 +168,8 @@ contains
             out%adapted%levels(size(out%adapted%levels))%time_s = wall_time() - loop_start
             out%adapted%prob = prob
             out%space = ladder%space
-            call timings%note(level_line(out%adapted%levels(size(out%adapted%levels))))
+            call timings%note(level_line(out%adapted%levels(size(out%adapted%levels)), &
+                                         'hp level'))
         end subroutine solve_level
 
         !> Whether the loop stops after the level just solved: no goal, the tolerance met on
@@ -212,7 +214,7 @@ contains
         !> and the hp bars as the estimate of the thresholds and of the collision onsets.
         subroutine report_last_level(stat)
             type(status_t), intent(out) :: stat
-            real(wp) :: begin, bar(2), roundoff(2)
+            real(wp) :: begin
             integer :: side, i, k
             type(critical_set_t) :: coarse
             begin = wall_time()
@@ -234,7 +236,6 @@ contains
             end if
             if (.not. stat%ok()) return
             k = size(out%adapted%levels)
-            call goal_bars(out%adapted%levels(k), thr%roundoff, bar, roundoff)
             res%estimate%method = HP_ESTIMATE
             associate (last => out%adapted%levels(k))
                 do side = SIDE_PLUS, SIDE_MINUS
@@ -284,26 +285,6 @@ contains
                 text = text//' at '//to_string(last%n_dofs)//' dofs'
             end associate
         end function bar_text
-
-        function level_line(row) result(line)
-            type(threshold_level_t), intent(in) :: row
-            character(len=:), allocatable :: line
-            integer :: side
-            line = 'hp level '//to_string(row%level)//': '//to_string(row%n_dofs)//' dofs'
-            do side = SIDE_PLUS, SIDE_MINUS
-                if (row%collision(side)) then
-                    line = line//', collision onset '//trim(SIDE_NAMES(side))//' = '// &
-                        short_real_text(row%collision_lambda(side), 12)
-                    if (row%collision_bar(side) >= 0.0_wp) line = line//' (bar '// &
-                        short_real_text(row%collision_bar(side))//')'
-                else if (row%found(side)) then
-                    line = line//', '//SIDE_LABELS(side)//' = '// &
-                        short_real_text(row%lambda(side), 12)
-                    if (row%error_bar(side) >= 0.0_wp) line = line//' (bar '// &
-                        short_real_text(row%error_bar(side))//')'
-                end if
-            end do
-        end function level_line
     end subroutine hp_adapt_thresholds
 
     !> The bars of the last of `levels`: per side, hp_level_bar of the thresholds over the
@@ -313,8 +294,8 @@ contains
     subroutine set_bars(levels, roundoff)
         type(threshold_level_t), intent(inout) :: levels(:)
         real(wp), intent(in) :: roundoff(2)
-        real(wp) :: values(size(levels))
-        logical :: have(size(levels)), estimated
+        real(wp) :: values(size(levels)), change
+        logical :: have(size(levels))
         integer :: k, side, i
         k = size(levels)
         do side = SIDE_PLUS, SIDE_MINUS
@@ -323,66 +304,16 @@ contains
                 have(i) = levels(i)%found(side)
                 values(i) = levels(i)%lambda(side)
             end do
-            call side_bar(have, values, roundoff(side), levels(k)%error_bar(side), &
-                          levels(k)%estimated(side), levels(k)%error_estimate(side))
+            call hp_run_bar(have, values, roundoff(side), levels(k)%error_bar(side), change)
+            levels(k)%estimated(side) = levels(k)%error_bar(side) >= 0.0_wp
+            if (levels(k)%estimated(side)) levels(k)%error_estimate(side) = change
             do i = 1, k
                 have(i) = levels(i)%collision(side)
                 values(i) = levels(i)%collision_lambda(side)
             end do
-            levels(k)%collision_estimate(side) = -1.0_wp
-            call side_bar(have, values, levels(k)%collision_roundoff(side), &
-                          levels(k)%collision_bar(side), &
-                          estimated, levels(k)%collision_estimate(side))
-            if (levels(k)%collision_bar(side) < 0.0_wp) levels(k)%collision_estimate(side) = -1.0_wp
+            call hp_run_bar(have, values, levels(k)%collision_roundoff(side), &
+                            levels(k)%collision_bar(side), levels(k)%collision_estimate(side))
         end do
-
-    contains
-
-        !> bar, and the relative change `change` to the previous level (`estimated`), of the
-        !> values `values` over the trailing run of levels with `have`; bar < 0 where that
-        !> run is one level long.
-        subroutine side_bar(have, values, roundoff, bar, estimated, change)
-            logical, intent(in) :: have(:)
-            real(wp), intent(in) :: values(:), roundoff
-            real(wp), intent(out) :: bar
-            logical, intent(inout) :: estimated
-            real(wp), intent(inout) :: change
-            integer :: first, n
-            n = size(have)
-            bar = -1.0_wp
-            estimated = .false.
-            if (.not. have(n)) return
-            first = n
-            do while (first > 1)
-                if (.not. have(first - 1)) exit
-                first = first - 1
-            end do
-            if (first == n) return
-            bar = hp_level_bar(values(first:n), roundoff)
-            estimated = .true.
-            change = abs(values(n) - values(n - 1))/abs(values(n))
-        end subroutine side_bar
     end subroutine set_bars
 
-    !> Per side, the bar of its goal at level `row` (the collision onset where its onset is
-    !> one, else the threshold; 0 where the side has neither: nothing to meet; -1 where the
-    !> goal has no bar yet) and that bar's round-off part (-1: unknown).
-    pure subroutine goal_bars(row, threshold_roundoff, bar, roundoff)
-        type(threshold_level_t), intent(in) :: row
-        real(wp), intent(in) :: threshold_roundoff(2)
-        real(wp), intent(out) :: bar(2), roundoff(2)
-        integer :: side
-        do side = SIDE_PLUS, SIDE_MINUS
-            bar(side) = 0.0_wp
-            roundoff(side) = -1.0_wp
-            if (row%collision(side)) then
-                bar(side) = row%collision_bar(side)
-                roundoff(side) = row%collision_roundoff(side)
-            else if (row%found(side)) then
-                bar(side) = row%error_bar(side)
-                roundoff(side) = threshold_roundoff(side)
-            end if
-            if (bar(side) < 0.0_wp) bar(side) = -1.0_wp
-        end do
-    end subroutine goal_bars
 end module hp_threshold

@@ -20,7 +20,7 @@ module threshold_analysis
     use error_bar, only: single_bar
     use sparse_cholesky, only: cholesky_t
     use contact_boundary, only: assemble_b
-    use contact_reduction, only: factor_stiffness, contact_flexibility, reduced_blocks_t, &
+    use contact_reduction, only: factor_contact_blocks, reduced_blocks_t, &
                                  lambda_unit
     use memory_budget, only: check_contact_memory, contact_peak_blocks
     use arpack_eigen, only: arpack_options_t, arpack_lowest_positive
@@ -34,7 +34,7 @@ module threshold_analysis
     use eigen_analysis, only: eigen_result_t, choose_solver, eigen_with_factor, SOLVER_ARPACK, &
                               to_input_units, estimate_wanted
     use error_estimate, only: ENRICHED_CONTACT_MAX
-    use boundary_estimate, only: estimate_boundary_bars
+    use boundary_estimate, only: estimate_boundary_bars, onset_bars_t
     use threshold_estimate, only: threshold_estimate_t, threshold_displacements, &
                                   estimate_threshold_errors
     use accuracy, only: WARNING_LEN, roundoff_warnings
@@ -87,8 +87,10 @@ contains
     !> Factor K, form Kt_nn and Kt_nt, and compute the spectrum at &analysis lambda, the
     !> thresholds with their error estimates and confirmations, and (with `with_sweep`) the
     !> &sweep curve. `estimate`: the thresholds' estimate on this very problem, known
-    !> already (the adaptive loop's last level), not computed again.
-    subroutine solve_thresholds(config, prob, with_sweep, res, timings, stat, estimate, coarse)
+    !> already (the adaptive loop's last level), not computed again; `onsets` likewise the
+    !> bars of its collision onsets.
+    subroutine solve_thresholds(config, prob, with_sweep, res, timings, stat, estimate, onsets, &
+                                coarse)
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: prob
         logical, intent(in) :: with_sweep
@@ -96,6 +98,7 @@ contains
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
         type(threshold_estimate_t), intent(in), optional :: estimate
+        type(onset_bars_t), intent(in), optional :: onsets
         !> the boundary a coarser level found, to carry (confirm_and_bound)
         type(critical_set_t), intent(in), optional :: coarse
         type(cholesky_t) :: chol
@@ -268,7 +271,7 @@ contains
             real(wp) :: begin
             begin = wall_time()
             call estimate_boundary_bars(config, prob, res%thresholds, res%estimate, &
-                                        ENRICHED_CONTACT_MAX, res%set, failed)
+                                        ENRICHED_CONTACT_MAX, res%set, failed, onsets)
             if (.not. failed%ok()) then
                 res%eigen%warnings = [character(len=WARNING_LEN) :: res%eigen%warnings, &
                     'no error bars for the boundary points: '//failed%message]
@@ -362,21 +365,12 @@ contains
         real(wp), allocatable, intent(out) :: kt_nn(:, :), kt_nt(:, :)
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
-        real(wp) :: start
-
         call check_contact_memory(config, prob%contact%p(), contact_peak_blocks(.false.), stat)
         if (.not. stat%ok()) return
-        call factor_stiffness(prob%k, prob%mesh, prob%dofs, prob%contact, chol, timings, stat)
+        call factor_contact_blocks(prob%k, prob%mesh, prob%dofs, prob%contact, chol, kt_nn, &
+                                   kt_nt, timings, stat)
         call explain_singular_k(config, prob%mesh, stat)
-        if (.not. stat%ok()) return
-        start = wall_time()
-        call contact_flexibility(chol, prob%contact, kt_nn, kt_nt, stat)
-        if (.not. stat%ok()) then
-            call chol%free()
-            return
-        end if
-        call timings%add(PHASE_REDUCTION, wall_time() - start, ': contact blocks of K^-1, '// &
-                         to_string(prob%contact%p())//' x '//to_string(prob%contact%p()))
+        if (.not. stat%ok()) call chol%free()
     end subroutine factor_with_contact_blocks
 
     !> `est` for an element with no degree above it (Q1, Q2, P4): the thresholds of the same

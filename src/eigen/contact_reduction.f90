@@ -13,7 +13,7 @@ module contact_reduction
     use kinds, only: wp, i8
     use status, only: status_t, STATUS_SOLVER, STATUS_BAD_INPUT, STATUS_SINGULAR
     use strings, only: to_string
-    use timer, only: wall_time, timings_t, PHASE_ORDERING, PHASE_FACTOR
+    use timer, only: wall_time, timings_t, PHASE_ORDERING, PHASE_FACTOR, PHASE_REDUCTION
     use mesh, only: mesh_t
     use dof_map, only: dof_map_t
     use csr_matrix, only: csr_matrix_t
@@ -24,7 +24,8 @@ module contact_reduction
     use lapack_interfaces, only: dpotri, dtrsm
     implicit none
     private
-    public :: factor_stiffness, contact_tail, flexibility_blocks, contact_flexibility, &
+    public :: factor_stiffness, factor_contact_blocks, contact_tail, flexibility_blocks, &
+              contact_flexibility, &
               lift_eigenvectors, lift_block_columns, reduced_matrix, scaled_reduced_matrix, &
               lambda_unit, mu_of_theta
 
@@ -165,6 +166,28 @@ contains
                              to_string(k%n())//' dofs')
         end subroutine explain
     end subroutine factor_stiffness
+
+    !> Factor K with the contact dofs last (factor_stiffness) and form its contact blocks
+    !> Kt_nn, Kt_nt (contact_flexibility), their time added to `timings`: the start of every
+    !> threshold computation, on any mesh. `chol` stays factored for the caller's solves
+    !> (free it), also when stat fails.
+    subroutine factor_contact_blocks(k, m, dofs, contact, chol, kt_nn, kt_nt, timings, stat)
+        type(csr_matrix_t), intent(in) :: k
+        type(mesh_t), intent(in) :: m
+        type(dof_map_t), intent(in) :: dofs
+        type(contact_t), intent(in) :: contact
+        type(cholesky_t), intent(inout) :: chol
+        real(wp), allocatable, intent(out) :: kt_nn(:, :), kt_nt(:, :)
+        type(timings_t), intent(inout) :: timings
+        type(status_t), intent(out) :: stat
+        real(wp) :: start
+        call factor_stiffness(k, m, dofs, contact, chol, timings, stat)
+        if (.not. stat%ok()) return
+        start = wall_time()
+        call contact_flexibility(chol, contact, kt_nn, kt_nt, stat)
+        if (stat%ok()) call timings%add(PHASE_REDUCTION, wall_time() - start, &
+            ': contact blocks of K^-1, '//to_string(contact%p())//' x '//to_string(contact%p()))
+    end subroutine factor_contact_blocks
 
     !> The trailing 2p x 2p block L_c of a factor made by factor_stiffness, and `slot`(c, a):
     !> the row of L_c of the dof c (1 = x, 2 = y) of contact node a.

@@ -18,13 +18,13 @@ module boundary_estimate
     use sparse_cholesky, only: cholesky_t
     use contact_reduction, only: reduced_blocks_t
     use critical_lambda, only: thresholds_t, pencil_thresholds, SIDE_PLUS, SIDE_MINUS
-    use critical_set, only: critical_set_t, find_critical_set, MECHANISM_PENCIL, &
+    use critical_set, only: critical_set_t, find_critical_set, onset_point, MECHANISM_PENCIL, &
                             MECHANISM_COMPLEX_PAIR
     use enrichment, only: enrichment_t, build_enrichment
     use run_config, only: config_t
     use halved_mesh, only: build_halved_problem
     use timer, only: timings_t
-    use contact_reduction, only: factor_stiffness, contact_flexibility
+    use contact_reduction, only: factor_contact_blocks
     use threshold_estimate, only: threshold_estimate_t
     use error_bar, only: single_bar, three_mesh_bar
     use adaptive_loop, only: adaptive_dof_limit
@@ -32,6 +32,16 @@ module boundary_estimate
     implicit none
     private
     public :: estimate_boundary_bars, enriched_pair_lambdas
+
+    !> The bars of the sides' collision onsets known already (an adaptive loop's last level),
+    !> by SIDE_PLUS, SIDE_MINUS: they stand for the one-mesh bars of the same points.
+    type, public :: onset_bars_t
+        logical :: collision(2) = .false.     !! the side's onset is a collision
+        real(wp) :: lambda(2) = 0.0_wp        !! where
+        real(wp) :: bar(2) = -1.0_wp          !! its bar; < 0: none
+    contains
+        procedure :: apply => onset_bars_apply
+    end type onset_bars_t
 
     !> The window searched around a complex_pair point on the enriched problem, relative to
     !> |lambda|, and its scan points: wider than the difference between two degrees on any
@@ -48,8 +58,9 @@ contains
 
     !> set%points(:)%error_bar for the points of `set`, the boundary of the positive set of
     !> `prob` whose thresholds are `thr` with bars `est`. Points it cannot estimate keep -1
-    !> (stat ok); `max_contact` bounds the enriched contact nodes (dense reduction).
-    subroutine estimate_boundary_bars(config, prob, thr, est, max_contact, set, stat)
+    !> (stat ok); `max_contact` bounds the enriched contact nodes (dense reduction). The
+    !> collision onsets of `onsets` take its bars, and nothing is computed for them.
+    subroutine estimate_boundary_bars(config, prob, thr, est, max_contact, set, stat, onsets)
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: prob
         type(thresholds_t), intent(in) :: thr
@@ -57,7 +68,9 @@ contains
         integer, intent(in) :: max_contact
         type(critical_set_t), intent(inout) :: set
         type(status_t), intent(out) :: stat
+        type(onset_bars_t), intent(in), optional :: onsets
         real(wp), allocatable :: nearest(:), halved(:), quartered(:)
+        logical :: known(size(set%points)), pair(size(set%points))
         type(status_t) :: halved_stat
         real(wp) :: lambda, bar
         integer :: i, side
@@ -74,13 +87,16 @@ contains
                 end if
             end do
         end do
-        call enriched_pair_lambdas(prob, max_contact, set, nearest, stat)
+        known = .false.
+        if (present(onsets)) call onsets%apply(set, known)
+        pair = set%points%mechanism == MECHANISM_COMPLEX_PAIR .and. .not. known
+        call enriched_pair_lambdas(prob, max_contact, set, nearest, stat, pair)
         if (.not. stat%ok()) return
         ! the halved meshes are a second opinion: where they fail (memory), the enriched
         ! difference alone makes the bar
-        call halved_pair_lambdas(config, prob, set, halved, quartered, halved_stat)
+        call halved_pair_lambdas(config, prob, set, pair, halved, quartered, halved_stat)
         do i = 1, size(set%points)
-            if (set%points(i)%mechanism /= MECHANISM_COMPLEX_PAIR) cycle
+            if (.not. pair(i)) cycle
             lambda = set%points(i)%lambda
             bar = -1.0_wp
             if (nearest(i) < huge(1.0_wp)) bar = single_bar(abs(nearest(i) - lambda)/ &
@@ -93,14 +109,15 @@ contains
 
     !> halved(i), quartered(i): the complex_pair point of the same direction of the problem
     !> on the mesh of halved cells (halved_mesh) and on that mesh halved again nearest the
-    !> complex_pair point i of `set` (pair_points_near); huge where there is none, or no
-    !> halved mesh, or (quartered) where 16 times the dofs are more than QUARTER_MAX_DOFS or
-    !> would not fit the memory available (stat ok); where a fine problem fails, the points
-    !> not found stay huge.
-    subroutine halved_pair_lambdas(config, prob, set, halved, quartered, stat)
+    !> complex_pair point i of `set`, for the points with `pair`(i) (pair_points_near); huge
+    !> where there is none, or no halved mesh, or (quartered) where 16 times the dofs are more
+    !> than QUARTER_MAX_DOFS or would not fit the memory available (stat ok); where a fine
+    !> problem fails, the points not found stay huge.
+    subroutine halved_pair_lambdas(config, prob, set, pair, halved, quartered, stat)
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: prob
         type(critical_set_t), intent(in) :: set
+        logical, intent(in) :: pair(:)
         real(wp), allocatable, intent(out) :: halved(:), quartered(:)
         type(status_t), intent(out) :: stat
         type(config_t) :: half_config, quarter_config
@@ -108,7 +125,7 @@ contains
         character(len=:), allocatable :: why_not
 
         allocate (halved(size(set%points)), quartered(size(set%points)), source=huge(1.0_wp))
-        if (.not. any(set%points%mechanism == MECHANISM_COMPLEX_PAIR)) return
+        if (.not. any(pair)) return
         call build_halved_problem(config, prob, half_config, half, why_not, stat)
         if (.not. stat%ok() .or. len(why_not) > 0) return
         call points_on(half, halved, stat)
@@ -129,48 +146,52 @@ contains
             type(cholesky_t) :: chol
             type(reduced_blocks_t) :: blocks
             type(timings_t) :: quiet
-            call factor_stiffness(fine%k, fine%mesh, fine%dofs, fine%contact, chol, quiet, stat)
-            if (stat%ok()) call contact_flexibility(chol, fine%contact, blocks%kt_nn, &
-                                                    blocks%kt_nt, stat)
+            call factor_contact_blocks(fine%k, fine%mesh, fine%dofs, fine%contact, chol, &
+                                       blocks%kt_nn, blocks%kt_nt, quiet, stat)
             call chol%free()
             if (.not. stat%ok()) return
             blocks%mass = fine%contact%mass
-            call pair_points_near(blocks, set, nearest, stat)
+            call pair_points_near(blocks, set, pair, nearest, stat)
         end subroutine points_on
     end subroutine halved_pair_lambdas
 
     !> nearest(i): the complex_pair point of the same direction of the problem one degree
     !> higher on the cells of `prob` nearest the complex_pair point i of `set`, found by the
     !> same search in a window around it; huge where there is none (or no enrichment, or
-    !> more than `max_contact` enriched contact nodes; stat ok).
-    subroutine enriched_pair_lambdas(prob, max_contact, set, nearest, stat)
+    !> more than `max_contact` enriched contact nodes; stat ok), or where not `wanted`(i).
+    subroutine enriched_pair_lambdas(prob, max_contact, set, nearest, stat, wanted)
         type(problem_t), intent(in) :: prob
         integer, intent(in) :: max_contact
         type(critical_set_t), intent(in) :: set
         real(wp), allocatable, intent(out) :: nearest(:)
         type(status_t), intent(out) :: stat
+        logical, intent(in), optional :: wanted(:)
+        logical :: pair(size(set%points))
         type(enrichment_t) :: enr
         type(cholesky_t) :: chol
         type(reduced_blocks_t) :: blocks
         character(len=:), allocatable :: skipped
 
         allocate (nearest(size(set%points)), source=huge(1.0_wp))
-        if (.not. any(set%points%mechanism == MECHANISM_COMPLEX_PAIR)) return
+        pair = set%points%mechanism == MECHANISM_COMPLEX_PAIR
+        if (present(wanted)) pair = pair .and. wanted
+        if (.not. any(pair)) return
         call build_enrichment(prob, max_contact, enr, skipped, stat)
         if (.not. stat%ok() .or. enr%element == 0 .or. len(skipped) > 0) return
         call enr%reduce(chol, blocks%kt_nn, blocks%kt_nt, stat)
         call chol%free()
         if (.not. stat%ok()) return
         blocks%mass = enr%contact%mass
-        call pair_points_near(blocks, set, nearest, stat)
+        call pair_points_near(blocks, set, pair, nearest, stat)
     end subroutine enriched_pair_lambdas
 
     !> nearest(i): the complex_pair point of the same direction of the problem of `blocks`
-    !> nearest the complex_pair point i of `set`, found by the same search on a window of
-    !> WINDOW |lambda| around it; huge where there is none.
-    subroutine pair_points_near(blocks, set, nearest, stat)
+    !> nearest the complex_pair point i of `set` where `pair`(i), found by the same search on
+    !> a window of WINDOW |lambda| around it; huge where there is none.
+    subroutine pair_points_near(blocks, set, pair, nearest, stat)
         type(reduced_blocks_t), intent(in) :: blocks
         type(critical_set_t), intent(in) :: set
+        logical, intent(in) :: pair(:)
         real(wp), intent(inout) :: nearest(:)
         type(status_t), intent(out) :: stat
         type(thresholds_t) :: thr
@@ -181,7 +202,7 @@ contains
         call pencil_thresholds(blocks%kt_nn, blocks%kt_nt, thr, stat)
         if (.not. stat%ok()) return
         do i = 1, size(set%points)
-            if (set%points(i)%mechanism /= MECHANISM_COMPLEX_PAIR) cycle
+            if (.not. pair(i)) cycle
             lambda = set%points(i)%lambda
             scan = [(lambda + abs(lambda)*WINDOW*(real(2*j - WINDOW_POINTS - 1, wp)/ &
                      real(WINDOW_POINTS - 1, wp)), j=1, WINDOW_POINTS)]
@@ -195,4 +216,23 @@ contains
             end do
         end do
     end subroutine pair_points_near
+
+    !> The bars of `this` into the onset points of `set` that are these collisions (the same
+    !> search on the same problem: the same points, to round-off); known(i) where set.
+    subroutine onset_bars_apply(this, set, known)
+        class(onset_bars_t), intent(in) :: this
+        type(critical_set_t), intent(inout) :: set
+        logical, intent(inout) :: known(:)
+        integer :: side, i
+        do side = SIDE_PLUS, SIDE_MINUS
+            if (.not. this%collision(side)) cycle
+            i = onset_point(set, side)
+            if (i == 0) cycle
+            if (set%points(i)%mechanism /= MECHANISM_COMPLEX_PAIR .or. &
+                abs(set%points(i)%lambda - this%lambda(side)) > &
+                1.0e-12_wp*abs(this%lambda(side))) cycle
+            set%points(i)%error_bar = this%bar(side)
+            known(i) = .true.
+        end do
+    end subroutine onset_bars_apply
 end module boundary_estimate

@@ -28,7 +28,7 @@ module enrichment
     use contact_boundary, only: contact_t, build_contact, edge_mass
     use csr_matrix, only: csr_matrix_t
     use sparse_cholesky, only: cholesky_t
-    use contact_reduction, only: factor_stiffness, contact_flexibility
+    use contact_reduction, only: factor_contact_blocks
     use timer, only: timings_t
     use problem, only: problem_t
     implicit none
@@ -126,7 +126,8 @@ contains
         type(timings_t) :: ignored   ! the estimate's time is counted as a whole
         character(len=:), allocatable :: detail
         integer :: at
-        call factor_stiffness(this%k, this%mesh, this%dofs, this%contact, chol, ignored, stat)
+        call factor_contact_blocks(this%k, this%mesh, this%dofs, this%contact, chol, kt_nn, &
+                                   kt_nt, ignored, stat)
         if (stat%code == STATUS_SINGULAR) then
             ! Not K's: factor_stiffness's hint (a Dirichlet boundary) cannot be the cause here.
             detail = ''
@@ -136,7 +137,6 @@ contains
                 //'higher on the same cells; K itself was factored) is numerically singular' &
                 //', as a nearly incompressible material or a sliver cell make it first'//detail
         end if
-        if (stat%ok()) call contact_flexibility(chol, this%contact, kt_nn, kt_nt, stat)
     end subroutine enrichment_reduce
 
     !> The free-dof vector on V+ of a field of V_h (given on prob%dofs): each enriched cell

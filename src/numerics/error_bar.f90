@@ -24,7 +24,8 @@ module error_bar
     use strings, only: short_real_text
     implicit none
     private
-    public :: single_bar, level_bar, hp_level_bar, three_mesh_bar, floor_reached, floor_outcome
+    public :: single_bar, level_bar, hp_level_bar, hp_run_bar, three_mesh_bar, floor_reached, &
+              floor_outcome
     public :: BAR_FACTOR, LEVEL_FACTOR, BAR_WINDOW
 
     real(wp), parameter :: BAR_FACTOR = 5.0_wp
@@ -129,6 +130,30 @@ contains
         end do
         bar = windowed_bar(estimates, carry, values, [(j >= k - 1, j=1, k)], roundoff)
     end function hp_level_bar
+
+    !> hp_level_bar of `values` over the trailing run of levels with `have` (the levels since
+    !> the last one without the value), and `change`, the relative change of the last value
+    !> to the one before (what the bar is made of); both -1 where that run is shorter than
+    !> two levels.
+    pure subroutine hp_run_bar(have, values, roundoff, bar, change)
+        logical, intent(in) :: have(:)
+        real(wp), intent(in) :: values(:), roundoff
+        real(wp), intent(out) :: bar, change
+        integer :: first, n
+        n = size(have)
+        bar = -1.0_wp
+        change = -1.0_wp
+        if (n == 0) return
+        if (.not. have(n)) return
+        first = n
+        do while (first > 1)
+            if (.not. have(first - 1)) exit
+            first = first - 1
+        end do
+        if (first == n) return
+        bar = hp_level_bar(values(first:n), roundoff)
+        change = abs(values(n) - values(n - 1))/abs(values(n))
+    end subroutine hp_run_bar
 
     !> The bar of a value v0 from the same value on the meshes of halved (v1) and twice
     !> halved cells (v2), for an error C h^r of unknown order r (the three-mesh study of

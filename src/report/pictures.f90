@@ -151,11 +151,7 @@ contains
         do i = 1, n
             curves(1)%value(i) = known_or_nan(levels(i)%has_mu, levels(i)%mu)
             curves(1)%bar(i) = relative_or_nan(levels(i)%error_bar)
-            curves(1)%estimate(i) = missing()
-        end do
-        do i = 2, n
-            if (levels(i)%has_mu .and. levels(i - 1)%has_mu .and. abs(levels(i)%mu) > 0.0_wp) &
-                curves(1)%estimate(i) = abs(levels(i)%mu - levels(i - 1)%mu)/abs(levels(i)%mu)
+            curves(1)%estimate(i) = relative_or_nan(levels(i)%change)
         end do
     end subroutine hp_adapt_curves
 

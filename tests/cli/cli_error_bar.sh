@@ -162,6 +162,16 @@ NML
             END { exit !ok }' "$work/out/adapt.csv"
     }
     check 'trapezoid, adaptive onsets: adapt.csv carries every level'"'"'s onsets and bars' csv_full
+    # the onsets' bars reported are the last level's (adapt.csv columns 17, minus, and 14,
+    # plus), the same numbers, not one-mesh bars formed again on the final mesh
+    last_bars_reported() {
+        awk -F, -v m="$(jq -r '.boundary_error_bar[0]' "$s")" \
+            -v p="$(jq -r '.boundary_error_bar[1]' "$s")" \
+            'END { exit !($17 > 0 && $14 > 0 && $17 == m + 0 && $14 == p + 0) }' \
+            "$work/out/adapt.csv"
+    }
+    check 'trapezoid, adaptive onsets: the bars reported are the last level'"'"'s' \
+        last_bars_reported
 else
     echo "SKIP  the Gmsh scenes (trapezoid, half contact, middle contact): gmsh is not installed"
 fi

@@ -5,8 +5,8 @@
 !> at least the change of the value over those levels.
 program test_error_bar
     use kinds, only: wp
-    use error_bar, only: single_bar, level_bar, hp_level_bar, three_mesh_bar, BAR_FACTOR, &
-                         LEVEL_FACTOR, BAR_WINDOW
+    use error_bar, only: single_bar, level_bar, hp_level_bar, hp_run_bar, three_mesh_bar, &
+                         BAR_FACTOR, LEVEL_FACTOR, BAR_WINDOW
     use testing, only: test_suite_t
     implicit none
     type(test_suite_t) :: t
@@ -20,6 +20,7 @@ program test_error_bar
     call check_hp_geometric()
     call check_hp_dip()
     call check_hp_start()
+    call check_hp_run()
     call check_three_mesh_orders()
     call check_three_mesh_limits()
     call t%report()
@@ -105,6 +106,22 @@ contains
         call t%check_close('hp: two levels, LEVEL_FACTOR times the change', &
                            hp_level_bar([2.0_wp, 1.0_wp], -1.0_wp), LEVEL_FACTOR, 1.0e-15_wp)
     end subroutine check_hp_start
+
+    !> The trailing run: levels 3 and 4 of (have, not, have, have) give hp_level_bar of those
+    !> two values and the change |2.5 - 3| / 2.5; a run of one level, or a last level
+    !> without the value, gives neither.
+    subroutine check_hp_run()
+        real(wp), parameter :: VALUES(4) = [4.0_wp, 9.0_wp, 3.0_wp, 2.5_wp]
+        real(wp) :: bar, change
+        call hp_run_bar([.true., .false., .true., .true.], VALUES, -1.0_wp, bar, change)
+        call t%check('hp run: the bar of the last two levels, the change 0.5 / 2.5', &
+                     bar == hp_level_bar(VALUES(3:4), -1.0_wp) .and. &
+                     abs(change - 0.2_wp) <= 1.0e-15_wp)
+        call hp_run_bar([.true., .true., .false., .true.], VALUES, -1.0_wp, bar, change)
+        call t%check('hp run: one level long, none', bar < 0.0_wp .and. change < 0.0_wp)
+        call hp_run_bar([.true., .true., .true., .false.], VALUES, -1.0_wp, bar, change)
+        call t%check('hp run: the last level without, none', bar < 0.0_wp .and. change < 0.0_wp)
+    end subroutine check_hp_run
     !> v(h) = 1 + c h^r on h = 1, 1/2, 1/4: for every order r between 0.1 and 2 the
     !> three-mesh error d1 / (1 - q) is c exactly, so the bar is LEVEL_FACTOR c / v0; the
     !> slow order 0.2 (a change a seventh of the error) included.
