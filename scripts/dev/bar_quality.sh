@@ -20,13 +20,31 @@
 # (lambda_onset_*), boundary_error_bar and the adapt.csv collision columns. Values whose
 # true error is below 100 times the truth's uncertainty are skipped (counted); values with
 # neither bar nor estimate are counted as 'none'.
-# Usage: scripts/dev/bar_quality.sh [-j JOBS] [SCENE...]   (JOBS parallel runs, default 2)
-# Needs gmsh and jq; about 5 to 10 minutes on 2 cores.
+# Usage: scripts/dev/bar_quality.sh [-j JOBS] [--adaptive] [--keep DIR] [SCENE...]
+#   -j JOBS     parallel runs (default 2)
+#   --adaptive  only the adaptive jobs (the uniform families then count 0 values)
+#   --keep DIR  work in DIR (created; must not exist) and keep it: jobs/NAME.nml and .meta,
+#               out/NAME/adapt.csv and summary.json of every run, and 'ratios', one line per
+#               value (scene family quantity source ratio; adaptive values add the envelope
+#               and the change parts of the level bar over the true error, the level), for
+#               scripts/dev/level_factor.sh
+#   --analyse DIR  no runs: the table again from a folder kept by --keep
+# Needs gmsh and jq; 20 to 35 minutes on 2 shared cores (adaptive only: about half).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 nceig=${NCEIG:-$root/build/nceig}
-jobs=2
-if [[ ${1:-} == -j ]]; then jobs=$2; shift 2; fi
+jobs=2 adaptive_only= keep= analyse=
+while (($# > 0)); do
+    case $1 in
+        -j) jobs=$2; shift 2 ;;
+        --adaptive) adaptive_only=1; shift ;;
+        --keep) keep=$2; shift 2 ;;
+        --analyse) analyse=$2; shift 2 ;;
+        -*) echo "bar_quality: unknown option $1 (-j JOBS, --adaptive, --keep DIR, --analyse DIR)" >&2
+            exit 2 ;;
+        *) break ;;
+    esac
+done
 [[ -x $nceig ]] || { echo "bar_quality: build first (scripts/dev/build.sh Release)" >&2; exit 1; }
 command -v jq >/dev/null || { echo "bar_quality: needs jq" >&2; exit 1; }
 command -v gmsh >/dev/null || { echo "bar_quality: needs gmsh" >&2; exit 1; }
@@ -37,58 +55,72 @@ scenes=("$@")
 if ((${#scenes[@]} == 0)); then
     mapfile -t scenes < <(awk -F, 'NR > 1 && $5 !~ /^closed/ && !seen[$1]++ { print $1 }' "$truths")
 fi
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
+if [[ -n $analyse ]]; then
+    [[ -d $analyse/jobs ]] || { echo "bar_quality: --analyse $analyse: no jobs/ (a folder of --keep)" >&2; exit 2; }
+    work=$(cd "$analyse" && pwd)
+elif [[ -n $keep ]]; then
+    [[ ! -e $keep ]] || { echo "bar_quality: --keep $keep exists already" >&2; exit 2; }
+    mkdir -p "$keep"
+    work=$(cd "$keep" && pwd)
+else
+    work=$(mktemp -d)
+    trap 'rm -rf "$work"' EXIT
+fi
 start=$(date +%s)
 export OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1
 sizes=(4 8 16 32)
 
-# job NAME FAMILY MESH_LINE ADAPT_LINE: writes $work/jobs/NAME.nml and NAME.meta
-mkdir -p "$work/jobs" "$work/meshes"
-job() {
-    local name=$1 family=$2 mesh_line=$3 adapt_line=$4 est=on
-    [[ $family == *q1* || $family == *q2* ]] && est=auto
-    {
-        echo "$mesh_line"
-        scene_physics_nml
-        echo "&eigen estimate = '$est' /"
-        echo "$adapt_line"
-        echo "&output directory = '$work/out/$name', vtk = .false., plot = .false., progress = .false. /"
-    } >"$work/jobs/$name.nml"
-    echo "$scene $family $kind" >"$work/jobs/$name.meta"
-}
+if [[ -z $analyse ]]; then
+    # job NAME FAMILY MESH_LINE ADAPT_LINE: writes $work/jobs/NAME.nml and NAME.meta
+    mkdir -p "$work/jobs" "$work/meshes"
+    job() {
+        local name=$1 family=$2 mesh_line=$3 adapt_line=$4 est=on
+        [[ $family == *q1* || $family == *q2* ]] && est=auto
+        {
+            echo "$mesh_line"
+            scene_physics_nml
+            echo "&eigen estimate = '$est' /"
+            echo "$adapt_line"
+            echo "&output directory = '$work/out/$name', vtk = .false., plot = .false., progress = .false. /"
+        } >"$work/jobs/$name.nml"
+        echo "$scene $family $kind" >"$work/jobs/$name.meta"
+    }
 
-for scene in "${scenes[@]}"; do
-    scene_info "$scene"
-    for el in p1 p2 p3 q1 q2; do
-        [[ $el == q* && -z $W ]] && continue
-        for n in "${sizes[@]}"; do
+    for scene in "${scenes[@]}"; do
+        scene_info "$scene"
+        for el in p1 p2 p3 q1 q2; do
+            [[ $el == q* && -z $W ]] && continue
+            for n in "${sizes[@]}"; do
+                # the Gmsh meshes of N = 4 are the adaptive runs' start too
+                [[ -n $adaptive_only && -n $W ]] && break
+                [[ -n $adaptive_only && $n != 4 ]] && continue
+                if [[ -n $W ]]; then
+                    mesh_line=$(scene_rect_nml "$n" "$el")
+                else
+                    m=$work/meshes/${scene}_${el}_$n.msh
+                    scene_gmsh "$m" "${el#p}" -setnumber graded 0 -clmax "$(awk -v n="$n" 'BEGIN { print 1 / n }')"
+                    mesh_line=$(scene_mesh_nml "$m")
+                fi
+                if [[ -z $adaptive_only ]]; then job "${scene}_u${el}_$n" "uniform-$el" "$mesh_line" ""; fi
+            done
+        done
+        for el in p1 p2 p3; do
             if [[ -n $W ]]; then
-                mesh_line=$(scene_rect_nml "$n" "$el")
+                mesh_line=$(scene_rect_nml 4 "$el")
             else
-                m=$work/meshes/${scene}_${el}_$n.msh
-                scene_gmsh "$m" "${el#p}" -setnumber graded 0 -clmax "$(awk -v n="$n" 'BEGIN { print 1 / n }')"
+                m=$work/meshes/${scene}_${el}_4.msh
                 mesh_line=$(scene_mesh_nml "$m")
             fi
-            job "${scene}_u${el}_$n" "uniform-$el" "$mesh_line" ""
+            job "${scene}_a$el" "adaptive-$el" "$mesh_line" \
+                "&adapt tolerance = 1e-8, max_dofs = 60000, max_levels = 200 /"
         done
     done
-    for el in p1 p2 p3; do
-        if [[ -n $W ]]; then
-            mesh_line=$(scene_rect_nml 4 "$el")
-        else
-            m=$work/meshes/${scene}_${el}_4.msh
-            mesh_line=$(scene_mesh_nml "$m")
-        fi
-        job "${scene}_a$el" "adaptive-$el" "$mesh_line" \
-            "&adapt tolerance = 1e-8, max_dofs = 60000, max_levels = 200 /"
-    done
-done
 
-# run the jobs, longest first (adaptive, then the finest uniform meshes)
-ls "$work/jobs"/*.nml | awk '{ k = ($0 ~ /_a/) ? 0 : ($0 ~ /_32\.nml/) ? 1 : 2; print k, $0 }' |
-    sort -k1,1n | cut -d' ' -f2- |
-    xargs -P "$jobs" -I{} sh -c '"$1" "$2" >"$2.log" 2>&1; echo $? >"$2.rc"' _ "$nceig" {}
+    # run the jobs, longest first (adaptive, then the finest uniform meshes)
+    ls "$work/jobs"/*.nml | awk '{ k = ($0 ~ /_a/) ? 0 : ($0 ~ /_32\.nml/) ? 1 : 2; print k, $0 }' |
+        sort -k1,1n | cut -d' ' -f2- |
+        xargs -P "$jobs" -I{} sh -c '"$1" "$2" >"$2.log" 2>&1; echo $? >"$2.rc"' _ "$nceig" {}
+fi
 
 # ratios: one line per value: scene family quantity source ratio (or 'skip' / 'none')
 ratio_lines() {
@@ -112,14 +144,24 @@ ratio_lines() {
                     lambda_onset_*) vcol=collision_${q#lambda_onset_} ecol=error_estimate_collision_${q#lambda_onset_}
                         bcol=error_bar_collision_${q#lambda_onset_} ;;
                 esac
+                # after the ratio: level_bar's two parts over the true error (the envelope
+                # of the window's estimates carried at the optimal rate, the change over the
+                # window) and the level, to recompute the bar with another level factor
                 awk -F, -v v="$vcol" -v e="$ecol" -v b="$bcol" -v t="$truth" -v u="$unc" \
+                    -v p="${family#adaptive-p}" -v w=3 \
                     -v pre="$scene $family $q" 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
+                    { k = NR - 1; dofs[k] = $c["n_dofs"]; val[k] = $c[v]
+                      est[k] = (c[e] && $c[e] != "" && $c[v] != "") ? $c[e] : -1 }
                     $1 >= 2 && c[v] && $c[v] != "" {
                         src = (c[b] && $c[b] != "") ? "bar" : (c[e] && $c[e] != "") ? "estimate" : "none"
                         err = ($c[v] - t) / t; if (err < 0) err = -err
                         if (err < 100 * u) { print pre, src, "skip"; next }
                         if (src == "none") { print pre, "none", "none"; next }
-                        print pre, src, (src == "bar" ? $c[b] : $c[e]) / err }' "$out/adapt.csv"
+                        env = 0; moved = 0
+                        for (j = (k - w + 1 > 0 ? k - w + 1 : 0); j <= k; j++) if (est[j] >= 0) {
+                            x = est[j] * (dofs[j] / dofs[k]) ^ p; if (x > env) env = x
+                            x = (val[k] - val[j]) / val[k]; if (x < 0) x = -x; if (x > moved) moved = x }
+                        print pre, src, (src == "bar" ? $c[b] : $c[e]) / err, env / err, moved / err, $1 }' "$out/adapt.csv"
             else
                 jq -r --arg q "$q" --arg t "$truth" --arg u "$unc" --arg pre "$scene $family $q" '
                     (.[$q]) as $v
