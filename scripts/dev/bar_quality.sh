@@ -149,7 +149,8 @@ ratio_lines() {
                 # window) and the level, to recompute the bar with another level factor
                 awk -F, -v v="$vcol" -v e="$ecol" -v b="$bcol" -v t="$truth" -v u="$unc" \
                     -v p="${family#adaptive-p}" -v w=3 \
-                    -v pre="$scene $family $q" 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
+                    -v pre="$scene $family $q" 'BEGIN { OFMT = "%.10g" }
+                    NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
                     { k = NR - 1; dofs[k] = $c["n_dofs"]; val[k] = $c[v]
                       est[k] = (c[e] && $c[e] != "" && $c[v] != "") ? $c[e] : -1 }
                     $1 >= 2 && c[v] && $c[v] != "" {

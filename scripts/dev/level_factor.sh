@@ -24,7 +24,8 @@ awk -v was="$was" -v fac="$factors" '
     $2 ~ /^adaptive-p/ && $4 == "bar" && NF >= 8 {
         p = substr($2, 11) + 0; env = $6; mv = $7
         core = (w[p] * env > mv) ? w[p] * env : mv
-        ro = $5 - core; if (ro < 0) ro = 0
+        ro = $5 - core
+        if (ro < -1e-8 * core) { off++; ro = 0 }
         n[p]++
         if (!(p in lo) || env < lo[p]) { lo[p] = env; at[p] = $1 " " $3 " level " $8 }
         for (t = 1; t <= 2; t++) {
@@ -35,6 +36,8 @@ awk -v was="$was" -v fac="$factors" '
         ratio[p, n[p]] = r
     }
     END {
+        if (off) printf "level_factor: %d bars below max(WAS x envelope, change): not made with WAS = %s\n", \
+            off, was > "/dev/stderr"
         printf "%-3s %5s %10s %8s %8s %8s %8s %8s %7s %5s  %s\n", "deg", "n", "min env/e", "need>=1", \
             "need>=1.1", "min", "median", "max", "[1,10]", ">10", "smallest envelope at"
         for (p = 1; p <= 3; p++) {

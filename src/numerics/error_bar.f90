@@ -10,13 +10,17 @@
 !> either); 5 puts the bar between 1.2 and 5 times it (docs/accuracy.md).
 !> Adaptive levels: the estimate dips by cancellation (errors of opposite signs at the two
 !> ends of the contact segment) while the true error does not. The bar at level k is
-!> LEVEL_FACTOR times the largest of the last BAR_WINDOW levels' estimates, each carried to
-!> level k at the optimal rate (error ~ dofs^-p for degree p), so that a single dip cannot
-!> make it small, and at least the change of the value over those levels (a value that
-!> still moves by more than the bar claims is not converged: a mode that moves with the
-!> mesh gets a large bar). Measured along adaptive P2 and P3 runs of the reference scene,
-!> LEVEL_FACTOR = 3 gives bar / true error 1.5 to 4.2 (median) where the true error does
-!> not itself cross zero.
+!> level_bar_factor(p) times the largest of the last BAR_WINDOW levels' estimates, each
+!> carried to level k at the optimal rate (error ~ dofs^-p for degree p), so that a single
+!> dip cannot make it small, and at least the change of the value over those levels (a
+!> value that still moves by more than the bar claims is not converged: a mode that moves
+!> with the mesh gets a large bar). The factor per degree comes from the adaptive runs of
+!> scripts/dev/bar_quality.sh (14 scenes, levels from the 3rd on; scripts/dev/
+!> level_factor.sh): where the change does not cover the error, the carried estimates fall
+!> to 0.79 (P1), 0.26 (P2: the error grows again after crossing zero while the estimates
+!> lag) and 0.37 (P3) times the true error, so 2, 4.5 and 3.5 keep every measured bar at
+!> least 1.1 times it with the fewest above 10 (docs/accuracy.md, "Quality of the error
+!> bars"). A single factor of 3 left P2 at 0.77.
 !> The floating-point part is added where known (roundoff >= 0); once it is at least the
 !> rest of the bar, a finer level cannot lower the bar (floor_reached).
 module error_bar
@@ -26,10 +30,13 @@ module error_bar
     private
     public :: single_bar, level_bar, hp_level_bar, hp_run_bar, three_mesh_bar, floor_reached, &
               floor_outcome
-    public :: BAR_FACTOR, LEVEL_FACTOR, BAR_WINDOW
+    public :: level_bar_factor, BAR_FACTOR, LEVEL_FACTOR, BAR_WINDOW
 
     real(wp), parameter :: BAR_FACTOR = 5.0_wp
+    !> hp_level_bar's and three_mesh_bar's factor (level_bar's: level_bar_factor)
     real(wp), parameter :: LEVEL_FACTOR = 3.0_wp
+    !> level_bar's factor for elements of degree 1, 2, 3 (higher degrees, not measured: P3's)
+    real(wp), parameter :: LEVEL_FACTORS(3) = [2.0_wp, 4.5_wp, 3.5_wp]
     integer, parameter :: BAR_WINDOW = 3
     !> three_mesh_bar's bounds on the observed ratio q = 2^-r of successive changes: at most
     !> order 2 counted (a faster one seen on two changes is more likely a cancellation), at
@@ -72,9 +79,16 @@ contains
         bar = BAR_FACTOR*estimate + max(roundoff, 0.0_wp)
     end function single_bar
 
+    !> level_bar's factor for elements of degree `degree` (LEVEL_FACTORS).
+    pure real(wp) function level_bar_factor(degree)
+        integer, intent(in) :: degree
+        level_bar_factor = LEVEL_FACTORS(min(max(degree, 1), size(LEVEL_FACTORS)))
+    end function level_bar_factor
+
     !> The bar at the last of successive adaptive levels with |relative estimates|
     !> `estimates` (negative: none at that level) of the values `values` on `dofs` free dofs,
-    !> for elements of degree `degree`: LEVEL_FACTOR max_j estimates(j) (dofs(j) / dofs(k))^degree
+    !> for elements of degree `degree`: level_bar_factor(degree) max_j estimates(j)
+    !> (dofs(j) / dofs(k))^degree
     !> and at least max_j |values(k) - values(j)| / |values(k)|, over the last BAR_WINDOW
     !> levels j <= k with an estimate, plus `roundoff`. Negative when the last level has no
     !> estimate.
@@ -87,7 +101,8 @@ contains
         k = size(estimates)
         if (k == 0) return
         if (estimates(k) < 0.0_wp) return
-        bar = windowed_bar(estimates, (real(dofs, wp)/real(dofs(k), wp))**degree, values, &
+        bar = windowed_bar(level_bar_factor(degree), estimates, &
+                           (real(dofs, wp)/real(dofs(k), wp))**degree, values, &
                            estimates >= 0.0_wp, roundoff)
     end function level_bar
 
@@ -128,7 +143,8 @@ contains
         do j = 1, k
             carry(j) = rate**(k - j)
         end do
-        bar = windowed_bar(estimates, carry, values, [(j >= k - 1, j=1, k)], roundoff)
+        bar = windowed_bar(LEVEL_FACTOR, estimates, carry, values, [(j >= k - 1, j=1, k)], &
+                           roundoff)
     end function hp_level_bar
 
     !> hp_level_bar of `values` over the trailing run of levels with `have` (the levels since
@@ -177,11 +193,12 @@ contains
         bar = LEVEL_FACTOR*max(d1, d2)/(1.0_wp - q)/abs(v0) + max(roundoff, 0.0_wp)
     end function three_mesh_bar
 
-    !> LEVEL_FACTOR max_j estimates(j) carry(j) over the last BAR_WINDOW levels j <= k with an
+    !> `factor` max_j estimates(j) carry(j) over the last BAR_WINDOW levels j <= k with an
     !> estimate, at least max_j |values(k) - values(j)| / |values(k)| over those with
     !> `valued`, plus `roundoff` (negative: unknown, nothing added).
-    pure real(wp) function windowed_bar(estimates, carry, values, valued, roundoff) result(bar)
-        real(wp), intent(in) :: estimates(:), carry(:), values(:), roundoff
+    pure real(wp) function windowed_bar(factor, estimates, carry, values, valued, roundoff) &
+        result(bar)
+        real(wp), intent(in) :: factor, estimates(:), carry(:), values(:), roundoff
         logical, intent(in) :: valued(:)
         real(wp) :: envelope, moved
         integer :: k, j
@@ -192,6 +209,6 @@ contains
             if (estimates(j) >= 0.0_wp) envelope = max(envelope, estimates(j)*carry(j))
             if (valued(j)) moved = max(moved, abs(values(k) - values(j))/abs(values(k)))
         end do
-        bar = max(LEVEL_FACTOR*envelope, moved) + max(roundoff, 0.0_wp)
+        bar = max(factor*envelope, moved) + max(roundoff, 0.0_wp)
     end function windowed_bar
 end module error_bar

@@ -1,12 +1,12 @@
 ! SPDX-License-Identifier: MIT
 !> error_bar: the bar is BAR_FACTOR times the estimate plus the round-off part, and along
-!> adaptive levels LEVEL_FACTOR times the envelope of the last BAR_WINDOW estimates carried
+!> adaptive levels level_bar_factor(degree) times the envelope of the last BAR_WINDOW estimates carried
 !> at the optimal rate, so that a single dip of the estimate cannot make the bar small, and
 !> at least the change of the value over those levels.
 program test_error_bar
     use kinds, only: wp
     use error_bar, only: single_bar, level_bar, hp_level_bar, hp_run_bar, three_mesh_bar, &
-                         BAR_FACTOR, LEVEL_FACTOR, BAR_WINDOW
+                         level_bar_factor, BAR_FACTOR, LEVEL_FACTOR, BAR_WINDOW
     use testing, only: test_suite_t
     implicit none
     type(test_suite_t) :: t
@@ -43,7 +43,7 @@ contains
         bar = level_bar([1.0e-6_wp, 1.0e-6_wp, 1.0e-9_wp], [1.0_wp, 1.0_wp, 1.0_wp], &
                         [1000, 1000, 1100], 3, -1.0_wp)
         call t%check_close('a dip: the previous level carried at the rate', bar, &
-                           LEVEL_FACTOR*1.0e-6_wp/1.1_wp**3, 1.0e-14_wp)
+                           level_bar_factor(3)*1.0e-6_wp/1.1_wp**3, 1.0e-14_wp)
     end subroutine check_dip_bridged
 
     !> Small estimates but a value that moved by 40 % over the window (a mode that moves with
@@ -65,7 +65,7 @@ contains
         dofs = 100
         bar = level_bar(estimates, [(1.0_wp, i=1, BAR_WINDOW + 1)], dofs, 2, -1.0_wp)
         call t%check_close('a level older than the window is forgotten', bar, &
-                           LEVEL_FACTOR*1.0e-9_wp, 1.0e-14_wp)
+                           level_bar_factor(2)*1.0e-9_wp, 1.0e-14_wp)
     end subroutine check_window_forgets
 
     subroutine check_missing()
@@ -74,7 +74,7 @@ contains
                      < 0.0_wp)
         call t%check_close('a level without an estimate is skipped', &
                            level_bar([-1.0_wp, 1.0e-3_wp], [2.0_wp, 1.0_wp], [10, 20], 1, &
-                                     -1.0_wp), LEVEL_FACTOR*1.0e-3_wp, 1.0e-15_wp)
+                                     -1.0_wp), level_bar_factor(1)*1.0e-3_wp, 1.0e-15_wp)
     end subroutine check_missing
 
     !> hp levels converging tenfold per level, v_j = 1 + 10^-j: the carried changes

@@ -20,7 +20,7 @@ program test_threshold_estimate
     use threshold_estimate, only: threshold_estimate_t, threshold_displacements, &
                                   estimate_threshold_errors
     use adaptive_threshold, only: adaptive_thresholds_t, adapt_thresholds
-    use error_bar, only: LEVEL_FACTOR
+    use error_bar, only: level_bar_factor
     implicit none
 
     !> lambda+ of the reference scene (nu = 0.3) in the limit h -> 0, independently of the
@@ -167,7 +167,7 @@ contains
     end subroutine indicators_bound_the_estimate
 
     !> P2 from 4 x 4 to 1e-6: converged on its bars (error_bar), both within the tolerance,
-    !> each at least LEVEL_FACTOR times its estimate, and each at least the true error against
+    !> each at least level_bar_factor(2) times its estimate, and each at least the true error against
     !> the independent value (measured 3e-7 against 3.1e-9: the loop stopped where the errors
     !> at the two ends of Gamma_C nearly cancel, so the bar is far above the error there).
     subroutine loop_reaches_tolerance(t)
@@ -193,8 +193,9 @@ contains
         call t%check('adaptive thresholds: both bars within the tolerance', &
                      all(out%estimate%computed) .and. &
                      all(out%estimate%bar <= config%adapt%tolerance))
-        call t%check('adaptive thresholds: each bar at least LEVEL_FACTOR times its estimate', &
-                     all(out%estimate%bar >= LEVEL_FACTOR*abs(out%estimate%relative)))
+        call t%check('adaptive thresholds: each bar at least the P2 level factor times its '// &
+                     'estimate', all(out%estimate%bar >= level_bar_factor(2)* &
+                                     abs(out%estimate%relative)))
         ! the final level's thresholds, solved again on its problem: the same numbers
         call thresholds_and_estimate(out%prob, thr, est)
         associate (last => out%levels(size(out%levels)))
