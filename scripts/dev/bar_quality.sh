@@ -117,7 +117,7 @@ if [[ -z $analyse ]]; then
     done
 
     # run the jobs, longest first (adaptive, then the finest uniform meshes)
-    ls "$work/jobs"/*.nml | awk '{ k = ($0 ~ /_a/) ? 0 : ($0 ~ /_32\.nml/) ? 1 : 2; print k, $0 }' |
+    ls "$work/jobs"/*.nml | awk '{ k = ($0 ~ /_a[^\/]*$/) ? 0 : ($0 ~ /_32\.nml$/) ? 1 : 2; print k, $0 }' |
         sort -k1,1n | cut -d' ' -f2- |
         xargs -P "$jobs" -I{} sh -c '"$1" "$2" >"$2.log" 2>&1; echo $? >"$2.rc"' _ "$nceig" {}
 fi
