@@ -29,7 +29,7 @@
 #               and the change parts of the level bar over the true error, the level), for
 #               scripts/dev/level_factor.sh
 #   --analyse DIR  no runs: the table again from a folder kept by --keep
-# Needs gmsh and jq; 20 to 35 minutes on 2 shared cores (adaptive only: about half).
+# Needs gmsh and jq; 35 to over 60 minutes on 2 shared cores (the adaptive runs take most).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 nceig=${NCEIG:-$root/build/nceig}

@@ -18,9 +18,10 @@
 !> scripts/dev/bar_quality.sh (14 scenes, levels from the 3rd on; scripts/dev/
 !> level_factor.sh): where the change does not cover the error, the carried estimates fall
 !> to 0.79 (P1), 0.26 (P2: the error grows again after crossing zero while the estimates
-!> lag) and 0.37 (P3) times the true error, so 2, 4.5 and 3.5 keep every measured bar at
-!> least 1.1 times it with the fewest above 10 (docs/accuracy.md, "Quality of the error
-!> bars"). A single factor of 3 left P2 at 0.77.
+!> lag) and 0.37 (P3) times the true error: factors of 1.4, 4.3 and 3.0 would keep every
+!> measured bar at least 1.1 times it; 4.5 is the smallest half for P2, and P1 and P3 keep
+!> a half more (all at least 1.16; docs/accuracy.md, "Quality of the error bars"). A
+!> single factor of 3 left P2 at 0.77.
 !> The floating-point part is added where known (roundoff >= 0); once it is at least the
 !> rest of the bar, a finer level cannot lower the bar (floor_reached).
 module error_bar
