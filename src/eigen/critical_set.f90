@@ -175,8 +175,9 @@ contains
     !> bracket). `carried` is false, and `set` is to be searched afresh, where the finer
     !> blocks disagree with the coarse structure: another answer at the range's start or
     !> in the middle of an interval between points, a point that moves the other way, is
-    !> not bracketed, or is not confirmed where it was. A change inside an interval that
-    !> leaves its middle as it was (two points that only the finer blocks have) is not seen.
+    !> not bracketed, is not confirmed where it was, or does not lie above the point before
+    !> it. A change inside an interval that leaves its middle as it was (two points that only
+    !> the finer blocks have) is not seen.
     subroutine carry_critical_set(blocks, coarse, pencil_lambdas, set, carried, stat, &
                                   known_lambda, known_count)
         type(reduced_blocks_t), intent(in) :: blocks
@@ -244,6 +245,10 @@ contains
             end if
             if (point%appears .neqv. coarse%points(i)%appears) return
             if (coarse%points(i)%confirmed .and. .not. point%confirmed) return
+            ! two coarse points that became one (the same nearest pencil eigenvalue)
+            if (size(set%points) > 0) then
+                if (.not. point%lambda > set%points(size(set%points))%lambda) return
+            end if
             set%points = [set%points, point]
         end do
         carried = .true.
