@@ -43,7 +43,7 @@ module adaptive_threshold
     use threshold_analysis, only: scan_lambdas
     use contact_reduction, only: reduced_blocks_t
     use contact_boundary, only: assemble_b
-    use critical_set, only: critical_set_t, find_critical_set, carry_critical_set, &
+    use critical_set, only: critical_set_t, find_critical_set, search_critical_set, &
                             onset_point, side_offset, &
                             MECHANISM_COMPLEX_PAIR
     use boundary_estimate, only: enriched_pair_lambdas, onset_bars_t
@@ -276,8 +276,8 @@ contains
         type(status_t), intent(out) :: stat
         type(critical_set_t), intent(in), optional :: previous
         real(wp) :: mu, inside
-        logical :: found, search, carried
-        integer :: side, n_positive, tried
+        logical :: found, search
+        integer :: side, n_positive
 
         allocate (set%points(0))
         search = .not. all(thr%found)
@@ -291,16 +291,8 @@ contains
         end do
         pencil_dofs = 0
         if (.not. search) pencil_dofs = n_free
-        if (.not. search) return
-        carried = .false.
-        if (present(previous)) then
-            if (previous%scan_contact > 0) call carry_critical_set(blocks, previous, &
-                thr%real_lambdas, set, carried, stat)
-        end if
-        if (.not. stat%ok() .or. carried) return
-        tried = set%n_evaluations   ! the carry's solves count too
-        call find_critical_set(blocks, scan_lambdas(config, .false.), thr%real_lambdas, set, stat)
-        set%n_evaluations = set%n_evaluations + tried
+        if (search) call search_critical_set(blocks, scan_lambdas(config, .false.), &
+                                             thr%real_lambdas, set, stat, previous)
     end subroutine onset_search
 
     !> onset(side): the index in `set` of the side's onset where it is a collision of two

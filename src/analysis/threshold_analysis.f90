@@ -27,8 +27,7 @@ module threshold_analysis
     use critical_lambda, only: thresholds_t, pencil_thresholds, confirm_thresholds, &
                                lowest_positive_mu, SIDE_PLUS, SIDE_MINUS, SIDE_LABELS
     use roundoff, only: threshold_roundoff, collision_roundoffs
-    use critical_set, only: critical_set_t, find_critical_set, carry_critical_set, &
-                            MECHANISM_COMPLEX_PAIR
+    use critical_set, only: critical_set_t, search_critical_set, MECHANISM_COMPLEX_PAIR
     use adaptive_eigen, only: adapt_eigen, adaptive_result_t
     use hp_adaptive, only: hp_adapt_eigen, hp_result_t
     use eigen_analysis, only: eigen_result_t, choose_solver, eigen_with_factor, SOLVER_ARPACK, &
@@ -307,8 +306,6 @@ contains
         type(critical_set_t), intent(in), optional :: coarse, known
         real(wp), allocatable :: mu_meet(:), confirmed_lambda(:)
         integer, allocatable :: confirmed_count(:)
-        logical :: carried
-        integer :: tried
         call confirm_thresholds(blocks, thr, stat)
         if (.not. stat%ok()) return
         ! mu of the confirmations, in the units of prob%k, to the input's (lambda has none)
@@ -319,19 +316,15 @@ contains
         confirmed_lambda = pack([thr%lambda_outside, thr%lambda_inside], &
                                 [thr%n_outside, thr%n_inside] >= 0)
         confirmed_count = pack([thr%n_outside, thr%n_inside], [thr%n_outside, thr%n_inside] >= 0)
-        carried = present(known)
-        if (carried) set = known
-        tried = 0
-        if (present(coarse) .and. .not. carried) then
-            if (coarse%scan_contact > 0) call carry_critical_set(blocks, coarse, &
-                thr%real_lambdas, set, carried, stat, confirmed_lambda, confirmed_count)
-            if (stat%ok()) set%n_evaluations = set%n_evaluations + coarse%n_evaluations
-        end if
-        if (stat%ok() .and. .not. carried) then
-            tried = set%n_evaluations   ! the carry's solves count too
-            call find_critical_set(blocks, scan_lambdas(config, with_sweep), &
-                                   thr%real_lambdas, set, stat, confirmed_lambda, confirmed_count)
-            set%n_evaluations = set%n_evaluations + tried
+        if (present(known)) then
+            set = known
+        else
+            call search_critical_set(blocks, scan_lambdas(config, with_sweep), &
+                                     thr%real_lambdas, set, stat, coarse, confirmed_lambda, &
+                                     confirmed_count)
+            ! the coarse scan made for this report (none for a loop level's own search)
+            if (stat%ok() .and. present(coarse)) set%n_evaluations = set%n_evaluations + &
+                                                                     coarse%n_evaluations
         end if
         ! before mu_meet leaves the units of the blocks: the bound reads it
         if (stat%ok()) call collision_roundoffs(prob%k, chol, prob%contact, blocks, set, stat)

@@ -24,7 +24,8 @@ module critical_set
     use critical_lambda, only: reduced_eigenvalues, count_positive, CONFIRM_OFFSET, SIDE_PLUS
     implicit none
     private
-    public :: find_critical_set, carry_critical_set, pair_discriminant, side_offset, onset_point
+    public :: search_critical_set, find_critical_set, carry_critical_set, pair_discriminant, &
+              side_offset, onset_point
 
     integer, parameter, public :: MECHANISM_PENCIL = 1
     integer, parameter, public :: MECHANISM_COMPLEX_PAIR = 2
@@ -140,10 +141,7 @@ contains
         type(boundary_point_t) :: point
         integer :: i
 
-        if (present(known_lambda) .and. present(known_count)) then
-            set%known_lambda = known_lambda
-            set%known_count = known_count
-        end if
+        call take_known(set, known_lambda, known_count)
         call scan_points(scan, pencil_lambdas, x, pencil_left)
         set%lambda_min = x(1)
         set%lambda_max = x(size(x))
@@ -189,14 +187,11 @@ contains
         real(wp), intent(in), optional :: known_lambda(:)   !! as find_critical_set's
         integer, intent(in), optional :: known_count(:)
         type(boundary_point_t) :: point
-        real(wp) :: lambda_c, lambda_f, width, a, b
+        real(wp) :: lambda_c, lambda_f, width, a, b, middle
         integer :: i, n_start, count_a, count_b
 
         carried = .false.
-        if (present(known_lambda) .and. present(known_count)) then
-            set%known_lambda = known_lambda
-            set%known_count = known_count
-        end if
+        call take_known(set, known_lambda, known_count)
         set%lambda_min = coarse%lambda_min
         set%lambda_max = coarse%lambda_max
         set%contact = size(blocks%kt_nn, 1)
@@ -212,9 +207,10 @@ contains
             b = set%lambda_max
             if (i > 0) a = coarse%points(i)%lambda
             if (i < size(coarse%points)) b = coarse%points(i + 1)%lambda
-            call positive_count(blocks, a + 0.5_wp*(b - a), count_a, set, stat)
+            middle = a + 0.5_wp*(b - a)
+            call positive_count(blocks, middle, count_a, set, stat)
             if (.not. stat%ok()) return
-            if ((count_a > 0) .neqv. coarse%positive_at(a + 0.5_wp*(b - a))) return
+            if ((count_a > 0) .neqv. coarse%positive_at(middle)) return
         end do
         do i = 1, size(coarse%points)
             lambda_c = coarse%points(i)%lambda
@@ -262,6 +258,40 @@ contains
         end subroutine bracket_counts
     end subroutine carry_critical_set
 
+    !> The boundary points over `scan`: those of `coarse` carried (carry_critical_set) where
+    !> it was searched (scan_contact > 0) and the finer blocks keep its structure, else found
+    !> afresh (find_critical_set); set%n_evaluations counts the solves of both tries.
+    subroutine search_critical_set(blocks, scan, pencil_lambdas, set, stat, coarse, &
+                                   known_lambda, known_count)
+        type(reduced_blocks_t), intent(in) :: blocks
+        real(wp), intent(in) :: scan(:), pencil_lambdas(:)   !! as find_critical_set's
+        type(critical_set_t), intent(out) :: set
+        type(status_t), intent(out) :: stat
+        type(critical_set_t), intent(in), optional :: coarse
+        real(wp), intent(in), optional :: known_lambda(:)
+        integer, intent(in), optional :: known_count(:)
+        logical :: carried
+        integer :: tried
+        carried = .false.
+        if (present(coarse)) then
+            if (coarse%scan_contact > 0) call carry_critical_set(blocks, coarse, &
+                pencil_lambdas, set, carried, stat, known_lambda, known_count)
+        end if
+        if (.not. stat%ok() .or. carried) return
+        tried = set%n_evaluations
+        call find_critical_set(blocks, scan, pencil_lambdas, set, stat, known_lambda, known_count)
+        set%n_evaluations = set%n_evaluations + tried
+    end subroutine search_critical_set
+
+    !> Counts already solved, for positive_count to take (both arguments or none).
+    pure subroutine take_known(set, known_lambda, known_count)
+        type(critical_set_t), intent(inout) :: set
+        real(wp), intent(in), optional :: known_lambda(:)
+        integer, intent(in), optional :: known_count(:)
+        if (.not. (present(known_lambda) .and. present(known_count))) return
+        set%known_lambda = known_lambda
+        set%known_count = known_count
+    end subroutine take_known
 
     !> The scan sorted, with both sides lambda -+ side_offset of every pencil eigenvalue inside
     !> it; scan points inside such a bracket are dropped, and so is a bracket that would
