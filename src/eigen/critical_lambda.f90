@@ -17,7 +17,8 @@ module critical_lambda
     use kinds, only: wp
     use status, only: status_t, STATUS_SOLVER
     use strings, only: to_string
-    use lapack_interfaces, only: dggev, dgeev, dgetrf, dgetrs, lapack_info_message
+    use lapack_interfaces, only: dggev, dgeev, lapack_info_message
+    use dual_eigen, only: reduced_left_eigenvector
     use contact_reduction, only: reduced_blocks_t, lambda_unit
     use sorting, only: sort_index
     implicit none
@@ -156,44 +157,26 @@ contains
         thr%real_lambdas = thr%real_lambdas(sort_index(thr%real_lambdas))
     end subroutine pencil_thresholds
 
-    !> The right and left null vectors x, y of Kt_nn - lambda Kt_nt at an eigenvalue lambda of
-    !> the pencil (QZ's, so the matrix is singular to round-off), each scaled to a largest
-    !> entry of 1: two steps of inverse iteration with its LU factors, from a start with no
-    !> zero entry. The first step already leaves an error of order eps relative to the gap
-    !> to the next eigenvalue; the second guards a start poor in the wanted direction. As
-    !> accurate as QZ's own vectors (the residual is reported: thresholds_t%residual).
+    !> The right and left null vectors x, y of C = Kt_nn - lambda Kt_nt at an eigenvalue lambda
+    !> of the pencil (QZ's, so C is singular to round-off), each scaled to a largest entry of
+    !> 1: the eigenvectors of C' and C for the eigenvalue nearest 0 by the inverse iteration
+    !> of dual_eigen (to a residual of 8 eps |C|_F), as accurate as QZ's own vectors (the
+    !> residual is reported: thresholds_t%residual).
     subroutine threshold_vectors(kt_nn, kt_nt, lambda, x, y, stat)
         real(wp), intent(in) :: kt_nn(:, :), kt_nt(:, :), lambda
         real(wp), intent(out) :: x(:), y(:)
         type(status_t), intent(out) :: stat
-        real(wp), allocatable :: c(:, :)
-        integer, allocatable :: pivots(:)
-        integer :: p, i, step, info
-        p = size(kt_nn, 1)
-        allocate (c(p, p), pivots(p))
+        real(wp), allocatable :: c(:, :), v(:)
+        real(wp) :: theta
+        allocate (c(size(kt_nn, 1), size(kt_nn, 2)))   ! then filled: no reallocation
         c(:, :) = kt_nn - lambda*kt_nt
-        call dgetrf(p, p, c, p, pivots, info)
-        if (info < 0) then
-            call stat%fail(STATUS_SOLVER, 'critical lambda: '//lapack_info_message('dgetrf', info))
-            return
-        end if
-        ! an exactly zero pivot (info > 0): a tiny one instead, so that the solve is defined
-        do i = 1, p
-            if (abs(c(i, i)) <= 0.0_wp) c(i, i) = epsilon(1.0_wp)*maxval(abs(kt_nn))
-        end do
-        x = [(1.0_wp + 0.5_wp*sin(real(i, wp)), i=1, p)]
-        y = x
-        do step = 1, 2
-            call dgetrs('N', p, 1, c, p, pivots, x, p, info)
-            if (info == 0) call dgetrs('T', p, 1, c, p, pivots, y, p, info)
-            if (info /= 0) then
-                call stat%fail(STATUS_SOLVER, 'critical lambda: '// &
-                               lapack_info_message('dgetrs', info))
-                return
-            end if
-            x = x/x(maxloc(abs(x), dim=1))
-            y = y/y(maxloc(abs(y), dim=1))
-        end do
+        call reduced_left_eigenvector(c, 0.0_wp, v, theta, stat)   ! C' y = 0
+        if (.not. stat%ok()) return
+        y = v/v(maxloc(abs(v), dim=1))
+        c(:, :) = transpose(c)
+        call reduced_left_eigenvector(c, 0.0_wp, v, theta, stat)   ! C x = 0
+        if (.not. stat%ok()) return
+        x = v/v(maxloc(abs(v), dim=1))
     end subroutine threshold_vectors
 
     !> The eigenvalues theta = 1/mu of the reduced problem (lambda Kt_nt - Kt_nn) M y = theta y,
