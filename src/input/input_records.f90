@@ -35,7 +35,7 @@ contains
         call ieee_get_status(saved)
         if (ieee_support_halting(ieee_overflow)) call ieee_set_halting_mode(ieee_overflow, &
                                                                             .false.)
-        call read_group(group, record, config, ios, msg, listing_unit)
+        include 'input_records_dispatch.inc'   ! select case (group): call mesh_record(...), ...
         call ieee_set_status(saved)
     end subroutine read_record
 
@@ -88,7 +88,7 @@ contains
         close (unit)
     end subroutine reader_defaults
 
-    ! read_group and the readers of the groups, generated from
+    ! The readers of the groups, generated from
     ! src/input/input_variables.cmake: each copies the current values into locals named like
     ! the namelist variables, reads the record from the internal file `record`, and only on
     ! success copies them back, normalising names (trimmed, lowercased), paths and lists.
