@@ -11,7 +11,7 @@
 #       its --help line (default '&GROUP'). Its variables follow it; the type is GROUP_config_t,
 #       the component config_t%GROUP.
 #   input_variable(NAME KIND DEFAULT HELP [LEN n] [DIM n] [CHOICES list] [SHOWN text]
-#                  [JOINED] [CAPACITY n] [RAW])
+#                  [JOINED])
 #       NAME     the namelist name (not record, config, ios, msg or listing_unit: the
 #                reader's arguments)
 #       KIND     real | integer | logical      real(wp), integer, logical
@@ -29,8 +29,6 @@
 #       SHOWN    --help shows this instead of the default
 #       JOINED   --help documents it on the next variable's line ('f1, f2 = 0.0, 0.0'),
 #                whose HELP describes both
-#       CAPACITY characters --set and the file may give (default: the variable's length)
-#       RAW      the read value is kept as read (no lowercasing or adjusting)
 # A constant named in HELP or a new CHOICES list must be imported in input_table's `use`.
 # Comments here say what the code needs to know about a variable.
 
@@ -171,12 +169,10 @@ input_variable(max_levels integer 0
 input_variable(theta     real    0.25_wp
                "Doerfler fraction: refine cells holding this part of the estimate")
 # 'h': Doerfler marking; 'hp': geometric meshes toward the singular points with degrees
-# rising away from them. RAW and CAPACITY NAME_LEN keep what the hand-written reader did:
-# the value is not lowercased, and a value of 5 to NAME_LEN characters is cut to 4 by the
-# read (then refused as not a strategy).
+# rising away from them
 input_variable(strategy  name    'h'
                "@: refine cells, or graded meshes with rising degrees (eigen)"
-               LEN 4 CHOICES ADAPT_STRATEGIES CAPACITY NAME_LEN RAW)
+               CHOICES ADAPT_STRATEGIES)
 # cells shrink by sigma per layer
 input_variable(sigma     real    0.15_wp
                "hp: grading factor toward the singular points (0 < sigma < 1)")
