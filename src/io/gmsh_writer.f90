@@ -81,12 +81,8 @@ contains
                            to_string(m%element))
             return
         end if
-        if (.not. (allocated(m%coords) .and. allocated(m%cells) .and. allocated(m%edges) &
-                   .and. allocated(m%edge_part) .and. allocated(m%part_names))) then
-            call stat%fail(STATUS_BAD_INPUT, 'write_gmsh: the mesh is incomplete (no nodes, ' &
-                           //'cells, boundary edges or part names)')
-            return
-        end if
+        call m%require_complete('write_gmsh', stat)
+        if (.not. stat%ok()) return
         if (m%n_cells() == 0) then
             call stat%fail(STATUS_BAD_INPUT, 'write_gmsh: the mesh has no cells')
             return
