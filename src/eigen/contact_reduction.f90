@@ -24,8 +24,8 @@ module contact_reduction
     use lapack_interfaces, only: dpotri, dtrsm
     implicit none
     private
-    public :: factor_stiffness, factor_permuted, factor_contact_blocks, contact_tail, flexibility_blocks, &
-              contact_flexibility, &
+    public :: factor_stiffness, factor_permuted, factor_contact_blocks, contact_tail, &
+              flexibility_blocks, contact_flexibility, &
               lift_eigenvectors, lift_block_columns, reduced_matrix, scaled_reduced_matrix, &
               lambda_unit, mu_of_theta
 
