@@ -11,7 +11,7 @@ program nceig_extrapolate
     use ieee_arithmetic, only: ieee_is_finite, ieee_value, ieee_quiet_nan
     use status, only: status_t, STATUS_BAD_INPUT
     use process_exit, only: exit_with, stop_with, stop_on_failure
-    use real_format, only: real_to_text
+    use real_format, only: real_to_text, known_text
     use strings, only: to_string
     use csv_table, only: csv_table_t, csv_field_t, read_csv_table
     use extrapolation, only: family_estimate_t, family_estimate, reference_index, fit_note, &
@@ -219,8 +219,7 @@ contains
     function field(x) result(text)
         real(wp), intent(in) :: x
         character(len=:), allocatable :: text
-        text = ''
-        if (ieee_is_finite(x)) text = real_to_text(x)
+        text = known_text(ieee_is_finite(x), x)
     end function field
 
     !> |error| / |value|, NaN unless both are finite and the value is not zero.
