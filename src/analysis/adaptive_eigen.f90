@@ -12,7 +12,7 @@ module adaptive_eigen
     use run_config, only: config_t
     use problem, only: problem_t
     use eigen_analysis, only: eigen_result_t, solve_eigen, estimate_eigen
-    use accuracy, only: WARNING_LEN
+    use accuracy, only: WARNING_LEN, MU_VANISHED
     use adaptive_loop, only: adapt_goal_t, adapt_mesh, doerfler_marking
     use error_bar, only: level_bar
     use element_types, only: element_degree
@@ -41,6 +41,8 @@ module adaptive_eigen
         type(eigen_result_t) :: res        !! its spectrum and error estimate
         logical :: converged = .false.     !! the estimate met the tolerance
         logical :: floor_reached = .false. !! stopped by round-off, not by a limit
+        !> the last level has no positive mu where an earlier one had (accuracy: MU_VANISHED)
+        logical :: mu_vanished = .false.
         !> one line: the tolerance met, or why not and what was reached
         character(len=:), allocatable :: outcome
     end type adaptive_result_t
@@ -75,6 +77,7 @@ contains
         if (.not. stat%ok()) return
         call move_alloc(goal%levels, out%levels)
         out%res = goal%res
+        out%mu_vanished = out%res%spec%lowest_positive() == 0 .and. any(out%levels%has_mu)
         if (.not. out%converged) out%res%warnings = [character(len=WARNING_LEN) :: &
                                                      out%outcome, out%res%warnings]
     end subroutine adapt_eigen
@@ -163,13 +166,15 @@ contains
         marked = doerfler_marking(this%res%error%indicators, theta)
     end function eigen_goal_mark
 
-    !> Why the estimate is missing: no positive mu, its size (est%skipped), or its failure.
+    !> Why the estimate is missing: no positive mu (none at all, or none left of the earlier
+    !> levels': MU_VANISHED), its size (est%skipped), or its failure.
     function eigen_goal_missing(this) result(reason)
         class(eigen_goal_t), intent(in) :: this
         character(len=:), allocatable :: reason
         reason = 'the estimate failed'
         if (this%res%spec%lowest_positive() == 0) then
             reason = 'no positive mu to adapt to'
+            if (any(this%levels%has_mu)) reason = reason//': '//MU_VANISHED
         else if (allocated(this%res%error%skipped)) then
             reason = this%res%error%skipped
         else if (allocated(this%res%error%failure)) then

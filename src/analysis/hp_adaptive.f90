@@ -20,7 +20,7 @@ module hp_adaptive
     use sparse_cholesky, only: cholesky_t
     use contact_boundary, only: assemble_b
     use eigen_analysis, only: eigen_result_t, eigen_with_factor, choose_solver
-    use accuracy, only: WARNING_LEN
+    use accuracy, only: WARNING_LEN, MU_VANISHED
     use error_bar, only: hp_run_bar, floor_reached, floor_outcome
     implicit none
     private
@@ -55,6 +55,8 @@ module hp_adaptive
         type(eigen_result_t) :: res        !! its spectrum, bar, round-off and warnings
         logical :: converged = .false.
         logical :: floor_reached = .false. !! stopped by round-off, not by a limit
+        !> the last level has no positive mu where an earlier one had (accuracy: MU_VANISHED)
+        logical :: mu_vanished = .false.
         character(len=:), allocatable :: outcome
     end type hp_result_t
 
@@ -99,6 +101,8 @@ contains
                 if (.not. last%has_mu) then
                     out%outcome = 'tolerance not met: no positive mu at level '// &
                                   to_string(last%level)
+                    out%mu_vanished = any(out%levels%has_mu)
+                    if (out%mu_vanished) out%outcome = out%outcome//': '//MU_VANISHED
                     exit
                 end if
                 if (last%error_bar >= 0.0_wp .and. last%error_bar <= tolerance) then

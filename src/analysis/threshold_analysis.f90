@@ -446,23 +446,24 @@ contains
                 call hp_adapt_eigen(point_config, prob, hp_out, quiet, stat)
                 if (.not. stat%ok()) return
                 call record(hp_out%res, hp_out%prob%dofs%n_free, hp_out%converged, .false., &
-                            hp_out%outcome)
+                            hp_out%mu_vanished, hp_out%outcome)
             else
                 call adapt_eigen(point_config, current, out, quiet, stat)
                 if (.not. stat%ok()) return
                 call record(out%res, out%prob%dofs%n_free, out%converged, &
-                            size(out%levels) == 1, out%outcome)
+                            size(out%levels) == 1, out%mu_vanished, out%outcome)
                 if (out%converged) current = out%prob
             end if
         end do
 
     contains
 
-        !> Point i from the result `res` of its loop on `n_free` dofs.
-        subroutine record(res, n_free, converged, reused, outcome)
+        !> Point i from the result `res` of its loop on `n_free` dofs. A point misses the
+        !> tolerance when it has a mu not converged, or had one at a coarser level (vanished).
+        subroutine record(res, n_free, converged, reused, vanished, outcome)
             type(eigen_result_t), intent(in) :: res
             integer, intent(in) :: n_free
-            logical, intent(in) :: converged, reused
+            logical, intent(in) :: converged, reused, vanished
             character(len=*), intent(in) :: outcome
             integer :: lowest
             lowest = res%spec%lowest_positive()
@@ -474,7 +475,7 @@ contains
             if (res%error%computed) curve%error_bar(i) = res%error%bar
             curve%n_dofs(i) = n_free
             if (converged .and. reused) curve%n_reused = curve%n_reused + 1
-            if (curve%found(i) .and. .not. converged) then
+            if ((curve%found(i) .or. vanished) .and. .not. converged) then
                 curve%n_not_met = curve%n_not_met + 1
                 if (.not. allocated(curve%not_met)) curve%not_met = 'lambda = '// &
                     real_to_text(curve%lambda(i))//': '//outcome

@@ -1,7 +1,9 @@
 ! SPDX-License-Identifier: MIT
 !> Everything a run needs from its input file, validated, with the documented defaults.
-!> One component type per namelist group; `input_config` fills it from the file. Functions
-!> of a record that the analyses need (sweep_lambdas) live here, beside the record.
+!> One component type per namelist group; `input_config` fills it from the file. The types
+!> are generated from src/input/input_variables.cmake (a new input variable is a line there:
+!> see input_table); the constants they use and the functions of a record that the analyses
+!> need (sweep_lambdas) are written here, beside them.
 module run_config
     use kinds, only: wp
     use strings, only: NAME_LEN, LIST_LEN
@@ -20,138 +22,13 @@ module run_config
     real(wp), parameter, public :: UNSCALED_YOUNG_RANGE = 1.0e100_wp
     real(wp), parameter, public :: UNSCALED_SIZE_RANGE = 1.0e50_wp
 
-    type, public :: mesh_config_t
-        character(len=NAME_LEN) :: source = 'rectangle'   !! 'rectangle' | 'gmsh'
-        character(len=PATH_LEN) :: file = ''              !! Gmsh .msh, relative to the input
-        real(wp) :: width = 1.0_wp
-        real(wp) :: height = 1.0_wp
-        integer :: nx = 8
-        integer :: ny = 8
-        character(len=NAME_LEN) :: element = 'p1'   !! 'p1' | 'q1' | 'p2' | 'q2' | 'p3' | 'p4'
-        character(len=NAME_LEN) :: diagonal = 'right'     !! 'right' | 'left' (p1, p2)
-        character(len=LIST_LEN) :: dirichlet = 'top'
-        character(len=LIST_LEN) :: neumann = 'left right'
-        character(len=LIST_LEN) :: contact = 'bottom'
-    end type mesh_config_t
-
-    type, public :: material_config_t
-        real(wp) :: young = 1.0_wp
-        real(wp) :: poisson = 0.3_wp
-    end type material_config_t
-
-    type, public :: analysis_config_t
-        !> one of input_validation's ACCEPTED_ANALYSES: 'eigen', 'threshold', 'lambda_sweep',
-        !> 'branch', 'solve'
-        character(len=NAME_LEN) :: kind = 'eigen'
-        real(wp) :: lambda = 5.0_wp
-    end type analysis_config_t
-
-    type, public :: eigen_config_t
-        character(len=NAME_LEN) :: solver = 'auto'  !! 'dense' | 'arpack' | 'auto'
-        integer :: nev = 6            !! eigenvalues wanted from ARPACK
-        real(wp) :: target = 0.0_wp   !! shift sigma for ARPACK (0: factor K alone)
-        real(wp) :: tol = 0.0_wp      !! ARPACK tolerance (0: machine precision)
-        integer :: maxit = 1000       !! ARPACK restarts
-        integer :: ncv = 0            !! Krylov dimension (0: chosen from nev)
-        !> 'auto' uses dense up to this many contact nodes: both solvers share the factor of
-        !> K, and up to here the dense solver's extra eigen + output time (1-4 ms) is within
-        !> the run-to-run noise (docs/numerics.md, "Choosing the solver")
-        integer :: dense_max_contact = 24
-        !> error estimate of the lowest positive mu: 'auto' (up to ESTIMATE_AUTO_MAX_DOFS free
-        !> dofs: it costs a few times the solve), 'on', 'off'
-        character(len=NAME_LEN) :: estimate = 'auto'
-        !> what ARPACK iterates on: 'reduced' (the p x p contact operator) or 'full'
-        !> ((K - target B)^-1 B in the n free dofs, one sparse LU)
-        character(len=NAME_LEN) :: operator = 'reduced'
-        !> report every positive real mu in (0, cn_max]; 0: only the lowest
-        real(wp) :: cn_max = 0.0_wp
-    end type eigen_config_t
-
-    type, public :: output_config_t
-        character(len=PATH_LEN) :: directory = ''   !! '' means output/<input file stem>
-        logical :: vtk = .true.
-        integer :: modes = 1                        !! how many modes go to mode_NNN.vtu
-        logical :: matrices = .false.               !! write K.mtx and B.mtx
-        !> 'binary': raw appended data, 26-32 times faster to write than 'ascii'
-        !> (docs/performance.md).
-        character(len=8) :: vtk_format = 'binary'
-        logical :: plot = .true.                    !! draw mode_001.png (gnuplot)
-        logical :: progress = .true.                !! a line on stdout as each phase ends
-    end type output_config_t
-
     integer, parameter, public :: MAX_SWEEP_LAMBDAS = 1000   !! length of &sweep lambdas
 
-    !> &sweep (analysis = 'lambda_sweep'): the lambdas at which the lowest positive mu is
-    !> computed, a range or an explicit list (the list wins when it has any entry).
-    type, public :: sweep_config_t
-        real(wp) :: lambda_min = -20.0_wp
-        real(wp) :: lambda_max = 20.0_wp
-        integer :: n_lambda = 401
-        character(len=NAME_LEN) :: spacing = 'linear'   !! 'linear' | 'log' (one sign)
-        !> explicit list; entries equal to huge() are unset (the namelist fills a prefix)
-        real(wp) :: lambdas(MAX_SWEEP_LAMBDAS) = huge(1.0_wp)
-        logical :: plot = .true.                        !! draw lambda_sweep.png (gnuplot)
-    end type sweep_config_t
-    !> analysis = 'branch' (model.md section 9): the base solution U and the members U + delta phi.
-    type, public :: branch_config_t
-        real(wp) :: alpha = 0.1_wp        !! u_n of U on Gamma_C, > 0
-        real(wp) :: beta = 0.1_wp         !! |u_t| of U on Gamma_C, > 0
-        integer :: n_delta = 11           !! delta values, evenly spaced in [-delta_max, delta_max]
-        integer :: write_members = 3      !! members written as branch_NNN.vtu (spread evenly)
-    end type branch_config_t
-
-    !> analysis = 'solve': the frictional normal-compliance problem (m_n = m_t = 1).
-    type, public :: solve_config_t
-        character(len=NAME_LEN) :: data = 'given'   !! 'given' | 'branch' (model.md section 9 data)
-        real(wp) :: c_n = 1.0_wp                    !! normal compliance ('given' data)
-        real(wp) :: c_t = 1.0_wp                    !! tangential compliance ('given' data)
-        real(wp) :: critical_factor = 1.0_wp        !! 'branch' data: c = factor * critical
-        real(wp) :: f1 = 0.0_wp, f2 = 0.0_wp        !! body force per unit volume
-        real(wp) :: t1 = 0.0_wp, t2 = 0.0_wp        !! traction on every Neumann part
-        real(wp) :: u_d1 = 0.0_wp, u_d2 = 0.0_wp    !! displacement on Gamma_D
-        character(len=NAME_LEN) :: start = 'zero'   !! 'zero' | 'branch' | 'random' | 'mode'
-        real(wp) :: start_delta = 0.0_wp            !! 'branch' start: U + start_delta phi
-        real(wp) :: start_scale = 1.0_wp            !! 'random', 'mode': size of the guess
-        real(wp) :: start_noise = 0.0_wp            !! uniform noise in [-noise, noise] added
-        integer :: seed = 1                         !! of the 'random' start and the noise
-        real(wp) :: tol = 1.0e-10_wp                !! on ||residual||_inf / ||load||_inf
-        integer :: max_iterations = 50
-    end type solve_config_t
-
-    !> &adapt (analysis 'eigen', 'lambda_sweep'): refine the mesh by newest-vertex bisection
-    !> until the error estimate of the lowest positive mu is at most `tolerance` (0: none).
-    type, public :: adapt_config_t
-        real(wp) :: tolerance = 0.0_wp      !! relative, 0 <= tolerance < 1; 0 is off
-        !> no level solves on more free dofs than this; 0: as many as the memory available
-        !> at the start allows (adaptive_dof_limit)
-        integer :: max_dofs = 0
-        !> refinement steps after the starting mesh; 0: no limit (the tolerance or the
-        !> dofs end the loop, never a level count)
-        integer :: max_levels = 0
-        !> Doerfler marking: refine the fewest cells whose indicators sum to at least this
-        !> fraction of the total (0 < theta <= 1; 1 refines every cell with an indicator)
-        real(wp) :: theta = 0.25_wp
-        !> 'h': refine the mesh (Doerfler marking); 'hp': geometric meshes toward the
-        !> singular points with degrees rising away from them (analysis 'eigen' only)
-        character(len=4) :: strategy = 'h'
-        !> 'hp': the geometric grading factor, 0 < sigma < 1 (cells shrink by sigma per layer)
-        real(wp) :: sigma = 0.15_wp
-        !> 'hp': the highest polynomial degree of a cell, 1 to 20
-        integer :: p_max = 20
-    end type adapt_config_t
-
-    type, public :: config_t
-        character(len=:), allocatable :: input_file   !! path as given on the command line
-        type(mesh_config_t) :: mesh
-        type(material_config_t) :: material
-        type(analysis_config_t) :: analysis
-        type(eigen_config_t) :: eigen
-        type(output_config_t) :: output
-        type(sweep_config_t) :: sweep
-        type(branch_config_t) :: branch
-        type(solve_config_t) :: solve
-        type(adapt_config_t) :: adapt
-    end type config_t
+    !> One type per namelist group (mesh_config_t, ..., adapt_config_t) with the documented
+    !> defaults, and config_t holding one of each: generated by the build from
+    !> src/input/input_variables.cmake (cmake/input_codegen.cmake), where the variables are
+    !> described.
+    include 'run_config_types.inc'
 
 contains
 

@@ -11,10 +11,15 @@ module accuracy
     implicit none
     private
     public :: accuracy_warnings, forward_error_estimate, lame_ratio, roundoff_warnings
-    public :: WARNING_LEN, FORWARD_ERROR_BOUND, BACKWARD_ERROR_BOUND, LOCKING_RATIO_BOUND, &
-              LAMBDA_SENSITIVITY_BOUND
+    public :: WARNING_LEN, MU_VANISHED, FORWARD_ERROR_BOUND, BACKWARD_ERROR_BOUND, &
+              LOCKING_RATIO_BOUND, LAMBDA_SENSITIVITY_BOUND
 
     integer, parameter :: WARNING_LEN = 400
+    !> Why an adaptive loop ends where a positive mu of its earlier levels is gone: such a mu
+    !> moves with the mesh (grows like 1/h at nu = 0), a grid-scale mode with no continuum
+    !> value; the run exits with the status of a tolerance not met.
+    character(len=*), parameter :: MU_VANISHED = 'the positive mu of the coarser levels is '// &
+        'gone: a mode the mesh does not resolve, no converged value at this resolution'
 
     !> Relative error of the headline mu above which it is reported: six significant digits,
     !> more than any convergence study of c_n needs, far fewer than the 15 of a well

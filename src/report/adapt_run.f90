@@ -43,10 +43,12 @@ contains
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
         call adapt_eigen(config, prob, this%out, timings, stat)
-        ! Without a positive mu there is no value to quote, so nothing to take for a met
-        ! tolerance: that stays exit 0 with its warning.
+        ! Without a positive mu at any level there is no value to quote, so nothing to take
+        ! for a met tolerance: that stays exit 0 with its warning. One that vanished on
+        ! refinement had values, none converged: a tolerance not met.
         if (.not. stat%ok() .or. this%out%converged) return
-        if (this%out%res%spec%lowest_positive() > 0) call this%verdict%fail(STATUS_NOT_MET, &
+        if (this%out%res%spec%lowest_positive() > 0 .or. this%out%mu_vanished) &
+            call this%verdict%fail(STATUS_NOT_MET, &
             config%input_file//': &adapt: '//this%out%outcome// &
             ' (the set of the last level is written)')
     end subroutine adapt_run_solve

@@ -57,9 +57,11 @@ contains
         type(status_t), intent(out) :: stat
         this%start_dofs = prob%dofs%n_free
         call hp_adapt_eigen(config, prob, this%out, timings, stat)
-        ! as the h loop: without a positive mu there is no value, so no tolerance to miss
+        ! as the h loop: without a positive mu at any level there is no value, so no
+        ! tolerance to miss; one that vanished on refinement misses it
         if (.not. stat%ok() .or. this%out%converged) return
-        if (this%out%res%spec%lowest_positive() > 0) call this%verdict%fail(STATUS_NOT_MET, &
+        if (this%out%res%spec%lowest_positive() > 0 .or. this%out%mu_vanished) &
+            call this%verdict%fail(STATUS_NOT_MET, &
             config%input_file//': &adapt: '//this%out%outcome// &
             ' (the set of the last level is written)')
     end subroutine hp_run_solve

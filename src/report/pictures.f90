@@ -474,6 +474,10 @@ contains
         character(len=2) :: element
         logical :: log_x
         if (.not. config%sweep%plot) return
+        if (.not. any(res%sweep%found)) then   ! gnuplot would fail on an empty curve
+            note = 'not drawn: no lambda has a positive mu'
+            return
+        end if
         element = element_name(prob%mesh%element)
         title = element//' '//trim(config%mesh%source)
         if (config%mesh%source == 'rectangle') then

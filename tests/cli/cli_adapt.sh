@@ -132,6 +132,18 @@ check 'no positive mu: adapt.png not drawn, said why' \
 check 'no positive mu: only the listed files' \
     '[[ $(ls -A "$work/none" | sort | tr "\n" " ") == "adapt.csv eigenvalues.csv mesh.msh mode_001.png mode_001.vtu summary.json " ]]'
 
+# nu = 0 has no continuum c_n: the lowest positive mu grows like 1/h (a grid-scale mode) and
+# is gone after a refinement. Its values had bars, none converged: exit 8, said why.
+"$nceig" "$work/adapt.nml" --set material%poisson=0 --set analysis%lambda=20 \
+    --set output%directory="$work/gone" >"$work/stdout" 2>"$work/err"; rc=$?
+check 'mu gone on refinement (nu = 0): exit 8, one stderr line saying no converged value' \
+    '[[ $rc -eq 8 && $(wc -l <"$work/err") -eq 1 ]] &&
+    grep -q "positive mu of the coarser levels is gone.*no converged value" "$work/err"'
+check 'mu gone on refinement: the earlier levels had a mu, the last none' \
+    '[[ -n $(sed -n 2p "$work/gone/adapt.csv" | cut -d, -f5) &&
+       -z $(tail -1 "$work/gone/adapt.csv" | cut -d, -f5) &&
+       $(json "$work/gone/summary.json" adapt_converged) == false ]]'
+
 # A lambda sweep to a tolerance: every row has its estimate within it (or says none), the
 # meshes grow or are reused, the same mu as a single adaptive run at one of its lambdas.
 cat >"$work/sweep.nml" <<NML

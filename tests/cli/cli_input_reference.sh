@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
-# docs/input.md and `nceig --help` (made from src/input/input_table.f90 and run_config's
-# defaults) document the same variables, group by group, in the same order, with the same
-# defaults: a variable added to the table, renamed or given a new default fails here until
-# the reference follows. Usage: cli_input_reference.sh NCEIG SOURCE_DIR
+# docs/input.md and `nceig --help` (made from the definitions in
+# src/input/input_variables.cmake) document the same variables, group by group, in the same
+# order, with the same defaults: a variable added to the definitions, renamed or given a
+# new default fails here until the reference follows. Usage: cli_input_reference.sh NCEIG SOURCE_DIR
 set -u
 nceig=$1
 source_dir=$2

@@ -1,8 +1,10 @@
 ! SPDX-License-Identifier: MIT
-!> The namelist records: reading one, what a bad assignment expected, and the one check
-!> that ties the places a variable is named together: the variables each namelist reads,
-!> those of input_table (behind the messages, --set and the help) and those of the help
-!> text are the same, in the same order.
+!> The namelist records: reading one, what a bad assignment expected, and the check that
+!> ties the places a variable is named together: the variables each namelist reads, those
+!> of input_table (behind the messages, --set and the help) and those of the help text are
+!> the same, in the same order. Readers and table are generated from one definition per
+!> variable (src/input/input_variables.cmake), so this now guards the generator; the
+!> definitions themselves are checked against --help by the test input_definitions.
 program test_input_records
     use run_config, only: config_t
     use strings, only: NAME_LEN
