@@ -62,7 +62,7 @@ contains
         real(wp), intent(in) :: h(3), f(3)
         type(richardson_fit_t) :: fit
         real(wp) :: hs(3), fs(3), d1, d2, ratio, s, t, lo, hi, mid
-        integer :: order_idx(3), i
+        integer :: i
 
         fit%limit = nan()
         fit%constant = nan()
@@ -71,9 +71,9 @@ contains
             fit%code = FIT_NOT_FINITE
             return
         end if
-        order_idx = sort_index(-h)   ! coarsest mesh first
-        hs = h(order_idx)
-        fs = f(order_idx)
+        hs = h
+        fs = f
+        call coarsest_first(hs, fs)
         if (.not. (hs(3) > 0.0_wp .and. hs(2) > hs(3) .and. hs(1) > hs(2))) then
             fit%code = FIT_BAD_H
             return
@@ -139,7 +139,6 @@ contains
         type(family_estimate_t) :: est
         type(richardson_fit_t) :: fit, previous
         real(wp), allocatable :: hs(:), fs(:)
-        integer, allocatable :: idx(:)
         integer :: n
 
         est%limit = nan()
@@ -158,9 +157,7 @@ contains
             est%code = FIT_TOO_FEW
             return
         end if
-        idx = sort_index(-hs)   ! coarsest mesh first
-        hs = hs(idx)
-        fs = fs(idx)
+        call coarsest_first(hs, fs)
         est%h_used = hs(n - 2:n)
         est%finest = fs(n)
         fit = richardson_fit(hs(n - 2:n), fs(n - 2:n))
@@ -205,6 +202,15 @@ contains
             end if
         end do
     end function reference_index
+
+    !> Reorder the points (h(i), f(i)) by decreasing h: the coarsest mesh first.
+    pure subroutine coarsest_first(h, f)
+        real(wp), intent(inout) :: h(:), f(:)
+        integer :: order(size(h))
+        order = sort_index(-h)
+        h = h(order)
+        f = f(order)
+    end subroutine coarsest_first
 
     !> A short reason for a fit code, fit for a CSV field (no commas).
     pure function fit_note(code) result(note)

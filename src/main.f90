@@ -6,7 +6,7 @@ program nceig
     use kinds, only: wp
     use status, only: status_t, STATUS_BAD_INPUT
     use version, only: NCEIG_VERSION
-    use process_exit, only: exit_with, exit_now
+    use process_exit, only: exit_with, exit_now, stop_with, stop_on_failure
     use timer, only: wall_time, timings_t, PHASE_ASSEMBLY
     use strings, only: to_string
     use run_config, only: config_t
@@ -21,6 +21,7 @@ program nceig
     use memory_budget, only: check_address_space
     implicit none
 
+    character(len=*), parameter :: PROGRAM_NAME = 'nceig'
     type(config_t) :: config
     type(problem_t) :: prob
     class(analysis_t), allocatable :: analysis
@@ -34,7 +35,7 @@ program nceig
     ! the run by SIGPIPE, maybe before its commit. Lines it did not take are lost (iostat).
     call ignore_broken_pipe()
     call read_command_line(command, stat)
-    call stop_on_failure(stat)
+    call stop_on_failure(PROGRAM_NAME, stat)
     select case (command%action)
     case ('help')
         write (output_unit, '(a)', iostat=ios) help_text()
@@ -46,14 +47,13 @@ program nceig
 
     start = wall_time()
     call read_input(command%input, config, stat, command%settings)
-    call stop_on_failure(stat)
+    call stop_on_failure(PROGRAM_NAME, stat)
 
     call new_analysis(trim(config%analysis%kind), config%adapt%tolerance > 0.0_wp, analysis, &
                       trim(config%adapt%strategy))   ! &adapt strategy: 'h' or 'hp'
     if (.not. allocated(analysis)) then
-        write (error_unit, '(a)') 'nceig: '//config%input_file//': &analysis: kind = '''// &
-            trim(config%analysis%kind)//''' has no analysis'
-        call exit_with(STATUS_BAD_INPUT)
+        call stop_with(PROGRAM_NAME, config%input_file//': &analysis: kind = '''// &
+                       trim(config%analysis%kind)//''' has no analysis', STATUS_BAD_INPUT)
     end if
 
     if (config%output%progress) then
@@ -63,7 +63,7 @@ program nceig
     end if
     phase = wall_time()
     call build_problem(config, prob, stat, analysis%needs_all_dofs)
-    call stop_on_failure(stat)
+    call stop_on_failure(PROGRAM_NAME, stat)
     call timings%add(PHASE_ASSEMBLY, wall_time() - phase, ': '//to_string(prob%mesh%n_cells())// &
         ' cells, '//to_string(prob%dofs%n_free)//' dofs, '//to_string(prob%contact%p())// &
         ' contact nodes, K with '//to_string(prob%k%nnz())//' entries')
@@ -75,20 +75,10 @@ program nceig
         call exit_now(stat%code)
     end if
     call run_analysis(analysis, config, prob, start, timings, stat)
-    call stop_on_failure(stat)
+    call stop_on_failure(PROGRAM_NAME, stat)
     write (output_unit, '(a)', iostat=ios) analysis%report(config, prob)
-    call stop_on_failure(analysis%verdict)
+    call stop_on_failure(PROGRAM_NAME, analysis%verdict)
     ! gfortran 12 keeps main-program allocatables in a frame gone before LeakSanitizer looks
     deallocate (command%action, command%input, command%settings)
     deallocate (analysis)
-
-contains
-
-    !> One line on standard error and a non-zero exit: 2 for bad input, the status code else.
-    subroutine stop_on_failure(stat)
-        type(status_t), intent(in) :: stat
-        if (stat%ok()) return
-        write (error_unit, '(a)') 'nceig: '//stat%message
-        call exit_with(stat%code)
-    end subroutine stop_on_failure
 end program nceig

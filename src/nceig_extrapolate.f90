@@ -6,18 +6,19 @@
 !> extrapolation of each family (extrapolation.csv) or, with --tradeoff, every run's relative
 !> error against the best extrapolated limit next to its cost (tradeoff.csv).
 program nceig_extrapolate
-    use iso_fortran_env, only: error_unit, output_unit
+    use iso_fortran_env, only: output_unit
     use kinds, only: wp
     use ieee_arithmetic, only: ieee_is_finite, ieee_value, ieee_quiet_nan
     use status, only: status_t, STATUS_BAD_INPUT
-    use process_exit, only: exit_with
-    use real_format, only: real_to_text
+    use process_exit, only: exit_with, stop_with, stop_on_failure
+    use real_format, only: real_to_text, known_text
     use strings, only: to_string
     use csv_table, only: csv_table_t, csv_field_t, read_csv_table
     use extrapolation, only: family_estimate_t, family_estimate, reference_index, fit_note, &
                              FIT_OK, FIT_CONSTANT
     implicit none
 
+    character(len=*), parameter :: PROGRAM_NAME = 'nceig-extrapolate'
     character(len=*), parameter :: USAGE = &
         'usage: nceig-extrapolate RESULTS.csv | nceig-extrapolate --tradeoff RESULTS.csv'
     type(csv_table_t) :: table
@@ -30,7 +31,7 @@ program nceig_extrapolate
 
     call parse_arguments(mode, path)
     call read_csv_table(path, table, stat)
-    call stop_on_failure(stat)
+    call stop_on_failure(PROGRAM_NAME, stat)
     col_family = required_column('family')
     col_h = required_column('h')
     col_mu = required_column('lowest_positive_mu')
@@ -47,9 +48,8 @@ program nceig_extrapolate
         call print_extrapolation()
     else
         if (best == 0) then
-            write (error_unit, '(a)') 'nceig-extrapolate: '//path//': no family has an '// &
-                'extrapolated limit, so there is no reference for the relative error'
-            call exit_with(STATUS_BAD_INPUT)
+            call stop_with(PROGRAM_NAME, path//': no family has an extrapolated limit, so '// &
+                           'there is no reference for the relative error', STATUS_BAD_INPUT)
         end if
         call print_tradeoff()
     end if
@@ -86,17 +86,15 @@ contains
     end function argument
 
     subroutine usage_error()
-        write (error_unit, '(a)') 'nceig-extrapolate: '//USAGE
-        call exit_with(STATUS_BAD_INPUT)
+        call stop_with(PROGRAM_NAME, USAGE, STATUS_BAD_INPUT)
     end subroutine usage_error
 
     integer function required_column(name) result(column)
         character(len=*), intent(in) :: name
         column = table%column(name)
         if (column == 0) then
-            write (error_unit, '(a)') 'nceig-extrapolate: '//path//': the header has no column '// &
-                "'"//name//"'"
-            call exit_with(STATUS_BAD_INPUT)
+            call stop_with(PROGRAM_NAME, path//': the header has no column '''//name//'''', &
+                           STATUS_BAD_INPUT)
         end if
     end function required_column
 
@@ -221,8 +219,7 @@ contains
     function field(x) result(text)
         real(wp), intent(in) :: x
         character(len=:), allocatable :: text
-        text = ''
-        if (ieee_is_finite(x)) text = real_to_text(x)
+        text = known_text(ieee_is_finite(x), x)
     end function field
 
     !> |error| / |value|, NaN unless both are finite and the value is not zero.
@@ -240,11 +237,4 @@ contains
         text = ''
         if (ieee_is_finite(h)) text = to_string(nint(1.0_wp/h))
     end function mesh_n
-
-    subroutine stop_on_failure(stat)
-        type(status_t), intent(in) :: stat
-        if (stat%ok()) return
-        write (error_unit, '(a)') 'nceig-extrapolate: '//stat%message
-        call exit_with(stat%code)
-    end subroutine stop_on_failure
 end program nceig_extrapolate

@@ -13,7 +13,7 @@ module filesystem
     private
     public :: make_directories, rename_file, remove_file, remove_directory, file_exists, &
               is_directory, process_id, is_real_directory, process_gone, list_directory
-    public :: close_output, sync_path, sync_filesystem, replace_directory, make_link, &
+    public :: close_output, end_output, sync_path, sync_filesystem, replace_directory, make_link, &
               copy_mode, remove_tree, lock_file, unlock_file, real_path, can_replace, &
               canonical_path
     public :: cleanup_on_signal, hold_signals, end_cleanup_on_signal
@@ -315,6 +315,21 @@ contains
                 ' bytes written (disk full, or over the file size limit?)'
         end if
     end subroutine close_output
+
+    !> Close `unit`, written to `path`: checked by close_output while `ios` is 0; after a
+    !> failed write (`ios` non-zero) closed quietly, `ios` and `msg` keeping that failure.
+    subroutine end_output(unit, path, ios, msg)
+        integer, intent(in) :: unit
+        character(len=*), intent(in) :: path
+        integer, intent(inout) :: ios
+        character(len=*), intent(inout) :: msg
+        integer :: ignored
+        if (ios /= 0) then
+            close (unit, iostat=ignored)
+        else
+            call close_output(unit, path, ios, msg)
+        end if
+    end subroutine end_output
 
     !> Write the file system holding `path` to disk (syncfs on Linux); fails with STATUS_IO
     !> when the system reports a write error there.

@@ -76,6 +76,20 @@ static int sync_fd(int fd)
     return -1;
 }
 
+/* `op` applied to `path` opened read-only; its result, with the errno it left (close
+   must not overwrite it); -1 with errno when `path` cannot be opened. */
+static int on_opened(const char *path, int (*op)(int))
+{
+    int status, saved;
+    int fd = open(path, O_RDONLY | O_CLOEXEC);
+    if (fd < 0) return -1;
+    status = op(fd);
+    saved = errno;
+    close(fd);
+    errno = saved;
+    return status;
+}
+
 /* After a Fortran unit was closed: 0 when file `path` holds `expected` bytes; -1 with errno
    set when it cannot be examined; -2 when it is shorter or longer, with its size in *actual.
    libgfortran (12) ignores a failed write(2) when it flushes its buffer, even at CLOSE, so
@@ -94,14 +108,7 @@ int nceig_check_written(const char *path, long long expected, long long *actual)
 int nceig_sync_filesystem(const char *path)
 {
 #ifdef __linux__
-    int status, saved;
-    int fd = open(path, O_RDONLY | O_CLOEXEC);
-    if (fd < 0) return -1;
-    status = syncfs(fd);
-    saved = errno;
-    close(fd);
-    errno = saved;
-    return status;
+    return on_opened(path, syncfs);
 #else
     (void)path;
     sync();
@@ -112,14 +119,7 @@ int nceig_sync_filesystem(const char *path)
 /* fsync a file or directory by name (a directory: so that renames in it are durable). */
 int nceig_sync_path(const char *path)
 {
-    int status, saved;
-    int fd = open(path, O_RDONLY | O_CLOEXEC);
-    if (fd < 0) return -1;
-    status = sync_fd(fd);
-    saved = errno;
-    close(fd);
-    errno = saved;
-    return status;
+    return on_opened(path, sync_fd);
 }
 
 /* Put directory `from` where `to` is. When `to` exists they are swapped in one step

@@ -4,9 +4,10 @@
 module process_exit
     use iso_c_binding, only: c_int
     use iso_fortran_env, only: error_unit, output_unit
+    use status, only: status_t
     implicit none
     private
-    public :: exit_with, exit_now
+    public :: exit_with, exit_now, stop_with, stop_on_failure
 
     interface
         subroutine c_exit(code) bind(C, name='exit')
@@ -39,4 +40,20 @@ contains
         flush (error_unit)
         call c_exit_now(int(code, c_int))
     end subroutine exit_now
+
+    !> One line `program: message` on standard error, then exit_with(code).
+    subroutine stop_with(program, message, code)
+        character(len=*), intent(in) :: program, message
+        integer, intent(in) :: code
+        write (error_unit, '(a)') program//': '//message
+        call exit_with(code)
+    end subroutine stop_with
+
+    !> Nothing when `stat` is ok; else its message and code through stop_with (the programs'
+    !> one way to end on an error that travelled up as a status).
+    subroutine stop_on_failure(program, stat)
+        character(len=*), intent(in) :: program
+        type(status_t), intent(in) :: stat
+        if (.not. stat%ok()) call stop_with(program, stat%message, stat%code)
+    end subroutine stop_on_failure
 end module process_exit

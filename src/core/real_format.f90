@@ -6,13 +6,29 @@ module real_format
     use ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
     implicit none
     private
-    public :: real_to_text
+    public :: real_to_text, known_text
 
     integer, parameter :: MAX_DIGITS = 17          !! always enough for a binary64 round trip
     integer, parameter :: MIN_POSITIONAL_EXP = -5  !! 1.0e-5 is written 0.00001, 1.0e-6 is not
     integer, parameter :: MAX_POSITIONAL_EXP = 15  !! beyond, positional text gets unreadable
 
 contains
+
+    !> real_to_text(x) where `known`, else `missing` (default '': the empty field of a table
+    !> row for a value that does not exist, such as no mu or a negative 'none' bar).
+    function known_text(known, x, missing) result(text)
+        logical, intent(in) :: known
+        real(wp), intent(in) :: x
+        character(len=*), intent(in), optional :: missing
+        character(len=:), allocatable :: text
+        if (known) then
+            text = real_to_text(x)
+        else if (present(missing)) then
+            text = missing
+        else
+            text = ''
+        end if
+    end function known_text
 
     !> Shortest decimal text of `x` that reads back exactly with a Fortran list-directed
     !> read: positional for moderate magnitudes ('0.3', '200.0', '-0.0'), otherwise

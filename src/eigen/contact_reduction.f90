@@ -24,8 +24,8 @@ module contact_reduction
     use lapack_interfaces, only: dpotri, dtrsm
     implicit none
     private
-    public :: factor_stiffness, factor_contact_blocks, contact_tail, flexibility_blocks, &
-              contact_flexibility, &
+    public :: factor_stiffness, factor_permuted, factor_contact_blocks, contact_tail, &
+              flexibility_blocks, contact_flexibility, &
               lift_eigenvectors, lift_block_columns, reduced_matrix, scaled_reduced_matrix, &
               lambda_unit, mu_of_theta
 
@@ -136,36 +136,55 @@ contains
         if (present(contact_last)) then
             if (.not. contact_last) then
                 call chol%factor(k, stat)
-                call explain(stat, 'CHOLMOD, its own ordering')
+                call explain_factor(k, 'CHOLMOD, its own ordering', '', start, timings, stat)
                 return
             end if
         end if
         call nested_dissection_last(m, dofs, contact%nodes, permutation, stat)
         if (.not. stat%ok()) return
-        call timings%add(PHASE_ORDERING, wall_time() - start, ': METIS, contact nodes last')
-        start = wall_time()
+        call factor_permuted(k, permutation, contact, 'contact nodes last', '', start, chol, &
+                             timings, stat)
+    end subroutine factor_stiffness
+
+    !> Factor K in `permutation` (from an ordering begun at `start`, described by `ordering`)
+    !> with the 2p contact dofs of `contact` kept last, for the reduced operator's dense
+    !> trailing block. `space` ('' or 'hp ') names K's space in the messages and times.
+    subroutine factor_permuted(k, permutation, contact, ordering, space, start, chol, timings, &
+                               stat)
+        type(csr_matrix_t), intent(in) :: k
+        integer, intent(in) :: permutation(:)
+        type(contact_t), intent(in) :: contact
+        character(len=*), intent(in) :: ordering, space
+        real(wp), intent(in) :: start
+        type(cholesky_t), intent(inout) :: chol
+        type(timings_t), intent(inout) :: timings
+        type(status_t), intent(out) :: stat
+        real(wp) :: factor_start
+        call timings%add(PHASE_ORDERING, wall_time() - start, ': METIS, '//ordering)
+        factor_start = wall_time()
         call chol%factor(k, stat, ordering=ORDERING_GIVEN, permutation=permutation, &
                          keep_last=2*contact%p())
-        call explain(stat, 'CHOLMOD')
+        call explain_factor(k, 'CHOLMOD', space, factor_start, timings, stat)
+    end subroutine factor_permuted
 
-    contains
-
-        !> A failed factor's message, or the factor's time.
-        subroutine explain(stat, what)
-            type(status_t), intent(inout) :: stat
-            character(len=*), intent(in) :: what
-            if (stat%code == STATUS_SINGULAR) then
-                stat%message = 'the stiffness matrix K is singular: is there a Dirichlet ' &
-                    //'boundary that stops every rigid motion? ('//stat%message//')'
-                return
-            else if (.not. stat%ok()) then
-                stat%message = 'stiffness matrix K: '//stat%message
-                return
-            end if
+    !> A failed factor of K explained (the usual cause of a singular one: no Dirichlet
+    !> boundary), or the factor's time since `start` by `what`.
+    subroutine explain_factor(k, what, space, start, timings, stat)
+        type(csr_matrix_t), intent(in) :: k
+        character(len=*), intent(in) :: what, space
+        real(wp), intent(in) :: start
+        type(timings_t), intent(inout) :: timings
+        type(status_t), intent(inout) :: stat
+        if (stat%code == STATUS_SINGULAR) then
+            stat%message = 'the '//space//'stiffness matrix K is singular: is there a '// &
+                'Dirichlet boundary that stops every rigid motion? ('//stat%message//')'
+        else if (.not. stat%ok()) then
+            stat%message = space//'stiffness matrix K: '//stat%message
+        else
             call timings%add(PHASE_FACTOR, wall_time() - start, ': '//what//', '// &
-                             to_string(k%n())//' dofs')
-        end subroutine explain
-    end subroutine factor_stiffness
+                             to_string(k%n())//' '//space//'dofs')
+        end if
+    end subroutine explain_factor
 
     !> Factor K with the contact dofs last (factor_stiffness) and form its contact blocks
     !> Kt_nn, Kt_nt (contact_flexibility), their time added to `timings`: the start of every

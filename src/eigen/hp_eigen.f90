@@ -7,12 +7,11 @@
 !> degrees to the spectrum, what an analysis calls.
 module hp_eigen
     use kinds, only: wp
-    use status, only: status_t, STATUS_SINGULAR
-    use strings, only: to_string
-    use timer, only: wall_time, timings_t, PHASE_ORDERING, PHASE_FACTOR
+    use status, only: status_t
+    use timer, only: wall_time, timings_t
     use mesh, only: mesh_t
     use csr_matrix, only: csr_matrix_t
-    use sparse_cholesky, only: cholesky_t, ORDERING_GIVEN
+    use sparse_cholesky, only: cholesky_t
     use hp_space, only: hp_space_t
     use hp_ordering, only: hp_cholesky_permutation
     use hp_space, only: build_hp_space
@@ -21,7 +20,7 @@ module hp_eigen
     use hp_contact, only: build_hp_contact
     use spectrum, only: spectrum_t
     use dense_eigen, only: dense_spectrum, contact_flexibility
-    use contact_reduction, only: scaled_reduced_matrix, lambda_unit
+    use contact_reduction, only: scaled_reduced_matrix, lambda_unit, factor_permuted
     use arpack_eigen, only: arpack_options_t, arpack_lowest_positive
     use lapack_interfaces, only: dgeev, lapack_info_message
     use status, only: STATUS_SOLVER
@@ -48,20 +47,8 @@ contains
         start = wall_time()
         call hp_cholesky_permutation(m, space, contact%nodes, permutation, stat)
         if (.not. stat%ok()) return
-        call timings%add(PHASE_ORDERING, wall_time() - start, ': METIS, hp contact last')
-        start = wall_time()
-        call chol%factor(k, stat, ordering=ORDERING_GIVEN, permutation=permutation, &
-                         keep_last=2*contact%p())
-        if (stat%code == STATUS_SINGULAR) then
-            stat%message = 'the hp stiffness matrix K is singular: is there a Dirichlet '// &
-                'boundary that stops every rigid motion? ('//stat%message//')'
-            return
-        else if (.not. stat%ok()) then
-            stat%message = 'hp stiffness matrix K: '//stat%message
-            return
-        end if
-        call timings%add(PHASE_FACTOR, wall_time() - start, ': CHOLMOD, '// &
-                         to_string(k%n())//' hp dofs')
+        call factor_permuted(k, permutation, contact, 'hp contact last', 'hp ', start, chol, &
+                             timings, stat)
     end subroutine factor_hp_stiffness
 
     !> The hp space of the P1 mesh `m` with cell degrees `degree` and `dirichlet_parts`

@@ -11,7 +11,7 @@ module node_ordering
     use mesh, only: mesh_t
     use dof_map, only: dof_map_t
     use element_types, only: element_corners, element_degree
-    use sorting, only: sort_index
+    use sorting, only: sort, sort_index
     implicit none
     private
     public :: nested_dissection_last
@@ -180,23 +180,12 @@ contains
     pure subroutine compress_rows(xadj, adjncy)
         integer(IDX_T), intent(inout) :: xadj(:)
         integer(IDX_T), allocatable, intent(inout) :: adjncy(:)
-        integer :: row, first, last, out, i, j
-        integer(IDX_T) :: key
+        integer :: row, first, last, out, i
         out = 0
         first = xadj(1) + 1
         do row = 1, size(xadj) - 1
             last = xadj(row + 1)
-            ! insertion sort: a row holds a few dozen entries at most (node cliques)
-            do i = first + 1, last
-                key = adjncy(i)
-                j = i - 1
-                do while (j >= first)
-                    if (adjncy(j) <= key) exit
-                    adjncy(j + 1) = adjncy(j)
-                    j = j - 1
-                end do
-                adjncy(j + 1) = key
-            end do
+            call sort(adjncy(first:last))
             xadj(row) = out
             do i = first, last
                 if (i > first) then

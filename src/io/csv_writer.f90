@@ -4,7 +4,7 @@
 !> so a writer loop needs no error test per line and no failure goes unnoticed.
 module csv_writer
     use status, only: status_t, STATUS_IO
-    use filesystem, only: close_output
+    use filesystem, only: end_output
     implicit none
     private
 
@@ -51,19 +51,9 @@ contains
     subroutine csv_writer_close(this, stat)
         class(csv_writer_t), intent(inout) :: this
         type(status_t), intent(out) :: stat
-        integer :: ios
-        character(len=MSG_LEN) :: msg
         if (this%unit /= -1) then
-            if (this%ios == 0) then
-                ! checks that the whole file reached the disk: see close_output
-                call close_output(this%unit, this%path, ios, msg)
-            else
-                close (this%unit, iostat=ios)
-            end if
-            if (this%ios == 0 .and. ios /= 0) then
-                this%ios = ios
-                this%msg = msg
-            end if
+            ! checks that the whole file reached the disk: see close_output
+            call end_output(this%unit, this%path, this%ios, this%msg)
             this%unit = -1
         end if
         if (this%ios /= 0) call stat%fail(STATUS_IO, this%path//': cannot write: '// &

@@ -15,7 +15,7 @@ module gmsh_writer
     use mesh, only: mesh_t
     use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, ELEMENT_P3, &
                              ELEMENT_P4, element_nodes_per_cell, element_nodes_per_edge
-    use filesystem, only: rename_file, remove_file, close_output
+    use filesystem, only: rename_file, remove_file, end_output
     implicit none
     private
     public :: write_gmsh
@@ -48,7 +48,7 @@ contains
         type(status_t), intent(out) :: stat
         character(len=512) :: msg
         character(len=:), allocatable :: partial
-        integer :: unit, ios, ignored
+        integer :: unit, ios
 
         call check_mesh(m, stat)
         if (.not. stat%ok()) return
@@ -57,11 +57,7 @@ contains
               iomsg=msg)
         if (ios == 0) then
             call write_sections(unit, m, ios, msg)
-            if (ios /= 0) then
-                close (unit, iostat=ignored)
-            else
-                call close_output(unit, partial, ios, msg)
-            end if
+            call end_output(unit, partial, ios, msg)
         end if
         if (ios /= 0) then
             call remove_file(partial)
@@ -81,12 +77,8 @@ contains
                            to_string(m%element))
             return
         end if
-        if (.not. (allocated(m%coords) .and. allocated(m%cells) .and. allocated(m%edges) &
-                   .and. allocated(m%edge_part) .and. allocated(m%part_names))) then
-            call stat%fail(STATUS_BAD_INPUT, 'write_gmsh: the mesh is incomplete (no nodes, ' &
-                           //'cells, boundary edges or part names)')
-            return
-        end if
+        call m%require_complete('write_gmsh', stat)
+        if (.not. stat%ok()) return
         if (m%n_cells() == 0) then
             call stat%fail(STATUS_BAD_INPUT, 'write_gmsh: the mesh has no cells')
             return

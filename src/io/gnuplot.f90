@@ -8,7 +8,8 @@ module gnuplot
     use strings, only: text_t
     implicit none
     private
-    public :: gnuplot_available, gnuplot_string, quotable, path_argument, not_run_note
+    public :: gnuplot_available, gnuplot_string, quotable, path_argument, not_run_note, &
+              not_drawable_note
     public :: run_gnuplot
 
 contains
@@ -17,6 +18,19 @@ contains
     logical function gnuplot_available()
         gnuplot_available = program_on_path('gnuplot')
     end function gnuplot_available
+
+    !> Why a picture at `png` cannot be drawn, '' when it can: a path gnuplot cannot quote,
+    !> or no gnuplot (`data_note` then says where the data are instead).
+    function not_drawable_note(png, data_note) result(note)
+        character(len=*), intent(in) :: png, data_note
+        character(len=:), allocatable :: note
+        note = ''
+        if (.not. quotable(png)) then
+            note = 'not drawn: the output path holds a control character'
+        else if (.not. gnuplot_available()) then
+            note = 'not drawn: gnuplot is not installed ('//data_note//')'
+        end if
+    end function not_drawable_note
 
     !> `text` as a gnuplot single-quoted string: a quote is written twice, the one escape
     !> such strings have (backslashes are not escapes there).

@@ -8,7 +8,7 @@ module json_writer
     use real_format, only: real_to_text
     use strings, only: to_string
     use ieee_arithmetic, only: ieee_is_finite
-    use filesystem, only: close_output
+    use filesystem, only: end_output
     implicit none
     private
 
@@ -204,13 +204,10 @@ contains
         ! Formatted stream access turns each new_line('a') in the text into a line end.
         open (newunit=unit, file=path, status='replace', action='write', access='stream', &
               form='formatted', iostat=ios, iomsg=msg)
-        if (ios == 0) write (unit, '(a)', iostat=ios, iomsg=msg) this%to_text()
-        if (ios /= 0) then
-            call stat%fail(STATUS_IO, trim(path)//': cannot write JSON: '//trim(msg))
-            close (unit, iostat=ios)
-            return
+        if (ios == 0) then
+            write (unit, '(a)', iostat=ios, iomsg=msg) this%to_text()
+            call end_output(unit, path, ios, msg)
         end if
-        call close_output(unit, path, ios, msg)
         if (ios /= 0) call stat%fail(STATUS_IO, trim(path)//': cannot write JSON: '//trim(msg))
     end subroutine json_object_write
 

@@ -7,7 +7,7 @@ module mode_plot
     use kinds, only: wp
     use strings, only: to_string, short_real_text
     use filesystem, only: remove_file
-    use gnuplot, only: gnuplot_available, gnuplot_string, quotable, path_argument, run_gnuplot
+    use gnuplot, only: not_drawable_note, gnuplot_string, path_argument, run_gnuplot
     implicit none
     private
     public :: plot_mode, MAX_PLOT_CELLS
@@ -40,14 +40,8 @@ contains
                    to_string(MAX_PLOT_CELLS)//'); open the mode''s VTU file in ParaView'
             return
         end if
-        if (.not. quotable(png)) then
-            note = 'not drawn: the output path holds a control character'
-            return
-        end if
-        if (.not. gnuplot_available()) then
-            note = 'not drawn: gnuplot is not installed (the VTU files hold the modes)'
-            return
-        end if
+        note = not_drawable_note(png, 'the VTU files hold the modes')
+        if (len(note) > 0) return
         diameter = norm2(maxval(coords, dim=2) - minval(coords, dim=2))
         u_max = maxval(norm2(u, dim=1))
         scale = 0.0_wp

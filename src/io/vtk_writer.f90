@@ -10,7 +10,7 @@ module vtk_writer
     use kinds, only: wp, i8, N_DIM
     use status, only: status_t, STATUS_IO, STATUS_INTERNAL
     use strings, only: to_string
-    use filesystem, only: close_output
+    use filesystem, only: end_output
     use mesh, only: mesh_t
     use element_types, only: element_nodes_per_cell, ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, &
                              ELEMENT_Q2, ELEMENT_P3, ELEMENT_P4
@@ -61,7 +61,7 @@ contains
         character(len=1024) :: msg
         character(len=128), allocatable :: scalar_names(:)
         real(wp), allocatable :: scalars(:, :)
-        integer :: unit, ios, ignored
+        integer :: unit, ios
 
         call check_arguments(m, names, vectors, stat)
         if (.not. stat%ok()) return
@@ -98,11 +98,7 @@ contains
             else
                 call write_ascii_grid(unit, m, names, vectors, scalar_names, scalars, ios, msg)
             end if
-            if (ios /= 0) then
-                close (unit, iostat=ignored)
-            else
-                call close_output(unit, path, ios, msg)
-            end if
+            call end_output(unit, path, ios, msg)
         end if
         ! A partial file is left for the output stage (or the caller) to remove.
         if (ios /= 0) call stat%fail(STATUS_IO, trim(path)//': cannot write VTK file: ' &

@@ -5,6 +5,7 @@ module mesh
     use kinds, only: wp
     use element_types, only: ELEMENT_P1
     use strings, only: NAME_LEN
+    use status, only: status_t, STATUS_BAD_INPUT
     implicit none
     private
     public :: mesh_t
@@ -25,6 +26,7 @@ module mesh
         procedure :: n_nodes => mesh_n_nodes
         procedure :: n_cells => mesh_n_cells
         procedure :: part_index => mesh_part_index
+        procedure :: require_complete => mesh_require_complete
     end type mesh_t
 
 contains
@@ -55,4 +57,17 @@ contains
             end if
         end do
     end function mesh_part_index
+
+    !> Fail (bad input of `who`, the procedure handed this mesh) unless nodes, cells,
+    !> boundary edges and part names are all there: what a writer or a refinement reads.
+    subroutine mesh_require_complete(this, who, stat)
+        class(mesh_t), intent(in) :: this
+        character(len=*), intent(in) :: who
+        type(status_t), intent(inout) :: stat
+        if (.not. (allocated(this%coords) .and. allocated(this%cells) .and. &
+                   allocated(this%edges) .and. allocated(this%edge_part) .and. &
+                   allocated(this%part_names))) &
+            call stat%fail(STATUS_BAD_INPUT, who//': the mesh is incomplete (no nodes, cells, '// &
+                           'boundary edges or part names)')
+    end subroutine mesh_require_complete
 end module mesh

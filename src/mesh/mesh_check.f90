@@ -249,24 +249,26 @@ contains
             end if
             if (per_edge > 3) then
                 if (.not. same_inner_nodes(m, e, inc%item(first), inc)) then
-                    call stat%fail(STATUS_MESH, what(e)//'from '//point_text(m, a)//' to '// &
-                        point_text(m, b)//' has other inner nodes than its cell ('// &
-                        cell_name(m, inc%cell_of(inc%item(first)))//'); expected the ' &
-                        //'cell''s edge nodes')
+                    call unlike_cell('other inner nodes', 'edge nodes')
                     return
                 end if
             else if (per_edge == 3) then
                 if (m%edges(3, e) /= mid_node(m, inc%item(first), inc)) then
-                    call stat%fail(STATUS_MESH, what(e)//'from '//point_text(m, a)//' to '// &
-                        point_text(m, b)//' has another mid node than its cell ('// &
-                        cell_name(m, inc%cell_of(inc%item(first)))//'); expected the ' &
-                        //'cell''s mid-edge node')
+                    call unlike_cell('another mid node', 'mid-edge node')
                     return
                 end if
             end if
         end do
 
     contains
+
+        !> Edge e's inner nodes (`has`) are not those of its cell (`expected` the cell's).
+        subroutine unlike_cell(has, expected)
+            character(len=*), intent(in) :: has, expected
+            call stat%fail(STATUS_MESH, what(e)//'from '//point_text(m, a)//' to '// &
+                point_text(m, b)//' has '//has//' than its cell ('// &
+                cell_name(m, inc%cell_of(inc%item(first)))//'); expected the cell''s '//expected)
+        end subroutine unlike_cell
 
         !> 'file:line: this edge of the boundary group 'name' (&mesh variable) '
         function what(e) result(text)

@@ -142,11 +142,8 @@ contains
         allocate (node_of(raw%n_nodes), source=0)   ! 1: used by a cell
         do c = 1, raw%n_cells
             do a = 1, n_cell_nodes
-                node = find_node(raw%cell_nodes(a, c))
-                if (node == 0) then
-                    call undefined(raw%cell_line(c), raw%cell_nodes(a, c))
-                    return
-                end if
+                call locate(raw%cell_nodes(a, c), raw%cell_line(c), node)
+                if (node == 0) return
                 cells(a, c) = node
                 node_of(node) = 1
             end do
@@ -158,11 +155,8 @@ contains
         n_kept = 0
         do e = 1, raw%n_edges
             do a = 1, n_edge_nodes
-                node = find_node(raw%edge_nodes(a, e))
-                if (node == 0) then
-                    call undefined(raw%edge_line(e), raw%edge_nodes(a, e))
-                    return
-                end if
+                call locate(raw%edge_nodes(a, e), raw%edge_line(e), node)
+                if (node == 0) return
             end do
             n_kept = n_kept + count(edge_parts(e))
         end do
@@ -238,12 +232,16 @@ contains
             end do
         end function find_node
 
-        subroutine undefined(line, tag)
-            integer, intent(in) :: line, tag
-            call stat%fail(STATUS_MESH, f%path//':'//to_string(line)//': this element ' &
-                //'refers to node '//to_string(tag)//', which $Nodes does not define; ' &
-                //'expected tags of defined nodes')
-        end subroutine undefined
+        !> find_node(tag) of the element at file line `line`; 0, and the failure in stat, when
+        !> $Nodes does not define the tag.
+        subroutine locate(tag, line, node)
+            integer, intent(in) :: tag, line
+            integer, intent(out) :: node
+            node = find_node(tag)
+            if (node == 0) call stat%fail(STATUS_MESH, f%path//':'//to_string(line)// &
+                ': this element refers to node '//to_string(tag)//', which $Nodes does not '// &
+                'define; expected tags of defined nodes')
+        end subroutine locate
 
         !> Physical tags of the 1D groups (named in $PhysicalNames or used by a line
         !> element) and m%part_names, lowercased; two names equal but for case are an error.

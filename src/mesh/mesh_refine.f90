@@ -106,12 +106,8 @@ contains
                            'got '//element_name(m%element)//' cells')
             return
         end if
-        if (.not. (allocated(m%coords) .and. allocated(m%cells) .and. allocated(m%edges) &
-                   .and. allocated(m%edge_part) .and. allocated(m%part_names))) then
-            call stat%fail(STATUS_BAD_INPUT, 'mesh refinement: the mesh is incomplete (no ' &
-                           //'nodes, cells, boundary edges or part names)')
-            return
-        end if
+        call m%require_complete('mesh refinement', stat)
+        if (.not. stat%ok()) return
 
         ! Vertices are the cell corners, numbered in node order so that locality carries over.
         allocate (vertex_of(m%n_nodes()), source=0)

@@ -7,7 +7,7 @@ module adapt_run
     use kinds, only: wp
     use status, only: status_t, STATUS_NOT_MET
     use strings, only: to_string
-    use real_format, only: real_to_text
+    use real_format, only: real_to_text, known_text
     use timer, only: timings_t
     use run_config, only: config_t
     use problem, only: problem_t
@@ -80,21 +80,17 @@ contains
         type(adaptive_result_t), intent(in) :: out
         type(status_t), intent(out) :: stat
         type(csv_writer_t) :: csv
-        character(len=:), allocatable :: mu, estimate, bar
         integer :: i
 
         call csv%open(path, ADAPT_HEADER)
         do i = 1, size(out%levels)
             associate (row => out%levels(i))
-                mu = ''
-                if (row%has_mu) mu = real_to_text(row%mu)
-                estimate = ''
-                if (row%estimated) estimate = real_to_text(row%error_estimate)
-                bar = ''
-                if (row%error_bar >= 0.0_wp) bar = real_to_text(row%error_bar)
                 call csv%row(to_string(row%level)//','//to_string(row%n_dofs)//','// &
-                    to_string(row%n_contact)//','//to_string(row%n_cells)//','//mu//','// &
-                    estimate//','//real_to_text(row%time_s)//','//bar)
+                    to_string(row%n_contact)//','//to_string(row%n_cells)//','// &
+                    known_text(row%has_mu, row%mu)//','// &
+                    known_text(row%estimated, row%error_estimate)//','// &
+                    real_to_text(row%time_s)//','//known_text(row%error_bar >= 0.0_wp, &
+                                                              row%error_bar))
             end associate
         end do
         call csv%close(stat)

@@ -7,7 +7,7 @@ module eigen_files
     use kinds, only: wp
     use status, only: status_t
     use strings, only: to_string, zero_padded, short_real_text, seconds_text
-    use real_format, only: real_to_text
+    use real_format, only: real_to_text, known_text
     use timer, only: timings_t
     use version, only: NCEIG_VERSION
     use run_config, only: config_t
@@ -176,13 +176,11 @@ contains
         type(status_t), intent(out) :: stat
         type(error_estimate_t), intent(in), optional :: error
         type(csv_writer_t) :: csv
-        character(len=:), allocatable :: condition, estimate, bar
+        character(len=:), allocatable :: estimate, bar
         integer :: i
 
         call csv%open(path, 'index,re,im,kind,residual,condition,error_estimate,error_bar')
         do i = 1, spec%n()
-            condition = ''
-            if (spec%condition(i) >= 0.0_wp) condition = real_to_text(spec%condition(i))
             estimate = ''
             bar = ''
             if (present(error) .and. i == spec%lowest_positive()) then
@@ -191,7 +189,9 @@ contains
             end if
             call csv%row(to_string(i)//','//real_to_text(real(spec%mu(i), wp))//','// &
                 real_to_text(aimag(spec%mu(i)))//','//kind_name(spec%kind(i))//','// &
-                real_to_text(spec%residual(i))//','//condition//','//estimate//','//bar)
+                real_to_text(spec%residual(i))//','// &
+                known_text(spec%condition(i) >= 0.0_wp, spec%condition(i))//','//estimate// &
+                ','//bar)
         end do
         call csv%close(stat)
     end subroutine write_eigenvalues_csv

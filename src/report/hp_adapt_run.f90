@@ -10,7 +10,7 @@ module hp_adapt_run
     use kinds, only: wp
     use status, only: status_t, STATUS_NOT_MET
     use strings, only: to_string, zero_padded
-    use real_format, only: real_to_text
+    use real_format, only: real_to_text, known_text
     use timer, only: timings_t
     use run_config, only: config_t
     use problem, only: problem_t
@@ -136,21 +136,16 @@ contains
         type(hp_result_t), intent(in) :: out
         type(status_t), intent(out) :: stat
         type(csv_writer_t) :: csv
-        character(len=:), allocatable :: mu, bar, roundoff
         integer :: i
         call csv%open(path, HP_ADAPT_HEADER)
         do i = 1, size(out%levels)
             associate (row => out%levels(i))
-                mu = ''
-                if (row%has_mu) mu = real_to_text(row%mu)
-                bar = ''
-                if (row%error_bar >= 0.0_wp) bar = real_to_text(row%error_bar)
-                roundoff = ''
-                if (row%roundoff >= 0.0_wp) roundoff = real_to_text(row%roundoff)
                 call csv%row(to_string(row%level)//','//to_string(row%layers)//','// &
                     to_string(row%p_min)//','//to_string(row%p_max)//','// &
                     to_string(row%n_dofs)//','//to_string(row%n_contact)//','// &
-                    to_string(row%n_cells)//','//mu//','//bar//','//roundoff//','// &
+                    to_string(row%n_cells)//','//known_text(row%has_mu, row%mu)//','// &
+                    known_text(row%error_bar >= 0.0_wp, row%error_bar)//','// &
+                    known_text(row%roundoff >= 0.0_wp, row%roundoff)//','// &
                     real_to_text(row%time_s))
             end associate
         end do

@@ -13,7 +13,7 @@ module pictures
     use strings, only: to_string, short_real_text
     use real_format, only: real_to_text
     use filesystem, only: remove_file
-    use gnuplot, only: gnuplot_available, gnuplot_string, quotable, path_argument, run_gnuplot
+    use gnuplot, only: not_drawable_note, gnuplot_string, path_argument, run_gnuplot
     use output_stage, only: output_stage_t
     use adaptive_eigen, only: adapt_level_t
     use adaptive_threshold, only: threshold_level_t
@@ -364,14 +364,8 @@ contains
         logical :: drawn
 
         png = stage%scratch(file)
-        if (.not. quotable(png)) then
-            note = 'not drawn: the output path holds a control character'
-            return
-        end if
-        if (.not. gnuplot_available()) then
-            note = 'not drawn: gnuplot is not installed (the CSV holds the data)'
-            return
-        end if
+        note = not_drawable_note(png, 'the CSV holds the data')
+        if (len(note) > 0) return
         script_path = stage%scratch('.'//file//'.gp')
         open (newunit=unit, file=script_path, status='replace', action='write', &
               access='stream', form='unformatted', iostat=ios, iomsg=msg)

@@ -9,7 +9,7 @@ module threshold_run
     use kinds, only: wp
     use status, only: status_t, STATUS_NOT_MET, STATUS_NO_DIGIT
     use strings, only: to_string, short_real_text
-    use real_format, only: real_to_text
+    use real_format, only: real_to_text, known_text
     use timer, only: timings_t
     use run_config, only: config_t
     use problem, only: problem_t
@@ -490,7 +490,7 @@ contains
         type(sweep_curve_t), intent(in) :: curve
         type(status_t), intent(out) :: stat
         type(csv_writer_t) :: csv
-        character(len=:), allocatable :: values, estimate, bar
+        character(len=:), allocatable :: values
         integer :: i
 
         call csv%open(path, SWEEP_HEADER)
@@ -498,13 +498,11 @@ contains
             values = ','
             if (curve%found(i)) values = real_to_text(curve%mu(i))//','// &
                 real_to_text(critical_c_t(curve%mu(i), curve%lambda(i)))
-            estimate = ''
-            if (curve%error_estimate(i) >= 0.0_wp) estimate = real_to_text(curve%error_estimate(i))
-            bar = ''
-            if (curve%error_bar(i) >= 0.0_wp) bar = real_to_text(curve%error_bar(i))
             call csv%row(real_to_text(curve%lambda(i))//','//values//','// &
                 to_string(slip_sign(curve%lambda(i)))//','//to_string(curve%n_positive(i))// &
-                ','//estimate//','//to_string(curve%n_dofs(i))//','//bar)
+                ','//known_text(curve%error_estimate(i) >= 0.0_wp, curve%error_estimate(i))// &
+                ','//to_string(curve%n_dofs(i))//','// &
+                known_text(curve%error_bar(i) >= 0.0_wp, curve%error_bar(i)))
         end do
         call csv%close(stat)
     end subroutine write_sweep_csv
@@ -540,10 +538,10 @@ contains
                     estimate_text(side)//NL// &
                     '              just outside, lambda = '// &
                     real_to_text(thr%lambda_outside(side))//': lowest positive mu = '// &
-                    mu_text(thr%has_mu_outside(side), thr%mu_outside(side))//NL// &
+                    known_text(thr%has_mu_outside(side), thr%mu_outside(side), 'none')//NL// &
                     '              just inside,  lambda = '// &
                     real_to_text(thr%lambda_inside(side))//': lowest positive mu = '// &
-                    mu_text(thr%has_mu_inside(side), thr%mu_inside(side))
+                    known_text(thr%has_mu_inside(side), thr%mu_inside(side), 'none')
             end do
         end associate
         text = text//boundary_lines(res%set)
@@ -578,14 +576,6 @@ contains
                 s = NL//'              relative error estimate '//trim(res%estimate%skipped(side))
             end if
         end function estimate_text
-
-        function mu_text(found, mu) result(s)
-            logical, intent(in) :: found
-            real(wp), intent(in) :: mu
-            character(len=:), allocatable :: s
-            s = 'none'
-            if (found) s = real_to_text(mu)
-        end function mu_text
     end function threshold_summary_lines
 
     !> One line per boundary point, then the intervals with a positive mu.

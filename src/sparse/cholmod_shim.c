@@ -71,6 +71,19 @@ static int code_from_common(const cholmod_common *common)
     }
 }
 
+/* The CHOLMOD method of an NCEIG_ORDER_* request; -1 for NCEIG_ORDER_DEFAULT (CHOLMOD's
+   own choice). */
+static int cholmod_method(int ordering)
+{
+    switch (ordering) {
+    case NCEIG_ORDER_AMD: return CHOLMOD_AMD;
+    case NCEIG_ORDER_METIS: return CHOLMOD_METIS;
+    case NCEIG_ORDER_NATURAL: return CHOLMOD_NATURAL;
+    case NCEIG_ORDER_GIVEN: return CHOLMOD_GIVEN;
+    default: return -1;
+    }
+}
+
 /* 1 if perm0 holds each of 0..n-1 exactly once. */
 static int is_permutation(int n, const int *perm0)
 {
@@ -144,26 +157,11 @@ int nceig_cholmod_factor(int n, const int *row_start0, const int *col0, const do
     c->supernodal = CHOLMOD_SUPERNODAL; /* LL' by construction: forward solves need L */
     c->final_ll = 1;
     c->quick_return_if_not_posdef = 1; /* a failed factor is discarded anyway */
-    switch (ordering) {
-    case NCEIG_ORDER_AMD:
+    int method = cholmod_method(ordering);
+    if (method >= 0) {
         c->nmethods = 1;
-        c->method[0].ordering = CHOLMOD_AMD;
-        break;
-    case NCEIG_ORDER_METIS:
-        c->nmethods = 1;
-        c->method[0].ordering = CHOLMOD_METIS;
-        break;
-    case NCEIG_ORDER_NATURAL:
-        c->nmethods = 1;
-        c->method[0].ordering = CHOLMOD_NATURAL;
-        break;
-    case NCEIG_ORDER_GIVEN:
-        c->nmethods = 1;
-        c->method[0].ordering = CHOLMOD_GIVEN;
-        break;
-    default:
-        break; /* nmethods = 0: AMD, then METIS if AMD's fill-in is high */
-    }
+        c->method[0].ordering = method;
+    } /* else nmethods = 0: AMD, then METIS if AMD's fill-in is high */
 
     /* A view of the caller's arrays: CHOLMOD reads A but never writes it. */
     cholmod_sparse a = {0};
