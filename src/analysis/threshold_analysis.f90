@@ -285,10 +285,11 @@ contains
     !> positive mu exists} over the scan of `config` (scan_lambdas), from the contact
     !> `blocks` (mass set) of `prob`, their mu in the input's units, and the round-off part
     !> of each collision point (two solves each with `chol`, the factor of K with the contact
-    !> dofs last): what every threshold report gives on its (last) problem. Dense on purpose, whatever the solver: just
-    !> inside a threshold there is no positive mu, which only the complete spectrum shows,
-    !> and just outside the wanted mu is huge, deep in the spectrum; dgeev without vectors
-    !> is O(p^3) with a small constant. The count of positive mu needs the whole spectrum too.
+    !> dofs last): what every threshold report gives on its (last) problem. Dense on
+    !> purpose, whatever the solver: just inside a threshold there is no positive mu, which
+    !> only the complete spectrum shows, and just outside the wanted mu is huge, deep in the
+    !> spectrum; dgeev without vectors is O(p^3) with a small constant. The count of
+    !> positive mu needs the whole spectrum too.
     !> With `coarse` (the set a coarser discretisation of the scene found over the same
     !> scan; scan_contact 0: none), its points are carried (carry_critical_set) unless the
     !> structure differs here (its own solves, n_evaluations, are counted with these);
