@@ -21,8 +21,8 @@ program test_analysis_registry
     use branch_run, only: branch_run_t
     use solve_run, only: solve_run_t
     use filesystem, only: file_exists, remove_tree
-    use fixtures, only: single_element_scene, single_element_mu, run_as_main, json_real, json_value, &
-                        listed_files, write_text, all_present
+    use fixtures, only: single_element_scene, single_element_mu, run_as_main, run_checked, &
+                        json_real, json_value, listed_files, write_text
     implicit none
 
     character(len=*), parameter :: OUT = 'test_analysis_registry.out'
@@ -40,42 +40,43 @@ program test_analysis_registry
 contains
 
     !> The type new_analysis picks for every kind, adaptive or not, strategy 'h' or 'hp'
-    !> (absent: 'h'); K on all dofs only for 'branch' and 'solve'; an unknown kind: none.
+    !> (' ': absent, which is 'h'); K on all dofs only for 'branch' and 'solve'; an unknown
+    !> kind: none.
     subroutine each_kind_has_its_type(t)
         type(test_suite_t), intent(inout) :: t
+        character(len=*), parameter :: KINDS(13) = [character(len=12) :: 'eigen', 'eigen', &
+            'eigen', 'eigen', 'eigen', 'threshold', 'threshold', 'threshold', 'lambda_sweep', &
+            'lambda_sweep', 'branch', 'solve', 'nonsense']
+        logical, parameter :: ADAPTIVE(13) = [.false., .true., .true., .true., .false., &
+            .false., .true., .true., .false., .true., .false., .false., .false.]
+        character(len=*), parameter :: STRATEGIES(13) = [character(len=2) :: ' ', ' ', 'h', &
+            'hp', 'hp', ' ', 'h', 'hp', ' ', 'hp', ' ', ' ', ' ']
+        character(len=*), parameter :: EXPECTED(13) = [character(len=15) :: 'eigen', 'adapt', &
+            'adapt', 'hp_adapt', 'eigen', 'threshold', 'adapt_threshold', 'hp_threshold', &
+            'sweep', 'sweep', 'branch', 'solve', '']
         class(analysis_t), allocatable :: a
-        call new_analysis('eigen', .false., a)
-        call t%check('eigen: eigen_run_t', is(a, 'eigen') .and. .not. a%needs_all_dofs)
-        call new_analysis('eigen', .true., a)
-        call t%check('eigen, adaptive, no strategy: adapt_run_t (h)', is(a, 'adapt'))
-        call new_analysis('eigen', .true., a, 'h')
-        call t%check('eigen, adaptive h: adapt_run_t', is(a, 'adapt'))
-        call new_analysis('eigen', .true., a, 'hp')
-        call t%check('eigen, adaptive hp: hp_adapt_run_t', is(a, 'hp_adapt'))
-        call new_analysis('eigen', .false., a, 'hp')
-        call t%check('eigen, hp but not adaptive: eigen_run_t', is(a, 'eigen'))
-        call new_analysis('threshold', .false., a)
-        call t%check('threshold: threshold_run_t', is(a, 'threshold'))
-        call new_analysis('threshold', .true., a, 'h')
-        call t%check('threshold, adaptive h: adapt_threshold_run_t', is(a, 'adapt_threshold'))
-        call new_analysis('threshold', .true., a, 'hp')
-        call t%check('threshold, adaptive hp: hp_threshold_run_t', is(a, 'hp_threshold'))
-        call new_analysis('lambda_sweep', .false., a)
-        call t%check('lambda_sweep: sweep_run_t', is(a, 'sweep'))
-        call new_analysis('lambda_sweep', .true., a, 'hp')
-        call t%check('lambda_sweep, adaptive hp: sweep_run_t (each point adapts)', is(a, 'sweep'))
-        call new_analysis('branch', .false., a)
-        call t%check('branch: branch_run_t on all dofs', is(a, 'branch') .and. a%needs_all_dofs)
-        call new_analysis('solve', .false., a)
-        call t%check('solve: solve_run_t on all dofs', is(a, 'solve') .and. a%needs_all_dofs)
-        call new_analysis('nonsense', .false., a)
-        call t%check('unknown kind: no analysis', .not. allocated(a))
+        character(len=100) :: what
+        integer :: i
+        logical :: all_dofs
+        do i = 1, size(KINDS)
+            if (STRATEGIES(i) == ' ') then
+                call new_analysis(trim(KINDS(i)), ADAPTIVE(i), a)
+            else
+                call new_analysis(trim(KINDS(i)), ADAPTIVE(i), a, trim(STRATEGIES(i)))
+            end if
+            write (what, '(a, l1, 4a)') trim(KINDS(i))//', adaptive ', ADAPTIVE(i), &
+                ', strategy "', trim(STRATEGIES(i)), '": ', trim(EXPECTED(i))
+            all_dofs = .false.
+            if (allocated(a)) all_dofs = a%needs_all_dofs
+            call t%check(trim(what)//', all dofs only for branch and solve', &
+                         type_name(a) == trim(EXPECTED(i)) .and. (all_dofs .eqv. &
+                         any(KINDS(i) == [character(len=12) :: 'branch', 'solve'])))
+        end do
     end subroutine each_kind_has_its_type
 
-    !> Which of the registry's types `a` is, by name ('' when none).
-    logical function is(a, name)
+    !> Which of the registry's types `a` is, without _run_t ('' when none).
+    function type_name(a) result(found)
         class(analysis_t), allocatable, intent(in) :: a
-        character(len=*), intent(in) :: name
         character(len=:), allocatable :: found
         found = ''
         if (allocated(a)) then
@@ -91,30 +92,26 @@ contains
             type is (solve_run_t); found = 'solve'
             end select
         end if
-        is = found == name
-    end function is
+    end function type_name
 
     !> The eigen run of the single element at lambda = -5: the set in place, every file
-    !> summary.json lists present and not empty, summary.json among them, its mu the
+    !> summary.json lists present and not empty (run_checked), summary.json among them, its mu the
     !> closed form 105/208 (1e-13: a 2 x 2 solve and a 1 x 1 eigenproblem, a few ulps).
     subroutine a_run_commits_a_listed_set(t)
         type(test_suite_t), intent(inout) :: t
         type(config_t) :: config
         type(mesh_t) :: m
         class(analysis_t), allocatable :: analysis
-        type(status_t) :: stat
         character(len=:), allocatable :: summary, report
         character(len=255), allocatable :: names(:)
+        logical :: ran
         call single_element_scene(OUT//'/first', config, m)
-        call run_as_main(config, analysis, stat, summary, m, report)
-        call t%check('run: ok, verdict ok', stat%ok() .and. analysis%verdict%ok())
-        if (.not. stat%ok()) return
+        call run_checked(t, 'run', config, analysis, summary, ran, m, report)
+        if (.not. ran) return
         names = listed_files(summary)
         call t%check('run: summary.json lists itself, eigenvalues.csv and mode_001.vtu', &
                      any(names == 'summary.json') .and. any(names == 'eigenvalues.csv') .and. &
                      any(names == 'mode_001.vtu'))
-        call t%check('run: every listed file is in place and not empty', &
-                     all_present(OUT//'/first', names))
         call t%check_close('run: mu = 105/208', json_real(summary, 'lowest_positive_mu'), &
                            105.0_wp/208.0_wp, 1.0e-13_wp)
         call t%check('run: the report quotes the summary''s mu', index(report, &
@@ -130,20 +127,16 @@ contains
         type(config_t) :: config
         type(mesh_t) :: m
         class(analysis_t), allocatable :: analysis
-        type(status_t) :: stat
         character(len=:), allocatable :: summary
+        logical :: ran
         call single_element_scene(OUT//'/second', config, m)
-        call run_as_main(config, analysis, stat, summary, m)
-        if (.not. stat%ok()) then
-            call t%check('replace: first run ok', .false.)
-            return
-        end if
+        call run_checked(t, 'replace, first run', config, analysis, summary, ran, m)
+        if (.not. ran) return
         call write_text(OUT//'/second/notes.txt', 'mine')
         config%analysis%lambda = -3.0_wp
         config%output%vtk = .false.
-        call run_as_main(config, analysis, stat, summary, m)
-        call t%check('replace: second run ok', stat%ok())
-        if (.not. stat%ok()) return
+        call run_checked(t, 'replace, second run', config, analysis, summary, ran, m)
+        if (.not. ran) return
         call t%check_close('replace: mu at lambda = -3 is the closed form', &
                            json_real(summary, 'lowest_positive_mu'), &
                            single_element_mu(-3.0_wp, 0.3_wp, 2.0_wp), 1.0e-13_wp)

@@ -8,14 +8,14 @@
 !> writes its history and ends with a failed verdict.
 program test_branch_solve_runs
     use kinds, only: wp
-    use status, only: status_t
+    use status, only: STATUS_SOLVER
     use testing, only: test_suite_t
     use run_config, only: config_t
     use mesh, only: mesh_t
     use analysis_base, only: analysis_t
     use filesystem, only: remove_tree, file_exists
-    use fixtures, only: single_element_scene, run_as_main, json_real, json_value, &
-                        listed_files, all_present, data_rows
+    use fixtures, only: single_element_scene, run_checked, json_real, json_value, &
+                        listed_files, data_rows
     implicit none
 
     character(len=*), parameter :: OUT = 'test_branch_solve_runs.out'
@@ -39,17 +39,13 @@ contains
         type(config_t) :: config
         type(mesh_t) :: m
         class(analysis_t), allocatable :: analysis
-        type(status_t) :: stat
         character(len=:), allocatable :: summary, report
         character(len=255), allocatable :: names(:)
+        logical :: ran
         call single_element_scene(OUT//'/branch', config, m)
         config%analysis%kind = 'branch'
-        call run_as_main(config, analysis, stat, summary, m, report)
-        call t%check('branch: run ok, verdict ok', stat%ok() .and. analysis%verdict%ok())
-        if (.not. stat%ok()) then
-            write (*, '(a)') stat%message
-            return
-        end if
+        call run_checked(t, 'branch', config, analysis, summary, ran, m, report)
+        if (.not. ran) return
         call t%check_close('branch: c_n = mu = 105/208', json_real(summary, 'c_n'), MU, 1.0e-13_wp)
         call t%check_close('branch: c_t = 5 mu', json_real(summary, 'c_t'), 5.0_wp*MU, 1.0e-13_wp)
         call t%check('branch: residuals of U and of every member below 1e-12', &
@@ -61,7 +57,6 @@ contains
         call t%check('branch: 3 members as branch_NNN.vtu (1, 6, 11)', &
                      any(names == 'branch_001.vtu') .and. any(names == 'branch_006.vtu') .and. &
                      any(names == 'branch_011.vtu') .and. count(index(names, 'branch_') == 1) == 3)
-        call t%check('branch: every listed file in place', all_present(OUT//'/branch', names))
         call t%check('branch: the report quotes c_n', &
                      index(report, 'c_n = mu = '//json_value(summary, 'c_n')) > 0)
     end subroutine branch_members_solve
@@ -74,15 +69,11 @@ contains
         type(config_t) :: config
         type(mesh_t) :: m
         class(analysis_t), allocatable :: analysis
-        type(status_t) :: stat
         character(len=:), allocatable :: summary
+        logical :: ran
         call solve_scene(OUT//'/solve', config, m)
-        call run_as_main(config, analysis, stat, summary, m)
-        call t%check('solve: run ok, verdict ok', stat%ok() .and. analysis%verdict%ok())
-        if (.not. stat%ok()) then
-            write (*, '(a)') stat%message
-            return
-        end if
+        call run_checked(t, 'solve', config, analysis, summary, ran, m)
+        if (.not. ran) return
         call t%check('solve: converged', json_value(summary, 'converged') == 'true')
         call t%check_close('solve: c_n = 105/208', json_real(summary, 'c_n'), MU, 1.0e-13_wp)
         call t%check('solve: on the branch to 1e-12', json_real(summary, 'branch_distance') >= 0.0_wp &
@@ -95,26 +86,23 @@ contains
         call t%check('solve: contact_states.csv has the one contact node', &
                      data_rows(OUT//'/solve/contact_states.csv') == 1)
         call t%check('solve: solution.vtu listed', any(listed_files(summary) == 'solution.vtu'))
-        call t%check('solve: every listed file in place', &
-                     all_present(OUT//'/solve', listed_files(summary)))
     end subroutine solve_lands_on_the_branch
 
     !> The same with max_iterations = 1 and tol = 1e-300 (no iterate meets it): the run
-    !> writes newton.csv (2 rows) and no solution.vtu, and its verdict is a failure.
+    !> writes newton.csv (2 rows) and no solution.vtu; its verdict is STATUS_SOLVER (exit 5).
     subroutine solve_stopped_short_fails_after_writing(t)
         type(test_suite_t), intent(inout) :: t
         type(config_t) :: config
         type(mesh_t) :: m
         class(analysis_t), allocatable :: analysis
-        type(status_t) :: stat
         character(len=:), allocatable :: summary
+        logical :: ran
         call solve_scene(OUT//'/short', config, m)
         config%solve%max_iterations = 1
         config%solve%tol = 1.0e-300_wp
-        call run_as_main(config, analysis, stat, summary, m)
-        call t%check('short: the set is written', stat%ok())
-        if (.not. stat%ok()) return
-        call t%check('short: the verdict fails', .not. analysis%verdict%ok())
+        call run_checked(t, 'short', config, analysis, summary, ran, m, &
+                         verdict=STATUS_SOLVER)
+        if (.not. ran) return
         call t%check('short: not converged', json_value(summary, 'converged') == 'false')
         call t%check('short: newton.csv has 2 rows', data_rows(OUT//'/short/newton.csv') == 2)
         call t%check('short: no solution.vtu', .not. file_exists(OUT//'/short/solution.vtu'))

@@ -6,13 +6,14 @@
 !> last mesh; a loop stopped by max_levels ends with STATUS_NOT_MET and writes its set.
 program test_hp_runs
     use kinds, only: wp
-    use status, only: status_t, STATUS_NOT_MET
+    use status, only: STATUS_NOT_MET
     use testing, only: test_suite_t
     use run_config, only: config_t
     use analysis_base, only: analysis_t
     use filesystem, only: remove_tree
-    use fixtures, only: adaptive_scene, run_as_main, json_real, json_value, listed_files, &
-                        all_present, data_rows, REF_MU, REF_LAMBDA_PLUS, REF_LAMBDA_MINUS
+    use fixtures, only: adaptive_scene, run_checked, json_real, json_value, listed_files, &
+                        data_rows, thresholds_within_bars, REF_MU, REF_LAMBDA_PLUS, &
+                        REF_LAMBDA_MINUS
     implicit none
 
     character(len=*), parameter :: OUT = 'test_hp_runs.out'
@@ -34,14 +35,13 @@ contains
         type(test_suite_t), intent(inout) :: t
         type(config_t) :: config
         class(analysis_t), allocatable :: analysis
-        type(status_t) :: stat
         character(len=:), allocatable :: summary, report
         real(wp) :: mu
         integer :: levels
+        logical :: ran
         call adaptive_scene('eigen', 'hp', 1.0e-3_wp, 0, OUT//'/eigen', config)
-        call run_as_main(config, analysis, stat, summary, report=report)
-        call t%check('eigen: run ok, verdict ok', stat%ok() .and. analysis%verdict%ok())
-        if (.not. stat%ok()) return
+        call run_checked(t, 'eigen', config, analysis, summary, ran, report=report)
+        if (.not. ran) return
         mu = json_real(summary, 'lowest_positive_mu')
         levels = nint(json_real(summary, 'adapt_levels'))
         call t%check('eigen: converged', json_value(summary, 'adapt_converged') == 'true')
@@ -58,8 +58,6 @@ contains
                      any(listed_files(summary) == 'mode_001.vtu') .and. &
                      any(listed_files(summary) == 'mesh.msh') .and. &
                      any(listed_files(summary) == 'degrees.csv'))
-        call t%check('eigen: every listed file in place', &
-                     all_present(OUT//'/eigen', listed_files(summary)))
         call t%check('eigen: the report counts the levels from the 8-cell mesh', &
                      index(report, 'hp, '//json_value(summary, 'adapt_levels')// &
                            ' levels from the 8-cell input mesh') > 0)
@@ -71,30 +69,20 @@ contains
         type(test_suite_t), intent(inout) :: t
         type(config_t) :: config
         class(analysis_t), allocatable :: analysis
-        type(status_t) :: stat
         character(len=:), allocatable :: summary
-        real(wp) :: plus, minus
+        logical :: ran
         call adaptive_scene('threshold', 'hp', 1.0e-3_wp, 0, OUT//'/threshold', config)
-        call run_as_main(config, analysis, stat, summary)
-        call t%check('threshold: run ok, verdict ok', stat%ok() .and. analysis%verdict%ok())
-        if (.not. stat%ok()) return
-        plus = json_real(summary, 'lambda_critical_plus')
-        minus = json_real(summary, 'lambda_critical_minus')
+        call run_checked(t, 'threshold', config, analysis, summary, ran)
+        if (.not. ran) return
         call t%check('threshold: converged', json_value(summary, 'adapt_converged') == 'true')
-        call t%check('threshold: lambda+ within its bar of the truth', &
-                     abs(plus - REF_LAMBDA_PLUS) <= &
-                     json_real(summary, 'lambda_critical_plus_error_bar')*abs(plus))
-        call t%check('threshold: lambda- within its bar of the truth', &
-                     abs(minus - REF_LAMBDA_MINUS) <= &
-                     json_real(summary, 'lambda_critical_minus_error_bar')*abs(minus))
+        call t%check('threshold: lambda+ and lambda- within their bars of the truth', &
+                     thresholds_within_bars(summary, REF_LAMBDA_PLUS, REF_LAMBDA_MINUS))
         call t%check('threshold: adapt.csv has a row per level', &
                      data_rows(OUT//'/threshold/adapt.csv') == &
                      nint(json_real(summary, 'adapt_levels')))
         call t%check('threshold: degrees.csv has a row per cell', &
                      data_rows(OUT//'/threshold/degrees.csv') == &
                      nint(json_real(summary, 'n_cells')))
-        call t%check('threshold: every listed file in place', &
-                     all_present(OUT//'/threshold', listed_files(summary)))
     end subroutine hp_threshold_meets_its_tolerance
 
     !> Tolerance 1e-8 within max_levels = 2, for either goal: STATUS_NOT_MET, 2 rows of
@@ -104,20 +92,16 @@ contains
         character(len=*), parameter :: KINDS(2) = [character(len=9) :: 'eigen', 'threshold']
         type(config_t) :: config
         class(analysis_t), allocatable :: analysis
-        type(status_t) :: stat
         character(len=:), allocatable :: summary, folder
         integer :: i
+        logical :: ran
         do i = 1, size(KINDS)
             folder = OUT//'/not_met_'//trim(KINDS(i))
             call adaptive_scene(trim(KINDS(i)), 'hp', 1.0e-8_wp, 2, folder, config)
-            call run_as_main(config, analysis, stat, summary)
-            call t%check(trim(KINDS(i))//' not met: run ok, verdict STATUS_NOT_MET', &
-                         stat%ok() .and. analysis%verdict%code == STATUS_NOT_MET)
-            if (.not. stat%ok()) cycle
-            call t%check(trim(KINDS(i))//' not met: adapt.csv has 2 rows', &
-                         data_rows(folder//'/adapt.csv') == 2)
-            call t%check(trim(KINDS(i))//' not met: every listed file in place', &
-                         all_present(folder, listed_files(summary)))
+            call run_checked(t, trim(KINDS(i))//' not met', config, analysis, summary, ran, &
+                             verdict=STATUS_NOT_MET)
+            if (ran) call t%check(trim(KINDS(i))//' not met: adapt.csv has 2 rows', &
+                                  data_rows(folder//'/adapt.csv') == 2)
         end do
     end subroutine hp_limits_are_not_met
 end program test_hp_runs

@@ -14,8 +14,8 @@ program test_threshold_run
     use csv_table, only: csv_table_t, read_csv_table
     use filesystem, only: remove_tree
     use fixtures, only: single_element_scene, single_element_mu, single_element_lambda_minus, &
-                        adaptive_scene, run_as_main, json_real, json_value, listed_files, &
-                        all_present, data_rows, REF_LAMBDA_PLUS, REF_LAMBDA_MINUS
+                        adaptive_scene, run_checked, json_real, json_value, listed_files, &
+                        data_rows, thresholds_within_bars, REF_LAMBDA_PLUS, REF_LAMBDA_MINUS
     implicit none
 
     character(len=*), parameter :: OUT = 'test_threshold_run.out'
@@ -33,27 +33,24 @@ program test_threshold_run
 contains
 
     !> lambda- = -1.8 to 1e-13 (a 2 x 2 pencil), lambda+ null, both sides' keys written, the
-    !> mu of the spectrum at lambda = -5 the closed form 105/208; the set complete.
+    !> mu of the spectrum at lambda = -5 the closed form 105/208.
     subroutine single_element_threshold(t)
         type(test_suite_t), intent(inout) :: t
         type(config_t) :: config
         type(mesh_t) :: m
         class(analysis_t), allocatable :: analysis
-        type(status_t) :: stat
         character(len=:), allocatable :: summary, report
+        logical :: ran
         call single_element_scene(OUT//'/threshold', config, m)
         config%analysis%kind = 'threshold'
-        call run_as_main(config, analysis, stat, summary, m, report)
-        call t%check('threshold: run ok, verdict ok', stat%ok() .and. analysis%verdict%ok())
-        if (.not. stat%ok()) return
+        call run_checked(t, 'threshold', config, analysis, summary, ran, m, report)
+        if (.not. ran) return
         call t%check_close('threshold: lambda- = -(L + 3G)/(L + G)', &
                            json_real(summary, 'lambda_critical_minus'), &
                            single_element_lambda_minus(0.3_wp), 1.0e-13_wp)
         call t%check('threshold: no lambda+', json_value(summary, 'lambda_critical_plus') == 'null')
         call t%check_close('threshold: mu at lambda = -5 is 105/208', &
                            json_real(summary, 'lowest_positive_mu'), 105.0_wp/208.0_wp, 1.0e-13_wp)
-        call t%check('threshold: every listed file in place', &
-                     all_present(OUT//'/threshold', listed_files(summary)))
         call t%check('threshold: the report says there is no lambda+', &
                      index(report, 'none (no real eigenvalue of Kt_nn x = lambda Kt_nt x > 0)') > 0)
     end subroutine single_element_threshold
@@ -72,13 +69,12 @@ contains
         character(len=:), allocatable :: summary
         integer :: i, column
         real(wp) :: expected, value
-        logical :: all_match
+        logical :: all_match, ran
         call single_element_scene(OUT//'/sweep', config, m)
         config%analysis%kind = 'lambda_sweep'
         config%sweep%lambdas(1:5) = LAMBDAS
-        call run_as_main(config, analysis, stat, summary, m)
-        call t%check('sweep: run ok, verdict ok', stat%ok() .and. analysis%verdict%ok())
-        if (.not. stat%ok()) return
+        call run_checked(t, 'sweep', config, analysis, summary, ran, m)
+        if (.not. ran) return
         call t%check('sweep: lambda_sweep.csv listed', &
                      any(listed_files(summary) == 'lambda_sweep.csv'))
         call t%check('sweep: 5 rows', data_rows(OUT//'/sweep/lambda_sweep.csv') == 5)
@@ -107,24 +103,16 @@ contains
         type(test_suite_t), intent(inout) :: t
         type(config_t) :: config
         class(analysis_t), allocatable :: analysis
-        type(status_t) :: stat
         character(len=:), allocatable :: summary
-        real(wp) :: plus, minus
+        logical :: ran
         call adaptive_scene('threshold', 'h', 1.0e-2_wp, 0, OUT//'/adapt', config)
-        call run_as_main(config, analysis, stat, summary)
-        call t%check('adapt: run ok, verdict ok', stat%ok() .and. analysis%verdict%ok())
-        if (.not. stat%ok()) return
-        plus = json_real(summary, 'lambda_critical_plus')
-        minus = json_real(summary, 'lambda_critical_minus')
+        call run_checked(t, 'adapt', config, analysis, summary, ran)
+        if (.not. ran) return
         call t%check('adapt: converged', json_value(summary, 'adapt_converged') == 'true')
-        call t%check('adapt: lambda+ within its bar of the truth', abs(plus - REF_LAMBDA_PLUS) <= &
-                     json_real(summary, 'lambda_critical_plus_error_bar')*abs(plus))
-        call t%check('adapt: lambda- within its bar of the truth', abs(minus - REF_LAMBDA_MINUS) <= &
-                     json_real(summary, 'lambda_critical_minus_error_bar')*abs(minus))
-        call t%check('adapt: adapt.csv has adapt_levels + 1 rows', data_rows(OUT//'/adapt/adapt.csv') &
-                     == nint(json_real(summary, 'adapt_levels')) + 1)
-        call t%check('adapt: every listed file in place', &
-                     all_present(OUT//'/adapt', listed_files(summary)))
+        call t%check('adapt: lambda+ and lambda- within their bars of the truth', &
+                     thresholds_within_bars(summary, REF_LAMBDA_PLUS, REF_LAMBDA_MINUS))
+        call t%check('adapt: adapt.csv has adapt_levels + 1 rows', data_rows(OUT// &
+                     '/adapt/adapt.csv') == nint(json_real(summary, 'adapt_levels')) + 1)
     end subroutine adapted_thresholds_hold_the_truth
 
     !> Tolerance 1e-8 within one level: the verdict STATUS_NOT_MET, the set written.
@@ -132,15 +120,11 @@ contains
         type(test_suite_t), intent(inout) :: t
         type(config_t) :: config
         class(analysis_t), allocatable :: analysis
-        type(status_t) :: stat
         character(len=:), allocatable :: summary
+        logical :: ran
         call adaptive_scene('threshold', 'h', 1.0e-8_wp, 1, OUT//'/not_met', config)
-        call run_as_main(config, analysis, stat, summary)
-        call t%check('not met: run ok, verdict STATUS_NOT_MET', &
-                     stat%ok() .and. analysis%verdict%code == STATUS_NOT_MET)
-        if (.not. stat%ok()) return
-        call t%check('not met: adapt.csv has 2 rows', data_rows(OUT//'/not_met/adapt.csv') == 2)
-        call t%check('not met: every listed file in place', &
-                     all_present(OUT//'/not_met', listed_files(summary)))
+        call run_checked(t, 'not met', config, analysis, summary, ran, verdict=STATUS_NOT_MET)
+        if (ran) call t%check('not met: adapt.csv has 2 rows', &
+                              data_rows(OUT//'/not_met/adapt.csv') == 2)
     end subroutine adapted_thresholds_not_met
 end program test_threshold_run

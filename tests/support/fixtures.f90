@@ -10,7 +10,7 @@ module fixtures
     use element_types, only: ELEMENT_P1
     use csr_matrix, only: csr_matrix_t
     use eigen_analysis, only: eigen_result_t
-    use status, only: status_t
+    use status, only: status_t, STATUS_SUCCESS
     use run_config, only: config_t
     use dof_map, only: dof_map_t, build_dof_map
     use assembly, only: assemble_stiffness
@@ -22,13 +22,16 @@ module fixtures
     use analysis_base, only: analysis_t, run_analysis
     use analysis_registry, only: new_analysis
     use filesystem, only: file_exists
+    use testing, only: test_suite_t
+    use strings, only: to_string
+    use iso_fortran_env, only: output_unit
     implicit none
     private
     public :: single_triangle, csr_to_dense, file_text, has_warning, five_point_matrix
     public :: uniform, read_text, write_text, rigid_mode, contact_scene, square_scene
     public :: single_element_scene, single_element_mu, single_element_lambda_minus
     public :: run_as_main, json_value, json_real, listed_files, data_rows, index_of_newline
-    public :: all_present, adaptive_scene
+    public :: all_present, adaptive_scene, run_checked, thresholds_within_bars
 
     !> The reference scene's continuum values (tests/data/truths.csv, scenes 'ref' and
     !> 'ref-threshold': graded P4 meshes, uncertainties 4.6e-12 and 5.7e-10).
@@ -138,6 +141,52 @@ contains
         summary = file_text(trim(config%output%directory)//'/summary.json', new_line('a'))
         if (present(report)) report = analysis%report(config, prob)
     end subroutine run_as_main
+
+    !> run_as_main with the checks every run gets, named `label`: it ran, its verdict has
+    !> the code `verdict` (default: success), every file its summary.json lists is in place.
+    !> `ran`: whether there is a set to look at.
+    subroutine run_checked(t, label, config, analysis, summary, ran, given_mesh, report, verdict)
+        type(test_suite_t), intent(inout) :: t
+        character(len=*), intent(in) :: label
+        type(config_t), intent(in) :: config
+        class(analysis_t), allocatable, intent(out) :: analysis
+        character(len=:), allocatable, intent(out) :: summary
+        logical, intent(out) :: ran
+        type(mesh_t), intent(in), optional :: given_mesh
+        character(len=:), allocatable, intent(out), optional :: report
+        integer, intent(in), optional :: verdict
+        type(status_t) :: stat
+        ! gfortran 12 loses the length of a deferred-length optional passed on: a local
+        character(len=:), allocatable :: text
+        integer :: expected
+        expected = STATUS_SUCCESS
+        if (present(verdict)) expected = verdict
+        call run_as_main(config, analysis, stat, summary, given_mesh, text)
+        if (present(report) .and. allocated(text)) report = text
+        ran = stat%ok()
+        if (.not. ran) write (output_unit, '(a)') '      '//stat%message
+        call t%check(label//': runs', ran)
+        if (.not. ran) return
+        call t%check(label//': verdict code '//to_string(expected), &
+                     analysis%verdict%code == expected)
+        call t%check(label//': every file summary.json lists is in place', &
+                     all_present(trim(config%output%directory), listed_files(summary)))
+    end subroutine run_checked
+
+    !> Whether the summary's lambda+ and lambda- hold `plus` and `minus` within their
+    !> relative error bars.
+    pure logical function thresholds_within_bars(summary, plus, minus)
+        character(len=*), intent(in) :: summary
+        real(wp), intent(in) :: plus, minus
+        real(wp) :: found_plus, found_minus
+        found_plus = json_real(summary, 'lambda_critical_plus')
+        found_minus = json_real(summary, 'lambda_critical_minus')
+        thresholds_within_bars = &
+            abs(found_plus - plus) <= json_real(summary, 'lambda_critical_plus_error_bar')* &
+            abs(found_plus) .and. &
+            abs(found_minus - minus) <= json_real(summary, 'lambda_critical_minus_error_bar')* &
+            abs(found_minus)
+    end function thresholds_within_bars
 
     !> The text of member `key` of a JSON object as json_writer writes it (one member per
     !> line, two spaces in); '' if absent.
