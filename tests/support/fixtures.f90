@@ -224,7 +224,7 @@ contains
         start = index(list, '"')
         do while (start > 0)
             finish = start + index(list(start + 1:), '"')
-            names = [names, list(start + 1:finish - 1)]
+            names = [character(len=255) :: names, list(start + 1:finish - 1)]
             list = list(finish + 1:)
             start = index(list, '"')
         end do
