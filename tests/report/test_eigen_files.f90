@@ -15,7 +15,8 @@ program test_eigen_files
     use eigen_analysis, only: eigen_result_t
     use eigen_files, only: write_eigenvalues_csv, eigen_summary_json, no_eigen_summary_json
     use json_writer, only: json_object_t
-    use fixtures, only: square_scene, file_text
+    use fixtures, only: square_scene, file_text, index_of_newline, &
+                        value_text => json_value, real_value => json_real
     implicit none
 
     character(len=*), parameter :: CSV_PATH = 'test_eigen_files.csv'
@@ -148,46 +149,11 @@ contains
                      value_text(text, 'critical_cn') == '[]')
     end subroutine summary_keys_are_the_result
 
-    !> The text of member `key` of a summary's to_text (one member per line); '' if absent.
-    pure function value_text(text, key) result(value)
-        character(len=*), intent(in) :: text, key
-        character(len=:), allocatable :: value
-        integer :: start, newline
-        value = ''
-        start = index(text, new_line('a')//'  "'//key//'": ')
-        if (start == 0) return
-        start = start + len(key) + 7
-        newline = index_of_newline(text, start)
-        value = text(start:newline - 1)
-        if (value(len(value):) == ',') value = value(:len(value) - 1)
-    end function value_text
-
-    pure real(wp) function real_value(text, key)
-        character(len=*), intent(in) :: text, key
-        character(len=:), allocatable :: value
-        integer :: ios
-        real_value = -huge(1.0_wp)
-        value = value_text(text, key)
-        read (value, *, iostat=ios) real_value
-    end function real_value
-
     !> a and b are the same number (exact: the text read back is the shortest of it).
     elemental logical function same(a, b)
         real(wp), intent(in) :: a, b
         same = abs(a - b) <= 0.0_wp
     end function same
-
-    !> The position of the first line feed at or after `start` (len(text) + 1 if none).
-    pure integer function index_of_newline(text, start)
-        character(len=*), intent(in) :: text
-        integer, intent(in) :: start
-        index_of_newline = index(text(start:), new_line('a'))
-        if (index_of_newline == 0) then
-            index_of_newline = len(text) + 1
-        else
-            index_of_newline = start + index_of_newline - 1
-        end if
-    end function index_of_newline
 
     !> The comma-separated fields of a csv row (no quoting in eigenvalues.csv).
     pure subroutine split_fields(row, fields)

@@ -10,7 +10,7 @@ module fixtures
     use element_types, only: ELEMENT_P1
     use csr_matrix, only: csr_matrix_t
     use eigen_analysis, only: eigen_result_t
-    use status, only: status_t
+    use status, only: status_t, STATUS_SUCCESS
     use run_config, only: config_t
     use dof_map, only: dof_map_t, build_dof_map
     use assembly, only: assemble_stiffness
@@ -18,10 +18,26 @@ module fixtures
     use sparse_cholesky, only: cholesky_t
     use contact_reduction, only: factor_stiffness, contact_flexibility, reduced_blocks_t
     use timer, only: timings_t
+    use problem, only: problem_t, build_problem
+    use analysis_base, only: analysis_t, run_analysis
+    use analysis_registry, only: new_analysis
+    use filesystem, only: file_exists
+    use testing, only: test_suite_t
+    use strings, only: to_string
+    use iso_fortran_env, only: output_unit
     implicit none
     private
     public :: single_triangle, csr_to_dense, file_text, has_warning, five_point_matrix
     public :: uniform, read_text, write_text, rigid_mode, contact_scene, square_scene
+    public :: single_element_scene, single_element_mu, single_element_lambda_minus
+    public :: run_as_main, json_value, json_real, listed_files, data_rows, index_of_newline
+    public :: all_present, adaptive_scene, run_checked, thresholds_within_bars
+
+    !> The reference scene's continuum values (tests/data/truths.csv, scenes 'ref' and
+    !> 'ref-threshold': graded P4 meshes, uncertainties 4.6e-12 and 5.7e-10).
+    real(wp), parameter, public :: REF_MU = 0.75284361680855649_wp
+    real(wp), parameter, public :: REF_LAMBDA_PLUS = 1.9447114426738574_wp
+    real(wp), parameter, public :: REF_LAMBDA_MINUS = -1.9447114426978778_wp
 
     !> Park-Miller minimal standard generator: the same mutants on every compiler and run.
     type, public :: random_t
@@ -43,6 +59,218 @@ contains
         config%mesh%diagonal = diagonal
         config%output%modes = 2
     end subroutine square_scene
+
+    !> The reference scene on 2 x 2 squares of P1 triangles, analysis `kind` adapted by
+    !> `strategy` to `tolerance` in at most `max_levels` levels (0: no limit), lambda = 5;
+    !> outputs in `directory`, no pictures.
+    subroutine adaptive_scene(kind, strategy, tolerance, max_levels, directory, config)
+        character(len=*), intent(in) :: kind, strategy, directory
+        real(wp), intent(in) :: tolerance
+        integer, intent(in) :: max_levels
+        type(config_t), intent(out) :: config
+        call square_scene(2, 'p1', 'right', config)
+        config%analysis%kind = kind
+        config%adapt%strategy = strategy
+        config%adapt%tolerance = tolerance
+        config%adapt%max_levels = max_levels
+        config%output%directory = directory
+        config%output%plot = .false.
+        config%output%progress = .false.
+    end subroutine adaptive_scene
+
+    !> The single element of docs/model.md section 8 as an input would give it: the triangle
+    !> of single_triangle with l = 2, [B,C] fixed, [C,A] a Neumann side, E = 1, nu = 0.3,
+    !> lambda = -5, the dense solver; outputs in `directory`, no pictures.
+    subroutine single_element_scene(directory, config, m)
+        character(len=*), intent(in) :: directory
+        type(config_t), intent(out) :: config
+        type(mesh_t), intent(out) :: m
+        config%input_file = 'single_element'
+        config%mesh%dirichlet = 'fixed'
+        config%mesh%neumann = 'side'
+        config%mesh%contact = 'contact'
+        config%analysis%lambda = -5.0_wp
+        config%eigen%solver = 'dense'
+        config%output%directory = directory
+        config%output%plot = .false.
+        config%sweep%plot = .false.
+        config%output%progress = .false.
+        call single_triangle(2.0_wp, m)
+    end subroutine single_element_scene
+
+    !> The single element's one eigenvalue (docs/model.md section 8):
+    !> mu = -6 G (L + 2G) / ((L (lambda + 1) + G (lambda + 3)) l), E = 1.
+    pure real(wp) function single_element_mu(lambda, poisson, l)
+        real(wp), intent(in) :: lambda, poisson, l
+        real(wp) :: lame_l, shear_g
+        lame_l = poisson/((1.0_wp + poisson)*(1.0_wp - 2.0_wp*poisson))
+        shear_g = 0.5_wp/(1.0_wp + poisson)
+        single_element_mu = -6.0_wp*shear_g*(lame_l + 2.0_wp*shear_g)/ &
+            ((lame_l*(lambda + 1.0_wp) + shear_g*(lambda + 3.0_wp))*l)
+    end function single_element_mu
+
+    !> Its one threshold lambda- = -(L + 3G) / (L + G) (there is no lambda+).
+    pure real(wp) function single_element_lambda_minus(poisson)
+        real(wp), intent(in) :: poisson
+        real(wp) :: lame_l, shear_g
+        lame_l = poisson/((1.0_wp + poisson)*(1.0_wp - 2.0_wp*poisson))
+        shear_g = 0.5_wp/(1.0_wp + poisson)
+        single_element_lambda_minus = -(lame_l + 3.0_wp*shear_g)/(lame_l + shear_g)
+    end function single_element_lambda_minus
+
+    !> What the nceig program does after reading its input, in process: the analysis of
+    !> &analysis kind and &adapt from the registry, the problem (on `given_mesh` when
+    !> present), the run into &output directory. `summary`: the text of the
+    !> summary.json written ('' when none); `report`: the summary the program prints.
+    subroutine run_as_main(config, analysis, stat, summary, given_mesh, report)
+        type(config_t), intent(in) :: config
+        class(analysis_t), allocatable, intent(out) :: analysis
+        type(status_t), intent(out) :: stat
+        character(len=:), allocatable, intent(out) :: summary
+        type(mesh_t), intent(in), optional :: given_mesh
+        character(len=:), allocatable, intent(out), optional :: report
+        type(problem_t) :: prob
+        type(timings_t) :: timings
+        summary = ''
+        call new_analysis(trim(config%analysis%kind), config%adapt%tolerance > 0.0_wp, &
+                          analysis, trim(config%adapt%strategy))
+        call build_problem(config, prob, stat, analysis%needs_all_dofs, given_mesh)
+        if (.not. stat%ok()) return
+        call run_analysis(analysis, config, prob, 0.0_wp, timings, stat)
+        if (.not. stat%ok()) return
+        summary = file_text(trim(config%output%directory)//'/summary.json', new_line('a'))
+        if (present(report)) report = analysis%report(config, prob)
+    end subroutine run_as_main
+
+    !> run_as_main with the checks every run gets, named `label`: it ran, its verdict has
+    !> the code `verdict` (default: success), every file its summary.json lists is in place.
+    !> `ran`: whether there is a set to look at.
+    subroutine run_checked(t, label, config, analysis, summary, ran, given_mesh, report, verdict)
+        type(test_suite_t), intent(inout) :: t
+        character(len=*), intent(in) :: label
+        type(config_t), intent(in) :: config
+        class(analysis_t), allocatable, intent(out) :: analysis
+        character(len=:), allocatable, intent(out) :: summary
+        logical, intent(out) :: ran
+        type(mesh_t), intent(in), optional :: given_mesh
+        character(len=:), allocatable, intent(out), optional :: report
+        integer, intent(in), optional :: verdict
+        type(status_t) :: stat
+        ! gfortran 12 loses the length of a deferred-length optional passed on: a local
+        character(len=:), allocatable :: text
+        integer :: expected
+        expected = STATUS_SUCCESS
+        if (present(verdict)) expected = verdict
+        call run_as_main(config, analysis, stat, summary, given_mesh, text)
+        if (present(report) .and. allocated(text)) report = text
+        ran = stat%ok()
+        if (.not. ran) write (output_unit, '(a)') '      '//stat%message
+        call t%check(label//': runs', ran)
+        if (.not. ran) return
+        call t%check(label//': verdict code '//to_string(expected), &
+                     analysis%verdict%code == expected)
+        call t%check(label//': every file summary.json lists is in place', &
+                     all_present(trim(config%output%directory), listed_files(summary)))
+    end subroutine run_checked
+
+    !> Whether the summary's lambda+ and lambda- hold `plus` and `minus` within their
+    !> relative error bars.
+    pure logical function thresholds_within_bars(summary, plus, minus)
+        character(len=*), intent(in) :: summary
+        real(wp), intent(in) :: plus, minus
+        real(wp) :: found_plus, found_minus
+        found_plus = json_real(summary, 'lambda_critical_plus')
+        found_minus = json_real(summary, 'lambda_critical_minus')
+        thresholds_within_bars = &
+            abs(found_plus - plus) <= json_real(summary, 'lambda_critical_plus_error_bar')* &
+            abs(found_plus) .and. &
+            abs(found_minus - minus) <= json_real(summary, 'lambda_critical_minus_error_bar')* &
+            abs(found_minus)
+    end function thresholds_within_bars
+
+    !> The text of member `key` of a JSON object as json_writer writes it (one member per
+    !> line, two spaces in); '' if absent.
+    pure function json_value(text, key) result(value)
+        character(len=*), intent(in) :: text, key
+        character(len=:), allocatable :: value
+        integer :: start, newline
+        value = ''
+        start = index(text, new_line('a')//'  "'//key//'": ')
+        if (start == 0) return
+        start = start + len(key) + 7
+        newline = index_of_newline(text, start)
+        value = text(start:newline - 1)
+        if (value(len(value):) == ',') value = value(:len(value) - 1)
+    end function json_value
+
+    !> The number of member `key` (-huge when absent or not a number).
+    pure real(wp) function json_real(text, key)
+        character(len=*), intent(in) :: text, key
+        character(len=:), allocatable :: value
+        integer :: ios
+        json_real = -huge(1.0_wp)
+        value = json_value(text, key)
+        read (value, *, iostat=ios) json_real
+    end function json_real
+
+    !> The names of the 'files' array of a summary.json's text.
+    function listed_files(text) result(names)
+        character(len=*), intent(in) :: text
+        character(len=255), allocatable :: names(:)
+        character(len=:), allocatable :: list
+        integer :: start, finish
+        allocate (names(0))
+        list = json_value(text, 'files')
+        start = index(list, '"')
+        do while (start > 0)
+            finish = start + index(list(start + 1:), '"')
+            names = [character(len=255) :: names, list(start + 1:finish - 1)]
+            list = list(finish + 1:)
+            start = index(list, '"')
+        end do
+    end function listed_files
+
+    !> Whether every one of `names` is a file in `directory` with at least one byte.
+    logical function all_present(directory, names)
+        character(len=*), intent(in) :: directory
+        character(len=*), intent(in) :: names(:)
+        integer :: i, bytes
+        all_present = size(names) > 0
+        do i = 1, size(names)
+            bytes = -1
+            if (file_exists(directory//'/'//trim(names(i)))) &
+                inquire (file=directory//'/'//trim(names(i)), size=bytes)
+            if (bytes < 1) all_present = .false.
+        end do
+    end function all_present
+
+    !> Rows of a CSV file below its header (-1 when it cannot be read).
+    integer function data_rows(path)
+        character(len=*), intent(in) :: path
+        character(len=1) :: first
+        integer :: unit, ios
+        data_rows = -1
+        open (newunit=unit, file=path, status='old', action='read', iostat=ios)
+        if (ios /= 0) return
+        do
+            read (unit, '(a)', iostat=ios) first
+            if (ios /= 0) exit
+            data_rows = data_rows + 1
+        end do
+        close (unit)
+    end function data_rows
+
+    !> The position of the first line feed at or after `start` (len(text) + 1 if none).
+    pure integer function index_of_newline(text, start)
+        character(len=*), intent(in) :: text
+        integer, intent(in) :: start
+        index_of_newline = index(text(start:), new_line('a'))
+        if (index_of_newline == 0) then
+            index_of_newline = len(text) + 1
+        else
+            index_of_newline = start + index_of_newline - 1
+        end if
+    end function index_of_newline
 
     !> The triangle A = (0,0), B = (l,0), C = (0,l): part 1 = [A,B] (contact), part 2 = [B,C]
     !> (fixed), part 3 = [C,A] (Neumann).

@@ -1,0 +1,76 @@
+! SPDX-License-Identifier: MIT
+!> analysis = 'eigen' with &adapt (strategy 'h': adapt_run, adapt_files) run in process as
+!> the program runs it, on the reference scene from 2 x 2 P1 squares at lambda = 5: a run that
+!> meets its tolerance quotes a bar that holds the continuum value (tests/data/truths.csv)
+!> and writes one adapt.csv row per level and the final mesh; one stopped by max_levels
+!> ends with the verdict STATUS_NOT_MET and still writes its set.
+program test_adapt_run
+    use kinds, only: wp
+    use status, only: STATUS_NOT_MET
+    use testing, only: test_suite_t
+    use strings, only: to_string
+    use run_config, only: config_t
+    use analysis_base, only: analysis_t
+    use filesystem, only: remove_tree
+    use fixtures, only: adaptive_scene, run_checked, json_real, json_value, listed_files, &
+                        data_rows, REF_MU
+    implicit none
+
+    character(len=*), parameter :: OUT = 'test_adapt_run.out'
+    type(test_suite_t) :: t
+
+    t%name = 'test_adapt_run'
+    call remove_tree(OUT)
+    call met_tolerance_holds_the_truth(t)
+    call max_levels_is_not_met(t)
+    call remove_tree(OUT)
+    call t%report()
+
+contains
+
+    !> Tolerance 1e-2 (24 levels, about 0.2 s): converged, the continuum mu within the
+    !> relative bar quoted (the bar is meant to be at least the true error), the bar at most
+    !> the tolerance, adapt.csv with adapt_levels + 1 rows (the start and each refinement),
+    !> mesh.msh listed.
+    subroutine met_tolerance_holds_the_truth(t)
+        type(test_suite_t), intent(inout) :: t
+        type(config_t) :: config
+        class(analysis_t), allocatable :: analysis
+        character(len=:), allocatable :: summary, report
+        real(wp) :: mu, bar
+        logical :: ran
+        call adaptive_scene('eigen', 'h', 1.0e-2_wp, 0, OUT//'/met', config)
+        call run_checked(t, 'met', config, analysis, summary, ran, report=report)
+        if (.not. ran) return
+        mu = json_real(summary, 'lowest_positive_mu')
+        bar = json_real(summary, 'lowest_positive_error_bar')
+        call t%check('met: adapt_converged true', json_value(summary, 'adapt_converged') == 'true')
+        call t%check('met: bar at most the tolerance', bar > 0.0_wp .and. bar <= 1.0e-2_wp)
+        call t%check('met: |mu - truth| <= bar mu', abs(mu - REF_MU) <= bar*mu)
+        call t%check('met: adapt.csv has adapt_levels + 1 rows', data_rows(OUT// &
+                     '/met/adapt.csv') == nint(json_real(summary, 'adapt_levels')) + 1)
+        call t%check('met: mesh.msh and adapt.csv listed', &
+                     any(listed_files(summary) == 'mesh.msh') .and. &
+                     any(listed_files(summary) == 'adapt.csv'))
+        call t%check('met: the report counts the refinements from the 12 dofs of 2 x 2 P1', &
+                     index(report, to_string(nint(json_real(summary, 'adapt_levels')))// &
+                           ' refinements from 12 dofs') > 0)
+    end subroutine met_tolerance_holds_the_truth
+
+    !> Tolerance 1e-6 with max_levels = 2: the verdict STATUS_NOT_MET, the set written
+    !> (adapt.csv with 3 rows, summary.json saying not converged after 2 levels).
+    subroutine max_levels_is_not_met(t)
+        type(test_suite_t), intent(inout) :: t
+        type(config_t) :: config
+        class(analysis_t), allocatable :: analysis
+        character(len=:), allocatable :: summary
+        logical :: ran
+        call adaptive_scene('eigen', 'h', 1.0e-6_wp, 2, OUT//'/not_met', config)
+        call run_checked(t, 'not met', config, analysis, summary, ran, verdict=STATUS_NOT_MET)
+        if (.not. ran) return
+        call t%check('not met: summary says 2 levels, not converged', &
+                     json_value(summary, 'adapt_converged') == 'false' .and. &
+                     nint(json_real(summary, 'adapt_levels')) == 2)
+        call t%check('not met: adapt.csv has 3 rows', data_rows(OUT//'/not_met/adapt.csv') == 3)
+    end subroutine max_levels_is_not_met
+end program test_adapt_run
