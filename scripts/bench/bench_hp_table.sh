@@ -2,15 +2,16 @@
 # SPDX-License-Identifier: MIT
 # Time to the critical c_n of the reference scene (unit square, E = 1, nu = 0.3, top clamped,
 # sides free, contact on the bottom, lambda = 5) at a requested accuracy, one table for:
-#   hp       &adapt strategy = 'hp' from 2 x 2 P1 squares (modes = 1)
+#   hp       &adapt strategy = 'hp' from 2 x 2 P1 squares (modes = 1, plot off)
 #   h P3     input/adapt.nml (h-adaptive P3 from 4 x 4) with the tolerance, plot off
 #   P2, P4   uniform N x N meshes ('right'), estimate off: the smallest N of the ladder whose
 #            true error meets the tolerance, else the largest N ("stalls")
 #   FreeFEM  scripts/bench/graded_p4.edp: P4 on a mesh graded a priori toward the four
 #            corners (the clamped top corners, the ends of the contact side); the first
 #            (layers, split) of the ladder whose true error meets the tolerance
-# and the critical lambdas ('threshold', input/threshold_adapt.nml) to 1e-10 by the h loop
-# and, where nceig accepts it, by strategy = 'hp'.
+# and the critical lambdas ('threshold', input/threshold_adapt.nml, plot off) to 1e-10 by the
+# h loop and, where nceig accepts it, by strategy = 'hp'. Every nceig run has &output plot
+# off: gnuplot's pictures are no part of the answer (hp's mode_001.png alone takes 0.5 s).
 # Usage: scripts/bench/bench_hp_table.sh [REPEATS] [TOLERANCE ...]  (defaults: 3, 1e-8 1e-10 1e-12)
 # Environment: NCEIG (executable), P2_LADDER, P4_LADDER (N values), FF_LADDER (layers:split),
 # THR_TOLERANCE (of the critical lambdas, default 1e-10), THR_MAX_DOFS (cap of their h loop,
@@ -116,7 +117,7 @@ cat >"$work/hp.nml" <<'NML'
 &mesh nx = 2, ny = 2, element = 'p1' /
 &analysis kind = 'eigen', lambda = 5.0 /
 &adapt strategy = 'hp' /
-&output modes = 1 /
+&output modes = 1, plot = .false. /
 NML
 for tol in "${tolerances[@]}"; do
     nceig_adapt "hp_$tol" "$tol" "$work/hp.nml"
@@ -249,7 +250,7 @@ threshold() {
     local tag=$1 s
     shift
     repeat "$tag" "$nceig" "$root/input/threshold_adapt.nml" --set adapt%tolerance=$thr_tol \
-        --set output%directory="$work/$tag/out" "$@"
+        --set output%plot=.false. --set output%directory="$work/$tag/out" "$@"
     s=$work/$tag/out/summary.json
     [[ -f $s ]] || { echo "bench_hp_table: $tag failed: $(cat "$work/$tag.err")" >&2; exit 1; }
     err=$(awk -v a="$(key "$s" lambda_critical_plus)" -v b="$lp_true" \
