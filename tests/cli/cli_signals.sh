@@ -55,7 +55,7 @@ for signal in TERM INT; do
         state=$(set_state "$out" "$work/ref_4" "$work/ref_5")
         if [[ $state == broken* ]]; then
             n_bad=$((n_bad + 1))
-            echo "      SIG$signal try $i: ${state:0:100}"
+            echo "      SIG$signal try $i (after $delay us, exit $rc): ${state:0:400}"
             rm -rf "$out"
             "$nceig" "$work/run_4.nml" >/dev/null 2>&1
             state=$(set_state "$out" "$work/ref_4" "$work/ref_5")

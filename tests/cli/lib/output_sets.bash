@@ -58,7 +58,13 @@ set_state() {
                 for other in "${refs[@]}"; do
                     [[ $other == "$ref" ]] || others+=("$other/$f")
                 done
-                same_run "$dir/$f" "$ref/$f" "${others[@]}" || { ok=0; differing+=" $f"; break; }
+                same_run "$dir/$f" "$ref/$f" "${others[@]}" || {
+                    ok=0
+                    # what differs, for a failure that does not repeat: fingerprints, first byte
+                    differing+=" $f ($(fingerprint "$dir/$f") against $(fingerprint "$ref/$f"),"
+                    differing+=" $(cmp "$dir/$f" "$ref/$f" 2>&1 | head -1 | sed 's|.*differ: ||'))"
+                    break
+                }
             done
         fi
         if [[ $ok == 1 ]]; then match=$k; break; fi
