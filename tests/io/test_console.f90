@@ -38,5 +38,7 @@ program test_console
                  after_refused == after_second)
     open (newunit=unit, file=LOG, status='old')
     close (unit, status='delete')
+    ! the main program's allocatables are never freed by the runtime (LeakSanitizer)
+    deallocate (after_first, after_second, after_refused)
     call t%report()
 end program test_console
