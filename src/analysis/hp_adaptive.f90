@@ -22,6 +22,7 @@ module hp_adaptive
     use eigen_analysis, only: eigen_result_t, eigen_with_factor, choose_solver
     use accuracy, only: WARNING_LEN, MU_VANISHED
     use error_bar, only: hp_run_bar, floor_reached, floor_outcome
+    use hp_rayleigh, only: refine_lowest_mu
     implicit none
     private
     public :: hp_adapt_eigen
@@ -157,7 +158,11 @@ contains
             i = res%spec%lowest_positive()
             row%has_mu = i > 0
             row%mu = 0.0_wp
-            if (row%has_mu) row%mu = real(res%spec%mu(i), wp)
+            if (row%has_mu) then
+                call refine_level_mu(i, stat)
+                if (.not. stat%ok()) return
+                row%mu = real(res%spec%mu(i), wp)
+            end if
             row%roundoff = res%roundoff
             out%levels = [out%levels, row]
             call set_bar(out%levels)
@@ -173,6 +178,33 @@ contains
             out%space = ladder%space
             out%res = res
         end subroutine solve_level
+
+        !> res%spec%mu(i), the lowest positive mu, and res%roundoff replaced by the Rayleigh
+        !> quotient of its vectors that never stores K (hp_rayleigh) when the double value's
+        !> round-off bound is at least REFINE_FRACTION of the tolerance: below, it cannot
+        !> decide the stop, and the quotient costs about a third of a level's assembly.
+        subroutine refine_level_mu(i, stat)
+            integer, intent(in) :: i
+            type(status_t), intent(out) :: stat
+            real(wp), parameter :: REFINE_FRACTION = 0.01_wp
+            real(wp) :: mu, refined, refined_bound, gap
+            integer :: j
+            if (.not. (res%roundoff >= REFINE_FRACTION*tolerance .and. &
+                       allocated(res%spec%left))) return
+            mu = real(res%spec%mu(i), wp)
+            gap = 1.0_wp
+            do j = 1, res%spec%n()
+                if (j /= i) gap = min(gap, abs(res%spec%mu(j) - mu)/abs(mu))
+            end do
+            call refine_lowest_mu(prob%mesh, ladder%space, prob%young, prob%poisson, &
+                prob%contact, res%lambda, prob%units%mu_to_scaled(mu), &
+                real(res%spec%vectors(:, 1), wp), res%spec%left, res%roundoff, gap, refined, &
+                refined_bound, stat)
+            if (.not. stat%ok()) return
+            res%spec%mu(i) = prob%units%mu_to_input(refined)
+            res%roundoff = refined_bound
+            res%spec%roundoff(i) = refined_bound
+        end subroutine refine_level_mu
 
         !> The bar and the change of the last level from the mu of the levels since the last
         !> one without a positive mu (hp_run_bar; plain arrays: see adaptive_eigen's

@@ -337,6 +337,7 @@ contains
             end if
             if (left_stat%ok()) call lowest_roundoff(k, b, contact, lambda, real(spec%mu(1), wp), &
                 real(spec%vectors(:, 1), wp), y, spec%roundoff(1))
+            if (spec%roundoff(1) >= 0.0_wp) call move_alloc(y, spec%left)
             spec%roundoff_seconds = wall_time() - start
         end subroutine add_roundoff
     end subroutine arpack_finish

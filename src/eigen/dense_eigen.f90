@@ -152,6 +152,7 @@ contains
         call left_from_reduced(chol, contact, k%n(), left_lowest, left_full, left_stat)
         if (left_stat%ok()) call lowest_roundoff(k, b, contact, lambda, real(spec%mu(1), wp), &
             real(spec%vectors(:, 1), wp), left_full, spec%roundoff(1))
+        if (spec%roundoff(1) >= 0.0_wp) call move_alloc(left_full, spec%left)
         spec%roundoff_seconds = wall_time() - roundoff_start
 
     contains

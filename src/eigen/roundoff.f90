@@ -29,7 +29,7 @@ module roundoff
     use lapack_interfaces, only: dgeev, lapack_info_message
     implicit none
     private
-    public :: roundoff_bound, left_from_reduced, lowest_roundoff
+    public :: roundoff_bound, left_from_reduced, lowest_roundoff, contact_abs_form
     public :: pencil_roundoff, threshold_roundoff, collision_bound, collision_roundoffs
 
     !> The data term's multiple of eps. An entry of K is a sum of some 10 to 100 products
@@ -51,9 +51,7 @@ contains
         type(contact_t), intent(in) :: contact
         real(wp), intent(in) :: lambda, mu, x(:), y(:)
         real(wp) :: bound
-        real(wp) :: xs(size(x)), ys(size(y)), kx(size(x)), bx(size(x)), ykx, k_abs, b_abs, &
-                    xy(contact%p()), nx(contact%p()), m_nx(contact%p())
-        integer :: i, first, last
+        real(wp) :: xs(size(x)), ys(size(y)), kx(size(x)), bx(size(x)), ykx, k_abs, b_abs
         bound = huge(1.0_wp)
         if (.not. (maxval(abs(x)) > 0.0_wp .and. maxval(abs(y)) > 0.0_wp)) return
         ! scaled by powers of two first (exact): the quotients are scale invariant, and the
@@ -65,15 +63,7 @@ contains
         ykx = abs(dot_product(ys, kx))
         if (.not. (ykx > 0.0_wp)) return
         k_abs = abs_form(k, ys, xs)
-        call contact%gather(abs(lambda*contact%tangent - contact%normal), abs(ys), xy)
-        call contact%gather(abs(contact%normal), abs(xs), nx)
-        m_nx = 0.0_wp
-        do i = 1, contact%p()
-            first = contact%mass%row_start(i)
-            last = contact%mass%row_start(i + 1) - 1
-            m_nx(i) = sum(abs(contact%mass%val(first:last))*nx(contact%mass%col(first:last)))
-        end do
-        b_abs = abs(mu)*dot_product(xy, m_nx)
+        b_abs = abs(mu)*contact_abs_form(contact, lambda, xs, ys)
         bound = (abs(dot_product(ys, kx - mu*bx)) + &
                  ROUNDOFF_UNITS*epsilon(1.0_wp)*(k_abs + b_abs))/ykx
     end function roundoff_bound
@@ -110,6 +100,24 @@ contains
         if (size(y) /= size(x)) return
         bound = roundoff_bound(k, b, contact, lambda, mu, x, y)
     end subroutine lowest_roundoff
+
+    !> |X y|' |M| |N x| with X = lambda T - N: the componentwise size of y' B x, B = X' M N.
+    function contact_abs_form(contact, lambda, x, y) result(form)
+        type(contact_t), intent(in) :: contact
+        real(wp), intent(in) :: lambda, x(:), y(:)
+        real(wp) :: form
+        real(wp) :: xy(contact%p()), nx(contact%p()), m_nx(contact%p())
+        integer :: i, first, last
+        call contact%gather(abs(lambda*contact%tangent - contact%normal), abs(y), xy)
+        call contact%gather(abs(contact%normal), abs(x), nx)
+        m_nx = 0.0_wp
+        do i = 1, contact%p()
+            first = contact%mass%row_start(i)
+            last = contact%mass%row_start(i + 1) - 1
+            m_nx(i) = sum(abs(contact%mass%val(first:last))*nx(contact%mass%col(first:last)))
+        end do
+        form = dot_product(xy, m_nx)
+    end function contact_abs_form
 
     !> |y|' |K| |x|, the componentwise size of y' K x.
     real(wp) function abs_form(k, y, x)

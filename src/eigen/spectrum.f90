@@ -28,6 +28,9 @@ module spectrum
         !> relative round-off error (module roundoff), whatever the solver.
         real(wp), allocatable :: roundoff(:)
         real(wp) :: roundoff_seconds = 0.0_wp      !! time spent on it (left eigenvector, bound)
+        !> the left eigenvector of the lowest positive mu on the free dofs (K' y = mu B' y),
+        !> kept with the bound (hp_rayleigh refines mu from it); unallocated when unknown
+        real(wp), allocatable :: left(:)
         complex(wp), allocatable :: vectors(:, :)  !! (n_free, n_kept) modes of the first n_kept
         integer :: n_operator = 0                  !! operator applications (iterative solvers)
         !> the iterative solver could not certify its answer and all p eigenvalues of the

@@ -14,8 +14,7 @@ module hp_field
     use element_types, only: ELEMENT_P1
     use hp_basis, only: hp_triangle_shape, hp_local_count, hp_bubble_count
     use hp_space, only: hp_space_t
-    use hp_stiffness, only: hp_tables_t, hp_reference_tables, hp_element_stiffness, &
-                            recover_interior, configuration_key, cached_table, HP_OK
+    use hp_stiffness, only: hp_tables_t, hp_cell_stiffness, cell_coefficients, HP_OK
     implicit none
     private
     public :: sample_hp_field
@@ -35,11 +34,10 @@ contains
         real(wp), allocatable, intent(out) :: degree(:)
         type(status_t), intent(out) :: stat
         type(hp_tables_t), allocatable :: tables(:)
-        real(wp), allocatable :: ke(:, :), coefficients(:), ub(:), shape(:), gradient(:, :)
-        integer, allocatable :: dofs(:)
+        real(wp), allocatable :: ke(:, :), coefficients(:), shape(:), gradient(:, :)
         real(wp) :: xi(2), jacobian(2, 2)
-        integer :: c, p, s, n_points, n_cells, n_local, n_condensed, i, j, a, info, &
-                   t, n_tables, point, cell
+        integer :: c, p, s, n_points, n_cells, n_local, i, j, a, info, &
+                   n_tables, point, cell
         integer, allocatable :: index_of(:, :)
 
         n_points = 0
@@ -58,22 +56,14 @@ contains
         cell = 0
         do c = 1, m%n_cells()
             p = space%cell_degree(c)
-            t = cached_table(tables, n_tables, &
-                             configuration_key(space%edge_degrees_of(c), p, space%cell_flip(:, c)))
-            call hp_element_stiffness(m%coords(:, m%cells(1:3, c)), tables(t), young, poisson, &
-                                      ke, info)
-            dofs = space%cell_dofs(c, m%cells(1:3, c))
-            n_condensed = size(dofs)
-            allocate (coefficients(size(ke, 1)), source=0.0_wp)
-            where (dofs > 0) coefficients(1:n_condensed) = u(max(dofs, 1))
-            if (info == HP_OK) call recover_interior(ke, 2*hp_bubble_count(p), &
-                                                     coefficients(1:n_condensed), ub, info)
+            call hp_cell_stiffness(m, space, c, young, poisson, tables, n_tables, ke, info)
+            if (info == HP_OK) call cell_coefficients(ke, 2*hp_bubble_count(p), &
+                space%cell_dofs(c, m%cells(1:3, c)), u, coefficients, info)
             if (info /= HP_OK) then
                 call stat%fail(STATUS_MESH, 'hp field: cell '//to_string(c)// &
                                ' is clockwise or flat')
                 return
             end if
-            coefficients(n_condensed + 1:) = ub
             n_local = hp_local_count(space%edge_degrees_of(c), p)
             allocate (shape(n_local), gradient(2, n_local))
             jacobian(:, 1) = m%coords(:, m%cells(2, c)) - m%coords(:, m%cells(1, c))

@@ -19,7 +19,8 @@ module hp_stiffness
     implicit none
     private
     public :: hp_reference_tables, hp_element_stiffness, hp_element_laplace, &
-              condense_interior, recover_interior, assemble_hp_stiffness, &
+              condense_interior, recover_interior, cell_coefficients, hp_cell_stiffness, &
+              assemble_hp_stiffness, &
               configuration_key, cached_table
 
     integer, parameter :: HP_OK = 0, HP_INVERTED = 1
@@ -205,6 +206,24 @@ contains
         end do
     end subroutine recover_interior
 
+    !> The coefficients of all local functions of a cell (its full element stiffness `ke`,
+    !> the last n_interior rows interior) from the free-dof vector `u`: the condensed ones
+    !> u(dofs) (0 where dofs, from hp_space%cell_dofs, is 0: clamped), the interior ones
+    !> recovered (recover_interior). info as recover_interior's.
+    pure subroutine cell_coefficients(ke, n_interior, dofs, u, coefficients, info)
+        real(wp), intent(in) :: ke(:, :), u(:)
+        integer, intent(in) :: n_interior, dofs(:)
+        real(wp), allocatable, intent(out) :: coefficients(:)
+        integer, intent(out) :: info
+        real(wp), allocatable :: ub(:)
+        integer :: n_condensed
+        n_condensed = size(dofs)
+        allocate (coefficients(size(ke, 1)), source=0.0_wp)
+        where (dofs > 0) coefficients(1:n_condensed) = u(max(dofs, 1))
+        call recover_interior(ke, n_interior, coefficients(1:n_condensed), ub, info)
+        if (info == HP_OK) coefficients(n_condensed + 1:) = ub
+    end subroutine cell_coefficients
+
     !> The lower Cholesky factor of the interior block K_bb, column by column;
     !> info = HP_INVERTED when it is not positive definite.
     pure subroutine interior_factor(kbb, l, info)
@@ -253,7 +272,7 @@ contains
         type(hp_tables_t), allocatable :: tables(:)
         integer, allocatable :: element_dofs(:, :), dofs(:)
         real(wp), allocatable :: ke(:, :), kc(:, :)
-        integer :: c, n_cells, info, p, n_dofs, n_tables, t, key(7)
+        integer :: c, n_cells, info, p, n_dofs, n_tables
 
         n_cells = m%n_cells()
         allocate (element_dofs(space%max_cell_dofs(), n_cells), source=0)
@@ -266,10 +285,7 @@ contains
         n_tables = 0
         do c = 1, n_cells
             p = space%cell_degree(c)
-            key = configuration_key(space%edge_degrees_of(c), p, space%cell_flip(:, c))
-            t = cached_table(tables, n_tables, key)
-            call hp_element_stiffness(m%coords(:, m%cells(1:3, c)), tables(t), young, &
-                                      poisson, ke, info)
+            call hp_cell_stiffness(m, space, c, young, poisson, tables, n_tables, ke, info)
             if (info == HP_OK) call condense_interior(ke, 2*hp_bubble_count(p), kc, info)
             if (info /= HP_OK) then
                 call stat%fail(STATUS_MESH, 'hp stiffness: cell '//to_string(c)// &
@@ -285,6 +301,25 @@ contains
         end do
 
     end subroutine assemble_hp_stiffness
+
+    !> The full element stiffness (interior functions included) of cell c of `space` on the
+    !> P1 mesh `m`, its configuration's reference integrals from the cache tables(1:n_tables)
+    !> (cached_table). info as hp_element_stiffness's.
+    subroutine hp_cell_stiffness(m, space, c, young, poisson, tables, n_tables, ke, info)
+        type(mesh_t), intent(in) :: m
+        type(hp_space_t), intent(in) :: space
+        integer, intent(in) :: c
+        real(wp), intent(in) :: young, poisson
+        type(hp_tables_t), allocatable, intent(inout) :: tables(:)
+        integer, intent(inout) :: n_tables
+        real(wp), allocatable, intent(out) :: ke(:, :)
+        integer, intent(out) :: info
+        integer :: t
+        t = cached_table(tables, n_tables, configuration_key(space%edge_degrees_of(c), &
+                         space%cell_degree(c), space%cell_flip(:, c)))
+        call hp_element_stiffness(m%coords(:, m%cells(1:3, c)), tables(t), young, poisson, ke, &
+                                  info)
+    end subroutine hp_cell_stiffness
 
     !> Index in tables(1:n_tables) of the configuration `key`, its reference integrals
     !> computed and appended (the array grown) on first use.

@@ -1,0 +1,194 @@
+! SPDX-License-Identifier: MIT
+!> The lowest positive mu of an hp level past double precision's data floor. Stored in
+!> double, each entry of K carries a relative error of eps, and on graded hp meshes y' K x
+!> is some 1e4 times smaller than |y|' |K| |x| (the displacement is large where its gradient
+!> is not), so the computed mu carries about 1e-11 of round-off (module roundoff's data
+!> term) although the solver's residual is near 1e-16. Here K is never stored: the
+!> two-sided Rayleigh quotient
+!>     mu_q = y' K x / (y' B x)
+!> of the double right and left eigenvectors x, y takes y' K x cell by cell in quadruple
+!> precision from the mesh coordinates and the basis (hp_basis_quad, gauss_rules_quad), the
+!> interior functions recovered from the condensed vectors (hp_stiffness). If x = x* + dx
+!> and y = y* + dy with (mu*, x*, y*) the exact eigentriple of the discrete pencil, then
+!> mu_q - mu* = dy' (K - mu* B) dx / (y' B x): second order in the vectors' errors, which
+!> first-order perturbation theory puts at (double bound) / (relative gap to the nearest
+!> other eigenvalue) each, so the remaining error is about bound^2 / gap. y' B x needs no
+!> quadruple data: B has no cancelling entries beyond what contact_abs_form measures, and
+!> its double rounding (and that of E, nu and the normal) is counted in the new bound.
+module hp_rayleigh
+    use kinds, only: wp
+    use status, only: status_t, STATUS_MESH
+    use strings, only: to_string
+    use mesh, only: mesh_t
+    use contact_boundary, only: contact_t
+    use elasticity, only: lame_coefficients
+    use hp_space, only: hp_space_t
+    use hp_basis, only: hp_local_count, hp_bubble_count, hp_triangle_shape
+    use gauss_rules, only: gauss_rule_t, triangle_rule_exact
+    use hp_stiffness, only: hp_tables_t, hp_cell_stiffness, cell_coefficients, HP_OK
+    use roundoff, only: contact_abs_form, ROUNDOFF_UNITS
+    implicit none
+    private
+    public :: refine_lowest_mu, hp_stiffness_form
+
+    !> the second-order term's multiple of bound^2 / gap: the vectors' errors are each
+    !> estimated to first order only
+    real(wp), parameter :: SECOND_ORDER_FACTOR = 10.0_wp
+
+contains
+
+    !> mu_q from the double pair (mu, x) and left vector y (free dofs of `space` on the
+    !> graded mesh `m`, units of the assembly: `young`, `poisson`, `contact`'s mass), and
+    !> its relative round-off bound: ROUNDOFF_UNITS eps times the data that stays in double
+    !> (the contact form's componentwise size over |y' K x|, and 1 for E, nu and the final
+    !> rounding) plus SECOND_ORDER_FACTOR bound^2 / gap, with `bound` the double value's
+    !> round-off bound and `gap` = min |mu_j - mu| / |mu| over the other eigenvalues known.
+    !> mu and `refined` are in the units of the assembly; `refined` = mu where the quotient
+    !> is not a positive number.
+    subroutine refine_lowest_mu(m, space, young, poisson, contact, lambda, mu, x, y, bound, &
+                                gap, refined, refined_bound, stat)
+        type(mesh_t), intent(in) :: m
+        type(hp_space_t), intent(in) :: space
+        real(wp), intent(in) :: young, poisson, lambda, mu, x(:), y(:), bound, gap
+        type(contact_t), intent(in) :: contact
+        real(wp), intent(out) :: refined, refined_bound
+        type(status_t), intent(out) :: stat
+        real(wp) :: ykx, ykx_abs, ybx
+        refined = mu
+        refined_bound = bound
+        call hp_stiffness_form(m, space, young, poisson, x, y, ykx, ykx_abs, stat)
+        if (.not. stat%ok()) return
+        ybx = contact_form(contact, lambda, x, y)
+        if (.not. (abs(ybx) > 0.0_wp .and. ykx/ybx > 0.0_wp)) return
+        refined = real(ykx/ybx, wp)
+        refined_bound = ROUNDOFF_UNITS*epsilon(1.0_wp)* &
+                        ((ykx_abs + abs(refined)*contact_abs_form(contact, lambda, x, y))/ &
+                         abs(ykx) + 1.0_wp) + SECOND_ORDER_FACTOR*bound**2/max(gap, tiny(1.0_wp))
+    end subroutine refine_lowest_mu
+
+    !> y' K x over the cells of `m` and its componentwise size `form_abs` (what its
+    !> rounding is relative to): the interior coefficients recovered from each cell's element
+    !> stiffness, then the plane-strain energy form lambda div x div y + 2 G eps(x) : eps(y)
+    !> integrated exactly (degree 2(p - 1) on straight cells). A field's gradient takes its
+    !> vertex part from coefficient differences, sum_v c_v grad l_v = (c_2 - c_1, c_3 - c_1)
+    !> in the reference cell (exact: the gradients of l_v sum to zero), so the large
+    !> displacement of a small cell never meets its small gradient.
+    subroutine hp_stiffness_form(m, space, young, poisson, x, y, form, form_abs, stat)
+        type(mesh_t), intent(in) :: m
+        type(hp_space_t), intent(in) :: space
+        real(wp), intent(in) :: young, poisson, x(:), y(:)
+        real(wp), intent(out) :: form, form_abs
+        type(status_t), intent(out) :: stat
+        type(hp_tables_t), allocatable :: tables(:)
+        type(gauss_rule_t), allocatable :: rules(:)
+        real(wp), allocatable :: ke(:, :), cx(:), cy(:)
+        integer, allocatable :: dofs(:)
+        real(wp) :: lame_l, shear_g, cell, cell_abs
+        integer :: c, p, t, n_tables, info
+        form = 0.0_wp
+        form_abs = 0.0_wp
+        call lame_coefficients(young, poisson, lame_l, shear_g)
+        allocate (rules(maxval(space%cell_degree)))
+        n_tables = 0
+        do c = 1, m%n_cells()
+            p = space%cell_degree(c)
+            call hp_cell_stiffness(m, space, c, young, poisson, tables, n_tables, ke, info)
+            dofs = space%cell_dofs(c, m%cells(1:3, c))
+            if (info == HP_OK) call cell_coefficients(ke, 2*hp_bubble_count(p), dofs, x, cx, info)
+            if (info == HP_OK) call cell_coefficients(ke, 2*hp_bubble_count(p), dofs, y, cy, info)
+            if (info /= HP_OK) then
+                call stat%fail(STATUS_MESH, 'hp Rayleigh quotient: cell '//to_string(c)// &
+                               ' is clockwise or flat')
+                return
+            end if
+            if (.not. allocated(rules(p)%weights)) rules(p) = triangle_rule_exact(2*(p - 1))
+            call cell_form(m%coords(:, m%cells(1:3, c)), space%edge_degrees_of(c), p, &
+                           space%cell_flip(:, c), rules(p), lame_l, shear_g, cx, cy, cell, &
+                           cell_abs)
+            form = form + cell
+            form_abs = form_abs + cell_abs
+        end do
+    end subroutine hp_stiffness_form
+
+    !> The energy form of one straight cell with corners xy and full coefficient vectors
+    !> cx, cy (interleaved x, y per local function), and its componentwise size.
+    pure subroutine cell_form(xy, edge_degree, p, flip, rule, lame_l, shear_g, cx, cy, form, &
+                              form_abs)
+        real(wp), intent(in) :: xy(2, 3), lame_l, shear_g, cx(:), cy(:)
+        integer, intent(in) :: edge_degree(3), p
+        logical, intent(in) :: flip(3)
+        type(gauss_rule_t), intent(in) :: rule
+        real(wp), intent(out) :: form, form_abs
+        real(wp) :: jacobian(2, 2), inverse_t(2, 2), det, gx(2, 2), gy(2, 2), ax(2, 2), &
+                    ay(2, 2)
+        real(wp), allocatable :: values(:), gradients(:, :), ux(:, :), uy(:, :)
+        integer :: n, q
+        n = hp_local_count(edge_degree, p)
+        allocate (values(n), gradients(2, n))
+        ux = reshape(cx, [2, n])   ! (component, function)
+        uy = reshape(cy, [2, n])
+        jacobian(:, 1) = xy(:, 2) - xy(:, 1)
+        jacobian(:, 2) = xy(:, 3) - xy(:, 1)
+        det = jacobian(1, 1)*jacobian(2, 2) - jacobian(1, 2)*jacobian(2, 1)
+        inverse_t = reshape([jacobian(2, 2), -jacobian(1, 2), -jacobian(2, 1), &
+                             jacobian(1, 1)], [2, 2])/det
+        form = 0.0_wp
+        form_abs = 0.0_wp
+        do q = 1, rule%n_points()
+            call hp_triangle_shape(edge_degree, p, flip, rule%points(:, q), values, gradients)
+            ! physical gradients g(a, i) = d u_a / d x_i and their componentwise sizes a
+            call field_gradient(ux, gradients, inverse_t, gx, ax)
+            call field_gradient(uy, gradients, inverse_t, gy, ay)
+            form = form + rule%weights(q)*energy_density(gx, gy, lame_l, shear_g)
+            form_abs = form_abs + rule%weights(q)*energy_density(ax, ay, lame_l, shear_g)
+        end do
+        form = det*form
+        form_abs = abs(det)*form_abs
+    end subroutine cell_form
+
+    !> The physical gradient g of the field with coefficients u(component, function) at a
+    !> point with reference basis gradients `gradients`, the vertex part by differences, and
+    !> the same sum taken over absolute values (its componentwise size).
+    pure subroutine field_gradient(u, gradients, inverse_t, g, g_abs)
+        real(wp), intent(in) :: u(:, :), gradients(:, :), inverse_t(2, 2)
+        real(wp), intent(out) :: g(2, 2), g_abs(2, 2)
+        real(wp) :: r(2, 2), r_abs(2, 2)
+        integer :: n
+        n = size(u, 2)
+        r(:, 1) = u(:, 2) - u(:, 1)
+        r(:, 2) = u(:, 3) - u(:, 1)
+        r_abs = abs(r)
+        if (n > 3) then
+            r = r + matmul(u(:, 4:), transpose(gradients(:, 4:)))
+            r_abs = r_abs + matmul(abs(u(:, 4:)), transpose(abs(gradients(:, 4:))))
+        end if
+        g = matmul(r, transpose(inverse_t))
+        g_abs = matmul(r_abs, transpose(abs(inverse_t)))
+    end subroutine field_gradient
+
+    !> lambda tr(gx) tr(gy) + 2 G eps(gx) : eps(gy) for displacement gradients gx, gy (the
+    !> same of componentwise sizes gives the size of the density).
+    pure real(wp) function energy_density(gx, gy, lame_l, shear_g) result(density)
+        real(wp), intent(in) :: gx(2, 2), gy(2, 2), lame_l, shear_g
+        density = lame_l*(gx(1, 1) + gx(2, 2))*(gy(1, 1) + gy(2, 2)) + &
+                  0.5_wp*shear_g*sum((gx + transpose(gx))*(gy + transpose(gy)))
+    end function energy_density
+
+    !> y' B x = (X y)' M (N x), X = lambda T - N (its rounding is a few eps of
+    !> contact_abs_form).
+    function contact_form(contact, lambda, x, y) result(form)
+        type(contact_t), intent(in) :: contact
+        real(wp), intent(in) :: lambda, x(:), y(:)
+        real(wp) :: form
+        real(wp) :: xy(contact%p()), nx(contact%p())
+        integer :: a, k
+        call contact%gather(contact%slip_direction(lambda), y, xy)
+        call contact%gather(contact%normal, x, nx)
+        form = 0.0_wp
+        do a = 1, contact%p()
+            do k = contact%mass%row_start(a), contact%mass%row_start(a + 1) - 1
+                form = form + xy(a)*contact%mass%val(k)*nx(contact%mass%col(k))
+            end do
+        end do
+    end function contact_form
+end module hp_rayleigh
