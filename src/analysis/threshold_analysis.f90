@@ -17,7 +17,6 @@ module threshold_analysis
     use run_config, only: config_t, sweep_lambdas
     use problem, only: problem_t, explain_singular_k
     use enrichment, only: enriched_element
-    use error_bar, only: single_bar
     use sparse_cholesky, only: cholesky_t
     use contact_boundary, only: assemble_b
     use contact_reduction, only: factor_contact_blocks, reduced_blocks_t, &
@@ -411,9 +410,7 @@ contains
                 cycle
             end if
             est%lambda_enriched(side) = fine_thr%lambda(side)
-            est%relative(side) = (fine_thr%lambda(side) - thr%lambda(side))/thr%lambda(side)
-            est%computed(side) = .true.
-            est%bar(side) = single_bar(abs(est%relative(side)), -1.0_wp)
+            call est%record(side, (fine_thr%lambda(side) - thr%lambda(side))/thr%lambda(side))
         end do
         est%seconds = wall_time() - start
     end subroutine halved_mesh_thresholds

@@ -1,6 +1,7 @@
 ! SPDX-License-Identifier: MIT
 !> The stable sorts of the program: columns of a sparse row, nodes along the contact segment,
-!> node tags of a mesh file, nodes by degree in a renumbering, mesh sizes of a study.
+!> node tags of a mesh file, nodes by degree in a renumbering, mesh sizes of a study; and the
+!> binary search in what they sorted (a column in its row, a node tag).
 !> Short runs use insertion sort, which needs no work array; longer ones a bottom-up merge
 !> sort, O(n log n), since node counts reach millions. Both are stable, so equal keys keep
 !> their input order whichever path runs, and the result does not depend on the length.
@@ -8,7 +9,7 @@ module sorting
     use kinds, only: wp
     implicit none
     private
-    public :: sort, sort_index, sort_by_key
+    public :: sort, sort_index, sort_by_key, sorted_position
 
     !> Longest run sorted by insertion: its n^2/4 moves stay below the merge's set-up cost.
     integer, parameter :: INSERTION_MAX = 32
@@ -61,6 +62,28 @@ contains
             items(j + 1) = item
         end do
     end subroutine sort_by_key
+
+    !> The position of `key` in `sorted` (ascending, without repeats), 0 when it is absent:
+    !> a binary search, O(log n).
+    pure integer function sorted_position(sorted, key) result(position)
+        integer, intent(in) :: sorted(:)
+        integer, intent(in) :: key
+        integer :: low, high, middle
+        position = 0
+        low = 1
+        high = size(sorted)
+        do while (low <= high)
+            middle = (low + high)/2
+            if (sorted(middle) == key) then
+                position = middle
+                return
+            else if (sorted(middle) < key) then
+                low = middle + 1
+            else
+                high = middle - 1
+            end if
+        end do
+    end function sorted_position
 
     !> Integer keys go through the real merge sort: default integers are exact in binary64,
     !> so the comparisons, and hence the permutation, are those of the integers.

@@ -34,9 +34,7 @@ contains
     pure function integer_to_string(i) result(text)
         integer, intent(in) :: i
         character(len=:), allocatable :: text
-        character(len=24) :: buffer
-        write (buffer, '(i0)') i
-        text = trim(buffer)
+        text = long_integer_to_string(int(i, i8))
     end function integer_to_string
 
     !> Counts that can pass 2**31: byte offsets, nnz of factors.

@@ -28,31 +28,13 @@ contains
     function available_memory_bytes(path) result(bytes)
         character(len=*), intent(in), optional :: path   !! default MEMINFO_PATH (tests)
         integer(i8) :: bytes
-        integer(i8) :: total, value
-        integer :: unit, ios
-        character(len=256) :: line
         character(len=:), allocatable :: file
 
-        bytes = -1
-        total = -1
         file = MEMINFO_PATH
         if (present(path)) file = path
-        open (newunit=unit, file=file, status='old', action='read', iostat=ios)
-        if (ios /= 0) return
-        do
-            read (unit, '(a)', iostat=ios) line
-            if (ios /= 0) exit
-            ! 'MemAvailable:   22846788 kB'
-            if (index(line, 'MemAvailable:') == 1) then
-                read (line(len('MemAvailable:') + 1:), *, iostat=ios) value
-                if (ios == 0) bytes = 1024_i8*value
-            else if (index(line, 'MemTotal:') == 1) then
-                read (line(len('MemTotal:') + 1:), *, iostat=ios) value
-                if (ios == 0) total = 1024_i8*value
-            end if
-        end do
-        close (unit)
-        if (bytes < 0) bytes = total
+        bytes = kib_field(file, 'MemAvailable:')
+        if (bytes < 0) bytes = kib_field(file, 'MemTotal:')
+        if (bytes >= 0) bytes = 1024_i8*bytes
     end function available_memory_bytes
 
     !> Bytes of address space the process may still map under its limit (ulimit -v,
@@ -61,26 +43,36 @@ contains
     function address_space_headroom_bytes() result(bytes)
         integer(i8) :: bytes
         integer(i8) :: limit, mapped
-        integer :: unit, ios
-        character(len=256) :: line
 
         bytes = -1
         limit = int(nceig_address_space_limit(), i8)
         if (limit < 0) return
-        mapped = -1
-        open (newunit=unit, file=STATUS_PATH, status='old', action='read', iostat=ios)
+        mapped = kib_field(STATUS_PATH, 'VmSize:')
+        if (mapped < 0) return
+        bytes = max(0_i8, limit - 1024_i8*mapped)
+    end function address_space_headroom_bytes
+
+    !> The number after `key` on the first line of the /proc file `file` that starts with
+    !> it ('MemAvailable:   22846788 kB': kB); -1 when the file, the line or the number
+    !> cannot be read.
+    function kib_field(file, key) result(value)
+        character(len=*), intent(in) :: file, key
+        integer(i8) :: value
+        integer :: unit, ios
+        character(len=256) :: line
+
+        value = -1
+        open (newunit=unit, file=file, status='old', action='read', iostat=ios)
         if (ios /= 0) return
         do
             read (unit, '(a)', iostat=ios) line
             if (ios /= 0) exit
-            if (index(line, 'VmSize:') == 1) then
-                read (line(len('VmSize:') + 1:), *, iostat=ios) mapped
-                if (ios /= 0) mapped = -1
+            if (index(line, key) == 1) then
+                read (line(len(key) + 1:), *, iostat=ios) value
+                if (ios /= 0) value = -1
                 exit
             end if
         end do
         close (unit)
-        if (mapped < 0) return
-        bytes = max(0_i8, limit - 1024_i8*mapped)
-    end function address_space_headroom_bytes
+    end function kib_field
 end module system_memory

@@ -121,9 +121,8 @@ contains
     pure real(wp) function cell_thinness(element, xy)
         integer, intent(in) :: element
         real(wp), intent(in) :: xy(:, :)   !! (2, nodes per cell)
-        real(wp) :: ref_nodes(2, MAX_NODES), det_min, det_max
-        call reference_nodes(element, ref_nodes)
-        call det_range(element, xy, ref_nodes(:, 1:size(xy, 2)), det_min, det_max)
+        real(wp) :: det_min, det_max
+        call node_det_range(element, xy, det_min, det_max)
         cell_thinness = min(abs(det_min), abs(det_max))/ &
                         (negligible_det(xy)/DEGENERATE_FRACTION)
     end function cell_thinness
@@ -174,9 +173,19 @@ contains
     pure integer function cell_orientation(element, xy)
         integer, intent(in) :: element
         real(wp), intent(in) :: xy(:, :)   !! (2, nodes per cell)
-        real(wp) :: ref_nodes(2, MAX_NODES), det_min, det_max
-        call reference_nodes(element, ref_nodes)
-        call det_range(element, xy, ref_nodes(:, 1:size(xy, 2)), det_min, det_max)
+        real(wp) :: det_min, det_max
+        call node_det_range(element, xy, det_min, det_max)
         cell_orientation = orientation_of(det_min, det_max, xy)
     end function cell_orientation
+
+    !> det_range at the cell's own reference nodes: the points that cell_thinness and
+    !> cell_orientation check.
+    pure subroutine node_det_range(element, xy, det_min, det_max)
+        integer, intent(in) :: element
+        real(wp), intent(in) :: xy(:, :)   !! (2, nodes per cell)
+        real(wp), intent(out) :: det_min, det_max
+        real(wp) :: ref_nodes(2, MAX_NODES)
+        call reference_nodes(element, ref_nodes)
+        call det_range(element, xy, ref_nodes(:, 1:size(xy, 2)), det_min, det_max)
+    end subroutine node_det_range
 end module cell_geometry

@@ -25,7 +25,7 @@ module mesh_gmsh
     use mesh_renumber, only: renumber_nodes, RENUMBER_RCM
     use cell_geometry, only: cell_orientation, CELL_DEGENERATE, CELL_FOLDED
     use strings, only: to_string
-    use sorting, only: sort_index
+    use sorting, only: sort_index, sorted_position
     use msh_text, only: text_file_t, load_file
     use msh_parser, only: raw_mesh_t, parse_sections, gmsh_type_name, element_of_type, &
                           order_of, MAX_CELL_NODES, MAX_LINE_NODES
@@ -211,25 +211,14 @@ contains
 
         integer function find_node(tag)
             integer, intent(in) :: tag
-            integer :: low, high, middle
+            integer :: position
             find_node = 0
             if (tags_are_positions) then
                 if (tag >= 1 .and. tag <= raw%n_nodes) find_node = tag
                 return
             end if
-            low = 1
-            high = size(sorted_tags)
-            do while (low <= high)
-                middle = (low + high)/2
-                if (sorted_tags(middle) == tag) then
-                    find_node = index_of_sorted(middle)
-                    return
-                else if (sorted_tags(middle) < tag) then
-                    low = middle + 1
-                else
-                    high = middle - 1
-                end if
-            end do
+            position = sorted_position(sorted_tags, tag)
+            if (position > 0) find_node = index_of_sorted(position)
         end function find_node
 
         !> find_node(tag) of the element at file line `line`; 0, and the failure in stat, when

@@ -261,18 +261,8 @@ contains
             end if
             ! Newest vertex mid(1) on the refinement edge v2-v3: children (m, v1, v2) and
             ! (m, v3, v1), whose refinement edges v1-v2 and v3-v1 may be bisected in turn.
-            if (mid(3) == 0) then
-                call add_cell([mid(1), v(1), v(2)], c)
-            else
-                call add_cell([mid(3), mid(1), v(1)], c)
-                call add_cell([mid(3), v(2), mid(1)], c)
-            end if
-            if (mid(2) == 0) then
-                call add_cell([mid(1), v(3), v(1)], c)
-            else
-                call add_cell([mid(2), mid(1), v(3)], c)
-                call add_cell([mid(2), v(1), mid(1)], c)
-            end if
+            call add_child(mid(1), v(1), v(2), mid(3), c)
+            call add_child(mid(1), v(3), v(1), mid(2), c)
         end do
 
         ! A bisected boundary edge becomes its two halves, in order along it, same part.
@@ -323,6 +313,18 @@ contains
             cells(:, n_cells) = vertices
             parent(n_cells) = from
         end subroutine add_cell
+
+        !> The child (newest, a, b) of cell `from`, or, when its refinement edge a-b is
+        !> bisected at `middle` (0: not), the two halves of it with `middle` as newest vertex.
+        subroutine add_child(newest, a, b, middle, from)
+            integer, intent(in) :: newest, a, b, middle, from
+            if (middle == 0) then
+                call add_cell([newest, a, b], from)
+            else
+                call add_cell([middle, newest, a], from)
+                call add_cell([middle, b, newest], from)
+            end if
+        end subroutine add_child
     end subroutine refinable_mesh_refine
 
     !> The mesh as a `mesh_t` of `element` ELEMENT_P1 to ELEMENT_P4 (degree p): vertices

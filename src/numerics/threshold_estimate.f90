@@ -50,6 +50,8 @@ module threshold_estimate
         real(wp) :: seconds = 0.0_wp
         !> per side, why it was not computed ('' where it was, or where there is no threshold)
         character(len=200) :: skipped(2) = ''
+    contains
+        procedure :: record => threshold_estimate_record
     end type threshold_estimate_t
 
 contains
@@ -156,13 +158,22 @@ contains
             end if
             r_cell = enr%cell_residuals(prob%poisson, prob%contact_part, thr%lambda(side), u, &
                                         w, z)
-            est%relative(side) = -sum(r_cell)/r_weight
+            call est%record(side, -sum(r_cell)/r_weight)
             est%indicators(:, side) = abs(r_cell)/abs(r_weight)
-            est%computed(side) = .true.
-            est%bar(side) = single_bar(abs(est%relative(side)), -1.0_wp)
         end do
         est%seconds = wall_time() - start
     end subroutine estimate_threshold_errors
+
+    !> Side `side` estimated (enriched or halved mesh): its signed relative estimate and the
+    !> one-mesh bar from it (single_bar, no round-off part), the same for both estimates.
+    pure subroutine threshold_estimate_record(this, side, relative)
+        class(threshold_estimate_t), intent(inout) :: this
+        integer, intent(in) :: side
+        real(wp), intent(in) :: relative
+        this%relative(side) = relative
+        this%computed(side) = .true.
+        this%bar(side) = single_bar(abs(relative), -1.0_wp)
+    end subroutine threshold_estimate_record
 
     !> g(:, side) = M^-1 x(:, side): the nodal values of the traction whose nodal forces are
     !> the pencil eigenvector (M the contact mass, SPD; one LU, p^3 / 3 flops).

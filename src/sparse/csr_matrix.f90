@@ -4,7 +4,7 @@
 module csr_matrix
     use kinds, only: wp, i8
     use status, only: status_t, STATUS_INTERNAL
-    use sorting, only: sort
+    use sorting, only: sort, sorted_position
     implicit none
     private
     public :: csr_from_element_dofs
@@ -114,21 +114,10 @@ contains
     pure integer function csr_matrix_slot(this, i, j)
         class(csr_matrix_t), intent(in) :: this
         integer, intent(in) :: i, j
-        integer :: low, high, middle
-        low = this%row_start(i)
-        high = this%row_start(i + 1) - 1
-        csr_matrix_slot = 0
-        do while (low <= high)
-            middle = (low + high)/2
-            if (this%col(middle) == j) then
-                csr_matrix_slot = middle
-                return
-            else if (this%col(middle) < j) then
-                low = middle + 1
-            else
-                high = middle - 1
-            end if
-        end do
+        integer :: first
+        first = this%row_start(i)
+        csr_matrix_slot = sorted_position(this%col(first:this%row_start(i + 1) - 1), j)
+        if (csr_matrix_slot > 0) csr_matrix_slot = first - 1 + csr_matrix_slot
     end function csr_matrix_slot
 
     !> a(i, j) += value; (i, j) must be in the pattern.

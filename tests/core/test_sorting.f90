@@ -2,19 +2,21 @@
 !> sorting against the definition of a stable sort: element i goes to position
 !> 1 + #(keys < keys(i)) + #(j < i with keys(j) = keys(i)). Keys have many ties, and the
 !> lengths straddle the switch from insertion to merge sort (32), so both paths are checked
-!> to give the same permutation. Everything is exact integer logic: no tolerances.
+!> to give the same permutation. sorted_position against a linear search (findloc) for
+!> every key from below the first to above the last. Everything is exact integer logic: no
+!> tolerances.
 program test_sorting
     use kinds, only: wp, i8
-    use sorting, only: sort, sort_index, sort_by_key
+    use sorting, only: sort, sort_index, sort_by_key, sorted_position
     use testing, only: test_suite_t
     implicit none
 
     integer, parameter :: LENGTHS(9) = [0, 1, 2, 7, 31, 32, 33, 100, 1000]
     type(test_suite_t) :: t
-    integer, allocatable :: keys(:), order(:), values(:), items(:), degree(:), k(:)
+    integer, allocatable :: keys(:), order(:), values(:), items(:), degree(:), k(:), ascending(:)
     real(wp), allocatable :: x(:)
     integer :: c, n, i, state
-    logical :: ok_index, ok_sort, ok_key, ok_real, ok_descending, ok_large
+    logical :: ok_index, ok_sort, ok_key, ok_real, ok_descending, ok_large, ok_search
     character(len=8) :: n_text
 
     t%name = 'test_sorting'
@@ -55,6 +57,14 @@ program test_sorting
         ok_descending = all(order == stable_order(-k))
         if (n > 1) ok_descending = ok_descending .and. all(x(order(:n - 1)) >= x(order(2:)))
         call t%check('sort_index(-x), n = '//trim(n_text)//': stable descending', ok_descending)
+
+        ! Ascending without repeats, with gaps: the keys in between must be absent.
+        ascending = [(3*i + mod(i, 2), i=1, n)]
+        ok_search = .true.
+        do i = -1, 3*n + 3
+            if (sorted_position(ascending, i) /= findloc(ascending, i, 1)) ok_search = .false.
+        end do
+        call t%check('sorted_position, n = '//trim(n_text)//': as a linear search', ok_search)
     end do
 
     ! Many merge levels (2^17 < n): linear checks of order, permutation and stability.
@@ -73,7 +83,7 @@ program test_sorting
 
     ! gfortran 12 keeps main-program allocatables in a frame gone before LeakSanitizer
     ! looks: free them here so a sanitizer build reports only real leaks.
-    deallocate (keys, order, values, items, degree, k, x)
+    deallocate (keys, order, values, items, degree, k, x, ascending)
     call t%report()
 
 contains
