@@ -54,6 +54,9 @@ module eigen_analysis
         !> bound of the relative round-off error of the lowest positive mu (module roundoff),
         !> part of error%bar; < 0: unknown (no positive mu, or no left eigenvector)
         real(wp) :: roundoff = -1.0_wp
+        !> the lowest positive mu is the Rayleigh quotient that never stores K (hp_rayleigh),
+        !> and `roundoff` that quotient's bound
+        logical :: quotient = .false.
     end type eigen_result_t
 
 contains

@@ -203,6 +203,7 @@ contains
             if (.not. stat%ok()) return
             res%spec%mu(i) = prob%units%mu_to_input(refined)
             res%roundoff = refined_bound
+            res%quotient = .true.
             res%spec%roundoff(i) = refined_bound
         end subroutine refine_level_mu
 

@@ -288,6 +288,7 @@ contains
             if (res%roundoff >= 0.0_wp) then
                 text = text//'  round-off bound of mu: '//short_real_text(res%roundoff)// &
                        ' relative'
+                if (res%quotient) text = text//' (Rayleigh quotient without a stored K)'
                 if (res%error%computed) text = text//' (in the error bar)'
                 text = text//NL
             end if
