@@ -187,10 +187,11 @@ contains
             integer, intent(in) :: i
             type(status_t), intent(out) :: stat
             real(wp), parameter :: REFINE_FRACTION = 0.01_wp
-            real(wp) :: mu, refined, refined_bound, gap
+            real(wp) :: mu, refined, refined_bound, gap, start
             integer :: j
             if (.not. (res%roundoff >= REFINE_FRACTION*tolerance .and. &
                        allocated(res%spec%left))) return
+            start = wall_time()
             mu = real(res%spec%mu(i), wp)
             gap = 1.0_wp
             do j = 1, res%spec%n()
@@ -204,6 +205,7 @@ contains
             res%spec%mu(i) = prob%units%mu_to_input(refined)
             res%roundoff = refined_bound
             res%quotient = .true.
+            res%spec%roundoff_seconds = res%spec%roundoff_seconds + wall_time() - start
             res%spec%roundoff(i) = refined_bound
         end subroutine refine_level_mu
 

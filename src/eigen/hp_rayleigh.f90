@@ -25,7 +25,8 @@ module hp_rayleigh
     use hp_space, only: hp_space_t
     use hp_basis, only: hp_local_count, hp_bubble_count, hp_triangle_shape
     use gauss_rules, only: gauss_rule_t, triangle_rule_exact
-    use hp_stiffness, only: hp_tables_t, hp_cell_stiffness, cell_coefficients, HP_OK
+    use hp_stiffness, only: hp_tables_t, hp_cell_stiffness, cell_coefficients, &
+                            configuration_key, HP_OK
     use roundoff, only: contact_abs_form, ROUNDOFF_UNITS
     implicit none
     private
@@ -34,6 +35,14 @@ module hp_rayleigh
     !> the second-order term's multiple of bound^2 / gap: the vectors' errors are each
     !> estimated to first order only
     real(wp), parameter :: SECOND_ORDER_FACTOR = 10.0_wp
+
+    !> The reference gradients of one cell configuration's functions at its rule's points:
+    !> shared by the cells of that configuration, as hp_stiffness's tables are.
+    type :: point_table_t
+        integer :: key(7) = 0
+        type(gauss_rule_t) :: rule
+        real(wp), allocatable :: gxi(:, :), geta(:, :)   !! (function, point)
+    end type point_table_t
 
 contains
 
@@ -80,16 +89,16 @@ contains
         real(wp), intent(out) :: form, form_abs
         type(status_t), intent(out) :: stat
         type(hp_tables_t), allocatable :: tables(:)
-        type(gauss_rule_t), allocatable :: rules(:)
+        type(point_table_t), allocatable :: points(:)
         real(wp), allocatable :: ke(:, :), cx(:), cy(:)
         integer, allocatable :: dofs(:)
         real(wp) :: lame_l, shear_g, cell, cell_abs
-        integer :: c, p, t, n_tables, info
+        integer :: c, p, n_tables, n_points, info, t
         form = 0.0_wp
         form_abs = 0.0_wp
         call lame_coefficients(young, poisson, lame_l, shear_g)
-        allocate (rules(maxval(space%cell_degree)))
         n_tables = 0
+        n_points = 0
         do c = 1, m%n_cells()
             p = space%cell_degree(c)
             call hp_cell_stiffness(m, space, c, young, poisson, tables, n_tables, ke, info)
@@ -101,70 +110,124 @@ contains
                                ' is clockwise or flat')
                 return
             end if
-            if (.not. allocated(rules(p)%weights)) rules(p) = triangle_rule_exact(2*(p - 1))
-            call cell_form(m%coords(:, m%cells(1:3, c)), space%edge_degrees_of(c), p, &
-                           space%cell_flip(:, c), rules(p), lame_l, shear_g, cx, cy, cell, &
-                           cell_abs)
+            t = cached_points(points, n_points, configuration_key(space%edge_degrees_of(c), p, &
+                                                                  space%cell_flip(:, c)))
+            call cell_form(m%coords(:, m%cells(1:3, c)), points(t), lame_l, shear_g, cx, cy, &
+                           cell, cell_abs)
             form = form + cell
             form_abs = form_abs + cell_abs
         end do
     end subroutine hp_stiffness_form
 
+    !> Index in points(1:n_points) of the configuration `key` (hp_stiffness's
+    !> configuration_key), its point table computed and appended on first use.
+    integer function cached_points(points, n_points, key) result(t)
+        type(point_table_t), allocatable, intent(inout) :: points(:)
+        integer, intent(inout) :: n_points
+        integer, intent(in) :: key(7)
+        type(point_table_t), allocatable :: grown(:)
+        do t = 1, n_points
+            if (all(points(t)%key == key)) return
+        end do
+        if (.not. allocated(points)) allocate (points(16))
+        if (n_points == size(points)) then
+            allocate (grown(2*n_points))
+            grown(1:n_points) = points
+            call move_alloc(grown, points)
+        end if
+        n_points = n_points + 1
+        t = n_points
+        points(t) = point_table(key)
+    end function cached_points
+
+    !> The reference gradients of a configuration's non-vertex functions at the points of the
+    !> rule exact to degree 2(p - 1) (the vertex rows left zero: cell_form takes them by
+    !> differences).
+    function point_table(key) result(table)
+        integer, intent(in) :: key(7)
+        type(point_table_t) :: table
+        real(wp), allocatable :: values(:), gradients(:, :)
+        integer :: n, q, p
+        p = key(4)
+        table%key = key
+        table%rule = triangle_rule_exact(2*(p - 1))
+        n = hp_local_count(key(1:3), p)
+        allocate (values(n), gradients(2, n))
+        allocate (table%gxi(n, table%rule%n_points()), table%geta(n, table%rule%n_points()))
+        do q = 1, table%rule%n_points()
+            call hp_triangle_shape(key(1:3), p, key(5:7) == 1, table%rule%points(:, q), &
+                                   values, gradients)
+            table%gxi(:, q) = gradients(1, :)
+            table%geta(:, q) = gradients(2, :)
+        end do
+        table%gxi(1:3, :) = 0.0_wp
+        table%geta(1:3, :) = 0.0_wp
+    end function point_table
+
     !> The energy form of one straight cell with corners xy and full coefficient vectors
     !> cx, cy (interleaved x, y per local function), and its componentwise size.
-    pure subroutine cell_form(xy, edge_degree, p, flip, rule, lame_l, shear_g, cx, cy, form, &
-                              form_abs)
+    pure subroutine cell_form(xy, table, lame_l, shear_g, cx, cy, form, form_abs)
         real(wp), intent(in) :: xy(2, 3), lame_l, shear_g, cx(:), cy(:)
-        integer, intent(in) :: edge_degree(3), p
-        logical, intent(in) :: flip(3)
-        type(gauss_rule_t), intent(in) :: rule
+        type(point_table_t), intent(in) :: table
         real(wp), intent(out) :: form, form_abs
         real(wp) :: jacobian(2, 2), inverse_t(2, 2), det, gx(2, 2), gy(2, 2), ax(2, 2), &
                     ay(2, 2)
-        real(wp), allocatable :: values(:), gradients(:, :), ux(:, :), uy(:, :)
-        integer :: n, q
-        n = hp_local_count(edge_degree, p)
-        allocate (values(n), gradients(2, n))
-        ux = reshape(cx, [2, n])   ! (component, function)
-        uy = reshape(cy, [2, n])
+        real(wp), allocatable :: x_xi(:, :), x_eta(:, :), y_xi(:, :), y_eta(:, :), &
+                                 ax_xi(:, :), ax_eta(:, :), ay_xi(:, :), ay_eta(:, :)
+        integer :: q
         jacobian(:, 1) = xy(:, 2) - xy(:, 1)
         jacobian(:, 2) = xy(:, 3) - xy(:, 1)
         det = jacobian(1, 1)*jacobian(2, 2) - jacobian(1, 2)*jacobian(2, 1)
         inverse_t = reshape([jacobian(2, 2), -jacobian(1, 2), -jacobian(2, 1), &
                              jacobian(1, 1)], [2, 2])/det
+        ! reference gradients (component, point) of both fields and their sizes
+        call reference_gradients(cx, table, x_xi, x_eta, ax_xi, ax_eta)
+        call reference_gradients(cy, table, y_xi, y_eta, ay_xi, ay_eta)
         form = 0.0_wp
         form_abs = 0.0_wp
-        do q = 1, rule%n_points()
-            call hp_triangle_shape(edge_degree, p, flip, rule%points(:, q), values, gradients)
-            ! physical gradients g(a, i) = d u_a / d x_i and their componentwise sizes a
-            call field_gradient(ux, gradients, inverse_t, gx, ax)
-            call field_gradient(uy, gradients, inverse_t, gy, ay)
-            form = form + rule%weights(q)*energy_density(gx, gy, lame_l, shear_g)
-            form_abs = form_abs + rule%weights(q)*energy_density(ax, ay, lame_l, shear_g)
+        do q = 1, table%rule%n_points()
+            ! physical gradients g(a, i) = d u_a / d x_i = sum_k r(a, k) C(i, k)
+            gx = physical(x_xi(:, q), x_eta(:, q), inverse_t)
+            gy = physical(y_xi(:, q), y_eta(:, q), inverse_t)
+            ax = physical(ax_xi(:, q), ax_eta(:, q), abs(inverse_t))
+            ay = physical(ay_xi(:, q), ay_eta(:, q), abs(inverse_t))
+            form = form + table%rule%weights(q)*energy_density(gx, gy, lame_l, shear_g)
+            form_abs = form_abs + table%rule%weights(q)*energy_density(ax, ay, lame_l, shear_g)
         end do
         form = det*form
         form_abs = abs(det)*form_abs
     end subroutine cell_form
 
-    !> The physical gradient g of the field with coefficients u(component, function) at a
-    !> point with reference basis gradients `gradients`, the vertex part by differences, and
-    !> the same sum taken over absolute values (its componentwise size).
-    pure subroutine field_gradient(u, gradients, inverse_t, g, g_abs)
-        real(wp), intent(in) :: u(:, :), gradients(:, :), inverse_t(2, 2)
-        real(wp), intent(out) :: g(2, 2), g_abs(2, 2)
-        real(wp) :: r(2, 2), r_abs(2, 2)
-        integer :: n
-        n = size(u, 2)
-        r(:, 1) = u(:, 2) - u(:, 1)
-        r(:, 2) = u(:, 3) - u(:, 1)
-        r_abs = abs(r)
-        if (n > 3) then
-            r = r + matmul(u(:, 4:), transpose(gradients(:, 4:)))
-            r_abs = r_abs + matmul(abs(u(:, 4:)), transpose(abs(gradients(:, 4:))))
-        end if
-        g = matmul(r, transpose(inverse_t))
-        g_abs = matmul(r_abs, transpose(abs(inverse_t)))
-    end subroutine field_gradient
+    !> d u_a / d xi and d u_a / d eta at every point of `table` of the field with
+    !> coefficients c (interleaved x, y), the vertex part by differences, and the same sums
+    !> over absolute values.
+    pure subroutine reference_gradients(c, table, r_xi, r_eta, a_xi, a_eta)
+        real(wp), intent(in) :: c(:)
+        type(point_table_t), intent(in) :: table
+        real(wp), allocatable, intent(out) :: r_xi(:, :), r_eta(:, :), a_xi(:, :), a_eta(:, :)
+        real(wp) :: u(2, size(c)/2)
+        integer :: a
+        u = reshape(c, [2, size(c)/2])
+        r_xi = matmul(u, table%gxi)
+        r_eta = matmul(u, table%geta)
+        a_xi = matmul(abs(u), abs(table%gxi))
+        a_eta = matmul(abs(u), abs(table%geta))
+        do a = 1, 2
+            r_xi(a, :) = r_xi(a, :) + (u(a, 2) - u(a, 1))
+            r_eta(a, :) = r_eta(a, :) + (u(a, 3) - u(a, 1))
+            a_xi(a, :) = a_xi(a, :) + abs(u(a, 2) - u(a, 1))
+            a_eta(a, :) = a_eta(a, :) + abs(u(a, 3) - u(a, 1))
+        end do
+    end subroutine reference_gradients
+
+    pure function physical(r_xi, r_eta, inverse_t) result(g)
+        real(wp), intent(in) :: r_xi(2), r_eta(2), inverse_t(2, 2)
+        real(wp) :: g(2, 2)
+        integer :: i
+        do i = 1, 2
+            g(:, i) = r_xi*inverse_t(i, 1) + r_eta*inverse_t(i, 2)
+        end do
+    end function physical
 
     !> lambda tr(gx) tr(gy) + 2 G eps(gx) : eps(gy) for displacement gradients gx, gy (the
     !> same of componentwise sizes gives the size of the density).

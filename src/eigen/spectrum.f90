@@ -27,7 +27,7 @@ module spectrum
         !> Of the lowest positive mu only, < 0 elsewhere and when unknown: the bound of its
         !> relative round-off error (module roundoff), whatever the solver.
         real(wp), allocatable :: roundoff(:)
-        real(wp) :: roundoff_seconds = 0.0_wp      !! time spent on it (left eigenvector, bound)
+        real(wp) :: roundoff_seconds = 0.0_wp      !! time spent on it (left eigenvector, bound, hp quotient)
         !> the left eigenvector of the lowest positive mu on the free dofs (K' y = mu B' y),
         !> kept with the bound (hp_rayleigh refines mu from it); unallocated when unknown
         real(wp), allocatable :: left(:)
