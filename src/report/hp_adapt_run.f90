@@ -37,7 +37,9 @@ module hp_adapt_run
     public :: write_hp_modes, write_degrees, add_hp_keys, hp_report_lines
 
     type, extends(analysis_t), public :: hp_adapt_run_t
-        type(hp_result_t) :: out
+        !> allocatable: gfortran 12's finalizer of this type, inlined component by component,
+        !> skipped out%prob%k (LeakSanitizer); an allocatable component is freed whole
+        type(hp_result_t), allocatable :: out
         integer :: start_dofs = 0   !! free dofs of the input mesh (P1 to P4 as given)
         character(len=:), allocatable :: plot_note   !! mode_001.png: where, or why not
     contains
@@ -56,6 +58,7 @@ contains
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
         this%start_dofs = prob%dofs%n_free
+        if (.not. allocated(this%out)) allocate (this%out)
         call hp_adapt_eigen(config, prob, this%out, timings, stat)
         ! as the h loop: without a positive mu at any level there is no value, so no
         ! tolerance to miss; one that vanished on refinement misses it

@@ -34,9 +34,7 @@ contains
     subroutine hp_eigen_meets_its_tolerance(t)
         type(test_suite_t), intent(inout) :: t
         type(config_t) :: config
-        ! saved: gfortran 12 does not free the nested allocatables of an hp run's result when
-        ! a class(analysis_t) is deallocated (LeakSanitizer); main never deallocates its one
-        class(analysis_t), allocatable, save :: analysis
+        class(analysis_t), allocatable :: analysis
         character(len=:), allocatable :: summary, report
         real(wp) :: mu
         integer :: levels
@@ -70,9 +68,7 @@ contains
     subroutine hp_threshold_meets_its_tolerance(t)
         type(test_suite_t), intent(inout) :: t
         type(config_t) :: config
-        ! saved: gfortran 12 does not free the nested allocatables of an hp run's result when
-        ! a class(analysis_t) is deallocated (LeakSanitizer); main never deallocates its one
-        class(analysis_t), allocatable, save :: analysis
+        class(analysis_t), allocatable :: analysis
         character(len=:), allocatable :: summary
         logical :: ran
         call adaptive_scene('threshold', 'hp', 1.0e-3_wp, 0, OUT//'/threshold', config)
@@ -95,20 +91,15 @@ contains
         type(test_suite_t), intent(inout) :: t
         character(len=*), parameter :: KINDS(2) = [character(len=9) :: 'eigen', 'threshold']
         type(config_t) :: config
-        ! one saved object per run: gfortran 12 does not free the nested allocatables of an
-        ! hp run's result when a class(analysis_t) is deallocated (LeakSanitizer)
-        type :: kept_t
-            class(analysis_t), allocatable :: analysis
-        end type kept_t
-        type(kept_t), save :: kept(2)
+        class(analysis_t), allocatable :: analysis
         character(len=:), allocatable :: summary, folder
         integer :: i
         logical :: ran
         do i = 1, size(KINDS)
             folder = OUT//'/not_met_'//trim(KINDS(i))
             call adaptive_scene(trim(KINDS(i)), 'hp', 1.0e-8_wp, 2, folder, config)
-            call run_checked(t, trim(KINDS(i))//' not met', config, kept(i)%analysis, summary, &
-                             ran, verdict=STATUS_NOT_MET)
+            call run_checked(t, trim(KINDS(i))//' not met', config, analysis, summary, ran, &
+                             verdict=STATUS_NOT_MET)
             if (ran) call t%check(trim(KINDS(i))//' not met: adapt.csv has 2 rows', &
                                   data_rows(folder//'/adapt.csv') == 2)
         end do
