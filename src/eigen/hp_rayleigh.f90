@@ -41,7 +41,9 @@ module hp_rayleigh
     type :: point_table_t
         integer :: key(7) = 0
         type(gauss_rule_t) :: rule
-        real(wp), allocatable :: gxi(:, :), geta(:, :)   !! (function, point)
+        !> (function, 2 * point): d/dxi at the points, then d/deta; and the same in
+        !> absolute value, for the componentwise size
+        real(wp), allocatable :: g(:, :), g_abs(:, :)
     end type point_table_t
 
 contains
@@ -90,10 +92,13 @@ contains
         type(status_t), intent(out) :: stat
         type(hp_tables_t), allocatable :: tables(:)
         type(point_table_t), allocatable :: points(:)
-        real(wp), allocatable :: ke(:, :), cx(:), cy(:)
+        real(wp), allocatable :: ke(:, :), coefficients(:, :), fields(:, :)
         integer, allocatable :: dofs(:)
         real(wp) :: lame_l, shear_g, cell, cell_abs
         integer :: c, p, n_tables, n_points, info, t
+        allocate (fields(size(x), 2))
+        fields(:, 1) = x
+        fields(:, 2) = y
         form = 0.0_wp
         form_abs = 0.0_wp
         call lame_coefficients(young, poisson, lame_l, shear_g)
@@ -103,8 +108,8 @@ contains
             p = space%cell_degree(c)
             call hp_cell_stiffness(m, space, c, young, poisson, tables, n_tables, ke, info)
             dofs = space%cell_dofs(c, m%cells(1:3, c))
-            if (info == HP_OK) call cell_coefficients(ke, 2*hp_bubble_count(p), dofs, x, cx, info)
-            if (info == HP_OK) call cell_coefficients(ke, 2*hp_bubble_count(p), dofs, y, cy, info)
+            if (info == HP_OK) call cell_coefficients(ke, 2*hp_bubble_count(p), dofs, fields, &
+                                                      coefficients, info)
             if (info /= HP_OK) then
                 call stat%fail(STATUS_MESH, 'hp Rayleigh quotient: cell '//to_string(c)// &
                                ' is clockwise or flat')
@@ -112,8 +117,8 @@ contains
             end if
             t = cached_points(points, n_points, configuration_key(space%edge_degrees_of(c), p, &
                                                                   space%cell_flip(:, c)))
-            call cell_form(m%coords(:, m%cells(1:3, c)), points(t), lame_l, shear_g, cx, cy, &
-                           cell, cell_abs)
+            call cell_form(m%coords(:, m%cells(1:3, c)), points(t), lame_l, shear_g, &
+                           coefficients(:, 1), coefficients(:, 2), cell, cell_abs)
             form = form + cell
             form_abs = form_abs + cell_abs
         end do
@@ -147,21 +152,22 @@ contains
         integer, intent(in) :: key(7)
         type(point_table_t) :: table
         real(wp), allocatable :: values(:), gradients(:, :)
-        integer :: n, q, p
+        integer :: n, q, p, nq
         p = key(4)
         table%key = key
         table%rule = triangle_rule_exact(2*(p - 1))
         n = hp_local_count(key(1:3), p)
         allocate (values(n), gradients(2, n))
-        allocate (table%gxi(n, table%rule%n_points()), table%geta(n, table%rule%n_points()))
-        do q = 1, table%rule%n_points()
+        nq = table%rule%n_points()
+        allocate (table%g(n, 2*nq))
+        do q = 1, nq
             call hp_triangle_shape(key(1:3), p, key(5:7) == 1, table%rule%points(:, q), &
                                    values, gradients)
-            table%gxi(:, q) = gradients(1, :)
-            table%geta(:, q) = gradients(2, :)
+            table%g(:, q) = gradients(1, :)
+            table%g(:, nq + q) = gradients(2, :)
         end do
-        table%gxi(1:3, :) = 0.0_wp
-        table%geta(1:3, :) = 0.0_wp
+        table%g(1:3, :) = 0.0_wp
+        table%g_abs = abs(table%g)
     end function point_table
 
     !> The energy form of one straight cell with corners xy and full coefficient vectors
@@ -205,13 +211,16 @@ contains
         real(wp), intent(in) :: c(:)
         type(point_table_t), intent(in) :: table
         real(wp), allocatable, intent(out) :: r_xi(:, :), r_eta(:, :), a_xi(:, :), a_eta(:, :)
-        real(wp) :: u(2, size(c)/2)
-        integer :: a
+        real(wp) :: u(2, size(c)/2), r(2, size(table%g, 2)), r_abs(2, size(table%g, 2))
+        integer :: a, nq
+        nq = size(table%g, 2)/2
         u = reshape(c, [2, size(c)/2])
-        r_xi = matmul(u, table%gxi)
-        r_eta = matmul(u, table%geta)
-        a_xi = matmul(abs(u), abs(table%gxi))
-        a_eta = matmul(abs(u), abs(table%geta))
+        r = matmul(u, table%g)
+        r_abs = matmul(abs(u), table%g_abs)
+        r_xi = r(:, 1:nq)
+        r_eta = r(:, nq + 1:)
+        a_xi = r_abs(:, 1:nq)
+        a_eta = r_abs(:, nq + 1:)
         do a = 1, 2
             r_xi(a, :) = r_xi(a, :) + (u(a, 2) - u(a, 1))
             r_eta(a, :) = r_eta(a, :) + (u(a, 3) - u(a, 1))

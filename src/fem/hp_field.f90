@@ -34,7 +34,8 @@ contains
         real(wp), allocatable, intent(out) :: degree(:)
         type(status_t), intent(out) :: stat
         type(hp_tables_t), allocatable :: tables(:)
-        real(wp), allocatable :: ke(:, :), coefficients(:), shape(:), gradient(:, :)
+        real(wp), allocatable :: ke(:, :), coefficients(:, :), shape(:), gradient(:, :), &
+                                 field(:, :)
         real(wp) :: xi(2), jacobian(2, 2)
         integer :: c, p, s, n_points, n_cells, n_local, i, j, a, info, &
                    n_tables, point, cell
@@ -51,6 +52,7 @@ contains
         allocate (sub%coords(2, n_points), sub%cells(3, n_cells), values(2, n_points), &
                   degree(n_cells))
         allocate (sub%edges(2, 0), sub%edge_part(0), sub%part_names(0))
+        field = reshape(u, [size(u), 1])
         n_tables = 0
         point = 0
         cell = 0
@@ -58,7 +60,7 @@ contains
             p = space%cell_degree(c)
             call hp_cell_stiffness(m, space, c, young, poisson, tables, n_tables, ke, info)
             if (info == HP_OK) call cell_coefficients(ke, 2*hp_bubble_count(p), &
-                space%cell_dofs(c, m%cells(1:3, c)), u, coefficients, info)
+                space%cell_dofs(c, m%cells(1:3, c)), field, coefficients, info)
             if (info /= HP_OK) then
                 call stat%fail(STATUS_MESH, 'hp field: cell '//to_string(c)// &
                                ' is clockwise or flat')
@@ -78,7 +80,7 @@ contains
                     call hp_triangle_shape(space%edge_degrees_of(c), p, space%cell_flip(:, c), &
                                            xi, shape, gradient)
                     do a = 1, 2
-                        values(a, point) = dot_product(shape, coefficients(a:2*n_local:2))
+                        values(a, point) = dot_product(shape, coefficients(a:2*n_local:2, 1))
                     end do
                 end do
             end do

@@ -183,45 +183,48 @@ contains
         end do
     end subroutine condense_interior
 
-    !> The interior coefficients the condensation eliminated, from the others `uc`:
-    !> u_b = -K_bb^-1 K_bc u_c (the minimiser of the energy with u_c fixed), the last
-    !> n_interior rows of `ke` being the interior ones. info as condense_interior's.
+    !> The interior coefficients the condensation eliminated, from the others `uc` (one
+    !> field per column): u_b = -K_bb^-1 K_bc u_c (the minimiser of the energy with u_c
+    !> fixed), the last n_interior rows of `ke` being the interior ones; one factor of K_bb
+    !> for all columns. info as condense_interior's.
     pure subroutine recover_interior(ke, n_interior, uc, ub, info)
-        real(wp), intent(in) :: ke(:, :), uc(:)
+        real(wp), intent(in) :: ke(:, :), uc(:, :)
         integer, intent(in) :: n_interior
-        real(wp), allocatable, intent(out) :: ub(:)
+        real(wp), allocatable, intent(out) :: ub(:, :)
         integer, intent(out) :: info
         real(wp), allocatable :: l(:, :), y(:, :)
         integer :: nc, j
         nc = size(ke, 1) - n_interior
         info = HP_OK
-        allocate (ub(n_interior))
+        allocate (ub(n_interior, size(uc, 2)))
         if (n_interior == 0) return
         call interior_factor(ke(nc + 1:, nc + 1:), l, info)
         if (info /= HP_OK) return
-        allocate (y(n_interior, 1))   ! as in condense_interior
-        y = forward_solve(l, -reshape(matmul(ke(nc + 1:, 1:nc), uc), [n_interior, 1]))
+        allocate (y(n_interior, size(uc, 2)))   ! as in condense_interior
+        y = forward_solve(l, -matmul(ke(nc + 1:, 1:nc), uc))
         do j = n_interior, 1, -1   ! back substitution with L'
-            ub(j) = (y(j, 1) - dot_product(l(j + 1:, j), ub(j + 1:)))/l(j, j)
+            ub(j, :) = (y(j, :) - matmul(l(j + 1:, j), ub(j + 1:, :)))/l(j, j)
         end do
     end subroutine recover_interior
 
     !> The coefficients of all local functions of a cell (its full element stiffness `ke`,
-    !> the last n_interior rows interior) from the free-dof vector `u`: the condensed ones
-    !> u(dofs) (0 where dofs, from hp_space%cell_dofs, is 0: clamped), the interior ones
-    !> recovered (recover_interior). info as recover_interior's.
-    pure subroutine cell_coefficients(ke, n_interior, dofs, u, coefficients, info)
-        real(wp), intent(in) :: ke(:, :), u(:)
+    !> the last n_interior rows interior) for each free-dof field, a column of `fields`:
+    !> the condensed ones fields(dofs, :) (0 where dofs, from hp_space%cell_dofs, is 0:
+    !> clamped), the interior ones recovered (recover_interior). info as its.
+    pure subroutine cell_coefficients(ke, n_interior, dofs, fields, coefficients, info)
+        real(wp), intent(in) :: ke(:, :), fields(:, :)
         integer, intent(in) :: n_interior, dofs(:)
-        real(wp), allocatable, intent(out) :: coefficients(:)
+        real(wp), allocatable, intent(out) :: coefficients(:, :)
         integer, intent(out) :: info
-        real(wp), allocatable :: ub(:)
-        integer :: n_condensed
+        real(wp), allocatable :: ub(:, :)
+        integer :: n_condensed, i
         n_condensed = size(dofs)
-        allocate (coefficients(size(ke, 1)), source=0.0_wp)
-        where (dofs > 0) coefficients(1:n_condensed) = u(max(dofs, 1))
-        call recover_interior(ke, n_interior, coefficients(1:n_condensed), ub, info)
-        if (info == HP_OK) coefficients(n_condensed + 1:) = ub
+        allocate (coefficients(size(ke, 1), size(fields, 2)), source=0.0_wp)
+        do i = 1, n_condensed
+            if (dofs(i) > 0) coefficients(i, :) = fields(dofs(i), :)
+        end do
+        call recover_interior(ke, n_interior, coefficients(1:n_condensed, :), ub, info)
+        if (info == HP_OK) coefficients(n_condensed + 1:, :) = ub
     end subroutine cell_coefficients
 
     !> The lower Cholesky factor of the interior block K_bb, column by column;

@@ -185,10 +185,13 @@ contains
         real(qp), intent(out) :: form
         type(status_t), intent(out) :: stat
         type(hp_tables_t), allocatable :: tables(:)
-        real(wp), allocatable :: ke(:, :), cx(:), cy(:)
+        real(wp), allocatable :: ke(:, :), coefficients(:, :), fields(:, :)
         integer, allocatable :: dofs(:)
         real(wp) :: lame_l, shear_g
         integer :: c, p, n_tables, info
+        allocate (fields(size(x), 2))
+        fields(:, 1) = x
+        fields(:, 2) = y
         form = 0.0_qp
         call lame_coefficients(YOUNG, POISSON, lame_l, shear_g)
         n_tables = 0
@@ -196,13 +199,14 @@ contains
             p = space%cell_degree(c)
             call hp_cell_stiffness(graded, space, c, YOUNG, POISSON, tables, n_tables, ke, info)
             dofs = space%cell_dofs(c, graded%cells(1:3, c))
-            if (info == HP_OK) call cell_coefficients(ke, 2*hp_bubble_count(p), dofs, x, cx, info)
-            if (info == HP_OK) call cell_coefficients(ke, 2*hp_bubble_count(p), dofs, y, cy, info)
+            if (info == HP_OK) call cell_coefficients(ke, 2*hp_bubble_count(p), dofs, fields, &
+                                                      coefficients, info)
             if (info /= HP_OK) then
                 call stat%fail(1, 'cell not anticlockwise')
                 return
             end if
-            form = form + quadruple_cell(c, p, real(lame_l, qp), real(shear_g, qp), cx, cy)
+            form = form + quadruple_cell(c, p, real(lame_l, qp), real(shear_g, qp), &
+                                        coefficients(:, 1), coefficients(:, 2))
         end do
     end subroutine quadruple_form
 

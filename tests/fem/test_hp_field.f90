@@ -31,7 +31,7 @@ contains
     subroutine recovered_interior_solves_its_rows(t)
         type(test_suite_t), intent(inout) :: t
         type(hp_tables_t) :: tables
-        real(wp), allocatable :: ke(:, :), kc(:, :), uc(:), ub(:), u(:), residual(:)
+        real(wp), allocatable :: ke(:, :), kc(:, :), uc(:), ub(:, :), u(:), residual(:)
         real(wp) :: xy(2, 3)
         integer :: info, nb, nc, i
         tables = hp_reference_tables([4, 6, 5], 6, [.false., .true., .false.])
@@ -40,9 +40,9 @@ contains
         nb = 2*hp_bubble_count(6)
         nc = size(ke, 1) - nb
         uc = [(sin(real(i, wp)), i=1, nc)]
-        call recover_interior(ke, nb, uc, ub, info)
+        call recover_interior(ke, nb, reshape(uc, [nc, 1]), ub, info)
         call t%check('recover: positive definite interior block', info == HP_OK)
-        u = [uc, ub]
+        u = [uc, ub(:, 1)]
         residual = matmul(ke(nc + 1:, :), u)
         call t%check('recover: the interior rows of K u vanish', maxval(abs(residual)) <= &
                      1.0e-12_wp*maxval(matmul(abs(ke(nc + 1:, :)), abs(u))))
