@@ -77,17 +77,23 @@ contains
                                      -1.0_wp), level_bar_factor(1)*1.0e-3_wp, 1.0e-15_wp)
     end subroutine check_missing
 
-    !> hp levels converging tenfold per level, v_j = 1 + 10^-j: the carried changes
-    !> (9 10^-5 each) are below the last change 9 10^-4, which is the bar: 9 times the
-    !> true error 10^-4 of the last level; the round-off part is added.
+    !> hp levels converging tenfold per level, v_j = 1 + 10^-j: at the fourth level the
+    !> bar is LEVEL_FACTOR r d_4 = 3 0.1 9 10^-4, 2.7 times the true error 10^-4 of the
+    !> last value; at the third (one ratio seen) still the last change d_3 = 9 10^-3, 9
+    !> times its error; the round-off part is added.
     subroutine check_hp_geometric()
         real(wp) :: values(4)
         integer :: j
         values = [(1.0_wp + 10.0_wp**(-j), j=1, 4)]
-        call t%check_close('hp: tenfold convergence, the bar is the last change', &
-                           hp_level_bar(values, -1.0_wp), 9.0e-4_wp/values(4), 1.0e-12_wp)
+        call t%check_close('hp: tenfold convergence, LEVEL_FACTOR r d_k', &
+                           hp_level_bar(values, -1.0_wp), LEVEL_FACTOR*0.1_wp*9.0e-4_wp/values(4), &
+                           1.0e-12_wp)
+        call t%check('hp: at least the true error 1e-4 of the last value', &
+                     hp_level_bar(values, -1.0_wp) >= 1.0e-4_wp/values(4))
         call t%check_close('hp: the round-off part added', hp_level_bar(values, 1.0e-5_wp), &
-                           9.0e-4_wp/values(4) + 1.0e-5_wp, 1.0e-12_wp)
+                           LEVEL_FACTOR*0.1_wp*9.0e-4_wp/values(4) + 1.0e-5_wp, 1.0e-12_wp)
+        call t%check_close('hp: at the third level still the last change', &
+                           hp_level_bar(values(1:3), -1.0_wp), 9.0e-3_wp/values(3), 1.0e-12_wp)
     end subroutine check_hp_geometric
 
     !> The last change dips to 1e-9 by cancellation after changes falling tenfold: the
