@@ -1,20 +1,20 @@
 ! SPDX-License-Identifier: MIT
-!> The lowest positive mu of an hp level past double precision's data floor. Stored in
-!> double, each entry of K carries a relative error of eps, and on graded hp meshes y' K x
-!> is some 1e4 times smaller than |y|' |K| |x| (the displacement is large where its gradient
-!> is not), so the computed mu carries about 1e-11 of round-off (module roundoff's data
-!> term) although the solver's residual is near 1e-16. Here K is never stored: the
-!> two-sided Rayleigh quotient
+!> The lowest positive mu of an hp level past the round-off of the stored K. Each stored
+!> entry of K carries a relative error of eps, and on graded hp meshes y' K x is some 1e4
+!> times smaller than |y|' |K| |x| (a small cell's displacement is large next to its
+!> gradient), so the solver's mu carries about 1e-11 of round-off (module roundoff's data
+!> term) although its residual is near 1e-16. Here K is never stored: the two-sided
+!> Rayleigh quotient
 !>     mu_q = y' K x / (y' B x)
-!> of the double right and left eigenvectors x, y takes y' K x cell by cell in quadruple
-!> precision from the mesh coordinates and the basis (hp_basis_quad, gauss_rules_quad), the
-!> interior functions recovered from the condensed vectors (hp_stiffness). If x = x* + dx
-!> and y = y* + dy with (mu*, x*, y*) the exact eigentriple of the discrete pencil, then
-!> mu_q - mu* = dy' (K - mu* B) dx / (y' B x): second order in the vectors' errors, which
-!> first-order perturbation theory puts at (double bound) / (relative gap to the nearest
-!> other eigenvalue) each, so the remaining error is about bound^2 / gap. y' B x needs no
-!> quadruple data: B has no cancelling entries beyond what contact_abs_form measures, and
-!> its double rounding (and that of E, nu and the normal) is counted in the new bound.
+!> of the solver's right and left eigenvectors x, y takes y' K x cell by cell, each field's
+!> gradient with its vertex part from coefficient differences (hp_stiffness_form), which
+!> rounds to some 60 eps of y' K x instead of 1e4 (tests/eigen/test_hp_rayleigh.f90 checks
+!> it against quadruple precision). If x = x* + dx and y = y* + dy with (mu*, x*, y*) the
+!> exact eigentriple of the discrete pencil, mu_q - mu* = dy' (K - mu* B) dx / (y' B x):
+!> second order in the vectors' errors, which first-order perturbation theory puts at
+!> (the solver's bound) / (relative gap to the nearest other eigenvalue) each. y' B x is
+!> taken from the stored B: its entries do not cancel beyond what contact_abs_form
+!> measures, and that is counted in the quotient's bound.
 module hp_rayleigh
     use kinds, only: wp
     use status, only: status_t, STATUS_MESH
@@ -23,10 +23,8 @@ module hp_rayleigh
     use contact_boundary, only: contact_t
     use elasticity, only: lame_coefficients
     use hp_space, only: hp_space_t
-    use hp_basis, only: hp_local_count, hp_bubble_count, hp_triangle_shape
-    use gauss_rules, only: gauss_rule_t, triangle_rule_exact
-    use hp_stiffness, only: hp_tables_t, hp_cell_stiffness, cell_coefficients, &
-                            configuration_key, HP_OK
+    use hp_basis, only: hp_bubble_count
+    use hp_stiffness, only: hp_tables_t, hp_cell_stiffness, cell_coefficients, HP_OK
     use roundoff, only: contact_abs_form, ROUNDOFF_UNITS
     implicit none
     private
@@ -35,16 +33,6 @@ module hp_rayleigh
     !> the second-order term's multiple of bound^2 / gap: the vectors' errors are each
     !> estimated to first order only
     real(wp), parameter :: SECOND_ORDER_FACTOR = 10.0_wp
-
-    !> The reference gradients of one cell configuration's functions at its rule's points:
-    !> shared by the cells of that configuration, as hp_stiffness's tables are.
-    type :: point_table_t
-        integer :: key(7) = 0
-        type(gauss_rule_t) :: rule
-        !> (function, 2 * point): d/dxi at the points, then d/deta; and the same in
-        !> absolute value, for the componentwise size
-        real(wp), allocatable :: g(:, :), g_abs(:, :)
-    end type point_table_t
 
 contains
 
@@ -80,7 +68,8 @@ contains
     !> y' K x over the cells of `m` and its componentwise size `form_abs` (what its
     !> rounding is relative to): the interior coefficients recovered from each cell's element
     !> stiffness, then the plane-strain energy form lambda div x div y + 2 G eps(x) : eps(y)
-    !> integrated exactly (degree 2(p - 1) on straight cells). A field's gradient takes its
+    !> integrated exactly on straight cells (the rule of the cell's hp_tables_t, exact to
+    !> degree 2p, the integrand's being 2(p - 1)). A field's gradient takes its
     !> vertex part from coefficient differences, sum_v c_v grad l_v = (c_2 - c_1, c_3 - c_1)
     !> in the reference cell (exact: the gradients of l_v sum to zero), so the large
     !> displacement of a small cell never meets its small gradient.
@@ -91,11 +80,10 @@ contains
         real(wp), intent(out) :: form, form_abs
         type(status_t), intent(out) :: stat
         type(hp_tables_t), allocatable :: tables(:)
-        type(point_table_t), allocatable :: points(:)
         real(wp), allocatable :: ke(:, :), coefficients(:, :), fields(:, :)
         integer, allocatable :: dofs(:)
         real(wp) :: lame_l, shear_g, cell, cell_abs
-        integer :: c, p, n_tables, n_points, info, t
+        integer :: c, p, n_tables, info, t
         allocate (fields(size(x), 2))
         fields(:, 1) = x
         fields(:, 2) = y
@@ -103,10 +91,9 @@ contains
         form_abs = 0.0_wp
         call lame_coefficients(young, poisson, lame_l, shear_g)
         n_tables = 0
-        n_points = 0
         do c = 1, m%n_cells()
             p = space%cell_degree(c)
-            call hp_cell_stiffness(m, space, c, young, poisson, tables, n_tables, ke, info)
+            call hp_cell_stiffness(m, space, c, young, poisson, tables, n_tables, ke, info, t)
             dofs = space%cell_dofs(c, m%cells(1:3, c))
             if (info == HP_OK) call cell_coefficients(ke, 2*hp_bubble_count(p), dofs, fields, &
                                                       coefficients, info)
@@ -115,66 +102,18 @@ contains
                                ' is clockwise or flat')
                 return
             end if
-            t = cached_points(points, n_points, configuration_key(space%edge_degrees_of(c), p, &
-                                                                  space%cell_flip(:, c)))
-            call cell_form(m%coords(:, m%cells(1:3, c)), points(t), lame_l, shear_g, &
+            call cell_form(m%coords(:, m%cells(1:3, c)), tables(t), lame_l, shear_g, &
                            coefficients(:, 1), coefficients(:, 2), cell, cell_abs)
             form = form + cell
             form_abs = form_abs + cell_abs
         end do
     end subroutine hp_stiffness_form
 
-    !> Index in points(1:n_points) of the configuration `key` (hp_stiffness's
-    !> configuration_key), its point table computed and appended on first use.
-    integer function cached_points(points, n_points, key) result(t)
-        type(point_table_t), allocatable, intent(inout) :: points(:)
-        integer, intent(inout) :: n_points
-        integer, intent(in) :: key(7)
-        type(point_table_t), allocatable :: grown(:)
-        do t = 1, n_points
-            if (all(points(t)%key == key)) return
-        end do
-        if (.not. allocated(points)) allocate (points(16))
-        if (n_points == size(points)) then
-            allocate (grown(2*n_points))
-            grown(1:n_points) = points
-            call move_alloc(grown, points)
-        end if
-        n_points = n_points + 1
-        t = n_points
-        points(t) = point_table(key)
-    end function cached_points
-
-    !> The reference gradients of a configuration's non-vertex functions at the points of the
-    !> rule exact to degree 2(p - 1) (the vertex rows left zero: cell_form takes them by
-    !> differences).
-    function point_table(key) result(table)
-        integer, intent(in) :: key(7)
-        type(point_table_t) :: table
-        real(wp), allocatable :: values(:), gradients(:, :)
-        integer :: n, q, p, nq
-        p = key(4)
-        table%key = key
-        table%rule = triangle_rule_exact(2*(p - 1))
-        n = hp_local_count(key(1:3), p)
-        allocate (values(n), gradients(2, n))
-        nq = table%rule%n_points()
-        allocate (table%g(n, 2*nq))
-        do q = 1, nq
-            call hp_triangle_shape(key(1:3), p, key(5:7) == 1, table%rule%points(:, q), &
-                                   values, gradients)
-            table%g(:, q) = gradients(1, :)
-            table%g(:, nq + q) = gradients(2, :)
-        end do
-        table%g(1:3, :) = 0.0_wp
-        table%g_abs = abs(table%g)
-    end function point_table
-
     !> The energy form of one straight cell with corners xy and full coefficient vectors
     !> cx, cy (interleaved x, y per local function), and its componentwise size.
     pure subroutine cell_form(xy, table, lame_l, shear_g, cx, cy, form, form_abs)
         real(wp), intent(in) :: xy(2, 3), lame_l, shear_g, cx(:), cy(:)
-        type(point_table_t), intent(in) :: table
+        type(hp_tables_t), intent(in) :: table
         real(wp), intent(out) :: form, form_abs
         real(wp) :: jacobian(2, 2), inverse_t(2, 2), det, gx(2, 2), gy(2, 2), ax(2, 2), &
                     ay(2, 2)
@@ -209,14 +148,19 @@ contains
     !> over absolute values.
     pure subroutine reference_gradients(c, table, r_xi, r_eta, a_xi, a_eta)
         real(wp), intent(in) :: c(:)
-        type(point_table_t), intent(in) :: table
+        type(hp_tables_t), intent(in) :: table
         real(wp), allocatable, intent(out) :: r_xi(:, :), r_eta(:, :), a_xi(:, :), a_eta(:, :)
         real(wp) :: u(2, size(c)/2), r(2, size(table%g, 2)), r_abs(2, size(table%g, 2))
-        integer :: a, nq
+        integer :: a, nq, n
         nq = size(table%g, 2)/2
-        u = reshape(c, [2, size(c)/2])
-        r = matmul(u, table%g)
-        r_abs = matmul(abs(u), table%g_abs)
+        n = size(c)/2
+        u = reshape(c, [2, n])
+        r = 0.0_wp
+        r_abs = 0.0_wp
+        if (n > 3) then
+            r = matmul(u(:, 4:), table%g(4:, :))
+            r_abs = matmul(abs(u(:, 4:)), table%g_abs(4:, :))
+        end if
         r_xi = r(:, 1:nq)
         r_eta = r(:, nq + 1:)
         a_xi = r_abs(:, 1:nq)

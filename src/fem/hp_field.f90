@@ -38,7 +38,7 @@ contains
                                  field(:, :)
         real(wp) :: xi(2), jacobian(2, 2)
         integer :: c, p, s, n_points, n_cells, n_local, i, j, a, info, &
-                   n_tables, point, cell
+                   n_tables, point, cell, t
         integer, allocatable :: index_of(:, :)
 
         n_points = 0
@@ -58,7 +58,7 @@ contains
         cell = 0
         do c = 1, m%n_cells()
             p = space%cell_degree(c)
-            call hp_cell_stiffness(m, space, c, young, poisson, tables, n_tables, ke, info)
+            call hp_cell_stiffness(m, space, c, young, poisson, tables, n_tables, ke, info, t)
             if (info == HP_OK) call cell_coefficients(ke, 2*hp_bubble_count(p), &
                 space%cell_dofs(c, m%cells(1:3, c)), field, coefficients, info)
             if (info /= HP_OK) then

@@ -37,6 +37,11 @@ module hp_stiffness
         !> (n, n, 4): int d_xi phi_a d_xi phi_b, int d_xi phi_a d_eta phi_b,
         !> int d_eta phi_a d_eta phi_b, int phi_a phi_b over the reference triangle
         real(wp), allocatable :: r(:, :, :)
+        !> the rule they were integrated with, and (n, 2 n_points): d_xi phi_a at its
+        !> points, then d_eta phi_a, with their absolute values: for forms evaluated point
+        !> by point instead of from r (hp_rayleigh)
+        type(gauss_rule_t) :: rule
+        real(wp), allocatable :: g(:, :), g_abs(:, :)
     end type hp_tables_t
 
 contains
@@ -85,6 +90,11 @@ contains
             weighted(q, :) = rule%weights(q)*v(q, :)
         end do
         tables%r(:, :, 4) = matmul(transpose(weighted), v)
+        allocate (tables%g(n, 2*rule%n_points()))
+        tables%g(:, 1:rule%n_points()) = transpose(gxi)
+        tables%g(:, rule%n_points() + 1:) = transpose(geta)
+        tables%g_abs = abs(tables%g)
+        tables%rule = rule
     end function hp_reference_tables
 
     !> J^-T and det J of the straight triangle xy(:, 1:3); info = HP_INVERTED when it is
@@ -275,7 +285,7 @@ contains
         type(hp_tables_t), allocatable :: tables(:)
         integer, allocatable :: element_dofs(:, :), dofs(:)
         real(wp), allocatable :: ke(:, :), kc(:, :)
-        integer :: c, n_cells, info, p, n_dofs, n_tables
+        integer :: c, n_cells, info, p, n_dofs, n_tables, t
 
         n_cells = m%n_cells()
         allocate (element_dofs(space%max_cell_dofs(), n_cells), source=0)
@@ -288,7 +298,7 @@ contains
         n_tables = 0
         do c = 1, n_cells
             p = space%cell_degree(c)
-            call hp_cell_stiffness(m, space, c, young, poisson, tables, n_tables, ke, info)
+            call hp_cell_stiffness(m, space, c, young, poisson, tables, n_tables, ke, info, t)
             if (info == HP_OK) call condense_interior(ke, 2*hp_bubble_count(p), kc, info)
             if (info /= HP_OK) then
                 call stat%fail(STATUS_MESH, 'hp stiffness: cell '//to_string(c)// &
@@ -308,7 +318,7 @@ contains
     !> The full element stiffness (interior functions included) of cell c of `space` on the
     !> P1 mesh `m`, its configuration's reference integrals from the cache tables(1:n_tables)
     !> (cached_table). info as hp_element_stiffness's.
-    subroutine hp_cell_stiffness(m, space, c, young, poisson, tables, n_tables, ke, info)
+    subroutine hp_cell_stiffness(m, space, c, young, poisson, tables, n_tables, ke, info, t)
         type(mesh_t), intent(in) :: m
         type(hp_space_t), intent(in) :: space
         integer, intent(in) :: c
@@ -317,7 +327,7 @@ contains
         integer, intent(inout) :: n_tables
         real(wp), allocatable, intent(out) :: ke(:, :)
         integer, intent(out) :: info
-        integer :: t
+        integer, intent(out) :: t   !! the cell's entry of tables
         t = cached_table(tables, n_tables, configuration_key(space%edge_degrees_of(c), &
                          space%cell_degree(c), space%cell_flip(:, c)))
         call hp_element_stiffness(m%coords(:, m%cells(1:3, c)), tables(t), young, poisson, ke, &

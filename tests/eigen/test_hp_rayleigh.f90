@@ -188,7 +188,7 @@ contains
         real(wp), allocatable :: ke(:, :), coefficients(:, :), fields(:, :)
         integer, allocatable :: dofs(:)
         real(wp) :: lame_l, shear_g
-        integer :: c, p, n_tables, info
+        integer :: c, p, n_tables, info, t
         allocate (fields(size(x), 2))
         fields(:, 1) = x
         fields(:, 2) = y
@@ -197,7 +197,7 @@ contains
         n_tables = 0
         do c = 1, graded%n_cells()
             p = space%cell_degree(c)
-            call hp_cell_stiffness(graded, space, c, YOUNG, POISSON, tables, n_tables, ke, info)
+            call hp_cell_stiffness(graded, space, c, YOUNG, POISSON, tables, n_tables, ke, info, t)
             dofs = space%cell_dofs(c, graded%cells(1:3, c))
             if (info == HP_OK) call cell_coefficients(ke, 2*hp_bubble_count(p), dofs, fields, &
                                                       coefficients, info)
