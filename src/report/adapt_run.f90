@@ -25,7 +25,8 @@ module adapt_run
         'level,n_dofs,n_contact,n_cells,mu,error_estimate,time_s,error_bar'
 
     type, extends(analysis_t), public :: adapt_run_t
-        type(adaptive_result_t) :: out
+        !> allocatable, allocated by solve: gfortran 12 frees it whole (docs/testing.md)
+        type(adaptive_result_t), allocatable :: out
         character(len=:), allocatable :: plot_note    !! mode_001.png: where, or why not
     contains
         procedure :: solve => adapt_run_solve
@@ -42,6 +43,7 @@ contains
         type(problem_t), intent(in) :: prob
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
+        if (.not. allocated(this%out)) allocate (this%out)
         call adapt_eigen(config, prob, this%out, timings, stat)
         ! Without a positive mu at any level there is no value to quote, so nothing to take
         ! for a met tolerance: that stays exit 0 with its warning. One that vanished on

@@ -22,7 +22,8 @@ module branch_run
     public :: member_indices
 
     type, extends(analysis_t), public :: branch_run_t
-        type(branch_result_t) :: res
+        !> allocatable, allocated by solve: gfortran 12 frees it whole (docs/testing.md)
+        type(branch_result_t), allocatable :: res
     contains
         procedure :: solve => branch_run_solve
         procedure :: write_files => branch_run_write_files
@@ -38,6 +39,7 @@ contains
         type(problem_t), intent(in) :: prob
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
+        if (.not. allocated(this%res)) allocate (this%res)
         call run_branch(config, prob, this%res, timings, stat)
     end subroutine branch_run_solve
 

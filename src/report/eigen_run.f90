@@ -18,7 +18,8 @@ module eigen_run
     private
 
     type, extends(analysis_t), public :: eigen_run_t
-        type(eigen_result_t) :: res
+        !> allocatable, allocated by solve: gfortran 12 frees it whole (docs/testing.md)
+        type(eigen_result_t), allocatable :: res
         character(len=:), allocatable :: plot_note   !! where mode_001.png is, or why not
     contains
         procedure :: solve => eigen_run_solve
@@ -35,6 +36,7 @@ contains
         type(problem_t), intent(in) :: prob
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
+        if (.not. allocated(this%res)) allocate (this%res)
         call solve_eigen(config, prob, config%analysis%lambda, this%res, timings, stat)
         if (stat%ok()) call estimate_eigen(config, prob, this%res, timings)
         ! the verdict, after the outputs: the set shows what was computed, the status that

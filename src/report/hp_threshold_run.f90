@@ -28,7 +28,8 @@ module hp_threshold_run
     character(len=*), parameter, public :: HP_THRESHOLD_COLUMNS = ',layers,p_min,p_max'
 
     type, extends(threshold_run_t), public :: hp_threshold_run_t
-        type(hp_thresholds_t) :: out
+        !> allocatable, allocated by solve: gfortran 12 frees it whole (docs/testing.md)
+        type(hp_thresholds_t), allocatable :: out
         integer :: start_dofs = 0   !! free dofs of the input mesh (as given)
     contains
         procedure :: solve => hp_threshold_solve
@@ -46,6 +47,8 @@ contains
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
         this%start_dofs = prob%dofs%n_free
+        if (.not. allocated(this%res)) allocate (this%res)
+        if (.not. allocated(this%out)) allocate (this%out)
         call hp_adapt_thresholds(config, prob, this%out, this%res, timings, stat)
         if (stat%ok() .and. .not. this%out%adapted%converged) call this%verdict%fail( &
             STATUS_NOT_MET, config%input_file//': &adapt: '//this%out%adapted%outcome// &

@@ -24,7 +24,8 @@ module solve_run
     private
 
     type, extends(analysis_t), public :: solve_run_t
-        type(solve_result_t) :: res
+        !> allocatable, allocated by solve: gfortran 12 frees it whole (docs/testing.md)
+        type(solve_result_t), allocatable :: res
     contains
         procedure :: solve => solve_run_solve
         procedure :: write_files => solve_run_write_files
@@ -40,6 +41,7 @@ contains
         type(problem_t), intent(in) :: prob
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
+        if (.not. allocated(this%res)) allocate (this%res)
         call run_solve(config, prob, this%res, timings, stat)
         if (stat%ok()) call solve_status(config, this%res, this%verdict)
     end subroutine solve_run_solve

@@ -45,7 +45,8 @@ module threshold_run
 
     !> 'threshold': the thresholds on the mesh of &mesh.
     type, extends(analysis_t), public :: threshold_run_t
-        type(threshold_result_t) :: res
+        !> allocatable, allocated by every solve: gfortran 12 frees it whole (docs/testing.md)
+        type(threshold_result_t), allocatable :: res
         character(len=:), allocatable :: plot_note   !! mode_001.png: where, or why not
     contains
         procedure :: solve => threshold_run_solve
@@ -65,7 +66,8 @@ module threshold_run
 
     !> 'threshold' with &adapt: the loop, whose final problem the files describe.
     type, extends(threshold_run_t), public :: adapt_threshold_run_t
-        type(adaptive_thresholds_t) :: adapted
+        !> allocatable, allocated by solve: gfortran 12 frees it whole (docs/testing.md)
+        type(adaptive_thresholds_t), allocatable :: adapted
     contains
         procedure :: solve => adapt_threshold_run_solve
         procedure :: write_files => adapt_threshold_run_write_files
@@ -81,6 +83,7 @@ contains
         type(problem_t), intent(in) :: prob
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
+        if (.not. allocated(this%res)) allocate (this%res)
         call solve_thresholds(config, prob, .false., this%res, timings, stat)
         if (stat%ok()) call no_digit_verdict(this, config)
     end subroutine threshold_run_solve
@@ -119,6 +122,7 @@ contains
         type(problem_t), intent(in) :: prob
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
+        if (.not. allocated(this%res)) allocate (this%res)
         call solve_thresholds(config, prob, .true., this%res, timings, stat)
         if (.not. stat%ok()) return
         call no_digit_verdict(this, config)
@@ -135,6 +139,8 @@ contains
         type(problem_t), intent(in) :: prob
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
+        if (.not. allocated(this%res)) allocate (this%res)
+        if (.not. allocated(this%adapted)) allocate (this%adapted)
         call solve_adapted_thresholds(config, prob, this%adapted, this%res, timings, stat)
         if (stat%ok() .and. .not. this%adapted%converged) call this%verdict%fail( &
             STATUS_NOT_MET, config%input_file//': &adapt: '//this%adapted%outcome// &
