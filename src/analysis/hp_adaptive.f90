@@ -25,7 +25,7 @@ module hp_adaptive
     use hp_rayleigh, only: refine_lowest_mu
     implicit none
     private
-    public :: hp_adapt_eigen
+    public :: hp_adapt_eigen, hp_adapt_lambdas
 
     character(len=*), parameter, public :: HP_ESTIMATE = 'change to the previous hp level'
 
@@ -63,89 +63,111 @@ module hp_adaptive
 
 contains
 
-    !> Run the loop from the problem `start` (its mesh and parts; its K is not used). A
-    !> limit reached is no failure (stat ok, out%converged false, out%outcome and a warning
-    !> of out%res say so).
+    !> Run the loop from the problem `start` (its mesh and parts; its K is not used) at
+    !> &analysis lambda. A limit reached is no failure (stat ok, out%converged false,
+    !> out%outcome and a warning of out%res say so).
     subroutine hp_adapt_eigen(config, start, out, timings, stat)
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: start
         type(hp_result_t), intent(out) :: out
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
+        type(hp_result_t), allocatable :: outs(:)
+        call hp_adapt_lambdas(config, start, [config%analysis%lambda], outs, timings, stat, &
+                              keep_problem=.true.)
+        if (stat%ok()) out = outs(1)
+    end subroutine hp_adapt_eigen
+
+    !> The loop of hp_adapt_eigen at each of `lambdas` on one climb of the ladder: the levels
+    !> do not depend on lambda, so each is built and factored once and solved at every
+    !> lambda whose loop has not stopped there. outs(i) is what hp_adapt_eigen gives at
+    !> lambdas(i); its prob and space (the last level's) only with `keep_problem` (one
+    !> problem per lambda), else its levels say what was solved.
+    subroutine hp_adapt_lambdas(config, start, lambdas, outs, timings, stat, keep_problem)
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(in) :: start
+        real(wp), intent(in) :: lambdas(:)
+        type(hp_result_t), allocatable, intent(out) :: outs(:)
+        type(timings_t), intent(inout) :: timings
+        type(status_t), intent(out) :: stat
+        logical, intent(in) :: keep_problem
         type(hp_ladder_t) :: ladder
         type(problem_t) :: prob
-        type(eigen_result_t) :: res
         type(cholesky_t) :: chol
-        type(hp_level_t) :: row
+        type(config_t) :: point_config
         real(wp) :: loop_start, tolerance
-        integer :: layers, i
-        logical :: too_big
+        logical :: active(size(lambdas)), too_big
+        integer :: layers, i, solved
 
         loop_start = wall_time()
         tolerance = config%adapt%tolerance
-        allocate (out%levels(0))
-        out%outcome = ''
+        allocate (outs(size(lambdas)))
+        do i = 1, size(lambdas)
+            allocate (outs(i)%levels(0))
+            outs(i)%outcome = ''
+        end do
+        active = .true.
+        solved = 0
+        point_config = config
         call ladder%begin(config, start, stat)
         if (.not. stat%ok()) return
         do
-            call ladder%climb(config, start, size(out%levels), too_big, stat)
+            call ladder%climb(config, start, solved, too_big, stat)
             if (.not. stat%ok()) return
             layers = ladder%layers
             if (too_big) then
-                out%outcome = ladder%limit_outcome(tolerance, bar_text())
+                do i = 1, size(lambdas)
+                    if (active(i)) outs(i)%outcome = ladder%limit_outcome(tolerance, &
+                                                                         bar_text(outs(i)))
+                end do
                 exit
             end if
-            call solve_level(stat)
-            if (.not. stat%ok()) return
-            call timings%note(level_line(out%levels(size(out%levels))))
-            associate (last => out%levels(size(out%levels)))
-                if (.not. last%has_mu) then
-                    out%outcome = 'tolerance not met: no positive mu at level '// &
-                                  to_string(last%level)
-                    out%mu_vanished = any(out%levels%has_mu)
-                    if (out%mu_vanished) out%outcome = out%outcome//': '//MU_VANISHED
-                    exit
-                end if
-                if (last%error_bar >= 0.0_wp .and. last%error_bar <= tolerance) then
-                    out%converged = .true.
-                    out%outcome = 'tolerance '//short_real_text(tolerance)//' met at level '// &
-                        to_string(last%level)//': error bar '//bar_text()
-                    exit
-                end if
-                if (floor_reached(last%error_bar, last%roundoff)) then
-                    out%floor_reached = .true.
-                    out%outcome = floor_outcome(tolerance, last%roundoff, last%error_bar, &
-                                                to_string(last%n_dofs))
-                    exit
-                end if
-            end associate
-            if (config%adapt%max_levels > 0 .and. layers >= config%adapt%max_levels) then
-                out%outcome = 'tolerance '//short_real_text(tolerance)//' not met: '// &
-                    'max_levels = '//to_string(config%adapt%max_levels)// &
-                    ' reached with error bar '//bar_text()
-                exit
-            end if
-        end do
-        if (.not. out%converged) out%res%warnings = [character(len=WARNING_LEN) :: &
-                                                     out%outcome, out%res%warnings]
-
-    contains
-
-        !> The ladder's current level: the eigen solve, its row and its bar;
-        !> the problem and result become out%prob, out%res.
-        subroutine solve_level(stat)
-            type(status_t), intent(out) :: stat
             call ladder%problem(config, start, prob, timings, stat)
             if (stat%ok()) call ladder%factor(config, prob, chol, timings, stat)
             if (.not. stat%ok()) return
-            res = eigen_result_t()
-            res%lambda = config%analysis%lambda
+            solved = solved + 1
+            do i = 1, size(lambdas)
+                if (.not. active(i)) cycle
+                point_config%analysis%lambda = lambdas(i)
+                call solve_level(outs(i), stat)
+                if (.not. stat%ok()) exit
+                call timings%note(level_line(outs(i)%levels(size(outs(i)%levels))))
+                active(i) = .not. stops_here(outs(i))
+            end do
+            call chol%free()
+            if (.not. stat%ok()) return
+            if (.not. any(active)) exit
+            if (config%adapt%max_levels > 0 .and. layers >= config%adapt%max_levels) then
+                do i = 1, size(lambdas)
+                    if (active(i)) outs(i)%outcome = 'tolerance '// &
+                        short_real_text(tolerance)//' not met: max_levels = '// &
+                        to_string(config%adapt%max_levels)//' reached with error bar '// &
+                        bar_text(outs(i))
+                end do
+                exit
+            end if
+        end do
+        do i = 1, size(lambdas)
+            if (.not. outs(i)%converged) outs(i)%res%warnings = [character(len=WARNING_LEN) :: &
+                outs(i)%outcome, outs(i)%res%warnings]
+        end do
+
+    contains
+
+        !> The current level (`prob`, factored in `chol`) at point_config's lambda: the eigen
+        !> solve, its row and its bar; the result becomes out%res (and the problem out%prob).
+        subroutine solve_level(out, stat)
+            type(hp_result_t), intent(inout) :: out
+            type(status_t), intent(out) :: stat
+            type(eigen_result_t) :: res
+            type(hp_level_t) :: row
+            integer :: k
+            res%lambda = point_config%analysis%lambda
             call assemble_b(prob%contact, prob%dofs%n_free, res%lambda, res%b, stat)
             if (.not. stat%ok()) return
             res%solver = choose_solver(config%eigen%solver, prob%contact%p(), &
                                        config%eigen%dense_max_contact, config%eigen%operator)
-            call eigen_with_factor(config, prob, chol, res, timings, stat)
-            call chol%free()
+            call eigen_with_factor(point_config, prob, chol, res, timings, stat)
             if (.not. stat%ok()) return
 
             row%level = layers
@@ -155,13 +177,13 @@ contains
             row%n_dofs = prob%dofs%n_free
             row%n_contact = prob%contact%p()
             row%n_cells = prob%mesh%n_cells()
-            i = res%spec%lowest_positive()
-            row%has_mu = i > 0
+            k = res%spec%lowest_positive()
+            row%has_mu = k > 0
             row%mu = 0.0_wp
             if (row%has_mu) then
-                call refine_level_mu(i, stat)
+                call refine_level_mu(res, k, stat)
                 if (.not. stat%ok()) return
-                row%mu = real(res%spec%mu(i), wp)
+                row%mu = real(res%spec%mu(k), wp)
             end if
             row%roundoff = res%roundoff
             out%levels = [out%levels, row]
@@ -174,8 +196,10 @@ contains
                 res%error%method = HP_ESTIMATE
             end if
             out%levels(size(out%levels))%time_s = wall_time() - loop_start
-            out%prob = prob
-            out%space = ladder%space
+            if (keep_problem) then
+                out%prob = prob
+                out%space = ladder%space
+            end if
             out%res = res
         end subroutine solve_level
 
@@ -183,7 +207,8 @@ contains
         !> quotient of its vectors that never stores K (hp_rayleigh) when the double value's
         !> round-off bound is at least REFINE_FRACTION of the tolerance: below, it cannot
         !> decide the stop, and the quotient costs about a third of a level's assembly.
-        subroutine refine_level_mu(i, stat)
+        subroutine refine_level_mu(res, i, stat)
+            type(eigen_result_t), intent(inout) :: res
             integer, intent(in) :: i
             type(status_t), intent(out) :: stat
             real(wp), parameter :: REFINE_FRACTION = 0.01_wp
@@ -209,6 +234,35 @@ contains
             res%spec%roundoff(i) = refined_bound
         end subroutine refine_level_mu
 
+        !> Whether the loop of `out` stops after its last level: no positive mu, the bar
+        !> within the tolerance, or the floor reached (its outcome says which).
+        logical function stops_here(out)
+            type(hp_result_t), intent(inout) :: out
+            stops_here = .true.
+            associate (last => out%levels(size(out%levels)))
+                if (.not. last%has_mu) then
+                    out%outcome = 'tolerance not met: no positive mu at level '// &
+                                  to_string(last%level)
+                    out%mu_vanished = any(out%levels%has_mu)
+                    if (out%mu_vanished) out%outcome = out%outcome//': '//MU_VANISHED
+                    return
+                end if
+                if (last%error_bar >= 0.0_wp .and. last%error_bar <= tolerance) then
+                    out%converged = .true.
+                    out%outcome = 'tolerance '//short_real_text(tolerance)//' met at level '// &
+                        to_string(last%level)//': error bar '//bar_text(out)
+                    return
+                end if
+                if (floor_reached(last%error_bar, last%roundoff)) then
+                    out%floor_reached = .true.
+                    out%outcome = floor_outcome(tolerance, last%roundoff, last%error_bar, &
+                                                to_string(last%n_dofs))
+                    return
+                end if
+            end associate
+            stops_here = .false.
+        end function stops_here
+
         !> The bar and the change of the last level from the mu of the levels since the last
         !> one without a positive mu (hp_run_bar; plain arrays: see adaptive_eigen's
         !> set_level_bar).
@@ -226,7 +280,8 @@ contains
             end associate
         end subroutine set_bar
 
-        function bar_text() result(text)
+        function bar_text(out) result(text)
+            type(hp_result_t), intent(in) :: out
             character(len=:), allocatable :: text
             text = 'none'
             if (size(out%levels) == 0) return
@@ -244,5 +299,5 @@ contains
             if (r%has_mu) line = line//', mu = '//short_real_text(r%mu, 12)
             if (r%error_bar >= 0.0_wp) line = line//', bar '//short_real_text(r%error_bar)
         end function level_line
-    end subroutine hp_adapt_eigen
+    end subroutine hp_adapt_lambdas
 end module hp_adaptive

@@ -28,7 +28,7 @@ module threshold_analysis
     use roundoff, only: threshold_roundoff, collision_roundoffs
     use critical_set, only: critical_set_t, search_critical_set, MECHANISM_COMPLEX_PAIR
     use adaptive_eigen, only: adapt_eigen, adaptive_result_t
-    use hp_adaptive, only: hp_adapt_eigen, hp_result_t
+    use hp_adaptive, only: hp_adapt_lambdas, hp_result_t
     use eigen_analysis, only: eigen_result_t, choose_solver, eigen_with_factor, SOLVER_ARPACK, &
                               to_input_units, estimate_wanted
     use error_estimate, only: ENRICHED_CONTACT_MAX
@@ -419,8 +419,9 @@ contains
     !> bar meets the tolerance. With strategy 'h' it starts from the last mesh that met it
     !> at a lambda before (the mesh of a neighbouring lambda is usually fine already: the
     !> point then costs one solve and one estimate), and a point whose loop stops short
-    !> keeps its last mu and estimate, its mesh not passed on. With 'hp' each point climbs
-    !> the hp levels of the input mesh (hp_adapt_eigen), which do not depend on lambda.
+    !> keeps its last mu and estimate, its mesh not passed on. With 'hp' every point climbs
+    !> the hp levels of the input mesh, which do not depend on lambda: one climb
+    !> (hp_adapt_lambdas) builds and factors each level once for all points not yet stopped.
     subroutine adaptive_sweep(config, prob, curve, timings, stat)
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: prob
@@ -430,28 +431,34 @@ contains
         type(config_t) :: point_config
         type(problem_t) :: current
         type(adaptive_result_t) :: out
-        type(hp_result_t) :: hp_out
+        type(hp_result_t), allocatable :: hp_outs(:)
         !> a point's phases would flood the progress lines; the sweep's time is time_sweep
         type(timings_t) :: quiet
         integer :: i
 
+        if (config%adapt%strategy == 'hp') then
+            call hp_adapt_lambdas(config, prob, curve%lambda, hp_outs, quiet, stat, &
+                                  keep_problem=.false.)
+            if (.not. stat%ok()) return
+            do i = 1, size(curve%lambda)
+                call timings%tick('sweep, lambda', i, size(curve%lambda))
+                associate (o => hp_outs(i))
+                    call record(o%res, last_dofs(o), o%converged, .false., o%mu_vanished, &
+                                o%outcome)
+                end associate
+            end do
+            return
+        end if
         current = prob
         point_config = config
         do i = 1, size(curve%lambda)
             call timings%tick('sweep, lambda', i, size(curve%lambda))
             point_config%analysis%lambda = curve%lambda(i)
-            if (config%adapt%strategy == 'hp') then
-                call hp_adapt_eigen(point_config, prob, hp_out, quiet, stat)
-                if (.not. stat%ok()) return
-                call record(hp_out%res, hp_out%prob%dofs%n_free, hp_out%converged, .false., &
-                            hp_out%mu_vanished, hp_out%outcome)
-            else
-                call adapt_eigen(point_config, current, out, quiet, stat)
-                if (.not. stat%ok()) return
-                call record(out%res, out%prob%dofs%n_free, out%converged, &
-                            size(out%levels) == 1, out%mu_vanished, out%outcome)
-                if (out%converged) current = out%prob
-            end if
+            call adapt_eigen(point_config, current, out, quiet, stat)
+            if (.not. stat%ok()) return
+            call record(out%res, out%prob%dofs%n_free, out%converged, &
+                        size(out%levels) == 1, out%mu_vanished, out%outcome)
+            if (out%converged) current = out%prob
         end do
 
     contains
@@ -479,6 +486,13 @@ contains
                     real_to_text(curve%lambda(i))//': '//outcome
             end if
         end subroutine record
+
+        !> The free dofs of the last level an hp point solved (0: none).
+        pure integer function last_dofs(o)
+            type(hp_result_t), intent(in) :: o
+            last_dofs = 0
+            if (size(o%levels) > 0) last_dofs = o%levels(size(o%levels))%n_dofs
+        end function last_dofs
     end subroutine adaptive_sweep
 
     !> The lambdas the boundary search counts positive mu at: a sweep's own lambdas (it solves
