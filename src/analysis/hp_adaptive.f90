@@ -206,7 +206,7 @@ contains
         !> res%spec%mu(i), the lowest positive mu, and res%roundoff replaced by the Rayleigh
         !> quotient of its vectors that never stores K (hp_rayleigh) when the double value's
         !> round-off bound is at least REFINE_FRACTION of the tolerance: below, it cannot
-        !> decide the stop, and the quotient costs about a third of a level's assembly.
+        !> decide the stop, and the quotient costs about half of a level's assembly.
         subroutine refine_level_mu(res, i, stat)
             type(eigen_result_t), intent(inout) :: res
             integer, intent(in) :: i

@@ -144,6 +144,9 @@ contains
         call affine_map(xy, c, det, info)
         if (info /= HP_OK) return
         call lame_coefficients(young, poisson, lame_l, shear_g)
+        ! allocated first: as in condense_interior (-fsanitize=undefined saw an overflow in
+        ! the extent gfortran computed for the unallocated sxy)
+        allocate (sxx(n, n), syy(n, n), sxy(n, n))
         sxx = physical_products(tables%r, c, det, 1, 1)
         syy = physical_products(tables%r, c, det, 2, 2)
         sxy = physical_products(tables%r, c, det, 1, 2)
