@@ -17,14 +17,12 @@
 !> measures, and that is counted in the quotient's bound.
 module hp_rayleigh
     use kinds, only: wp
-    use status, only: status_t, STATUS_MESH
-    use strings, only: to_string
+    use status, only: status_t
     use mesh, only: mesh_t
     use contact_boundary, only: contact_t
     use elasticity, only: lame_coefficients
     use hp_space, only: hp_space_t
-    use hp_basis, only: hp_bubble_count
-    use hp_stiffness, only: hp_tables_t, hp_cell_stiffness, cell_coefficients, HP_OK
+    use hp_stiffness, only: hp_tables_t, hp_cell_fields
     use roundoff, only: contact_abs_form, ROUNDOFF_UNITS
     implicit none
     private
@@ -80,10 +78,9 @@ contains
         real(wp), intent(out) :: form, form_abs
         type(status_t), intent(out) :: stat
         type(hp_tables_t), allocatable :: tables(:)
-        real(wp), allocatable :: ke(:, :), coefficients(:, :), fields(:, :)
-        integer, allocatable :: dofs(:)
+        real(wp), allocatable :: coefficients(:, :), fields(:, :)
         real(wp) :: lame_l, shear_g, cell, cell_abs
-        integer :: c, p, n_tables, info, t
+        integer :: c, n_tables, t
         allocate (fields(size(x), 2))
         fields(:, 1) = x
         fields(:, 2) = y
@@ -92,14 +89,10 @@ contains
         call lame_coefficients(young, poisson, lame_l, shear_g)
         n_tables = 0
         do c = 1, m%n_cells()
-            p = space%cell_degree(c)
-            call hp_cell_stiffness(m, space, c, young, poisson, tables, n_tables, ke, info, t)
-            dofs = space%cell_dofs(c, m%cells(1:3, c))
-            if (info == HP_OK) call cell_coefficients(ke, 2*hp_bubble_count(p), dofs, fields, &
-                                                      coefficients, info)
-            if (info /= HP_OK) then
-                call stat%fail(STATUS_MESH, 'hp Rayleigh quotient: cell '//to_string(c)// &
-                               ' is clockwise or flat')
+            call hp_cell_fields(m, space, c, young, poisson, fields, tables, n_tables, &
+                                coefficients, t, stat)
+            if (.not. stat%ok()) then
+                stat%message = 'hp Rayleigh quotient: '//stat%message
                 return
             end if
             call cell_form(m%coords(:, m%cells(1:3, c)), tables(t), lame_l, shear_g, &

@@ -8,13 +8,12 @@
 !> the sampled field is the full discrete solution, not its condensed part.
 module hp_field
     use kinds, only: wp
-    use status, only: status_t, STATUS_MESH
-    use strings, only: to_string
+    use status, only: status_t
     use mesh, only: mesh_t
     use element_types, only: ELEMENT_P1
-    use hp_basis, only: hp_triangle_shape, hp_local_count, hp_bubble_count
+    use hp_basis, only: hp_triangle_shape, hp_local_count
     use hp_space, only: hp_space_t
-    use hp_stiffness, only: hp_tables_t, hp_cell_stiffness, cell_coefficients, HP_OK
+    use hp_stiffness, only: hp_tables_t, hp_cell_fields
     implicit none
     private
     public :: sample_hp_field
@@ -34,10 +33,10 @@ contains
         real(wp), allocatable, intent(out) :: degree(:)
         type(status_t), intent(out) :: stat
         type(hp_tables_t), allocatable :: tables(:)
-        real(wp), allocatable :: ke(:, :), coefficients(:, :), shape(:), gradient(:, :), &
+        real(wp), allocatable :: coefficients(:, :), shape(:), gradient(:, :), &
                                  field(:, :)
         real(wp) :: xi(2), jacobian(2, 2)
-        integer :: c, p, s, n_points, n_cells, n_local, i, j, a, info, &
+        integer :: c, p, s, n_points, n_cells, n_local, i, j, a, &
                    n_tables, point, cell, t
         integer, allocatable :: index_of(:, :)
 
@@ -58,12 +57,10 @@ contains
         cell = 0
         do c = 1, m%n_cells()
             p = space%cell_degree(c)
-            call hp_cell_stiffness(m, space, c, young, poisson, tables, n_tables, ke, info, t)
-            if (info == HP_OK) call cell_coefficients(ke, 2*hp_bubble_count(p), &
-                space%cell_dofs(c, m%cells(1:3, c)), field, coefficients, info)
-            if (info /= HP_OK) then
-                call stat%fail(STATUS_MESH, 'hp field: cell '//to_string(c)// &
-                               ' is clockwise or flat')
+            call hp_cell_fields(m, space, c, young, poisson, field, tables, n_tables, &
+                                coefficients, t, stat)
+            if (.not. stat%ok()) then
+                stat%message = 'hp field: '//stat%message
                 return
             end if
             n_local = hp_local_count(space%edge_degrees_of(c), p)

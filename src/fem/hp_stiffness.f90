@@ -20,6 +20,7 @@ module hp_stiffness
     private
     public :: hp_reference_tables, hp_element_stiffness, hp_element_laplace, &
               condense_interior, recover_interior, cell_coefficients, hp_cell_stiffness, &
+              hp_cell_fields, &
               assemble_hp_stiffness, &
               configuration_key, cached_table
 
@@ -336,6 +337,30 @@ contains
         call hp_element_stiffness(m%coords(:, m%cells(1:3, c)), tables(t), young, poisson, ke, &
                                   info)
     end subroutine hp_cell_stiffness
+
+    !> The coefficients of all local functions of cell c of `space` on the P1 mesh `m` for
+    !> each free-dof field, a column of `fields` (cell_coefficients with the cell's element
+    !> stiffness, hp_cell_stiffness), and the cell's entry t of the cache tables. Fails
+    !> with STATUS_MESH naming a clockwise or flat cell.
+    subroutine hp_cell_fields(m, space, c, young, poisson, fields, tables, n_tables, &
+                              coefficients, t, stat)
+        type(mesh_t), intent(in) :: m
+        type(hp_space_t), intent(in) :: space
+        integer, intent(in) :: c
+        real(wp), intent(in) :: young, poisson, fields(:, :)
+        type(hp_tables_t), allocatable, intent(inout) :: tables(:)
+        integer, intent(inout) :: n_tables
+        real(wp), allocatable, intent(out) :: coefficients(:, :)
+        integer, intent(out) :: t
+        type(status_t), intent(out) :: stat
+        real(wp), allocatable :: ke(:, :)
+        integer :: info
+        call hp_cell_stiffness(m, space, c, young, poisson, tables, n_tables, ke, info, t)
+        if (info == HP_OK) call cell_coefficients(ke, 2*hp_bubble_count(space%cell_degree(c)), &
+            space%cell_dofs(c, m%cells(1:3, c)), fields, coefficients, info)
+        if (info /= HP_OK) call stat%fail(STATUS_MESH, 'cell '//to_string(c)// &
+                                          ' is clockwise or flat')
+    end subroutine hp_cell_fields
 
     !> Index in tables(1:n_tables) of the configuration `key`, its reference integrals
     !> computed and appended (the array grown) on first use.

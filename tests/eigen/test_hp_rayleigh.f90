@@ -29,9 +29,9 @@ program test_hp_rayleigh
     use spectrum, only: spectrum_t
     use timer, only: timings_t
     use elasticity, only: lame_coefficients
-    use hp_basis, only: hp_bubble_count, hp_local_count
+    use hp_basis, only: hp_local_count
     use hp_space, only: hp_space_t
-    use hp_stiffness, only: hp_tables_t, hp_cell_stiffness, cell_coefficients, HP_OK
+    use hp_stiffness, only: hp_tables_t, hp_cell_fields
     use hp_eigen, only: hp_dense_spectrum, hp_factored_problem
     use hp_rayleigh, only: hp_stiffness_form, refine_lowest_mu
     use roundoff, only: ROUNDOFF_UNITS
@@ -185,10 +185,9 @@ contains
         real(qp), intent(out) :: form
         type(status_t), intent(out) :: stat
         type(hp_tables_t), allocatable :: tables(:)
-        real(wp), allocatable :: ke(:, :), coefficients(:, :), fields(:, :)
-        integer, allocatable :: dofs(:)
+        real(wp), allocatable :: coefficients(:, :), fields(:, :)
         real(wp) :: lame_l, shear_g
-        integer :: c, p, n_tables, info, t
+        integer :: c, p, n_tables, t
         allocate (fields(size(x), 2))
         fields(:, 1) = x
         fields(:, 2) = y
@@ -197,14 +196,9 @@ contains
         n_tables = 0
         do c = 1, graded%n_cells()
             p = space%cell_degree(c)
-            call hp_cell_stiffness(graded, space, c, YOUNG, POISSON, tables, n_tables, ke, info, t)
-            dofs = space%cell_dofs(c, graded%cells(1:3, c))
-            if (info == HP_OK) call cell_coefficients(ke, 2*hp_bubble_count(p), dofs, fields, &
-                                                      coefficients, info)
-            if (info /= HP_OK) then
-                call stat%fail(1, 'cell not anticlockwise')
-                return
-            end if
+            call hp_cell_fields(graded, space, c, YOUNG, POISSON, fields, tables, n_tables, &
+                                coefficients, t, stat)
+            if (.not. stat%ok()) return
             form = form + quadruple_cell(c, p, real(lame_l, qp), real(shear_g, qp), &
                                         coefficients(:, 1), coefficients(:, 2))
         end do
