@@ -224,7 +224,7 @@ contains
             end do
             call refine_lowest_mu(prob%mesh, ladder%space, prob%young, prob%poisson, &
                 prob%contact, res%lambda, prob%units%mu_to_scaled(mu), &
-                real(res%spec%vectors(:, 1), wp), res%spec%left, res%roundoff, gap, refined, &
+                real(res%spec%vectors(:, i), wp), res%spec%left, res%roundoff, gap, refined, &
                 refined_bound, stat)
             if (.not. stat%ok()) return
             res%spec%mu(i) = prob%units%mu_to_input(refined)
