@@ -223,7 +223,7 @@ contains
                 if (j /= i) gap = min(gap, abs(res%spec%mu(j) - mu)/abs(mu))
             end do
             call refine_lowest_mu(prob%mesh, ladder%space, prob%young, prob%poisson, &
-                prob%contact, res%lambda, prob%units%mu_to_scaled(mu), &
+                prob%contact, res%b, res%lambda, prob%units%mu_to_scaled(mu), &
                 real(res%spec%vectors(:, i), wp), res%spec%left, res%roundoff, gap, refined, &
                 refined_bound, stat)
             if (.not. stat%ok()) return

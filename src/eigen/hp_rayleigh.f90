@@ -13,12 +13,13 @@
 !> exact eigentriple of the discrete pencil, mu_q - mu* = dy' (K - mu* B) dx / (y' B x):
 !> second order in the vectors' errors, which first-order perturbation theory puts at
 !> (the solver's bound) / (relative gap to the nearest other eigenvalue) each. y' B x is
-!> taken from the stored B: its entries do not cancel beyond what contact_abs_form
-!> measures, and that is counted in the quotient's bound.
+!> taken from the assembled B (assemble_b): its entries do not cancel beyond what
+!> contact_abs_form measures, and that is counted in the quotient's bound.
 module hp_rayleigh
     use kinds, only: wp
     use status, only: status_t
     use mesh, only: mesh_t
+    use csr_matrix, only: csr_matrix_t
     use contact_boundary, only: contact_t
     use elasticity, only: lame_coefficients
     use hp_space, only: hp_space_t
@@ -35,29 +36,31 @@ module hp_rayleigh
 contains
 
     !> mu_q from the double pair (mu, x) and left vector y (free dofs of `space` on the
-    !> graded mesh `m`, units of the assembly: `young`, `poisson`, `contact`'s mass), and
+    !> graded mesh `m`, units of the assembly: `young`, `poisson`, `contact`'s mass, b), and
     !> its relative round-off bound: ROUNDOFF_UNITS eps times the data that stays in double
     !> (the contact form's componentwise size over |y' K x|, and 1 for E, nu and the final
     !> rounding) plus SECOND_ORDER_FACTOR bound^2 / gap, with `bound` the double value's
     !> round-off bound and `gap` = min |mu_j - mu| / |mu| over the other eigenvalues known.
     !> mu and `refined` are in the units of the assembly; `refined` = mu where the quotient
     !> is not a positive number.
-    subroutine refine_lowest_mu(m, space, young, poisson, contact, lambda, mu, x, y, bound, &
-                                gap, refined, refined_bound, stat)
+    subroutine refine_lowest_mu(m, space, young, poisson, contact, b, lambda, mu, x, y, &
+                                bound, gap, refined, refined_bound, stat)
         type(mesh_t), intent(in) :: m
         type(hp_space_t), intent(in) :: space
         real(wp), intent(in) :: young, poisson, lambda, mu, x(:), y(:), bound, gap
         type(contact_t), intent(in) :: contact
+        type(csr_matrix_t), intent(in) :: b   !! B(lambda) on the free dofs (assemble_b)
         real(wp), intent(out) :: refined, refined_bound
         type(status_t), intent(out) :: stat
-        real(wp) :: ykx, ykx_abs, ybx
+        real(wp) :: ykx, ykx_abs, ybx, bx(size(x))
         refined = mu
         refined_bound = bound
         call hp_stiffness_form(m, space, young, poisson, x, y, ykx, ykx_abs, stat)
         if (.not. stat%ok()) return
-        ybx = contact_form(contact, lambda, x, y)
+        call b%matvec(x, bx)
+        ybx = dot_product(y, bx)
         if (.not. (abs(ybx) > 0.0_wp .and. ykx/ybx > 0.0_wp)) return
-        refined = real(ykx/ybx, wp)
+        refined = ykx/ybx
         refined_bound = ROUNDOFF_UNITS*epsilon(1.0_wp)* &
                         ((ykx_abs + abs(refined)*contact_abs_form(contact, lambda, x, y))/ &
                          abs(ykx) + 1.0_wp) + SECOND_ORDER_FACTOR*bound**2/max(gap, tiny(1.0_wp))
@@ -110,25 +113,25 @@ contains
         real(wp), intent(out) :: form, form_abs
         real(wp) :: jacobian(2, 2), inverse_t(2, 2), det, gx(2, 2), gy(2, 2), ax(2, 2), &
                     ay(2, 2)
-        real(wp), allocatable :: x_xi(:, :), x_eta(:, :), y_xi(:, :), y_eta(:, :), &
-                                 ax_xi(:, :), ax_eta(:, :), ay_xi(:, :), ay_eta(:, :)
-        integer :: q
+        real(wp), dimension(2, size(table%g, 2)) :: rx, ry, rx_abs, ry_abs
+        integer :: q, nq
+        nq = table%rule%n_points()
         jacobian(:, 1) = xy(:, 2) - xy(:, 1)
         jacobian(:, 2) = xy(:, 3) - xy(:, 1)
         det = jacobian(1, 1)*jacobian(2, 2) - jacobian(1, 2)*jacobian(2, 1)
         inverse_t = reshape([jacobian(2, 2), -jacobian(1, 2), -jacobian(2, 1), &
                              jacobian(1, 1)], [2, 2])/det
-        ! reference gradients (component, point) of both fields and their sizes
-        call reference_gradients(cx, table, x_xi, x_eta, ax_xi, ax_eta)
-        call reference_gradients(cy, table, y_xi, y_eta, ay_xi, ay_eta)
+        ! reference gradients of both fields (component, point: d/dxi, then d/deta)
+        call reference_gradients(cx, table, rx, rx_abs)
+        call reference_gradients(cy, table, ry, ry_abs)
         form = 0.0_wp
         form_abs = 0.0_wp
-        do q = 1, table%rule%n_points()
+        do q = 1, nq
             ! physical gradients g(a, i) = d u_a / d x_i = sum_k r(a, k) C(i, k)
-            gx = physical(x_xi(:, q), x_eta(:, q), inverse_t)
-            gy = physical(y_xi(:, q), y_eta(:, q), inverse_t)
-            ax = physical(ax_xi(:, q), ax_eta(:, q), abs(inverse_t))
-            ay = physical(ay_xi(:, q), ay_eta(:, q), abs(inverse_t))
+            gx = physical(rx(:, q), rx(:, nq + q), inverse_t)
+            gy = physical(ry(:, q), ry(:, nq + q), inverse_t)
+            ax = physical(rx_abs(:, q), rx_abs(:, nq + q), abs(inverse_t))
+            ay = physical(ry_abs(:, q), ry_abs(:, nq + q), abs(inverse_t))
             form = form + table%rule%weights(q)*energy_density(gx, gy, lame_l, shear_g)
             form_abs = form_abs + table%rule%weights(q)*energy_density(ax, ay, lame_l, shear_g)
         end do
@@ -136,14 +139,14 @@ contains
         form_abs = abs(det)*form_abs
     end subroutine cell_form
 
-    !> d u_a / d xi and d u_a / d eta at every point of `table` of the field with
-    !> coefficients c (interleaved x, y), the vertex part by differences, and the same sums
-    !> over absolute values.
-    pure subroutine reference_gradients(c, table, r_xi, r_eta, a_xi, a_eta)
+    !> d u_a / d xi, then d u_a / d eta, at every point of `table` (r(a, point), as
+    !> table%g) of the field with coefficients c (interleaved x, y), the vertex part by
+    !> differences, and the same sums over absolute values.
+    pure subroutine reference_gradients(c, table, r, r_abs)
         real(wp), intent(in) :: c(:)
         type(hp_tables_t), intent(in) :: table
-        real(wp), allocatable, intent(out) :: r_xi(:, :), r_eta(:, :), a_xi(:, :), a_eta(:, :)
-        real(wp) :: u(2, size(c)/2), r(2, size(table%g, 2)), r_abs(2, size(table%g, 2))
+        real(wp), intent(out) :: r(:, :), r_abs(:, :)   !! (2, 2 n_points)
+        real(wp) :: u(2, size(c)/2)
         integer :: a, nq, n
         nq = size(table%g, 2)/2
         n = size(c)/2
@@ -154,15 +157,11 @@ contains
             r = matmul(u(:, 4:), table%g(4:, :))
             r_abs = matmul(abs(u(:, 4:)), table%g_abs(4:, :))
         end if
-        r_xi = r(:, 1:nq)
-        r_eta = r(:, nq + 1:)
-        a_xi = r_abs(:, 1:nq)
-        a_eta = r_abs(:, nq + 1:)
         do a = 1, 2
-            r_xi(a, :) = r_xi(a, :) + (u(a, 2) - u(a, 1))
-            r_eta(a, :) = r_eta(a, :) + (u(a, 3) - u(a, 1))
-            a_xi(a, :) = a_xi(a, :) + abs(u(a, 2) - u(a, 1))
-            a_eta(a, :) = a_eta(a, :) + abs(u(a, 3) - u(a, 1))
+            r(a, 1:nq) = r(a, 1:nq) + (u(a, 2) - u(a, 1))
+            r(a, nq + 1:) = r(a, nq + 1:) + (u(a, 3) - u(a, 1))
+            r_abs(a, 1:nq) = r_abs(a, 1:nq) + abs(u(a, 2) - u(a, 1))
+            r_abs(a, nq + 1:) = r_abs(a, nq + 1:) + abs(u(a, 3) - u(a, 1))
         end do
     end subroutine reference_gradients
 
@@ -182,22 +181,4 @@ contains
         density = lame_l*(gx(1, 1) + gx(2, 2))*(gy(1, 1) + gy(2, 2)) + &
                   0.5_wp*shear_g*sum((gx + transpose(gx))*(gy + transpose(gy)))
     end function energy_density
-
-    !> y' B x = (X y)' M (N x), X = lambda T - N (its rounding is a few eps of
-    !> contact_abs_form).
-    function contact_form(contact, lambda, x, y) result(form)
-        type(contact_t), intent(in) :: contact
-        real(wp), intent(in) :: lambda, x(:), y(:)
-        real(wp) :: form
-        real(wp) :: xy(contact%p()), nx(contact%p())
-        integer :: a, k
-        call contact%gather(contact%slip_direction(lambda), y, xy)
-        call contact%gather(contact%normal, x, nx)
-        form = 0.0_wp
-        do a = 1, contact%p()
-            do k = contact%mass%row_start(a), contact%mass%row_start(a + 1) - 1
-                form = form + xy(a)*contact%mass%val(k)*nx(contact%mass%col(k))
-            end do
-        end do
-    end function contact_form
 end module hp_rayleigh

@@ -166,9 +166,13 @@ contains
     subroutine refined_mu_within_the_double_bound(t)
         type(test_suite_t), intent(inout) :: t
         real(wp) :: mu, refined, refined_bound
+        type(csr_matrix_t) :: b
         type(status_t) :: stat
         mu = real(spec%mu(1), wp)
-        call refine_lowest_mu(graded, space, YOUNG, POISSON, contact, LAMBDA, mu, &
+        call assemble_b(contact, space%n_free(), LAMBDA, b, stat)
+        call t%check('refined mu: B assembled', stat%ok())
+        if (.not. stat%ok()) return
+        call refine_lowest_mu(graded, space, YOUNG, POISSON, contact, b, LAMBDA, mu, &
                               real(spec%vectors(:, 1), wp), spec%left, spec%roundoff(1), &
                               minval(abs(spec%mu(2:) - mu))/mu, refined, refined_bound, stat)
         call t%check('refined mu: computed', stat%ok())
