@@ -78,6 +78,9 @@ module adaptive_threshold
         real(wp) :: collision_estimate(2) = -1.0_wp
         real(wp) :: collision_bar(2) = -1.0_wp
         real(wp) :: collision_roundoff(2) = -1.0_wp   !! its round-off part; < 0: unknown
+        !> hp: the side's goal has stopped converging at this level or before (error_bar:
+        !> hp_run_bar): no bar from then on
+        logical :: stalled(2) = .false.
         real(wp) :: time_s = 0.0_wp
     end type threshold_level_t
 
@@ -448,6 +451,10 @@ contains
             if (row%collision_estimate(side) >= 0.0_wp) line = line//' (estimate '// &
                 short_real_text(row%collision_estimate(side))//', bar '// &
                 short_real_text(row%collision_bar(side))//')'
+        end do
+        do side = SIDE_PLUS, SIDE_MINUS
+            if (row%stalled(side)) line = line//', '//trim(SIDE_NAMES(side))// &
+                ' side stalled (no bar)'
         end do
     end function level_line
 

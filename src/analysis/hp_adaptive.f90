@@ -21,7 +21,7 @@ module hp_adaptive
     use contact_boundary, only: assemble_b
     use eigen_analysis, only: eigen_result_t, eigen_with_factor, choose_solver
     use accuracy, only: WARNING_LEN, MU_VANISHED
-    use error_bar, only: hp_run_bar, floor_reached, floor_outcome
+    use error_bar, only: hp_run_bar, floor_reached, floor_outcome, stall_outcome
     use hp_rayleigh, only: refine_lowest_mu
     implicit none
     private
@@ -44,6 +44,8 @@ module hp_adaptive
         !> |mu - mu of the previous level| / |mu|, what the bar is made of; < 0: none
         real(wp) :: change = -1.0_wp
         real(wp) :: roundoff = -1.0_wp    !! its round-off part; < 0: unknown
+        !> mu has stopped converging (error_bar: hp_run_bar): no bar, the loop stops
+        logical :: stalled = .false.
         real(wp) :: time_s = 0.0_wp       !! wall time from the loop's start to this level's end
     end type hp_level_t
 
@@ -194,6 +196,8 @@ contains
                 res%error%bar = row%error_bar
                 res%error%relative = row%change
                 res%error%method = HP_ESTIMATE
+            else if (row%stalled) then
+                res%error%skipped = 'none: mu does not converge under hp refinement'
             end if
             out%levels(size(out%levels))%time_s = wall_time() - loop_start
             if (keep_problem) then
@@ -235,7 +239,7 @@ contains
         end subroutine refine_level_mu
 
         !> Whether the loop of `out` stops after its last level: no positive mu, the bar
-        !> within the tolerance, or the floor reached (its outcome says which).
+        !> within the tolerance, mu stalled, or the floor reached (its outcome says which).
         logical function stops_here(out)
             type(hp_result_t), intent(inout) :: out
             stops_here = .true.
@@ -245,6 +249,10 @@ contains
                                   to_string(last%level)
                     out%mu_vanished = any(out%levels%has_mu)
                     if (out%mu_vanished) out%outcome = out%outcome//': '//MU_VANISHED
+                    return
+                end if
+                if (last%stalled) then
+                    out%outcome = stall_outcome(tolerance, 'mu')
                     return
                 end if
                 if (last%error_bar >= 0.0_wp .and. last%error_bar <= tolerance) then
@@ -276,7 +284,8 @@ contains
                 mu(j) = levels(j)%mu
             end do
             associate (last => levels(size(levels)))
-                call hp_run_bar(have, mu, last%roundoff, last%error_bar, last%change)
+                call hp_run_bar(have, mu, last%roundoff, last%error_bar, last%change, &
+                                last%stalled)
             end associate
         end subroutine set_bar
 

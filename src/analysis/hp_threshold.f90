@@ -26,7 +26,7 @@ module hp_threshold
     use contact_reduction, only: reduced_blocks_t, contact_flexibility
     use memory_budget, only: check_contact_memory, contact_peak_blocks, contact_blocks_bytes
     use critical_lambda, only: thresholds_t, pencil_thresholds, &
-                               SIDE_PLUS, SIDE_MINUS
+                               SIDE_PLUS, SIDE_MINUS, SIDE_NAMES
     use critical_set, only: critical_set_t, MECHANISM_PENCIL
     use roundoff, only: threshold_roundoff, collision_roundoffs
     use threshold_analysis, only: threshold_result_t, confirm_and_bound
@@ -34,7 +34,7 @@ module hp_threshold
                                   collision_onsets, apply_collision_bars, goal_bars, &
                                   level_line, coarse_scan_t
     use eigen_analysis, only: eigen_with_factor, choose_solver
-    use error_bar, only: hp_run_bar, floor_reached, floor_outcome
+    use error_bar, only: hp_run_bar, floor_reached, floor_outcome, stall_outcome
     use accuracy, only: WARNING_LEN
     implicit none
     private
@@ -173,10 +173,10 @@ contains
         end subroutine solve_level
 
         !> Whether the loop stops after the level just solved: no goal, the tolerance met on
-        !> every side, or the floor reached on every side that does not meet it.
+        !> every side, or each side that does not meet it stalled or at the floor.
         logical function stop_here()
             real(wp) :: bar(2), roundoff(2)
-            integer :: side, worst
+            integer :: side, worst, stalled
             stop_here = .true.
             call goal_bars(out%adapted%levels(size(out%adapted%levels)), thr%roundoff, bar, &
                            roundoff)
@@ -187,8 +187,9 @@ contains
                     return
                 end if
                 stop_here = .false.
-                if (any(bar < -0.5_wp)) return   ! a goal without a bar yet
-                if (all(bar <= tolerance)) then
+                ! a goal without a bar yet
+                if (any(bar < -0.5_wp .and. .not. last%stalled)) return
+                if (all(bar <= tolerance .and. .not. last%stalled)) then
                     out%adapted%converged = .true.
                     out%adapted%outcome = 'tolerance '//short_real_text(tolerance)// &
                         ' met at level '//to_string(last%level)//': error bar '//bar_text()
@@ -196,16 +197,26 @@ contains
                     return
                 end if
                 worst = 0
+                stalled = 0
                 do side = SIDE_PLUS, SIDE_MINUS
+                    if (last%stalled(side)) then
+                        stalled = side
+                        cycle
+                    end if
                     if (bar(side) <= tolerance) cycle
                     if (.not. floor_reached(bar(side), roundoff(side))) return
                     if (worst == 0) worst = side
                     if (bar(side) > bar(worst)) worst = side
                 end do
+                stop_here = .true.
+                if (stalled > 0) then
+                    out%adapted%outcome = stall_outcome(tolerance, &
+                                                        'the '//trim(SIDE_NAMES(stalled))//' side')
+                    return
+                end if
                 out%adapted%floor_reached = .true.
                 out%adapted%outcome = floor_outcome(tolerance, roundoff(worst), bar(worst), &
                                                     to_string(last%n_dofs))
-                stop_here = .true.
             end associate
         end function stop_here
 
@@ -240,6 +251,11 @@ contains
             associate (last => out%adapted%levels(k))
                 do side = SIDE_PLUS, SIDE_MINUS
                     if (.not. thr%found(side)) cycle
+                    if (last%stalled(side)) then
+                        res%estimate%skipped(side) = 'none: the '//trim(SIDE_NAMES(side))// &
+                            ' side does not converge under hp refinement'
+                        cycle
+                    end if
                     if (last%error_bar(side) < 0.0_wp) then
                         res%estimate%skipped(side) = 'none at the first hp level'
                         cycle
@@ -289,13 +305,15 @@ contains
 
     !> The bars of the last of `levels`: per side, hp_level_bar of the thresholds over the
     !> levels since the last one without it, plus `roundoff` (the last level's), and of the
-    !> collision onsets likewise (no round-off part known); error_estimate is the relative
-    !> change to the previous level (what the bar is made of).
+    !> collision onsets likewise with theirs; error_estimate is the relative
+    !> change to the previous level (what the bar is made of). A side whose goal (its
+    !> collision onset where it has one, else its threshold) has stalled (hp_run_bar) stays
+    !> stalled, with no bar, at every later level.
     subroutine set_bars(levels, roundoff)
         type(threshold_level_t), intent(inout) :: levels(:)
         real(wp), intent(in) :: roundoff(2)
         real(wp) :: values(size(levels)), change
-        logical :: have(size(levels))
+        logical :: have(size(levels)), stalled(2)
         integer :: k, side, i
         k = size(levels)
         do side = SIDE_PLUS, SIDE_MINUS
@@ -304,7 +322,8 @@ contains
                 have(i) = levels(i)%found(side)
                 values(i) = levels(i)%lambda(side)
             end do
-            call hp_run_bar(have, values, roundoff(side), levels(k)%error_bar(side), change)
+            call hp_run_bar(have, values, roundoff(side), levels(k)%error_bar(side), change, &
+                            stalled(1))
             levels(k)%estimated(side) = levels(k)%error_bar(side) >= 0.0_wp
             if (levels(k)%estimated(side)) levels(k)%error_estimate(side) = change
             do i = 1, k
@@ -312,7 +331,17 @@ contains
                 values(i) = levels(i)%collision_lambda(side)
             end do
             call hp_run_bar(have, values, levels(k)%collision_roundoff(side), &
-                            levels(k)%collision_bar(side), levels(k)%collision_estimate(side))
+                            levels(k)%collision_bar(side), levels(k)%collision_estimate(side), &
+                            stalled(2))
+            associate (row => levels(k))
+                row%stalled(side) = merge(stalled(2), stalled(1), row%collision(side))
+                if (k > 1) row%stalled(side) = row%stalled(side) .or. levels(k - 1)%stalled(side)
+                if (row%stalled(side)) then
+                    row%error_bar(side) = -1.0_wp
+                    row%estimated(side) = .false.
+                    row%collision_bar(side) = -1.0_wp
+                end if
+            end associate
         end do
     end subroutine set_bars
 

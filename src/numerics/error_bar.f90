@@ -30,7 +30,7 @@ module error_bar
     implicit none
     private
     public :: single_bar, level_bar, hp_level_bar, hp_run_bar, three_mesh_bar, floor_reached, &
-              floor_outcome
+              floor_outcome, stall_outcome
     public :: level_bar_factor, BAR_FACTOR, LEVEL_FACTOR, BAR_WINDOW
 
     real(wp), parameter :: BAR_FACTOR = 5.0_wp
@@ -39,6 +39,12 @@ module error_bar
     !> level_bar's factor for elements of degree 1, 2, 3 (higher degrees, not measured: P3's)
     real(wp), parameter :: LEVEL_FACTORS(3) = [2.0_wp, 4.5_wp, 3.5_wp]
     integer, parameter :: BAR_WINDOW = 3
+    !> hp_run_bar's test of exponential convergence: the larger of two successive changes
+    !> is at most HP_STALL times the larger of the two changes four levels before. Over the
+    !> 28 goals of the hp quality scenes (scripts/dev/hp_bar_quality.sh) that ratio is at
+    !> most 1.3e-3; contact on part of a side gives 0.17 (a pencil threshold) and 1.1 (a mu
+    !> that grows with every layer)
+    real(wp), parameter :: HP_STALL = 0.1_wp
     !> three_mesh_bar's bounds on the observed ratio q = 2^-r of successive changes: at most
     !> order 2 counted (a faster one seen on two changes is more likely a cancellation), at
     !> least order 0.1 (slower is no convergence: the error is then 15 times the change)
@@ -151,17 +157,27 @@ contains
     end function hp_level_bar
 
     !> hp_level_bar of `values` over the trailing run of levels with `have` (the levels since
-    !> the last one without the value), and `change`, the relative change of the last value
-    !> to the one before (what the bar is made of); both -1 where that run is shorter than
-    !> two levels.
-    pure subroutine hp_run_bar(have, values, roundoff, bar, change)
+    !> the last one without the value), `change`, the relative change of the last value to
+    !> the one before (what the bar is made of), both -1 where that run is shorter than two
+    !> levels, and `stalled`: the run has stopped converging exponentially (the bar is then
+    !> -1, none: a bar from a geometric rate would be no bound).
+    !> Stalled: at some level j of the run, above the round-off (ten times `roundoff`), the
+    !> larger of the changes d_j, d_(j-1) is more than HP_STALL times the larger of d_(j-4),
+    !> d_(j-5) (two of each: one change that dips by cancellation decides nothing). Each hp
+    !> level adds a layer and a degree, so a converging value's changes fall by a factor per
+    !> level; a value that moves with the mesh (a mode a cell wide at the finest layer) or a
+    !> singular point the levels do not grade toward falls algebraically or not at all.
+    pure subroutine hp_run_bar(have, values, roundoff, bar, change, stalled)
         logical, intent(in) :: have(:)
         real(wp), intent(in) :: values(:), roundoff
         real(wp), intent(out) :: bar, change
-        integer :: first, n
+        logical, intent(out) :: stalled
+        real(wp) :: changes(size(values)), recent, noise
+        integer :: first, n, j
         n = size(have)
         bar = -1.0_wp
         change = -1.0_wp
+        stalled = .false.
         if (n == 0) return
         if (.not. have(n)) return
         first = n
@@ -170,9 +186,29 @@ contains
             first = first - 1
         end do
         if (first == n) return
-        bar = hp_level_bar(values(first:n), roundoff)
-        change = abs(values(n) - values(n - 1))/abs(values(n))
+        changes(first + 1:n) = abs(values(first + 1:n) - values(first:n - 1))/abs(values(n))
+        change = changes(n)
+        noise = max(10.0_wp*roundoff, 100.0_wp*epsilon(1.0_wp))
+        do j = first + 6, n
+            recent = max(changes(j), changes(j - 1))
+            if (recent > noise .and. recent > HP_STALL*max(changes(j - 4), changes(j - 5))) &
+                stalled = .true.
+        end do
+        if (.not. stalled) bar = hp_level_bar(values(first:n), roundoff)
     end subroutine hp_run_bar
+
+    !> The outcome of an hp loop stopped because `what` (mu, lambda+, ...) stalled
+    !> (hp_run_bar): `tolerance` not met, and why the value may have no limit.
+    function stall_outcome(tolerance, what) result(outcome)
+        real(wp), intent(in) :: tolerance
+        character(len=*), intent(in) :: what
+        character(len=:), allocatable :: outcome
+        outcome = 'tolerance '//short_real_text(tolerance)//' not met: '//what// &
+            ' does not converge under hp refinement (its changes between levels fell less '// &
+            'than tenfold in four levels), so it has '// &
+            'no error bar: the scene may have no converged value (a mode that moves with the '// &
+            'mesh), or the levels do not grade toward one of its singular points'
+    end function stall_outcome
 
     !> The bar of a value v0 from the same value on the meshes of halved (v1) and twice
     !> halved cells (v2), for an error C h^r of unknown order r (the three-mesh study of

@@ -105,6 +105,17 @@ NML
         'awk -v b="$(json "$work/middle/summary.json" lowest_positive_error_bar)" "BEGIN { exit !(b >= 0.3) }"'
     check 'contact on the middle of a side: the warning says it moves with the mesh' \
         'grep -q "^warning: the mode of the lowest positive mu spans .* it moves with the mesh" "$work/stdout"'
+    # The same scene on hp levels: mu grows by about 75 per level, so its changes never fall
+    # by a factor (error_bar: hp_run_bar); the loop stops at the seventh level with exit 8,
+    # no bar, and says why, where it climbed until the memory ran out before.
+    gmsh "$work/middle.geo" -2 -order 1 -clmax 0.5 -format msh41 -o "$work/middle1.msh" >/dev/null
+    "$nceig" "$work/middle.nml" --set mesh%file="$work/middle1.msh" \
+        --set output%directory="$work/middle_hp" --set adapt%tolerance=1e-10 \
+        --set adapt%strategy=hp >"$work/stdout" 2>&1
+    code=$?
+    check "contact on the middle of a side, hp: exit 8 (got $code), no bar, the reason" \
+        '[[ $code == 8 ]] && [[ $(jq -r .lowest_positive_error_bar "$work/middle_hp/summary.json") == null ]] &&
+         grep -q "^warning: tolerance .* not met: mu does not converge under hp refinement" "$work/stdout"'
 
     # A boundary point where two positive mu meet (complex_pair) has a bar from the problem
     # one degree higher: the example's point (P2, h = 1/16) against P3 on h = 1/32, whose

@@ -21,6 +21,7 @@ program test_error_bar
     call check_hp_dip()
     call check_hp_start()
     call check_hp_run()
+    call check_hp_stall()
     call check_three_mesh_orders()
     call check_three_mesh_limits()
     call t%report()
@@ -119,15 +120,54 @@ contains
     subroutine check_hp_run()
         real(wp), parameter :: VALUES(4) = [4.0_wp, 9.0_wp, 3.0_wp, 2.5_wp]
         real(wp) :: bar, change
-        call hp_run_bar([.true., .false., .true., .true.], VALUES, -1.0_wp, bar, change)
+        logical :: stalled
+        call hp_run_bar([.true., .false., .true., .true.], VALUES, -1.0_wp, bar, change, stalled)
         call t%check('hp run: the bar of the last two levels, the change 0.5 / 2.5', &
                      bar == hp_level_bar(VALUES(3:4), -1.0_wp) .and. &
                      abs(change - 0.2_wp) <= 1.0e-15_wp)
-        call hp_run_bar([.true., .true., .false., .true.], VALUES, -1.0_wp, bar, change)
+        call hp_run_bar([.true., .true., .false., .true.], VALUES, -1.0_wp, bar, change, stalled)
         call t%check('hp run: one level long, none', bar < 0.0_wp .and. change < 0.0_wp)
-        call hp_run_bar([.true., .true., .true., .false.], VALUES, -1.0_wp, bar, change)
+        call hp_run_bar([.true., .true., .true., .false.], VALUES, -1.0_wp, bar, change, stalled)
         call t%check('hp run: the last level without, none', bar < 0.0_wp .and. change < 0.0_wp)
     end subroutine check_hp_run
+
+    !> Stalled where the changes fall by less than HP_STALL = 0.1 in four levels: a geometric
+    !> rate r per level gives r^4, so r = 0.5 (0.0625) converges and r = 0.6 (0.1296) has
+    !> stalled; an algebraic 1 + 1/k (changes 1/(k (k - 1)): max(d8, d7) / max(d4, d3) =
+    !> (1/42) / (1/6) = 0.14, where seven levels give (1/30) / (1/2) = 0.067) and a value that
+    !> grows by one per level (a mode that moves with the mesh) have stalled; a value
+    !> converged at level 4 whose later changes are round-off (1e-13: below ten times its
+    !> round-off part 1e-13) has not, but stalls when the round-off part is 1e-17 (then
+    !> 100 eps = 2.2e-14 is the noise level). A stalled run has no bar.
+    subroutine check_hp_stall()
+        integer, parameter :: N = 12
+        logical, parameter :: ALL(N) = .true.
+        real(wp) :: v(N), bar, change
+        logical :: stalled
+        integer :: k
+        v = [(1.0_wp + 0.5_wp**k, k=1, N)]
+        call hp_run_bar(ALL, v, -1.0_wp, bar, change, stalled)
+        call t%check('hp stall: rate 0.5 per level converges, with a bar', &
+                     .not. stalled .and. bar > 0.0_wp)
+        v = [(1.0_wp + 0.6_wp**k, k=1, N)]
+        call hp_run_bar(ALL, v, -1.0_wp, bar, change, stalled)
+        call t%check('hp stall: rate 0.6 per level has stalled, no bar', stalled .and. bar < 0.0_wp)
+        v = [(1.0_wp + 1.0_wp/real(k, wp), k=1, N)]
+        call hp_run_bar(ALL(:8), v(:8), -1.0_wp, bar, change, stalled)
+        call t%check('hp stall: 1 + 1/k has stalled at the eighth level', stalled)
+        call hp_run_bar(ALL(:7), v(:7), -1.0_wp, bar, change, stalled)
+        call t%check('hp stall: 1 + 1/k not yet at the seventh', .not. stalled .and. bar > 0.0_wp)
+        v = [(real(k, wp), k=1, N)]
+        call hp_run_bar(ALL, v, -1.0_wp, bar, change, stalled)
+        call t%check('hp stall: a value growing with every level has stalled', stalled)
+        v(1:4) = [(1.0_wp + 0.1_wp**k, k=1, 4)]
+        v(5:N) = [(1.0_wp + 5.0e-14_wp*(-1.0_wp)**k, k=5, N)]
+        call hp_run_bar(ALL, v, 1.0e-13_wp, bar, change, stalled)
+        call t%check('hp stall: round-off changes at the floor are no stall', .not. stalled)
+        call hp_run_bar(ALL, v, 1.0e-17_wp, bar, change, stalled)
+        call t%check('hp stall: the same changes above ten times the round-off part stall', &
+                     stalled)
+    end subroutine check_hp_stall
     !> v(h) = 1 + c h^r on h = 1, 1/2, 1/4: for every order r between 0.1 and 2 the
     !> three-mesh error d1 / (1 - q) is c exactly, so the bar is LEVEL_FACTOR c / v0; the
     !> slow order 0.2 (a change a seventh of the error) included.
