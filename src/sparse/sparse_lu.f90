@@ -14,22 +14,13 @@ module sparse_lu
     use strings, only: to_string
     use umfpack_c, only: umfpack_di_symbolic, umfpack_di_numeric, umfpack_di_solve, &
                          umfpack_di_free_symbolic, umfpack_di_free_numeric, umfpack_di_defaults, &
-                         UMFPACK_CONTROL, UMFPACK_INFO, UMFPACK_A, UMFPACK_At, UMFPACK_PRL, &
-                         UMFPACK_ORDERING, UMFPACK_IRSTEP, UMFPACK_LNZ, UMFPACK_UNZ, UMFPACK_FLOPS, &
-                         UMFPACK_RCOND, UMFPACK_ORDERING_AMD, UMFPACK_ORDERING_METIS, &
-                         UMFPACK_ORDERING_CHOLMOD, UMFPACK_ORDERING_NONE, &
-                         UMFPACK_OK, UMFPACK_WARNING_singular_matrix, &
-                         UMFPACK_WARNING_determinant_underflow, &
-                         UMFPACK_WARNING_determinant_overflow, &
-                         UMFPACK_ERROR_out_of_memory, UMFPACK_ERROR_invalid_Numeric_object, &
-                         UMFPACK_ERROR_invalid_Symbolic_object, UMFPACK_ERROR_argument_missing, &
-                         UMFPACK_ERROR_n_nonpositive, UMFPACK_ERROR_invalid_matrix, &
-                         UMFPACK_ERROR_different_pattern, UMFPACK_ERROR_invalid_system, &
-                         UMFPACK_ERROR_invalid_permutation, UMFPACK_ERROR_internal_error, &
-                         UMFPACK_ERROR_file_IO, UMFPACK_ERROR_ordering_failed
+                         umfpack_status_message, UMFPACK_CONTROL, UMFPACK_INFO, UMFPACK_A, &
+                         UMFPACK_At, UMFPACK_PRL, UMFPACK_ORDERING, UMFPACK_IRSTEP, UMFPACK_LNZ, &
+                         UMFPACK_UNZ, UMFPACK_FLOPS, UMFPACK_RCOND, UMFPACK_ORDERING_AMD, &
+                         UMFPACK_ORDERING_METIS, UMFPACK_ORDERING_CHOLMOD, UMFPACK_ORDERING_NONE, &
+                         UMFPACK_OK, UMFPACK_WARNING_singular_matrix
     implicit none
     private
-    public :: umfpack_status_message
     public :: LU_ORDERING_DEFAULT, LU_ORDERING_METIS, LU_ORDERING_NATURAL, LU_ORDERING_CHOLMOD
 
     !> Fill-reducing orderings for `factor`; the values are UMFPACK's.
@@ -242,46 +233,4 @@ contains
         class(lu_t), intent(in) :: this
         lu_is_factored = c_associated(this%numeric)
     end function lu_is_factored
-
-    !> A sentence for each status documented in umfpack.h.
-    pure function umfpack_status_message(code) result(message)
-        integer, intent(in) :: code
-        character(len=:), allocatable :: message
-        select case (code)
-        case (UMFPACK_OK)
-            message = 'UMFPACK: success'
-        case (UMFPACK_WARNING_singular_matrix)
-            message = 'UMFPACK: the matrix is singular (an exactly zero pivot)'
-        case (UMFPACK_WARNING_determinant_underflow)
-            message = 'UMFPACK: the determinant underflows'
-        case (UMFPACK_WARNING_determinant_overflow)
-            message = 'UMFPACK: the determinant overflows'
-        case (UMFPACK_ERROR_out_of_memory)
-            message = 'UMFPACK: out of memory'
-        case (UMFPACK_ERROR_invalid_Numeric_object)
-            message = 'UMFPACK: invalid Numeric object'
-        case (UMFPACK_ERROR_invalid_Symbolic_object)
-            message = 'UMFPACK: invalid Symbolic object'
-        case (UMFPACK_ERROR_argument_missing)
-            message = 'UMFPACK: a required argument is missing'
-        case (UMFPACK_ERROR_n_nonpositive)
-            message = 'UMFPACK: the matrix dimension is not positive'
-        case (UMFPACK_ERROR_invalid_matrix)
-            message = 'UMFPACK: invalid matrix (unsorted, duplicate or out-of-range indices)'
-        case (UMFPACK_ERROR_different_pattern)
-            message = 'UMFPACK: the pattern changed since the symbolic analysis'
-        case (UMFPACK_ERROR_invalid_system)
-            message = 'UMFPACK: invalid system requested (or A is not square)'
-        case (UMFPACK_ERROR_invalid_permutation)
-            message = 'UMFPACK: invalid permutation'
-        case (UMFPACK_ERROR_internal_error)
-            message = 'UMFPACK: internal error'
-        case (UMFPACK_ERROR_file_IO)
-            message = 'UMFPACK: file input/output error'
-        case (UMFPACK_ERROR_ordering_failed)
-            message = 'UMFPACK: the fill-reducing ordering failed'
-        case default
-            message = 'UMFPACK: unknown status '//to_string(code)
-        end select
-    end function umfpack_status_message
 end module sparse_lu

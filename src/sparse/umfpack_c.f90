@@ -1,8 +1,10 @@
 ! SPDX-License-Identifier: MIT
 !> Interfaces to the int/double ("di") UMFPACK routines, typed exactly like the C headers
-!> of SuiteSparse 5 (umfpack_*.h), and the constants of umfpack.h that we use. No logic.
+!> of SuiteSparse 5 (umfpack_*.h), the constants of umfpack.h that we use, and a sentence
+!> for each of its status codes.
 module umfpack_c
     use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr
+    use strings, only: to_string
     implicit none
     private
     public :: umfpack_di_symbolic, umfpack_di_numeric, umfpack_di_solve, &
@@ -12,14 +14,7 @@ module umfpack_c
               UMFPACK_FLOPS, UMFPACK_RCOND, UMFPACK_ORDERING_USED, UMFPACK_IRSTEP
     public :: UMFPACK_ORDERING_CHOLMOD, UMFPACK_ORDERING_AMD, UMFPACK_ORDERING_METIS, &
               UMFPACK_ORDERING_NONE
-    public :: UMFPACK_OK, UMFPACK_WARNING_singular_matrix, &
-              UMFPACK_WARNING_determinant_underflow, UMFPACK_WARNING_determinant_overflow, &
-              UMFPACK_ERROR_out_of_memory, UMFPACK_ERROR_invalid_Numeric_object, &
-              UMFPACK_ERROR_invalid_Symbolic_object, UMFPACK_ERROR_argument_missing, &
-              UMFPACK_ERROR_n_nonpositive, UMFPACK_ERROR_invalid_matrix, &
-              UMFPACK_ERROR_different_pattern, UMFPACK_ERROR_invalid_system, &
-              UMFPACK_ERROR_invalid_permutation, UMFPACK_ERROR_internal_error, &
-              UMFPACK_ERROR_file_IO, UMFPACK_ERROR_ordering_failed
+    public :: UMFPACK_OK, UMFPACK_WARNING_singular_matrix, umfpack_status_message
 
     ! Array sizes. The C arrays are 0-based: Fortran element k + 1 holds C index k.
     integer, parameter :: UMFPACK_CONTROL = 20
@@ -118,4 +113,48 @@ module umfpack_c
             real(c_double), intent(out) :: control(*)
         end subroutine umfpack_di_defaults
     end interface
+
+contains
+
+    !> A sentence for each status documented in umfpack.h.
+    pure function umfpack_status_message(code) result(message)
+        integer, intent(in) :: code
+        character(len=:), allocatable :: message
+        select case (code)
+        case (UMFPACK_OK)
+            message = 'UMFPACK: success'
+        case (UMFPACK_WARNING_singular_matrix)
+            message = 'UMFPACK: the matrix is singular (an exactly zero pivot)'
+        case (UMFPACK_WARNING_determinant_underflow)
+            message = 'UMFPACK: the determinant underflows'
+        case (UMFPACK_WARNING_determinant_overflow)
+            message = 'UMFPACK: the determinant overflows'
+        case (UMFPACK_ERROR_out_of_memory)
+            message = 'UMFPACK: out of memory'
+        case (UMFPACK_ERROR_invalid_Numeric_object)
+            message = 'UMFPACK: invalid Numeric object'
+        case (UMFPACK_ERROR_invalid_Symbolic_object)
+            message = 'UMFPACK: invalid Symbolic object'
+        case (UMFPACK_ERROR_argument_missing)
+            message = 'UMFPACK: a required argument is missing'
+        case (UMFPACK_ERROR_n_nonpositive)
+            message = 'UMFPACK: the matrix dimension is not positive'
+        case (UMFPACK_ERROR_invalid_matrix)
+            message = 'UMFPACK: invalid matrix (unsorted, duplicate or out-of-range indices)'
+        case (UMFPACK_ERROR_different_pattern)
+            message = 'UMFPACK: the pattern changed since the symbolic analysis'
+        case (UMFPACK_ERROR_invalid_system)
+            message = 'UMFPACK: invalid system requested (or A is not square)'
+        case (UMFPACK_ERROR_invalid_permutation)
+            message = 'UMFPACK: invalid permutation'
+        case (UMFPACK_ERROR_internal_error)
+            message = 'UMFPACK: internal error'
+        case (UMFPACK_ERROR_file_IO)
+            message = 'UMFPACK: file input/output error'
+        case (UMFPACK_ERROR_ordering_failed)
+            message = 'UMFPACK: the fill-reducing ordering failed'
+        case default
+            message = 'UMFPACK: unknown status '//to_string(code)
+        end select
+    end function umfpack_status_message
 end module umfpack_c

@@ -6,8 +6,9 @@ program test_sparse_lu
     use kinds, only: wp
     use status, only: status_t, STATUS_SINGULAR, STATUS_BAD_INPUT
     use csr_matrix, only: csr_matrix_t
-    use sparse_lu, only: lu_t, umfpack_status_message, LU_ORDERING_DEFAULT, &
+    use sparse_lu, only: lu_t, LU_ORDERING_DEFAULT, &
                          LU_ORDERING_METIS, LU_ORDERING_NATURAL, LU_ORDERING_CHOLMOD
+    use umfpack_c, only: umfpack_status_message
     use testing, only: test_suite_t
     use fixtures, only: to_dense => csr_to_dense, five_point_matrix
     implicit none
