@@ -16,7 +16,7 @@ module hp_threshold
     use kinds, only: wp, i8
     use status, only: status_t, STATUS_NOT_MET
     use strings, only: to_string, short_real_text, seconds_text
-    use timer, only: wall_time, timings_t
+    use timer, only: wall_time, timings_t, PHASE_REDUCTION
     use run_config, only: config_t
     use problem, only: problem_t
     use hp_space, only: hp_space_t
@@ -137,6 +137,8 @@ contains
         subroutine solve_level(stat)
             type(status_t), intent(out) :: stat
             type(threshold_level_t) :: row
+            real(wp) :: start
+            start = wall_time()
             call contact_flexibility(chol, prob%contact, blocks%kt_nn, blocks%kt_nt, stat)
             if (stat%ok()) call pencil_thresholds(blocks%kt_nn, blocks%kt_nt, thr, stat)
             if (stat%ok()) call threshold_roundoff(prob%k, chol, prob%contact, blocks%kt_nn, &
@@ -151,6 +153,9 @@ contains
             if (any(onset > 0)) call collision_roundoffs(prob%k, chol, prob%contact, blocks, &
                                                          set, stat)
             if (.not. stat%ok()) return
+            call timings%add(PHASE_REDUCTION, wall_time() - start, ': contact blocks, '// &
+                             'thresholds and the boundary search, hp level '// &
+                             to_string(ladder%layers))
             row%level = ladder%layers
             row%n_dofs = prob%dofs%n_free
             row%n_contact = prob%contact%p()
