@@ -7,12 +7,14 @@
 # shapes). Levels from the third on whose true error is at least 100 times the truth's
 # uncertainty count (the others cannot be judged). Prints one line per scene and
 # quantity (level:ratio), then min, median, max and the share in [1, 10].
-# Usage: scripts/dev/hp_bar_quality.sh [NCEIG] (default build/nceig); needs gmsh. Some
-# 3 minutes on 2 cores. A side that stalls (hp_run_bar) has no bar and no ratio: the plus
-# side of half-contact-threshold, whose onset moves with the mesh.
+# Usage: scripts/dev/hp_bar_quality.sh [NCEIG [SIGMA]] (default build/nceig and &adapt
+# sigma's default, 0.15); needs gmsh. Some 3 minutes on 2 cores. A side that stalls
+# (hp_run_bar) has no bar and no ratio: the plus side of half-contact-threshold, whose
+# onset moves with the mesh.
 set -u
 root=$(cd "$(dirname "$0")/../.." && pwd)
 nceig=$(realpath "${1:-$root/build/nceig}")
+sigma=${2:+, sigma = $2}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 source "$root/scripts/lib/truth_scenes.sh"
@@ -30,7 +32,7 @@ for name in "${truth_scenes[@]}"; do
     {
         echo "$mesh"
         scene_physics_nml
-        echo "&adapt tolerance = $tol, strategy = 'hp' /"
+        echo "&adapt tolerance = $tol, strategy = 'hp'$sigma /"
         echo "&output directory = '$work/$name', vtk = .false., plot = .false., progress = .false. /"
     } >"$work/$name.nml"
     "$nceig" "$work/$name.nml" >/dev/null 2>&1

@@ -31,7 +31,7 @@ module error_bar
     private
     public :: single_bar, level_bar, hp_level_bar, hp_run_bar, three_mesh_bar, floor_reached, &
               floor_outcome, stall_outcome
-    public :: level_bar_factor, BAR_FACTOR, LEVEL_FACTOR, BAR_WINDOW
+    public :: level_bar_factor, BAR_FACTOR, LEVEL_FACTOR, BAR_WINDOW, HP_FASTEST
 
     real(wp), parameter :: BAR_FACTOR = 5.0_wp
     !> hp_level_bar's and three_mesh_bar's factor (level_bar's: level_bar_factor)
@@ -45,6 +45,8 @@ module error_bar
     !> most 1.3e-3; contact on part of a side gives 0.17 (a pencil threshold) and 1.1 (a mu
     !> that grows with every layer)
     real(wp), parameter :: HP_STALL = 0.1_wp
+    !> hp_level_bar's fastest rate per level believed on one ratio (the third level)
+    real(wp), parameter :: HP_FASTEST = 0.05_wp
     !> three_mesh_bar's bounds on the observed ratio q = 2^-r of successive changes: at most
     !> order 2 counted (a faster one seen on two changes is more likely a cancellation), at
     !> least order 0.1 (slower is no convergence: the error is then 15 times the change)
@@ -122,9 +124,16 @@ contains
     !> largest over the window, plus `roundoff`. A d_k that dips by cancellation leaves the
     !> earlier changes, carried at the largest ratio, in the bar. Up to the third level, while
     !> r rests on one ratio or none, the bar is also at least d_k, the change to the previous
-    !> level (one level behind: ten times the error at a tenfold rate); from the fourth on
-    !> the window's three ratios decide (measured over eight eigen and six threshold scenes:
-    !> bar / true error from 2.7 on, median 6 to 10, where the floor kept it at 10 to 25).
+    !> level (one level behind: ten times the error at a tenfold rate), and at the third at
+    !> least HP_FASTEST d_(k-1): its one ratio may come from two levels whose errors happen to
+    !> be equal (with sigma = 0.25, d_3 / d_2 = 1e-3 while the error stayed 1e-4, a bar 25
+    !> times too small), and a rate faster than HP_FASTEST per level is not to be believed
+    !> on one ratio. From the fourth on the window's three ratios decide. Measured over the
+    !> 14 hp quality scenes at sigma = 0.1, 0.15 and 0.25 (scripts/dev/hp_bar_quality.sh):
+    !> bar / true error at least 1.85 (281 values; without HP_FASTEST 0.04 and 0.79). Three
+    !> levels are needed: with two, and a factor 2.5, sigma = 0.1 gave 0.29. LEVEL_FACTOR 3
+    !> keeps a geometric sequence of rate r, error r d_k / (1 - r), covered while r <= 2/3,
+    !> beyond the rates hp_run_bar calls stalled (r^4 > HP_STALL: r > 0.56).
     !> Negative at the first level.
     pure real(wp) function hp_level_bar(values, roundoff) result(bar)
         real(wp), intent(in) :: values(:), roundoff
@@ -154,6 +163,7 @@ contains
         end do
         bar = windowed_bar(LEVEL_FACTOR, estimates, carry, values, &
                            [(j >= k - 1 .and. k <= 3, j=1, k)], roundoff)
+        if (k == 3) bar = max(bar, HP_FASTEST*change(2) + max(roundoff, 0.0_wp))
     end function hp_level_bar
 
     !> hp_level_bar of `values` over the trailing run of levels with `have` (the levels since

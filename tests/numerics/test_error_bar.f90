@@ -6,7 +6,7 @@
 program test_error_bar
     use kinds, only: wp
     use error_bar, only: single_bar, level_bar, hp_level_bar, hp_run_bar, three_mesh_bar, &
-                         level_bar_factor, BAR_FACTOR, LEVEL_FACTOR, BAR_WINDOW
+                         level_bar_factor, BAR_FACTOR, LEVEL_FACTOR, BAR_WINDOW, HP_FASTEST
     use testing, only: test_suite_t
     implicit none
     type(test_suite_t) :: t
@@ -19,6 +19,7 @@ program test_error_bar
     call check_missing()
     call check_hp_geometric()
     call check_hp_dip()
+    call check_hp_stagnation()
     call check_hp_start()
     call check_hp_run()
     call check_hp_stall()
@@ -106,6 +107,23 @@ contains
                            hp_level_bar(values, -1.0_wp), &
                            LEVEL_FACTOR*(0.009_wp/values(4))*(0.009_wp/0.09_wp)**2, 1.0e-9_wp)
     end subroutine check_hp_dip
+
+    !> Third level after a stagnation: 1 + 3.7e-3, then 1 + 1.0e-4 twice (the error 1e-4
+    !> unchanged, d_3 = 1e-8 of d_2 = 3.6e-3): the one ratio would give a bar of 1e-8; the
+    !> bar is HP_FASTEST d_2 = 1.8e-4, above the error; on a tenfold sequence it stays d_3.
+    subroutine check_hp_stagnation()
+        real(wp) :: values(3)
+        integer :: j
+        values = [1.0037_wp, 1.0001_wp, 1.0001_wp + 1.0e-12_wp]
+        call t%check_close('hp: a third level after a stagnation, HP_FASTEST d_2', &
+                           hp_level_bar(values, -1.0_wp), &
+                           HP_FASTEST*(values(1) - values(2))/values(3), 1.0e-6_wp)
+        call t%check('hp: that bar above the true error 1e-4', &
+                     hp_level_bar(values, -1.0_wp) >= 1.0e-4_wp)
+        values = [(1.0_wp + 10.0_wp**(-j), j=1, 3)]
+        call t%check_close('hp: a tenfold third level keeps d_3', hp_level_bar(values, -1.0_wp), &
+                           9.0e-3_wp/values(3), 1.0e-12_wp)
+    end subroutine check_hp_stagnation
 
     !> One level: no bar; two: no rate yet (1), so LEVEL_FACTOR times the change.
     subroutine check_hp_start()
