@@ -29,6 +29,8 @@
 #               and the change parts of the level bar over the true error, the level), for
 #               scripts/dev/level_factor.sh
 #   --analyse DIR  no runs: the table again from a folder kept by --keep
+# Environment: NCEIG (the binary), TRUTHS (the truths file), ADAPT (more &adapt settings of
+# the adaptive runs, e.g. ADAPT='theta = 0.5').
 # Needs gmsh and jq; 35 to over 60 minutes on 2 shared cores (the adaptive runs take most).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
@@ -112,7 +114,7 @@ if [[ -z $analyse ]]; then
                 mesh_line=$(scene_mesh_nml "$m")
             fi
             job "${scene}_a$el" "adaptive-$el" "$mesh_line" \
-                "&adapt tolerance = 1e-8, max_dofs = 60000, max_levels = 200 /"
+                "&adapt tolerance = 1e-8, max_dofs = 60000, max_levels = 200${ADAPT:+, $ADAPT} /"
         done
     done
 

@@ -41,9 +41,9 @@ module error_bar
     integer, parameter :: BAR_WINDOW = 3
     !> hp_run_bar's test of exponential convergence: the larger of two successive changes
     !> is at most HP_STALL times the larger of the two changes four levels before. Over the
-    !> 28 goals of the hp quality scenes (scripts/dev/hp_bar_quality.sh) that ratio is at
-    !> most 1.3e-3; contact on part of a side gives 0.17 (a pencil threshold) and 1.1 (a mu
-    !> that grows with every layer)
+    !> converging goals of the hp quality scenes (scripts/dev/hp_bar_quality.sh) that ratio
+    !> is at most 1.3e-3 (sigma = 0.15), 8.4e-4 (0.1) and 6.5e-3 (0.25); contact on part of a
+    !> side gives 0.17 (a pencil threshold) and 1.1 (a mu that grows with every layer)
     real(wp), parameter :: HP_STALL = 0.1_wp
     !> hp_level_bar's fastest rate per level believed on one ratio (the third level)
     real(wp), parameter :: HP_FASTEST = 0.05_wp
