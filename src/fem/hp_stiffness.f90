@@ -19,10 +19,7 @@ module hp_stiffness
     implicit none
     private
     public :: hp_reference_tables, hp_element_stiffness, hp_element_laplace, &
-              condense_interior, recover_interior, cell_coefficients, hp_cell_stiffness, &
-              hp_cell_fields, &
-              assemble_hp_stiffness, &
-              configuration_key, cached_table
+              condense_interior, recover_interior, hp_cell_fields, assemble_hp_stiffness
 
     integer, parameter :: HP_OK = 0, HP_INVERTED = 1
     public :: HP_OK, HP_INVERTED
