@@ -30,7 +30,7 @@ module error_bar
     implicit none
     private
     public :: single_bar, level_bar, hp_level_bar, hp_run_bar, three_mesh_bar, floor_reached, &
-              floor_outcome, stall_outcome
+              floor_outcome, stall_outcome, theta_warning
     public :: level_bar_factor, BAR_FACTOR, LEVEL_FACTOR, BAR_WINDOW, HP_FASTEST
 
     real(wp), parameter :: BAR_FACTOR = 5.0_wp
@@ -39,6 +39,11 @@ module error_bar
     !> level_bar's factor for elements of degree 1, 2, 3 (higher degrees, not measured: P3's)
     real(wp), parameter :: LEVEL_FACTORS(3) = [2.0_wp, 4.5_wp, 3.5_wp]
     integer, parameter :: BAR_WINDOW = 3
+    !> The smallest &adapt theta (Doerfler fraction) at which level_bar's factors were
+    !> measured (0.25, the default, and 0.5): below it each level adds fewer dofs, the
+    !> BAR_WINDOW levels a dip must outlast span less refinement, and at theta = 0.1 bars
+    !> down to 0.77 times the true error were measured (docs/accuracy.md)
+    real(wp), parameter :: THETA_MEASURED = 0.25_wp
     !> hp_run_bar's test of exponential convergence: the larger of two successive changes
     !> is at most HP_STALL times the larger of the two changes four levels before. Over the
     !> converging goals of the hp quality scenes (scripts/dev/hp_bar_quality.sh) that ratio
@@ -78,6 +83,18 @@ contains
             'floor is reached (round-off bound '//short_real_text(roundoff)// &
             ' of the error bar '//short_real_text(bar)//' at '//dofs//' dofs)'
     end function floor_outcome
+
+    !> The warning of an adaptive run with Doerfler fraction `theta` below THETA_MEASURED
+    !> ('' otherwise).
+    function theta_warning(theta) result(text)
+        real(wp), intent(in) :: theta
+        character(len=:), allocatable :: text
+        text = ''
+        if (theta >= THETA_MEASURED) return
+        text = '&adapt theta = '//short_real_text(theta)//' is below 0.25, the smallest '// &
+            'value at which the error bar was measured: at theta = 0.1 bars down to 0.77 '// &
+            'times the true error were seen, so this bar may be below it'
+    end function theta_warning
 
     !> The bar of one discretisation: BAR_FACTOR |estimate| plus `roundoff` (relative; a
     !> negative value: unknown, nothing added). Negative when `estimate` is (none).

@@ -26,6 +26,12 @@ check 'summary: the final estimate meets the tolerance' \
     'awk -v e="$(json "$s" lowest_positive_error_estimate)" "BEGIN { exit !(e > 0 && e <= 1e-5) }"'
 check 'summary: no warning' 'grep -q "\"warnings\": \[\]" "$s"'
 check 'stdout: the tolerance met' 'grep -q "tolerance 1.00E-05 met at level" "$work/stdout"'
+# below the Doerfler fractions at which the bar was measured, the run says so (exit 0)
+"$nceig" "$work/adapt.nml" --set adapt%theta=0.1 --set output%directory="$work/theta" \
+    >"$work/stdout_theta" 2>&1; rc=$?
+check 'theta = 0.1: exit 0 and a warning that the bar was not measured there' \
+    '[[ $rc -eq 0 ]] && grep -q "^warning: &adapt theta = 1.00E-01 is below 0.25" "$work/stdout_theta" &&
+     grep -q "is below 0.25" "$work/theta/summary.json"'
 check 'stdout: one progress line per level' \
     '[[ $(grep -c "adapt level" "$work/stdout") -eq $(( $(json "$s" adapt_levels) + 1 )) ]]'
 csv=$work/out/adapt.csv
