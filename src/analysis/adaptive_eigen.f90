@@ -14,7 +14,7 @@ module adaptive_eigen
     use eigen_analysis, only: eigen_result_t, solve_eigen, estimate_eigen
     use accuracy, only: WARNING_LEN, MU_VANISHED
     use adaptive_loop, only: adapt_goal_t, adapt_mesh, doerfler_marking
-    use error_bar, only: level_bar, theta_warning
+    use error_bar, only: level_bar, theta_warnings
     use element_types, only: element_degree
     implicit none
     private
@@ -80,8 +80,8 @@ contains
         out%mu_vanished = out%res%spec%lowest_positive() == 0 .and. any(out%levels%has_mu)
         if (.not. out%converged) out%res%warnings = [character(len=WARNING_LEN) :: &
                                                      out%outcome, out%res%warnings]
-        if (len(theta_warning(config%adapt%theta)) > 0) out%res%warnings = &
-            [character(len=WARNING_LEN) :: out%res%warnings, theta_warning(config%adapt%theta)]
+        out%res%warnings = [character(len=WARNING_LEN) :: out%res%warnings, &
+                            theta_warnings(config%adapt%theta)]
     end subroutine adapt_eigen
 
     subroutine eigen_goal_solve(this, config, prob, level, loop_start, timings, stat)

@@ -49,7 +49,7 @@ module adaptive_threshold
     use boundary_estimate, only: enriched_pair_lambdas, onset_bars_t
     use eigen_analysis, only: eigen_result_t, eigen_with_factor, SOLVER_DENSE
     use error_estimate, only: error_estimate_t, estimate_lowest_error
-    use error_bar, only: level_bar, theta_warning
+    use error_bar, only: level_bar, theta_warnings
     use roundoff, only: threshold_roundoff, collision_roundoffs
     use element_types, only: element_degree
     implicit none
@@ -168,9 +168,8 @@ contains
                                              out%estimate, last_onset_bars(out), out%coarse)
         if (stat%ok() .and. .not. out%converged) res%eigen%warnings = &
             [character(len=len(res%eigen%warnings)) :: out%outcome, res%eigen%warnings]
-        if (stat%ok() .and. len(theta_warning(config%adapt%theta)) > 0) res%eigen%warnings = &
-            [character(len=len(res%eigen%warnings)) :: res%eigen%warnings, &
-             theta_warning(config%adapt%theta)]
+        if (stat%ok()) res%eigen%warnings = [character(len=len(res%eigen%warnings)) :: &
+                                             res%eigen%warnings, theta_warnings(config%adapt%theta)]
     end subroutine solve_adapted_thresholds
 
     !> Factor K, form the contact blocks, solve the pencil, and estimate both thresholds.

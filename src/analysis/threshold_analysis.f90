@@ -36,6 +36,7 @@ module threshold_analysis
     use threshold_estimate, only: threshold_estimate_t, threshold_displacements, &
                                   estimate_threshold_errors
     use accuracy, only: WARNING_LEN, roundoff_warnings
+    use error_bar, only: theta_warnings
     use halved_mesh, only: build_halved_problem
     implicit none
     private
@@ -164,6 +165,9 @@ contains
         if (config%adapt%tolerance > 0.0_wp) then
             call adaptive_sweep(config, prob, res%sweep, timings, stat)
             if (.not. stat%ok()) return
+            ! the points' own warnings are not kept (record): the run's stands for them
+            if (config%adapt%strategy /= 'hp') res%eigen%warnings = [character(len=WARNING_LEN) &
+                :: res%eigen%warnings, theta_warnings(config%adapt%theta)]
             res%time_sweep = wall_time() - start
             call timings%note('sweep      '//seconds_text(res%time_sweep)//' s: '// &
                 to_string(size(res%sweep%lambda))//' lambdas, adapted to '// &

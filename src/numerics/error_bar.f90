@@ -27,10 +27,11 @@
 module error_bar
     use kinds, only: wp
     use strings, only: short_real_text
+    use accuracy, only: WARNING_LEN
     implicit none
     private
     public :: single_bar, level_bar, hp_level_bar, hp_run_bar, three_mesh_bar, floor_reached, &
-              floor_outcome, stall_outcome, theta_warning
+              floor_outcome, stall_outcome, theta_warnings
     public :: level_bar_factor, BAR_FACTOR, LEVEL_FACTOR, BAR_WINDOW, HP_FASTEST
 
     real(wp), parameter :: BAR_FACTOR = 5.0_wp
@@ -84,17 +85,18 @@ contains
             ' of the error bar '//short_real_text(bar)//' at '//dofs//' dofs)'
     end function floor_outcome
 
-    !> The warning of an adaptive run with Doerfler fraction `theta` below THETA_MEASURED
-    !> ('' otherwise).
-    function theta_warning(theta) result(text)
+    !> The warnings of an h-adaptive run with Doerfler fraction `theta`: one below
+    !> THETA_MEASURED, none otherwise (appended as accuracy's roundoff_warnings are).
+    function theta_warnings(theta) result(warnings)
         real(wp), intent(in) :: theta
-        character(len=:), allocatable :: text
-        text = ''
+        character(len=WARNING_LEN), allocatable :: warnings(:)
+        allocate (warnings(0))
         if (theta >= THETA_MEASURED) return
-        text = '&adapt theta = '//short_real_text(theta)//' is below 0.25, the smallest '// &
-            'value at which the error bar was measured: at theta = 0.1 bars down to 0.77 '// &
-            'times the true error were seen, so this bar may be below it'
-    end function theta_warning
+        warnings = [character(len=WARNING_LEN) :: '&adapt theta = '//short_real_text(theta)// &
+            ' is below 0.25, the smallest value at which the error bar was measured: at '// &
+            'theta = 0.1 bars down to 0.77 times the true error were seen, so this bar may '// &
+            'be below it']
+    end function theta_warnings
 
     !> The bar of one discretisation: BAR_FACTOR |estimate| plus `roundoff` (relative; a
     !> negative value: unknown, nothing added). Negative when `estimate` is (none).

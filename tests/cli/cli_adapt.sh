@@ -32,6 +32,12 @@ check 'stdout: the tolerance met' 'grep -q "tolerance 1.00E-05 met at level" "$w
 check 'theta = 0.1: exit 0 and a warning that the bar was not measured there' \
     '[[ $rc -eq 0 ]] && grep -q "^warning: &adapt theta = 1.00E-01 is below 0.25" "$work/stdout_theta" &&
      grep -q "is below 0.25" "$work/theta/summary.json"'
+# and a lambda sweep adapted at each lambda says it once, for the run
+"$nceig" "$work/adapt.nml" --set adapt%theta=0.1 --set adapt%tolerance=1e-4 \
+    --set analysis%kind=lambda_sweep --set sweep%lambdas=3.0,5.0 \
+    --set output%directory="$work/theta_sweep" >"$work/stdout_theta" 2>&1; rc=$?
+check 'theta = 0.1, lambda sweep: exit 0 and the warning once' \
+    '[[ $rc -eq 0 && $(grep -c "^warning: &adapt theta = 1.00E-01 is below 0.25" "$work/stdout_theta") -eq 1 ]]'
 check 'stdout: one progress line per level' \
     '[[ $(grep -c "adapt level" "$work/stdout") -eq $(( $(json "$s" adapt_levels) + 1 )) ]]'
 csv=$work/out/adapt.csv
