@@ -14,7 +14,8 @@
 # lambda_critical_plus/minus_error_bar, adapt.csv error_bar(_plus/_minus) when present,
 # else the error estimate: lowest_positive_error_estimate, ..._error_estimate,
 # error_estimate(_plus/_minus); the table says which) over its true relative error, and
-# prints min, median, max and the share in [1, 10] per family and overall. 'threshold'
+# prints min, median, max and the share in [1, 10] per family and overall (and the adaptive
+# values by how far their true error dipped below its trend: docs/accuracy.md). 'threshold'
 # scenes give the critical lambdas (uniform threshold runs and kind = 'threshold'
 # adaptive): lambda+ and lambda-, or where a scene's truths are collision onsets
 # (lambda_onset_*), boundary_error_bar and the adapt.csv collision columns. Values whose
@@ -26,8 +27,8 @@
 #   --keep DIR  work in DIR (created; must not exist) and keep it: jobs/NAME.nml and .meta,
 #               out/NAME/adapt.csv and summary.json of every run, and 'ratios', one line per
 #               value (scene family quantity source ratio; adaptive values add the envelope
-#               and the change parts of the level bar over the true error, the level), for
-#               scripts/dev/level_factor.sh
+#               and the change parts of the level bar over the true error, the level, for
+#               scripts/dev/level_factor.sh, and the dip of the true error below its trend)
 #   --analyse DIR  no runs: the table again from a folder kept by --keep
 # Environment: NCEIG (the binary), TRUTHS (the truths file), ADAPT (more &adapt settings of
 # the adaptive runs, e.g. ADAPT='theta = 0.5').
@@ -148,9 +149,12 @@ ratio_lines() {
                 esac
                 # after the ratio: level_bar's two parts over the true error (the envelope
                 # of the window's estimates carried at the optimal rate, the change over the
-                # window) and the level, to recompute the bar with another level factor
+                # window) and the level, to recompute the bar with another level factor; the
+                # window as error_bar's: w levels and those before with dofs(k) / g or more;
+                # last, the dip: the largest of the window's true errors carried at the
+                # optimal rate over this level's (above 1: the error fell below its trend)
                 awk -F, -v v="$vcol" -v e="$ecol" -v b="$bcol" -v t="$truth" -v u="$unc" \
-                    -v p="${family#adaptive-p}" -v w=3 \
+                    -v p="${family#adaptive-p}" -v w=3 -v g=1.4 \
                     -v pre="$scene $family $q" 'BEGIN { OFMT = "%.10g" }
                     NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
                     { k = NR - 1; dofs[k] = $c["n_dofs"]; val[k] = $c[v]
@@ -160,11 +164,16 @@ ratio_lines() {
                         err = ($c[v] - t) / t; if (err < 0) err = -err
                         if (err < 100 * u) { print pre, src, "skip"; next }
                         if (src == "none") { print pre, "none", "none"; next }
-                        env = 0; moved = 0
-                        for (j = (k - w + 1 > 0 ? k - w + 1 : 0); j <= k; j++) if (est[j] >= 0) {
+                        env = 0; moved = 0; trend = 0
+                        first = (k - w + 1 > 1) ? k - w + 1 : 1
+                        while (first > 1 && g * dofs[first - 1] >= dofs[k]) first--
+                        for (j = first; j <= k; j++) if (est[j] >= 0) {
                             x = est[j] * (dofs[j] / dofs[k]) ^ p; if (x > env) env = x
-                            x = (val[k] - val[j]) / val[k]; if (x < 0) x = -x; if (x > moved) moved = x }
-                        print pre, src, (src == "bar" ? $c[b] : $c[e]) / err, env / err, moved / err, $1 }' "$out/adapt.csv"
+                            x = (val[k] - val[j]) / val[k]; if (x < 0) x = -x; if (x > moved) moved = x
+                            x = (val[j] - t) / t; if (x < 0) x = -x
+                            x *= (dofs[j] / dofs[k]) ^ p; if (x > trend) trend = x }
+                        print pre, src, (src == "bar" ? $c[b] : $c[e]) / err, env / err, moved / err, $1,
+                            trend / err }' "$out/adapt.csv"
             else
                 jq -r --arg q "$q" --arg t "$truth" --arg u "$unc" --arg pre "$scene $family $q" '
                     (.[$q]) as $v
@@ -212,6 +221,14 @@ for group in mu lambda; do
     awk "$sel" "$work/ratios" | summarise "  all"
 done
 awk '1' "$work/ratios" | summarise "overall"
+echo
+# a bar cannot follow a true error that falls by cancellation at one level (the estimates
+# dip too, and a bar that believed such dips would fall below the error elsewhere): the
+# adaptive values by how far their true error dipped below the window's trend
+echo "adaptive values by the dip of the true error (the window's, carried, over its own):"
+awk '$2 ~ /^adaptive/ && NF >= 9 && $9 < 3' "$work/ratios" | summarise "  dip below 3"
+awk '$2 ~ /^adaptive/ && NF >= 9 && $9 >= 3 && $9 < 10' "$work/ratios" | summarise "  dip 3 to 10"
+awk '$2 ~ /^adaptive/ && NF >= 9 && $9 >= 10' "$work/ratios" | summarise "  dip 10 or more"
 echo
 echo "per scene (all families):"
 for scene in "${scenes[@]}"; do awk -v s="$scene" '$1 == s' "$work/ratios" | summarise "  $scene"; done

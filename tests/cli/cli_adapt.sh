@@ -27,17 +27,17 @@ check 'summary: the final estimate meets the tolerance' \
 check 'summary: no warning' 'grep -q "\"warnings\": \[\]" "$s"'
 check 'stdout: the tolerance met' 'grep -q "tolerance 1.00E-05 met at level" "$work/stdout"'
 # below the Doerfler fractions at which the bar was measured, the run says so (exit 0)
-"$nceig" "$work/adapt.nml" --set adapt%theta=0.1 --set output%directory="$work/theta" \
+"$nceig" "$work/adapt.nml" --set adapt%theta=0.05 --set output%directory="$work/theta" \
     >"$work/stdout_theta" 2>&1; rc=$?
-check 'theta = 0.1: exit 0 and a warning that the bar was not measured there' \
-    '[[ $rc -eq 0 ]] && grep -q "^warning: &adapt theta = 1.00E-01 is below 0.25" "$work/stdout_theta" &&
-     grep -q "is below 0.25" "$work/theta/summary.json"'
+check 'theta = 0.05: exit 0 and a warning that the bar was not measured there' \
+    '[[ $rc -eq 0 ]] && grep -q "^warning: &adapt theta = 5.00E-02 is below 0.1" "$work/stdout_theta" &&
+     grep -q "is below 0.1" "$work/theta/summary.json"'
 # and a lambda sweep adapted at each lambda says it once, for the run
-"$nceig" "$work/adapt.nml" --set adapt%theta=0.1 --set adapt%tolerance=1e-4 \
+"$nceig" "$work/adapt.nml" --set adapt%theta=0.05 --set adapt%tolerance=1e-4 \
     --set analysis%kind=lambda_sweep --set sweep%lambdas=3.0,5.0 \
     --set output%directory="$work/theta_sweep" >"$work/stdout_theta" 2>&1; rc=$?
-check 'theta = 0.1, lambda sweep: exit 0 and the warning once' \
-    '[[ $rc -eq 0 && $(grep -c "^warning: &adapt theta = 1.00E-01 is below 0.25" "$work/stdout_theta") -eq 1 ]]'
+check 'theta = 0.05, lambda sweep: exit 0 and the warning once' \
+    '[[ $rc -eq 0 && $(grep -c "^warning: &adapt theta = 5.00E-02 is below 0.1" "$work/stdout_theta") -eq 1 ]]'
 check 'stdout: one progress line per level' \
     '[[ $(grep -c "adapt level" "$work/stdout") -eq $(( $(json "$s" adapt_levels) + 1 )) ]]'
 csv=$work/out/adapt.csv

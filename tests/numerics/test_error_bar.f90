@@ -1,8 +1,9 @@
 ! SPDX-License-Identifier: MIT
 !> error_bar: the bar is BAR_FACTOR times the estimate plus the round-off part, and along
-!> adaptive levels level_bar_factor(degree) times the envelope of the last BAR_WINDOW estimates carried
-!> at the optimal rate, so that a single dip of the estimate cannot make the bar small, and
-!> at least the change of the value over those levels.
+!> adaptive levels level_bar_factor(degree) times the envelope of the window's estimates
+!> (the last BAR_WINDOW levels and those before with at least 1 / WINDOW_GROWTH of the
+!> dofs) carried at the optimal rate, so that a single dip of the estimate cannot make the
+!> bar small, and at least the change of the value over those levels.
 program test_error_bar
     use kinds, only: wp
     use error_bar, only: single_bar, level_bar, hp_level_bar, hp_run_bar, three_mesh_bar, &
@@ -16,6 +17,7 @@ program test_error_bar
     call check_dip_bridged()
     call check_moving_value()
     call check_window_forgets()
+    call check_window_spans_dofs()
     call check_missing()
     call check_hp_geometric()
     call check_hp_dip()
@@ -58,17 +60,38 @@ contains
                            150.0_wp/250.0_wp, 1.0e-14_wp)
     end subroutine check_moving_value
 
-    !> A level older than BAR_WINDOW no longer counts.
+    !> A level older than BAR_WINDOW levels, with fewer than 1 / WINDOW_GROWTH of the last
+    !> level's dofs, no longer counts: dofs doubling per level, the last estimate 1e-9 is
+    !> the largest of the window once carried.
     subroutine check_window_forgets()
         real(wp) :: estimates(BAR_WINDOW + 1), bar
         integer :: dofs(BAR_WINDOW + 1), i
         estimates = 1.0e-9_wp
         estimates(1) = 1.0_wp
-        dofs = 100
+        dofs = [(100*2**i, i=0, BAR_WINDOW)]
         bar = level_bar(estimates, [(1.0_wp, i=1, BAR_WINDOW + 1)], dofs, 2, -1.0_wp)
         call t%check_close('a level older than the window is forgotten', bar, &
                            level_bar_factor(2)*1.0e-9_wp, 1.0e-14_wp)
     end subroutine check_window_forgets
+
+    !> Levels that add 1 % of the dofs each (a small &adapt theta): the window reaches back
+    !> over a growth of WINDOW_GROWTH, not only BAR_WINDOW levels, so the first level's
+    !> estimate 1, ten levels back at 1000 / 1100 of the dofs, carried by (1/1.1)^2 for
+    !> degree 2, is the bar; with 1000 / 1500 of the dofs it is out of the window.
+    subroutine check_window_spans_dofs()
+        real(wp) :: estimates(11)
+        integer :: dofs(11), i
+        estimates = 1.0e-9_wp
+        estimates(1) = 1.0_wp
+        dofs = [(1000 + 10*i, i=0, 10)]
+        call t%check_close('a window over a growth of the dofs', &
+                           level_bar(estimates, [(1.0_wp, i=1, 11)], dofs, 2, -1.0_wp), &
+                           level_bar_factor(2)*(1000.0_wp/1100.0_wp)**2, 1.0e-13_wp)
+        dofs = [(1000 + 50*i, i=0, 10)]
+        call t%check_close('a level beyond that growth is forgotten', &
+                           level_bar(estimates, [(1.0_wp, i=1, 11)], dofs, 2, -1.0_wp), &
+                           level_bar_factor(2)*1.0e-9_wp, 1.0e-13_wp)
+    end subroutine check_window_spans_dofs
 
     subroutine check_missing()
         call t%check('no estimate at the last level: no bar', &
@@ -141,7 +164,7 @@ contains
         logical :: stalled
         call hp_run_bar([.true., .false., .true., .true.], VALUES, -1.0_wp, bar, change, stalled)
         call t%check('hp run: the bar of the last two levels, the change 0.5 / 2.5', &
-                     bar == hp_level_bar(VALUES(3:4), -1.0_wp) .and. &
+                     abs(bar - hp_level_bar(VALUES(3:4), -1.0_wp)) <= 1.0e-15_wp .and. &
                      abs(change - 0.2_wp) <= 1.0e-15_wp)
         call hp_run_bar([.true., .true., .false., .true.], VALUES, -1.0_wp, bar, change, stalled)
         call t%check('hp run: one level long, none', bar < 0.0_wp .and. change < 0.0_wp)
