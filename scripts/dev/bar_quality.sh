@@ -28,10 +28,14 @@
 #               out/NAME/adapt.csv and summary.json of every run, and 'ratios', one line per
 #               value (scene family quantity source ratio; adaptive values add the envelope
 #               and the change parts of the level bar over the true error, the level, for
-#               scripts/dev/level_factor.sh, and the dip of the true error below its trend)
+#               scripts/dev/level_factor.sh, the dip of the true error below its trend,
+#               and the two parts again with the window WINDOW)
 #   --analyse DIR  no runs: the table again from a folder kept by --keep
 # Environment: NCEIG (the binary), TRUTHS (the truths file), ADAPT (more &adapt settings of
-# the adaptive runs, e.g. ADAPT='theta = 0.5').
+# the adaptive runs, e.g. ADAPT='theta = 0.5'); for 'ratios' only: WINDOW_WAS, the window
+# growth of the build that made the runs (default 1.4, error_bar's WINDOW_GROWTH; 0 for a
+# build before it, whose window was three levels), and WINDOW, another growth for
+# scripts/dev/level_factor.sh --window (default 1.4).
 # Needs gmsh and jq; 35 to over 60 minutes on 2 shared cores (the adaptive runs take most).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
@@ -150,12 +154,26 @@ ratio_lines() {
                 # after the ratio: level_bar's two parts over the true error (the envelope
                 # of the window's estimates carried at the optimal rate, the change over the
                 # window) and the level, to recompute the bar with another level factor; the
-                # window as error_bar's: w levels and those before with dofs(k) / g or more;
-                # last, the dip: the largest of the window's true errors carried at the
-                # optimal rate over this level's (above 1: the error fell below its trend)
+                # window as error_bar's: w levels and those before with dofs(k) / g or more
+                # (g of the build that made the runs). Then the dip: the largest of the
+                # window's true errors carried at the optimal rate over this level's (above
+                # 1: the error fell below its trend); and the two parts again with the
+                # window of growth g2, to recompute the bar with another window
                 awk -F, -v v="$vcol" -v e="$ecol" -v b="$bcol" -v t="$truth" -v u="$unc" \
-                    -v p="${family#adaptive-p}" -v w=3 -v g=1.4 \
-                    -v pre="$scene $family $q" 'BEGIN { OFMT = "%.10g" }
+                    -v p="${family#adaptive-p}" -v w=3 -v g="${WINDOW_WAS:-1.4}" \
+                    -v g2="${WINDOW:-1.4}" -v pre="$scene $family $q" '
+                    # env, moved, trend over the window of growth gg at level k
+                    function window(gg,    first, j, x) {
+                        env = 0; moved = 0; trend = 0
+                        first = (k - w + 1 > 1) ? k - w + 1 : 1
+                        while (first > 1 && gg * dofs[first - 1] >= dofs[k]) first--
+                        for (j = first; j <= k; j++) if (est[j] >= 0) {
+                            x = est[j] * (dofs[j] / dofs[k]) ^ p; if (x > env) env = x
+                            x = (val[k] - val[j]) / val[k]; if (x < 0) x = -x; if (x > moved) moved = x
+                            x = (val[j] - t) / t; if (x < 0) x = -x
+                            x *= (dofs[j] / dofs[k]) ^ p; if (x > trend) trend = x }
+                    }
+                    BEGIN { OFMT = "%.10g" }
                     NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
                     { k = NR - 1; dofs[k] = $c["n_dofs"]; val[k] = $c[v]
                       est[k] = (c[e] && $c[e] != "" && $c[v] != "") ? $c[e] : -1 }
@@ -164,16 +182,10 @@ ratio_lines() {
                         err = ($c[v] - t) / t; if (err < 0) err = -err
                         if (err < 100 * u) { print pre, src, "skip"; next }
                         if (src == "none") { print pre, "none", "none"; next }
-                        env = 0; moved = 0; trend = 0
-                        first = (k - w + 1 > 1) ? k - w + 1 : 1
-                        while (first > 1 && g * dofs[first - 1] >= dofs[k]) first--
-                        for (j = first; j <= k; j++) if (est[j] >= 0) {
-                            x = est[j] * (dofs[j] / dofs[k]) ^ p; if (x > env) env = x
-                            x = (val[k] - val[j]) / val[k]; if (x < 0) x = -x; if (x > moved) moved = x
-                            x = (val[j] - t) / t; if (x < 0) x = -x
-                            x *= (dofs[j] / dofs[k]) ^ p; if (x > trend) trend = x }
+                        window(g2); env2 = env; moved2 = moved
+                        window(g)
                         print pre, src, (src == "bar" ? $c[b] : $c[e]) / err, env / err, moved / err, $1,
-                            trend / err }' "$out/adapt.csv"
+                            trend / err, env2 / err, moved2 / err }' "$out/adapt.csv"
             else
                 jq -r --arg q "$q" --arg t "$truth" --arg u "$unc" --arg pre "$scene $family $q" '
                     (.[$q]) as $v

@@ -11,21 +11,31 @@
 #   share in [1, 10], count above 10).
 # The round-off part of each bar is what the run's bar exceeds max(WAS x envelope, change)
 # by, WAS the factor of the build that made the folder (default 3 for every degree).
-# Usage: scripts/dev/level_factor.sh [--was F1,F2,F3] DIR F1,F2,F3
+# --window: the recomputed bars take the envelope and change over the other window of the
+# ratios file (bar_quality.sh's WINDOW), the round-off part still from the build's.
+# Usage: scripts/dev/level_factor.sh [--was F1,F2,F3] [--window] DIR F1,F2,F3
 set -euo pipefail
-was=3,3,3
-if [[ ${1:-} == --was ]]; then was=$2; shift 2; fi
-(($# == 2)) || { echo "usage: level_factor.sh [--was F1,F2,F3] DIR F1,F2,F3" >&2; exit 2; }
+was=3,3,3 other=0
+while [[ ${1:-} == --* ]]; do
+    case $1 in
+        --was) was=$2; shift 2 ;;
+        --window) other=1; shift ;;
+        *) echo "level_factor: unknown option $1" >&2; exit 2 ;;
+    esac
+done
+(($# == 2)) || { echo "usage: level_factor.sh [--was F1,F2,F3] [--window] DIR F1,F2,F3" >&2; exit 2; }
 dir=$1 factors=$2
 [[ -f $dir/ratios ]] || { echo "level_factor: $dir/ratios missing (bar_quality.sh --keep DIR)" >&2; exit 1; }
-# ratios: scene family quantity source ratio envelope/err change/err level
-awk -v was="$was" -v fac="$factors" '
+# ratios: scene family quantity source ratio envelope/err change/err level dip
+# envelope/err change/err (the other window)
+awk -v was="$was" -v fac="$factors" -v other="$other" '
     BEGIN { split(was, w, ","); split(fac, f, ",") }
     $2 ~ /^adaptive-p/ && $4 == "bar" && NF >= 8 {
         p = substr($2, 11) + 0; env = $6; mv = $7
         core = (w[p] * env > mv) ? w[p] * env : mv
         ro = $5 - core
         if (ro < -1e-8 * core) { off++; ro = 0 }
+        if (other) { if (NF < 11) { short++; next }; env = $10; mv = $11 }
         n[p]++
         if (!(p in lo) || env < lo[p]) { lo[p] = env; at[p] = $1 " " $3 " level " $8 }
         for (t = 1; t <= 2; t++) {
@@ -36,6 +46,8 @@ awk -v was="$was" -v fac="$factors" '
         ratio[p, n[p]] = r
     }
     END {
+        if (short) printf "level_factor: %d lines without the other window (bar_quality.sh --analyse DIR again)\n", \
+            short > "/dev/stderr"
         if (off) printf "level_factor: %d bars below max(WAS x envelope, change): not made with WAS = %s\n", \
             off, was > "/dev/stderr"
         printf "%-3s %5s %10s %8s %8s %8s %8s %8s %7s %5s  %s\n", "deg", "n", "min env/e", "need>=1", \
