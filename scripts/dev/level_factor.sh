@@ -18,7 +18,8 @@ set -euo pipefail
 was=3,3,3 other=0
 while [[ ${1:-} == --* ]]; do
     case $1 in
-        --was) was=$2; shift 2 ;;
+        --was) [[ $# -ge 2 ]] || { echo "level_factor: --was needs F1,F2,F3" >&2; exit 2; }
+            was=$2; shift 2 ;;
         --window) other=1; shift ;;
         *) echo "level_factor: unknown option $1" >&2; exit 2 ;;
     esac
@@ -31,11 +32,12 @@ dir=$1 factors=$2
 awk -v was="$was" -v fac="$factors" -v other="$other" '
     BEGIN { split(was, w, ","); split(fac, f, ",") }
     $2 ~ /^adaptive-p/ && $4 == "bar" && NF >= 8 {
+        if (other && NF < 11) { short++; next }
         p = substr($2, 11) + 0; env = $6; mv = $7
         core = (w[p] * env > mv) ? w[p] * env : mv
         ro = $5 - core
         if (ro < -1e-8 * core) { off++; ro = 0 }
-        if (other) { if (NF < 11) { short++; next }; env = $10; mv = $11 }
+        if (other) { env = $10; mv = $11 }
         n[p]++
         if (!(p in lo) || env < lo[p]) { lo[p] = env; at[p] = $1 " " $3 " level " $8 }
         for (t = 1; t <= 2; t++) {

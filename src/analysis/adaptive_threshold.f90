@@ -392,8 +392,8 @@ contains
         end do
     end subroutine estimate_collisions
 
-    !> Each side's bar at the last of `levels` (error_bar: the last BAR_WINDOW levels where
-    !> that side was found and estimated), into the last row and `est`.
+    !> Each side's bar at the last of `levels` (error_bar's level_bar over its window of the
+    !> levels where that side was found and estimated), into the last row and `est`.
     subroutine level_bars(levels, degree, roundoff, est)
         type(threshold_level_t), intent(inout) :: levels(:)
         integer, intent(in) :: degree

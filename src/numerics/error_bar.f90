@@ -16,8 +16,8 @@
 !> value that still moves by more than the bar claims is not converged: a mode that moves
 !> with the mesh gets a large bar). The window: the last BAR_WINDOW levels and every level
 !> before them with at least 1 / WINDOW_GROWTH of level k's dofs (a dip lasts about as long
-!> in dofs as in levels: with &adapt theta = 0.1 each level adds 6 % of the dofs, and three
-!> levels alone left bars at 0.77 times the true error). The factor per degree comes from
+!> in dofs as in levels: with &adapt theta = 0.1 each level adds 6 to 8 % of the dofs, and
+!> three levels alone left bars at 0.77 times the true error). The factor per degree comes from
 !> the adaptive runs of scripts/dev/bar_quality.sh (14 scenes, levels from the 3rd on, at
 !> theta = 0.1, 0.25 and 0.5; scripts/dev/level_factor.sh): where the change does not cover
 !> the error, the carried estimates fall to 0.79 (P1), 0.30 (P2: the error grows again
@@ -25,7 +25,7 @@
 !> factors of 1.39, 3.61 and 3.72 would keep every measured bar at least 1.1 times it. 2, 4
 !> keep P1 and P2 at least 1.58 and 1.22; P3's 3.5 leaves 1.04 at theta = 0.5 and 1.30 at
 !> 0.25, where 3.7 would add values above ten times the error (docs/accuracy.md, "Quality
-!> of the error bars"). A single factor of 3 left P2 at 0.77.
+!> of the error bars"). A single factor of 3 leaves P2 at 0.915 (0.77 with three levels).
 !> The floating-point part is added where known (roundoff >= 0); once it is at least the
 !> rest of the bar, a finer level cannot lower the bar (floor_reached).
 module error_bar
@@ -45,8 +45,8 @@ module error_bar
     real(wp), parameter :: LEVEL_FACTORS(3) = [2.0_wp, 4.0_wp, 3.5_wp]
     integer, parameter :: BAR_WINDOW = 3
     !> level_bar's window reaches back over this growth of the dofs (at least BAR_WINDOW
-    !> levels): about what three levels span at the default theta = 0.25 (median 1.29 to
-    !> 1.42 by degree). Recomputing the bars of the bar_quality.sh runs at theta = 0.1,
+    !> levels): about what three levels (two refinements) span at the default theta = 0.25
+    !> (median 1.29 to 1.42 by degree). Recomputing the bars of the bar_quality.sh runs at theta = 0.1,
     !> 0.25 and 0.5 with windows of 1.15 to 1.6 (docs/accuracy.md, "Another Doerfler
     !> fraction"): 1.2 still leaves 0.86 at theta = 0.1, 1.25 gives at least 1.10 and 1.4
     !> at least 1.47 there; a wider window only raises bars, and at 0.25 1.4 moves 2 to 3 %
