@@ -46,11 +46,11 @@ module error_bar
     integer, parameter :: BAR_WINDOW = 3
     !> level_bar's window reaches back over this growth of the dofs (at least BAR_WINDOW
     !> levels): about what three levels (two refinements) span at the default theta = 0.25
-    !> (median 1.29 to 1.42 by degree). Recomputing the bars of the bar_quality.sh runs at theta = 0.1,
-    !> 0.25 and 0.5 with windows of 1.15 to 1.6 (docs/accuracy.md, "Another Doerfler
-    !> fraction"): 1.2 still leaves 0.86 at theta = 0.1, 1.25 gives at least 1.10 and 1.4
-    !> at least 1.47 there; a wider window only raises bars, and at 0.25 1.4 moves 2 to 3 %
-    !> of the P2 and P3 values above ten times the true error
+    !> (median 1.29 to 1.42 by degree). Recomputing the bars of the bar_quality.sh runs at
+    !> theta = 0.1, 0.25 and 0.5 with windows of 1.15 to 1.6 (docs/accuracy.md, "Another
+    !> Doerfler fraction"): 1.2 still leaves 0.86 at theta = 0.1, 1.25 gives at least 1.10
+    !> and 1.4 at least 1.47 there; a wider window only raises bars, and at 0.25 1.4 moves
+    !> 2 to 3 % of the P2 and P3 values above ten times the true error
     real(wp), parameter :: WINDOW_GROWTH = 1.4_wp
     !> The smallest &adapt theta (Doerfler fraction) at which level_bar was measured (0.1,
     !> 0.25, the default, and 0.5): below it each level adds still fewer dofs
