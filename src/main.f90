@@ -11,6 +11,8 @@ program nceig
     use strings, only: to_string
     use run_config, only: config_t
     use input_config, only: read_input
+    use run_inputs, only: run_inputs_t, translate_input
+    use method_options, only: REFINE_NONE, REFINE_HP
     use command_line, only: command_t, read_command_line
     use input_help, only: help_text
     use problem, only: problem_t, build_problem
@@ -23,6 +25,7 @@ program nceig
 
     character(len=*), parameter :: PROGRAM_NAME = 'nceig'
     type(config_t) :: config
+    type(run_inputs_t) :: inputs
     type(problem_t) :: prob
     class(analysis_t), allocatable :: analysis
     type(timings_t) :: timings
@@ -49,8 +52,9 @@ program nceig
     call read_input(command%input, config, stat, command%settings)
     call stop_on_failure(PROGRAM_NAME, stat)
 
-    call new_analysis(trim(config%analysis%kind), config%adapt%tolerance > 0.0_wp, analysis, &
-                      trim(config%adapt%strategy))   ! &adapt strategy: 'h' or 'hp'
+    call translate_input(config, inputs)
+    call new_analysis(inputs%analysis_name, inputs%adapt%refine /= REFINE_NONE, analysis, &
+                      merge('hp', 'h ', inputs%adapt%refine == REFINE_HP))
     if (.not. allocated(analysis)) then
         call stop_with(PROGRAM_NAME, config%input_file//': &analysis: kind = '''// &
                        trim(config%analysis%kind)//''' has no analysis', STATUS_BAD_INPUT)
@@ -62,7 +66,11 @@ program nceig
                             trim(config%analysis%kind)//'), started')
     end if
     phase = wall_time()
-    call build_problem(config, prob, stat, analysis%needs_all_dofs)
+    if (analysis%needs_all_dofs) then
+        call build_problem(inputs%scene, prob, stat, input_units_for=inputs%analysis_name)
+    else
+        call build_problem(inputs%scene, prob, stat)
+    end if
     call stop_on_failure(PROGRAM_NAME, stat)
     call timings%add(PHASE_ASSEMBLY, wall_time() - phase, ': '//to_string(prob%mesh%n_cells())// &
         ' cells, '//to_string(prob%dofs%n_free)//' dofs, '//to_string(prob%contact%p())// &
@@ -74,9 +82,9 @@ program nceig
         write (error_unit, '(a)') 'nceig: '//config%input_file//': '//stat%message
         call exit_now(stat%code)
     end if
-    call run_analysis(analysis, config, prob, start, timings, stat)
+    call run_analysis(analysis, inputs, prob, start, timings, stat)
     call stop_on_failure(PROGRAM_NAME, stat)
-    write (output_unit, '(a)', iostat=ios) analysis%report(config, prob)
+    write (output_unit, '(a)', iostat=ios) analysis%report(inputs, prob)
     call stop_on_failure(PROGRAM_NAME, analysis%verdict)
     ! gfortran 12 keeps main-program allocatables in a frame gone before LeakSanitizer looks
     deallocate (command%action, command%input, command%settings)

@@ -9,9 +9,10 @@ module adaptive_eigen
     use status, only: status_t
     use strings, only: to_string, short_real_text
     use timer, only: wall_time, timings_t
-    use run_config, only: config_t
+    use scene, only: scene_t
+    use method_options, only: eigen_options_t, adapt_options_t, ESTIMATE_ON
     use problem, only: problem_t
-    use eigen_analysis, only: eigen_result_t, solve_eigen, estimate_eigen
+    use eigen_solve, only: eigen_result_t, solve_eigen, estimate_eigen
     use accuracy, only: WARNING_LEN, MU_VANISHED
     use adaptive_loop, only: adapt_goal_t, adapt_mesh, doerfler_marking
     use error_bar, only: level_bar, theta_warnings
@@ -47,8 +48,11 @@ module adaptive_eigen
         character(len=:), allocatable :: outcome
     end type adaptive_result_t
 
-    !> The goal: the lowest positive mu at &analysis lambda.
+    !> The goal: the lowest positive mu at `lambda`.
     type, extends(adapt_goal_t) :: eigen_goal_t
+        real(wp) :: lambda = 0.0_wp
+        !> the run's, with the estimate on: the loop is driven by it, whatever the size
+        type(eigen_options_t) :: options
         type(adapt_level_t), allocatable :: levels(:)
         type(eigen_result_t) :: res
     contains
@@ -60,11 +64,15 @@ module adaptive_eigen
 
 contains
 
-    !> Run the loop from the problem `start` (level 0) of `config`; `out` holds every level
-    !> and the last one solved. A limit reached is no failure (stat ok, out%converged false,
-    !> out%outcome and a warning of out%res say so).
-    subroutine adapt_eigen(config, start, out, timings, stat)
-        type(config_t), intent(in) :: config
+    !> Run the loop for the lowest positive mu at `lambda` from the problem `start` (level 0)
+    !> of the scene `scn`, solved as `options` and refined as `adapt` ask; `out` holds every
+    !> level and the last one solved. A limit reached is no failure (stat ok, out%converged
+    !> false, out%outcome and a warning of out%res say so).
+    subroutine adapt_eigen(scn, lambda, options, adapt, start, out, timings, stat)
+        type(scene_t), intent(in) :: scn
+        real(wp), intent(in) :: lambda
+        type(eigen_options_t), intent(in) :: options
+        type(adapt_options_t), intent(in) :: adapt
         type(problem_t), intent(in) :: start
         type(adaptive_result_t), intent(out) :: out
         type(timings_t), intent(inout) :: timings
@@ -72,7 +80,10 @@ contains
         type(eigen_goal_t) :: goal
 
         allocate (goal%levels(0))
-        call adapt_mesh(config, start, goal, out%prob, out%converged, out%floor_reached, &
+        goal%lambda = lambda
+        goal%options = options
+        goal%options%estimate = ESTIMATE_ON
+        call adapt_mesh(scn, adapt, start, goal, out%prob, out%converged, out%floor_reached, &
                         out%outcome, timings, stat)
         if (.not. stat%ok()) return
         call move_alloc(goal%levels, out%levels)
@@ -81,25 +92,22 @@ contains
         if (.not. out%converged) out%res%warnings = [character(len=WARNING_LEN) :: &
                                                      out%outcome, out%res%warnings]
         out%res%warnings = [character(len=WARNING_LEN) :: out%res%warnings, &
-                            theta_warnings(config%adapt%theta)]
+                            theta_warnings(adapt%theta)]
     end subroutine adapt_eigen
 
-    subroutine eigen_goal_solve(this, config, prob, level, loop_start, timings, stat)
+    subroutine eigen_goal_solve(this, scn, prob, level, loop_start, timings, stat)
         class(eigen_goal_t), intent(inout) :: this
-        type(config_t), intent(in) :: config
+        type(scene_t), intent(in) :: scn
         type(problem_t), intent(in) :: prob
         integer, intent(in) :: level
         real(wp), intent(in) :: loop_start
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
-        type(config_t) :: level_config
 
-        ! the loop is driven by the estimate: it is computed at every level, whatever its size
-        level_config = config
-        level_config%eigen%estimate = 'on'
-        call solve_eigen(level_config, prob, config%analysis%lambda, this%res, timings, stat)
+        call solve_eigen(scn, prob, this%lambda, this%options, this%res, timings, stat)
         if (.not. stat%ok()) return
-        call estimate_eigen(level_config, prob, this%res, timings)
+        ! an adaptive run judges resolution by the change of mu between its levels
+        call estimate_eigen(scn, prob, this%options, .false., this%res, timings)
         this%levels = [this%levels, level_row()]
         call set_level_bar(this%levels, element_degree(prob%mesh%element))
         this%roundoff = -1.0_wp

@@ -29,7 +29,8 @@ module adaptive_threshold
     use status, only: status_t
     use strings, only: to_string, short_real_text
     use timer, only: wall_time, timings_t, PHASE_REDUCTION
-    use run_config, only: config_t
+    use scene, only: scene_t
+    use method_options, only: eigen_options_t, adapt_options_t, SOLVER_DENSE
     use problem, only: problem_t
     use sparse_cholesky, only: cholesky_t
     use threshold_analysis, only: factor_with_contact_blocks, threshold_result_t, &
@@ -40,14 +41,13 @@ module adaptive_threshold
     use threshold_estimate, only: threshold_estimate_t, threshold_displacements, &
                                   estimate_threshold_errors
     use adaptive_loop, only: adapt_goal_t, adapt_mesh, doerfler_marking
-    use threshold_analysis, only: scan_lambdas
     use contact_reduction, only: reduced_blocks_t
     use contact_boundary, only: assemble_b
     use critical_set, only: critical_set_t, find_critical_set, search_critical_set, &
                             onset_point, side_offset, &
                             MECHANISM_COMPLEX_PAIR
     use boundary_estimate, only: enriched_pair_lambdas, onset_bars_t
-    use eigen_analysis, only: eigen_result_t, eigen_with_factor, SOLVER_DENSE
+    use eigen_solve, only: eigen_result_t, eigen_with_factor
     use error_estimate, only: error_estimate_t, estimate_lowest_error
     use error_bar, only: level_bar, theta_warnings
     use roundoff, only: threshold_roundoff, collision_roundoffs
@@ -115,6 +115,8 @@ module adaptive_threshold
         type(thresholds_t) :: thr
         type(threshold_estimate_t) :: est
         real(wp) :: tolerance = 0.0_wp   !! &adapt tolerance: the sides above it mark cells
+        type(eigen_options_t) :: options   !! of the spectra beside a collision
+        real(wp), allocatable :: scan(:)   !! the lambdas of the boundary search
         !> per side, the indicators of its collision onset (n_cells, 2), summing to 1
         real(wp), allocatable :: collision_indicators(:, :)
         real(wp) :: collision_estimate(2) = -1.0_wp
@@ -123,7 +125,7 @@ module adaptive_threshold
         !> (onset_search); 0: none yet
         integer :: pencil_dofs = 0
         !> what the next level and the final report carry the boundary of the positive set from
-        type(coarse_scan_t) :: scan
+        type(coarse_scan_t) :: scan_state
     contains
         procedure :: solve => threshold_goal_solve
         procedure :: error => threshold_goal_error
@@ -133,10 +135,14 @@ module adaptive_threshold
 
 contains
 
-    !> Run the loop from the problem `start` (level 0) of `config`. A limit reached is no
-    !> failure (stat ok, out%converged false, out%outcome says so).
-    subroutine adapt_thresholds(config, start, out, timings, stat)
-        type(config_t), intent(in) :: config
+    !> Run the loop from the problem `start` (level 0) of the scene `scn` as `adapt` asks, the
+    !> boundary searched over `scan`. A limit reached is no failure (stat ok, out%converged
+    !> false, out%outcome says so).
+    subroutine adapt_thresholds(scn, options, adapt, scan, start, out, timings, stat)
+        type(scene_t), intent(in) :: scn
+        type(eigen_options_t), intent(in) :: options
+        type(adapt_options_t), intent(in) :: adapt
+        real(wp), intent(in) :: scan(:)
         type(problem_t), intent(in) :: start
         type(adaptive_thresholds_t), intent(out) :: out
         type(timings_t), intent(inout) :: timings
@@ -144,38 +150,47 @@ contains
         type(threshold_goal_t) :: goal
 
         allocate (goal%levels(0))
-        call adapt_mesh(config, start, goal, out%prob, out%converged, out%floor_reached, &
+        goal%tolerance = adapt%tolerance
+        goal%options = options
+        goal%scan = scan
+        call adapt_mesh(scn, adapt, start, goal, out%prob, out%converged, out%floor_reached, &
                         out%outcome, timings, stat)
         if (.not. stat%ok()) return
         call move_alloc(goal%levels, out%levels)
         out%estimate = goal%est
-        call goal%scan%coarse_set(config, out%prob%contact%p(), out%coarse, stat)
+        call goal%scan_state%coarse_set(scan, out%prob%contact%p(), out%coarse, stat)
     end subroutine adapt_thresholds
 
     !> The adaptive 'threshold' analysis: the loop from `start` (adapt_thresholds), then the
     !> threshold analysis on its final problem with the loop's estimates and the collision
     !> onsets' level bars (last_onset_bars: their one-mesh bars are not computed); a limit
     !> reached heads the warnings of `res` (out%converged false says so).
-    subroutine solve_adapted_thresholds(config, start, out, res, timings, stat)
-        type(config_t), intent(in) :: config
+    subroutine solve_adapted_thresholds(scn, lambda, options, adapt, scan, start, out, res, &
+                                        timings, stat)
+        type(scene_t), intent(in) :: scn
+        real(wp), intent(in) :: lambda
+        type(eigen_options_t), intent(in) :: options
+        type(adapt_options_t), intent(in) :: adapt
+        real(wp), intent(in) :: scan(:)
         type(problem_t), intent(in) :: start
         type(adaptive_thresholds_t), intent(out) :: out
         type(threshold_result_t), intent(out) :: res
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
-        call adapt_thresholds(config, start, out, timings, stat)
-        if (stat%ok()) call solve_thresholds(config, out%prob, .false., res, timings, stat, &
-                                             out%estimate, last_onset_bars(out), out%coarse)
+        call adapt_thresholds(scn, options, adapt, scan, start, out, timings, stat)
+        if (stat%ok()) call solve_thresholds(scn, out%prob, lambda, options, scan, res, timings, &
+                                             stat, estimate=out%estimate, &
+                                             onsets=last_onset_bars(out), coarse=out%coarse)
         if (stat%ok() .and. .not. out%converged) res%eigen%warnings = &
             [character(len=len(res%eigen%warnings)) :: out%outcome, res%eigen%warnings]
         if (stat%ok()) res%eigen%warnings = [character(len=len(res%eigen%warnings)) :: &
-                                             res%eigen%warnings, theta_warnings(config%adapt%theta)]
+                                             res%eigen%warnings, theta_warnings(adapt%theta)]
     end subroutine solve_adapted_thresholds
 
     !> Factor K, form the contact blocks, solve the pencil, and estimate both thresholds.
-    subroutine threshold_goal_solve(this, config, prob, level, loop_start, timings, stat)
+    subroutine threshold_goal_solve(this, scn, prob, level, loop_start, timings, stat)
         class(threshold_goal_t), intent(inout) :: this
-        type(config_t), intent(in) :: config
+        type(scene_t), intent(in) :: scn
         type(problem_t), intent(in) :: prob
         integer, intent(in) :: level
         real(wp), intent(in) :: loop_start
@@ -190,8 +205,7 @@ contains
         real(wp), allocatable :: nearest(:)
         integer :: onset(2)
 
-        this%tolerance = config%adapt%tolerance
-        call factor_with_contact_blocks(config, prob, chol, blocks%kt_nn, blocks%kt_nt, &
+        call factor_with_contact_blocks(scn, prob, chol, blocks%kt_nn, blocks%kt_nt, &
                                         timings, stat)
         if (.not. stat%ok()) return
         start = wall_time()
@@ -201,17 +215,17 @@ contains
         if (stat%ok()) call threshold_displacements(chol, prob%contact, prob%dofs%n_free, &
                                                     this%thr, u, stat)
         blocks%mass = prob%contact%mass
-        if (stat%ok()) call onset_search(config, blocks, this%thr, prob%dofs%n_free, &
-                                         this%pencil_dofs, set, stat, this%scan%searched)
-        if (stat%ok()) call this%scan%note(blocks, this%thr%real_lambdas, set)
+        if (stat%ok()) call onset_search(this%scan, blocks, this%thr, prob%dofs%n_free, &
+                                         this%pencil_dofs, set, stat, this%scan_state%searched)
+        if (stat%ok()) call this%scan_state%note(blocks, this%thr%real_lambdas, set)
         if (stat%ok()) call collision_onsets(set, onset)
         if (stat%ok() .and. any(onset > 0)) call collision_roundoffs(prob%k, chol, &
             prob%contact, blocks, set, stat)
         allocate (nearest(size(set%points)), source=huge(1.0_wp))
         if (stat%ok() .and. any(onset > 0)) call enriched_pair_lambdas(prob, &
             ENRICHED_CONTACT_MAX, set, nearest, stat)
-        if (stat%ok() .and. any(onset > 0)) call collision_spectra(config, prob, chol, blocks, &
-            set, onset, nearest, beside, stat)
+        if (stat%ok() .and. any(onset > 0)) call collision_spectra(scn, prob, this%options, &
+            chol, blocks, set, onset, nearest, beside, stat)
         call chol%free()
         if (.not. stat%ok()) return
         deallocate (blocks%kt_nn, blocks%kt_nt)
@@ -271,8 +285,8 @@ contains
     !> the rest of input/threshold_adapt.nml (scan: twice that), for an answer that does
     !> not change there. With `previous` (the set a coarser level found, if it searched),
     !> its points are carried (carry_critical_set) unless the structure differs here.
-    subroutine onset_search(config, blocks, thr, n_free, pencil_dofs, set, stat, previous)
-        type(config_t), intent(in) :: config
+    subroutine onset_search(scan, blocks, thr, n_free, pencil_dofs, set, stat, previous)
+        real(wp), intent(in) :: scan(:)   !! the lambdas of the search
         type(reduced_blocks_t), intent(in) :: blocks
         type(thresholds_t), intent(in) :: thr
         integer, intent(in) :: n_free
@@ -296,8 +310,7 @@ contains
         end do
         pencil_dofs = 0
         if (.not. search) pencil_dofs = n_free
-        if (search) call search_critical_set(blocks, scan_lambdas(config, .false.), &
-                                             thr%real_lambdas, set, stat, previous)
+        if (search) call search_critical_set(blocks, scan, thr%real_lambdas, set, stat, previous)
     end subroutine onset_search
 
     !> onset(side): the index in `set` of the side's onset where it is a collision of two
@@ -317,9 +330,11 @@ contains
     !> side's collision onset are real on this mesh and on the enriched one (`nearest`, the
     !> enriched point; huge: none): past both points by their distance, at least
     !> side_offset.
-    subroutine collision_spectra(config, prob, chol, blocks, set, onset, nearest, beside, stat)
-        type(config_t), intent(in) :: config
+    subroutine collision_spectra(scn, prob, options, chol, blocks, set, onset, nearest, beside, &
+                                 stat)
+        type(scene_t), intent(in) :: scn
         type(problem_t), intent(in) :: prob
+        type(eigen_options_t), intent(in) :: options
         type(cholesky_t), intent(in) :: chol
         type(reduced_blocks_t), intent(in) :: blocks
         type(critical_set_t), intent(in) :: set
@@ -344,7 +359,7 @@ contains
             beside(side)%lambda = lambda
             beside(side)%solver = SOLVER_DENSE
             call assemble_b(prob%contact, prob%dofs%n_free, lambda, beside(side)%b, stat)
-            if (stat%ok()) call eigen_with_factor(config, prob, chol, beside(side), quiet, &
+            if (stat%ok()) call eigen_with_factor(scn, prob, options, chol, beside(side), quiet, &
                                                   stat, blocks%kt_nn, blocks%kt_nt)
             if (.not. stat%ok()) return
         end do
@@ -567,9 +582,9 @@ contains
     !> The set for a last level of `p_last` contact functions to carry: the searched one, else
     !> the scan of the noted blocks where they have at most half as many contact functions
     !> (its solves in set%n_evaluations), else none (scan_contact 0: the last level scans).
-    subroutine coarse_scan_coarse_set(this, config, p_last, set, stat)
+    subroutine coarse_scan_coarse_set(this, scan, p_last, set, stat)
         class(coarse_scan_t), intent(in) :: this
-        type(config_t), intent(in) :: config
+        real(wp), intent(in) :: scan(:)   !! the lambdas of the search
         integer, intent(in) :: p_last
         type(critical_set_t), intent(out) :: set
         type(status_t), intent(out) :: stat
@@ -578,7 +593,7 @@ contains
             set%n_evaluations = 0   ! counted where it was searched
         else if (allocated(this%pencil)) then
             if (2*size(this%blocks%kt_nn, 1) <= p_last) call find_critical_set(this%blocks, &
-                scan_lambdas(config, .false.), this%pencil, set, stat)
+                scan, this%pencil, set, stat)
         end if
     end subroutine coarse_scan_coarse_set
 end module adaptive_threshold

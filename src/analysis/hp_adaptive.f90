@@ -13,13 +13,14 @@ module hp_adaptive
     use status, only: status_t, STATUS_BAD_INPUT
     use strings, only: to_string, short_real_text
     use timer, only: wall_time, timings_t
-    use run_config, only: config_t
+    use scene, only: scene_t
+    use method_options, only: eigen_options_t, adapt_options_t
     use problem, only: problem_t
     use hp_space, only: hp_space_t
     use hp_levels, only: hp_ladder_t
     use sparse_cholesky, only: cholesky_t
     use contact_boundary, only: assemble_b
-    use eigen_analysis, only: eigen_result_t, eigen_with_factor, choose_solver
+    use eigen_solve, only: eigen_result_t, eigen_with_factor, choose_solver
     use accuracy, only: WARNING_LEN, MU_VANISHED
     use error_bar, only: hp_run_bar, floor_reached, floor_outcome, stall_outcome
     use hp_rayleigh, only: refine_lowest_mu
@@ -65,17 +66,21 @@ module hp_adaptive
 
 contains
 
-    !> Run the loop from the problem `start` (its mesh and parts; its K is not used) at
-    !> &analysis lambda. A limit reached is no failure (stat ok, out%converged false,
-    !> out%outcome and a warning of out%res say so).
-    subroutine hp_adapt_eigen(config, start, out, timings, stat)
-        type(config_t), intent(in) :: config
+    !> Run the loop from the problem `start` (its mesh and parts; its K is not used) of the
+    !> scene `scn` at `lambda`, solved as `options` and graded as `adapt` ask. A limit
+    !> reached is no failure (stat ok, out%converged false, out%outcome and a warning of
+    !> out%res say so).
+    subroutine hp_adapt_eigen(scn, lambda, options, adapt, start, out, timings, stat)
+        type(scene_t), intent(in) :: scn
+        real(wp), intent(in) :: lambda
+        type(eigen_options_t), intent(in) :: options
+        type(adapt_options_t), intent(in) :: adapt
         type(problem_t), intent(in) :: start
         type(hp_result_t), intent(out) :: out
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
         type(hp_result_t), allocatable :: outs(:)
-        call hp_adapt_lambdas(config, start, [config%analysis%lambda], outs, timings, stat, &
+        call hp_adapt_lambdas(scn, options, adapt, start, [lambda], outs, timings, stat, &
                               keep_problem=.true.)
         if (stat%ok()) out = outs(1)
     end subroutine hp_adapt_eigen
@@ -85,8 +90,11 @@ contains
     !> lambda whose loop has not stopped there. outs(i) is what hp_adapt_eigen gives at
     !> lambdas(i); its prob and space (the last level's) only with `keep_problem` (one
     !> problem per lambda), else its levels say what was solved.
-    subroutine hp_adapt_lambdas(config, start, lambdas, outs, timings, stat, keep_problem)
-        type(config_t), intent(in) :: config
+    subroutine hp_adapt_lambdas(scn, options, adapt, start, lambdas, outs, timings, stat, &
+                                keep_problem)
+        type(scene_t), intent(in) :: scn
+        type(eigen_options_t), intent(in) :: options
+        type(adapt_options_t), intent(in) :: adapt
         type(problem_t), intent(in) :: start
         real(wp), intent(in) :: lambdas(:)
         type(hp_result_t), allocatable, intent(out) :: outs(:)
@@ -96,13 +104,12 @@ contains
         type(hp_ladder_t) :: ladder
         type(problem_t) :: prob
         type(cholesky_t) :: chol
-        type(config_t) :: point_config
         real(wp) :: loop_start, tolerance
         logical :: active(size(lambdas)), too_big
         integer :: layers, i, solved
 
         loop_start = wall_time()
-        tolerance = config%adapt%tolerance
+        tolerance = adapt%tolerance
         allocate (outs(size(lambdas)))
         do i = 1, size(lambdas)
             allocate (outs(i)%levels(0))
@@ -110,11 +117,10 @@ contains
         end do
         active = .true.
         solved = 0
-        point_config = config
-        call ladder%begin(config, start, stat)
+        call ladder%begin(scn, adapt, start, stat)
         if (.not. stat%ok()) return
         do
-            call ladder%climb(config, start, solved, too_big, stat)
+            call ladder%climb(start, solved, too_big, stat)
             if (.not. stat%ok()) return
             layers = ladder%layers
             if (too_big) then
@@ -124,14 +130,13 @@ contains
                 end do
                 exit
             end if
-            call ladder%problem(config, start, prob, timings, stat)
-            if (stat%ok()) call ladder%factor(config, prob, chol, timings, stat)
+            call ladder%problem(start, prob, timings, stat)
+            if (stat%ok()) call ladder%factor(prob, chol, timings, stat)
             if (.not. stat%ok()) return
             solved = solved + 1
             do i = 1, size(lambdas)
                 if (.not. active(i)) cycle
-                point_config%analysis%lambda = lambdas(i)
-                call solve_level(outs(i), stat)
+                call solve_level(outs(i), lambdas(i), stat)
                 if (.not. stat%ok()) exit
                 call timings%note(level_line(outs(i)%levels(size(outs(i)%levels))))
                 active(i) = .not. stops_here(outs(i))
@@ -139,11 +144,11 @@ contains
             call chol%free()
             if (.not. stat%ok()) return
             if (.not. any(active)) exit
-            if (config%adapt%max_levels > 0 .and. layers >= config%adapt%max_levels) then
+            if (adapt%max_levels > 0 .and. layers >= adapt%max_levels) then
                 do i = 1, size(lambdas)
                     if (active(i)) outs(i)%outcome = 'tolerance '// &
                         short_real_text(tolerance)//' not met: max_levels = '// &
-                        to_string(config%adapt%max_levels)//' reached with error bar '// &
+                        to_string(adapt%max_levels)//' reached with error bar '// &
                         bar_text(outs(i))
                 end do
                 exit
@@ -156,20 +161,20 @@ contains
 
     contains
 
-        !> The current level (`prob`, factored in `chol`) at point_config's lambda: the eigen
-        !> solve, its row and its bar; the result becomes out%res (and the problem out%prob).
-        subroutine solve_level(out, stat)
+        !> The current level (`prob`, factored in `chol`) at `lambda`: the eigen solve, its row
+        !> and its bar; the result becomes out%res (and the problem out%prob).
+        subroutine solve_level(out, lambda, stat)
             type(hp_result_t), intent(inout) :: out
+            real(wp), intent(in) :: lambda
             type(status_t), intent(out) :: stat
             type(eigen_result_t) :: res
             type(hp_level_t) :: row
             integer :: k
-            res%lambda = point_config%analysis%lambda
+            res%lambda = lambda
             call assemble_b(prob%contact, prob%dofs%n_free, res%lambda, res%b, stat)
             if (.not. stat%ok()) return
-            res%solver = choose_solver(config%eigen%solver, prob%contact%p(), &
-                                       config%eigen%dense_max_contact, config%eigen%operator)
-            call eigen_with_factor(point_config, prob, chol, res, timings, stat)
+            res%solver = choose_solver(options, prob%contact%p())
+            call eigen_with_factor(scn, prob, options, chol, res, timings, stat)
             if (.not. stat%ok()) return
 
             row%level = layers

@@ -10,7 +10,8 @@ module hp_levels
     use status, only: status_t, STATUS_BAD_INPUT
     use strings, only: to_string, short_real_text
     use timer, only: timings_t
-    use run_config, only: config_t
+    use scene, only: scene_t
+    use method_options, only: adapt_options_t
     use problem, only: problem_t
     use mesh, only: mesh_t
     use element_types, only: element_corners, element_name
@@ -31,6 +32,8 @@ module hp_levels
     !> The ladder of levels from one input problem; the current level's mesh, degrees and
     !> space.
     type, public :: hp_ladder_t
+        character(len=:), allocatable :: name   !! the scene's, for messages
+        type(adapt_options_t) :: adapt          !! sigma, p_max, max_dofs
         real(wp), allocatable :: points(:, :)   !! the singular points of the input mesh
         integer :: layers = 0                   !! the current level's (0: none yet)
         integer :: max_dofs = 0                 !! a level's free dofs at most
@@ -59,20 +62,23 @@ contains
                                min(layers + 1, p_max))
     end function hp_level_degrees
 
-    !> Before the first level: the input mesh `start` must have triangles; its singular
-    !> points and the dof limit.
-    subroutine ladder_begin(this, config, start, stat)
+    !> Before the first level: the input mesh `start` (of the scene `scn`) must have
+    !> triangles; its singular points and the dof limit of `adapt`.
+    subroutine ladder_begin(this, scn, adapt, start, stat)
         class(hp_ladder_t), intent(inout) :: this
-        type(config_t), intent(in) :: config
+        type(scene_t), intent(in) :: scn
+        type(adapt_options_t), intent(in) :: adapt
         type(problem_t), intent(in) :: start
         type(status_t), intent(out) :: stat
+        this%name = scn%name
+        this%adapt = adapt
         if (element_corners(start%mesh%element) /= 3) then
-            call stat%fail(STATUS_BAD_INPUT, config%input_file//": &adapt: strategy = 'hp': "// &
+            call stat%fail(STATUS_BAD_INPUT, scn%name//": &adapt: strategy = 'hp': "// &
                 'expected triangles (the mesh has '//element_name(start%mesh%element)// &
                 ' cells)')
             return
         end if
-        call level_dof_limit(config, this%max_dofs, this%dof_limit)
+        call level_dof_limit(adapt, this%max_dofs, this%dof_limit)
         this%points = start%mesh%coords(:, singular_vertices(start%mesh))
         this%layers = 0
     end subroutine ladder_begin
@@ -80,9 +86,8 @@ contains
     !> The next level's graded mesh, degrees and space. `too_big`: it has more free dofs
     !> than the limit and `solved` levels came before it (the loop stops there); the first
     !> level over an explicit &adapt max_dofs is refused (STATUS_BAD_INPUT).
-    subroutine ladder_climb(this, config, start, solved, too_big, stat)
+    subroutine ladder_climb(this, start, solved, too_big, stat)
         class(hp_ladder_t), intent(inout) :: this
-        type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: start
         integer, intent(in) :: solved
         logical, intent(out) :: too_big
@@ -90,16 +95,16 @@ contains
         real(wp) :: h_min
         too_big = .false.
         this%layers = this%layers + 1
-        call geometric_mesh(start%mesh, this%points, config%adapt%sigma, this%layers, &
+        call geometric_mesh(start%mesh, this%points, this%adapt%sigma, this%layers, &
                             this%graded, h_min, stat)
         if (.not. stat%ok()) return
-        this%degree = hp_level_degrees(this%graded, this%points, config%adapt%sigma, h_min, &
-                                       this%layers, config%adapt%p_max)
+        this%degree = hp_level_degrees(this%graded, this%points, this%adapt%sigma, h_min, &
+                                       this%layers, this%adapt%p_max)
         call build_hp_space(this%graded, this%degree, start%dirichlet_parts, this%space, stat)
         if (.not. stat%ok()) return
-        if (config%adapt%max_dofs > 0 .and. this%space%n_free() > this%max_dofs .and. &
+        if (this%adapt%max_dofs > 0 .and. this%space%n_free() > this%max_dofs .and. &
             solved == 0) then
-            call stat%fail(STATUS_BAD_INPUT, config%input_file//': &adapt: max_dofs = '// &
+            call stat%fail(STATUS_BAD_INPUT, this%name//': &adapt: max_dofs = '// &
                 to_string(this%max_dofs)//": expected at least the "// &
                 to_string(this%space%n_free())//" free dofs of the first hp level")
             return
@@ -122,9 +127,8 @@ contains
     !> The current level as a problem: the graded P1 mesh with the input's parts and
     !> material, the condensed K and the hp contact (nodes: basis functions), dofs%n_free
     !> only; not factored (ladder_factor).
-    subroutine ladder_problem(this, config, start, prob, timings, stat)
+    subroutine ladder_problem(this, start, prob, timings, stat)
         class(hp_ladder_t), intent(in) :: this
-        type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: start
         type(problem_t), intent(out) :: prob
         type(timings_t), intent(inout) :: timings
@@ -138,7 +142,7 @@ contains
         call hp_assembled_problem(this%graded, this%space, start%contact_part, start%young, &
                                   start%poisson, prob%contact, prob%k, timings, stat)
         if (.not. stat%ok()) then
-            call prefix(config, this%layers, stat)
+            call prefix(this%name, this%layers, stat)
             return
         end if
         prob%dofs%n_free = this%space%n_free()
@@ -148,23 +152,22 @@ contains
     end subroutine ladder_problem
 
     !> K of the current level's problem `prob` factored with the contact dofs last.
-    subroutine ladder_factor(this, config, prob, chol, timings, stat)
+    subroutine ladder_factor(this, prob, chol, timings, stat)
         class(hp_ladder_t), intent(in) :: this
-        type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: prob
         type(cholesky_t), intent(inout) :: chol
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
         call factor_hp_stiffness(prob%k, this%graded, this%space, prob%contact, chol, &
                                  timings, stat)
-        if (.not. stat%ok()) call prefix(config, this%layers, stat)
+        if (.not. stat%ok()) call prefix(this%name, this%layers, stat)
     end subroutine ladder_factor
 
-    subroutine prefix(config, layers, stat)
-        type(config_t), intent(in) :: config
+    subroutine prefix(name, layers, stat)
+        character(len=*), intent(in) :: name
         integer, intent(in) :: layers
         type(status_t), intent(inout) :: stat
-        stat%message = config%input_file//": &adapt: strategy = 'hp': level "// &
+        stat%message = name//": &adapt: strategy = 'hp': level "// &
                        to_string(layers)//': '//stat%message
     end subroutine prefix
 end module hp_levels

@@ -17,7 +17,8 @@ module hp_threshold
     use status, only: status_t, STATUS_NOT_MET
     use strings, only: to_string, short_real_text, seconds_text
     use timer, only: wall_time, timings_t, PHASE_REDUCTION
-    use run_config, only: config_t
+    use scene, only: scene_t
+    use method_options, only: eigen_options_t, adapt_options_t
     use problem, only: problem_t
     use hp_space, only: hp_space_t
     use hp_levels, only: hp_ladder_t
@@ -33,7 +34,7 @@ module hp_threshold
     use adaptive_threshold, only: adaptive_thresholds_t, threshold_level_t, onset_search, &
                                   collision_onsets, apply_collision_bars, goal_bars, &
                                   level_line, coarse_scan_t
-    use eigen_analysis, only: eigen_with_factor, choose_solver
+    use eigen_solve, only: eigen_with_factor, choose_solver
     use error_bar, only: hp_run_bar, floor_reached, floor_outcome, stall_outcome
     use accuracy, only: WARNING_LEN
     implicit none
@@ -57,8 +58,13 @@ contains
     !> level in `res`. A limit reached is no failure (stat ok, out%adapted%converged false,
     !> its outcome heading the warnings of res%eigen); a first level whose contact blocks
     !> do not fit `available` bytes (default: the memory available) is (STATUS_NOT_MET).
-    subroutine hp_adapt_thresholds(config, start, out, res, timings, stat, available)
-        type(config_t), intent(in) :: config
+    subroutine hp_adapt_thresholds(scn, lambda, options, adapt, scan, start, out, res, timings, &
+                                   stat, available)
+        type(scene_t), intent(in) :: scn
+        real(wp), intent(in) :: lambda   !! of the spectrum reported
+        type(eigen_options_t), intent(in) :: options
+        type(adapt_options_t), intent(in) :: adapt
+        real(wp), intent(in) :: scan(:)   !! the lambdas of the boundary search
         type(problem_t), intent(in) :: start
         type(hp_thresholds_t), intent(out) :: out
         type(threshold_result_t), intent(out) :: res
@@ -70,7 +76,7 @@ contains
         type(cholesky_t) :: chol
         type(reduced_blocks_t) :: blocks
         !> what the next level and the last level's report carry the boundary from
-        type(coarse_scan_t) :: scan
+        type(coarse_scan_t) :: scan_state
         type(thresholds_t) :: thr
         type(critical_set_t) :: set
         type(status_t) :: memory
@@ -79,27 +85,27 @@ contains
         logical :: too_big, factored
 
         loop_start = wall_time()
-        tolerance = config%adapt%tolerance
+        tolerance = adapt%tolerance
         allocate (out%adapted%levels(0), out%layers(0), out%p_min(0), out%p_max(0))
         out%adapted%outcome = ''
         factored = .false.
         pencil_dofs = 0
-        call ladder%begin(config, start, stat)
+        call ladder%begin(scn, adapt, start, stat)
         if (.not. stat%ok()) return
         do
-            call ladder%climb(config, start, size(out%layers), too_big, stat)
+            call ladder%climb(start, size(out%layers), too_big, stat)
             if (.not. stat%ok()) exit
             if (too_big) then
                 out%adapted%outcome = ladder%limit_outcome(tolerance, bar_text())
                 exit
             end if
-            call ladder%problem(config, start, next, timings, stat)
+            call ladder%problem(start, next, timings, stat)
             if (.not. stat%ok()) exit
-            call check_contact_memory(config, next%contact%p(), contact_peak_blocks(.false.), &
+            call check_contact_memory(scn, next%contact%p(), contact_peak_blocks(.false.), &
                                       memory, available)
             if (.not. memory%ok()) then
                 if (.not. factored) then
-                    call stat%fail(STATUS_NOT_MET, config%input_file//": &adapt: "// &
+                    call stat%fail(STATUS_NOT_MET, scn%name//": &adapt: "// &
                                    "strategy = 'hp': "//memory_text())
                     return
                 end if
@@ -110,15 +116,15 @@ contains
             if (factored) call chol%free()
             factored = .false.
             prob = next
-            call ladder%factor(config, prob, chol, timings, stat)
+            call ladder%factor(prob, chol, timings, stat)
             if (.not. stat%ok()) exit
             factored = .true.
             call solve_level(stat)
             if (.not. stat%ok()) exit
             if (stop_here()) exit
-            if (config%adapt%max_levels > 0 .and. ladder%layers >= config%adapt%max_levels) then
+            if (adapt%max_levels > 0 .and. ladder%layers >= adapt%max_levels) then
                 out%adapted%outcome = 'tolerance '//short_real_text(tolerance)//' not met: '// &
-                    'max_levels = '//to_string(config%adapt%max_levels)// &
+                    'max_levels = '//to_string(adapt%max_levels)// &
                     ' reached with error bar '//bar_text()
                 exit
             end if
@@ -145,10 +151,10 @@ contains
                                                    blocks%kt_nt, thr, stat)
             if (.not. stat%ok()) return
             blocks%mass = prob%contact%mass
-            call onset_search(config, blocks, thr, prob%dofs%n_free, pencil_dofs, set, stat, &
-                              scan%searched)
+            call onset_search(scan, blocks, thr, prob%dofs%n_free, pencil_dofs, set, stat, &
+                              scan_state%searched)
             if (.not. stat%ok()) return
-            call scan%note(blocks, thr%real_lambdas, set)
+            call scan_state%note(blocks, thr%real_lambdas, set)
             call collision_onsets(set, onset)
             if (any(onset > 0)) call collision_roundoffs(prob%k, chol, prob%contact, blocks, &
                                                          set, stat)
@@ -234,20 +240,19 @@ contains
             integer :: side, i, k
             type(critical_set_t) :: coarse
             begin = wall_time()
-            res%eigen%solver = choose_solver(config%eigen%solver, prob%contact%p(), &
-                config%eigen%dense_max_contact, config%eigen%operator)
-            res%eigen%lambda = config%analysis%lambda
+            res%eigen%solver = choose_solver(options, prob%contact%p())
+            res%eigen%lambda = lambda
             call assemble_b(prob%contact, prob%dofs%n_free, res%eigen%lambda, res%eigen%b, stat)
-            if (stat%ok()) call eigen_with_factor(config, prob, chol, res%eigen, timings, stat, &
-                                                  blocks%kt_nn, blocks%kt_nt)
+            if (stat%ok()) call eigen_with_factor(scn, prob, options, chol, res%eigen, timings, &
+                                                  stat, blocks%kt_nn, blocks%kt_nt)
             res%thresholds = thr
             if (.not. stat%ok()) return
             if (set%scan_contact > 0) then   ! the last level searched: its set stands
-                call confirm_and_bound(config, prob, chol, blocks, .false., res%thresholds, &
+                call confirm_and_bound(scn, prob, lambda, scan, chol, blocks, res%thresholds, &
                                        res%set, stat, known=set)
             else
-                call scan%coarse_set(config, prob%contact%p(), coarse, stat)
-                if (stat%ok()) call confirm_and_bound(config, prob, chol, blocks, .false., &
+                call scan_state%coarse_set(scan, prob%contact%p(), coarse, stat)
+                if (stat%ok()) call confirm_and_bound(scn, prob, lambda, scan, chol, blocks, &
                                                       res%thresholds, res%set, stat, coarse)
             end if
             if (.not. stat%ok()) return

@@ -20,7 +20,8 @@ module adaptive_loop
     use system_memory, only: available_memory_bytes
     use strings, only: to_string, short_real_text
     use timer, only: wall_time, timings_t, PHASE_ASSEMBLY
-    use run_config, only: config_t
+    use scene, only: scene_t
+    use method_options, only: adapt_options_t
     use mesh, only: mesh_t
     use mesh_refine, only: refinable_mesh_t, build_refinable_mesh
     use element_types, only: element_name
@@ -54,10 +55,10 @@ module adaptive_loop
     end type adapt_goal_t
 
     abstract interface
-        subroutine goal_solve(this, config, prob, level, loop_start, timings, stat)
-            import :: adapt_goal_t, config_t, problem_t, timings_t, status_t, wp
+        subroutine goal_solve(this, scn, prob, level, loop_start, timings, stat)
+            import :: adapt_goal_t, scene_t, problem_t, timings_t, status_t, wp
             class(adapt_goal_t), intent(inout) :: this
-            type(config_t), intent(in) :: config
+            type(scene_t), intent(in) :: scn
             type(problem_t), intent(in) :: prob
             integer, intent(in) :: level
             real(wp), intent(in) :: loop_start
@@ -86,13 +87,15 @@ module adaptive_loop
 
 contains
 
-    !> Run the loop from the problem `start` (level 0) of `config`; `prob` is the problem of
+    !> Run the loop from the problem `start` (level 0) of the scene `scn` as `adapt` asks;
+    !> `prob` is the problem of
     !> the last level solved, whose solution `goal` holds. A limit reached is no failure (stat
     !> ok, converged false, `outcome` says what was reached; `floor` true when that is the
     !> floating-point floor); bad input is: a starting mesh with more free dofs than
     !> max_dofs, or cells with no refinement or no enriched space.
-    subroutine adapt_mesh(config, start, goal, prob, converged, floor, outcome, timings, stat)
-        type(config_t), intent(in) :: config
+    subroutine adapt_mesh(scn, adapt, start, goal, prob, converged, floor, outcome, timings, stat)
+        type(scene_t), intent(in) :: scn
+        type(adapt_options_t), intent(in) :: adapt
         type(problem_t), intent(in) :: start
         class(adapt_goal_t), intent(inout) :: goal
         type(problem_t), intent(out) :: prob
@@ -115,27 +118,27 @@ contains
         allocate (marked(0))   ! (gfortran 12 warns of an unallocated one at -O3)
         element = start%mesh%element
         if (enriched_element(element) == 0) then
-            call stat%fail(STATUS_BAD_INPUT, config%input_file//': &adapt: tolerance = '// &
-                short_real_text(config%adapt%tolerance)//': expected 0 for '// &
+            call stat%fail(STATUS_BAD_INPUT, scn%name//': &adapt: tolerance = '// &
+                short_real_text(adapt%tolerance)//': expected 0 for '// &
                 element_name(element)//' cells (adaptation refines triangles p1, p2 or p3)')
             return
         end if
-        call level_dof_limit(config, max_dofs, dof_limit)
-        if (config%adapt%max_dofs > 0 .and. start%dofs%n_free > max_dofs) then
-            call stat%fail(STATUS_BAD_INPUT, config%input_file//': &adapt: max_dofs = '// &
-                to_string(config%adapt%max_dofs)//': expected at least the '// &
+        call level_dof_limit(adapt, max_dofs, dof_limit)
+        if (adapt%max_dofs > 0 .and. start%dofs%n_free > max_dofs) then
+            call stat%fail(STATUS_BAD_INPUT, scn%name//': &adapt: max_dofs = '// &
+                to_string(adapt%max_dofs)//': expected at least the '// &
                 to_string(start%dofs%n_free)//' free dofs of the starting mesh')
             return
         end if
         call build_refinable_mesh(start%mesh, tree, stat)
         if (.not. stat%ok()) then
-            stat%message = config%input_file//': &adapt: '//stat%message
+            stat%message = scn%name//': &adapt: '//stat%message
             return
         end if
         prob = start
         level = 0
         do
-            call goal%solve(config, prob, level, loop_start, timings, stat)
+            call goal%solve(scn, prob, level, loop_start, timings, stat)
             if (.not. stat%ok()) return
             error = goal%error()
             if (error < 0.0_wp) then
@@ -145,37 +148,37 @@ contains
             end if
             ! never on the starting level alone: its bar has no earlier level to confirm
             ! it (a collision onset's estimate at h = 1/8 was 0.09 times its true error)
-            if (error <= config%adapt%tolerance .and. level >= 1) then
+            if (error <= adapt%tolerance .and. level >= 1) then
                 converged = .true.
-                outcome = 'tolerance '//short_real_text(config%adapt%tolerance)// &
+                outcome = 'tolerance '//short_real_text(adapt%tolerance)// &
                     ' met at level '//to_string(level)//': error bar '// &
                     short_real_text(error)//', '//to_string(prob%dofs%n_free)//' dofs'
                 exit
             end if
             if (floor_reached(error, goal%roundoff)) then
                 floor = .true.
-                outcome = floor_outcome(config%adapt%tolerance, goal%roundoff, error, &
+                outcome = floor_outcome(adapt%tolerance, goal%roundoff, error, &
                                         to_string(prob%dofs%n_free))
                 exit
             end if
-            if (config%adapt%max_levels > 0 .and. level >= config%adapt%max_levels) then
-                outcome = 'tolerance '//short_real_text(config%adapt%tolerance)// &
-                    ' not met: max_levels = '//to_string(config%adapt%max_levels)// &
+            if (adapt%max_levels > 0 .and. level >= adapt%max_levels) then
+                outcome = 'tolerance '//short_real_text(adapt%tolerance)// &
+                    ' not met: max_levels = '//to_string(adapt%max_levels)// &
                     ' reached with error bar '//short_real_text(error)//' at '// &
                     to_string(prob%dofs%n_free)//' dofs'
                 exit
             end if
             level_start = wall_time()
-            marked = goal%mark(config%adapt%theta)
+            marked = goal%mark(adapt%theta)
             call tree%refine(marked, stat)
             if (stat%ok()) call tree%to_mesh(element, refined, stat)
-            if (stat%ok()) call build_problem(config, next, stat, given_mesh=refined)
+            if (stat%ok()) call build_problem(scn, next, stat, given_mesh=refined)
             if (.not. stat%ok()) return
             call timings%add(PHASE_ASSEMBLY, wall_time() - level_start, ': level '// &
                 to_string(level + 1)//', '//to_string(size(marked))//' cells marked, '// &
                 to_string(refined%n_cells())//' cells, '//to_string(next%dofs%n_free)//' dofs')
             if (next%dofs%n_free > max_dofs) then
-                outcome = 'tolerance '//short_real_text(config%adapt%tolerance)// &
+                outcome = 'tolerance '//short_real_text(adapt%tolerance)// &
                     ' not met: the next level would have '//to_string(next%dofs%n_free)// &
                     ' dofs, more than '//dof_limit// &
                     '; reached error bar '//short_real_text(error)//' at '// &
@@ -189,11 +192,11 @@ contains
 
     !> The most free dofs a level may have (&adapt max_dofs, or what the memory available
     !> now allows when it is 0) and the words that name that limit in an outcome.
-    subroutine level_dof_limit(config, max_dofs, dof_limit)
-        type(config_t), intent(in) :: config
+    subroutine level_dof_limit(adapt, max_dofs, dof_limit)
+        type(adapt_options_t), intent(in) :: adapt
         integer, intent(out) :: max_dofs
         character(len=:), allocatable, intent(out) :: dof_limit
-        max_dofs = config%adapt%max_dofs
+        max_dofs = adapt%max_dofs
         dof_limit = 'max_dofs = '//to_string(max_dofs)
         if (max_dofs == 0) then
             max_dofs = adaptive_dof_limit(available_memory_bytes())

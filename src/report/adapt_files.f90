@@ -5,7 +5,7 @@
 module adapt_files
     use status, only: status_t
     use strings, only: to_string
-    use run_config, only: config_t
+    use run_inputs, only: run_inputs_t
     use problem, only: problem_t
     use output_stage, only: output_stage_t
     use json_writer, only: json_object_t
@@ -29,14 +29,14 @@ contains
     end subroutine write_adapted_mesh
 
     !> The keys of an adaptive loop (any goal) that started from `start_dofs` free dofs.
-    subroutine add_adapt_keys(summary, config, start_dofs, levels, converged, floor, outcome)
+    subroutine add_adapt_keys(summary, inputs, start_dofs, levels, converged, floor, outcome)
         type(json_object_t), intent(inout) :: summary
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         integer, intent(in) :: start_dofs, levels
         logical, intent(in) :: converged, floor
         character(len=*), intent(in) :: outcome
-        call summary%add_real('adapt_tolerance', config%adapt%tolerance)
-        call summary%add_real('adapt_theta', config%adapt%theta)
+        call summary%add_real('adapt_tolerance', inputs%adapt%tolerance)
+        call summary%add_real('adapt_theta', inputs%adapt%theta)
         call summary%add_integer('adapt_levels', levels)
         call summary%add_integer('adapt_start_dofs', start_dofs)
         call summary%add_logical('adapt_converged', converged)
@@ -46,15 +46,15 @@ contains
     end subroutine add_adapt_keys
 
     !> The stdout lines of an adaptive loop: refinements and outcome, the mesh file, the plot.
-    function adapt_report_lines(config, start_dofs, levels, outcome, adapt_note) result(text)
-        type(config_t), intent(in) :: config
+    function adapt_report_lines(inputs, start_dofs, levels, outcome, adapt_note) result(text)
+        type(run_inputs_t), intent(in) :: inputs
         integer, intent(in) :: start_dofs, levels
         character(len=*), intent(in) :: outcome, adapt_note
         character(len=:), allocatable :: text
         character(len=*), parameter :: NL = new_line('a')
         text = NL//'  adapt       '//to_string(levels)//' refinements from '// &
             to_string(start_dofs)//' dofs; '//outcome//NL//'  mesh        '// &
-            trim(config%output%directory)//'/'//MESH_FILE// &
+            trim(inputs%output%directory)//'/'//MESH_FILE// &
             ' (the final mesh, for &mesh source = ''gmsh'')'
         if (len(adapt_note) > 0) text = text//NL//'  adapt plot  '//adapt_note
     end function adapt_report_lines

@@ -9,7 +9,7 @@ module adapt_run
     use strings, only: to_string
     use real_format, only: real_to_text, known_text
     use timer, only: timings_t
-    use run_config, only: config_t
+    use run_inputs, only: run_inputs_t
     use problem, only: problem_t
     use analysis_base, only: analysis_t
     use adaptive_eigen, only: adapt_eigen, adaptive_result_t
@@ -37,40 +37,41 @@ module adapt_run
 
 contains
 
-    subroutine adapt_run_solve(this, config, prob, timings, stat)
+    subroutine adapt_run_solve(this, inputs, prob, timings, stat)
         class(adapt_run_t), intent(inout) :: this
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
         if (.not. allocated(this%out)) allocate (this%out)
-        call adapt_eigen(config, prob, this%out, timings, stat)
+        call adapt_eigen(inputs%scene, inputs%point%lambda, inputs%eigen, inputs%adapt, prob, &
+                         this%out, timings, stat)
         ! Without a positive mu at any level there is no value to quote, so nothing to take
         ! for a met tolerance: that stays exit 0 with its warning. One that vanished on
         ! refinement had values, none converged: a tolerance not met.
         if (.not. stat%ok() .or. this%out%converged) return
         if (this%out%res%spec%lowest_positive() > 0 .or. this%out%mu_vanished) &
             call this%verdict%fail(STATUS_NOT_MET, &
-            config%input_file//': &adapt: '//this%out%outcome// &
+            inputs%scene%name//': &adapt: '//this%out%outcome// &
             ' (the set of the last level is written)')
     end subroutine adapt_run_solve
 
     !> The files of the final level; `prob` (the starting mesh) is not written.
-    subroutine adapt_run_write_files(this, stage, config, prob, stat)
+    subroutine adapt_run_write_files(this, stage, inputs, prob, stat)
         class(adapt_run_t), intent(inout) :: this
         type(output_stage_t), intent(inout) :: stage
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         type(status_t), intent(out) :: stat
         character(len=:), allocatable :: path
-        call write_eigen_files(stage, config, this%out%prob, this%out%res, stat, this%plot_note)
+        call write_eigen_files(stage, inputs, this%out%prob, this%out%res, stat, this%plot_note)
         if (stat%ok()) then
             call stage%add('adapt.csv', path)
             call write_adapt_csv(path, this%out, stat)
         end if
         if (stat%ok()) call write_adapted_mesh(stage, this%out%prob, stat)
         ! the files describe the final level; of the starting problem `prob` only its dofs
-        if (stat%ok()) call draw_eigen_adapt(stage, config, this%out%prob%mesh%element, &
+        if (stat%ok()) call draw_eigen_adapt(stage, inputs, this%out%prob%mesh%element, &
             this%out%res%lambda, prob%dofs%n_free, this%out%levels, this%picture_note)
     end subroutine adapt_run_write_files
 
@@ -99,23 +100,23 @@ contains
     end subroutine write_adapt_csv
 
     !> The keys of an eigen run on the final mesh, and those of the loop.
-    function adapt_run_summary(this, config, prob) result(summary)
+    function adapt_run_summary(this, inputs, prob) result(summary)
         class(adapt_run_t), intent(in) :: this
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         type(json_object_t) :: summary
-        summary = eigen_summary_json(config, this%out%prob, this%out%res, this%timings)
-        call add_adapt_keys(summary, config, prob%dofs%n_free, size(this%out%levels) - 1, &
+        summary = eigen_summary_json(inputs, this%out%prob, this%out%res, this%timings)
+        call add_adapt_keys(summary, inputs, prob%dofs%n_free, size(this%out%levels) - 1, &
                             this%out%converged, this%out%floor_reached, this%out%outcome)
     end function adapt_run_summary
 
-    function adapt_run_report(this, config, prob) result(text)
+    function adapt_run_report(this, inputs, prob) result(text)
         class(adapt_run_t), intent(in) :: this
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         character(len=:), allocatable :: text
-        text = summary_lines(config, this%out%prob, this%out%res, this%timings, this%plot_note)
-        text = text//adapt_report_lines(config, prob%dofs%n_free, size(this%out%levels) - 1, &
+        text = summary_lines(inputs, this%out%prob, this%out%res, this%timings, this%plot_note)
+        text = text//adapt_report_lines(inputs, prob%dofs%n_free, size(this%out%levels) - 1, &
                                         this%out%outcome, this%picture_note)
     end function adapt_run_report
 end module adapt_run

@@ -7,7 +7,7 @@ module analysis_base
     use kinds, only: wp
     use status, only: status_t
     use timer, only: wall_time, timings_t, PHASE_OUTPUT
-    use run_config, only: config_t
+    use run_inputs, only: run_inputs_t
     use problem, only: problem_t
     use output_stage, only: output_stage_t
     use json_writer, only: json_object_t
@@ -42,10 +42,10 @@ module analysis_base
 
     abstract interface
         !> The numerics: fill the analysis from the problem, adding to the phase timings.
-        subroutine solve_interface(this, config, prob, timings, stat)
-            import :: analysis_t, config_t, problem_t, timings_t, status_t
+        subroutine solve_interface(this, inputs, prob, timings, stat)
+            import :: analysis_t, run_inputs_t, problem_t, timings_t, status_t
             class(analysis_t), intent(inout) :: this
-            type(config_t), intent(in) :: config
+            type(run_inputs_t), intent(in) :: inputs
             type(problem_t), intent(in) :: prob
             type(timings_t), intent(inout) :: timings
             type(status_t), intent(out) :: stat
@@ -53,29 +53,29 @@ module analysis_base
 
         !> Every file of the analysis but summary.json, each at the path stage%add(name, path)
         !> gives.
-        subroutine write_interface(this, stage, config, prob, stat)
-            import :: analysis_t, output_stage_t, config_t, problem_t, status_t
+        subroutine write_interface(this, stage, inputs, prob, stat)
+            import :: analysis_t, output_stage_t, run_inputs_t, problem_t, status_t
             class(analysis_t), intent(inout) :: this
             type(output_stage_t), intent(inout) :: stage
-            type(config_t), intent(in) :: config
+            type(run_inputs_t), intent(in) :: inputs
             type(problem_t), intent(in) :: prob
             type(status_t), intent(out) :: stat
         end subroutine write_interface
 
         !> summary.json without its 'files' list, which the commit adds.
-        function summary_interface(this, config, prob) result(summary)
-            import :: analysis_t, config_t, problem_t, json_object_t
+        function summary_interface(this, inputs, prob) result(summary)
+            import :: analysis_t, run_inputs_t, problem_t, json_object_t
             class(analysis_t), intent(in) :: this
-            type(config_t), intent(in) :: config
+            type(run_inputs_t), intent(in) :: inputs
             type(problem_t), intent(in) :: prob
             type(json_object_t) :: summary
         end function summary_interface
 
         !> The human summary printed on stdout once the outputs are in place.
-        function report_interface(this, config, prob) result(text)
-            import :: analysis_t, config_t, problem_t
+        function report_interface(this, inputs, prob) result(text)
+            import :: analysis_t, run_inputs_t, problem_t
             class(analysis_t), intent(in) :: this
-            type(config_t), intent(in) :: config
+            type(run_inputs_t), intent(in) :: inputs
             type(problem_t), intent(in) :: prob
             character(len=:), allocatable :: text
         end function report_interface
@@ -88,9 +88,9 @@ contains
     !> registered last as the commit's completion marker and lists the files of its set (an
     !> older run may have left other mode_NNN.vtu), and the set moves into place together.
     !> The output time covers every file but summary.json.
-    subroutine run_analysis(this, config, prob, run_start, timings, stat)
+    subroutine run_analysis(this, inputs, prob, run_start, timings, stat)
         class(analysis_t), intent(inout) :: this
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         real(wp), intent(in) :: run_start          !! wall_time() at the start of the run
         type(timings_t), intent(inout) :: timings
@@ -104,21 +104,22 @@ contains
         real(wp) :: start
 
         unlisted(1)%text = OLD_UNLISTED
-        call this%solve(config, prob, timings, stat)
+        call this%solve(inputs, prob, timings, stat)
         if (.not. stat%ok()) return
         start = wall_time()
-        call stage%begin(trim(config%output%directory), stat, unlisted)
+        call stage%begin(trim(inputs%output%directory), stat, unlisted)
         if (.not. stat%ok()) then
             ! output_stage knows the directory, not the input file that named it.
-            call stat%fail(stat%code, config%input_file//': &output directory: '//stat%message)
+            call stat%fail(stat%code, inputs%scene%name//': &output directory: '//stat%message)
             return
         end if
-        call this%write_files(stage, config, prob, stat)
+        call this%write_files(stage, inputs, prob, stat)
         if (stat%ok()) then
-            call timings%add(PHASE_OUTPUT, wall_time() - start, ': '//trim(config%output%directory))
+            call timings%add(PHASE_OUTPUT, wall_time() - start, &
+                             ': '//trim(inputs%output%directory))
             timings%total = wall_time() - run_start
             this%timings = timings
-            summary = this%summary(config, prob)
+            summary = this%summary(inputs, prob)
         end if
         if (stat%ok()) then
             call stage%add('summary.json', summary_path)

@@ -8,7 +8,7 @@ module branch_run
     use real_format, only: real_to_text
     use timer, only: timings_t
     use version, only: NCEIG_VERSION
-    use run_config, only: config_t
+    use run_inputs, only: run_inputs_t
     use problem, only: problem_t
     use analysis_base, only: analysis_t
     use eigen_files, only: eigen_summary_json, write_eigenvalues_csv
@@ -33,21 +33,21 @@ module branch_run
 
 contains
 
-    subroutine branch_run_solve(this, config, prob, timings, stat)
+    subroutine branch_run_solve(this, inputs, prob, timings, stat)
         class(branch_run_t), intent(inout) :: this
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
         if (.not. allocated(this%res)) allocate (this%res)
-        call run_branch(config, prob, this%res, timings, stat)
+        call run_branch(inputs, prob, this%res, timings, stat)
     end subroutine branch_run_solve
 
     !> eigenvalues.csv, branch.csv and the members asked for as branch_NNN.vtu.
-    subroutine branch_run_write_files(this, stage, config, prob, stat)
+    subroutine branch_run_write_files(this, stage, inputs, prob, stat)
         class(branch_run_t), intent(inout) :: this
         type(output_stage_t), intent(inout) :: stage
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         type(status_t), intent(out) :: stat
         integer, allocatable :: members(:)
@@ -62,9 +62,9 @@ contains
                 call stage%add('branch.csv', path)
                 call write_branch_csv(path, res, stat)
             end if
-            if (.not. (stat%ok() .and. config%output%vtk)) return
+            if (.not. (stat%ok() .and. inputs%output%vtk)) return
             x_base = res%critical%u_base(res%cp%free_to_all)
-            members = member_indices(size(res%deltas), config%branch%write_members)
+            members = member_indices(size(res%deltas), inputs%branch%write_members)
             allocate (u(size(res%cp%prescribed)))
             do j = 1, size(members)
                 i = members(j)
@@ -72,19 +72,19 @@ contains
                 call stage%add('branch_'//zero_padded(i, 3)//'.vtu', path)
                 call write_vtu(path, prob%mesh, &
                     ['displacement'], reshape(u, [N_DIM, prob%mesh%n_nodes(), 1]), &
-                    trim(config%output%vtk_format), stat)
+                    trim(inputs%output%vtk_format), stat)
                 if (.not. stat%ok()) return
             end do
         end associate
     end subroutine branch_run_write_files
 
-    function branch_run_summary(this, config, prob) result(summary)
+    function branch_run_summary(this, inputs, prob) result(summary)
         class(branch_run_t), intent(in) :: this
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         type(json_object_t) :: summary
         associate (res => this%res)
-            summary = eigen_summary_json(config, prob, res%critical%eig, this%timings)
+            summary = eigen_summary_json(inputs, prob, res%critical%eig, this%timings)
             call summary%add_real('alpha', res%critical%alpha)
             call summary%add_real('beta', res%critical%beta)
             call summary%add_real('c_n', res%cp%c_n)
@@ -98,12 +98,12 @@ contains
         end associate
     end function branch_run_summary
 
-    function branch_run_report(this, config, prob) result(text)
+    function branch_run_report(this, inputs, prob) result(text)
         class(branch_run_t), intent(in) :: this
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         character(len=:), allocatable :: text
-        text = branch_summary_lines(config, prob, this%res)
+        text = branch_summary_lines(inputs, prob, this%res)
     end function branch_run_report
 
     !> Which of n members to write when `wanted` are asked for: all, or spread evenly from
@@ -138,13 +138,13 @@ contains
         call csv%close(stat)
     end subroutine write_branch_csv
 
-    function branch_summary_lines(config, prob, res) result(text)
-        type(config_t), intent(in) :: config
+    function branch_summary_lines(inputs, prob, res) result(text)
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         type(branch_result_t), intent(in) :: res
         character(len=:), allocatable :: text
         character(len=*), parameter :: NL = new_line('a')
-        text = 'nceig '//NCEIG_VERSION//': '//config%input_file//' (branch)'//NL// &
+        text = 'nceig '//NCEIG_VERSION//': '//inputs%scene%name//' (branch)'//NL// &
             '  problem     '//to_string(prob%dofs%n_free)//' dofs, '// &
             to_string(prob%contact%p())//' contact nodes, lambda = '// &
             real_to_text(res%critical%lambda)//NL// &
@@ -156,6 +156,6 @@ contains
             '  residual    U: '//short_real_text(res%residual_base)//', max over '// &
             to_string(size(res%deltas))//' members: '//short_real_text(res%max_residual)// &
             ' (relative to the load)'//NL// &
-            '  output      '//trim(config%output%directory)
+            '  output      '//trim(inputs%output%directory)
     end function branch_summary_lines
 end module branch_run

@@ -10,9 +10,11 @@ module eigen_files
     use real_format, only: real_to_text, known_text
     use timer, only: timings_t
     use version, only: NCEIG_VERSION
-    use run_config, only: config_t
+    use run_inputs, only: run_inputs_t
     use problem, only: problem_t
-    use eigen_analysis, only: eigen_result_t, solver_name, operator_name, critical_cn
+    use eigen_solve, only: eigen_result_t, critical_cn
+    use method_options, only: solver_name, operator_name
+    use scene, only: MESH_RECTANGLE, MESH_GMSH
     use critical_point, only: slip_sign, critical_c_t
     use spectrum, only: spectrum_t, kind_name, KIND_COMPLEX
     use output_stage, only: output_stage_t
@@ -32,29 +34,29 @@ module eigen_files
 contains
 
     !> summary.json of an eigen run; other analyses add their own keys to it.
-    function eigen_summary_json(config, prob, res, timings) result(summary)
-        type(config_t), intent(in) :: config
+    function eigen_summary_json(inputs, prob, res, timings) result(summary)
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         type(eigen_result_t), intent(in) :: res
         type(timings_t), intent(in) :: timings
         type(json_object_t) :: summary
-        summary = summary_json(config, prob, timings, res)
+        summary = summary_json(inputs, prob, timings, res)
     end function eigen_summary_json
 
     !> The same keys for a run that solved no eigenproblem: those of the spectrum are null
     !> (n_eigenvalues 0), lambda is &analysis lambda.
-    function no_eigen_summary_json(config, prob, timings) result(summary)
-        type(config_t), intent(in) :: config
+    function no_eigen_summary_json(inputs, prob, timings) result(summary)
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         type(timings_t), intent(in) :: timings
         type(json_object_t) :: summary
-        summary = summary_json(config, prob, timings)
+        summary = summary_json(inputs, prob, timings)
     end function no_eigen_summary_json
 
     !> The keys every summary.json starts with: the run, the mesh, the problem sizes, the
     !> lowest positive eigenvalue with its meaning (null without `res`), the timings.
-    function summary_json(config, prob, timings, res) result(summary)
-        type(config_t), intent(in) :: config
+    function summary_json(inputs, prob, timings, res) result(summary)
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         type(timings_t), intent(in) :: timings
         type(eigen_result_t), intent(in), optional :: res
@@ -68,26 +70,26 @@ contains
         real(wp) :: mu, lambda
         character(len=:), allocatable :: blas_library, blas_config
 
-        lambda = config%analysis%lambda
+        lambda = inputs%point%lambda
         lowest = 0
         if (present(res)) then
             lambda = res%lambda
             lowest = res%spec%lowest_positive()
         end if
         call summary%add_string('nceig_version', NCEIG_VERSION)
-        call summary%add_string('input', config%input_file)
-        call summary%add_string('analysis', trim(config%analysis%kind))
+        call summary%add_string('input', inputs%scene%name)
+        call summary%add_string('analysis', inputs%analysis_name)
         call summary%add_real('lambda', lambda)
         ! From the mesh: a Gmsh file decides its element type, not &mesh element.
         call summary%add_string('element', element_name(prob%mesh%element))
-        call summary%add_string('mesh_source', trim(config%mesh%source))
-        if (config%mesh%source == 'rectangle') then
-            call summary%add_integer('nx', config%mesh%nx)
-            call summary%add_integer('ny', config%mesh%ny)
-            call summary%add_string('diagonal', trim(config%mesh%diagonal))
+        call summary%add_string('mesh_source', inputs%scene%source_name())
+        if (inputs%scene%source == MESH_RECTANGLE) then
+            call summary%add_integer('nx', inputs%scene%nx)
+            call summary%add_integer('ny', inputs%scene%ny)
+            call summary%add_string('diagonal', trim(inputs%scene%diagonal))
         end if
-        if (config%mesh%source == 'gmsh') call summary%add_string('mesh_file', &
-                                                                 trim(config%mesh%file))
+        if (inputs%scene%source == MESH_GMSH) call summary%add_string('mesh_file', &
+                                                                 inputs%scene%file)
         call summary%add_real('young', prob%young)
         call summary%add_real('poisson', prob%poisson)
         call summary%add_integer('n_nodes', prob%mesh%n_nodes())
@@ -97,7 +99,7 @@ contains
         call summary%add_integer('n_contact', prob%contact%p())
         if (present(res)) then
             call summary%add_string('solver', solver_name(res%solver))
-            call summary%add_string('operator', operator_name(res%solver, config%eigen%operator))
+            call summary%add_string('operator', operator_name(res%solver, inputs%eigen%operator))
         else
             call summary%add_null('solver')
             call summary%add_null('operator')
@@ -126,9 +128,9 @@ contains
                 call summary%add_null(trim(LOWEST_KEYS(i)))
             end do
         end if
-        call summary%add_real('cn_max', config%eigen%cn_max)
+        call summary%add_real('cn_max', inputs%eigen%cn_max)
         if (present(res)) then
-            call summary%add_real_array('critical_cn', critical_cn(res%spec, config%eigen%cn_max))
+            call summary%add_real_array('critical_cn', critical_cn(res%spec, inputs%eigen%cn_max))
         else
             call summary%add_real_array('critical_cn', [real(wp) ::])
         end if
@@ -248,8 +250,8 @@ contains
     end subroutine write_modes
 
     !> The human summary: mesh, sizes, the headline eigenvalue and the time of each phase.
-    function summary_lines(config, prob, res, timings, plot_note) result(text)
-        type(config_t), intent(in) :: config
+    function summary_lines(inputs, prob, res, timings, plot_note) result(text)
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         type(eigen_result_t), intent(in) :: res
         type(timings_t), intent(in) :: timings
@@ -260,8 +262,8 @@ contains
         real(wp) :: mu
         real(wp), allocatable :: critical(:)
 
-        text = 'nceig '//NCEIG_VERSION//': '//config%input_file//NL// &
-            '  mesh        '//trim(config%mesh%source)//', '//element_name(prob%mesh%element)// &
+        text = 'nceig '//NCEIG_VERSION//': '//inputs%scene%name//NL// &
+            '  mesh        '//inputs%scene%source_name()//', '//element_name(prob%mesh%element)// &
             ', '//to_string(prob%mesh%n_cells())//' cells, '//to_string(prob%mesh%n_nodes())// &
             ' nodes'//NL// &
             '  problem     '//to_string(prob%dofs%n_free)//' dofs, '// &
@@ -295,9 +297,9 @@ contains
         else
             text = text//'  no positive real eigenvalue for this lambda'//NL
         end if
-        if (config%eigen%cn_max > 0.0_wp) then
-            critical = critical_cn(res%spec, config%eigen%cn_max)
-            text = text//'  critical c_n in (0, '//real_to_text(config%eigen%cn_max)//']: '// &
+        if (inputs%eigen%cn_max > 0.0_wp) then
+            critical = critical_cn(res%spec, inputs%eigen%cn_max)
+            text = text//'  critical c_n in (0, '//real_to_text(inputs%eigen%cn_max)//']: '// &
                 to_string(size(critical))
             do i = 1, size(critical)
                 text = text//merge(': ', ', ', i == 1)//real_to_text(critical(i))
@@ -311,7 +313,7 @@ contains
             ', eigen '//seconds_text(timings%eigen)// &
             ', output '//seconds_text(timings%output)// &
             ', total '//seconds_text(timings%total)//NL// &
-            '  output      '//trim(config%output%directory)
+            '  output      '//trim(inputs%output%directory)
         if (present(plot_note)) then
             if (len(plot_note) > 0) text = text//NL//'  mode plot   '//plot_note
         end if
@@ -325,9 +327,9 @@ contains
     !> eigenvalues.csv, mode_NNN.vtu and K.mtx, B.mtx as &output asks, and mode_001.png, into
     !> `stage`: the files of an eigen run, which the threshold and sweep runs write too.
     !> `plot_note`: where the picture is, why it is missing, or '' when none was asked for.
-    subroutine write_eigen_files(stage, config, prob, res, stat, plot_note)
+    subroutine write_eigen_files(stage, inputs, prob, res, stat, plot_note)
         type(output_stage_t), intent(inout) :: stage
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         type(eigen_result_t), intent(in) :: res
         type(status_t), intent(out) :: stat
@@ -335,13 +337,14 @@ contains
         character(len=:), allocatable :: path
         call stage%add('eigenvalues.csv', path)
         call write_eigenvalues_csv(path, res%spec, stat, res%error)
-        if (stat%ok() .and. config%output%vtk) call write_modes(stage, prob, res%spec, &
-            config%output%modes, trim(config%output%vtk_format), stat, res%error)
-        if (stat%ok() .and. config%output%matrices) call write_matrices(stage, prob, res, stat)
+        if (stat%ok() .and. inputs%output%vtk) call write_modes(stage, prob, res%spec, &
+            inputs%output%modes, trim(inputs%output%vtk_format), stat, res%error)
+        if (stat%ok() .and. inputs%output%matrices) call write_matrices(stage, prob, res, stat)
         if (.not. present(plot_note)) return
         plot_note = ''
-        if (stat%ok() .and. config%output%plot .and. config%output%modes > 0 .and. &
-            size(res%spec%vectors, 2) > 0) call draw_first_mode(stage, config, prob, res, plot_note)
+        if (stat%ok() .and. inputs%output%plot .and. inputs%output%modes > 0 .and. &
+            size(res%spec%vectors, 2) > 0) &
+            call draw_first_mode(stage, inputs, prob, res, plot_note)
     end subroutine write_eigen_files
 
     !> K.mtx and B.mtx of the input problem: prob%k and res%b are in prob%units (powers of
@@ -360,13 +363,13 @@ contains
     end subroutine write_matrices
 
     !> mode_001.png of the first mode (its real part), joined to the set when drawn.
-    subroutine draw_first_mode(stage, config, prob, res, note)
+    subroutine draw_first_mode(stage, inputs, prob, res, note)
         type(output_stage_t), intent(inout) :: stage
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         type(eigen_result_t), intent(in) :: res
         character(len=:), allocatable, intent(out) :: note
-        call draw_mode(stage, trim(config%output%directory), 'mode 1: mu = '// &
+        call draw_mode(stage, trim(inputs%output%directory), 'mode 1: mu = '// &
             real_to_text(real(res%spec%mu(1), wp))//', lambda = '//real_to_text(res%lambda), &
             prob%mesh%coords, prob%mesh%cells, element_corners(prob%mesh%element), &
             prob%dofs%nodal_field(real(res%spec%vectors(:, 1), wp)), note)

@@ -12,7 +12,7 @@ module hp_adapt_run
     use strings, only: to_string, zero_padded
     use real_format, only: real_to_text, known_text
     use timer, only: timings_t
-    use run_config, only: config_t
+    use run_inputs, only: run_inputs_t
     use problem, only: problem_t
     use analysis_base, only: analysis_t
     use hp_adaptive, only: hp_adapt_eigen, hp_result_t
@@ -51,35 +51,36 @@ module hp_adapt_run
 
 contains
 
-    subroutine hp_run_solve(this, config, prob, timings, stat)
+    subroutine hp_run_solve(this, inputs, prob, timings, stat)
         class(hp_adapt_run_t), intent(inout) :: this
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
         this%start_dofs = prob%dofs%n_free
         if (.not. allocated(this%out)) allocate (this%out)
-        call hp_adapt_eigen(config, prob, this%out, timings, stat)
+        call hp_adapt_eigen(inputs%scene, inputs%point%lambda, inputs%eigen, inputs%adapt, prob, &
+                            this%out, timings, stat)
         ! as the h loop: without a positive mu at any level there is no value, so no
         ! tolerance to miss; one that vanished on refinement misses it
         if (.not. stat%ok() .or. this%out%converged) return
         if (this%out%res%spec%lowest_positive() > 0 .or. this%out%mu_vanished) &
             call this%verdict%fail(STATUS_NOT_MET, &
-            config%input_file//': &adapt: '//this%out%outcome// &
+            inputs%scene%name//': &adapt: '//this%out%outcome// &
             ' (the set of the last level is written)')
     end subroutine hp_run_solve
 
-    subroutine hp_run_write_files(this, stage, config, prob, stat)
+    subroutine hp_run_write_files(this, stage, inputs, prob, stat)
         class(hp_adapt_run_t), intent(inout) :: this
         type(output_stage_t), intent(inout) :: stage
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         type(status_t), intent(out) :: stat
         character(len=:), allocatable :: path
         if (prob%mesh%n_cells() == 0) return   ! no input mesh: nothing was solved
         call stage%add('eigenvalues.csv', path)
         call write_eigenvalues_csv(path, this%out%res%spec, stat, this%out%res%error)
-        if (stat%ok() .and. config%output%vtk) call write_hp_modes(stage, config, &
+        if (stat%ok() .and. inputs%output%vtk) call write_hp_modes(stage, inputs, &
             this%out%prob, this%out%space, this%out%res%spec, stat)
         if (stat%ok()) then
             call stage%add('adapt.csv', path)
@@ -91,25 +92,25 @@ contains
             call write_degrees(path, this%out%space, stat)
         end if
         ! the condensed hp system (vertex and edge functions), in the input's units
-        if (stat%ok() .and. config%output%matrices) then
+        if (stat%ok() .and. inputs%output%matrices) then
             call stage%add('K.mtx', path)
             call write_matrix_market(path, this%out%prob%k, stat)
         end if
-        if (stat%ok() .and. config%output%matrices) then
+        if (stat%ok() .and. inputs%output%matrices) then
             call stage%add('B.mtx', path)
             call write_matrix_market(path, this%out%res%b, stat)
         end if
-        if (stat%ok()) call draw_hp_mode(stage, config, this%out, this%plot_note, stat)
-        if (stat%ok()) call draw_hp_adapt(stage, config, this%out%res%lambda, &
+        if (stat%ok()) call draw_hp_mode(stage, inputs, this%out, this%plot_note, stat)
+        if (stat%ok()) call draw_hp_adapt(stage, inputs, this%out%res%lambda, &
                                           this%start_dofs, this%out%levels, this%picture_note)
     end subroutine hp_run_write_files
 
     !> mode_NNN.vtu: the real part of each kept mode of `spec` (on the hp problem `prob`
     !> with space `space`), sampled on the sub-triangulation of hp_field, with each
     !> sub-cell's degree.
-    subroutine write_hp_modes(stage, config, prob, space, spec, stat)
+    subroutine write_hp_modes(stage, inputs, prob, space, spec, stat)
         type(output_stage_t), intent(inout) :: stage
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         type(hp_space_t), intent(in) :: space
         type(spectrum_t), intent(in) :: spec
@@ -118,7 +119,7 @@ contains
         real(wp), allocatable :: values(:, :), degree(:), mode(:)
         integer :: i
         character(len=:), allocatable :: path
-        do i = 1, min(config%output%modes, size(spec%vectors, 2))
+        do i = 1, min(inputs%output%modes, size(spec%vectors, 2))
             mode = real(spec%vectors(:, i), wp)
             call sample_hp_field(prob%mesh, space, prob%young, prob%poisson, &
                                  mode, sub, values, degree, stat)
@@ -126,7 +127,7 @@ contains
             call stage%add('mode_'//zero_padded(i, 3)//'.vtu', path)
             call write_vtu(path, sub, &
                            ['displacement'], reshape(values, [2, size(values, 2), 1]), &
-                           trim(config%output%vtk_format), stat, ['degree'], &
+                           trim(inputs%output%vtk_format), stat, ['degree'], &
                            reshape(degree, [size(degree), 1]))
             if (.not. stat%ok()) return
         end do
@@ -169,27 +170,27 @@ contains
         call csv%close(stat)
     end subroutine write_degrees
 
-    function hp_run_summary(this, config, prob) result(summary)
+    function hp_run_summary(this, inputs, prob) result(summary)
         class(hp_adapt_run_t), intent(in) :: this
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         type(json_object_t) :: summary
-        summary = eigen_summary_json(config, this%out%prob, this%out%res, this%timings)
-        call add_adapt_keys(summary, config, this%start_dofs, size(this%out%levels), &
+        summary = eigen_summary_json(inputs, this%out%prob, this%out%res, this%timings)
+        call add_adapt_keys(summary, inputs, this%start_dofs, size(this%out%levels), &
                             this%out%converged, this%out%floor_reached, this%out%outcome)
-        call add_hp_keys(summary, config, this%out%space, prob%mesh%n_cells())
+        call add_hp_keys(summary, inputs, this%out%space, prob%mesh%n_cells())
     end function hp_run_summary
 
     !> The keys every hp loop adds: its strategy and parameters, the degrees of the last
     !> level's `space`, the cells of the input mesh.
-    subroutine add_hp_keys(summary, config, space, start_cells)
+    subroutine add_hp_keys(summary, inputs, space, start_cells)
         type(json_object_t), intent(inout) :: summary
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         type(hp_space_t), intent(in) :: space
         integer, intent(in) :: start_cells
         call summary%add_string('adapt_strategy', 'hp')
-        call summary%add_real('adapt_sigma', config%adapt%sigma)
-        call summary%add_integer('adapt_p_max', config%adapt%p_max)
+        call summary%add_real('adapt_sigma', inputs%adapt%sigma)
+        call summary%add_integer('adapt_p_max', inputs%adapt%p_max)
         call summary%add_string('degrees_file', DEGREES_FILE)
         if (size(space%cell_degree) > 0) then
             call summary%add_integer('hp_degree_min', minval(space%cell_degree))
@@ -198,14 +199,14 @@ contains
         call summary%add_integer('adapt_start_cells', start_cells)
     end subroutine add_hp_keys
 
-    function hp_run_report(this, config, prob) result(text)
+    function hp_run_report(this, inputs, prob) result(text)
         class(hp_adapt_run_t), intent(in) :: this
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         character(len=:), allocatable :: text
         character(len=*), parameter :: NL = new_line('a')
-        text = summary_lines(config, this%out%prob, this%out%res, this%timings, this%plot_note)
-        text = text//hp_report_lines(config, size(this%out%levels), this%out%space, &
+        text = summary_lines(inputs, this%out%prob, this%out%res, this%timings, this%plot_note)
+        text = text//hp_report_lines(inputs, size(this%out%levels), this%out%space, &
                                      prob%mesh%n_cells(), this%out%outcome)
         if (allocated(this%picture_note)) then
             if (len(this%picture_note) > 0) text = text//NL//'  adapt plot  '//this%picture_note
@@ -214,8 +215,8 @@ contains
 
     !> The stdout lines every hp loop adds: its `levels` from the `start_cells`-cell input
     !> mesh, the last `space`'s degrees, the `outcome`, and the mesh files.
-    function hp_report_lines(config, levels, space, start_cells, outcome) result(text)
-        type(config_t), intent(in) :: config
+    function hp_report_lines(inputs, levels, space, start_cells, outcome) result(text)
+        type(run_inputs_t), intent(in) :: inputs
         integer, intent(in) :: levels, start_cells
         type(hp_space_t), intent(in) :: space
         character(len=*), intent(in) :: outcome
@@ -227,7 +228,7 @@ contains
         if (size(space%cell_degree) > 0) text = text//' (last: degrees '// &
             to_string(minval(space%cell_degree))//' to '// &
             to_string(maxval(space%cell_degree))//')'
-        text = text//'; '//outcome//NL//'  mesh        '//trim(config%output%directory)// &
+        text = text//'; '//outcome//NL//'  mesh        '//trim(inputs%output%directory)// &
             '/mesh.msh and '//DEGREES_FILE//' (the last graded mesh and its cell degrees)'
     end function hp_report_lines
 end module hp_adapt_run

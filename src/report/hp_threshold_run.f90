@@ -9,7 +9,7 @@ module hp_threshold_run
     use status, only: status_t, STATUS_NOT_MET
     use strings, only: to_string
     use timer, only: timings_t
-    use run_config, only: config_t
+    use run_inputs, only: run_inputs_t
     use problem, only: problem_t
     use hp_threshold, only: hp_thresholds_t, hp_adapt_thresholds
     use threshold_run, only: threshold_run_t, write_threshold_adapt_csv, add_threshold_keys, &
@@ -40,26 +40,27 @@ module hp_threshold_run
 
 contains
 
-    subroutine hp_threshold_solve(this, config, prob, timings, stat)
+    subroutine hp_threshold_solve(this, inputs, prob, timings, stat)
         class(hp_threshold_run_t), intent(inout) :: this
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
         this%start_dofs = prob%dofs%n_free
         if (.not. allocated(this%res)) allocate (this%res)
         if (.not. allocated(this%out)) allocate (this%out)
-        call hp_adapt_thresholds(config, prob, this%out, this%res, timings, stat)
+        call hp_adapt_thresholds(inputs%scene, inputs%point%lambda, inputs%eigen, inputs%adapt, &
+                                 inputs%scan, prob, this%out, this%res, timings, stat)
         if (stat%ok() .and. .not. this%out%adapted%converged) call this%verdict%fail( &
-            STATUS_NOT_MET, config%input_file//': &adapt: '//this%out%adapted%outcome// &
+            STATUS_NOT_MET, inputs%scene%name//': &adapt: '//this%out%adapted%outcome// &
             ' (the set of the last level is written)')
-        if (stat%ok()) call no_digit_verdict(this, config)
+        if (stat%ok()) call no_digit_verdict(this, inputs)
     end subroutine hp_threshold_solve
 
-    subroutine hp_threshold_write_files(this, stage, config, prob, stat)
+    subroutine hp_threshold_write_files(this, stage, inputs, prob, stat)
         class(hp_threshold_run_t), intent(inout) :: this
         type(output_stage_t), intent(inout) :: stage
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         type(status_t), intent(out) :: stat
         character(len=:), allocatable :: path
@@ -68,7 +69,7 @@ contains
         if (prob%mesh%n_cells() == 0 .or. size(this%out%layers) == 0) return   ! nothing solved
         call stage%add('eigenvalues.csv', path)
         call write_eigenvalues_csv(path, this%res%eigen%spec, stat, this%res%eigen%error)
-        if (stat%ok() .and. config%output%vtk) call write_hp_modes(stage, config, &
+        if (stat%ok() .and. inputs%output%vtk) call write_hp_modes(stage, inputs, &
             this%out%adapted%prob, this%out%space, this%res%eigen%spec, stat)
         do i = 1, size(extra)
             extra(i) = ','//to_string(this%out%layers(i))//','// &
@@ -84,30 +85,30 @@ contains
             call stage%add(DEGREES_FILE, path)
             call write_degrees(path, this%out%space, stat)
         end if
-        if (stat%ok()) call draw_threshold_adapt(stage, config, prob%mesh%element, &
+        if (stat%ok()) call draw_threshold_adapt(stage, inputs, prob%mesh%element, &
             this%start_dofs, this%out%adapted%levels, this%picture_note, 'hp')
     end subroutine hp_threshold_write_files
 
-    function hp_threshold_summary(this, config, prob) result(summary)
+    function hp_threshold_summary(this, inputs, prob) result(summary)
         class(hp_threshold_run_t), intent(in) :: this
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         type(json_object_t) :: summary
-        summary = eigen_summary_json(config, this%out%adapted%prob, this%res%eigen, this%timings)
+        summary = eigen_summary_json(inputs, this%out%adapted%prob, this%res%eigen, this%timings)
         call add_threshold_keys(summary, this%res)
-        call add_adapt_keys(summary, config, this%start_dofs, size(this%out%layers), &
+        call add_adapt_keys(summary, inputs, this%start_dofs, size(this%out%layers), &
                             this%out%adapted%converged, this%out%adapted%floor_reached, &
                             this%out%adapted%outcome)
-        call add_hp_keys(summary, config, this%out%space, prob%mesh%n_cells())
+        call add_hp_keys(summary, inputs, this%out%space, prob%mesh%n_cells())
     end function hp_threshold_summary
 
-    function hp_threshold_report(this, config, prob) result(text)
+    function hp_threshold_report(this, inputs, prob) result(text)
         class(hp_threshold_run_t), intent(in) :: this
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         character(len=:), allocatable :: text
-        text = threshold_summary_lines(config, this%out%adapted%prob, this%res, this%timings, '')
-        text = text//hp_report_lines(config, size(this%out%layers), this%out%space, &
+        text = threshold_summary_lines(inputs, this%out%adapted%prob, this%res, this%timings, '')
+        text = text//hp_report_lines(inputs, size(this%out%layers), this%out%space, &
                                      prob%mesh%n_cells(), this%out%adapted%outcome)
         if (allocated(this%picture_note)) then
             if (len(this%picture_note) > 0) text = text//new_line('a')//'  adapt plot  '// &

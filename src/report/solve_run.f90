@@ -9,7 +9,7 @@ module solve_run
     use real_format, only: real_to_text
     use timer, only: timings_t
     use version, only: NCEIG_VERSION
-    use run_config, only: config_t
+    use run_inputs, only: run_inputs_t
     use problem, only: problem_t
     use analysis_base, only: analysis_t
     use eigen_files, only: eigen_summary_json, no_eigen_summary_json
@@ -35,21 +35,21 @@ module solve_run
 
 contains
 
-    subroutine solve_run_solve(this, config, prob, timings, stat)
+    subroutine solve_run_solve(this, inputs, prob, timings, stat)
         class(solve_run_t), intent(inout) :: this
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
         if (.not. allocated(this%res)) allocate (this%res)
-        call run_solve(config, prob, this%res, timings, stat)
-        if (stat%ok()) call solve_status(config, this%res, this%verdict)
+        call run_solve(inputs, prob, this%res, timings, stat)
+        if (stat%ok()) call solve_status(inputs, this%res, this%verdict)
     end subroutine solve_run_solve
 
-    subroutine solve_run_write_files(this, stage, config, prob, stat)
+    subroutine solve_run_write_files(this, stage, inputs, prob, stat)
         class(solve_run_t), intent(inout) :: this
         type(output_stage_t), intent(inout) :: stage
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         type(status_t), intent(out) :: stat
         character(len=:), allocatable :: path
@@ -60,33 +60,33 @@ contains
                 call stage%add('contact_states.csv', path)
                 call write_states_csv(path, prob, res, stat)
             end if
-            if (stat%ok() .and. config%output%vtk .and. res%report%converged) then
+            if (stat%ok() .and. inputs%output%vtk .and. res%report%converged) then
                 call stage%add('solution.vtu', path)
                 call write_vtu(path, prob%mesh, ['displacement'], &
                     reshape(res%cp%expand(res%x), [N_DIM, prob%mesh%n_nodes(), 1]), &
-                    trim(config%output%vtk_format), stat)
+                    trim(inputs%output%vtk_format), stat)
             end if
         end associate
     end subroutine solve_run_write_files
 
-    function solve_run_summary(this, config, prob) result(summary)
+    function solve_run_summary(this, inputs, prob) result(summary)
         class(solve_run_t), intent(in) :: this
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         type(json_object_t) :: summary
-        summary = solve_summary_json(config, prob, this%res, this%timings)
+        summary = solve_summary_json(inputs, prob, this%res, this%timings)
     end function solve_run_summary
 
-    function solve_run_report(this, config, prob) result(text)
+    function solve_run_report(this, inputs, prob) result(text)
         class(solve_run_t), intent(in) :: this
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         character(len=:), allocatable :: text
-        text = solve_summary_lines(config, prob, this%res)
+        text = solve_summary_lines(inputs, prob, this%res)
     end function solve_run_report
 
-    function solve_summary_json(config, prob, res, timings) result(summary)
-        type(config_t), intent(in) :: config
+    function solve_summary_json(inputs, prob, res, timings) result(summary)
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         type(solve_result_t), intent(in) :: res
         type(timings_t), intent(in) :: timings
@@ -95,19 +95,19 @@ contains
         ! The keys every summary.json has (docs/outputs.md): from the eigen solve when the run
         ! needed the critical eigenpair, null where no eigenproblem was solved.
         if (res%has_critical) then
-            summary = eigen_summary_json(config, prob, res%critical%eig, timings)
+            summary = eigen_summary_json(inputs, prob, res%critical%eig, timings)
         else
-            summary = no_eigen_summary_json(config, prob, timings)
+            summary = no_eigen_summary_json(inputs, prob, timings)
         end if
-        call summary%add_string('data', trim(config%solve%data))
-        call summary%add_string('start', trim(config%solve%start))
+        call summary%add_string('data', trim(inputs%solve%data))
+        call summary%add_string('start', trim(inputs%solve%start))
         call summary%add_real('c_n', res%cp%c_n)
         call summary%add_real('c_t', res%cp%c_t)
         call summary%add_logical('converged', res%report%converged)
         call summary%add_string('newton_stop', res%report%reason)
         call summary%add_integer('iterations', res%report%iterations)
         call summary%add_real('residual', res%report%residual(size(res%report%residual)))
-        call summary%add_real('tol', config%solve%tol)
+        call summary%add_real('tol', inputs%solve%tol)
         call summary%add_real('load_norm', res%cp%load_norm)
         call summary%add_integer('n_separated', res%n_state(STATE_SEPARATED))
         call summary%add_integer('n_stick', res%n_state(STATE_STICK))
@@ -164,13 +164,13 @@ contains
         call csv%close(stat)
     end subroutine write_states_csv
 
-    function solve_summary_lines(config, prob, res) result(text)
-        type(config_t), intent(in) :: config
+    function solve_summary_lines(inputs, prob, res) result(text)
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         type(solve_result_t), intent(in) :: res
         character(len=:), allocatable :: text
         character(len=*), parameter :: NL = new_line('a')
-        text = 'nceig '//NCEIG_VERSION//': '//config%input_file//' (solve)'//NL// &
+        text = 'nceig '//NCEIG_VERSION//': '//inputs%scene%name//' (solve)'//NL// &
             '  problem     '//to_string(prob%dofs%n_free)//' dofs, '// &
             to_string(prob%contact%p())//' contact nodes, c_n = '//real_to_text(res%cp%c_n)// &
             ', c_t = '//real_to_text(res%cp%c_t)//NL// &
@@ -186,6 +186,6 @@ contains
                 real_to_text(res%branch_delta)//', ||r|| / ||U|| = '// &
                 short_real_text(res%branch_distance)//NL
         end if
-        text = text//'  output      '//trim(config%output%directory)
+        text = text//'  output      '//trim(inputs%output%directory)
     end function solve_summary_lines
 end module solve_run

@@ -11,7 +11,7 @@ module threshold_run
     use strings, only: to_string, short_real_text
     use real_format, only: real_to_text, known_text
     use timer, only: timings_t
-    use run_config, only: config_t
+    use run_inputs, only: run_inputs_t
     use problem, only: problem_t
     use threshold_analysis, only: threshold_result_t, sweep_curve_t, solve_thresholds
     use adaptive_threshold, only: adaptive_thresholds_t, solve_adapted_thresholds
@@ -77,23 +77,24 @@ module threshold_run
 
 contains
 
-    subroutine threshold_run_solve(this, config, prob, timings, stat)
+    subroutine threshold_run_solve(this, inputs, prob, timings, stat)
         class(threshold_run_t), intent(inout) :: this
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
         if (.not. allocated(this%res)) allocate (this%res)
-        call solve_thresholds(config, prob, .false., this%res, timings, stat)
-        if (stat%ok()) call no_digit_verdict(this, config)
+        call solve_thresholds(inputs%scene, prob, inputs%point%lambda, inputs%eigen, inputs%scan, &
+                              this%res, timings, stat)
+        if (stat%ok()) call no_digit_verdict(this, inputs)
     end subroutine threshold_run_solve
 
     !> The verdict STATUS_NO_DIGIT (after the outputs: the set shows what was computed)
     !> where round-off leaves no correct digit of a critical lambda or of a collision
     !> point: its round-off bound is 1 or more.
-    subroutine no_digit_verdict(this, config)
+    subroutine no_digit_verdict(this, inputs)
         class(threshold_run_t), intent(inout) :: this
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         real(wp) :: worst
         integer :: side, i
         character(len=:), allocatable :: what
@@ -111,76 +112,78 @@ contains
             what = 'the collision point lambda = '// &
                 short_real_text(this%res%set%points(i)%lambda, 12)
         end do
-        if (worst >= 1.0_wp) call this%verdict%fail(STATUS_NO_DIGIT, config%input_file// &
+        if (worst >= 1.0_wp) call this%verdict%fail(STATUS_NO_DIGIT, inputs%scene%name// &
             ': round-off leaves no correct digit of '//what//' (bound '// &
             short_real_text(worst)//' relative); the output set is written')
     end subroutine no_digit_verdict
 
-    subroutine sweep_run_solve(this, config, prob, timings, stat)
+    subroutine sweep_run_solve(this, inputs, prob, timings, stat)
         class(sweep_run_t), intent(inout) :: this
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
         if (.not. allocated(this%res)) allocate (this%res)
-        call solve_thresholds(config, prob, .true., this%res, timings, stat)
+        call solve_thresholds(inputs%scene, prob, inputs%point%lambda, inputs%eigen, inputs%scan, &
+                              this%res, timings, stat, inputs%sweep, inputs%adapt)
         if (.not. stat%ok()) return
-        call no_digit_verdict(this, config)
+        call no_digit_verdict(this, inputs)
         if (.not. this%verdict%ok()) return
         if (this%res%sweep%n_not_met > 0) call this%verdict%fail(STATUS_NOT_MET, &
-            config%input_file//': &adapt: '//to_string(this%res%sweep%n_not_met)// &
+            inputs%scene%name//': &adapt: '//to_string(this%res%sweep%n_not_met)// &
             ' of the sweep''s points with a positive mu did not meet the tolerance, '// &
             'the first at '//this%res%sweep%not_met//' (the set is written)')
     end subroutine sweep_run_solve
 
-    subroutine adapt_threshold_run_solve(this, config, prob, timings, stat)
+    subroutine adapt_threshold_run_solve(this, inputs, prob, timings, stat)
         class(adapt_threshold_run_t), intent(inout) :: this
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
         if (.not. allocated(this%res)) allocate (this%res)
         if (.not. allocated(this%adapted)) allocate (this%adapted)
-        call solve_adapted_thresholds(config, prob, this%adapted, this%res, timings, stat)
+        call solve_adapted_thresholds(inputs%scene, inputs%point%lambda, inputs%eigen, &
+            inputs%adapt, inputs%scan, prob, this%adapted, this%res, timings, stat)
         if (stat%ok() .and. .not. this%adapted%converged) call this%verdict%fail( &
-            STATUS_NOT_MET, config%input_file//': &adapt: '//this%adapted%outcome// &
+            STATUS_NOT_MET, inputs%scene%name//': &adapt: '//this%adapted%outcome// &
             ' (the set of the last level is written)')
-        if (stat%ok()) call no_digit_verdict(this, config)
+        if (stat%ok()) call no_digit_verdict(this, inputs)
     end subroutine adapt_threshold_run_solve
 
-    subroutine threshold_run_write_files(this, stage, config, prob, stat)
+    subroutine threshold_run_write_files(this, stage, inputs, prob, stat)
         class(threshold_run_t), intent(inout) :: this
         type(output_stage_t), intent(inout) :: stage
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         type(status_t), intent(out) :: stat
-        call write_eigen_files(stage, config, prob, this%res%eigen, stat, this%plot_note)
+        call write_eigen_files(stage, inputs, prob, this%res%eigen, stat, this%plot_note)
     end subroutine threshold_run_write_files
 
-    subroutine sweep_run_write_files(this, stage, config, prob, stat)
+    subroutine sweep_run_write_files(this, stage, inputs, prob, stat)
         class(sweep_run_t), intent(inout) :: this
         type(output_stage_t), intent(inout) :: stage
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         type(status_t), intent(out) :: stat
         character(len=:), allocatable :: path
-        call this%threshold_run_t%write_files(stage, config, prob, stat)
+        call this%threshold_run_t%write_files(stage, inputs, prob, stat)
         if (stat%ok() .and. allocated(this%res%sweep%lambda)) then
             call stage%add(SWEEP_FILE, path)
             call write_sweep_csv(path, this%res%sweep, stat)
         end if
         if (stat%ok() .and. allocated(this%res%sweep%lambda)) &
-            call draw_sweep(stage, config, prob, this%res, this%picture_note)
+            call draw_sweep(stage, inputs, prob, this%res, this%picture_note)
     end subroutine sweep_run_write_files
 
-    subroutine adapt_threshold_run_write_files(this, stage, config, prob, stat)
+    subroutine adapt_threshold_run_write_files(this, stage, inputs, prob, stat)
         class(adapt_threshold_run_t), intent(inout) :: this
         type(output_stage_t), intent(inout) :: stage
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         type(status_t), intent(out) :: stat
         character(len=:), allocatable :: path
-        call write_eigen_files(stage, config, this%adapted%prob, this%res%eigen, stat, &
+        call write_eigen_files(stage, inputs, this%adapted%prob, this%res%eigen, stat, &
                                this%plot_note)
         if (stat%ok()) then
             call stage%add('adapt.csv', path)
@@ -188,67 +191,67 @@ contains
         end if
         if (stat%ok()) call write_adapted_mesh(stage, this%adapted%prob, stat)
         ! the files describe the final level; of the starting problem `prob` only its dofs
-        if (stat%ok()) call draw_threshold_adapt(stage, config, &
+        if (stat%ok()) call draw_threshold_adapt(stage, inputs, &
             this%adapted%prob%mesh%element, prob%dofs%n_free, this%adapted%levels, &
             this%picture_note)
     end subroutine adapt_threshold_run_write_files
 
-    function threshold_run_summary(this, config, prob) result(summary)
+    function threshold_run_summary(this, inputs, prob) result(summary)
         class(threshold_run_t), intent(in) :: this
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         type(json_object_t) :: summary
-        summary = eigen_summary_json(config, prob, this%res%eigen, this%timings)
+        summary = eigen_summary_json(inputs, prob, this%res%eigen, this%timings)
         call add_threshold_keys(summary, this%res)
     end function threshold_run_summary
 
-    function sweep_run_summary(this, config, prob) result(summary)
+    function sweep_run_summary(this, inputs, prob) result(summary)
         class(sweep_run_t), intent(in) :: this
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         type(json_object_t) :: summary
-        summary = this%threshold_run_t%summary(config, prob)
-        if (allocated(this%res%sweep%lambda)) call add_sweep_keys(summary, config, this%res)
+        summary = this%threshold_run_t%summary(inputs, prob)
+        if (allocated(this%res%sweep%lambda)) call add_sweep_keys(summary, inputs, this%res)
     end function sweep_run_summary
 
-    function adapt_threshold_run_summary(this, config, prob) result(summary)
+    function adapt_threshold_run_summary(this, inputs, prob) result(summary)
         class(adapt_threshold_run_t), intent(in) :: this
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         type(json_object_t) :: summary
-        summary = eigen_summary_json(config, this%adapted%prob, this%res%eigen, this%timings)
+        summary = eigen_summary_json(inputs, this%adapted%prob, this%res%eigen, this%timings)
         call add_threshold_keys(summary, this%res)
-        call add_adapt_keys(summary, config, prob%dofs%n_free, &
+        call add_adapt_keys(summary, inputs, prob%dofs%n_free, &
             size(this%adapted%levels) - 1, this%adapted%converged, this%adapted%floor_reached, &
             this%adapted%outcome)
     end function adapt_threshold_run_summary
 
-    function threshold_run_report(this, config, prob) result(text)
+    function threshold_run_report(this, inputs, prob) result(text)
         class(threshold_run_t), intent(in) :: this
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         character(len=:), allocatable :: text
-        text = threshold_summary_lines(config, prob, this%res, this%timings, this%plot_note)
+        text = threshold_summary_lines(inputs, prob, this%res, this%timings, this%plot_note)
     end function threshold_run_report
 
-    function sweep_run_report(this, config, prob) result(text)
+    function sweep_run_report(this, inputs, prob) result(text)
         class(sweep_run_t), intent(in) :: this
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         character(len=:), allocatable :: text
-        text = this%threshold_run_t%report(config, prob)
+        text = this%threshold_run_t%report(inputs, prob)
         if (allocated(this%picture_note)) text = text//new_line('a')//'  plot        '// &
                                                   this%picture_note
     end function sweep_run_report
 
-    function adapt_threshold_run_report(this, config, prob) result(text)
+    function adapt_threshold_run_report(this, inputs, prob) result(text)
         class(adapt_threshold_run_t), intent(in) :: this
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         character(len=:), allocatable :: text
-        text = threshold_summary_lines(config, this%adapted%prob, this%res, this%timings, &
+        text = threshold_summary_lines(inputs, this%adapted%prob, this%res, this%timings, &
                                        this%plot_note)
-        text = text//adapt_report_lines(config, prob%dofs%n_free, &
+        text = text//adapt_report_lines(inputs, prob%dofs%n_free, &
             size(this%adapted%levels) - 1, this%adapted%outcome, this%picture_note)
     end function adapt_threshold_run_report
 
@@ -458,14 +461,13 @@ contains
     end subroutine positive_intervals
 
     !> What a sweep ran: its file, size, range and spacing, and how many points had a mu.
-    subroutine add_sweep_keys(summary, config, res)
+    subroutine add_sweep_keys(summary, inputs, res)
         type(json_object_t), intent(inout) :: summary
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         type(threshold_result_t), intent(in) :: res
         character(len=:), allocatable :: spacing
 
-        spacing = 'list'
-        if (.not. config%sweep%lambdas(1) < huge(1.0_wp)) spacing = trim(config%sweep%spacing)
+        spacing = inputs%sweep_spacing
         call summary%add_string('sweep_file', SWEEP_FILE)
         call summary%add_string('sweep_spacing', spacing)
         call summary%add_integer('sweep_n_lambda', size(res%sweep%lambda))
@@ -476,7 +478,7 @@ contains
         call summary%add_integer('sweep_n_dense', res%sweep%n_dense)
         ! with &adapt: the points adapted (every one), those whose mesh needed no refinement
         ! (the previous point's served), the largest estimate met
-        if (config%adapt%tolerance > 0.0_wp) then
+        if (inputs%adapt%tolerance > 0.0_wp) then
             call summary%add_integer('sweep_n_adapted', size(res%sweep%lambda))
             call summary%add_integer('sweep_n_mesh_reused', res%sweep%n_reused)
             call summary%add_integer('sweep_n_not_met', res%sweep%n_not_met)
@@ -514,8 +516,8 @@ contains
     end subroutine write_sweep_csv
 
     !> The eigen summary, then the thresholds with their confirmations and the sweep.
-    function threshold_summary_lines(config, prob, res, timings, plot_note) result(text)
-        type(config_t), intent(in) :: config
+    function threshold_summary_lines(inputs, prob, res, timings, plot_note) result(text)
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         type(threshold_result_t), intent(in) :: res
         type(timings_t), intent(in) :: timings
@@ -524,7 +526,7 @@ contains
         character(len=*), parameter :: NL = new_line('a')
         integer :: side
 
-        text = summary_lines(config, prob, res%eigen, timings, plot_note)
+        text = summary_lines(inputs, prob, res%eigen, timings, plot_note)
         associate (thr => res%thresholds)
             do side = SIDE_PLUS, SIDE_MINUS
                 text = text//NL//'  '//SIDE_LABELS(side)//'     '

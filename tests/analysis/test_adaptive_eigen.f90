@@ -5,6 +5,8 @@
 !> and the contact segment, the limits (a warning, never silence) and the inputs it refuses.
 program test_adaptive_eigen
     use kinds, only: wp
+    use run_inputs, only: run_inputs_t, translate_input
+    use fixtures, only: problem_of
     use status, only: status_t, STATUS_BAD_INPUT
     use testing, only: test_suite_t
     use fixtures, only: square_scene
@@ -46,8 +48,11 @@ contains
         type(status_t), intent(out) :: stat
         type(problem_t) :: start
         type(timings_t) :: timings
-        call build_problem(config, start, stat)
-        if (stat%ok()) call adapt_eigen(config, start, out, timings, stat)
+        type(run_inputs_t) :: inputs
+        call problem_of(config, start, stat)
+        call translate_input(config, inputs)
+        if (stat%ok()) call adapt_eigen(inputs%scene, inputs%point%lambda, inputs%eigen, &
+                                        inputs%adapt, start, out, timings, stat)
     end subroutine run
 
     !> Indicators [1, 5, 2, 2]: theta 0.5 needs the 5 alone (5 >= 5), 0.6 the 5 and the first

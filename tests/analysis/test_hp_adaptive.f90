@@ -6,6 +6,8 @@
 !> one degree more than the one before, degree 1 at the singular corners.
 program test_hp_adaptive
     use kinds, only: wp
+    use run_inputs, only: run_inputs_t, translate_input
+    use fixtures, only: problem_of
     use status, only: status_t
     use testing, only: test_suite_t
     use timer, only: timings_t
@@ -35,9 +37,12 @@ contains
         type(problem_t) :: start
         type(timings_t) :: timings
         type(status_t) :: stat
+        type(run_inputs_t) :: inputs
         call adaptive_scene('eigen', 'hp', 1.0e-6_wp, 0, 'unused', config)
-        call build_problem(config, start, stat)
-        if (stat%ok()) call hp_adapt_eigen(config, start, out, timings, stat)
+        call problem_of(config, start, stat)
+        call translate_input(config, inputs)
+        if (stat%ok()) call hp_adapt_eigen(inputs%scene, inputs%point%lambda, inputs%eigen, &
+                                           inputs%adapt, start, out, timings, stat)
         call t%check('the loop runs', stat%ok())
         if (.not. stat%ok()) write (*, '(a)') stat%message
     end subroutine run_loop

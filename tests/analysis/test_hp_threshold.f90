@@ -6,6 +6,8 @@
 !> max_levels does.
 program test_hp_threshold
     use kinds, only: wp, i8
+    use run_inputs, only: run_inputs_t, translate_input
+    use fixtures, only: problem_of
     use status, only: status_t, STATUS_NOT_MET
     use testing, only: test_suite_t
     use fixtures, only: square_scene
@@ -53,8 +55,11 @@ contains
         integer(i8), intent(in), optional :: available
         type(problem_t) :: start
         type(timings_t) :: timings
-        call build_problem(config, start, stat)
-        if (stat%ok()) call hp_adapt_thresholds(config, start, out, res, timings, stat, available)
+        type(run_inputs_t) :: inputs
+        call problem_of(config, start, stat)
+        call translate_input(config, inputs)
+        if (stat%ok()) call hp_adapt_thresholds(inputs%scene, inputs%point%lambda, inputs%eigen, &
+            inputs%adapt, inputs%scan, start, out, res, timings, stat, available)
     end subroutine run
 
     !> The bar is meant to hold: |lambda - truth| <= bar |lambda| plus the truth's own

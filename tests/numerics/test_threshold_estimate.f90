@@ -6,6 +6,8 @@
 !> tolerance with an estimate that tracks the true error, and Q1 has no estimate.
 program test_threshold_estimate
     use kinds, only: wp
+    use run_inputs, only: run_inputs_t, translate_input
+    use fixtures, only: problem_of
     use status, only: status_t
     use testing, only: test_suite_t
     use fixtures, only: square_scene
@@ -48,7 +50,7 @@ contains
         type(config_t) :: config
         type(status_t) :: stat
         call square_scene(n, element, diagonal, config)
-        call build_problem(config, prob, stat)
+        call problem_of(config, prob, stat)
         call t%check('build_problem: '//stat%message, stat%ok())
     end subroutine square
 
@@ -175,6 +177,7 @@ contains
         type(config_t) :: config
         type(problem_t) :: start
         type(adaptive_thresholds_t) :: out
+        type(run_inputs_t) :: inputs
         type(thresholds_t) :: thr
         type(threshold_estimate_t) :: est
         type(timings_t) :: timings
@@ -183,8 +186,10 @@ contains
         integer :: side
         call square_scene(4, 'p2', 'right', config)
         config%adapt%tolerance = 1.0e-6_wp
-        call build_problem(config, start, stat)
-        if (stat%ok()) call adapt_thresholds(config, start, out, timings, stat)
+        call problem_of(config, start, stat)
+        call translate_input(config, inputs)
+        if (stat%ok()) call adapt_thresholds(inputs%scene, inputs%eigen, inputs%adapt, &
+                                             inputs%scan, start, out, timings, stat)
         call t%check('adaptive thresholds: '//stat%message, stat%ok())
         if (.not. stat%ok()) return
         call t%check('adaptive thresholds: converged', out%converged)
