@@ -29,8 +29,7 @@ module threshold_analysis
                                lowest_positive_mu, SIDE_PLUS, SIDE_MINUS, SIDE_LABELS
     use roundoff, only: threshold_roundoff, collision_roundoffs
     use critical_set, only: critical_set_t, search_critical_set, MECHANISM_COMPLEX_PAIR
-    use adaptive_eigen, only: adapt_eigen, adaptive_result_t
-    use hp_adaptive, only: hp_adapt_lambdas, hp_result_t
+    use eigen_goal, only: adapt_eigen, adapted_eigen_t
     use eigen_solve, only: eigen_result_t, choose_solver, eigen_with_factor, to_input_units, &
                            estimate_wanted
     use error_estimate, only: ENRICHED_CONTACT_MAX
@@ -432,8 +431,9 @@ contains
     !> at a lambda before (the mesh of a neighbouring lambda is usually fine already: the
     !> point then costs one solve and one estimate), and a point whose loop stops short
     !> keeps its last mu and estimate, its mesh not passed on. With 'hp' every point climbs
-    !> the hp levels of the input mesh, which do not depend on lambda: one climb
-    !> (hp_adapt_lambdas) builds and factors each level once for all points not yet stopped.
+    !> the hp levels of the input mesh, which do not depend on lambda: one climb (one goal
+    !> with a target per lambda, eigen_goal) builds and factors each level once for all
+    !> points not yet stopped.
     subroutine adaptive_sweep(scn, prob, options, adapt, curve, timings, stat)
         type(scene_t), intent(in) :: scn
         type(problem_t), intent(in) :: prob
@@ -443,19 +443,18 @@ contains
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
         type(problem_t) :: current
-        type(adaptive_result_t) :: out
-        type(hp_result_t), allocatable :: hp_outs(:)
+        type(adapted_eigen_t), allocatable :: outs(:)
         !> a point's phases would flood the progress lines; the sweep's time is time_sweep
         type(timings_t) :: quiet
         integer :: i
 
         if (adapt%refine == REFINE_HP) then
-            call hp_adapt_lambdas(scn, options, adapt, prob, curve%lambda, hp_outs, quiet, stat, &
-                                  keep_problem=.false.)
+            call adapt_eigen(scn, curve%lambda, options, adapt, prob, outs, quiet, stat, &
+                             keep_problem=.false.)
             if (.not. stat%ok()) return
             do i = 1, size(curve%lambda)
                 call timings%tick('sweep, lambda', i, size(curve%lambda))
-                associate (o => hp_outs(i))
+                associate (o => outs(i))
                     call record(o%res, last_dofs(o), o%converged, .false., o%mu_vanished, &
                                 o%outcome)
                 end associate
@@ -465,11 +464,14 @@ contains
         current = prob
         do i = 1, size(curve%lambda)
             call timings%tick('sweep, lambda', i, size(curve%lambda))
-            call adapt_eigen(scn, curve%lambda(i), options, adapt, current, out, quiet, stat)
+            call adapt_eigen(scn, [curve%lambda(i)], options, adapt, current, outs, quiet, stat, &
+                             keep_problem=.true.)
             if (.not. stat%ok()) return
-            call record(out%res, out%prob%dofs%n_free, out%converged, &
-                        size(out%levels) == 1, out%mu_vanished, out%outcome)
-            if (out%converged) current = out%prob
+            associate (o => outs(1))
+                call record(o%res, o%prob%dofs%n_free, o%converged, size(o%levels) == 1, &
+                            o%mu_vanished, o%outcome)
+                if (o%converged) current = o%prob
+            end associate
         end do
 
     contains
@@ -500,7 +502,7 @@ contains
 
         !> The free dofs of the last level an hp point solved (0: none).
         pure integer function last_dofs(o)
-            type(hp_result_t), intent(in) :: o
+            type(adapted_eigen_t), intent(in) :: o
             last_dofs = 0
             if (size(o%levels) > 0) last_dofs = o%levels(size(o%levels))%n_dofs
         end function last_dofs

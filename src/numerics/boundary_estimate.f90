@@ -27,7 +27,7 @@ module boundary_estimate
     use contact_reduction, only: factor_contact_blocks
     use threshold_estimate, only: threshold_estimate_t
     use error_bar, only: single_bar, three_mesh_bar
-    use adaptive_loop, only: adaptive_dof_limit
+    use h_refiner, only: adaptive_dof_limit
     use system_memory, only: available_memory_bytes
     implicit none
     private

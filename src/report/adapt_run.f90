@@ -1,5 +1,5 @@
 ! SPDX-License-Identifier: MIT
-!> analysis = 'eigen' with &adapt tolerance > 0: the adaptive loop (adaptive_eigen) and its
+!> analysis = 'eigen' with &adapt tolerance > 0: the adaptive loop (eigen_goal) and its
 !> files: those of an eigen run on the final mesh (eigenvalues.csv, mode_NNN.vtu with the
 !> indicators, mode_001.png), adapt.csv (one row per level), adapt.png, and mesh.msh, the
 !> final mesh as a Gmsh file any analysis reads back.
@@ -12,7 +12,7 @@ module adapt_run
     use run_inputs, only: run_inputs_t
     use problem, only: problem_t
     use analysis_base, only: analysis_t
-    use adaptive_eigen, only: adapt_eigen, adaptive_result_t
+    use eigen_goal, only: adapt_eigen, adapted_eigen_t
     use eigen_files, only: eigen_summary_json, summary_lines, write_eigen_files
     use output_stage, only: output_stage_t
     use json_writer, only: json_object_t
@@ -26,7 +26,7 @@ module adapt_run
 
     type, extends(analysis_t), public :: adapt_run_t
         !> allocatable, allocated by solve: gfortran 12 frees it whole (docs/testing.md)
-        type(adaptive_result_t), allocatable :: out
+        type(adapted_eigen_t), allocatable :: out(:)   !! one: the loop at &analysis lambda
         character(len=:), allocatable :: plot_note    !! mode_001.png: where, or why not
     contains
         procedure :: solve => adapt_run_solve
@@ -43,16 +43,15 @@ contains
         type(problem_t), intent(in) :: prob
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
-        if (.not. allocated(this%out)) allocate (this%out)
-        call adapt_eigen(inputs%scene, inputs%point%lambda, inputs%eigen, inputs%adapt, prob, &
-                         this%out, timings, stat)
+        call adapt_eigen(inputs%scene, [inputs%point%lambda], inputs%eigen, inputs%adapt, prob, &
+                         this%out, timings, stat, keep_problem=.true.)
         ! Without a positive mu at any level there is no value to quote, so nothing to take
         ! for a met tolerance: that stays exit 0 with its warning. One that vanished on
         ! refinement had values, none converged: a tolerance not met.
-        if (.not. stat%ok() .or. this%out%converged) return
-        if (this%out%res%spec%lowest_positive() > 0 .or. this%out%mu_vanished) &
+        if (.not. stat%ok() .or. this%out(1)%converged) return
+        if (this%out(1)%res%spec%lowest_positive() > 0 .or. this%out(1)%mu_vanished) &
             call this%verdict%fail(STATUS_NOT_MET, &
-            inputs%scene%name//': &adapt: '//this%out%outcome// &
+            inputs%scene%name//': &adapt: '//this%out(1)%outcome// &
             ' (the set of the last level is written)')
     end subroutine adapt_run_solve
 
@@ -64,15 +63,16 @@ contains
         type(problem_t), intent(in) :: prob
         type(status_t), intent(out) :: stat
         character(len=:), allocatable :: path
-        call write_eigen_files(stage, inputs, this%out%prob, this%out%res, stat, this%plot_note)
+        call write_eigen_files(stage, inputs, this%out(1)%prob, this%out(1)%res, stat, &
+                               this%plot_note)
         if (stat%ok()) then
             call stage%add('adapt.csv', path)
-            call write_adapt_csv(path, this%out, stat)
+            call write_adapt_csv(path, this%out(1), stat)
         end if
-        if (stat%ok()) call write_adapted_mesh(stage, this%out%prob, stat)
+        if (stat%ok()) call write_adapted_mesh(stage, this%out(1)%prob, stat)
         ! the files describe the final level; of the starting problem `prob` only its dofs
-        if (stat%ok()) call draw_eigen_adapt(stage, inputs, this%out%prob%mesh%element, &
-            this%out%res%lambda, prob%dofs%n_free, this%out%levels, this%picture_note)
+        if (stat%ok()) call draw_eigen_adapt(stage, inputs, this%out(1)%prob%mesh%element, &
+            this%out(1)%res%lambda, prob%dofs%n_free, this%out(1)%levels, this%picture_note)
     end subroutine adapt_run_write_files
 
     !> level,n_dofs,n_contact,n_cells,mu,error_estimate,time_s,error_bar (the bar is last so
@@ -80,7 +80,7 @@ contains
     !> where there is no positive mu or no estimate.
     subroutine write_adapt_csv(path, out, stat)
         character(len=*), intent(in) :: path
-        type(adaptive_result_t), intent(in) :: out
+        type(adapted_eigen_t), intent(in) :: out
         type(status_t), intent(out) :: stat
         type(csv_writer_t) :: csv
         integer :: i
@@ -105,9 +105,9 @@ contains
         type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         type(json_object_t) :: summary
-        summary = eigen_summary_json(inputs, this%out%prob, this%out%res, this%timings)
-        call add_adapt_keys(summary, inputs, prob%dofs%n_free, size(this%out%levels) - 1, &
-                            this%out%converged, this%out%floor_reached, this%out%outcome)
+        summary = eigen_summary_json(inputs, this%out(1)%prob, this%out(1)%res, this%timings)
+        call add_adapt_keys(summary, inputs, prob%dofs%n_free, size(this%out(1)%levels) - 1, &
+                            this%out(1)%converged, this%out(1)%floor_reached, this%out(1)%outcome)
     end function adapt_run_summary
 
     function adapt_run_report(this, inputs, prob) result(text)
@@ -115,8 +115,9 @@ contains
         type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         character(len=:), allocatable :: text
-        text = summary_lines(inputs, this%out%prob, this%out%res, this%timings, this%plot_note)
-        text = text//adapt_report_lines(inputs, prob%dofs%n_free, size(this%out%levels) - 1, &
-                                        this%out%outcome, this%picture_note)
+        text = summary_lines(inputs, this%out(1)%prob, this%out(1)%res, this%timings, &
+                             this%plot_note)
+        text = text//adapt_report_lines(inputs, prob%dofs%n_free, size(this%out(1)%levels) - 1, &
+                                        this%out(1)%outcome, this%picture_note)
     end function adapt_run_report
 end module adapt_run

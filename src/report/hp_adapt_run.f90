@@ -1,6 +1,7 @@
 ! SPDX-License-Identifier: MIT
 !> analysis = 'eigen' with &adapt tolerance > 0 and strategy = 'hp': the loop of
-!> hp_adaptive and its files: eigenvalues.csv of the last level, mode_NNN.vtu (the hp field
+!> eigen_goal on hp levels and its files: eigenvalues.csv of the last level, mode_NNN.vtu (the
+!> hp field
 !> on a linear sub-triangulation, hp_field, with the cell field `degree`), adapt.csv (one
 !> row per level: layers, degrees, dofs, mu, bar), mesh.msh (the last graded mesh) and
 !> degrees.csv (its cell degrees), K.mtx and B.mtx of the condensed system as &output asks,
@@ -15,7 +16,7 @@ module hp_adapt_run
     use run_inputs, only: run_inputs_t
     use problem, only: problem_t
     use analysis_base, only: analysis_t
-    use hp_adaptive, only: hp_adapt_eigen, hp_result_t
+    use eigen_goal, only: adapt_eigen, adapted_eigen_t
     use eigen_files, only: eigen_summary_json, summary_lines, write_eigenvalues_csv
     use adapt_files, only: add_adapt_keys, write_adapted_mesh
     use output_stage, only: output_stage_t
@@ -39,7 +40,7 @@ module hp_adapt_run
     type, extends(analysis_t), public :: hp_adapt_run_t
         !> allocatable: gfortran 12's finalizer of this type, inlined component by component,
         !> skipped out%prob%k (LeakSanitizer); an allocatable component is freed whole
-        type(hp_result_t), allocatable :: out
+        type(adapted_eigen_t), allocatable :: out(:)
         integer :: start_dofs = 0   !! free dofs of the input mesh (P1 to P4 as given)
         character(len=:), allocatable :: plot_note   !! mode_001.png: where, or why not
     contains
@@ -58,15 +59,14 @@ contains
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
         this%start_dofs = prob%dofs%n_free
-        if (.not. allocated(this%out)) allocate (this%out)
-        call hp_adapt_eigen(inputs%scene, inputs%point%lambda, inputs%eigen, inputs%adapt, prob, &
-                            this%out, timings, stat)
+        call adapt_eigen(inputs%scene, [inputs%point%lambda], inputs%eigen, inputs%adapt, prob, &
+                         this%out, timings, stat, keep_problem=.true.)
         ! as the h loop: without a positive mu at any level there is no value, so no
         ! tolerance to miss; one that vanished on refinement misses it
-        if (.not. stat%ok() .or. this%out%converged) return
-        if (this%out%res%spec%lowest_positive() > 0 .or. this%out%mu_vanished) &
+        if (.not. stat%ok() .or. this%out(1)%converged) return
+        if (this%out(1)%res%spec%lowest_positive() > 0 .or. this%out(1)%mu_vanished) &
             call this%verdict%fail(STATUS_NOT_MET, &
-            inputs%scene%name//': &adapt: '//this%out%outcome// &
+            inputs%scene%name//': &adapt: '//this%out(1)%outcome// &
             ' (the set of the last level is written)')
     end subroutine hp_run_solve
 
@@ -79,30 +79,30 @@ contains
         character(len=:), allocatable :: path
         if (prob%mesh%n_cells() == 0) return   ! no input mesh: nothing was solved
         call stage%add('eigenvalues.csv', path)
-        call write_eigenvalues_csv(path, this%out%res%spec, stat, this%out%res%error)
+        call write_eigenvalues_csv(path, this%out(1)%res%spec, stat, this%out(1)%res%error)
         if (stat%ok() .and. inputs%output%vtk) call write_hp_modes(stage, inputs, &
-            this%out%prob, this%out%space, this%out%res%spec, stat)
+            this%out(1)%prob, this%out(1)%space, this%out(1)%res%spec, stat)
         if (stat%ok()) then
             call stage%add('adapt.csv', path)
-            call write_hp_adapt_csv(path, this%out, stat)
+            call write_hp_adapt_csv(path, this%out(1), stat)
         end if
-        if (stat%ok()) call write_adapted_mesh(stage, this%out%prob, stat)
+        if (stat%ok()) call write_adapted_mesh(stage, this%out(1)%prob, stat)
         if (stat%ok()) then
             call stage%add(DEGREES_FILE, path)
-            call write_degrees(path, this%out%space, stat)
+            call write_degrees(path, this%out(1)%space, stat)
         end if
         ! the condensed hp system (vertex and edge functions), in the input's units
         if (stat%ok() .and. inputs%output%matrices) then
             call stage%add('K.mtx', path)
-            call write_matrix_market(path, this%out%prob%k, stat)
+            call write_matrix_market(path, this%out(1)%prob%k, stat)
         end if
         if (stat%ok() .and. inputs%output%matrices) then
             call stage%add('B.mtx', path)
-            call write_matrix_market(path, this%out%res%b, stat)
+            call write_matrix_market(path, this%out(1)%res%b, stat)
         end if
-        if (stat%ok()) call draw_hp_mode(stage, inputs, this%out, this%plot_note, stat)
-        if (stat%ok()) call draw_hp_adapt(stage, inputs, this%out%res%lambda, &
-                                          this%start_dofs, this%out%levels, this%picture_note)
+        if (stat%ok()) call draw_hp_mode(stage, inputs, this%out(1), this%plot_note, stat)
+        if (stat%ok()) call draw_hp_adapt(stage, inputs, this%out(1)%res%lambda, &
+                                          this%start_dofs, this%out(1)%levels, this%picture_note)
     end subroutine hp_run_write_files
 
     !> mode_NNN.vtu: the real part of each kept mode of `spec` (on the hp problem `prob`
@@ -137,7 +137,7 @@ contains
     !> there is none.
     subroutine write_hp_adapt_csv(path, out, stat)
         character(len=*), intent(in) :: path
-        type(hp_result_t), intent(in) :: out
+        type(adapted_eigen_t), intent(in) :: out
         type(status_t), intent(out) :: stat
         type(csv_writer_t) :: csv
         integer :: i
@@ -175,10 +175,10 @@ contains
         type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         type(json_object_t) :: summary
-        summary = eigen_summary_json(inputs, this%out%prob, this%out%res, this%timings)
-        call add_adapt_keys(summary, inputs, this%start_dofs, size(this%out%levels), &
-                            this%out%converged, this%out%floor_reached, this%out%outcome)
-        call add_hp_keys(summary, inputs, this%out%space, prob%mesh%n_cells())
+        summary = eigen_summary_json(inputs, this%out(1)%prob, this%out(1)%res, this%timings)
+        call add_adapt_keys(summary, inputs, this%start_dofs, size(this%out(1)%levels), &
+                            this%out(1)%converged, this%out(1)%floor_reached, this%out(1)%outcome)
+        call add_hp_keys(summary, inputs, this%out(1)%space, prob%mesh%n_cells())
     end function hp_run_summary
 
     !> The keys every hp loop adds: its strategy and parameters, the degrees of the last
@@ -205,9 +205,10 @@ contains
         type(problem_t), intent(in) :: prob
         character(len=:), allocatable :: text
         character(len=*), parameter :: NL = new_line('a')
-        text = summary_lines(inputs, this%out%prob, this%out%res, this%timings, this%plot_note)
-        text = text//hp_report_lines(inputs, size(this%out%levels), this%out%space, &
-                                     prob%mesh%n_cells(), this%out%outcome)
+        text = summary_lines(inputs, this%out(1)%prob, this%out(1)%res, this%timings, &
+                             this%plot_note)
+        text = text//hp_report_lines(inputs, size(this%out(1)%levels), this%out(1)%space, &
+                                     prob%mesh%n_cells(), this%out(1)%outcome)
         if (allocated(this%picture_note)) then
             if (len(this%picture_note) > 0) text = text//NL//'  adapt plot  '//this%picture_note
         end if

@@ -1,6 +1,7 @@
 ! SPDX-License-Identifier: MIT
 !> analysis = 'threshold' with &adapt tolerance > 0 and strategy = 'hp': the loop of
-!> hp_threshold and its files, those of the h loop (threshold_run: adapt_threshold_run_t)
+!> threshold_goal on hp levels and its files, those of the h loop (threshold_run:
+!> adapt_threshold_run_t)
 !> where the hp levels allow: eigenvalues.csv at &analysis lambda on the last level,
 !> mode_NNN.vtu sampled on the hp field (as hp_adapt_run), adapt.csv with the h loop's
 !> columns and layers, p_min, p_max, mesh.msh and degrees.csv; summary.json with the
@@ -11,7 +12,7 @@ module hp_threshold_run
     use timer, only: timings_t
     use run_inputs, only: run_inputs_t
     use problem, only: problem_t
-    use hp_threshold, only: hp_thresholds_t, hp_adapt_thresholds
+    use threshold_goal, only: adaptive_thresholds_t, solve_adapted_thresholds
     use threshold_run, only: threshold_run_t, write_threshold_adapt_csv, add_threshold_keys, &
                              threshold_summary_lines, no_digit_verdict
     use pictures, only: draw_threshold_adapt
@@ -29,7 +30,7 @@ module hp_threshold_run
 
     type, extends(threshold_run_t), public :: hp_threshold_run_t
         !> allocatable, allocated by solve: gfortran 12 frees it whole (docs/testing.md)
-        type(hp_thresholds_t), allocatable :: out
+        type(adaptive_thresholds_t), allocatable :: out
         integer :: start_dofs = 0   !! free dofs of the input mesh (as given)
     contains
         procedure :: solve => hp_threshold_solve
@@ -49,10 +50,10 @@ contains
         this%start_dofs = prob%dofs%n_free
         if (.not. allocated(this%res)) allocate (this%res)
         if (.not. allocated(this%out)) allocate (this%out)
-        call hp_adapt_thresholds(inputs%scene, inputs%point%lambda, inputs%eigen, inputs%adapt, &
-                                 inputs%scan, prob, this%out, this%res, timings, stat)
-        if (stat%ok() .and. .not. this%out%adapted%converged) call this%verdict%fail( &
-            STATUS_NOT_MET, inputs%scene%name//': &adapt: '//this%out%adapted%outcome// &
+        call solve_adapted_thresholds(inputs%scene, inputs%point%lambda, inputs%eigen, &
+            inputs%adapt, inputs%scan, prob, this%out, this%res, timings, stat)
+        if (stat%ok() .and. .not. this%out%converged) call this%verdict%fail( &
+            STATUS_NOT_MET, inputs%scene%name//': &adapt: '//this%out%outcome// &
             ' (the set of the last level is written)')
         if (stat%ok()) call no_digit_verdict(this, inputs)
     end subroutine hp_threshold_solve
@@ -64,29 +65,30 @@ contains
         type(problem_t), intent(in) :: prob
         type(status_t), intent(out) :: stat
         character(len=:), allocatable :: path
-        character(len=40) :: extra(size(this%out%layers))
+        character(len=40) :: extra(size(this%out%levels))
         integer :: i
-        if (prob%mesh%n_cells() == 0 .or. size(this%out%layers) == 0) return   ! nothing solved
+        if (prob%mesh%n_cells() == 0 .or. size(this%out%levels) == 0) return   ! nothing solved
         call stage%add('eigenvalues.csv', path)
         call write_eigenvalues_csv(path, this%res%eigen%spec, stat, this%res%eigen%error)
         if (stat%ok() .and. inputs%output%vtk) call write_hp_modes(stage, inputs, &
-            this%out%adapted%prob, this%out%space, this%res%eigen%spec, stat)
+            this%out%prob, this%out%space, this%res%eigen%spec, stat)
         do i = 1, size(extra)
-            extra(i) = ','//to_string(this%out%layers(i))//','// &
-                       to_string(this%out%p_min(i))//','//to_string(this%out%p_max(i))
+            extra(i) = ','//to_string(this%out%levels(i)%layers)//','// &
+                       to_string(this%out%levels(i)%p_min)//','// &
+                       to_string(this%out%levels(i)%p_max)
         end do
         if (stat%ok()) then
             call stage%add('adapt.csv', path)
-            call write_threshold_adapt_csv(path, this%out%adapted, stat, HP_THRESHOLD_COLUMNS, &
+            call write_threshold_adapt_csv(path, this%out, stat, HP_THRESHOLD_COLUMNS, &
                                            extra)
         end if
-        if (stat%ok()) call write_adapted_mesh(stage, this%out%adapted%prob, stat)
+        if (stat%ok()) call write_adapted_mesh(stage, this%out%prob, stat)
         if (stat%ok()) then
             call stage%add(DEGREES_FILE, path)
             call write_degrees(path, this%out%space, stat)
         end if
         if (stat%ok()) call draw_threshold_adapt(stage, inputs, prob%mesh%element, &
-            this%start_dofs, this%out%adapted%levels, this%picture_note, 'hp')
+            this%start_dofs, this%out%levels, this%picture_note, 'hp')
     end subroutine hp_threshold_write_files
 
     function hp_threshold_summary(this, inputs, prob) result(summary)
@@ -94,11 +96,11 @@ contains
         type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         type(json_object_t) :: summary
-        summary = eigen_summary_json(inputs, this%out%adapted%prob, this%res%eigen, this%timings)
+        summary = eigen_summary_json(inputs, this%out%prob, this%res%eigen, this%timings)
         call add_threshold_keys(summary, this%res)
-        call add_adapt_keys(summary, inputs, this%start_dofs, size(this%out%layers), &
-                            this%out%adapted%converged, this%out%adapted%floor_reached, &
-                            this%out%adapted%outcome)
+        call add_adapt_keys(summary, inputs, this%start_dofs, size(this%out%levels), &
+                            this%out%converged, this%out%floor_reached, &
+                            this%out%outcome)
         call add_hp_keys(summary, inputs, this%out%space, prob%mesh%n_cells())
     end function hp_threshold_summary
 
@@ -107,9 +109,9 @@ contains
         type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         character(len=:), allocatable :: text
-        text = threshold_summary_lines(inputs, this%out%adapted%prob, this%res, this%timings, '')
-        text = text//hp_report_lines(inputs, size(this%out%layers), this%out%space, &
-                                     prob%mesh%n_cells(), this%out%adapted%outcome)
+        text = threshold_summary_lines(inputs, this%out%prob, this%res, this%timings, '')
+        text = text//hp_report_lines(inputs, size(this%out%levels), this%out%space, &
+                                     prob%mesh%n_cells(), this%out%outcome)
         if (allocated(this%picture_note)) then
             if (len(this%picture_note) > 0) text = text//new_line('a')//'  adapt plot  '// &
                                                    this%picture_note

@@ -15,9 +15,8 @@ module pictures
     use filesystem, only: remove_file
     use gnuplot, only: not_drawable_note, gnuplot_string, path_argument, run_gnuplot
     use output_stage, only: output_stage_t
-    use adaptive_eigen, only: adapt_level_t
-    use adaptive_threshold, only: threshold_level_t
-    use hp_adaptive, only: hp_level_t, hp_result_t
+    use eigen_goal, only: eigen_level_t, adapted_eigen_t
+    use threshold_goal, only: threshold_level_t
     use threshold_analysis, only: threshold_result_t
     use critical_point, only: critical_c_t
     use run_inputs, only: run_inputs_t
@@ -80,7 +79,7 @@ contains
 
     !> The h loop of analysis 'eigen': the lowest positive mu.
     pure subroutine eigen_adapt_curves(levels, curves)
-        type(adapt_level_t), intent(in) :: levels(:)
+        type(eigen_level_t), intent(in) :: levels(:)
         type(adapt_curve_t), allocatable, intent(out) :: curves(:)
         integer :: i, n
         n = size(levels)
@@ -141,7 +140,7 @@ contains
     !> The hp loop: mu with its bar, and in place of an estimate the change from the previous
     !> level, |mu_k - mu_(k-1)| / |mu_k| (known where both levels have a mu).
     pure subroutine hp_adapt_curves(levels, curves)
-        type(hp_level_t), intent(in) :: levels(:)
+        type(eigen_level_t), intent(in) :: levels(:)
         type(adapt_curve_t), allocatable, intent(out) :: curves(:)
         integer :: i, n
         n = size(levels)
@@ -158,7 +157,7 @@ contains
 
     !> The degree range of each hp level, 'p 1-4' (or 'p 2' when all cells have one).
     pure function hp_degree_labels(levels) result(labels)
-        type(hp_level_t), intent(in) :: levels(:)
+        type(eigen_level_t), intent(in) :: levels(:)
         character(len=16) :: labels(size(levels))
         integer :: i
         do i = 1, size(levels)
@@ -389,7 +388,7 @@ contains
         type(run_inputs_t), intent(in) :: inputs
         integer, intent(in) :: element, start_dofs
         real(wp), intent(in) :: lambda
-        type(adapt_level_t), intent(in) :: levels(:)
+        type(eigen_level_t), intent(in) :: levels(:)
         character(len=:), allocatable, intent(out) :: note
         type(adapt_curve_t), allocatable :: curves(:)
         integer :: i
@@ -425,7 +424,7 @@ contains
         type(run_inputs_t), intent(in) :: inputs
         real(wp), intent(in) :: lambda
         integer, intent(in) :: start_dofs
-        type(hp_level_t), intent(in) :: levels(:)
+        type(eigen_level_t), intent(in) :: levels(:)
         character(len=:), allocatable, intent(out) :: note
         type(adapt_curve_t), allocatable :: curves(:)
         integer :: i
@@ -509,7 +508,7 @@ contains
     subroutine draw_hp_mode(stage, inputs, out, note, stat)
         type(output_stage_t), intent(inout) :: stage
         type(run_inputs_t), intent(in) :: inputs
-        type(hp_result_t), intent(in) :: out
+        type(adapted_eigen_t), intent(in) :: out
         character(len=:), allocatable, intent(out) :: note
         type(status_t), intent(out) :: stat
         type(mesh_t) :: sub

@@ -3,7 +3,7 @@
 !> &analysis lambda, lambda_sweep.csv for a sweep (and lambda_sweep.png), summary.json with
 !> the threshold and sweep keys; and the lines they add to the stdout summary. The adaptive
 !> 'threshold' (&adapt tolerance > 0, a type of its own) adapts the mesh to the thresholds
-!> first (adaptive_threshold) and reports on the final mesh, with adapt.csv, adapt.png and
+!> first (threshold_goal) and reports on the final mesh, with adapt.csv, adapt.png and
 !> mesh.msh as an adaptive eigen run does.
 module threshold_run
     use kinds, only: wp
@@ -14,7 +14,7 @@ module threshold_run
     use run_inputs, only: run_inputs_t
     use problem, only: problem_t
     use threshold_analysis, only: threshold_result_t, sweep_curve_t, solve_thresholds
-    use adaptive_threshold, only: adaptive_thresholds_t, solve_adapted_thresholds
+    use threshold_goal, only: adaptive_thresholds_t, solve_adapted_thresholds
     use adapt_files, only: add_adapt_keys, adapt_report_lines, write_adapted_mesh
     use pictures, only: draw_sweep, draw_threshold_adapt
     use element_types, only: element_name

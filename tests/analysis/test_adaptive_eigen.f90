@@ -14,8 +14,8 @@ program test_adaptive_eigen
     use timer, only: timings_t
     use problem, only: problem_t, build_problem
     use mesh, only: mesh_t
-    use adaptive_eigen, only: adapt_eigen, adaptive_result_t
-    use adaptive_loop, only: doerfler_marking
+    use eigen_goal, only: adapt_eigen, adapted_eigen_t
+    use h_refiner, only: doerfler_marking
     implicit none
 
     !> The critical c_n of the reference scene (lambda = 5), from an adaptive P3 run to the
@@ -44,15 +44,17 @@ contains
 
     subroutine run(config, out, stat)
         type(config_t), intent(in) :: config
-        type(adaptive_result_t), intent(out) :: out
+        type(adapted_eigen_t), intent(out) :: out
         type(status_t), intent(out) :: stat
         type(problem_t) :: start
         type(timings_t) :: timings
         type(run_inputs_t) :: inputs
+        type(adapted_eigen_t), allocatable :: outs(:)
         call problem_of(config, start, stat)
         call translate_input(config, inputs)
-        if (stat%ok()) call adapt_eigen(inputs%scene, inputs%point%lambda, inputs%eigen, &
-                                        inputs%adapt, start, out, timings, stat)
+        if (stat%ok()) call adapt_eigen(inputs%scene, [inputs%point%lambda], inputs%eigen, &
+                                        inputs%adapt, start, outs, timings, stat, .true.)
+        if (stat%ok()) out = outs(1)
     end subroutine run
 
     !> Indicators [1, 5, 2, 2]: theta 0.5 needs the 5 alone (5 >= 5), 0.6 the 5 and the first
@@ -80,7 +82,7 @@ contains
     !> cancelling (the P3 reference run has one, ratio 31) would break, not round-off.
     subroutine loop_reaches_tolerance(t)
         type(test_suite_t), intent(inout) :: t
-        type(adaptive_result_t) :: out
+        type(adapted_eigen_t) :: out
         type(status_t) :: stat
         real(wp) :: true_error, ratio
         integer :: n
@@ -107,7 +109,7 @@ contains
     !> stays on y = 0 (to round-off: midpoints of midpoints are exact in binary).
     subroutine meshes_keep_domain_and_contact(t)
         type(test_suite_t), intent(inout) :: t
-        type(adaptive_result_t) :: out
+        type(adapted_eigen_t) :: out
         type(status_t) :: stat
         type(config_t) :: config
         real(wp) :: area, length, d1(2), d2(2)
@@ -144,7 +146,7 @@ contains
     !> kept and named in the warning); a start beyond max_dofs is bad input.
     subroutine limits_warn(t)
         type(test_suite_t), intent(inout) :: t
-        type(adaptive_result_t) :: out
+        type(adapted_eigen_t) :: out
         type(status_t) :: stat
         type(config_t) :: config
         config = reference_config(2, 'p2', 1.0e-12_wp)
@@ -165,7 +167,7 @@ contains
     !> Quadrilaterals have no bisection, P4 no enriched space: refused, naming the cells.
     subroutine refused_inputs(t)
         type(test_suite_t), intent(inout) :: t
-        type(adaptive_result_t) :: out
+        type(adapted_eigen_t) :: out
         type(status_t) :: stat
         call run(reference_config(2, 'q2', 1.0e-6_wp), out, stat)
         call t%check('q2: bad input', stat%code == STATUS_BAD_INPUT .and. &

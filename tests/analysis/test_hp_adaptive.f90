@@ -13,12 +13,12 @@ program test_hp_adaptive
     use timer, only: timings_t
     use run_config, only: config_t
     use problem, only: problem_t, build_problem
-    use hp_adaptive, only: hp_adapt_eigen, hp_result_t, HP_ESTIMATE
+    use eigen_goal, only: adapt_eigen, adapted_eigen_t, HP_ESTIMATE
     use fixtures, only: adaptive_scene, REF_MU
     implicit none
 
     type(test_suite_t) :: t
-    type(hp_result_t) :: out
+    type(adapted_eigen_t) :: out
 
     t%name = 'test_hp_adaptive'
     call run_loop(out)
@@ -32,17 +32,19 @@ program test_hp_adaptive
 contains
 
     subroutine run_loop(out)
-        type(hp_result_t), intent(out) :: out
+        type(adapted_eigen_t), intent(out) :: out
         type(config_t) :: config
         type(problem_t) :: start
         type(timings_t) :: timings
         type(status_t) :: stat
         type(run_inputs_t) :: inputs
+        type(adapted_eigen_t), allocatable :: outs(:)
         call adaptive_scene('eigen', 'hp', 1.0e-6_wp, 0, 'unused', config)
         call problem_of(config, start, stat)
         call translate_input(config, inputs)
-        if (stat%ok()) call hp_adapt_eigen(inputs%scene, inputs%point%lambda, inputs%eigen, &
-                                           inputs%adapt, start, out, timings, stat)
+        if (stat%ok()) call adapt_eigen(inputs%scene, [inputs%point%lambda], inputs%eigen, &
+                                        inputs%adapt, start, outs, timings, stat, .true.)
+        if (stat%ok()) out = outs(1)
         call t%check('the loop runs', stat%ok())
         if (.not. stat%ok()) write (*, '(a)') stat%message
     end subroutine run_loop
@@ -51,7 +53,7 @@ contains
     !> truth within it; the result's error record is the last level's bar, of the hp kind.
     subroutine converges_to_the_truth(t, out)
         type(test_suite_t), intent(inout) :: t
-        type(hp_result_t), intent(in) :: out
+        type(adapted_eigen_t), intent(in) :: out
         real(wp) :: mu, bar
         associate (last => out%levels(size(out%levels)))
             mu = last%mu
@@ -72,7 +74,7 @@ contains
     !> first has none (no previous level to compare with).
     subroutine bars_cover_the_true_errors(t, out)
         type(test_suite_t), intent(inout) :: t
-        type(hp_result_t), intent(in) :: out
+        type(adapted_eigen_t), intent(in) :: out
         integer :: k
         logical :: covered
         call t%check('first level: no bar', out%levels(1)%error_bar < 0.0_wp)
@@ -90,7 +92,7 @@ contains
     !> than level k - 1.
     subroutine degrees_rise_by_one_per_level(t, out)
         type(test_suite_t), intent(inout) :: t
-        type(hp_result_t), intent(in) :: out
+        type(adapted_eigen_t), intent(in) :: out
         integer :: k
         logical :: rising
         rising = .true.

@@ -1,6 +1,6 @@
 ! SPDX-License-Identifier: MIT
 !> The error estimate of the critical lambdas (threshold_estimate) and the adaptive loop
-!> with them as its goal (adaptive_threshold): the estimate is the two-level difference to
+!> with them as its goal (threshold_goal): the estimate is the two-level difference to
 !> round-off, the enriched threshold is that of an independent solve one degree higher,
 !> mirror meshes give mirror answers, the indicators bound the estimate, the loop meets its
 !> tolerance with an estimate that tracks the true error, and Q1 has no estimate.
@@ -21,7 +21,8 @@ program test_threshold_estimate
     use error_estimate, only: ENRICHED_CONTACT_MAX
     use threshold_estimate, only: threshold_estimate_t, threshold_displacements, &
                                   estimate_threshold_errors
-    use adaptive_threshold, only: adaptive_thresholds_t, adapt_thresholds
+    use threshold_goal, only: adaptive_thresholds_t, solve_adapted_thresholds
+    use threshold_analysis, only: threshold_result_t
     use error_bar, only: level_bar_factor
     implicit none
 
@@ -177,6 +178,7 @@ contains
         type(config_t) :: config
         type(problem_t) :: start
         type(adaptive_thresholds_t) :: out
+        type(threshold_result_t) :: res
         type(run_inputs_t) :: inputs
         type(thresholds_t) :: thr
         type(threshold_estimate_t) :: est
@@ -188,8 +190,8 @@ contains
         config%adapt%tolerance = 1.0e-6_wp
         call problem_of(config, start, stat)
         call translate_input(config, inputs)
-        if (stat%ok()) call adapt_thresholds(inputs%scene, inputs%eigen, inputs%adapt, &
-                                             inputs%scan, start, out, timings, stat)
+        if (stat%ok()) call solve_adapted_thresholds(inputs%scene, inputs%point%lambda, &
+            inputs%eigen, inputs%adapt, inputs%scan, start, out, res, timings, stat)
         call t%check('adaptive thresholds: '//stat%message, stat%ok())
         if (.not. stat%ok()) return
         call t%check('adaptive thresholds: converged', out%converged)
