@@ -12,12 +12,12 @@ program nceig
     use run_config, only: config_t
     use input_config, only: read_input
     use run_inputs, only: run_inputs_t, translate_input
-    use method_options, only: REFINE_NONE, REFINE_HP
     use command_line, only: command_t, read_command_line
     use input_help, only: help_text
     use problem, only: problem_t, build_problem
-    use analysis_base, only: analysis_t, run_analysis
+    use analysis_base, only: analysis_t
     use analysis_registry, only: new_analysis
+    use run_report, only: report_run
     use console, only: print_progress
     use process, only: ignore_broken_pipe
     use memory_budget, only: check_address_space
@@ -32,6 +32,7 @@ program nceig
     type(status_t) :: stat
     type(command_t) :: command
     real(wp) :: start, phase
+    character(len=:), allocatable :: text
     integer :: ios
 
     ! stdout is a report, not the results: a reader that stops early (`| head`) must not end
@@ -53,8 +54,7 @@ program nceig
     call stop_on_failure(PROGRAM_NAME, stat)
 
     call translate_input(config, inputs)
-    call new_analysis(inputs%analysis_name, inputs%adapt%refine /= REFINE_NONE, analysis, &
-                      merge('hp', 'h ', inputs%adapt%refine == REFINE_HP))
+    call new_analysis(inputs, analysis)
     if (.not. allocated(analysis)) then
         call stop_with(PROGRAM_NAME, config%input_file//': &analysis: kind = '''// &
                        trim(config%analysis%kind)//''' has no analysis', STATUS_BAD_INPUT)
@@ -66,7 +66,7 @@ program nceig
                             trim(config%analysis%kind)//'), started')
     end if
     phase = wall_time()
-    if (analysis%needs_all_dofs) then
+    if (analysis%in_input_units()) then
         call build_problem(inputs%scene, prob, stat, input_units_for=inputs%analysis_name)
     else
         call build_problem(inputs%scene, prob, stat)
@@ -82,9 +82,11 @@ program nceig
         write (error_unit, '(a)') 'nceig: '//config%input_file//': '//stat%message
         call exit_now(stat%code)
     end if
-    call run_analysis(analysis, inputs, prob, start, timings, stat)
+    call analysis%solve(inputs, prob, timings, stat)
     call stop_on_failure(PROGRAM_NAME, stat)
-    write (output_unit, '(a)', iostat=ios) analysis%report(inputs, prob)
+    call report_run(analysis, inputs, prob, start, timings, text, stat)
+    call stop_on_failure(PROGRAM_NAME, stat)
+    write (output_unit, '(a)', iostat=ios) text
     call stop_on_failure(PROGRAM_NAME, analysis%verdict)
     ! gfortran 12 keeps main-program allocatables in a frame gone before LeakSanitizer looks
     deallocate (command%action, command%input, command%settings)

@@ -17,6 +17,7 @@ module eigen_goal
     use scene, only: scene_t
     use method_options, only: eigen_options_t, adapt_options_t, ESTIMATE_ON, REFINE_HP
     use problem, only: problem_t
+    use unit_scaling, only: units_t
     use hp_space, only: hp_space_t
     use sparse_cholesky, only: cholesky_t
     use contact_boundary, only: assemble_b
@@ -44,7 +45,9 @@ module eigen_goal
         integer :: n_contact = 0     !! contact nodes (hp: contact functions)
         integer :: n_cells = 0
         logical :: has_mu = .false.           !! a positive mu exists
-        real(wp) :: mu = 0.0_wp               !! lowest positive mu, input units
+        !> lowest positive mu, in the units of the loop's problems (adapted_eigen_t%units:
+        !> every level's, whose E and extent are the starting mesh's)
+        real(wp) :: mu = 0.0_wp
         logical :: estimated = .false.        !! h: the level's estimate was computed
         real(wp) :: error_estimate = 0.0_wp   !! h: |relative error estimate| of mu
         real(wp) :: error_bar = -1.0_wp       !! the bar at this level (error_bar); < 0: none
@@ -65,6 +68,8 @@ module eigen_goal
         type(problem_t) :: prob
         type(hp_space_t) :: space
         type(eigen_result_t) :: res        !! its spectrum, error estimate, bar and warnings
+        !> of mu in `levels` and `res`: the levels' problems' (problem_t%units; hp: the input's)
+        type(units_t) :: units
         logical :: converged = .false.     !! the bar met the tolerance
         logical :: floor_reached = .false. !! stopped by round-off, not by a limit
         !> the last level has no positive mu where an earlier one had (accuracy: MU_VANISHED)
@@ -191,7 +196,8 @@ contains
             if (p%levels(size(p%levels))%estimated) &
                 p%res%error%bar = p%levels(size(p%levels))%error_bar
             if (this%keep_problem) p%prob = level%prob
-            call timings%note(h_level_line(p%levels(size(p%levels))))
+            p%units = level%prob%units
+            call timings%note(h_level_line(p%levels(size(p%levels)), level%prob%units))
         end subroutine solve_h_level
 
         !> An hp level, factored in `chol`, at p%lambda: the eigen solve, the row and its bar
@@ -234,7 +240,8 @@ contains
                 p%space = level%space
             end if
             p%res = res
-            call timings%note(hp_level_line(p%levels(size(p%levels))))
+            p%units = level%prob%units
+            call timings%note(hp_level_line(p%levels(size(p%levels)), level%prob%units))
         end subroutine solve_hp_level
 
         !> The row's sizes and mu from the level and `res`.
@@ -273,11 +280,11 @@ contains
             end do
             associate (prob => level%prob)
                 call refine_lowest_mu(prob%mesh, level%space, prob%young, prob%poisson, &
-                    prob%contact, res%b, res%lambda, prob%units%mu_to_scaled(mu), &
+                    prob%contact, res%b, res%lambda, mu, &
                     real(res%spec%vectors(:, i), wp), res%spec%left, res%roundoff, gap, &
                     refined, refined_bound, stat)
                 if (.not. stat%ok()) return
-                res%spec%mu(i) = prob%units%mu_to_input(refined)
+                res%spec%mu(i) = refined
             end associate
             res%roundoff = refined_bound
             res%quotient = .true.
@@ -382,21 +389,25 @@ contains
         marked = doerfler_marking(this%points(1)%res%error%indicators, theta)
     end function eigen_goal_mark
 
-    function h_level_line(row) result(line)
+    !> The progress line of an h level (mu in the input's units: `units` are the level's).
+    function h_level_line(row, units) result(line)
         type(eigen_level_t), intent(in) :: row
+        type(units_t), intent(in) :: units
         character(len=:), allocatable :: line
         line = 'adapt level '//to_string(row%level)//': '//to_string(row%n_dofs)//' dofs'
-        if (row%has_mu) line = line//', mu = '//short_real_text(row%mu, 12)
+        if (row%has_mu) line = line//', mu = '//short_real_text(units%mu_to_input(row%mu), 12)
         if (row%estimated) line = line//', estimate '//short_real_text(row%error_estimate)// &
             ', bar '//short_real_text(row%error_bar)
     end function h_level_line
 
-    function hp_level_line(r) result(line)
+    !> The progress line of an hp level (mu in the input's units: `units` are the level's).
+    function hp_level_line(r, units) result(line)
         type(eigen_level_t), intent(in) :: r
+        type(units_t), intent(in) :: units
         character(len=:), allocatable :: line
         line = 'hp level '//to_string(r%level)//': '//to_string(r%n_dofs)//' dofs, '// &
             'degrees '//to_string(r%p_min)//' to '//to_string(r%p_max)
-        if (r%has_mu) line = line//', mu = '//short_real_text(r%mu, 12)
+        if (r%has_mu) line = line//', mu = '//short_real_text(units%mu_to_input(r%mu), 12)
         if (r%error_bar >= 0.0_wp) line = line//', bar '//short_real_text(r%error_bar)
     end function hp_level_line
 end module eigen_goal

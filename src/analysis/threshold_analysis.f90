@@ -18,6 +18,7 @@ module threshold_analysis
     use method_options, only: eigen_options_t, adapt_options_t, SOLVER_ARPACK, REFINE_NONE, &
                               REFINE_HP
     use problem, only: problem_t, explain_singular_k
+    use unit_scaling, only: units_t
     use enrichment, only: enriched_element
     use sparse_cholesky, only: cholesky_t
     use contact_boundary, only: assemble_b
@@ -30,8 +31,8 @@ module threshold_analysis
     use roundoff, only: threshold_roundoff, collision_roundoffs
     use critical_set, only: critical_set_t, search_critical_set, MECHANISM_COMPLEX_PAIR
     use eigen_goal, only: adapt_eigen, adapted_eigen_t
-    use eigen_solve, only: eigen_result_t, choose_solver, eigen_with_factor, to_input_units, &
-                           estimate_wanted
+    use eigen_solve, only: eigen_result_t, choose_solver, eigen_with_factor, estimate_wanted, &
+                           check_real_range
     use error_estimate, only: ENRICHED_CONTACT_MAX
     use boundary_estimate, only: estimate_boundary_bars, onset_bars_t
     use threshold_estimate, only: threshold_estimate_t, threshold_displacements, &
@@ -47,7 +48,11 @@ module threshold_analysis
     !> The curve of a lambda sweep, one entry per lambda.
     type, public :: sweep_curve_t
         real(wp), allocatable :: lambda(:)
-        real(wp), allocatable :: mu(:)           !! lowest positive mu where found(i)
+        !> lowest positive mu where found(i), in `units`
+        real(wp), allocatable :: mu(:)
+        !> of mu: those of the problems the points were solved on (problem_t%units: the
+        !> sweep's problem, whose E and extent an h-adapted point's share; hp levels')
+        type(units_t) :: units
         logical, allocatable :: found(:)
         !> positive real eigenvalues at lambda(i); -1 where ARPACK decided (it sees a few)
         !> or the point was adapted
@@ -157,6 +162,7 @@ contains
 
         start = wall_time()
         res%sweep%lambda = sweep
+        res%sweep%units = prob%units
         associate (n => size(res%sweep%lambda))
             allocate (res%sweep%mu(n), res%sweep%found(n), res%sweep%n_positive(n))
             allocate (res%sweep%error_estimate(n), source=-1.0_wp)
@@ -205,8 +211,8 @@ contains
                 res%sweep%n_dense = res%sweep%n_dense + 1
             end if
         end do
-        call mu_to_input_units(scn, prob, maxval(abs(res%sweep%lambda)), .true., res%sweep%mu, &
-                               stat)
+        call check_real_range(scn, prob%units, maxval(abs(res%sweep%lambda)), .true., &
+                              res%sweep%mu, stat)
         if (.not. stat%ok()) return
         res%time_sweep = wall_time() - start
         call timings%note('sweep      '//seconds_text(res%time_sweep)//' s: '// &
@@ -319,9 +325,10 @@ contains
         integer, allocatable :: confirmed_count(:)
         call confirm_thresholds(blocks, thr, stat)
         if (.not. stat%ok()) return
-        ! mu of the confirmations, in the units of prob%k, to the input's (lambda has none)
-        call mu_to_input_units(scn, prob, lambda, .false., thr%mu_outside, stat)
-        if (stat%ok()) call mu_to_input_units(scn, prob, lambda, .false., thr%mu_inside, stat)
+        ! their mu must be reportable in the input's units (lambda has none)
+        call check_real_range(scn, prob%units, lambda, .false., thr%mu_outside, stat)
+        if (stat%ok()) call check_real_range(scn, prob%units, lambda, .false., thr%mu_inside, &
+                                             stat)
         if (.not. stat%ok()) return
         ! the confirmations' counts bracket the pencil points: the search need not redo them
         confirmed_lambda = pack([thr%lambda_outside, thr%lambda_inside], &
@@ -336,28 +343,11 @@ contains
             if (stat%ok() .and. present(coarse)) set%n_evaluations = set%n_evaluations + &
                                                                      coarse%n_evaluations
         end if
-        ! before mu_meet leaves the units of the blocks: the bound reads it
         if (stat%ok()) call collision_roundoffs(prob%k, chol, prob%contact, blocks, set, stat)
-        if (.not. stat%ok()) return
-        if (size(set%points) == 0) return
+        if (.not. stat%ok() .or. size(set%points) == 0) return
         mu_meet = set%points%mu_meet   ! a plain array: no temporary for the call
-        call mu_to_input_units(scn, prob, lambda, .false., mu_meet, stat)
-        if (stat%ok()) set%points%mu_meet = mu_meet
+        call check_real_range(scn, prob%units, lambda, .false., mu_meet, stat)
     end subroutine confirm_and_bound
-
-    !> Real mu of `prob` (its units) to the input's (to_input_units).
-    subroutine mu_to_input_units(scn, prob, lambda, of_sweep, mu, stat)
-        type(scene_t), intent(in) :: scn
-        type(problem_t), intent(in) :: prob
-        real(wp), intent(in) :: lambda
-        logical, intent(in) :: of_sweep
-        real(wp), intent(inout) :: mu(:)
-        type(status_t), intent(out) :: stat
-        complex(wp) :: values(size(mu))
-        values = cmplx(mu, 0.0_wp, wp)
-        call to_input_units(scn, prob, lambda, of_sweep, values, stat)
-        if (stat%ok()) mu = real(values, wp)
-    end subroutine mu_to_input_units
 
     !> Factor K with the contact dofs last and form Kt_nn and Kt_nt, which every threshold
     !> computation needs (their memory checked first); `chol` stays factored for the
@@ -452,6 +442,7 @@ contains
             call adapt_eigen(scn, curve%lambda, options, adapt, prob, outs, quiet, stat, &
                              keep_problem=.false.)
             if (.not. stat%ok()) return
+            curve%units = outs(1)%units
             do i = 1, size(curve%lambda)
                 call timings%tick('sweep, lambda', i, size(curve%lambda))
                 associate (o => outs(i))

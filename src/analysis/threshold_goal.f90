@@ -756,7 +756,7 @@ contains
             lowest = beside(side)%spec%lowest_positive()
             if (lowest == 0 .or. size(beside(side)%spec%vectors, 2) < lowest) cycle
             call estimate_lowest_error(prob, beside(side)%lambda, &
-                prob%units%mu_to_scaled(real(beside(side)%spec%mu(lowest), wp)), &
+                real(beside(side)%spec%mu(lowest), wp), &
                 real(beside(side)%spec%vectors(:, lowest), wp), ENRICHED_CONTACT_MAX, err, stat)
             this%collision_skipped(side) = 'collision onset: no indicators beside it'
             if (.not. stat%ok()) this%collision_skipped(side) = 'collision onset: '//stat%message

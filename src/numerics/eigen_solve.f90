@@ -9,6 +9,7 @@ module eigen_solve
     use strings, only: to_string, short_real_text
     use real_format, only: real_to_text
     use scene, only: scene_t, MESH_RECTANGLE
+    use unit_scaling, only: units_t
     use method_options, only: eigen_options_t, SOLVER_AUTO, SOLVER_DENSE, SOLVER_ARPACK, &
                               ESTIMATE_ON, ESTIMATE_AUTO, OPERATOR_FULL, operator_name
     use problem, only: problem_t, explain_singular_k
@@ -18,7 +19,7 @@ module eigen_solve
     use contact_reduction, only: factor_stiffness
     use memory_budget, only: check_contact_memory, contact_peak_blocks
     use contact_boundary, only: assemble_b
-    use spectrum, only: spectrum_t, KIND_POSITIVE
+    use spectrum, only: spectrum_t
     use dense_eigen, only: dense_spectrum
     use accuracy, only: accuracy_warnings, roundoff_warnings, WARNING_LEN, FORWARD_ERROR_BOUND
     use arpack_eigen, only: arpack_search, arpack_finish, arpack_search_t, arpack_options_t
@@ -31,8 +32,7 @@ module eigen_solve
     implicit none
     private
     public :: eigen_result_t, solve_eigen, estimate_eigen, choose_solver, eigen_with_factor
-    public :: critical_cn
-    public :: to_input_units, estimate_wanted
+    public :: estimate_wanted, check_input_range, check_real_range
     !> &eigen estimate = 'auto' computes the error estimate up to this many free dofs: it
     !> assembles and factors the enriched (P2) problem, a few times the cost of the solve
     !> (measured 4-7x: 2.3 s at 33k dofs, 22 s at 525k), which beyond would break the speed
@@ -180,7 +180,7 @@ contains
         lowest = res%spec%lowest_positive()
         if (lowest == 0 .or. size(res%spec%vectors, 2) < lowest) return
         call estimate_lowest_error(prob, res%lambda, &
-            prob%units%mu_to_scaled(real(res%spec%mu(lowest), wp)), &
+            real(res%spec%mu(lowest), wp), &
             real(res%spec%vectors(:, lowest), wp), ENRICHED_CONTACT_MAX, res%error, stat)
         if (.not. stat%ok()) then
             res%error%failure = stat%message
@@ -219,7 +219,7 @@ contains
         res%error%halved_mesh = .true.
         res%error%element = prob%mesh%element
         res%error%relative = (mu_fine - mu)/mu
-        res%error%mu_enriched = prob%units%mu_to_scaled(mu_fine)   ! prob%k's units
+        res%error%mu_enriched = mu_fine
         res%error%mode_cells_halved = cells_fine
         allocate (res%error%indicators(0))
         res%error%bar = single_bar(abs(res%error%relative), res%roundoff)
@@ -278,7 +278,8 @@ contains
             'at this resolution']
     end subroutine check_resolution
 
-    !> The lowest positive mu (input units) and its mode's width in cells
+    !> The lowest positive mu (in the units of `prob`, which the halved problem shares: the
+    !> same E and extent) and its mode's width in cells
     !> (contact_mode_cells) on the mesh of `prob` with every cell halved: the rectangle with
     !> 2 nx x 2 ny cells, or a Gmsh triangle mesh (P1 to P3) bisected twice (halved_mesh),
     !> solved as `options` ask. `why_not` says why there is none ('' when computed).
@@ -395,49 +396,30 @@ contains
             call timings%add(PHASE_EIGEN, wall_time() - start - reduction_seconds, ': dense, '// &
                              to_string(res%spec%n())//' eigenvalues')
         end if
-        call to_input_units(scn, prob, res%lambda, .false., res%spec%mu, stat)
+        call check_input_range(scn, prob%units, res%lambda, .false., res%spec%mu, stat)
         if (.not. stat%ok()) return
         res%roundoff = -1.0_wp
         if (allocated(res%spec%roundoff) .and. res%spec%lowest_positive() > 0) &
             res%roundoff = res%spec%roundoff(res%spec%lowest_positive())
-        res%warnings = accuracy_warnings(res%spec, element_name(prob%mesh%element), prob%poisson, &
-                                         res%roundoff)
+        res%warnings = accuracy_warnings(res%spec, prob%units, element_name(prob%mesh%element), &
+                                         prob%poisson, res%roundoff)
         if (len(certificate) > 0) res%warnings = [character(len=WARNING_LEN) :: certificate, &
                                                   res%warnings]
     end subroutine eigen_with_factor
 
-    !> The critical c_n a run reports: every positive real mu of `spec` (input units) in
-    !> (0, cn_max], ascending; with cn_max = 0 the lowest alone. Complete as certified by the
-    !> solver (both solvers hold every positive real mu up to cn_max in their spectrum).
-    pure function critical_cn(spec, cn_max) result(values)
-        type(spectrum_t), intent(in) :: spec
-        real(wp), intent(in) :: cn_max
-        real(wp), allocatable :: values(:)
-        integer :: lowest
-        allocate (values(0))
-        lowest = spec%lowest_positive()
-        if (lowest == 0) return
-        ! output order: positive real ascending first
-        if (.not. cn_max > 0.0_wp) then
-            values = [real(spec%mu(lowest), wp)]
-        else
-            values = pack(real(spec%mu, wp), spec%kind == KIND_POSITIVE .and. &
-                          real(spec%mu, wp) <= cn_max)
-        end if
-    end function critical_cn
-
-    !> Eigenvalues of (prob%k, B(prob%contact)) to those of the input problem (prob%units),
-    !> exactly. Fails (STATUS_BAD_INPUT, naming &material young or the mesh size of the
-    !> scene `scn`, or `lambda`, whichever pushes further) when an |mu| would leave the
-    !> normal binary64 range [tiny, huge] = [2.2e-308, 1.8e308]: overflow, or digits lost to
-    !> underflow. `lambda`: &analysis lambda, or with `of_sweep` the largest |lambda| of a
-    !> sweep whose points `mu` are.
-    subroutine to_input_units(scn, prob, lambda, of_sweep, mu, stat)
+    !> Whether eigenvalues `mu` in the scaled `units` of a problem of the scene `scn` can be
+    !> reported in the input's units (reported_units converts them, exactly): fails
+    !> (STATUS_BAD_INPUT, naming &material young or the mesh size of the scene, or `lambda`,
+    !> whichever pushes further) when an |mu| would leave the normal binary64 range [tiny,
+    !> huge] = [2.2e-308, 1.8e308]: overflow, or digits lost to underflow. Checked as each
+    !> result is computed, so that such a run stops at once. `lambda`: &analysis lambda, or
+    !> with `of_sweep` the largest |lambda| of a sweep whose points `mu` are.
+    subroutine check_input_range(scn, units, lambda, of_sweep, mu, stat)
         type(scene_t), intent(in) :: scn
-        type(problem_t), intent(in) :: prob
+        type(units_t), intent(in) :: units
         real(wp), intent(in) :: lambda
         logical, intent(in) :: of_sweep
-        complex(wp), intent(inout) :: mu(:)
+        complex(wp), intent(in) :: mu(:)
         type(status_t), intent(out) :: stat
         integer :: i, worst, worst_exponent
         character(len=:), allocatable :: what, lambda_name
@@ -447,7 +429,7 @@ contains
         worst_exponent = 0
         do i = 1, size(mu)
             if (.not. abs(mu(i)) > 0.0_wp) cycle
-            associate (x => prob%units%input_exponent(abs(mu(i))))
+            associate (x => units%input_exponent(abs(mu(i))))
                 if (x > maxexponent(1.0_wp) .or. x < minexponent(1.0_wp)) then
                     if (worst == 0 .or. abs(x) > abs(worst_exponent)) then
                         worst = i
@@ -460,30 +442,25 @@ contains
             ! the input pushing furthest: E/size, or lambda (mu ~ 1/lambda for large |lambda|)
             lambda_name = '&analysis: lambda = '
             if (of_sweep) lambda_name = '&sweep: lambda = '
-            if (worst_exponent < 0 .and. prob%units%lambda_dominates(lambda)) then
+            if (worst_exponent < 0 .and. units%lambda_dominates(lambda)) then
                 what = lambda_name//real_to_text(lambda)//' (a point of the sweep)'
                 if (.not. of_sweep) what = lambda_name//real_to_text(lambda)
-            else if (prob%units%young_dominates()) then
-                what = '&material: young = '//real_to_text(prob%young)
+            else if (units%young_dominates()) then
+                what = '&material: young = '//real_to_text(scn%material%young)
             else if (scn%source == MESH_RECTANGLE) then
                 what = '&mesh: width = '//real_to_text(scn%width)//', height = '// &
                        real_to_text(scn%height)
             else
                 what = '&mesh: the mesh in '//scn%file//' (size 2^'// &
-                       to_string(prob%units%length_exponent)//')'
+                       to_string(units%length_exponent)//')'
             end if
             call stat%fail(STATUS_BAD_INPUT, scn%name//': '//what// &
                 ': an eigenvalue mu would be about '// &
-                decimal_text(prob%units%input_log10(abs(mu(worst))))// &
+                decimal_text(units%input_log10(abs(mu(worst))))// &
                 ' (mu scales like young / size, '// &
                 'and like 1 / lambda for large |lambda|), '// &
                 'outside the 2.2e-308 to 1.8e308 that binary64 holds to full precision')
-            return
         end if
-        do i = 1, size(mu)
-            mu(i) = cmplx(prob%units%mu_to_input(real(mu(i), wp)), &
-                          prob%units%mu_to_input(aimag(mu(i))), wp)
-        end do
 
     contains
 
@@ -503,5 +480,18 @@ contains
             write (mantissa, '(f3.1)') m
             text = trim(mantissa)//'e'//to_string(power)
         end function decimal_text
-    end subroutine to_input_units
+    end subroutine check_input_range
+
+    !> check_input_range of real mu.
+    subroutine check_real_range(scn, units, lambda, of_sweep, mu, stat)
+        type(scene_t), intent(in) :: scn
+        type(units_t), intent(in) :: units
+        real(wp), intent(in) :: lambda
+        logical, intent(in) :: of_sweep
+        real(wp), intent(in) :: mu(:)
+        type(status_t), intent(out) :: stat
+        complex(wp) :: values(size(mu))
+        values = cmplx(mu, 0.0_wp, wp)
+        call check_input_range(scn, units, lambda, of_sweep, values, stat)
+    end subroutine check_real_range
 end module eigen_solve

@@ -15,7 +15,9 @@ module pictures
     use filesystem, only: remove_file
     use gnuplot, only: not_drawable_note, gnuplot_string, path_argument, run_gnuplot
     use output_stage, only: output_stage_t
-    use eigen_goal, only: eigen_level_t, adapted_eigen_t
+    use eigen_goal, only: eigen_level_t
+    use eigen_solve, only: eigen_result_t
+    use hp_space, only: hp_space_t
     use threshold_goal, only: threshold_level_t
     use threshold_analysis, only: threshold_result_t
     use critical_point, only: critical_c_t
@@ -503,26 +505,29 @@ contains
         end associate
     end subroutine draw_sweep
 
-    !> mode_001.png of an hp run: the first mode's real part sampled on the linear
-    !> sub-triangulation of hp_field, when &output plot is on.
-    subroutine draw_hp_mode(stage, inputs, out, note, stat)
+    !> mode_001.png of an hp run: the first mode of `res` (input units) on the hp level `prob`
+    !> with space `space`, its real part sampled on the linear sub-triangulation of hp_field,
+    !> when &output plot is on.
+    subroutine draw_hp_mode(stage, inputs, prob, space, res, note, stat)
         type(output_stage_t), intent(inout) :: stage
         type(run_inputs_t), intent(in) :: inputs
-        type(adapted_eigen_t), intent(in) :: out
+        type(problem_t), intent(in) :: prob
+        type(hp_space_t), intent(in) :: space
+        type(eigen_result_t), intent(in) :: res
         character(len=:), allocatable, intent(out) :: note
         type(status_t), intent(out) :: stat
         type(mesh_t) :: sub
         real(wp), allocatable :: values(:, :), degree(:), mode(:)
         note = ''
         if (.not. inputs%output%plot .or. inputs%output%modes < 1 .or. &
-            size(out%res%spec%vectors, 2) < 1) return
-        mode = real(out%res%spec%vectors(:, 1), wp)
-        call sample_hp_field(out%prob%mesh, out%space, out%prob%young, out%prob%poisson, mode, &
+            size(res%spec%vectors, 2) < 1) return
+        mode = real(res%spec%vectors(:, 1), wp)
+        call sample_hp_field(prob%mesh, space, prob%young, prob%poisson, mode, &
                              sub, values, degree, stat)
         if (.not. stat%ok()) return
         call draw_mode(stage, trim(inputs%output%directory), 'mode 1: mu = '// &
-            real_to_text(real(out%res%spec%mu(1), wp))//', lambda = '// &
-            real_to_text(out%res%lambda)//' (hp, sampled)', sub%coords, sub%cells, &
+            real_to_text(real(res%spec%mu(1), wp))//', lambda = '// &
+            real_to_text(res%lambda)//' (hp, sampled)', sub%coords, sub%cells, &
             element_corners(sub%element), values, note)
     end subroutine draw_hp_mode
 

@@ -8,6 +8,7 @@
 program test_extremes_range
     use kinds, only: wp
     use fixtures, only: problem_of, eigen_of
+    use reported_units, only: to_input_units
     use status, only: status_t, STATUS_BAD_INPUT
     use testing, only: test_suite_t
     use timer, only: timings_t
@@ -385,5 +386,7 @@ contains
         type(timings_t) :: timings
         call problem_of(c, prob, stat)
         if (stat%ok()) call eigen_of(c, prob, c%analysis%lambda, res, timings, stat)
+        ! the spectrum of the input problem, as the report gives it (reported_units)
+        if (stat%ok()) call to_input_units(prob%units, res%spec%mu)
     end subroutine run
 end program test_extremes_range

@@ -6,6 +6,7 @@
 program test_extremes_scaling
     use kinds, only: wp
     use fixtures, only: problem_of, eigen_of
+    use reported_units, only: to_input_units
     use status, only: status_t
     use testing, only: test_suite_t
     use fixtures, only: has_warning
@@ -244,6 +245,8 @@ contains
         type(status_t) :: stat
         call problem_of(c, prob, stat)
         if (stat%ok()) call eigen_of(c, prob, c%analysis%lambda, res, timings, stat)
+        ! the spectrum of the input problem, as the report gives it (reported_units)
+        if (stat%ok()) call to_input_units(prob%units, res%spec%mu)
         if (.not. stat%ok()) then
             call t%check('run: '//stat%message, .false.)
             error stop 1

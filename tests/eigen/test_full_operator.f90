@@ -23,7 +23,8 @@ program test_full_operator
     use run_config, only: config_t
     use problem, only: problem_t, build_problem
     use timer, only: timings_t
-    use eigen_solve, only: eigen_result_t, critical_cn
+    use eigen_solve, only: eigen_result_t
+    use reported_units, only: critical_cn
     use method_options, only: operator_name, SOLVER_ARPACK, SOLVER_DENSE, OPERATOR_FULL
     use input_validation, only: validate_config
     use csr_matrix, only: csr_matrix_t

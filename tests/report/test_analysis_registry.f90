@@ -13,13 +13,10 @@ program test_analysis_registry
     use mesh, only: mesh_t
     use analysis_base, only: analysis_t
     use analysis_registry, only: new_analysis
-    use eigen_run, only: eigen_run_t
-    use adapt_run, only: adapt_run_t
-    use hp_adapt_run, only: hp_adapt_run_t
+    use eigen_run, only: eigen_run_t, adapt_eigen_run_t
     use threshold_run, only: threshold_run_t, sweep_run_t, adapt_threshold_run_t
-    use hp_threshold_run, only: hp_threshold_run_t
-    use branch_run, only: branch_run_t
-    use solve_run, only: solve_run_t
+    use compliance_run, only: branch_run_t, solve_run_t
+    use run_inputs, only: run_inputs_t, translate_input
     use filesystem, only: file_exists, remove_tree
     use fixtures, only: single_element_scene, single_element_mu, run_as_main, run_checked, &
                         json_real, json_value, listed_files, write_text
@@ -51,23 +48,26 @@ contains
             .false., .true., .true., .false., .true., .false., .false., .false.]
         character(len=*), parameter :: STRATEGIES(13) = [character(len=2) :: ' ', ' ', 'h', &
             'hp', 'hp', ' ', 'h', 'hp', ' ', 'hp', ' ', ' ', ' ']
-        character(len=*), parameter :: EXPECTED(13) = [character(len=15) :: 'eigen', 'adapt', &
-            'adapt', 'hp_adapt', 'eigen', 'threshold', 'adapt_threshold', 'hp_threshold', &
-            'sweep', 'sweep', 'branch', 'solve', '']
+        character(len=*), parameter :: EXPECTED(13) = [character(len=15) :: 'eigen', &
+            'adapt_eigen', 'adapt_eigen', 'adapt_eigen', 'eigen', 'threshold', &
+            'adapt_threshold', 'adapt_threshold', 'sweep', 'sweep', 'branch', 'solve', '']
         class(analysis_t), allocatable :: a
+        type(config_t) :: config
+        type(run_inputs_t) :: inputs
         character(len=100) :: what
         integer :: i
         logical :: all_dofs
         do i = 1, size(KINDS)
-            if (STRATEGIES(i) == ' ') then
-                call new_analysis(trim(KINDS(i)), ADAPTIVE(i), a)
-            else
-                call new_analysis(trim(KINDS(i)), ADAPTIVE(i), a, trim(STRATEGIES(i)))
-            end if
+            config%analysis%kind = KINDS(i)
+            config%adapt%tolerance = merge(1.0e-6_wp, 0.0_wp, ADAPTIVE(i))
+            config%adapt%strategy = 'h'
+            if (STRATEGIES(i) /= ' ') config%adapt%strategy = STRATEGIES(i)
+            call translate_input(config, inputs)
+            call new_analysis(inputs, a)
             write (what, '(a, l1, 4a)') trim(KINDS(i))//', adaptive ', ADAPTIVE(i), &
                 ', strategy "', trim(STRATEGIES(i)), '": ', trim(EXPECTED(i))
             all_dofs = .false.
-            if (allocated(a)) all_dofs = a%needs_all_dofs
+            if (allocated(a)) all_dofs = a%in_input_units()
             call t%check(trim(what)//', all dofs only for branch and solve', &
                          type_name(a) == trim(EXPECTED(i)) .and. (all_dofs .eqv. &
                          any(KINDS(i) == [character(len=12) :: 'branch', 'solve'])))
@@ -82,11 +82,9 @@ contains
         if (allocated(a)) then
             select type (a)
             type is (eigen_run_t); found = 'eigen'
-            type is (adapt_run_t); found = 'adapt'
-            type is (hp_adapt_run_t); found = 'hp_adapt'
+            type is (adapt_eigen_run_t); found = 'adapt_eigen'
             type is (threshold_run_t); found = 'threshold'
             type is (adapt_threshold_run_t); found = 'adapt_threshold'
-            type is (hp_threshold_run_t); found = 'hp_threshold'
             type is (sweep_run_t); found = 'sweep'
             type is (branch_run_t); found = 'branch'
             type is (solve_run_t); found = 'solve'

@@ -11,7 +11,6 @@ module fixtures
     use csr_matrix, only: csr_matrix_t
     use eigen_solve, only: eigen_result_t, solve_eigen
     use run_inputs, only: run_inputs_t, translate_input
-    use method_options, only: REFINE_NONE, REFINE_HP
     use status, only: status_t, STATUS_SUCCESS
     use run_config, only: config_t
     use dof_map, only: dof_map_t, build_dof_map
@@ -21,8 +20,9 @@ module fixtures
     use contact_reduction, only: factor_stiffness, contact_flexibility, reduced_blocks_t
     use timer, only: timings_t
     use problem, only: problem_t, build_problem
-    use analysis_base, only: analysis_t, run_analysis
+    use analysis_base, only: analysis_t
     use analysis_registry, only: new_analysis
+    use run_report, only: report_run
     use filesystem, only: file_exists
     use testing, only: test_suite_t
     use strings, only: to_string
@@ -168,16 +168,18 @@ contains
         type(problem_t) :: prob
         type(timings_t) :: timings
         type(run_inputs_t) :: inputs
+        character(len=:), allocatable :: text
         summary = ''
         call translate_input(config, inputs)
-        call new_analysis(inputs%analysis_name, inputs%adapt%refine /= REFINE_NONE, &
-                          analysis, merge('hp', 'h ', inputs%adapt%refine == REFINE_HP))
-        call problem_of(config, prob, stat, analysis%needs_all_dofs, given_mesh)
+        call new_analysis(inputs, analysis)
+        call problem_of(config, prob, stat, analysis%in_input_units(), given_mesh)
         if (.not. stat%ok()) return
-        call run_analysis(analysis, inputs, prob, 0.0_wp, timings, stat)
+        call analysis%solve(inputs, prob, timings, stat)
+        if (.not. stat%ok()) return
+        call report_run(analysis, inputs, prob, 0.0_wp, timings, text, stat)
         if (.not. stat%ok()) return
         summary = file_text(trim(config%output%directory)//'/summary.json', new_line('a'))
-        if (present(report)) report = analysis%report(inputs, prob)
+        if (present(report)) report = text
     end subroutine run_as_main
 
     !> run_as_main with the checks every run gets, named `label`: it ran, its verdict has

@@ -1,32 +1,33 @@
 ! SPDX-License-Identifier: MIT
-!> analysis = 'eigen': the spectrum at &analysis lambda with its estimate, written as
-!> eigen_files writes an eigen solve (eigenvalues.csv, mode_NNN.vtu, K.mtx and B.mtx,
-!> summary.json) with the short human summary on stdout.
+!> analysis = 'eigen': the spectrum at &analysis lambda with its estimate (eigen_run_t), or
+!> with &adapt tolerance > 0 the adaptive loop of its lowest positive mu on h or hp levels
+!> (adapt_eigen_run_t, eigen_goal).
 module eigen_run
     use kinds, only: wp
-    use status, only: status_t, STATUS_NO_DIGIT
+    use status, only: status_t, STATUS_NO_DIGIT, STATUS_NOT_MET
     use strings, only: short_real_text
     use timer, only: timings_t
     use run_inputs, only: run_inputs_t
     use problem, only: problem_t
     use eigen_solve, only: eigen_result_t, solve_eigen, estimate_eigen
+    use eigen_goal, only: adapt_eigen, adapted_eigen_t
     use analysis_base, only: analysis_t
-    use output_stage, only: output_stage_t
-    use json_writer, only: json_object_t
-    use eigen_files, only: eigen_summary_json, summary_lines, write_eigen_files
     implicit none
     private
 
     type, extends(analysis_t), public :: eigen_run_t
         !> allocatable, allocated by solve: gfortran 12 frees it whole (docs/testing.md)
         type(eigen_result_t), allocatable :: res
-        character(len=:), allocatable :: plot_note   !! where mode_001.png is, or why not
     contains
         procedure :: solve => eigen_run_solve
-        procedure :: write_files => eigen_run_write_files
-        procedure :: summary => eigen_run_summary
-        procedure :: report => eigen_run_report
     end type eigen_run_t
+
+    type, extends(analysis_t), public :: adapt_eigen_run_t
+        !> one: the loop at &analysis lambda (allocated by solve, its last level kept)
+        type(adapted_eigen_t), allocatable :: out(:)
+    contains
+        procedure :: solve => adapt_eigen_run_solve
+    end type adapt_eigen_run_t
 
 contains
 
@@ -49,28 +50,23 @@ contains
             'the output set is written')
     end subroutine eigen_run_solve
 
-    subroutine eigen_run_write_files(this, stage, inputs, prob, stat)
-        class(eigen_run_t), intent(inout) :: this
-        type(output_stage_t), intent(inout) :: stage
+    subroutine adapt_eigen_run_solve(this, inputs, prob, timings, stat)
+        class(adapt_eigen_run_t), intent(inout) :: this
         type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
+        type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
-        call write_eigen_files(stage, inputs, prob, this%res, stat, this%plot_note)
-    end subroutine eigen_run_write_files
-
-    function eigen_run_summary(this, inputs, prob) result(summary)
-        class(eigen_run_t), intent(in) :: this
-        type(run_inputs_t), intent(in) :: inputs
-        type(problem_t), intent(in) :: prob
-        type(json_object_t) :: summary
-        summary = eigen_summary_json(inputs, prob, this%res, this%timings)
-    end function eigen_run_summary
-
-    function eigen_run_report(this, inputs, prob) result(text)
-        class(eigen_run_t), intent(in) :: this
-        type(run_inputs_t), intent(in) :: inputs
-        type(problem_t), intent(in) :: prob
-        character(len=:), allocatable :: text
-        text = summary_lines(inputs, prob, this%res, this%timings, this%plot_note)
-    end function eigen_run_report
+        call adapt_eigen(inputs%scene, [inputs%point%lambda], inputs%eigen, inputs%adapt, prob, &
+                         this%out, timings, stat, keep_problem=.true.)
+        ! Without a positive mu at any level there is no value to quote, so nothing to take
+        ! for a met tolerance: that stays exit 0 with its warning. One that vanished on
+        ! refinement had values, none converged: a tolerance not met.
+        if (.not. stat%ok()) return
+        associate (out => this%out(1))
+            if (out%converged) return
+            if (out%res%spec%lowest_positive() > 0 .or. out%mu_vanished) &
+                call this%verdict%fail(STATUS_NOT_MET, inputs%scene%name//': &adapt: '// &
+                                       out%outcome//' (the set of the last level is written)')
+        end associate
+    end subroutine adapt_eigen_run_solve
 end module eigen_run
