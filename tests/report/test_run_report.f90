@@ -1,96 +1,37 @@
 ! SPDX-License-Identifier: MIT
-!> The analyses by kind (analysis_registry) and the run skeleton every one shares
-!> (analysis_base's run_analysis), in process: each &analysis kind, adaptive or not, with
-!> either &adapt strategy, gets its own type; a run commits a complete set whose
-!> summary.json lists every file, replaces the set of an earlier run, and fails without a
-!> set where the output directory cannot be made. The runs are of the single element
-!> (docs/model.md section 8), whose one eigenvalue has a closed form.
-program test_analysis_registry
+!> The report of a run (run_report) in process: a run commits a complete set whose
+!> summary.json lists every file, replaces the set of an earlier run and keeps a user's
+!> file, and fails without a set where the output directory cannot be made; and the one
+!> summary record of a run (summary_record) says the same in summary.json and on stdout. The
+!> runs are of the single element (docs/model.md section 8), whose one eigenvalue has a
+!> closed form, and of its thresholds (lambda- = -1.8, no lambda+).
+program test_run_report
     use kinds, only: wp
     use status, only: status_t
     use testing, only: test_suite_t
     use run_config, only: config_t
     use mesh, only: mesh_t
     use analysis_base, only: analysis_t
-    use analysis_registry, only: new_analysis
-    use eigen_run, only: eigen_run_t, adapt_eigen_run_t
-    use threshold_run, only: threshold_run_t, sweep_run_t, adapt_threshold_run_t
-    use compliance_run, only: branch_run_t, solve_run_t
-    use run_inputs, only: run_inputs_t, translate_input
     use filesystem, only: file_exists, remove_tree
-    use fixtures, only: single_element_scene, single_element_mu, run_as_main, run_checked, &
-                        json_real, json_value, listed_files, write_text
+    use real_format, only: real_to_text
+    use fixtures, only: single_element_scene, single_element_mu, single_element_lambda_minus, &
+                        run_as_main, run_checked, json_real, json_value, listed_files, &
+                        write_text
     implicit none
 
-    character(len=*), parameter :: OUT = 'test_analysis_registry.out'
+    character(len=*), parameter :: OUT = 'test_run_report.out'
     type(test_suite_t) :: t
 
-    t%name = 'test_analysis_registry'
+    t%name = 'test_run_report'
     call remove_tree(OUT)
-    call each_kind_has_its_type(t)
     call a_run_commits_a_listed_set(t)
     call a_second_run_replaces_the_set(t)
     call an_unmakeable_directory_fails(t)
+    call threshold_summary_says_one_thing(t)
     call remove_tree(OUT)
     call t%report()
 
 contains
-
-    !> The type new_analysis picks for every kind, adaptive or not, strategy 'h' or 'hp'
-    !> (' ': absent, which is 'h'); K on all dofs only for 'branch' and 'solve'; an unknown
-    !> kind: none.
-    subroutine each_kind_has_its_type(t)
-        type(test_suite_t), intent(inout) :: t
-        character(len=*), parameter :: KINDS(13) = [character(len=12) :: 'eigen', 'eigen', &
-            'eigen', 'eigen', 'eigen', 'threshold', 'threshold', 'threshold', 'lambda_sweep', &
-            'lambda_sweep', 'branch', 'solve', 'nonsense']
-        logical, parameter :: ADAPTIVE(13) = [.false., .true., .true., .true., .false., &
-            .false., .true., .true., .false., .true., .false., .false., .false.]
-        character(len=*), parameter :: STRATEGIES(13) = [character(len=2) :: ' ', ' ', 'h', &
-            'hp', 'hp', ' ', 'h', 'hp', ' ', 'hp', ' ', ' ', ' ']
-        character(len=*), parameter :: EXPECTED(13) = [character(len=15) :: 'eigen', &
-            'adapt_eigen', 'adapt_eigen', 'adapt_eigen', 'eigen', 'threshold', &
-            'adapt_threshold', 'adapt_threshold', 'sweep', 'sweep', 'branch', 'solve', '']
-        class(analysis_t), allocatable :: a
-        type(config_t) :: config
-        type(run_inputs_t) :: inputs
-        character(len=100) :: what
-        integer :: i
-        logical :: all_dofs
-        do i = 1, size(KINDS)
-            config%analysis%kind = KINDS(i)
-            config%adapt%tolerance = merge(1.0e-6_wp, 0.0_wp, ADAPTIVE(i))
-            config%adapt%strategy = 'h'
-            if (STRATEGIES(i) /= ' ') config%adapt%strategy = STRATEGIES(i)
-            call translate_input(config, inputs)
-            call new_analysis(inputs, a)
-            write (what, '(a, l1, 4a)') trim(KINDS(i))//', adaptive ', ADAPTIVE(i), &
-                ', strategy "', trim(STRATEGIES(i)), '": ', trim(EXPECTED(i))
-            all_dofs = .false.
-            if (allocated(a)) all_dofs = a%in_input_units()
-            call t%check(trim(what)//', all dofs only for branch and solve', &
-                         type_name(a) == trim(EXPECTED(i)) .and. (all_dofs .eqv. &
-                         any(KINDS(i) == [character(len=12) :: 'branch', 'solve'])))
-        end do
-    end subroutine each_kind_has_its_type
-
-    !> Which of the registry's types `a` is, without _run_t ('' when none).
-    function type_name(a) result(found)
-        class(analysis_t), allocatable, intent(in) :: a
-        character(len=:), allocatable :: found
-        found = ''
-        if (allocated(a)) then
-            select type (a)
-            type is (eigen_run_t); found = 'eigen'
-            type is (adapt_eigen_run_t); found = 'adapt_eigen'
-            type is (threshold_run_t); found = 'threshold'
-            type is (adapt_threshold_run_t); found = 'adapt_threshold'
-            type is (sweep_run_t); found = 'sweep'
-            type is (branch_run_t); found = 'branch'
-            type is (solve_run_t); found = 'solve'
-            end select
-        end if
-    end function type_name
 
     !> The eigen run of the single element at lambda = -5: the set in place, every file
     !> summary.json lists present and not empty (run_checked), summary.json among them, its mu the
@@ -161,5 +102,38 @@ contains
                      index(stat%message, 'single_element: &output directory') == 1)
     end subroutine an_unmakeable_directory_fails
 
-end program test_analysis_registry
-
+    !> The thresholds of the single element: summary.json and the stdout summary, rendered
+    !> from one record, quote the same lambda- (the closed form -(L + 3G)/(L + G) = -1.8 to
+    !> 1e-13: a 1 x 1 pencil), the same absence of lambda+, the same boundary point and
+    !> interval, and the text its headline mu as the JSON writes it.
+    subroutine threshold_summary_says_one_thing(t)
+        type(test_suite_t), intent(inout) :: t
+        type(config_t) :: config
+        type(mesh_t) :: m
+        class(analysis_t), allocatable :: analysis
+        character(len=:), allocatable :: summary, report, minus
+        logical :: ran
+        call single_element_scene(OUT//'/threshold', config, m)
+        config%analysis%kind = 'threshold'
+        call run_checked(t, 'threshold', config, analysis, summary, ran, m, report)
+        if (.not. ran) return
+        minus = json_value(summary, 'lambda_critical_minus')
+        call t%check_close('threshold: lambda- is the closed form', &
+                           json_real(summary, 'lambda_critical_minus'), &
+                           single_element_lambda_minus(0.3_wp), 1.0e-13_wp)
+        call t%check('threshold: no lambda+ in either', &
+                     json_value(summary, 'lambda_critical_plus') == 'null' .and. &
+                     index(report, '  lambda+     none (no real eigenvalue') > 0)
+        call t%check('threshold: the text quotes lambda- as the JSON', &
+                     index(report, '  lambda-     '//minus//' ') > 0)
+        call t%check('threshold: the boundary point is lambda- in both', &
+                     json_value(summary, 'boundary_lambda') == '['//minus//']' .and. &
+                     index(report, '              lambda = '//minus//' ') > 0)
+        call t%check('threshold: the interval with a positive mu ends at lambda- in both', &
+                     json_value(summary, 'positive_mu_intervals_upper') == '['//minus//']' &
+                     .and. index(report, ', '//minus//']') > 0)
+        call t%check('threshold: the headline mu as the JSON writes it', &
+                     index(report, 'lowest positive mu = critical c_n = '// &
+                           json_value(summary, 'lowest_positive_mu')) > 0)
+    end subroutine threshold_summary_says_one_thing
+end program test_run_report

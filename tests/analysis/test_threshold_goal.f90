@@ -4,7 +4,7 @@
 !> and of each other's mirror image; its levels climb the hp ladder; a level whose contact
 !> blocks do not fit the memory stops the loop (before the first level: STATUS_NOT_MET), as
 !> max_levels does.
-program test_hp_threshold
+program test_threshold_goal
     use kinds, only: wp, i8
     use run_inputs, only: run_inputs_t, translate_input
     use fixtures, only: problem_of
@@ -24,7 +24,7 @@ program test_hp_threshold
     !> image (x -> 1 - x reverses t, so lambda -> -lambda)
     real(wp), parameter :: TRUTH_PLUS = 1.9447114426738574_wp, TRUTH_UNCERTAINTY = 5.65e-10_wp
     type(test_suite_t) :: t
-    t%name = 'test_hp_threshold'
+    t%name = 'test_threshold_goal'
     call reference_meets_tolerance(t)
     call memory_stops_the_loop(t)
     call max_levels_stops_the_loop(t)
@@ -135,4 +135,4 @@ contains
                      size(out%levels) == 2 .and. .not. out%converged .and. &
                      index(out%outcome, 'max_levels = 2') > 0)
     end subroutine max_levels_stops_the_loop
-end program test_hp_threshold
+end program test_threshold_goal

@@ -1,7 +1,7 @@
 ! SPDX-License-Identifier: MIT
 !> analysis = 'threshold' and 'lambda_sweep' (threshold_run), and 'threshold' with &adapt
-!> strategy 'h', run in process as the program runs them. The single element (docs/model.md
-!> section 8) has one threshold, lambda- = -(L + 3G)/(L + G) = -1.8, and no lambda+, and
+!> on h and on hp levels, run in process as the program runs them. The single element
+!> (docs/model.md section 8) has one threshold, lambda- = -(L + 3G)/(L + G) = -1.8, and no lambda+, and
 !> at each lambda below lambda- the one eigenvalue of its closed form; the reference scene's
 !> adapted thresholds hold the continuum values of tests/data/truths.csv within their bars.
 program test_threshold_run
@@ -27,6 +27,8 @@ program test_threshold_run
     call single_element_sweep(t)
     call adapted_thresholds_hold_the_truth(t)
     call adapted_thresholds_not_met(t)
+    call hp_thresholds_meet_their_tolerance(t)
+    call hp_limit_is_not_met(t)
     call remove_tree(OUT)
     call t%report()
 
@@ -127,4 +129,40 @@ contains
         if (ran) call t%check('not met: adapt.csv has 2 rows', &
                               data_rows(OUT//'/not_met/adapt.csv') == 2)
     end subroutine adapted_thresholds_not_met
+
+    !> Tolerance 1e-3: converged, both continuum thresholds within their bars, a row per
+    !> level in adapt.csv and per cell in degrees.csv.
+    subroutine hp_thresholds_meet_their_tolerance(t)
+        type(test_suite_t), intent(inout) :: t
+        type(config_t) :: config
+        class(analysis_t), allocatable :: analysis
+        character(len=:), allocatable :: summary
+        logical :: ran
+        call adaptive_scene('threshold', 'hp', 1.0e-3_wp, 0, OUT//'/hp', config)
+        call run_checked(t, 'hp', config, analysis, summary, ran)
+        if (.not. ran) return
+        call t%check('hp: converged', json_value(summary, 'adapt_converged') == 'true')
+        call t%check('hp: lambda+ and lambda- within their bars of the truth', &
+                     thresholds_within_bars(summary, REF_LAMBDA_PLUS, REF_LAMBDA_MINUS))
+        call t%check('hp: adapt.csv has a row per level', &
+                     data_rows(OUT//'/hp/adapt.csv') == &
+                     nint(json_real(summary, 'adapt_levels')))
+        call t%check('hp: degrees.csv has a row per cell', &
+                     data_rows(OUT//'/hp/degrees.csv') == &
+                     nint(json_real(summary, 'n_cells')))
+    end subroutine hp_thresholds_meet_their_tolerance
+
+    !> hp levels: tolerance 1e-8 within max_levels = 2, STATUS_NOT_MET, 2 rows of adapt.csv,
+    !> the set complete.
+    subroutine hp_limit_is_not_met(t)
+        type(test_suite_t), intent(inout) :: t
+        type(config_t) :: config
+        class(analysis_t), allocatable :: analysis
+        character(len=:), allocatable :: summary
+        logical :: ran
+        call adaptive_scene('threshold', 'hp', 1.0e-8_wp, 2, OUT//'/hp_not_met', config)
+        call run_checked(t, 'hp not met', config, analysis, summary, ran, verdict=STATUS_NOT_MET)
+        if (ran) call t%check('hp not met: adapt.csv has 2 rows', &
+                              data_rows(OUT//'/hp_not_met/adapt.csv') == 2)
+    end subroutine hp_limit_is_not_met
 end program test_threshold_run
