@@ -636,14 +636,23 @@ contains
         call summary%add_real('time_branch_s', f%time_branch)
     end subroutine add_branch_keys
 
+    !> The first lines of 'branch' and 'solve': the run and the problem's sizes, up to the
+    !> parameters that follow them.
+    function compliance_head(rec, analysis) result(text)
+        type(run_summary_t), intent(in) :: rec
+        character(len=*), intent(in) :: analysis
+        character(len=:), allocatable :: text
+        text = 'nceig '//rec%version//': '//rec%input//' ('//analysis//')'//NL// &
+            '  problem     '//to_string(rec%n_dofs)//' dofs, '//to_string(rec%n_contact)// &
+            ' contact nodes, '
+    end function compliance_head
+
     function branch_lines(rec) result(text)
         type(run_summary_t), intent(in) :: rec
         character(len=:), allocatable :: text
         associate (f => rec%branch)
-            text = 'nceig '//rec%version//': '//rec%input//' (branch)'//NL// &
-                '  problem     '//to_string(rec%n_dofs)//' dofs, '// &
-                to_string(rec%n_contact)//' contact nodes, lambda = '// &
-                real_to_text(rec%eigen%lambda)//NL// &
+            text = compliance_head(rec, 'branch')//'lambda = '//real_to_text(rec%eigen%lambda)// &
+                NL// &
                 '  critical    c_n = mu = '//real_to_text(f%c_n)//', c_t = '// &
                 real_to_text(f%c_t)//NL// &
                 '  branch      U + delta phi for |delta| <= delta_max = '// &
@@ -691,9 +700,7 @@ contains
         type(run_summary_t), intent(in) :: rec
         character(len=:), allocatable :: text
         associate (f => rec%solve)
-            text = 'nceig '//rec%version//': '//rec%input//' (solve)'//NL// &
-                '  problem     '//to_string(rec%n_dofs)//' dofs, '// &
-                to_string(rec%n_contact)//' contact nodes, c_n = '//real_to_text(f%c_n)// &
+            text = compliance_head(rec, 'solve')//'c_n = '//real_to_text(f%c_n)// &
                 ', c_t = '//real_to_text(f%c_t)//NL// &
                 '  newton      '//f%newton_stop//' after '// &
                 to_string(f%iterations)//' iterations, relative residual '// &

@@ -14,6 +14,7 @@ program test_eigen_run
     use analysis_base, only: analysis_t
     use filesystem, only: remove_tree
     use fixtures, only: adaptive_scene, run_checked, json_real, json_value, listed_files, &
+                        check_limit_not_met, &
                         data_rows, REF_MU
     implicit none
 
@@ -25,7 +26,8 @@ program test_eigen_run
     call met_tolerance_holds_the_truth(t)
     call max_levels_is_not_met(t)
     call hp_meets_its_tolerance(t)
-    call hp_limit_is_not_met(t)
+    ! hp levels: 1e-8 within max_levels = 2: not met, 2 rows of adapt.csv
+    call check_limit_not_met(t, 'eigen', 'hp', 2, OUT//'/hp_not_met', 2)
     call remove_tree(OUT)
     call t%report()
 
@@ -110,18 +112,4 @@ contains
                      index(report, 'hp, '//json_value(summary, 'adapt_levels')// &
                            ' levels from the 8-cell input mesh') > 0)
     end subroutine hp_meets_its_tolerance
-
-    !> hp levels: tolerance 1e-8 within max_levels = 2, STATUS_NOT_MET, 2 rows of adapt.csv,
-    !> the set complete.
-    subroutine hp_limit_is_not_met(t)
-        type(test_suite_t), intent(inout) :: t
-        type(config_t) :: config
-        class(analysis_t), allocatable :: analysis
-        character(len=:), allocatable :: summary
-        logical :: ran
-        call adaptive_scene('eigen', 'hp', 1.0e-8_wp, 2, OUT//'/hp_not_met', config)
-        call run_checked(t, 'hp not met', config, analysis, summary, ran, verdict=STATUS_NOT_MET)
-        if (ran) call t%check('hp not met: adapt.csv has 2 rows', &
-                              data_rows(OUT//'/hp_not_met/adapt.csv') == 2)
-    end subroutine hp_limit_is_not_met
 end program test_eigen_run

@@ -1,9 +1,10 @@
 ! SPDX-License-Identifier: MIT
 !> analysis = 'threshold' and 'lambda_sweep' (threshold_run), and 'threshold' with &adapt
 !> on h and on hp levels, run in process as the program runs them. The single element
-!> (docs/model.md section 8) has one threshold, lambda- = -(L + 3G)/(L + G) = -1.8, and no lambda+, and
-!> at each lambda below lambda- the one eigenvalue of its closed form; the reference scene's
-!> adapted thresholds hold the continuum values of tests/data/truths.csv within their bars.
+!> (docs/model.md section 8) has one threshold, lambda- = -(L + 3G)/(L + G) = -1.8, and no
+!> lambda+, and at each lambda below lambda- the one eigenvalue of its closed form; the
+!> reference scene's adapted thresholds hold the continuum values of tests/data/truths.csv
+!> within their bars.
 program test_threshold_run
     use kinds, only: wp
     use status, only: status_t, STATUS_NOT_MET
@@ -14,6 +15,7 @@ program test_threshold_run
     use csv_table, only: csv_table_t, read_csv_table
     use filesystem, only: remove_tree
     use fixtures, only: single_element_scene, single_element_mu, single_element_lambda_minus, &
+                        check_limit_not_met, &
                         adaptive_scene, run_checked, json_real, json_value, listed_files, &
                         data_rows, thresholds_within_bars, REF_LAMBDA_PLUS, REF_LAMBDA_MINUS
     implicit none
@@ -28,7 +30,8 @@ program test_threshold_run
     call adapted_thresholds_hold_the_truth(t)
     call adapted_thresholds_not_met(t)
     call hp_thresholds_meet_their_tolerance(t)
-    call hp_limit_is_not_met(t)
+    ! hp levels: 1e-8 within max_levels = 2: not met, 2 rows of adapt.csv
+    call check_limit_not_met(t, 'threshold', 'hp', 2, OUT//'/hp_not_met', 2)
     call remove_tree(OUT)
     call t%report()
 
@@ -151,18 +154,4 @@ contains
                      data_rows(OUT//'/hp/degrees.csv') == &
                      nint(json_real(summary, 'n_cells')))
     end subroutine hp_thresholds_meet_their_tolerance
-
-    !> hp levels: tolerance 1e-8 within max_levels = 2, STATUS_NOT_MET, 2 rows of adapt.csv,
-    !> the set complete.
-    subroutine hp_limit_is_not_met(t)
-        type(test_suite_t), intent(inout) :: t
-        type(config_t) :: config
-        class(analysis_t), allocatable :: analysis
-        character(len=:), allocatable :: summary
-        logical :: ran
-        call adaptive_scene('threshold', 'hp', 1.0e-8_wp, 2, OUT//'/hp_not_met', config)
-        call run_checked(t, 'hp not met', config, analysis, summary, ran, verdict=STATUS_NOT_MET)
-        if (ran) call t%check('hp not met: adapt.csv has 2 rows', &
-                              data_rows(OUT//'/hp_not_met/adapt.csv') == 2)
-    end subroutine hp_limit_is_not_met
 end program test_threshold_run

@@ -1,60 +1,4 @@
 ! SPDX-License-Identifier: MIT
-!> Test doubles of the loop's interfaces (a program cannot bind procedures to its types).
-module hp_levels_doubles
-    use kinds, only: wp
-    use status, only: status_t
-    use timer, only: timings_t
-    use scene, only: scene_t
-    use adapt_driver, only: adapt_goal_t, adapt_level_t, refiner_t
-    implicit none
-    private
-    public :: idle_goal_t
-
-    !> A goal that never solves: the hp levels ask it nothing.
-    type, extends(adapt_goal_t) :: idle_goal_t
-    contains
-        procedure :: solve => idle_solve
-        procedure :: judge => idle_judge
-        procedure :: bar_text => idle_bar_text
-        procedure :: mark => idle_mark
-    end type idle_goal_t
-
-contains
-
-    subroutine idle_solve(this, scn, refiner, level, loop_start, timings, refused, stat)
-        class(idle_goal_t), intent(inout) :: this
-        type(scene_t), intent(in) :: scn
-        class(refiner_t), intent(in) :: refiner
-        type(adapt_level_t), intent(in) :: level
-        real(wp), intent(in) :: loop_start
-        type(timings_t), intent(inout) :: timings
-        character(len=:), allocatable, intent(out) :: refused
-        type(status_t), intent(out) :: stat
-        refused = ''
-    end subroutine idle_solve
-
-    subroutine idle_judge(this, refiner, level, tolerance)
-        class(idle_goal_t), intent(inout) :: this
-        class(refiner_t), intent(in) :: refiner
-        integer, intent(in) :: level
-        real(wp), intent(in) :: tolerance
-    end subroutine idle_judge
-
-    function idle_bar_text(this, i) result(text)
-        class(idle_goal_t), intent(in) :: this
-        integer, intent(in) :: i
-        character(len=:), allocatable :: text
-        text = 'none'
-    end function idle_bar_text
-
-    function idle_mark(this, theta) result(marked)
-        class(idle_goal_t), intent(in) :: this
-        real(wp), intent(in) :: theta
-        integer, allocatable :: marked(:)
-        allocate (marked(0))
-    end function idle_mark
-end module hp_levels_doubles
-
 !> The levels of &adapt strategy = 'hp' (hp_levels) from the reference scene's 2 x 2 P1
 !> squares: level k is graded in k layers with degrees 1 (at the singular points) to
 !> min(k + 1, p_max), each level has more dofs than the one before, its problem is the
@@ -63,7 +7,7 @@ end module hp_levels_doubles
 !> explicit max_dofs is bad input and a later one over it is too big; a bar of hp levels is
 !> hp_run_bar's, from the values alone.
 program test_hp_levels
-    use hp_levels_doubles, only: idle_goal_t
+    use goal_doubles, only: every_cell_t
     use kinds, only: wp
     use status, only: status_t, STATUS_BAD_INPUT
     use testing, only: test_suite_t
@@ -99,7 +43,7 @@ contains
         type(run_inputs_t) :: inputs
         type(problem_t) :: start
         type(hp_refiner_t) :: refiner
-        type(idle_goal_t) :: goal
+        type(every_cell_t) :: goal
         type(adapt_level_t) :: level
         type(timings_t) :: timings
         type(cholesky_t) :: chol
@@ -142,7 +86,7 @@ contains
         type(run_inputs_t) :: inputs
         type(problem_t) :: start
         type(hp_refiner_t) :: refiner
-        type(idle_goal_t) :: goal
+        type(every_cell_t) :: goal
         type(adapt_level_t) :: level
         type(timings_t) :: timings
         type(status_t) :: stat

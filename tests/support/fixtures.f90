@@ -11,7 +11,7 @@ module fixtures
     use csr_matrix, only: csr_matrix_t
     use eigen_solve, only: eigen_result_t, solve_eigen
     use run_inputs, only: run_inputs_t, translate_input
-    use status, only: status_t, STATUS_SUCCESS
+    use status, only: status_t, STATUS_SUCCESS, STATUS_NOT_MET
     use run_config, only: config_t
     use dof_map, only: dof_map_t, build_dof_map
     use assembly, only: assemble_stiffness
@@ -34,7 +34,7 @@ module fixtures
     public :: single_element_scene, single_element_mu, single_element_lambda_minus
     public :: run_as_main, json_value, json_real, listed_files, data_rows, index_of_newline
     public :: all_present, adaptive_scene, run_checked, thresholds_within_bars
-    public :: problem_of, eigen_of
+    public :: problem_of, eigen_of, check_limit_not_met
 
     !> The reference scene's continuum values (tests/data/truths.csv, scenes 'ref' and
     !> 'ref-threshold': graded P4 meshes, uncertainties 4.6e-12 and 5.7e-10).
@@ -212,6 +212,24 @@ contains
         call t%check(label//': every file summary.json lists is in place', &
                      all_present(trim(config%output%directory), listed_files(summary)))
     end subroutine run_checked
+
+    !> The reference scene from 2 x 2 P1 adapted by `kind` ('eigen', 'threshold') on
+    !> `strategy` levels to 1e-8 within max_levels = `levels`, into `folder`: the verdict
+    !> STATUS_NOT_MET, the set complete (run_checked) with `rows` rows of adapt.csv.
+    subroutine check_limit_not_met(t, kind, strategy, levels, folder, rows)
+        type(test_suite_t), intent(inout) :: t
+        character(len=*), intent(in) :: kind, strategy, folder
+        integer, intent(in) :: levels, rows
+        type(config_t) :: config
+        class(analysis_t), allocatable :: analysis
+        character(len=:), allocatable :: summary
+        logical :: ran
+        call adaptive_scene(kind, strategy, 1.0e-8_wp, levels, folder, config)
+        call run_checked(t, strategy//' not met', config, analysis, summary, ran, &
+                         verdict=STATUS_NOT_MET)
+        if (ran) call t%check(strategy//' not met: adapt.csv has '//to_string(rows)// &
+                              ' rows', data_rows(folder//'/adapt.csv') == rows)
+    end subroutine check_limit_not_met
 
     !> Whether the summary's lambda+ and lambda- hold `plus` and `minus` within their
     !> relative error bars.
