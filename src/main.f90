@@ -90,5 +90,5 @@ program nceig
     call stop_on_failure(PROGRAM_NAME, analysis%verdict)
     ! gfortran 12 keeps main-program allocatables in a frame gone before LeakSanitizer looks
     deallocate (command%action, command%input, command%settings)
-    deallocate (analysis)
+    deallocate (analysis, text)
 end program nceig

@@ -252,22 +252,24 @@ contains
                      maxval(out%space%cell_degree) == out%levels(size(out%levels))%p_max)
     end subroutine degrees_rise_by_one_per_level
 
-    !> One hp climb for lambda = -5 and 5 (a target each, eigen_goal) against a climb for
+    !> One hp climb for lambda = -5, 1 and 5 (a target each, eigen_goal) against a climb for
     !> each alone: the levels do not depend on lambda, so each target ends where its own
     !> loop ends, with the same levels and mu (1e-12: the same factor, solved at another
-    !> moment); the square is its own mirror image (x -> 1 - x turns lambda into -lambda), so
-    !> the two c_n agree within the sum of their bars (the graded meshes are not mirrored).
+    !> moment); lambda = 1 lies between the thresholds (-1.94, 1.94), where no positive mu
+    !> exists, so its target stops at the first level while the others climb on; the square is
+    !> its own mirror image (x -> 1 - x turns lambda into -lambda), so c_n at -5 and 5 agree
+    !> within the sum of their bars (the graded meshes are not mirrored).
     subroutine one_climb_serves_many_lambdas(t)
         type(test_suite_t), intent(inout) :: t
-        real(wp), parameter :: LAMBDAS(2) = [-5.0_wp, 5.0_wp]
+        real(wp), parameter :: LAMBDAS(3) = [-5.0_wp, 1.0_wp, 5.0_wp]
         type(config_t) :: config
         type(problem_t) :: start
         type(timings_t) :: timings
         type(status_t) :: stat
         type(run_inputs_t) :: inputs
         type(adapted_eigen_t), allocatable :: both(:), alone(:)
-        real(wp) :: mu(2), bar(2)
-        integer :: i, n
+        real(wp) :: mu(3), bar(3)
+        integer :: i, n, levels(3)
         call adaptive_scene('eigen', 'hp', 1.0e-6_wp, 0, 'unused', config)
         call problem_of(config, start, stat)
         call translate_input(config, inputs)
@@ -275,7 +277,7 @@ contains
                                         start, both, timings, stat, .false.)
         call t%check('one climb for two lambdas runs', stat%ok())
         if (.not. stat%ok()) return
-        do i = 1, 2
+        do i = 1, 3
             call adapt_eigen(inputs%scene, LAMBDAS(i:i), inputs%eigen, inputs%adapt, start, &
                              alone, timings, stat, .false.)
             if (.not. stat%ok()) return
@@ -286,12 +288,17 @@ contains
                 if (size(b%levels) /= n) cycle
                 call t%check('lambda '//trim(real_to_text(LAMBDAS(i)))//': the same mu', &
                              all(abs(b%levels%mu - alone(1)%levels%mu) <= &
-                                 1.0e-12_wp*abs(alone(1)%levels%mu)))
+                                 1.0e-12_wp*abs(alone(1)%levels%mu)) .and. &
+                             all(b%levels%has_mu .eqv. alone(1)%levels%has_mu))
                 mu(i) = b%levels(n)%mu
                 bar(i) = b%levels(n)%error_bar
+                levels(i) = n
             end associate
         end do
+        call t%check('lambda = 1: no positive mu, stopped at the first level, the others on', &
+                     levels(2) == 1 .and. .not. both(2)%levels(1)%has_mu .and. levels(3) > 1 &
+                     .and. index(both(2)%outcome, 'no positive mu at level 1') > 0)
         call t%check('mirror image: c_n(-5) = c_n(5) within their bars', &
-                     abs(mu(1) - mu(2)) <= (bar(1) + bar(2))*max(mu(1), mu(2)))
+                     abs(mu(1) - mu(3)) <= (bar(1) + bar(3))*max(mu(1), mu(3)))
     end subroutine one_climb_serves_many_lambdas
 end program test_eigen_goal

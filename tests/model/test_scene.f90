@@ -11,7 +11,7 @@ program test_scene
     use status, only: status_t, STATUS_BAD_INPUT
     use testing, only: test_suite_t
     use element_types, only: ELEMENT_P1
-    use scene, only: scene_t, MESH_RECTANGLE, MESH_GMSH
+    use scene, only: scene_t, MESH_GMSH
     use problem, only: problem_t, build_problem
     implicit none
 
