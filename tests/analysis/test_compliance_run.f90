@@ -76,13 +76,15 @@ contains
         if (.not. ran) return
         call t%check('solve: converged', json_value(summary, 'converged') == 'true')
         call t%check_close('solve: c_n = 105/208', json_real(summary, 'c_n'), MU, 1.0e-13_wp)
-        call t%check('solve: on the branch to 1e-12', json_real(summary, 'branch_distance') >= 0.0_wp &
+        call t%check('solve: on the branch to 1e-12', &
+                     json_real(summary, 'branch_distance') >= 0.0_wp &
                      .and. json_real(summary, 'branch_distance') < 1.0e-12_wp)
         call t%check('solve: the contact node slips along +t', &
                      nint(json_real(summary, 'n_slip_plus')) == 1 .and. &
                      nint(json_real(summary, 'n_slip_minus')) == 0)
         call t%check('solve: newton.csv has iterations + 1 rows', &
-                     data_rows(OUT//'/solve/newton.csv') == nint(json_real(summary, 'iterations')) + 1)
+                     data_rows(OUT//'/solve/newton.csv') == &
+                     nint(json_real(summary, 'iterations')) + 1)
         call t%check('solve: contact_states.csv has the one contact node', &
                      data_rows(OUT//'/solve/contact_states.csv') == 1)
         call t%check('solve: solution.vtu listed', any(listed_files(summary) == 'solution.vtu'))

@@ -53,11 +53,13 @@ contains
         call t%check_close('threshold: lambda- = -(L + 3G)/(L + G)', &
                            json_real(summary, 'lambda_critical_minus'), &
                            single_element_lambda_minus(0.3_wp), 1.0e-13_wp)
-        call t%check('threshold: no lambda+', json_value(summary, 'lambda_critical_plus') == 'null')
+        call t%check('threshold: no lambda+', &
+                     json_value(summary, 'lambda_critical_plus') == 'null')
         call t%check_close('threshold: mu at lambda = -5 is 105/208', &
                            json_real(summary, 'lowest_positive_mu'), 105.0_wp/208.0_wp, 1.0e-13_wp)
         call t%check('threshold: the report says there is no lambda+', &
-                     index(report, 'none (no real eigenvalue of Kt_nn x = lambda Kt_nt x > 0)') > 0)
+                     index(report, 'none (no real eigenvalue of Kt_nn x = lambda Kt_nt x > 0)') &
+                     > 0)
     end subroutine single_element_threshold
 
     !> A sweep over the list -5, -3, -2, -1, 2: lambda_sweep.csv has one row per lambda in

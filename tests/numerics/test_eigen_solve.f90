@@ -123,7 +123,8 @@ contains
         mu = [cmplx(2.0_wp**(-600), 0.0_wp, wp), cmplx(2.0_wp**(-601), 0.0_wp, wp)]
         call check_input_range(scn, units, 2.0_wp**600, .true., mu, stat)
         call t%check('underflow with a huge lambda of a sweep: refused naming it', &
-                     stat%code == STATUS_BAD_INPUT .and. index(stat%message, &
-                     '&sweep: lambda = ') > 0 .and. index(stat%message, 'a point of the sweep') > 0)
+                     stat%code == STATUS_BAD_INPUT .and. &
+                     index(stat%message, '&sweep: lambda = ') > 0 .and. &
+                     index(stat%message, 'a point of the sweep') > 0)
     end subroutine input_range
 end program test_eigen_solve

@@ -14,6 +14,7 @@ program test_h_refiner
     use run_config, only: config_t
     use run_inputs, only: run_inputs_t, translate_input
     use problem, only: problem_t
+    use sparse_cholesky, only: cholesky_t
     use scene, only: scene_t
     use error_bar, only: level_bar
     use adapt_driver, only: adapt_goal_t, adapt_level_t, refiner_t
@@ -108,7 +109,10 @@ contains
     !> start; with every cell marked, level 1 has each triangle bisected at least once (the
     !> closure may bisect more): the areas still sum to 1 and the contact edges to the
     !> bottom's length 1 (halves of binary fractions: exact), and every vertex off the fixed
-    !> top has its 2 free dofs.
+    !> top has its 2 free dofs; K of level 1 factors (its Dirichlet part makes it positive
+    !> definite) and the factor solves K x = b for a known x (the contact dofs ordered last
+    !> change only the order of the work; K's condition is small for 12-odd dofs of a unit
+    !> square, so 1e-10 n is generous).
     subroutine every_cell_bisected(t)
         type(test_suite_t), intent(inout) :: t
         type(config_t) :: config
@@ -118,9 +122,12 @@ contains
         type(every_cell_t) :: goal
         type(adapt_level_t) :: level
         type(timings_t) :: timings
+        type(cholesky_t) :: chol
         type(status_t) :: stat
         logical :: too_big
         real(wp) :: area, length, d1(2), d2(2)
+        real(wp), allocatable :: x(:, :), b(:, :), solved(:, :)
+        integer :: i, n
         integer :: c, e, bottom
         call square_scene(2, 'p1', 'right', config)
         config%adapt%tolerance = 1.0e-6_wp
@@ -158,6 +165,17 @@ contains
             call t%check('level 1: 2 free dofs per vertex off the top', &
                          level%prob%dofs%n_free == 2*count(abs(m%coords(2, :) - 1.0_wp) > 0.0_wp))
         end associate
+        call refiner%factor(level, chol, timings, stat)
+        call t%check('level 1: K factored (positive definite)', stat%ok())
+        if (.not. stat%ok()) return
+        n = level%prob%k%n()
+        allocate(x(n, 1), b(n, 1), solved(n, 1))
+        x(:, 1) = [(real(i, wp), i = 1, n)]
+        call level%prob%k%matvec(x(:, 1), b(:, 1))
+        call chol%solve(b, solved, stat)
+        call t%check('level 1: the factor solves K x = K (1, 2, ..., n) for x = (1, 2, ..., n)', &
+                     stat%ok() .and. maxval(abs(solved - x)) < 1.0e-10_wp*n)
+        call chol%free()
     end subroutine every_cell_bisected
 
     !> An h level's bar is level_bar over the window of levels with an estimate, at the
