@@ -1,4 +1,5 @@
 # SPDX-License-Identifier: MIT
+# shellcheck shell=bash
 # A throwaway single-node SLURM cluster on this machine, for the tests of nceig's job arrays
 # (tests/cli/cli_slurm.sh) and of any later driver that submits them. Not installed.
 #
@@ -88,7 +89,7 @@ slurm_cluster_start() {
 }
 
 slurm_cluster_start_once() {
-    local dir node=nceig1 host ports ctld_port node_port hw program
+    local dir node=nceig1 host ctld_port node_port hw program
     dir=$(mktemp -d /tmp/nceig-slurm.XXXXXX) || { slurm_cluster_error="mktemp failed"; return 1; }
     slurm_cluster_dir=$dir
     slurm_cluster_error=''

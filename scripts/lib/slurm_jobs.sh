@@ -1,4 +1,5 @@
 # SPDX-License-Identifier: MIT
+# shellcheck shell=bash
 # SLURM job arrays that carry no path in their text. Sourced by scripts/sweep_mesh.sh (and
 # installed with it to P/share/nceig/scripts/lib/); meant for any nceig driver that farms out
 # tasks, e.g. a study over many inputs.

@@ -6,8 +6,8 @@
 # hostile prefix, with a hostile -o name; slurm_submit.sh submits the array and the
 # collection; every job ends COMPLETED, nothing that a path holds is run (no canary file),
 # and the tables equal those of the same sweep run locally (the same nceig runs). Submitting
-# again reuses every run. Needs root to install or to start slurmd; otherwise skipped (77)
-# with the reason. A cluster that is installed but does not come up fails, with its logs.
+# again reuses every run. Needs root (to install, and slurmd is run as root: it starts each
+# job as its user; other users were not tried); otherwise skipped (77) with the reason. A cluster that is installed but does not come up fails, with its logs.
 # Usage: cli_slurm.sh NCEIG SOURCE_DIR
 set -u
 nceig=$(realpath "$1")
@@ -19,7 +19,7 @@ source "$source_dir/scripts/lib/slurm_jobs.sh"
 unset NCEIG
 
 if [[ $(id -u) -ne 0 ]]; then
-    echo "SKIP  slurmd starts jobs as their user: this test needs root"
+    echo "SKIP  not root: the test installs slurm-wlm and munge and runs slurmd (which starts each job as its user) as root"
     exit 77
 fi
 if ! slurm_cluster_install; then
