@@ -14,15 +14,22 @@
 # socket, slurm.conf, state, spool, logs), the two SLURM ports are free ones picked here,
 # and the daemons are this script's children, never system services.
 #
-# Choices, for a container without systemd or cgroups (as the sandbox these tests were
-# written in): the daemons start in the foreground (-D, --foreground) in the background of
-# this shell, not through systemctl; ProctrackType=proctrack/linuxproc (process tree via
-# /proc) and TaskPlugin=task/none need no cgroup; JobAcctGatherType=jobacct_gather/none and
-# AccountingStorageType=accounting_storage/none: no database (job states come from scontrol,
-# not sacct); SelectType=select/cons_tres with CR_Core: one core per array element, so the
-# node runs as many elements at a time as it has cores. The node's CPUs, sockets, cores,
-# threads and memory are what `slurmd -C` reports, so that slurmd never finds the node
-# smaller than configured (which would drain it).
+# Choices, for a container without systemd or cgroups. The sandbox these tests were written
+# in is a Firecracker VM whose PID 1 is not systemd (systemctl is installed but has nothing to
+# talk to); it mounts cgroup v1 controllers (writable by root) and a cgroup2 tree with only
+# hugetlb, so Slurm's cgroup plugins cannot be counted on. Hence:
+# - the daemons start in the foreground (-D, --foreground) in the background of this shell,
+#   not through systemctl;
+# - ProctrackType=proctrack/linuxproc (the process tree from /proc) and TaskPlugin=task/none
+#   need no cgroup;
+# - JobAcctGatherType=jobacct_gather/none, AccountingStorageType=accounting_storage/none: no
+#   database (job states come from scontrol, not sacct);
+# - SelectType=select/cons_tres with CR_Core: one core per array element, so the node runs
+#   as many elements at a time as it has cores;
+# - the node's CPUs, sockets, cores, threads and memory are what `slurmd -C` reports, so
+#   that slurmd never finds the node smaller than configured (which would drain it);
+# - SchedulerParameters=batch_sched_delay=0: the next array element starts about 1 s after
+#   one ends (3 s with the default).
 
 slurm_cluster_dir='' slurm_cluster_error=''
 slurm_cluster_lib=$(realpath "${BASH_SOURCE[0]}")
