@@ -9,12 +9,10 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 nceig=${NCEIG:-$root/build/nceig}
-repeats=${1:-3}
-shift || true
-jobs_list=("$@")
-((${#jobs_list[@]} > 0)) || jobs_list=(1 2)
+(($# > 1)) || set -- "${1:-3}" 1 2   # default JOBS: 1 2
 source "$root/scripts/lib/bench_common.sh"
-bench_begin bench_sweep_jobs "$repeats"
+bench_begin bench_sweep_jobs "$@"   # repeats; the JOBS values as its "sizes"
+jobs_list=("${sizes[@]}")
 command -v parallel >/dev/null 2>&1 ||
     { echo "bench_sweep_jobs: needs GNU parallel (package parallel)" >&2; exit 1; }
 sed 's/vtk = .true./vtk = .false., plot = .false./' "$root/input/square.nml" >"$work/square.nml"
