@@ -82,7 +82,9 @@ if [[ \$# -ne 3 || -z \${SLURM_ARRAY_TASK_ID:-} ]]; then
     echo "usage: SLURM_ARRAY_TASK_ID=K bash slurm_$name.sh TASKS COMMAND PER" >&2
     exit 2
 fi
-mapfile -d '' -t command <"\$2" || exit 2
+command=()  # (read -d '', not mapfile -d '': bash 4.2 of older clusters has no mapfile -d)
+while IFS= read -r -d '' word; do command+=("\$word"); done <"\$2" || exit 2
+((\${#command[@]} > 0)) || { echo "slurm_$name.sh: no command in \$2" >&2; exit 2; }
 export OPENBLAS_NUM_THREADS=\${SLURM_CPUS_PER_TASK:-1} OMP_NUM_THREADS=\${SLURM_CPUS_PER_TASK:-1}
 first=\$(((SLURM_ARRAY_TASK_ID - 1) * \$3 + 1))
 last=\$((first + \$3 - 1))
@@ -106,7 +108,9 @@ EOF
 set -uo pipefail
 [[ -n \${SLURM_JOB_ID:-} ]] && exec >slurm/collect.log 2>&1
 [[ \$# -eq 1 ]] || { echo "usage: bash slurm_collect.sh COMMAND" >&2; exit 2; }
-mapfile -d '' -t command <"\$1" || exit 2
+command=()
+while IFS= read -r -d '' word; do command+=("\$word"); done <"\$1" || exit 2
+((\${#command[@]} > 0)) || { echo "slurm_collect.sh: no command in \$1" >&2; exit 2; }
 exec "\${command[@]}" </dev/null
 EOF
     cat >"$dir/slurm_submit.sh" <<EOF
