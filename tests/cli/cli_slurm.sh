@@ -6,7 +6,8 @@
 # hostile prefix, with a hostile -o name; slurm_submit.sh submits the array and the
 # collection; every job ends COMPLETED, nothing that a path holds is run (no canary file),
 # and the tables equal those of the same sweep run locally (the same nceig runs). Submitting
-# again reuses every run. Needs root (to install, and slurmd is run as root: it starts each
+# again reuses every run. The job-array library itself (scripts/lib/slurm_jobs.sh) with two
+# tasks per array element runs every task once, its fields intact. Needs root (to install, and slurmd is run as root: it starts each
 # job as its user; other users were not tried); otherwise skipped (77) with the reason. A cluster that is installed but does not come up fails, with its logs.
 # Usage: cli_slurm.sh NCEIG SOURCE_DIR
 set -u
@@ -116,6 +117,22 @@ check 'a second submission ends COMPLETED and reuses all six runs' \
 check '... and leaves the summaries untouched' \
     '[[ $(stat -c %Y "$out"/runs/*/output/summary.json | md5sum) == "$stamp" ]]'
 check 'still no PWN file' '[[ -z $(canaries) ]]'
+# The library as a future driver uses it: 5 tasks, 2 per array element (3 elements), fields
+# with spaces, quotes and $(...); each task records its fields, the collection joins them.
+lib="$cwd/lib's \$(touch PWN7)"
+mkdir -p "$lib/slurm"
+for k in 1 2 3 4 5; do slurm_task "$k" "a 'b' \$(touch PWN8) $k"; done >"$lib/slurm/tasks"
+slurm_write_argv "$lib/slurm/task.argv" bash -c 'printf "%s|%s\n" "$1" "$2" >"$0/record_$1"' "$lib"
+slurm_write_argv "$lib/slurm/collect.argv" bash -c 'cat "$0"/record_* >"$0/all"' "$lib"
+slurm_write_jobs "$lib" study 2 2
+bash "$lib/slurm_submit.sh" >"$work/lib.log" 2>&1
+lib_array=$(sed -n 's/^array=//p' "$lib/slurm/jobs")
+lib_state=$(slurm_wait "$(sed -n 's/^collect=//p' "$lib/slurm/jobs")" 120)
+check 'slurm_write_jobs with 2 tasks per element: 3 elements, all COMPLETED' \
+    '[[ $lib_state == COMPLETED && $(slurm_job_state "$lib_array") == "COMPLETED COMPLETED COMPLETED" ]]'
+check '... every task ran once with its fields intact, and the collection after them' \
+    '[[ $(cat "$lib/all") == "$(for k in 1 2 3 4 5; do echo "$k|a '"'b'"' \$(touch PWN8) $k"; done)" ]]'
+check '... and nothing was run from the fields or the folder (no PWN file)' '[[ -z $(canaries) ]]'
 cd /
 cluster=$slurm_cluster_dir
 # daemons DIR: a munged, slurmctld, slurmd or job step of the cluster in DIR still runs
