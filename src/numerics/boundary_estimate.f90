@@ -10,7 +10,7 @@
 !> meshes and the halved one misses a slow order: on Delaunay trapezoids (P2 h = 1/8, P3 h =
 !> 1/16) both were a tenth of the true error. Plus the point's round-off part (roundoff:
 !> collision_roundoff). An adaptive loop uses the enriched difference at each level and its
-!> window of levels (adaptive_threshold).
+!> window of levels (threshold_goal).
 module boundary_estimate
     use kinds, only: wp
     use status, only: status_t
