@@ -1,0 +1,71 @@
+! SPDX-License-Identifier: MIT
+!> Phase timings add up per phase, the listener hears each phase as one formatted line, and
+!> a loop's steps are told at most once per TICK second (never by a fast loop). No wall
+!> time is asserted: the clock is moved by hand where a step must be due.
+program test_timer
+    use kinds, only: wp
+    use timer, only: wall_time, timings_t, PHASE_ASSEMBLY, PHASE_ORDERING, PHASE_FACTOR, &
+                     PHASE_REDUCTION, PHASE_EIGEN, PHASE_OUTPUT
+    use strings, only: text_t, append_text
+    use testing, only: test_suite_t
+    implicit none
+
+    type(test_suite_t) :: t
+    type(timings_t) :: timings
+    type(text_t), allocatable :: heard(:)
+    real(wp) :: first, second
+    integer :: i
+
+    t%name = 'test_timer'
+    allocate (heard(0))
+
+    first = wall_time()
+    second = wall_time()
+    call t%check('wall_time never goes back', second >= first)
+
+    ! without a listener: sums only
+    call timings%add(PHASE_FACTOR, 0.25_wp)
+    call timings%add(PHASE_FACTOR, 0.5_wp)
+    call timings%add(PHASE_ASSEMBLY, 1.0_wp)
+    call timings%add(PHASE_ORDERING, 2.0_wp)
+    call timings%add(PHASE_REDUCTION, 3.0_wp)
+    call timings%add(PHASE_EIGEN, 4.0_wp)
+    call timings%add(PHASE_OUTPUT, 5.0_wp)
+    call t%check('add: each phase sums its own times (0.25 + 0.5 = 0.75 exactly)', &
+                 all(abs([timings%factor, timings%assembly, timings%ordering, &
+                          timings%reduction, timings%eigen, timings%output] - &
+                         [0.75_wp, 1.0_wp, 2.0_wp, 3.0_wp, 4.0_wp, 5.0_wp]) <= 0.0_wp))
+    call timings%note('silent')
+    call t%check('note: nothing heard without a listener', size(heard) == 0)
+
+    timings%listener => listen
+    call timings%add(PHASE_EIGEN, 0.0421_wp, ': arpack')
+    call timings%add(PHASE_OUTPUT, 1.5_wp)
+    call t%check('add: the listener hears the phase, its time and the detail', &
+                 size(heard) == 2 .and. heard(1)%text == '  .. eigen      0.042 s: arpack' &
+                 .and. heard(2)%text == '  .. output     1.500 s')
+    call timings%note('sweep point 3')
+    call t%check('note: one line', heard(size(heard))%text == '  .. sweep point 3')
+
+    ! a loop faster than a tick says nothing
+    do i = 1, 50
+        call timings%tick('level', i, 50)
+    end do
+    call t%check('tick: a fast loop prints no step', size(heard) == 3)
+    ! a step due: the last tick a second and more ago
+    call timings%tick('level', 1, 4)
+    timings%last_tick = timings%last_tick - 2.0_wp
+    call timings%tick('level', 2, 4)
+    call timings%tick('level', 3, 4)
+    call timings%tick('level', 4, 4)
+    call t%check('tick: a step due is told, then the last one', size(heard) == 5 .and. &
+                 heard(4)%text == '  .. level 2/4' .and. heard(5)%text == '  .. level 4/4')
+    call t%report()
+
+contains
+
+    subroutine listen(line)
+        character(len=*), intent(in) :: line
+        call append_text(heard, line)
+    end subroutine listen
+end program test_timer
