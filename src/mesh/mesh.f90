@@ -78,7 +78,8 @@ contains
                    allocated(this%part_names))) &
             call stat%fail(STATUS_BAD_INPUT, who//': the mesh is incomplete (no nodes, cells, '// &
                            'boundary edges or part names)')
-        if (stat%ok() .and. size(this%coords, 1) /= this%dim()) &
+        if (.not. stat%ok()) return
+        if (size(this%coords, 1) /= this%dim()) &
             call stat%fail(STATUS_BAD_INPUT, who//': the nodes have '// &
                            to_string(size(this%coords, 1))//' coordinates, the '// &
                            element_name(this%element)//' element '//to_string(this%dim()))
