@@ -371,7 +371,7 @@ contains
         end do
         if (.not. allocated(tables)) allocate (tables(16))
         if (n_tables == size(tables)) then
-            allocate (grown(2*n_tables))
+            allocate (grown(max(16, 2*n_tables)))   ! (an empty cache grows too)
             grown(1:n_tables) = tables
             call move_alloc(grown, tables)
         end if
