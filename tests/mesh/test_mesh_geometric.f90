@@ -70,8 +70,10 @@ contains
 
     real(wp) function nearest_distance(c)
         integer, intent(in) :: c
-        nearest_distance = min(point_distance(points(:, 1), graded%coords(:, graded%cells(:, c))), &
-                      point_distance(points(:, 2), graded%coords(:, graded%cells(:, c))))
+        nearest_distance = min(point_distance(points(:, 1), &
+                                              graded%coords(:, graded%cells(:, c))), &
+                               point_distance(points(:, 2), &
+                                              graded%coords(:, graded%cells(:, c))))
     end function nearest_distance
 
     logical function at_points_within(h)

@@ -1,8 +1,8 @@
 ! SPDX-License-Identifier: MIT
 !> singular_vertices finds, from geometry and parts alone, where a solution on a triangle
-!> mesh can be singular: the corners of a rectangle (not the nodes along its straight sides, nor the
-!> edge nodes of higher-order cells), a point where one side changes part (the end of a
-!> contact segment), and where a side in no part meets one in a part.
+!> mesh can be singular: the corners of a rectangle (not the nodes along its straight
+!> sides, nor the edge nodes of higher-order cells), a point where one side changes part
+!> (the end of a contact segment), and where a side in no part meets one in a part.
 program test_mesh_singular
     use kinds, only: wp
     use status, only: status_t
