@@ -41,8 +41,8 @@ contains
         character(len=MAX_NAME_LEN), allocatable :: names(:)
         integer :: created, unit
         call make_directories(root//'/a/b/c', stat, created)
-        call t%check('make_directories: a/b/c and the root made, created = 4', stat%ok() &
-                     .and. created == 4 .and. is_directory(root//'/a/b/c'))
+        call t%check('make_directories: a/b/c and the root made, created = 4', &
+                     all([stat%ok(), created == 4, is_directory(root//'/a/b/c')]))
         call make_directories(root//'/a/b/c', stat, created)
         call t%check('make_directories: an existing directory is success, created = 0', &
                      stat%ok() .and. created == 0)
@@ -50,8 +50,8 @@ contains
         close (unit)
         call make_directories(root//'/a/file/x/y', stat, created)
         call t%check('make_directories: a file in the way fails with STATUS_IO naming it, '// &
-                     'nothing made', stat%code == STATUS_IO .and. index(stat%message, 'file') &
-                     > 0 .and. created == 0 .and. .not. file_exists(root//'/a/file/x'))
+                     'nothing made', all([stat%code == STATUS_IO, index(stat%message, 'file') &
+                     > 0, created == 0, .not. file_exists(root//'/a/file/x')]))
         call list_directory(root//'/a', names, stat)
         call t%check('list_directory: b and file, not . and ..', stat%ok() .and. &
                      size(names) == 2 .and. any(names == 'b') .and. any(names == 'file'))
@@ -64,7 +64,8 @@ contains
         call t%check('remove_directory: an empty one goes', .not. file_exists(root//'/a/b/c'))
         call t%check('is_directory: a file is none', .not. is_directory(root//'/a/file'))
         call t%check('is_real_directory: a directory, not a file', &
-                     is_real_directory(root//'/a') .and. .not. is_real_directory(root//'/a/file'))
+                     all([is_real_directory(root//'/a'), &
+                          .not. is_real_directory(root//'/a/file')]))
     end subroutine check_directories
 
     subroutine check_files()
@@ -77,8 +78,8 @@ contains
         open (newunit=unit, file=first, status='replace', action='write')
         write (unit, '(a)') 'hello'
         call close_output(unit, first, ios, msg)
-        call t%check('close_output: the bytes written reached the file', ios == 0 .and. &
-                     file_exists(first))
+        call t%check('close_output: the bytes written reached the file', &
+                     all([ios == 0, file_exists(first)]))
         open (newunit=unit, file=second, status='replace', action='write')
         write (unit, '(a)') 'old'
         ios = 5
@@ -87,17 +88,17 @@ contains
         call t%check('end_output: after a failure, closes quietly and keeps it', ios == 5 .and. &
                      msg == 'an earlier failure')
         call rename_file(first, second, stat)
-        call t%check('rename_file: replaces the target, the source gone', stat%ok() .and. &
-                     .not. file_exists(first) .and. first_line(second) == 'hello')
+        call t%check('rename_file: replaces the target, the source gone', &
+                     all([stat%ok(), .not. file_exists(first), first_line(second) == 'hello']))
         call rename_file(first, second, stat)
         call t%check('rename_file: a missing source fails with STATUS_IO', &
                      stat%code == STATUS_IO)
         call make_link(second, first, stat)
-        call t%check('make_link: another name of the same file', stat%ok() .and. &
-                     first_line(first) == 'hello')
+        call t%check('make_link: another name of the same file', &
+                     all([stat%ok(), first_line(first) == 'hello']))
         call remove_file(second)
         call t%check('remove_file: one name gone, the other still reads', &
-                     .not. file_exists(second) .and. first_line(first) == 'hello')
+                     all([.not. file_exists(second), first_line(first) == 'hello']))
         call execute_command_line('chmod 640 '//first//' && touch '//second//' && chmod 600 ' &
                                   //second)
         call copy_mode(first, second)
@@ -111,8 +112,8 @@ contains
         call sync_filesystem(root, stat)
         call t%check('sync_filesystem: the file system of the folder syncs', stat%ok())
         call lock_file(root//'/lock', handle, stat)
-        call t%check('lock_file: made and locked', stat%ok() .and. handle >= 0 .and. &
-                     file_exists(root//'/lock'))
+        call t%check('lock_file: made and locked', &
+                     all([stat%ok(), handle >= 0, file_exists(root//'/lock')]))
         call unlock_file(handle)
         call lock_file(root//'/lock', handle, stat)
         call t%check('unlock_file: the lock can be taken again (no wait)', stat%ok())
@@ -129,23 +130,23 @@ contains
         staged = root//'/staged'
         call make_folder_with(staged, 'one')
         call replace_directory(staged, current, aside, old, stat)
-        call t%check('replace_directory: to a new place, no old folder', stat%ok() .and. &
-                     old == '' .and. first_line(current//'/marker') == 'one' .and. &
-                     .not. file_exists(staged))
+        call t%check('replace_directory: to a new place, no old folder', &
+                     all([stat%ok(), old == '', first_line(current//'/marker') == 'one', &
+                     .not. file_exists(staged)]))
         do pass = 1, 2   ! the atomic exchange, then rename aside and in
             call make_folder_with(staged, 'two')
             call replace_directory(staged, current, aside, old, stat, exchange=pass == 1)
             new = first_line(current//'/marker')
             call t%check('replace_directory ('//trim(merge('exchange', 'aside   ', &
                          pass == 1))//'): the new folder in place, the old one at old', &
-                         stat%ok() .and. new == 'two' .and. first_line(old//'/marker') == 'one')
+                         all([stat%ok(), new == 'two', first_line(old//'/marker') == 'one']))
             call remove_tree(old)
             call make_folder_with(staged, 'one')
             call replace_directory(staged, current, aside, old, stat)
             call remove_tree(old)
         end do
         call t%check('can_replace: a folder in a writable parent, not /', &
-                     can_replace(current, root) .and. .not. can_replace('/', '/'))
+                     all([can_replace(current, root), .not. can_replace('/', '/')]))
     end subroutine check_replace
 
     subroutine check_paths()
@@ -158,12 +159,12 @@ contains
     end subroutine check_paths
 
     subroutine check_processes()
-        call t%check('process_id: this process, which is not gone', process_id() > 0 .and. &
-                     .not. process_gone(process_id()))
+        call t%check('process_id: this process, which is not gone', &
+                     all([process_id() > 0, .not. process_gone(process_id())]))
         ! beyond Linux's largest pid_max (2^22)
         call t%check('process_gone: no process 99999999', process_gone(99999999))
-        call t%check('process_gone: pid <= 0 is never gone', .not. process_gone(0) .and. &
-                     .not. process_gone(-1))
+        call t%check('process_gone: pid <= 0 is never gone', &
+                     all([.not. process_gone(0), .not. process_gone(-1)]))
     end subroutine check_processes
 
     !> Armed and disarmed without a signal: the staging folder is left alone.
@@ -174,8 +175,8 @@ contains
         call hold_signals()
         call end_cleanup_on_signal()
         call t%check('cleanup_on_signal, hold_signals, end_cleanup_on_signal: no signal, '// &
-                     'nothing removed', stat%ok() .and. first_line(root//'/staging/marker') &
-                     == 'kept')
+                     'nothing removed', all([stat%ok(), first_line(root//'/staging/marker') &
+                     == 'kept']))
         call cleanup_on_signal(repeat('x', 5000), 0, stat)
         call end_cleanup_on_signal()
         call t%check('cleanup_on_signal: a path too long is refused', stat%code == STATUS_IO)

@@ -65,8 +65,9 @@ contains
                   2.0_wp**(-1074 + 60), 1.0e-300_wp, 1.0e300_wp, 0.1_wp]
         all_back = .true.
         do i = 1, size(values)
-            all_back = all_back .and. reads_back(values(i)) .and. &
-                       significant_digits(real_to_text(values(i))) == shortest_digits(values(i))
+            if (.not. reads_back(values(i))) all_back = .false.
+            if (significant_digits(real_to_text(values(i))) /= shortest_digits(values(i))) &
+                all_back = .false.
         end do
         call t%check('subnormals, tiny, huge and neighbours: shortest, read back exactly', &
                      all_back)
@@ -76,12 +77,12 @@ contains
                      real_to_text(huge(1.0_wp)) == '1.7976931348623157e308')
         call t%check('tiny is 2.2250738585072014e-308', &
                      real_to_text(tiny(1.0_wp)) == '2.2250738585072014e-308')
-        call t%check('signed zeros: 0.0 and -0.0', real_to_text(0.0_wp) == '0.0' .and. &
-                     real_to_text(-0.0_wp) == '-0.0')
+        call t%check('signed zeros: 0.0 and -0.0', all([real_to_text(0.0_wp) == '0.0', &
+                     real_to_text(-0.0_wp) == '-0.0']))
         call t%check('non-finite values: NaN, Infinity, -Infinity', &
-                     real_to_text(ieee_value(1.0_wp, ieee_quiet_nan)) == 'NaN' .and. &
-                     real_to_text(ieee_value(1.0_wp, ieee_positive_inf)) == 'Infinity' .and. &
-                     real_to_text(ieee_value(1.0_wp, ieee_negative_inf)) == '-Infinity')
+                     all([real_to_text(ieee_value(1.0_wp, ieee_quiet_nan)) == 'NaN', &
+                     real_to_text(ieee_value(1.0_wp, ieee_positive_inf)) == 'Infinity', &
+                     real_to_text(ieee_value(1.0_wp, ieee_negative_inf)) == '-Infinity']))
     end subroutine check_extremes
 
     !> Positional text from 1e-5 up to below 1e16, scientific outside; never an 'E' or a
@@ -90,11 +91,11 @@ contains
         call t%check('0.3 is 0.3, not 0.29999999999999999', real_to_text(0.3_wp) == '0.3')
         call t%check('200 is 200.0', real_to_text(200.0_wp) == '200.0')
         call t%check('-3.25e-7 is scientific', real_to_text(-3.25e-7_wp) == '-3.25e-7')
-        call t%check('1e-5 is 0.00001, 1e-6 is 1.0e-6', real_to_text(1.0e-5_wp) == &
-                     '0.00001' .and. real_to_text(1.0e-6_wp) == '1.0e-6')
+        call t%check('1e-5 is 0.00001, 1e-6 is 1.0e-6', all([real_to_text(1.0e-5_wp) == &
+                     '0.00001', real_to_text(1.0e-6_wp) == '1.0e-6']))
         call t%check('1e15 is positional, 1e16 scientific', &
-                     real_to_text(1.0e15_wp) == '1000000000000000.0' .and. &
-                     real_to_text(1.0e16_wp) == '1.0e16')
+                     all([real_to_text(1.0e15_wp) == '1000000000000000.0', &
+                     real_to_text(1.0e16_wp) == '1.0e16']))
         call t%check('2.5e20 is 2.5e20', real_to_text(2.5e20_wp) == '2.5e20')
         call t%check('1/3 needs 16 digits', real_to_text(1.0_wp/3.0_wp) == &
                      '0.3333333333333333')

@@ -135,11 +135,11 @@ contains
     subroutine check_matrices()
         real(wp), allocatable :: a(:, :), scaled(:, :), a_ref(:, :)
         type(reduced_blocks_t) :: blocks
-        a = reduced_matrix(kt_nn, kt_nt, contact%mass, LAMBDA)
-        a_ref = dense_reduced_matrix(contact, k_inverse, LAMBDA)
+        allocate (a, source=reduced_matrix(kt_nn, kt_nt, contact%mass, LAMBDA))
+        allocate (a_ref, source=dense_reduced_matrix(contact, k_inverse, LAMBDA))
         call t%check('reduced_matrix: (lambda Kt_nt - Kt_nn) M of the dense inverse', &
                      maxval(abs(a - a_ref)) <= TOL*maxval(abs(a_ref)))
-        scaled = scaled_reduced_matrix(kt_nn, kt_nt, contact%mass, LAMBDA)
+        allocate (scaled, source=scaled_reduced_matrix(kt_nn, kt_nt, contact%mass, LAMBDA))
         call t%check('scaled_reduced_matrix: A / lambda_unit exactly (a power of two)', &
                      all(abs(scaled*lambda_unit(LAMBDA) - a) <= 0.0_wp))
         blocks%kt_nn = kt_nn
@@ -157,7 +157,7 @@ contains
         integer :: p, info, j
         real(wp) :: worst_direction
         p = contact%p()
-        a = reduced_matrix(kt_nn, kt_nt, contact%mass, LAMBDA)
+        allocate (a, source=reduced_matrix(kt_nn, kt_nt, contact%mass, LAMBDA))
         allocate (wr(p), wi(p), vr(p, p), work(8*p), left(1, 1), mu(p), y(p, p))
         call dgeev('N', 'V', p, a, p, wr, wi, left, 1, vr, p, work, size(work), info)
         do j = 1, p

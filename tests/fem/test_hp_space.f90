@@ -101,6 +101,7 @@ contains
         integer, allocatable :: degree(:)
         integer :: c, e, edge_cells, n_interior
         logical :: minimum
+        allocate (degree(m%n_cells()))   ! (gfortran 12 -O3 warns of an unallocated one)
         degree = [(merge(2, 5, mod(c, 2) == 1), c=1, m%n_cells())]
         call build_hp_space(m, degree, [integer ::], space, stat)
         minimum = .true.

@@ -150,8 +150,8 @@ contains
         nb = 2*hp_bubble_count(5)
         nc = size(ke, 1) - nb
         call condense_interior(ke, nb, kc, info)
-        kbb = ke(nc + 1:, nc + 1:)
-        x = ke(nc + 1:, 1:nc)
+        allocate (kbb, source=ke(nc + 1:, nc + 1:))
+        allocate (x, source=ke(nc + 1:, 1:nc))
         allocate (pivots(nb))
         call dgetrf(nb, nb, kbb, nb, pivots, info)
         call dgetrs('N', nb, nc, kbb, nb, pivots, x, nb, info)   ! X = K_bb^-1 K_bc

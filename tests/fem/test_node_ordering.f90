@@ -59,6 +59,7 @@ contains
         call t%check('a permutation of the free dofs'//label, stat%ok() .and. &
                      is_permutation(permutation, dofs%n_free))
         p = contact%p()
+        allocate (last(2*p))   ! (gfortran 12 -O3 warns of an unallocated one)
         last = [(contact%dofs(:, a), a=1, p)]
         call t%check('the contact dofs last, in their order, x then y'//label, &
                      all(permutation(dofs%n_free - 2*p + 1:) == last))

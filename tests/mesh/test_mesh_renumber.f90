@@ -77,6 +77,7 @@ contains
                          [size(scattered%edges)])), shape(m%edges))))
         call stiffness(m, k)
         ! node-major dofs: dof c of node i moves to dof c of node new_of_old(i)
+        allocate (dof_of_old(2*size(new_of_old)))   ! (gfortran 12 -O3 warns otherwise)
         dof_of_old = [(2*(new_of_old((c + 1)/2) - 1) + 2 - mod(c, 2), c=1, 2*size(new_of_old))]
         ! the same cells in the same order: each entry summed in the same order, so equal
         call t%check(label//': K is P K P'' entry for entry', &
@@ -116,7 +117,7 @@ contains
         real(wp), allocatable :: copy(:, :), wi(:), work(:), left(:, :), right(:, :)
         integer :: info, i, j
         real(wp) :: swap
-        copy = a
+        allocate (copy, source=a)
         allocate (lambda(size(a, 1)), wi(size(a, 1)), work(8*size(a, 1)), left(1, 1), &
                   right(1, 1))
         call dgeev('N', 'N', size(a, 1), copy, size(a, 1), lambda, wi, left, 1, right, 1, &

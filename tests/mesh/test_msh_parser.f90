@@ -306,38 +306,38 @@ contains
     end subroutine check_node_errors
 
     subroutine check_element_errors()
-        character(len=W), allocatable :: head(:)
-        head = [character(len=W) :: HEAD4, NODES4, '$EndNodes']   ! 9 lines
-        call expect_failure('$Elements 4.1: a short header', [character(len=W) :: head, &
+        character(len=W) :: base4(9), base2(7)
+        base4 = [character(len=W) :: HEAD4, NODES4, '$EndNodes']
+        call expect_failure('$Elements 4.1: a short header', [character(len=W) :: base4, &
                             '$Elements', '1 1'], 11, 'expected $Elements header')
-        call expect_failure('$Elements 4.1: a 3D element', [character(len=W) :: head, &
+        call expect_failure('$Elements 4.1: a 3D element', [character(len=W) :: base4, &
                             '$Elements', '1 1 1 1', '3 1 4 1', '1 1 1 1 1', '$EndElements'], &
                             12, 'unsupported element type 4 (4-node tetrahedron: a 3D mesh)')
         call expect_failure('$Elements 4.1: a block larger than the section', &
-                            [character(len=W) :: head, '$Elements', '1 1 1 1', '2 1 2 2', &
+                            [character(len=W) :: base4, '$Elements', '1 1 1 1', '2 1 2 2', &
                             '1 1 1 1', '2 1 1 1', '$EndElements'], 12, &
                             'more elements than the 1 of the $Elements header')
-        call expect_failure('$Elements 4.1: a node tag missing', [character(len=W) :: head, &
+        call expect_failure('$Elements 4.1: a node tag missing', [character(len=W) :: base4, &
                             '$Elements', '1 1 1 1', '2 1 2 1', '1 1 1', '$EndElements'], 13, &
                             'expected an element tag and 3 node tags (3-node triangle)')
         call expect_failure('$Elements 4.1: blocks holding fewer than announced', &
-                            [character(len=W) :: head, '$Elements', '1 2 1 2', '2 1 2 1', &
+                            [character(len=W) :: base4, '$Elements', '1 2 1 2', '2 1 2 1', &
                             '1 1 1 1', '$EndElements'], 13, &
                             'the element blocks hold 1 elements, the $Elements header announced 2')
-        head = [character(len=W) :: HEAD2, '$Nodes', '1', '1 0 0 0', '$EndNodes']   ! 7
-        call expect_failure('$Elements 2.2: a short line', [character(len=W) :: head, &
+        base2 = [character(len=W) :: HEAD2, '$Nodes', '1', '1 0 0 0', '$EndNodes']
+        call expect_failure('$Elements 2.2: a short line', [character(len=W) :: base2, &
                             '$Elements', '1', '1 2', '$EndElements'], 10, &
                             'expected ''tag type numTags tags nodes''')
-        call expect_failure('$Elements 2.2: a 3D element', [character(len=W) :: head, &
+        call expect_failure('$Elements 2.2: a 3D element', [character(len=W) :: base2, &
                             '$Elements', '1', '1 11 0 1 1 1 1 1 1 1 1 1 1', '$EndElements'], 10, &
                             'unsupported element type 11 (10-node tetrahedron')
-        call expect_failure('$Elements 2.2: a negative tag count', [character(len=W) :: head, &
+        call expect_failure('$Elements 2.2: a negative tag count', [character(len=W) :: base2, &
                             '$Elements', '1', '1 2 -1 1 1 1', '$EndElements'], 10, &
                             'expected 0 tags and 3 node tags (3-node triangle)')
-        call expect_failure('$Elements 2.2: tags but too few nodes', [character(len=W) :: head, &
+        call expect_failure('$Elements 2.2: tags but too few nodes', [character(len=W) :: base2, &
                             '$Elements', '1', '1 2 2 0 0 1 1', '$EndElements'], 10, &
                             'expected 2 tags and 3 node tags')
-        call expect_failure('$Elements 2.2: more than announced', [character(len=W) :: head, &
+        call expect_failure('$Elements 2.2: more than announced', [character(len=W) :: base2, &
                             '$Elements', '1', '1 15 0 1', '2 15 0 1', '$EndElements'], 11, &
                             'expected $EndElements, found ''2 15 0 1''')
     end subroutine check_element_errors

@@ -34,7 +34,7 @@ contains
         integer, allocatable :: pivots(:)
         integer :: n, info
         n = size(a, 1)
-        lu = a
+        allocate (lu, source=a)
         allocate (pivots(n))
         call dgetrf(n, n, lu, n, pivots, info)
         call dgetrs(merge('T', 'N', transposed), n, size(b, 2), lu, n, pivots, b, n, info)
