@@ -10,12 +10,9 @@ program test_contact_operator
     use kinds, only: wp
     use status, only: status_t, STATUS_BAD_INPUT
     use mesh, only: mesh_t
-    use element_types, only: ELEMENT_P2
-    use mesh_structured, only: structured_rectangle
-    use dof_map, only: dof_map_t, build_dof_map
-    use assembly, only: assemble_stiffness
+    use dof_map, only: dof_map_t
     use csr_matrix, only: csr_matrix_t
-    use contact_boundary, only: contact_t, build_contact, assemble_b
+    use contact_boundary, only: contact_t
     use sparse_cholesky, only: cholesky_t
     use timer, only: timings_t
     use unit_scaling, only: units_t
@@ -23,7 +20,7 @@ program test_contact_operator
     use contact_reduction, only: factor_stiffness
     use contact_operator, only: reduced_operator_t, full_operator_t, explicit_operator_t, &
                                 TARGET_RANGE
-    use dense_reference, only: dense_inverse, dense_solve, dense_reduced_matrix
+    use dense_reference, only: dense_inverse, dense_solve, dense_reduced_matrix, tiny_scene
     use fixtures, only: csr_to_dense
     use testing, only: test_suite_t
     implicit none
@@ -45,11 +42,7 @@ program test_contact_operator
     integer :: i, p, n
 
     t%name = 'test_contact_operator'
-    call structured_rectangle(1.0_wp, 1.0_wp, 3, 3, ELEMENT_P2, 'right', m, stat)
-    call build_dof_map(m, [m%part_index('top')], dofs, stat)
-    call build_contact(m, m%part_index('bottom'), dofs, contact, stat)
-    call assemble_stiffness(m, dofs, 1.0_wp, 0.3_wp, k, stat)
-    call assemble_b(contact, dofs%n_free, LAMBDA, b, stat)
+    call tiny_scene(LAMBDA, m, dofs, contact, k, b, stat)
     call factor_stiffness(k, m, dofs, contact, chol, timings, stat)
     k_dense = csr_to_dense(k)
     b_dense = csr_to_dense(b)

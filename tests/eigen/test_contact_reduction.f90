@@ -8,12 +8,9 @@ program test_contact_reduction
     use kinds, only: wp
     use status, only: status_t
     use mesh, only: mesh_t
-    use element_types, only: ELEMENT_P2
-    use mesh_structured, only: structured_rectangle
-    use dof_map, only: dof_map_t, build_dof_map
-    use assembly, only: assemble_stiffness
+    use dof_map, only: dof_map_t
     use csr_matrix, only: csr_matrix_t
-    use contact_boundary, only: contact_t, build_contact, assemble_b
+    use contact_boundary, only: contact_t
     use sparse_cholesky, only: cholesky_t, ORDERING_GIVEN
     use node_ordering, only: nested_dissection_last
     use timer, only: timings_t
@@ -24,7 +21,7 @@ program test_contact_reduction
                                  lift_eigenvectors, lift_block_columns, reduced_matrix, &
                                  scaled_reduced_matrix, lambda_unit, mu_of_theta, &
                                  reduced_blocks_t
-    use dense_reference, only: dense_inverse, contact_rows, dense_reduced_matrix
+    use dense_reference, only: dense_inverse, contact_rows, dense_reduced_matrix, tiny_scene
     use fixtures, only: csr_to_dense
     use testing, only: test_suite_t
     implicit none
@@ -44,11 +41,7 @@ program test_contact_reduction
                              kt_nn(:, :), kt_nt(:, :), kt_nn_ref(:, :), kt_nt_ref(:, :)
 
     t%name = 'test_contact_reduction'
-    call structured_rectangle(1.0_wp, 1.0_wp, 3, 3, ELEMENT_P2, 'right', m, stat)
-    call build_dof_map(m, [m%part_index('top')], dofs, stat)
-    call build_contact(m, m%part_index('bottom'), dofs, contact, stat)
-    call assemble_stiffness(m, dofs, 1.0_wp, 0.3_wp, k, stat)
-    call assemble_b(contact, dofs%n_free, LAMBDA, b, stat)
+    call tiny_scene(LAMBDA, m, dofs, contact, k, b, stat)
     k_inverse = dense_inverse(csr_to_dense(k))
     call contact_rows(contact, dofs%n_free, normal_rows, tangent_rows)
     kt_nn_ref = matmul(matmul(normal_rows, k_inverse), transpose(normal_rows))

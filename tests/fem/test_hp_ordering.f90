@@ -16,6 +16,7 @@ program test_hp_ordering
     use contact_boundary, only: contact_t
     use csr_matrix, only: csr_matrix_t
     use sparse_cholesky, only: cholesky_t, ORDERING_GIVEN
+    use fixtures, only: is_permutation
     use testing, only: test_suite_t
     implicit none
 
@@ -94,14 +95,4 @@ contains
         end do
         inverse = matmul(transpose(y), y)
     end function l_tail_inverse
-
-    pure logical function is_permutation(p, n)
-        integer, intent(in) :: p(:), n
-        logical :: seen(n)
-        is_permutation = size(p) == n .and. all(p >= 1 .and. p <= n)
-        if (.not. is_permutation) return
-        seen = .false.
-        seen(p) = .true.
-        is_permutation = all(seen)
-    end function is_permutation
 end program test_hp_ordering

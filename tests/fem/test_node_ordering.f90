@@ -17,6 +17,7 @@ program test_node_ordering
     use contact_boundary, only: contact_t, build_contact
     use sparse_cholesky, only: cholesky_t, ORDERING_GIVEN, ORDERING_NATURAL
     use node_ordering, only: nested_dissection_last
+    use fixtures, only: is_permutation
     use testing, only: test_suite_t
     implicit none
 
@@ -131,14 +132,4 @@ contains
         call t%check('32 x 32 P1: fewer factor entries than the banded numbering', &
                      stat%ok() .and. nested > 0 .and. nested < banded)
     end subroutine check_fill
-
-    pure logical function is_permutation(p, n)
-        integer, intent(in) :: p(:), n
-        logical :: seen(n)
-        is_permutation = size(p) == n .and. all(p >= 1 .and. p <= n)
-        if (.not. is_permutation) return
-        seen = .false.
-        seen(p) = .true.
-        is_permutation = all(seen)
-    end function is_permutation
 end program test_node_ordering

@@ -16,7 +16,7 @@ program test_mesh_renumber
     use assembly, only: assemble_stiffness
     use csr_matrix, only: csr_matrix_t
     use lapack_interfaces, only: dgeev
-    use fixtures, only: csr_to_dense
+    use fixtures, only: csr_to_dense, is_permutation
     use testing, only: test_suite_t
     implicit none
 
@@ -142,14 +142,4 @@ contains
             end do
         end do
     end function half_bandwidth
-
-    pure logical function is_permutation(p, n)
-        integer, intent(in) :: p(:), n
-        logical :: seen(n)
-        is_permutation = size(p) == n .and. all(p >= 1 .and. p <= n)
-        if (.not. is_permutation) return
-        seen = .false.
-        seen(p) = .true.
-        is_permutation = all(seen)
-    end function is_permutation
 end program test_mesh_renumber

@@ -8,6 +8,7 @@ program test_metis_c
     use, intrinsic :: iso_c_binding, only: c_null_ptr
     use metis_c, only: metis_nodend, metis_status_message, IDX_T, METIS_OK, &
                        METIS_ERROR_INPUT, METIS_ERROR_MEMORY
+    use fixtures, only: is_permutation
     use testing, only: test_suite_t
     implicit none
 
@@ -27,7 +28,7 @@ program test_metis_c
     allocate (perm(N), iperm(N))
     code = metis_nodend(int(N, IDX_T), xadj, adjncy, c_null_ptr, c_null_ptr, perm, iperm)
     call t%check('METIS_NodeND: METIS_OK, perm a 0-based permutation, iperm its inverse', &
-                 code == METIS_OK .and. is_permutation(perm + 1) .and. &
+                 code == METIS_OK .and. is_permutation(int(perm) + 1, N) .and. &
                  all([(iperm(perm(i) + 1) == i - 1, i=1, N)]))
     natural_fill = fill([(i, i=1, N)])
     nested_fill = fill(perm + 1)
@@ -89,14 +90,4 @@ contains
             end do
         end do
     end function fill
-
-    pure logical function is_permutation(p)
-        integer(IDX_T), intent(in) :: p(:)
-        logical :: seen(N)
-        is_permutation = size(p) == N .and. all(p >= 1 .and. p <= N)
-        if (.not. is_permutation) return
-        seen = .false.
-        seen(p) = .true.
-        is_permutation = all(seen)
-    end function is_permutation
 end program test_metis_c
