@@ -38,5 +38,6 @@ program test_blas_info
     call t%check('at least one thread', threads >= 1)
     call t%check('texts without their C terminator', index(library, achar(0)) == 0 .and. &
                  index(config, achar(0)) == 0)
+    deallocate (library, config)   ! (AddressSanitizer reports a main program's allocatables)
     call t%report()
 end program test_blas_info

@@ -32,6 +32,7 @@ program test_filesystem
     call check_signals()
     call remove_tree(root)
     call t%check('remove_tree: the whole test folder gone', .not. file_exists(root))
+    deallocate (root, cwd)   ! (AddressSanitizer reports a main program's allocatables)
     call t%report()
 
 contains

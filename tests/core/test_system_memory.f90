@@ -10,6 +10,7 @@ program test_system_memory
 
     character(len=*), parameter :: FAKE = 'test_system_memory.meminfo'
     character(len=*), parameter :: CHILD_OUT = 'test_system_memory.child'
+    character(len=*), parameter :: CHILD_ERR = 'test_system_memory.child_err'
     !> the limit of the child, KiB: more than it maps (libraries, OpenBLAS's buffers)
     integer(i8), parameter :: LIMIT_KIB = 8000000_i8
     type(test_suite_t) :: t
@@ -47,16 +48,42 @@ program test_system_memory
     headroom = address_space_headroom_bytes()
     call get_command_argument(0, self)
     call execute_command_line('ulimit -v '//trim(int_text(LIMIT_KIB))//' && '// &
-                              trim(self)//' --headroom > '//CHILD_OUT, exitstat=status)
+                              trim(self)//' --headroom > '//CHILD_OUT//' 2> '//CHILD_ERR, &
+                              exitstat=status)
     open (newunit=unit, file=CHILD_OUT, status='old', action='read', iostat=ios)
     if (ios == 0) read (unit, *, iostat=ios) bytes
     if (ios == 0) close (unit, status='delete')
-    call t%check('address_space_headroom_bytes: -1 without a limit, under ulimit -v L the '// &
-                 'part of L not mapped yet (0 < headroom < L)', headroom == -1_i8 .and. &
-                 status == 0 .and. ios == 0 .and. bytes > 0_i8 .and. bytes < 1024_i8*LIMIT_KIB)
+    if (under_sanitizer()) then
+        ! AddressSanitizer reserves terabytes of shadow memory at start: under any
+        ! ulimit -v the child cannot even start; Release and Debug check it
+        print '(a)', 'SKIP  address_space_headroom_bytes under ulimit -v: AddressSanitizer'
+        call t%check('address_space_headroom_bytes: -1 without a limit', headroom == -1_i8)
+    else
+        call t%check('address_space_headroom_bytes: -1 without a limit, under ulimit -v L '// &
+                     'the part of L not mapped yet (0 < headroom < L)', headroom == -1_i8 .and. &
+                     status == 0 .and. ios == 0 .and. bytes > 0_i8 .and. &
+                     bytes < 1024_i8*LIMIT_KIB)
+    end if
+    open (newunit=unit, file=CHILD_ERR, status='old', iostat=ios)
+    if (ios == 0) close (unit, status='delete')
     call t%report()
 
 contains
+
+    !> Whether the child failed because AddressSanitizer could not start under the limit.
+    logical function under_sanitizer()
+        character(len=512) :: line
+        integer :: unit, ios
+        under_sanitizer = .false.
+        open (newunit=unit, file=CHILD_ERR, status='old', action='read', iostat=ios)
+        if (ios /= 0) return
+        do
+            read (unit, '(a)', iostat=ios) line
+            if (ios /= 0) exit
+            if (index(line, 'AddressSanitizer') > 0) under_sanitizer = .true.
+        end do
+        close (unit)
+    end function under_sanitizer
 
     subroutine write_fake(text)
         character(len=*), intent(in) :: text

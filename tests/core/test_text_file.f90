@@ -52,5 +52,6 @@ program test_text_file
                  'more, never the whole of an endless line', ios == TOO_LONG .and. &
                  len(line) > 5000 .and. len(line) <= 5000 + 4096)
     close (unit, status='delete')
+    deallocate (line)   ! (AddressSanitizer reports a main program's allocatables)
     call t%report()
 end program test_text_file

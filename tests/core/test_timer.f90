@@ -1,19 +1,39 @@
 ! SPDX-License-Identifier: MIT
+!> The listener of test_timer, outside the program: a procedure pointer to an internal
+!> procedure needs a trampoline on an executable stack.
+module timer_listener
+    implicit none
+    private
+    public :: listen, HEARD_PATH
+
+    character(len=*), parameter :: HEARD_PATH = 'test_timer.heard'
+
+contains
+
+    !> The listener: each line appended to HEARD_PATH.
+    subroutine listen(line)
+        character(len=*), intent(in) :: line
+        integer :: unit
+        open (newunit=unit, file=HEARD_PATH, position='append', action='write')
+        write (unit, '(a)') line
+        close (unit)
+    end subroutine listen
+end module timer_listener
+
 !> Phase timings add up per phase, the listener hears each phase as one formatted line, and
 !> a loop's steps are told at most once per TICK second (never by a fast loop). No wall
 !> time is asserted: the clock is moved by hand where a step must be due. The listener
-!> writes what it hears to a file: a procedure pointer to an internal procedure that
-!> reached the program's variables would need an executable stack (a trampoline).
+!> writes what it hears to a file, which the program reads back.
 program test_timer
     use kinds, only: wp
     use timer, only: wall_time, timings_t, PHASE_ASSEMBLY, PHASE_ORDERING, PHASE_FACTOR, &
                      PHASE_REDUCTION, PHASE_EIGEN, PHASE_OUTPUT
     use strings, only: text_t, append_text
     use text_file, only: read_line
+    use timer_listener, only: listen, HEARD_PATH
     use testing, only: test_suite_t
     implicit none
 
-    character(len=*), parameter :: HEARD_PATH = 'test_timer.heard'
     type(test_suite_t) :: t
     type(timings_t) :: timings
     type(text_t), allocatable :: heard(:)
@@ -73,18 +93,10 @@ program test_timer
                  heard(4)%text == '  .. level 2/4' .and. heard(5)%text == '  .. level 4/4')
     open (newunit=i, file=HEARD_PATH, status='old', iostat=status)
     if (status == 0) close (i, status='delete')
+    deallocate (heard)   ! (AddressSanitizer reports a main program's allocatables)
     call t%report()
 
 contains
-
-    !> The listener: each line appended to HEARD_PATH.
-    subroutine listen(line)
-        character(len=*), intent(in) :: line
-        integer :: unit
-        open (newunit=unit, file=HEARD_PATH, position='append', action='write')
-        write (unit, '(a)') line
-        close (unit)
-    end subroutine listen
 
     !> heard = the lines of HEARD_PATH so far.
     subroutine hear()

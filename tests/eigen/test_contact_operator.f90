@@ -57,6 +57,8 @@ program test_contact_operator
     call check_full()
     call check_explicit()
     call chol%free()
+    ! (AddressSanitizer reports a main program's allocatables)
+    deallocate (a, k_dense, b_dense, k_inverse, y_small, y_full)
     call t%report()
 
 contains

@@ -53,6 +53,8 @@ program test_contact_reduction
     call check_lift()
     call check_scalars()
     call chol%free()
+    ! (AddressSanitizer reports a main program's allocatables)
+    deallocate (k_inverse, normal_rows, tangent_rows, kt_nn, kt_nt, kt_nn_ref, kt_nt_ref)
     call t%report()
 
 contains

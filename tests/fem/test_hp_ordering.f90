@@ -73,6 +73,9 @@ program test_hp_ordering
     call build_hp_space(m, degree, [m%part_index('top'), m%part_index('bottom')], space, stat)
     call hp_cholesky_permutation(m, space, contact%nodes, permutation, stat)
     call t%check('a clamped function to pivot last is refused', stat%code == STATUS_BAD_INPUT)
+    ! (AddressSanitizer reports a main program's allocatables)
+    deallocate (position, last, degree, rows, l_tail, e, x, inverse)
+    if (allocated(permutation)) deallocate (permutation)
     call t%report()
 
 contains

@@ -63,5 +63,6 @@ program test_csv_table
     call read_csv_table(PATH, table, stat)
     call t%check('a missing file: cannot open, named', stat%code == STATUS_BAD_INPUT .and. &
                  index(stat%message, PATH//': cannot open') == 1)
+    deallocate (fields)   ! (AddressSanitizer reports a main program's allocatables)
     call t%report()
 end program test_csv_table

@@ -55,6 +55,7 @@ program test_csv_writer
                  'replaced'//new_line('a'))
     open (newunit=unit, file=PATH, status='old')
     close (unit, status='delete')
+    deallocate (text)   ! (AddressSanitizer reports a main program's allocatables)
     call t%report()
 
 contains

@@ -64,6 +64,7 @@ program test_mesh_geometric
     call t%check('sigma = 1 is bad input', stat%code == STATUS_BAD_INPUT)
     call geometric_mesh(m, points, SIGMA, -1, graded, h_min, stat)
     call t%check('layers < 0 is bad input', stat%code == STATUS_BAD_INPUT)
+    deallocate (layer)   ! (AddressSanitizer reports a main program's allocatables)
     call t%report()
 
 contains

@@ -57,6 +57,9 @@ program test_mesh_renumber
                  node_bandwidth(renumbered) <= node_bandwidth(grid))
     call node_order(scattered, 7, new_of_old, stat)
     call t%check('an unknown method fails', stat%code == STATUS_INTERNAL)
+    ! (AddressSanitizer reports a main program's allocatables)
+    deallocate (k_scattered, eigen_scattered, shuffle)
+    if (allocated(new_of_old)) deallocate (new_of_old)
     call t%report()
 
 contains

@@ -61,6 +61,7 @@ program test_mesh_singular
     call t%check('a side in no part meeting one in a part: the meeting point', &
                  size(vertices) == 5 .and. holds_points(m, vertices, &
                  reshape([CORNERS, 1.0_wp, 0.0_wp], [2, 5])))
+    deallocate (vertices, keep)   ! (AddressSanitizer reports a main program's allocatables)
     call t%report()
 
 contains

@@ -93,6 +93,7 @@ program test_msh_text
     call t%check('printable: the same length, controls and DEL as ?', &
                  printable('x'//achar(0)//achar(127)//'y') == 'x??y')
     call execute_command_line('rm -f '//PATH)
+    deallocate (line, a, b, c)   ! (AddressSanitizer reports a main program's allocatables)
     call t%report()
 
 contains

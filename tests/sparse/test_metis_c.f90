@@ -34,6 +34,8 @@ program test_metis_c
     nested_fill = fill(perm + 1)
     call t%check('METIS_NodeND: less fill than the band of the row-by-row order', &
                  nested_fill < natural_fill)
+    ! (AddressSanitizer reports a main program's allocatables)
+    deallocate (xadj, adjncy, perm, iperm)
     call t%report()
 
 contains
