@@ -4,25 +4,32 @@
 # fineness, for several element and mesh types, its Richardson-extrapolated limits and the
 # measured accuracy/time trade. See docs/meshes.md, "Mesh refinement sweeps".
 #
-#   scripts/sweep_mesh.sh [-e FAMILIES] [-n SIZES] [-j JOBS] [-o OUTDIR] [-g GEO] [-s] TEMPLATE.nml
+#   scripts/sweep_mesh.sh [-e FAMILIES] [-n SIZES] [-j JOBS] [-o OUTDIR] [-g GEO] [-s] [--] TEMPLATE.nml
 #   scripts/sweep_mesh.sh --run OUTDIR FAMILY N      (one run; what a SLURM array task does)
 #   scripts/sweep_mesh.sh --collect OUTDIR           (tables and plots from the runs present)
+#
+# Paths (the working folder, OUTDIR, the install prefix) may hold any character but a newline
+# (nceig takes no newline in a --set value): they travel as arguments, environment variables
+# and files of NUL-separated words, never as text a shell or GNU parallel parses.
 set -uo pipefail
 
-root=$(cd "$(dirname "$0")/.." && pwd)
+root=$(cd -- "$(dirname -- "$0")/.." && pwd)
 self="$root/scripts/sweep_mesh.sh"
+# shellcheck source=lib/slurm_jobs.sh
+source "$root/scripts/lib/slurm_jobs.sh" || exit 2
 DEFAULT_FAMILIES=p1:right,p1:left,q1,p2,q2,delaunay
 DEFAULT_SIZES=4,8,16,32,64
 
 usage() {
     cat <<EOF
-usage: scripts/sweep_mesh.sh [-e FAMILIES] [-n SIZES] [-j JOBS] [-o OUTDIR] [-g GEO] [-s] TEMPLATE.nml
+usage: scripts/sweep_mesh.sh [-e FAMILIES] [-n SIZES] [-j JOBS] [-o OUTDIR] [-g GEO] [-s] [--] TEMPLATE.nml
   -e FAMILIES  comma list of element[:mesh]: element p1, q1, p2, q2, p3, p4; mesh 'right'
                or 'left' (structured triangles, default: the template's diagonal) or 'delaunay'
                (a Gmsh mesh, triangles only); 'delaunay' alone means p1:delaunay.
                Default: $DEFAULT_FAMILIES
   -n SIZES     comma list of N, the mesh size being h = 1/N. Default: $DEFAULT_SIZES
-  -j JOBS      runs at a time (default 1; use 1 for timings you want to quote)
+  -j JOBS      runs at a time, through GNU parallel (default 1; use 1 for timings you want
+               to quote); with more than one, each run has one BLAS thread
   -o OUTDIR    default: output/sweep_<template stem>
   -g GEO       the Gmsh geometry of a template whose body is a Gmsh mesh (&mesh source =
                'gmsh'): its 'delaunay' families mesh GEO with h = 1/N; its physical groups
@@ -30,6 +37,7 @@ usage: scripts/sweep_mesh.sh [-e FAMILIES] [-n SIZES] [-j JOBS] [-o OUTDIR] [-g 
                body, and without -g the sweep refuses it. A rectangle template needs no -g:
                its 'delaunay' families mesh the template's own width x height rectangle.
   -s           write a SLURM job-array script and its collection step instead of running
+A TEMPLATE whose name starts with '-' follows '--' (or is written ./-name.nml).
 Each (family, N) is one nceig process in OUTDIR/runs/<family>_n<N>/; a run whose
 summary.json exists is not redone. Outputs: OUTDIR/results.csv, extrapolation.csv,
 tradeoff.csv, convergence.png, tradeoff.png. nceig is \$NCEIG, else build/, else on PATH.
@@ -37,6 +45,18 @@ EOF
 }
 
 die() { echo "sweep_mesh: $*" >&2; exit 2; }
+
+# absolute_dir VARIABLE DIR: sets VARIABLE to the absolute path of the folder DIR, exact even
+# when DIR ends in a newline (which a command substitution drops) and whatever CDPATH says.
+absolute_dir() {  # (its locals have names no caller uses: printf -v would set those)
+    local absolute_dir_in=$2 absolute_dir_out
+    [[ $absolute_dir_in == /* ]] || absolute_dir_in=./$absolute_dir_in
+    absolute_dir_out=$(cd -- "$absolute_dir_in" && pwd && echo x) || return 1
+    printf -v "$1" '%s' "${absolute_dir_out%$'\n'x}"
+}
+
+# A name as one printable line: newlines and other controls shown as $'...' escapes.
+printable() { if [[ $1 == *[[:cntrl:]]* ]]; then printf '%q' "$1"; else printf '%s' "$1"; fi; }
 
 # ------------------------------------------------------------------------- programs
 
@@ -49,8 +69,11 @@ find_nceig() {
     elif command -v nceig >/dev/null 2>&1; then exe=$(command -v nceig)
     else die "nceig not found: not in $root/build nor on PATH (run scripts/dev/build.sh Release, or set NCEIG)"
     fi
-    [[ -x $exe ]] || die "NCEIG=$exe is not an executable"
-    echo "$(cd "$(dirname "$exe")" && pwd)/$(basename "$exe")"
+    [[ -x $exe ]] || die "NCEIG=$(printable "$exe") is not an executable"
+    local dir=.
+    [[ $exe == */* ]] && dir=${exe%/*}/
+    absolute_dir dir "$dir" || exit 2
+    printf '%s\n' "$dir/${exe##*/}"
 }
 
 # nceig-extrapolate is built next to nceig; a wrapped NCEIG (tests) falls back on PATH, build/.
@@ -156,6 +179,7 @@ run_one() {
     local mesh_s=0 t0 t1
     parsed=$(parse_family "$family")
     [[ -n $parsed ]] || die "malformed family '$family'"
+    absolute_dir outdir "$outdir" || die "$(printable "$outdir"): no such folder"
     read -r element mesh <<<"$parsed"
     dir="$outdir/runs/$(run_name "$family" "$n")"
     if [[ -s $dir/output/summary.json ]]; then
@@ -189,21 +213,22 @@ run_one() {
             t1=$(date +%s.%N)
             mesh_s=$(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.3f", b - a }')
         fi
-        settings=(--set mesh%source=gmsh --set "mesh%file=$(cd "$dir" && pwd)/mesh.msh"
+        settings=(--set mesh%source=gmsh --set "mesh%file=$dir/mesh.msh"
                   --set "mesh%element=$element")
     else
         settings=(--set mesh%source=rectangle --set "mesh%nx=$n" --set "mesh%ny=$n"
                   --set "mesh%element=$element")
         [[ -n $mesh && $mesh != quad ]] && settings+=(--set "mesh%diagonal=$mesh")
     fi
-    settings+=(--set "output%directory=$(cd "$dir" && pwd)/output")
+    settings+=(--set "output%directory=$dir/output")
     echo "$mesh_s" >"$dir/mesh_time"
     if [[ -f $dir/status ]]; then
         echo "FAILED  $family N=$n: $(cut -d' ' -f2- "$dir/status")"
         return 1
     fi
+    # What was run, for a reader to repeat: quoted for bash, whatever the paths hold.
     printf 'nceig input.nml' >"$dir/command"
-    printf " '%s'" "${settings[@]}" >>"$dir/command"
+    printf ' %q' "${settings[@]}" >>"$dir/command"
     echo >>"$dir/command"
 
     if [[ -x /usr/bin/time ]]; then
@@ -399,7 +424,7 @@ names = "$(echo $families)"
 set key outside right top box opaque
 set grid
 set style line 100 lc rgb '#888888' dt 3
-set output '$tmp/convergence.png'
+set output 'convergence.png'
 set multiplot layout 1,2
 set logscale x
 set autoscale xfix
@@ -410,17 +435,17 @@ set title 'lowest positive mu; dashed: Richardson limits'
 set ylabel 'lowest positive mu'
 set format y '%.4f'
 unset key
-plot for [i=1:$n_families] '$tmp/mu.dat' index (i-1) using 1:2 with linespoints lw 2 pt 7 lc i title word(names, i), \
-     for [i=1:$n_families] '$tmp/limits.dat' index (i-1) using 1:2 with lines dt 2 lw 1.5 lc i notitle
+plot for [i=1:$n_families] 'mu.dat' index (i-1) using 1:2 with linespoints lw 2 pt 7 lc i title word(names, i), \
+     for [i=1:$n_families] 'limits.dat' index (i-1) using 1:2 with lines dt 2 lw 1.5 lc i notitle
 set key outside right top box opaque
 set logscale y
 set format y '10^{%L}'
 set title "relative error against the reference limit $ref_limit ($reference)"
 set ylabel 'relative error'
-plot for [i=1:$n_families] '$tmp/tradeoff.dat' index (i-1) using 4:3 with linespoints lw 2 pt 7 lc i title word(names, i)
+plot for [i=1:$n_families] 'tradeoff.dat' index (i-1) using 4:3 with linespoints lw 2 pt 7 lc i title word(names, i)
 unset multiplot
 
-set output '$tmp/tradeoff.png'
+set output 'tradeoff.png'
 set terminal $terminal
 set size 1,1
 set xtics autofreq
@@ -435,61 +460,71 @@ set ylabel 'relative error of the lowest positive mu'
 set arrow from graph 0, first 1e-2 to graph 1, first 1e-2 nohead ls 100
 set arrow from graph 0, first 1e-3 to graph 1, first 1e-3 nohead ls 100
 set arrow from graph 0, first 1e-4 to graph 1, first 1e-4 nohead ls 100
-plot for [i=1:$n_families] '$tmp/tradeoff.dat' index (i-1) using 2:3 with linespoints lw 2 pt 7 lc i title word(names, i), \
-     for [i=1:$n_families] '$tmp/tradeoff.dat' index (i-1) using 2:3:(sprintf('%d', \$1)) with labels offset 0,0.8 font ',8' tc lt i notitle
+plot for [i=1:$n_families] 'tradeoff.dat' index (i-1) using 2:3 with linespoints lw 2 pt 7 lc i title word(names, i), \
+     for [i=1:$n_families] 'tradeoff.dat' index (i-1) using 2:3:(sprintf('%d', \$1)) with labels offset 0,0.8 font ',8' tc lt i notitle
 EOF
-    if gnuplot "$tmp/plot.gp" 2>"$tmp/gnuplot.log"; then
+    # run in $tmp with relative names: no path is part of gnuplot's text
+    if (cd -- "$tmp" && gnuplot plot.gp) 2>"$tmp/gnuplot.log"; then
         mv "$tmp/convergence.png" "$tmp/tradeoff.png" "$outdir/"
     else
         echo "sweep_mesh: gnuplot failed: $(head -n 3 "$tmp/gnuplot.log")" >&2
     fi
 }
 
-# ------------------------------------------------------------------------- SLURM
+# ------------------------------------------------------------------------- engines
 
+# The runs of a sweep, one per line of OUTDIR/slurm/tasks: "FAMILY<tab>N" (slurm_task). Both
+# engines read this list; a run is `sweep_mesh.sh --run OUTDIR FAMILY N`.
+write_tasks() {
+    local outdir=$1 run
+    shift
+    mkdir -p -- "$outdir/slurm" || die "cannot create $(printable "$outdir")/slurm"
+    for run in "$@"; do
+        # shellcheck disable=SC2086  # "FAMILY N": checked names and digits
+        slurm_task $run || exit 2
+    done >"$outdir/slurm/tasks"
+}
+
+# SLURM: a job array over the task list and a collection job after it, written by
+# scripts/lib/slurm_jobs.sh; what the jobs run (this script, OUTDIR, the nceig to use) is in
+# OUTDIR/slurm/*.argv as NUL-separated words, so no path is part of any script's text.
 write_slurm() {
-    local outdir=$1 jobs=$2 nceig=$3
-    shift 3
-    local runs=("$@") script="$outdir/slurm_sweep.sh" collect="$outdir/slurm_collect.sh"
-    mkdir -p "$outdir/slurm"
-    {
-        echo '#!/bin/bash'
-        echo '# One nceig run per array task; generated by scripts/sweep_mesh.sh -s.'
-        echo '# Add --time, --mem, --partition or --account on the sbatch command line as your'
-        echo '# cluster needs (memory grows like N^2 log N; see docs/meshes.md, Mesh refinement sweeps).'
-        echo '#SBATCH --job-name=nceig-sweep'
-        echo "#SBATCH --array=1-${#runs[@]}%$jobs"
-        echo '#SBATCH --ntasks=1'
-        echo '#SBATCH --cpus-per-task=1'
-        echo "#SBATCH --output=$outdir/slurm/run_%a.log"
-        echo 'set -euo pipefail'
-        echo "export NCEIG='$nceig'"
-        echo 'runs=('
-        printf "    '%s'\n" "${runs[@]}"
-        echo ')'
-        echo 'set -- ${runs[$((SLURM_ARRAY_TASK_ID - 1))]}'
-        echo "exec bash '$self' --run '$outdir' \"\$1\" \"\$2\""
-    } >"$script"
-    {
-        echo '#!/bin/bash'
-        echo '# Collect the runs of slurm_sweep.sh: results.csv, extrapolation.csv, tradeoff.csv, plots.'
-        echo '#SBATCH --job-name=nceig-sweep-collect'
-        echo '#SBATCH --ntasks=1'
-        echo "#SBATCH --output=$outdir/slurm/collect.log"
-        echo "export NCEIG='$nceig'"
-        echo "exec bash '$self' --collect '$outdir'"
-    } >"$collect"
-    {
-        echo '#!/bin/bash'
-        echo '# Submit the array, then the collection once every task has ended (ok or not).'
-        echo 'set -euo pipefail'
-        echo "array=\$(sbatch --parsable \"\$@\" '$script')"
-        echo "sbatch --dependency=afterany:\${array%%;*} '$collect'"
-    } >"$outdir/slurm_submit.sh"
-    chmod +x "$script" "$collect" "$outdir/slurm_submit.sh"
-    echo "sweep_mesh: wrote $script (${#runs[@]} array tasks, at most $jobs at a time),"
-    echo "  $collect and $outdir/slurm_submit.sh; on the cluster run:"
-    echo "  bash $outdir/slurm_submit.sh [--time=... --mem=... further sbatch options]"
+    local outdir=$1 jobs=$2 nceig=$3 n_runs=$4
+    slurm_write_argv "$outdir/slurm/task.argv" env "NCEIG=$nceig" bash "$self" --run "$outdir"
+    slurm_write_argv "$outdir/slurm/collect.argv" env "NCEIG=$nceig" bash "$self" --collect "$outdir"
+    slurm_write_jobs "$outdir" sweep "$jobs" 1 || exit 2
+    echo "sweep_mesh: wrote slurm_sweep.sh ($n_runs array tasks, at most $jobs at a time),"
+    echo "  slurm_collect.sh and slurm_submit.sh in $outdir; on the cluster run (quoted for bash)"
+    printf '  bash %q [--time=... --mem=... further sbatch options]\n' "$outdir/slurm_submit.sh"
+}
+
+# Local runs through GNU parallel: its command is fixed text, the paths reach it as
+# environment variables and the task list as a file (GNU parallel hands its command to a
+# shell, so no path may be part of it). Each invocation keeps a job log (log/*.joblog: exit
+# status and time of every run). Resuming is the run folders' business, not --resume-failed:
+# a run with a summary.json is reused and any other is redone, which stays right when the
+# families or sizes change between calls (GNU parallel resumes by job number) or a run
+# folder is removed.
+run_parallel() {
+    local outdir=$1 jobs=$2 log=$3
+    SWEEP_SCRIPT=$self SWEEP_OUTDIR=$outdir PARALLEL_SHELL=$BASH \
+        parallel --jobs "$jobs" --joblog "${log%.log}.joblog" --colsep '\t' \
+            --arg-file "$outdir/slurm/tasks" \
+            'bash "$SWEEP_SCRIPT" --run "$SWEEP_OUTDIR" {1} {2}' </dev/null 2>&1 | tee -a "$log"
+}
+
+# Without GNU parallel: the same runs, at most JOBS at a time, from this shell.
+run_builtin() {
+    local outdir=$1 jobs=$2 log=$3 running=0 family n
+    while IFS=$'\t' read -r family n; do
+        if ((running >= jobs)); then
+            wait -n
+            running=$((running - 1))
+        fi
+        bash "$self" --run "$outdir" "$family" "$n" </dev/null 2>&1 | tee -a "$log" &
+        running=$((running + 1))
+    done <"$outdir/slurm/tasks"
+    wait
 }
 
 # ------------------------------------------------------------------------- main
@@ -498,7 +533,8 @@ case ${1:-} in
     --run) [[ $# -eq 4 ]] || die "usage: sweep_mesh.sh --run OUTDIR FAMILY N"
            run_one "$2" "$3" "$4"; exit $? ;;
     --collect) [[ $# -eq 2 ]] || die "usage: sweep_mesh.sh --collect OUTDIR"
-               collect "$2"; exit $? ;;
+               absolute_dir outdir "$2" || die "$(printable "$2"): no such folder"
+               collect "$outdir"; exit $? ;;
     --help | -h) usage; exit 0 ;;
 esac
 
@@ -513,13 +549,19 @@ while getopts ':e:n:j:o:g:sh' option; do
         s) slurm=1 ;;
         h) usage; exit 0 ;;
         :) die "option -$OPTARG needs a value" ;;
-        *) die "unknown option -$OPTARG (see --help)" ;;
+        *) die "unknown option -$OPTARG (see --help; a template named -x.nml follows --)" ;;
     esac
 done
 shift $((OPTIND - 1))
 [[ $# -eq 1 ]] || { usage >&2; exit 2; }
 template=$1
-[[ -f $template ]] || die "$template: no such template file"
+# Names go to cp, awk and basename as ./NAME when relative, so that none is read as an option
+# (-n.nml, --help.nml) or, by awk, as an assignment (a=b.nml).
+[[ $template == *$'\n'* ]] &&
+    die "template $(printable "$template"): a newline in its name is not supported (rename it)"
+[[ -n $template && $template != /* ]] && template=./$template
+[[ -f $template ]] || die "$(printable "$template"): no such template file"
+[[ -n $geometry && $geometry != /* ]] && geometry=./$geometry
 [[ $jobs =~ ^[1-9][0-9]*$ ]] || die "-j $jobs: expected a positive integer"
 IFS=, read -r -a family_list <<<"$families"
 IFS=, read -r -a size_list <<<"$sizes"
@@ -535,35 +577,40 @@ done
 source=$(template_value "$template" mesh source)
 case ${source:-rectangle} in
     rectangle)
-        [[ -z $geometry ]] || die "-g $geometry: the body of $template is its rectangle (&mesh source = 'rectangle'); -g is for a template whose &mesh source is 'gmsh'"
+        [[ -z $geometry ]] || die "-g $(printable "$geometry"): the body of $template is its rectangle (&mesh source = 'rectangle'); -g is for a template whose &mesh source is 'gmsh'"
         width=$(template_value "$template" mesh width)
         height=$(template_value "$template" mesh height)
         width=${width:-1.0} height=${height:-1.0}
         width=${width//d/e} height=${height//d/e}
-        awk -v w="$width" -v h="$height" 'BEGIN { exit !(w + 0 > 0 && h + 0 > 0) }' \
+        # plain numbers only: they are written into the Gmsh geometry of the delaunay families
+        number='^[+]?([0-9]+[.]?[0-9]*|[.][0-9]+)(e[-+]?[0-9]+)?$'
+        [[ $width =~ $number && $height =~ $number ]] &&
+            awk -v w="$width" -v h="$height" 'BEGIN { exit !(w + 0 > 0 && h + 0 > 0) }' \
             || die "$template: &mesh width = $width, height = $height: expected positive numbers" ;;
     gmsh)
         for family in "${family_list[@]}"; do
             [[ $(parse_family "$family") == *' delaunay' ]] || die "$template: &mesh source = 'gmsh': family '$family' would solve a rectangle, not this body; only 'delaunay' families (e.g. -e p1:delaunay,p2:delaunay) refine a Gmsh body"
         done
         [[ -n $geometry ]] || die "$template: &mesh source = 'gmsh': give the body's Gmsh geometry with -g FILE.geo, which the 'delaunay' families mesh with h = 1/N"
-        [[ -f $geometry ]] || die "-g $geometry: no such geometry file" ;;
+        [[ -f $geometry ]] || die "-g $(printable "$geometry"): no such geometry file" ;;
     *) die "$template: &mesh source = '$source': expected 'rectangle' or 'gmsh'" ;;
 esac
-[[ -n $outdir ]] || outdir="output/sweep_$(basename "${template%.*}")"
-[[ $outdir != *"'"* ]] || die "-o $outdir: quotes are not allowed in the output folder"
-mkdir -p "$outdir/runs" || die "cannot create $outdir"
-outdir=$(cd "$outdir" && pwd)
+[[ -n $outdir ]] || outdir="output/sweep_$(basename -- "${template%.*}")"
+mkdir -p -- "$outdir/runs" 2>/dev/null || die "cannot create $(printable "$outdir")/runs"
+absolute_dir outdir "$outdir" || die "cannot enter $(printable "$outdir")"
+# nceig takes its output folder as a --set value, which may not hold a newline.
+[[ $outdir == *$'\n'* ]] &&
+    die "output folder $(printable "$outdir"): a newline in its path is not supported (nceig takes none in --set)"
 # Resuming reuses runs: only with the same template, else results of two scenes would mix.
-if [[ -f $outdir/template.nml ]] && ! cmp -s "$template" "$outdir/template.nml"; then
+if [[ -f $outdir/template.nml ]] && ! cmp -s -- "$template" "$outdir/template.nml"; then
     die "$outdir holds a sweep of another template (template.nml differs from $template): choose another -o or remove it"
 fi
-cp "$template" "$outdir/template.nml"
+cp -- "$template" "$outdir/template.nml"
 if [[ -n $geometry ]]; then
-    if [[ -f $outdir/geometry.geo ]] && ! cmp -s "$geometry" "$outdir/geometry.geo"; then
-        die "$outdir holds a sweep of another geometry (geometry.geo differs from $geometry): choose another -o or remove it"
+    if [[ -f $outdir/geometry.geo ]] && ! cmp -s -- "$geometry" "$outdir/geometry.geo"; then
+        die "$outdir holds a sweep of another geometry (geometry.geo differs from $(printable "$geometry")): choose another -o or remove it"
     fi
-    cp "$geometry" "$outdir/geometry.geo"
+    cp -- "$geometry" "$outdir/geometry.geo"
 else
     write_rectangle_geo "$outdir/geometry.geo" "$width" "$height"
 fi
@@ -575,36 +622,48 @@ for family in "${family_list[@]}"; do
         runs+=("$family $n")
     done
 done
+write_tasks "$outdir" "${runs[@]}"
 
 if [[ $slurm -eq 1 ]]; then
-    write_slurm "$outdir" "$jobs" "$nceig" "${runs[@]}"
+    write_slurm "$outdir" "$jobs" "$nceig" "${#runs[@]}"
     exit 0
 fi
 
-echo "sweep_mesh: ${#runs[@]} runs of $template in $outdir, $jobs at a time, with $nceig"
+engine=parallel
+if ! command -v parallel >/dev/null 2>&1; then
+    engine=built-in
+    echo "sweep_mesh: GNU parallel not found (Debian package parallel): the built-in runner runs the sweep" >&2
+fi
+echo "sweep_mesh: ${#runs[@]} runs of $template in $outdir, $jobs at a time ($engine), with $nceig"
 export NCEIG=$nceig
-mkdir -p "$outdir/log"
+# Runs beside each other share the cores: one BLAS thread each (alone, nceig's default).
+((jobs > 1)) && export OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1
+mkdir -p -- "$outdir/log"
 log=$(mktemp "$outdir/log/sweep_$(date +%Y%m%d_%H%M%S)_XXXX.log") || exit 1
-running=0
-for run in "${runs[@]}"; do
-    if ((running >= jobs)); then
-        wait -n
-        running=$((running - 1))
-    fi
-    # shellcheck disable=SC2086
-    bash "$self" --run "$outdir" $run 2>&1 | tee -a "$log" &
-    running=$((running + 1))
-done
-wait
+if [[ $engine == parallel ]]; then
+    run_parallel "$outdir" "$jobs" "$log"
+else
+    run_builtin "$outdir" "$jobs" "$log"
+fi
 n_reused=$(grep -c '^reused' "$log")
 n_done=$(grep -c '^done' "$log")
-n_failed=$(grep -c '^FAILED' "$log")
+# A run failed unless its folder says ok: this counts a run killed before it could report.
+n_failed=0 failed_runs=()
+for run in "${runs[@]}"; do
+    read -r family n <<<"$run"
+    dir="$outdir/runs/$(run_name "$family" "$n")"
+    status=$(cat "$dir/status" 2>/dev/null)
+    if [[ ! -s $dir/output/summary.json || $status == failed* ]]; then
+        n_failed=$((n_failed + 1))
+        failed_runs+=("$family N=$n: ${status#failed: }")
+    fi
+done
 echo "sweep_mesh: ${#runs[@]} runs: $n_done done, $n_reused reused, $n_failed failed"
 collect "$outdir"
 collected=$?
 if ((n_failed > 0)); then
     echo "sweep_mesh: failed runs (see runs/*/stderr.log; run again to retry them):" >&2
-    grep '^FAILED' "$log" | sed 's/^FAILED  /  /' >&2
+    printf '  %s\n' "${failed_runs[@]}" >&2
     exit 1
 fi
 exit $collected

@@ -3,7 +3,7 @@
 # Install the Debian 12 packages nceig needs to build, test and plot, skipping what is there.
 set -euo pipefail
 packages=(cmake make gfortran gcc pkg-config libopenblas-dev liblapack-dev libarpack2-dev
-          libsuitesparse-dev libmetis-dev gmsh gnuplot-nox time jq)
+          libsuitesparse-dev libmetis-dev gmsh gnuplot-nox time jq parallel)
 missing=()
 for package in "${packages[@]}"; do
     dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" \

@@ -8,7 +8,7 @@
 # Usage: cli_sweep.sh NCEIG SOURCE_DIR
 set -u
 nceig=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
-source_dir=$2
+source_dir=$(realpath "$2")
 sweep="$source_dir/scripts/sweep_mesh.sh"
 source "$(dirname "$0")/lib/cli_common.sh"
 cli_begin cli_sweep
@@ -40,13 +40,17 @@ check 'every run ok with a positive mu' \
 # N + 1 contact nodes; Q1 the same nodes.
 check 'n_dofs and n_contact match the structured N x N meshes' \
     '[[ $(awk -F, -v n="$(column_of "$out/results.csv" n)" -v d="$(column_of "$out/results.csv" n_dofs)" -v c="$(column_of "$out/results.csv" n_contact)" "NR > 1 && (\$d != 2 * (\$n + 1) * \$n || \$c != \$n + 1)" "$out/results.csv" | wc -l) -eq 0 ]]'
+check 'runs beside each other (-j 2) had one BLAS thread each' \
+    'for s in "$out"/runs/*/output/summary.json; do [[ $(jq .blas_threads "$s") == 1 ]] || exit 1; done'
+check 'GNU parallel ran them, its job log lists the 6 runs, each exit 0' \
+    '[[ $(awk "NR > 1 && \$7 == 0" "$out"/log/*.joblog | wc -l) -eq 6 ]] && grep -q "(parallel)" "$work/first.log"'
 check 'peak RSS measured' \
     '[[ $(awk -F, -v r="$(column_of "$out/results.csv" peak_rss_mb)" "NR > 1 && \$r > 0" "$out/results.csv" | wc -l) -eq 6 ]]'
 run="$out/runs/p1-right_n0004"
 check 'run input: the template, unchanged' 'cmp -s "$work/template.nml" "$run/input.nml"'
 check 'run command: the mesh as --set overrides (nx, ny, element, diagonal)' \
     'for setting in mesh%nx=4 mesh%ny=4 mesh%element=p1 mesh%diagonal=right; do
-         grep -qF -- "--set'"'"' '"'"'$setting" "$run/command" || exit 1; done'
+         grep -qF -- "--set $setting" "$run/command" || exit 1; done'
 check 'run used the template values it did not override (poisson)' \
     '[[ $(jq -r .poisson "$run/output/summary.json") == 0.25 ]]'
 check 'run output directory set per run' '[[ -s $run/output/summary.json && ! -e $work/elsewhere ]]'
@@ -96,6 +100,25 @@ check 'results.csv keeps the good runs and lists the failed ones' \
 check 'the good family is extrapolated all the same' 'grep -q "^p1:left," "$out2/extrapolation.csv"'
 NCEIG="$nceig" bash "$sweep" -e q2,p1:left -n 2,4,8 -o "$out2" "$work/template.nml" >"$work/fourth.log" 2>&1
 check 'running again retries only the failed runs' 'grep -q "6 runs: 3 done, 3 reused, 0 failed" "$work/fourth.log"'
+
+# Without GNU parallel (a PATH of everything else): one line says so, and the built-in
+# runner does the same runs.
+mkdir "$work/no_parallel"
+IFS=: read -r -a path_dirs <<<"$PATH"
+for dir in "${path_dirs[@]}"; do
+    for program in "$dir"/*; do
+        name=${program##*/}
+        [[ $name == parallel || -e $work/no_parallel/$name ]] || ln -s "$program" "$work/no_parallel/$name"
+    done
+done
+out5="$work/no_parallel_sweep"
+PATH="$work/no_parallel" bash "$sweep" -e p1:right,q1 -n 2,4,8 -j 2 -o "$out5" "$work/template.nml" \
+    >"$work/fallback.log" 2>"$work/fallback.err"
+rc=$?
+check 'without GNU parallel: one line on stderr, the sweep succeeds with the built-in runner' \
+    '[[ $rc -eq 0 && $(wc -l <"$work/fallback.err") -eq 1 ]] && grep -q "GNU parallel not found" "$work/fallback.err" && grep -q "(built-in)" "$work/fallback.log"'
+check '... and gives the same results.csv values as GNU parallel did' \
+    '[[ $(cut -d, -f1-9 "$out5/results.csv") == $(cut -d, -f1-9 "$out/results.csv") ]]'
 
 # Bad arguments: one line naming the problem, exit 2.
 bash "$sweep" -e p1:diagonal -n 2 -o "$work/bad" "$work/template.nml" >/dev/null 2>"$work/err"
@@ -152,7 +175,8 @@ bash "$sweep" -e delaunay -n 4 -o "$work/wide" "$work/wide.nml" >"$work/wide.log
 check 'rectangle template 2 x 1: its delaunay mesh has at least 9 contact nodes at h = 1/4' \
     '[[ $(json "$work/wide/runs/delaunay_n0004/output/summary.json" n_contact) -ge 9 ]]'
 
-# SLURM: scripts written, nothing run.
+# SLURM: scripts written, nothing run; no path in their text (the paths are in files of
+# NUL-separated words that the scripts read), and a task runs as SLURM would start it.
 out3="$work/slurm"
 bash "$sweep" -s -e p1:right,q1,delaunay -n 4,8 -j 3 -o "$out3" "$work/template.nml" >"$work/slurm.log" 2>&1
 rc=$?
@@ -161,15 +185,21 @@ check '-s succeeds and writes the array script' '[[ $rc -eq 0 && -x $array ]]'
 check '-s runs nothing' '[[ -z $(ls -A "$out3/runs") ]]'
 check 'array of 6 tasks, at most 3 at a time' 'grep -q "^#SBATCH --array=1-6%3$" "$array"'
 check 'one task per (family, N), in order' \
-    '[[ $(sed -n "/^runs=(/,/^)/p" "$array" | sed "1d;\$d" | tr -d "'"'"' " | paste -sd,) == "p1:right4,p1:right8,q14,q18,delaunay4,delaunay8" ]]'
-check 'a task runs one case with --run' 'grep -q -- "--run .*\$1.*\$2" "$array"'
-check 'the array finds nceig' 'grep -q "^export NCEIG=.*$(basename "$nceig")" "$array"'
-check 'the collection step calls --collect' 'grep -q -- "--collect" "$out3/slurm_collect.sh"'
+    '[[ $(tr "\t" " " <"$out3/slurm/tasks" | paste -sd,) == "p1:right 4,p1:right 8,q1 4,q1 8,delaunay 4,delaunay 8" ]]'
+check 'a task runs sweep_mesh.sh --run OUTDIR with this nceig' \
+    '[[ $(tr "\0" "|" <"$out3/slurm/task.argv") == "env|NCEIG=$nceig|bash|$sweep|--run|$out3|" ]]'
+check 'the collection step calls --collect OUTDIR' \
+    '[[ $(tr "\0" "|" <"$out3/slurm/collect.argv") == "env|NCEIG=$nceig|bash|$sweep|--collect|$out3|" ]]'
 check 'submission chains the collection after the array' \
     'grep -q "sbatch --parsable" "$out3/slurm_submit.sh" && grep -q "dependency=afterany" "$out3/slurm_submit.sh"'
 check 'the scripts are valid bash' 'bash -n "$array" && bash -n "$out3/slurm_collect.sh" && bash -n "$out3/slurm_submit.sh"'
-# A task as SLURM would start it (no sbatch here): task 3 is q1 on N = 4.
-SLURM_ARRAY_TASK_ID=3 bash "$array" >"$work/task.log" 2>&1
+check 'no path in the scripts (the output folder, the source tree, nceig)' \
+    '! grep -qF -e "$work" -e "$source_dir" -e "$(dirname "$nceig")" "$array" "$out3/slurm_collect.sh" "$out3/slurm_submit.sh"'
+# A task as SLURM would start it (slurm_submit.sh passes these arguments): task 3 is q1 on N = 4.
+(cd "$out3" && SLURM_ARRAY_TASK_ID=3 bash slurm_sweep.sh "$out3/slurm/tasks" "$out3/slurm/task.argv" 1) \
+    >"$work/task.log" 2>&1
 check 'array task 3 runs q1 N=4 alone' '[[ -s $out3/runs/q1_n0004/output/summary.json && $(ls "$out3/runs" | wc -l) -eq 1 ]]'
+check 'the array task ran nceig on one BLAS thread' \
+    '[[ $(jq -r .blas_threads "$out3/runs/q1_n0004/output/summary.json") == 1 ]]'
 
 cli_end
