@@ -74,7 +74,9 @@ contains
             geta(q, :) = gradient(2, :)
         end do
         allocate (tables%r(n, n, 4))
-        weighted = gxi
+        ! sourced allocation: the reallocation of the unallocated array read an extent that
+        ! -fsanitize=undefined reported as an overflow
+        allocate (weighted, source=gxi)
         do q = 1, rule%n_points()
             weighted(q, :) = rule%weights(q)*gxi(q, :)
         end do

@@ -351,9 +351,9 @@ contains
             return
         end if
         m%element = element
-        m%part_names = this%part_names
         ! sourced allocation, not assignment: gfortran 12's reallocation of the unallocated
         ! component reads an extent that -fsanitize=undefined reports as an overflow
+        allocate (m%part_names, source=this%part_names)
         allocate (m%edge_part, source=this%edge_part)
         if (element == ELEMENT_P1) then
             m%coords = this%coords
