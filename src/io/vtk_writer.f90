@@ -7,7 +7,7 @@
 module vtk_writer
     use iso_fortran_env, only: int8, int32, int64, file_storage_size, character_storage_size
     use ieee_arithmetic, only: ieee_support_datatype
-    use kinds, only: wp, i8, N_DIM
+    use kinds, only: wp, i8
     use status, only: status_t, STATUS_IO, STATUS_INTERNAL
     use strings, only: to_string
     use filesystem, only: end_output
@@ -53,7 +53,7 @@ contains
         character(len=*), intent(in) :: path
         type(mesh_t), intent(in) :: m
         character(len=*), intent(in) :: names(:)          !! e.g. 'displacement'
-        real(wp), intent(in) :: vectors(:, :, :)          !! (N_DIM, n_nodes, size(names))
+        real(wp), intent(in) :: vectors(:, :, :)          !! (m%dim(), n_nodes, size(names))
         character(len=*), intent(in) :: format            !! VTK_BINARY or VTK_ASCII
         type(status_t), intent(out) :: stat
         character(len=*), intent(in), optional :: cell_names(:)    !! e.g. 'error_indicator'
@@ -264,7 +264,8 @@ contains
         write (unit, iostat=ios, iomsg=msg) LF//'  </AppendedData>'//LF//'</VTKFile>'//LF
     end subroutine write_binary_grid
 
-    !> A (2, n) nodal array as n Float64 triples with z = 0, a chunk of nodes at a time.
+    !> A (dim, n) nodal array as n Float64 triples (a plane one with z = 0), a chunk of nodes
+    !> at a time.
     subroutine write_vector_block(unit, xy, ios, msg)
         integer, intent(in) :: unit
         real(wp), intent(in) :: xy(:, :)
@@ -275,10 +276,10 @@ contains
 
         ios = 0
         allocate (buffer(3, min(CHUNK, size(xy, 2))))
-        buffer(3, :) = 0.0_wp
+        buffer(size(xy, 1) + 1:, :) = 0.0_wp
         do first = 1, size(xy, 2), CHUNK
             last = min(first + CHUNK - 1, size(xy, 2))
-            buffer(1:N_DIM, 1:last - first + 1) = xy(:, first:last)
+            buffer(1:size(xy, 1), 1:last - first + 1) = xy(:, first:last)
             write (unit, iostat=ios, iomsg=msg) buffer(:, 1:last - first + 1)
             if (ios /= 0) return
         end do
@@ -415,22 +416,24 @@ contains
     end subroutine write_ascii_grid
 
     !> One inline Float64 DataArray `name` of `columns` (components x n), a line per column:
-    !> a 2-d vector gets a zero z (VTK's vectors have three components), a scalar stays one.
+    !> a plane vector gets a zero z (VTK's vectors have three components), a scalar stays one.
     subroutine write_ascii_reals(unit, name, columns, ios, msg)
         integer, intent(in) :: unit
         character(len=*), intent(in) :: name
         real(wp), intent(in) :: columns(:, :)
         integer, intent(out) :: ios
         character(len=*), intent(inout) :: msg
+        real(wp), parameter :: PADDING(2) = 0.0_wp
         logical :: vector
         integer :: i
-        vector = size(columns, 1) == 2
+        vector = size(columns, 1) > 1
         write (unit, '(a)', iostat=ios, iomsg=msg) &
             data_array_tag('Float64', name, merge(3, 0, vector), INLINE)
         if (ios /= 0) return
         do i = 1, size(columns, 2)
             if (vector) then
-                write (unit, REAL_FORMAT, iostat=ios, iomsg=msg) columns(:, i), 0.0_wp
+                write (unit, REAL_FORMAT, iostat=ios, iomsg=msg) columns(:, i), &
+                    PADDING(:3 - size(columns, 1))
             else
                 write (unit, REAL_FORMAT, iostat=ios, iomsg=msg) columns(:, i)
             end if
@@ -481,17 +484,19 @@ contains
             call stat%fail(STATUS_INTERNAL, 'write_vtu: cells have ' &
                            //to_string(size(m%cells, 1))//' nodes, the element needs ' &
                            //to_string(element_nodes_per_cell(m%element)))
-        else if (size(m%coords, 1) /= N_DIM) then
-            call stat%fail(STATUS_INTERNAL, 'write_vtu: coordinates must be (2, n_nodes)')
+        else if (size(m%coords, 1) /= m%dim() .or. m%dim() > 3) then
+            call stat%fail(STATUS_INTERNAL, 'write_vtu: coordinates must be ('// &
+                           to_string(m%dim())//', n_nodes), at most 3 components')
         else if (m%n_cells() > 0) then
             if (minval(m%cells) < 1 .or. maxval(m%cells) > m%n_nodes()) then
                 call stat%fail(STATUS_INTERNAL, 'write_vtu: a cell refers to a missing node')
             end if
         end if
         if (.not. stat%ok()) return
-        if (size(vectors, 3) /= size(names) .or. size(vectors, 1) /= N_DIM .or. &
+        if (size(vectors, 3) /= size(names) .or. size(vectors, 1) /= m%dim() .or. &
             (size(names) > 0 .and. size(vectors, 2) /= m%n_nodes())) then
-            call stat%fail(STATUS_INTERNAL, 'write_vtu: fields must be (2, n_nodes, n_names)')
+            call stat%fail(STATUS_INTERNAL, 'write_vtu: fields must be ('// &
+                           to_string(m%dim())//', n_nodes, n_names)')
         end if
     end subroutine check_arguments
 

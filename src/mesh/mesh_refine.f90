@@ -120,7 +120,7 @@ contains
             n_vertices = n_vertices + 1
             vertex_of(node) = n_vertices
         end do
-        allocate (r%coords(2, n_vertices))
+        allocate (r%coords(size(m%coords, 1), n_vertices))
         do node = 1, size(vertex_of)
             if (vertex_of(node) > 0) r%coords(:, vertex_of(node)) = m%coords(:, node)
         end do
@@ -235,7 +235,7 @@ contains
 
         ! A new vertex at the midpoint of each bisected edge, in edge order.
         allocate (midpoint(table%n_edges), source=0)
-        allocate (coords(2, n_vertices + tail))
+        allocate (coords(size(this%coords, 1), n_vertices + tail))
         coords(:, :n_vertices) = this%coords
         do e = 1, table%n_edges
             if (.not. bisected(e)) cycle
@@ -351,9 +351,9 @@ contains
             return
         end if
         m%element = element
-        m%part_names = this%part_names
         ! sourced allocation, not assignment: gfortran 12's reallocation of the unallocated
         ! component reads an extent that -fsanitize=undefined reports as an overflow
+        allocate (m%part_names, source=this%part_names)
         allocate (m%edge_part, source=this%edge_part)
         if (element == ELEMENT_P1) then
             m%coords = this%coords
@@ -368,7 +368,7 @@ contains
         n_vertices = this%n_vertices()
         call build_edge_table(this%cells, n_vertices, table)
         first_inner = n_vertices + inner*table%n_edges
-        allocate (m%coords(2, first_inner + n_inner*this%n_cells()))
+        allocate (m%coords(size(this%coords, 1), first_inner + n_inner*this%n_cells()))
         m%coords(:, :n_vertices) = this%coords
         do e = 1, table%n_edges
             do t = 1, inner

@@ -2,7 +2,7 @@
 !> analysis = 'branch': the files summary.json, eigenvalues.csv, branch.csv and
 !> branch_NNN.vtu (members U + delta phi), and the short summary on stdout.
 module branch_run
-    use kinds, only: wp, N_DIM
+    use kinds, only: wp
     use status, only: status_t
     use strings, only: to_string, zero_padded, short_real_text
     use real_format, only: real_to_text
@@ -71,7 +71,7 @@ contains
                 u(:) = res%cp%expand(x_base + res%deltas(i)*res%critical%phi)
                 call stage%add('branch_'//zero_padded(i, 3)//'.vtu', path)
                 call write_vtu(path, prob%mesh, &
-                    ['displacement'], reshape(u, [N_DIM, prob%mesh%n_nodes(), 1]), &
+                    ['displacement'], reshape(u, [prob%mesh%dim(), prob%mesh%n_nodes(), 1]), &
                     trim(config%output%vtk_format), stat)
                 if (.not. stat%ok()) return
             end do

@@ -3,7 +3,7 @@
 !> solution.vtu (only when Newton converged), and the short summary on stdout. A Newton
 !> failure still writes its history, then ends the run in error (the verdict).
 module solve_run
-    use kinds, only: wp, N_DIM
+    use kinds, only: wp
     use status, only: status_t
     use strings, only: to_string, short_real_text
     use real_format, only: real_to_text
@@ -63,7 +63,7 @@ contains
             if (stat%ok() .and. config%output%vtk .and. res%report%converged) then
                 call stage%add('solution.vtu', path)
                 call write_vtu(path, prob%mesh, ['displacement'], &
-                    reshape(res%cp%expand(res%x), [N_DIM, prob%mesh%n_nodes(), 1]), &
+                    reshape(res%cp%expand(res%x), [prob%mesh%dim(), prob%mesh%n_nodes(), 1]), &
                     trim(config%output%vtk_format), stat)
             end if
         end associate
