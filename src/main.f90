@@ -19,6 +19,7 @@ program nceig
     use console, only: print_progress
     use process, only: ignore_broken_pipe
     use memory_budget, only: check_address_space
+    use program_start, only: start_signal_thread
     implicit none
 
     character(len=*), parameter :: PROGRAM_NAME = 'nceig'
@@ -45,6 +46,9 @@ program nceig
         call exit_with(0)
     end select
 
+    ! From here SIGTERM, SIGINT, SIGHUP and SIGXCPU end the run by that signal, whatever
+    ! library runs (blocked in every thread since the start, taken by a thread of their own).
+    call start_signal_thread(command%input)
     start = wall_time()
     call read_input(command%input, config, stat, command%settings)
     call stop_on_failure(PROGRAM_NAME, stat)
