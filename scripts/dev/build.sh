@@ -15,6 +15,12 @@ if [[ $type == Asan ]]; then
 fi
 cmake -S "$root" -B "$folder" -DCMAKE_BUILD_TYPE="$type" "$@" >/dev/null
 # Only diagnostics (the compilers' 'Warning:', 'error:', make's '***'), not file names that
-# contain the word (error_estimate.f90).
-cmake --build "$folder" -j "$(nproc)" 2>&1 | { grep -E '(^|[ :])([Ww]arning|[Ee]rror):|\*\*\*|CMake Error' || true; }
+# contain the word (error_estimate.f90). gfortran gives the place on a line of its own
+# ('src/x.f90:413:21:') a few lines above its 'Warning:' line: it is printed before it.
+cmake --build "$folder" -j "$(nproc)" 2>&1 | awk '
+    /^[^ ].*:[0-9]+:[0-9]+:$/ { place = $0; next }
+    /(^|[ :])([Ww]arning|[Ee]rror):|\*\*\*|CMake Error/ {
+        if (/^(Warning|Error):/ && place != "") print place
+        print; place = ""
+    }'
 test -x "$folder/nceig"
