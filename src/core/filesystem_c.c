@@ -166,6 +166,27 @@ int nceig_can_replace(const char *path, const char *parent)
     return access(parent, W_OK | X_OK) == 0;
 }
 
+/* The target of the symbolic link `path` into buffer[0..capacity) (not NUL-terminated): its
+   length, or -1 when `path` is no link (or its target does not fit). */
+int nceig_link_target(const char *path, char *buffer, int capacity)
+{
+    struct stat info;
+    ssize_t length;
+    if (capacity <= 0 || lstat(path, &info) != 0 || !S_ISLNK(info.st_mode)) return -1;
+    length = readlink(path, buffer, (size_t)capacity);
+    if (length < 0 || length >= capacity) return -1;
+    return (int)length;
+}
+
+/* 1 when `path` has a write permission bit and the caller may write it: a directory its
+   owner made read-only (chmod a-w) counts as such even for root, whom access() lets by. */
+int nceig_may_write(const char *path)
+{
+    struct stat info;
+    if (stat(path, &info) != 0) return 0;
+    return (info.st_mode & 0222) != 0 && access(path, W_OK) == 0;
+}
+
 /* Make `to` a new name (hard link) of file `from`; a symbolic link is linked, not followed. */
 int nceig_link(const char *from, const char *to) { return link(from, to); }
 

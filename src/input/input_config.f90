@@ -570,7 +570,8 @@ contains
     ! -------------------------------------------------------------------------- paths
 
     !> Default output directory of a run: output/<input file name without extension>,
-    !> relative to the working directory.
+    !> relative to the working directory. A stem of dots only ('..nml', '...nml') would
+    !> name output/ itself or its parent: the whole name is kept then (output/..nml).
     function default_output_directory(input_path) result(directory)
         character(len=*), intent(in) :: input_path
         character(len=:), allocatable :: directory
@@ -580,7 +581,10 @@ contains
         base = trim(input_path)
         base = base(index(base, '/', back=.true.) + 1:)
         dot = index(base, '.', back=.true.)
-        if (dot > 1) base = base(:dot - 1)   ! a leading dot starts a hidden name, not a suffix
+        ! a leading dot starts a hidden name, not a suffix
+        if (dot > 1) then
+            if (verify(base(:dot - 1), '.') > 0) base = base(:dot - 1)
+        end if
         if (len(base) == 0) base = 'nceig'
         directory = 'output/'//base
     end function default_output_directory
