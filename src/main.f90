@@ -67,7 +67,7 @@ program nceig
     end if
     phase = wall_time()
     call build_problem(config, prob, stat, analysis%needs_all_dofs)
-    call stop_on_failure(PROGRAM_NAME, stat)
+    call stop_on_failure(PROGRAM_NAME, stat, config%input_file)
     call timings%add(PHASE_ASSEMBLY, wall_time() - phase, ': '//to_string(prob%mesh%n_cells())// &
         ' cells, '//to_string(prob%dofs%n_free)//' dofs, '//to_string(prob%contact%p())// &
         ' contact nodes, K with '//to_string(prob%k%nnz())//' entries')
@@ -79,9 +79,9 @@ program nceig
         call exit_now(stat%code)
     end if
     call run_analysis(analysis, config, prob, start, timings, stat)
-    call stop_on_failure(PROGRAM_NAME, stat)
+    call stop_on_failure(PROGRAM_NAME, stat, config%input_file)
     write (output_unit, '(a)', iostat=ios) analysis%report(config, prob)
-    call stop_on_failure(PROGRAM_NAME, analysis%verdict)
+    call stop_on_failure(PROGRAM_NAME, analysis%verdict, config%input_file)
     ! gfortran 12 keeps main-program allocatables in a frame gone before LeakSanitizer looks
     deallocate (command%action, command%input, command%settings)
     deallocate (analysis)

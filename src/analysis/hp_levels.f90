@@ -8,7 +8,7 @@
 module hp_levels
     use kinds, only: wp
     use status, only: status_t, STATUS_BAD_INPUT
-    use strings, only: to_string, short_real_text
+    use strings, only: to_string, short_real_text, given_real_text
     use timer, only: timings_t
     use run_config, only: config_t
     use problem, only: problem_t
@@ -114,7 +114,7 @@ contains
         real(wp), intent(in) :: tolerance
         character(len=*), intent(in) :: bar_text
         character(len=:), allocatable :: outcome
-        outcome = 'tolerance '//short_real_text(tolerance)//' not met: the next '// &
+        outcome = 'tolerance '//given_real_text(tolerance)//' not met: the next '// &
             'level would have '//to_string(this%space%n_free())//' dofs, more than '// &
             this%dof_limit//'; reached error bar '//bar_text
     end function ladder_limit_outcome

@@ -498,14 +498,15 @@ contains
         group = lowercase(trim(adjustl(blanked(:percent - 1))))
         variable = trim(adjustl(blanked(percent + 1:equals - 1)))
         value = trim(adjustl(blanked(equals + 1:)))
-        if (len(value) == 0) then
-            call malformed()
-            return
-        end if
         if (.not. any(KNOWN_GROUPS == group)) then
             call stat%fail(STATUS_BAD_INPUT, label//': unknown namelist group &' &
                            //printable(group) &
                            //' (known groups: '//group_list(KNOWN_GROUPS)//')')
+            return
+        end if
+        if (len(value) == 0) then
+            call stat%fail(STATUS_BAD_INPUT, label//': &'//group//': '//printable(variable) &
+                           //": no value after '=': expected one (an empty text is written '')")
             return
         end if
         if (is_text_variable(group, variable) .and. index('"'//"'", value(1:1)) == 0) then

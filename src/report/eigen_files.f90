@@ -24,6 +24,7 @@ module eigen_files
     use pictures, only: draw_mode
     use blas_info, only: blas_in_use
     use error_estimate, only: error_estimate_t, estimate_label
+    use hp_adaptive, only: HP_ESTIMATE
     implicit none
     private
     public :: eigen_summary_json, no_eigen_summary_json, summary_lines, &
@@ -79,7 +80,7 @@ contains
         call summary%add_string('analysis', trim(config%analysis%kind))
         call summary%add_real('lambda', lambda)
         ! From the mesh: a Gmsh file decides its element type, not &mesh element.
-        call summary%add_string('element', element_name(prob%mesh%element))
+        call summary%add_string('element', mesh_element(config, prob))
         call summary%add_string('mesh_source', trim(config%mesh%source))
         if (config%mesh%source == 'rectangle') then
             call summary%add_integer('nx', config%mesh%nx)
@@ -247,6 +248,17 @@ contains
         end function with_indicators
     end subroutine write_modes
 
+    !> The element of the run: its name, or 'hp' for an hp run, whose graded mesh carries a
+    !> degree per cell (the p1 of its geometry is not the element solved).
+    function mesh_element(config, prob) result(name)
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(in) :: prob
+        character(len=:), allocatable :: name
+        name = element_name(prob%mesh%element)
+        if (config%adapt%tolerance > 0.0_wp .and. trim(config%adapt%strategy) == 'hp') &
+            name = 'hp'
+    end function mesh_element
+
     !> The human summary: mesh, sizes, the headline eigenvalue and the time of each phase.
     function summary_lines(config, prob, res, timings, plot_note) result(text)
         type(config_t), intent(in) :: config
@@ -261,7 +273,7 @@ contains
         real(wp), allocatable :: critical(:)
 
         text = 'nceig '//NCEIG_VERSION//': '//config%input_file//NL// &
-            '  mesh        '//trim(config%mesh%source)//', '//element_name(prob%mesh%element)// &
+            '  mesh        '//trim(config%mesh%source)//', '//mesh_element(config, prob)// &
             ', '//to_string(prob%mesh%n_cells())//' cells, '//to_string(prob%mesh%n_nodes())// &
             ' nodes'//NL// &
             '  problem     '//to_string(prob%dofs%n_free)//' dofs, '// &
@@ -279,10 +291,20 @@ contains
                 '  critical c_t = mu |lambda| = '//real_to_text(critical_c_t(mu, res%lambda))// &
                 ', slip sign s = '//to_string(slip_sign(res%lambda))// &
                 ' (u_t '//merge('< 0', '> 0', slip_sign(res%lambda) < 0)//' along t)'//NL
-            if (res%error%computed) text = text//'  relative error estimate of mu: '// &
-                short_real_text(abs(res%error%relative))//' ('// &
-                estimate_label(res%error)//'); error bar '// &
-                short_real_text(res%error%bar)//NL
+            if (res%error%computed) then
+                if (estimate_label(res%error) == HP_ESTIMATE) then
+                    ! the change is the previous level's error: the bar may be below it
+                    text = text//'  relative change of mu to the previous hp level: '// &
+                        short_real_text(abs(res%error%relative))// &
+                        ' (the error of that level); error bar '// &
+                        short_real_text(res%error%bar)//NL
+                else
+                    text = text//'  relative error estimate of mu: '// &
+                        short_real_text(abs(res%error%relative))//' ('// &
+                        estimate_label(res%error)//'); error bar '// &
+                        short_real_text(res%error%bar)//NL
+                end if
+            end if
             if (allocated(res%error%skipped)) text = text//'  relative error estimate of mu: '// &
                 res%error%skipped//NL
             if (res%roundoff >= 0.0_wp) then

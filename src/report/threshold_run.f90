@@ -28,10 +28,11 @@ module threshold_run
     use output_stage, only: output_stage_t
     use json_writer, only: json_object_t
     use csv_writer, only: csv_writer_t
+    use hp_adaptive, only: HP_ESTIMATE
     implicit none
     private
     public :: write_sweep_csv, no_digit_verdict, write_threshold_adapt_csv, add_threshold_keys, &
-              threshold_summary_lines
+              threshold_summary_lines, boundary_lines
 
     character(len=*), parameter :: SWEEP_FILE = 'lambda_sweep.csv'
     character(len=*), parameter :: SWEEP_HEADER = &
@@ -575,9 +576,17 @@ contains
                     if (res%estimate%halved_mesh) s = ', halved mesh'
                     s = element_name(res%estimate%element)//s
                 end if
-                s = NL//'              relative error estimate '// &
-                    short_real_text(abs(res%estimate%relative(side)))//' ('//s//'); error bar '// &
-                    short_real_text(res%estimate%bar(side))
+                if (s == HP_ESTIMATE) then
+                    ! the change is the previous level's error: the bar may be below it
+                    s = NL//'              relative change to the previous hp level '// &
+                        short_real_text(abs(res%estimate%relative(side)))// &
+                        ' (the error of that level); error bar '// &
+                        short_real_text(res%estimate%bar(side))
+                else
+                    s = NL//'              relative error estimate '// &
+                        short_real_text(abs(res%estimate%relative(side)))//' ('//s// &
+                        '); error bar '//short_real_text(res%estimate%bar(side))
+                end if
             else if (len_trim(res%estimate%skipped(side)) > 0) then
                 s = NL//'              relative error estimate '//trim(res%estimate%skipped(side))
             end if
@@ -594,7 +603,7 @@ contains
 
         text = NL//'  boundary    of {lambda : a positive mu exists} in ['// &
             real_to_text(set%lambda_min)//', '//real_to_text(set%lambda_max)//']: '// &
-            to_string(size(set%points))//' points'
+            to_string(size(set%points))//trim(merge(' point ', ' points', size(set%points) == 1))
         if (set%scan_contact /= set%contact) text = text//' (scanned on a coarser level, '// &
             to_string(set%scan_contact)//' contact functions; located on this one)'
         do i = 1, size(set%points)
@@ -602,11 +611,18 @@ contains
                 text = text//NL//'              lambda = '//real_to_text(b%lambda)
                 if (b%error_bar >= 0.0_wp) text = text//' +- '// &
                     short_real_text(b%error_bar*abs(b%lambda))
-                text = text//' '// &
-                    trim(MECHANISM_NAMES(b%mechanism))//', positive mu '// &
-                    trim(merge('appears ', 'vanishes', b%appears))//' as lambda increases ('// &
-                    to_string(b%n_below)//' -> '//to_string(b%n_above)//'), '// &
-                    trim(merge('confirmed    ', 'NOT confirmed', b%confirmed))
+                text = text//' '//trim(MECHANISM_NAMES(b%mechanism))//', '
+                if (b%n_below == b%n_above) then
+                    ! no change of the count across it: neither appears nor vanishes
+                    text = text//'the count of positive mu is '//to_string(b%n_below)// &
+                        ' on both sides, '
+                else
+                    text = text//'positive mu '// &
+                        trim(merge('appears ', 'vanishes', b%appears))// &
+                        ' as lambda increases ('//to_string(b%n_below)//' -> '// &
+                        to_string(b%n_above)//'), '
+                end if
+                text = text//trim(merge('confirmed    ', 'NOT confirmed', b%confirmed))
             end associate
         end do
         call positive_intervals(set, lower, upper)
