@@ -168,6 +168,11 @@ contains
             ! the points' own warnings are not kept (record): the run's stands for them
             if (config%adapt%strategy /= 'hp') res%eigen%warnings = [character(len=WARNING_LEN) &
                 :: res%eigen%warnings, theta_warnings(config%adapt%theta)]
+            ! where a user looks, not only in the exit status and sweep_n_not_met
+            if (res%sweep%n_not_met > 0) res%eigen%warnings = [character(len=WARNING_LEN) :: &
+                res%eigen%warnings, to_string(res%sweep%n_not_met)//' of the '// &
+                to_string(size(res%sweep%lambda))//' sweep points did not meet the '// &
+                'tolerance (sweep_n_not_met; the first at '//res%sweep%not_met//')']
             res%time_sweep = wall_time() - start
             call timings%note('sweep      '//seconds_text(res%time_sweep)//' s: '// &
                 to_string(size(res%sweep%lambda))//' lambdas, adapted to '// &

@@ -481,6 +481,7 @@ contains
             call summary%add_integer('sweep_n_adapted', size(res%sweep%lambda))
             call summary%add_integer('sweep_n_mesh_reused', res%sweep%n_reused)
             call summary%add_integer('sweep_n_not_met', res%sweep%n_not_met)
+            call summary%add_logical('adapt_converged', res%sweep%n_not_met == 0)
             call summary%add_real_or_null('sweep_max_error_estimate', &
                 maxval(res%sweep%error_estimate), any(res%sweep%error_estimate >= 0.0_wp))
             call summary%add_real_or_null('sweep_max_error_bar', &
