@@ -29,6 +29,7 @@ module threshold_run
     use json_writer, only: json_object_t
     use csv_writer, only: csv_writer_t
     use hp_adaptive, only: HP_ESTIMATE
+    use process_exit, only: naming_file
     implicit none
     private
     public :: write_sweep_csv, no_digit_verdict, write_threshold_adapt_csv, add_threshold_keys, &
@@ -126,6 +127,16 @@ contains
         if (.not. allocated(this%res)) allocate (this%res)
         call solve_thresholds(config, prob, .true., this%res, timings, stat)
         if (.not. stat%ok()) return
+        ! a point's loop failed: its failure is the run's, after the partial set is written
+        associate (curve => this%res%sweep)
+            if (.not. curve%failure%ok()) then
+                call this%verdict%fail(curve%failure%code, naming_file( &
+                    curve%failure%message, config%input_file)//' (the sweep stopped there: '// &
+                    'a partial set of the '//to_string(count(curve%complete))//' of '// &
+                    to_string(size(curve%lambda))//' points complete is written)')
+                return
+            end if
+        end associate
         call no_digit_verdict(this, config)
         if (.not. this%verdict%ok()) return
         if (this%res%sweep%n_not_met > 0) call this%verdict%fail(STATUS_NOT_MET, &
@@ -481,7 +492,11 @@ contains
             call summary%add_integer('sweep_n_adapted', size(res%sweep%lambda))
             call summary%add_integer('sweep_n_mesh_reused', res%sweep%n_reused)
             call summary%add_integer('sweep_n_not_met', res%sweep%n_not_met)
-            call summary%add_logical('adapt_converged', res%sweep%n_not_met == 0)
+            call summary%add_logical('adapt_converged', res%sweep%n_not_met == 0 .and. &
+                                     res%sweep%failure%ok())
+            ! a point's loop failed: the rows are those of the points complete before
+            call summary%add_logical('sweep_partial', .not. res%sweep%failure%ok())
+            call summary%add_integer('sweep_n_complete', count(res%sweep%complete))
             call summary%add_real_or_null('sweep_max_error_estimate', &
                 maxval(res%sweep%error_estimate), any(res%sweep%error_estimate >= 0.0_wp))
             call summary%add_real_or_null('sweep_max_error_bar', &
@@ -491,7 +506,7 @@ contains
     end subroutine add_sweep_keys
 
     !> lambda,critical_c_n,critical_c_t,slip_sign,n_positive,error_estimate,n_dofs: one row
-    !> per lambda in input order; c_n and c_t are empty where no positive real mu exists,
+    !> per lambda in input order (of a partial set, per complete point); c_n and c_t are empty where no positive real mu exists,
     !> error_estimate where none was computed (always without &adapt).
     subroutine write_sweep_csv(path, curve, stat)
         character(len=*), intent(in) :: path
@@ -503,6 +518,9 @@ contains
 
         call csv%open(path, SWEEP_HEADER)
         do i = 1, size(curve%lambda)
+            if (allocated(curve%complete)) then
+                if (.not. curve%complete(i)) cycle   ! a partial set: its complete points
+            end if
             values = ','
             if (curve%found(i)) values = real_to_text(curve%mu(i))//','// &
                 real_to_text(critical_c_t(curve%mu(i), curve%lambda(i)))
