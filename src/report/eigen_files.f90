@@ -322,6 +322,8 @@ contains
             ! the headline quotes its bar, absolute: c_n = X +- B
             if (res%error%computed .and. res%error%bar >= 0.0_wp) text = text//' +- '// &
                 short_real_text(res%error%bar*mu)
+            if (res%error%computed .and. res%error%bar >= 1.0_wp) text = text// &
+                ' (no certain digit)'
             text = text//NL// &
                 '  critical c_t = mu |lambda| = '//real_to_text(critical_c_t(mu, res%lambda))// &
                 ', slip sign s = '//to_string(slip_sign(res%lambda))// &
