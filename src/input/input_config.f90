@@ -506,7 +506,9 @@ contains
         end if
         if (len(value) == 0) then
             call stat%fail(STATUS_BAD_INPUT, label//': &'//group//': '//printable(variable) &
-                           //": no value after '=': expected one (an empty text is written '')")
+                           //": no value after '=': expected one")
+            if (is_text_variable(group, variable)) &
+                stat%message = stat%message//" (an empty text is written '')"
             return
         end if
         if (is_text_variable(group, variable) .and. index('"'//"'", value(1:1)) == 0) then
