@@ -173,7 +173,7 @@ input_variable(theta     real    0.25_wp
 input_variable(strategy  name    'h'
                "@: refine cells, or graded meshes with rising degrees (eigen)"
                CHOICES ADAPT_STRATEGIES)
-# cells shrink by sigma per layer
+# cells shrink by sigma per layer; the range is what the geometric meshes can be built with
 input_variable(sigma     real    0.15_wp
-               "hp: grading factor toward the singular points (0 < sigma < 1)")
+               "hp: grading factor toward the singular points (0.01 to 0.5)")
 input_variable(p_max     integer 20            "hp: highest degree of a cell (1 to 20)")
