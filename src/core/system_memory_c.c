@@ -33,7 +33,7 @@ static int count_running_threads(void)
     DIR *tasks = opendir("/proc/self/task");
     if (tasks == NULL) return -1;
     while ((entry = readdir(tasks)) != NULL) {
-        char path[64], text[512], *state;
+        char path[16 + 256 + 8], text[512], *state;   /* "/proc/self/task/" NAME "/stat" */
         FILE *file;
         size_t length;
         if (entry->d_name[0] < '0' || entry->d_name[0] > '9') continue;
