@@ -506,8 +506,9 @@ contains
     end subroutine add_sweep_keys
 
     !> lambda,critical_c_n,critical_c_t,slip_sign,n_positive,error_estimate,n_dofs: one row
-    !> per lambda in input order (of a partial set, per complete point); c_n and c_t are empty where no positive real mu exists,
-    !> error_estimate where none was computed (always without &adapt).
+    !> per lambda in input order (of a partial set, per complete point); c_n and c_t are
+    !> empty where no positive real mu exists, error_estimate where none was computed
+    !> (always without &adapt).
     subroutine write_sweep_csv(path, curve, stat)
         character(len=*), intent(in) :: path
         type(sweep_curve_t), intent(in) :: curve
