@@ -33,14 +33,7 @@ until_line() {
 # random_delay MAX_MS: a random time in [0, MAX_MS) ms, as sleep takes it.
 random_delay() { printf '%d.%03d' $((RANDOM % $1 / 1000)) $((RANDOM % $1 % 1000)); }
 
-# 1. SIGTERM during METIS's nested dissection of 40000 nodes. The ordering's duration is
-# measured first; each signal comes at a random moment of it, after the progress line that
-# precedes it ('B for lambda').
-cat >"$work/order.nml" <<NML
-&mesh nx = 200, ny = 200 /
-&output directory = '$out', plot = .false. /
-NML
-# ordering_ms INPUT N: the time of the N-th ordering of a run of INPUT (from its progress
+# ordering_ms INPUT K: the time of the K-th ordering of a run of INPUT (from its progress
 # line; the run is stopped there).
 ordering_ms() {
     "$nceig" "$1" --set output%directory="$work/full" >"$work/full.out" 2>&1 &
@@ -53,29 +46,46 @@ ordering_ms() {
     ms=$(awk -v n="$2" '/\.\. ordering/ && ++k == n {printf "%d", $3 * 1000}' "$work/full.out")
     echo $((ms > 1 ? ms : 1))
 }
-order_ms=$(ordering_ms "$work/order.nml" 1)
-echo "      the ordering takes $order_ms ms"
+
+# signal_rounds INPUT AFTER K: `rounds` runs of INPUT into $out, each sent SIGTERM at a
+# random moment of its K-th METIS ordering: after the progress line AFTER that precedes it,
+# within the ordering's time measured first (ordering_ms). Counts the signals that came
+# before the ordering ended (n_in_metis), the runs that did not end by the signal
+# (n_bad_status), without their one line (n_bad_line) or without the previous set intact
+# (n_bad_set; it is put back).
+signal_rounds() {
+    local input=$1 after=$2 k=$3 ms i rc pid
+    ms=$(ordering_ms "$input" "$k")
+    echo "      ordering $k of $(basename "$input") takes $ms ms"
+    n_in_metis=0 n_bad_status=0 n_bad_line=0 n_bad_set=0
+    for ((i = 1; i <= rounds; i++)); do
+        "$nceig" "$input" >"$work/run.out" 2>"$work/run.err" &
+        pid=$!
+        until_line "$work/run.out" "$after" "$pid"
+        sleep "$(random_delay "$ms")"
+        kill -TERM "$pid" 2>/dev/null
+        wait "$pid"
+        rc=$?
+        (($(grep -c '\.\. ordering' "$work/run.out") < k)) && n_in_metis=$((n_in_metis + 1))
+        if [[ $rc -ne 143 ]]; then
+            n_bad_status=$((n_bad_status + 1))
+            echo "      round $i: exit $rc: $(head -c 300 "$work/run.err")"
+        fi
+        [[ $(wc -l <"$work/run.err") -eq 1 ]] &&
+            grep -q "^nceig: $input: stopped by SIGTERM$" "$work/run.err" ||
+            n_bad_line=$((n_bad_line + 1))
+        intact || { n_bad_set=$((n_bad_set + 1)); rm -rf "$out"; cp -a "$work/kept" "$out"; }
+    done
+    echo "      $n_in_metis of $rounds signals came before ordering $k ended"
+}
 RANDOM=2718
-n_bad_status=0 n_bad_set=0 n_bad_line=0 n_in_metis=0
-for ((i = 1; i <= rounds; i++)); do
-    "$nceig" "$work/order.nml" >"$work/run.out" 2>"$work/run.err" &
-    pid=$!
-    until_line "$work/run.out" 'B for lambda' "$pid"
-    sleep "$(random_delay "$order_ms")"
-    kill -TERM "$pid" 2>/dev/null
-    wait "$pid"
-    rc=$?
-    grep -q '\.\. ordering' "$work/run.out" || n_in_metis=$((n_in_metis + 1))
-    if [[ $rc -ne 143 ]]; then
-        n_bad_status=$((n_bad_status + 1))
-        echo "      round $i: exit $rc: $(head -c 300 "$work/run.err")"
-    fi
-    [[ $(wc -l <"$work/run.err") -eq 1 ]] &&
-        grep -q "^nceig: $work/order.nml: stopped by SIGTERM$" "$work/run.err" ||
-        n_bad_line=$((n_bad_line + 1))
-    intact || { n_bad_set=$((n_bad_set + 1)); rm -rf "$out"; cp -a "$work/kept" "$out"; }
-done
-echo "      $n_in_metis of $rounds signals came before the ordering ended"
+
+# 1. SIGTERM during METIS's nested dissection of 40000 nodes ('B for lambda' precedes it).
+cat >"$work/order.nml" <<NML
+&mesh nx = 200, ny = 200 /
+&output directory = '$out', plot = .false. /
+NML
+signal_rounds "$work/order.nml" 'B for lambda' 1
 check 'some signals came while METIS ordered' '[[ $n_in_metis -ge 1 ]]'
 check 'SIGTERM during the ordering: exit 143 every time' '[[ $n_bad_status -eq 0 ]]'
 check 'SIGTERM during the ordering: one line naming the input and the signal' \
@@ -85,33 +95,16 @@ check 'SIGTERM during the ordering: the previous set stays, no staging folder' \
 
 # 2. The same in an adaptive run, during the ordering of its second level (after the
 # progress line of that level's refinement): the first level is complete, but a signal
-# commits nothing (it committed the first level, exit 8).
+# commits nothing (it committed the first level, exit 8, or ended with exit 5).
 cat >"$work/adapt.nml" <<NML
 &mesh nx = 100, ny = 100, element = 'p1' /
 &adapt tolerance = 1e-12, max_levels = 1 /
 &output directory = '$out', plot = .false. /
 NML
-order_ms=$(ordering_ms "$work/adapt.nml" 2)
-echo "      the ordering of level 1 takes $order_ms ms"
-n_bad_status=0 n_bad_set=0 n_in_metis=0
-for ((i = 1; i <= rounds; i++)); do
-    "$nceig" "$work/adapt.nml" >"$work/run.out" 2>"$work/run.err" &
-    pid=$!
-    until_line "$work/run.out" 'level 1, ' "$pid"
-    sleep "$(random_delay "$order_ms")"
-    kill -TERM "$pid" 2>/dev/null
-    wait "$pid"
-    rc=$?
-    [[ $(grep -c '\.\. ordering' "$work/run.out") -lt 2 ]] && n_in_metis=$((n_in_metis + 1))
-    if [[ $rc -ne 143 ]]; then
-        n_bad_status=$((n_bad_status + 1))
-        echo "      adaptive round $i: exit $rc: $(head -c 300 "$work/run.err")"
-    fi
-    intact || { n_bad_set=$((n_bad_set + 1)); rm -rf "$out"; cp -a "$work/kept" "$out"; }
-done
-echo "      $n_in_metis of $rounds signals came before the ordering of level 1 ended"
+signal_rounds "$work/adapt.nml" 'level 1, ' 2
 check 'some signals came while METIS ordered level 1' '[[ $n_in_metis -ge 1 ]]'
-check 'SIGTERM in an adaptive loop: exit 143 every time' '[[ $n_bad_status -eq 0 ]]'
+check 'SIGTERM in an adaptive loop: exit 143 and one line every time' \
+    '[[ $n_bad_status -eq 0 && $n_bad_line -eq 0 ]]'
 check 'SIGTERM in an adaptive loop: the previous set stays, nothing committed' \
     '[[ $n_bad_set -eq 0 ]]'
 
