@@ -101,11 +101,15 @@ contains
         character(len=:), allocatable :: text
         real(wp) :: back
         integer :: d, ios
-        do d = 2, 16
+        text = short_real_text(x, 16)   ! 17 digits: every binary64 reads back from them
+        ! (a shorter text of a value near huge may round past it: reading it would overflow)
+        if (.not. abs(x) < 0.1_wp*huge(x)) return
+        do d = 2, 15
             text = short_real_text(x, d)
             read (text, *, iostat=ios) back
             if (ios == 0 .and. abs(back - x) <= 0.0_wp) return
         end do
+        text = short_real_text(x, 16)
     end function given_real_text
 
     !> Seconds with three decimals and a leading zero ('0.042', '12.500') for the summaries.

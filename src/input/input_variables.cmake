@@ -99,7 +99,7 @@ input_variable(matrices  logical .false.       "write K.mtx and B.mtx (Matrix Ma
 input_variable(vtk_format name   'binary'
                "@ ('binary': raw appended data; 'ascii': text)" LEN 8 CHOICES VTK_FORMATS)
 input_variable(plot      logical .true.
-               "draw the pictures (mode_001.png, adapt.png, lambda_sweep.png) with gnuplot")
+               "draw mode_001.png, adapt.png, lambda_sweep.png with gnuplot")
 input_variable(progress  logical .true.
                "a line on stdout as each phase ends (.false.: the final summary only)")
 
@@ -117,7 +117,7 @@ input_variable(lambdas   reals   "huge(1.0_wp)"
                "explicit list (up to {MAX_SWEEP_LAMBDAS}), replaces the range"
                DIM MAX_SWEEP_LAMBDAS SHOWN unset)
 input_variable(plot      logical .true.
-               "draw lambda_sweep.png with gnuplot (and &output plot) when it is installed")
+               "draw lambda_sweep.png with gnuplot (&output plot on too)")
 
 # analysis = 'branch' (model.md section 9): the base solution U and the members U + delta phi
 input_group(branch HEADER "&branch      (kind = 'branch': U + delta phi, docs/model.md 9)")
