@@ -64,10 +64,11 @@ contains
     !> and `layers` levels (see the module's comment); `h_min` returns the size reached at
     !> the points (the largest diameter of the cells touching one). Parts and boundary edges
     !> carry over; any triangle mesh (P1 to P4) is accepted, its higher-order nodes dropped.
-    !> No cell is asked to be smaller than the h_min of the level: a vertex of the input
-    !> mesh a short edge away from a singular point (1e-6 on a side 1 long) otherwise asked
-    !> for cells below its distance, whose bisection put a new vertex nearer still, without
-    !> end. `outcome` (optional): MESH_BELOW_RESOLUTION when h_min is below what binary64
+    !> A cell away from the points is not asked to be smaller than sigma h_min (the size of
+    !> the ring after the last): a vertex of the input mesh a short edge away from a singular
+    !> point (1e-6 on a side 1 long) otherwise asked for cells below its distance, whose
+    !> bisection put a new vertex nearer still, without end. Where no input vertex is that
+    !> near a point no such cell arises, and the mesh is the one the rule alone makes. `outcome` (optional): MESH_BELOW_RESOLUTION when h_min is below what binary64
     !> resolves of the coordinates (RESOLVED; nothing is refined), MESH_OVER_CELLS when the
     !> mesh would exceed `max_cells` (the refinement stops; `graded` is not made), else
     !> MESH_GRADED. Without it, a level below the resolution fails (STATUS_BAD_INPUT).
@@ -84,7 +85,7 @@ contains
         integer, intent(out), optional :: outcome
         type(refinable_mesh_t) :: r
         integer, allocatable :: marked(:)
-        real(wp) :: ratio, h, d
+        real(wp) :: ratio, h, d, floor_size
         integer :: sweep, c, i
 
         if (present(outcome)) outcome = MESH_GRADED
@@ -108,6 +109,9 @@ contains
             return
         end if
         ratio = (1.0_wp - sigma)/sigma
+        ! ring k + 1 would start below h_min: only an input vertex that near a point puts a
+        ! cell there, and refining it toward the point would not end (see above)
+        floor_size = sigma*h_min
         do sweep = 1, MAX_SWEEPS
             allocate (marked(r%n_cells()))
             i = 0
@@ -115,7 +119,8 @@ contains
                 associate (xy => r%coords(:, r%cells(:, c)))
                     h = cell_diameter(xy)
                     d = nearest_point(xy)
-                    if (h > h_min*(1.0_wp + 1.0e-12_wp) .and. (d <= 0.0_wp .or. h > ratio*d)) then
+                    if ((d <= 0.0_wp .and. h > h_min*(1.0_wp + 1.0e-12_wp)) .or. &
+                        (d > 0.0_wp .and. h > ratio*d .and. h > floor_size)) then
                         i = i + 1
                         marked(i) = c
                     end if

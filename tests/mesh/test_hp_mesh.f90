@@ -108,8 +108,8 @@ contains
     end subroutine grading_laws_hold
 
     !> A vertex 1e-6 from a corner (a short input edge, as a Gmsh mesh may have): level 1 is
-    !> graded to h_min = 0.15 h_0 and no cell is asked to be smaller (bisection may overshoot
-    !> by 2): it ends, with few cells. Before, the cells beside that vertex were asked to be
+    !> graded to h_min = 0.15 h_0 and no cell is asked to be smaller than 0.15 h_min
+    !> (bisection may overshoot by 2): it ends, with few cells. Before, the cells beside that vertex were asked to be
     !> below its distance, each bisection put a vertex nearer the corner, and the sweeps
     !> never ended (a hang in the first hp level).
     subroutine vertex_near_a_singular_point(t)
@@ -133,11 +133,12 @@ contains
         do c = 1, graded%n_cells()
             smallest = min(smallest, cell_diameter(graded%coords(:, graded%cells(:, c))))
         end do
-        ! the short edge itself stays (1e-6); every cell the grading made is at least h_min/2
+        ! the short edge itself stays (1e-6); every cell the grading made is at least
+        ! 0.15 h_min / 2
         call t%check('a vertex 1e-6 from a corner: at most 1000 cells, none made below '// &
-                     'h_min / 2 but those of the short edge', graded%n_cells() <= 1000 .and. &
-                     count([(cell_diameter(graded%coords(:, graded%cells(:, c))) < &
-                             0.5_wp*h_min, c=1, graded%n_cells())]) <= 2 .and. &
+                     '0.15 h_min / 2 but those of the short edge', graded%n_cells() <= 1000 &
+                     .and. count([(cell_diameter(graded%coords(:, graded%cells(:, c))) < &
+                                   0.075_wp*h_min, c=1, graded%n_cells())]) <= 2 .and. &
                      smallest >= 1.0e-6_wp)
     end subroutine vertex_near_a_singular_point
 
