@@ -11,7 +11,7 @@
 module hp_adaptive
     use kinds, only: wp
     use status, only: status_t, STATUS_BAD_INPUT
-    use strings, only: to_string, short_real_text
+    use strings, only: to_string, short_real_text, given_real_text
     use timer, only: wall_time, timings_t
     use run_config, only: config_t
     use problem, only: problem_t
@@ -142,7 +142,7 @@ contains
             if (config%adapt%max_levels > 0 .and. layers >= config%adapt%max_levels) then
                 do i = 1, size(lambdas)
                     if (active(i)) outs(i)%outcome = 'tolerance '// &
-                        short_real_text(tolerance)//' not met: max_levels = '// &
+                        given_real_text(tolerance)//' not met: max_levels = '// &
                         to_string(config%adapt%max_levels)//' reached with error bar '// &
                         bar_text(outs(i))
                 end do
@@ -257,7 +257,7 @@ contains
                 end if
                 if (last%error_bar >= 0.0_wp .and. last%error_bar <= tolerance) then
                     out%converged = .true.
-                    out%outcome = 'tolerance '//short_real_text(tolerance)//' met at level '// &
+                    out%outcome = 'tolerance '//given_real_text(tolerance)//' met at level '// &
                         to_string(last%level)//': error bar '//bar_text(out)
                     return
                 end if

@@ -8,14 +8,16 @@
 module hp_levels
     use kinds, only: wp
     use status, only: status_t, STATUS_BAD_INPUT
-    use strings, only: to_string, short_real_text
+    use strings, only: to_string, short_real_text, given_real_text
+    use real_format, only: real_to_text
     use timer, only: timings_t
     use run_config, only: config_t
     use problem, only: problem_t
     use mesh, only: mesh_t
     use element_types, only: element_corners, element_name
     use mesh_singular, only: singular_vertices
-    use mesh_geometric, only: geometric_mesh, cell_layers, layer_degrees
+    use mesh_geometric, only: geometric_mesh, cell_layers, layer_degrees, MESH_GRADED, &
+                              MESH_BELOW_RESOLUTION
     use hp_space, only: hp_space_t, build_hp_space
     use hp_eigen, only: hp_assembled_problem, factor_hp_stiffness
     use sparse_cholesky, only: cholesky_t
@@ -35,6 +37,7 @@ module hp_levels
         integer :: layers = 0                   !! the current level's (0: none yet)
         integer :: max_dofs = 0                 !! a level's free dofs at most
         character(len=:), allocatable :: dof_limit   !! where max_dofs comes from
+        character(len=:), allocatable :: stop_reason   !! why the next level cannot be built
         type(mesh_t) :: graded
         integer, allocatable :: degree(:)       !! per cell of graded
         type(hp_space_t) :: space
@@ -77,9 +80,13 @@ contains
         this%layers = 0
     end subroutine ladder_begin
 
-    !> The next level's graded mesh, degrees and space. `too_big`: it has more free dofs
-    !> than the limit and `solved` levels came before it (the loop stops there); the first
-    !> level over an explicit &adapt max_dofs is refused (STATUS_BAD_INPUT).
+    !> The next level's graded mesh, degrees and space. `too_big`: it cannot be built or
+    !> solved, and `solved` levels came before it (the loop stops there, stop_reason says
+    !> why): more free dofs than the limit, so many cells that it must have (the mesh is
+    !> not finished: a level is at least one dof per CELLS_PER_DOF cells), or cells at the
+    !> singular points below binary64's resolution of the coordinates. The first level
+    !> over an explicit &adapt max_dofs, or over the memory, or below the resolution is
+    !> refused (STATUS_BAD_INPUT): so every loop checks its limits before its first level.
     subroutine ladder_climb(this, config, start, solved, too_big, stat)
         class(hp_ladder_t), intent(inout) :: this
         type(config_t), intent(in) :: config
@@ -87,12 +94,34 @@ contains
         integer, intent(in) :: solved
         logical, intent(out) :: too_big
         type(status_t), intent(out) :: stat
+        !> a P1 mesh has about one free dof per cell (two per node, a node per two cells),
+        !> higher degrees more: a level of more cells than 4 max_dofs is over the limit
+        integer, parameter :: CELLS_PER_DOF = 4
         real(wp) :: h_min
+        integer :: built, max_cells
         too_big = .false.
         this%layers = this%layers + 1
+        max_cells = huge(0)
+        if (this%max_dofs < (huge(0) - start%mesh%n_cells())/CELLS_PER_DOF) &
+            max_cells = CELLS_PER_DOF*this%max_dofs + start%mesh%n_cells()
         call geometric_mesh(start%mesh, this%points, config%adapt%sigma, this%layers, &
-                            this%graded, h_min, stat)
+                            this%graded, h_min, stat, max_cells, built)
         if (.not. stat%ok()) return
+        if (built /= MESH_GRADED) then
+            if (built == MESH_BELOW_RESOLUTION) then
+                this%stop_reason = 'level '//to_string(this%layers)//'''s cells at the '// &
+                    'singular points ('//short_real_text(h_min)//') would be below what '// &
+                    'binary64 resolves of the coordinates'
+            else
+                this%stop_reason = 'level '//to_string(this%layers)//' would have more '// &
+                    'than '//to_string(max_cells)//' cells, more dofs than '//this%dof_limit
+            end if
+            too_big = solved > 0
+            if (solved == 0) call stat%fail(STATUS_BAD_INPUT, config%input_file// &
+                ": &adapt: strategy = 'hp': "//this%stop_reason//" (&adapt sigma = "// &
+                real_to_text(config%adapt%sigma)//'): no level can be solved')
+            return
+        end if
         this%degree = hp_level_degrees(this%graded, this%points, config%adapt%sigma, h_min, &
                                        this%layers, config%adapt%p_max)
         call build_hp_space(this%graded, this%degree, start%dirichlet_parts, this%space, stat)
@@ -105,6 +134,8 @@ contains
             return
         end if
         too_big = this%space%n_free() > this%max_dofs .and. solved > 0
+        this%stop_reason = 'the next level would have '//to_string(this%space%n_free())// &
+            ' dofs, more than '//this%dof_limit
     end subroutine ladder_climb
 
     !> The outcome of a loop stopped because the next level is too big, its last bar
@@ -114,9 +145,8 @@ contains
         real(wp), intent(in) :: tolerance
         character(len=*), intent(in) :: bar_text
         character(len=:), allocatable :: outcome
-        outcome = 'tolerance '//short_real_text(tolerance)//' not met: the next '// &
-            'level would have '//to_string(this%space%n_free())//' dofs, more than '// &
-            this%dof_limit//'; reached error bar '//bar_text
+        outcome = 'tolerance '//given_real_text(tolerance)//' not met: '// &
+            this%stop_reason//'; reached error bar '//bar_text
     end function ladder_limit_outcome
 
     !> The current level as a problem: the graded P1 mesh with the input's parts and

@@ -15,7 +15,7 @@
 module hp_threshold
     use kinds, only: wp, i8
     use status, only: status_t, STATUS_NOT_MET
-    use strings, only: to_string, short_real_text, seconds_text
+    use strings, only: to_string, short_real_text, given_real_text, seconds_text
     use timer, only: wall_time, timings_t, PHASE_REDUCTION
     use run_config, only: config_t
     use problem, only: problem_t
@@ -103,7 +103,7 @@ contains
                                    "strategy = 'hp': "//memory_text())
                     return
                 end if
-                out%adapted%outcome = 'tolerance '//short_real_text(tolerance)// &
+                out%adapted%outcome = 'tolerance '//given_real_text(tolerance)// &
                     ' not met: the next '//memory_text()//'; reached error bar '//bar_text()
                 exit
             end if
@@ -117,7 +117,7 @@ contains
             if (.not. stat%ok()) exit
             if (stop_here()) exit
             if (config%adapt%max_levels > 0 .and. ladder%layers >= config%adapt%max_levels) then
-                out%adapted%outcome = 'tolerance '//short_real_text(tolerance)//' not met: '// &
+                out%adapted%outcome = 'tolerance '//given_real_text(tolerance)//' not met: '// &
                     'max_levels = '//to_string(config%adapt%max_levels)// &
                     ' reached with error bar '//bar_text()
                 exit
@@ -196,7 +196,7 @@ contains
                 if (any(bar < -0.5_wp .and. .not. last%stalled)) return
                 if (all(bar <= tolerance .and. .not. last%stalled)) then
                     out%adapted%converged = .true.
-                    out%adapted%outcome = 'tolerance '//short_real_text(tolerance)// &
+                    out%adapted%outcome = 'tolerance '//given_real_text(tolerance)// &
                         ' met at level '//to_string(last%level)//': error bar '//bar_text()
                     stop_here = .true.
                     return

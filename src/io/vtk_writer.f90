@@ -48,8 +48,10 @@ contains
     !> the .vtu file `path` (replaced), encoded as `format` (VTK_BINARY or VTK_ASCII). The
     !> first field is marked as the active vectors. Inconsistent sizes or an unknown format
     !> give STATUS_INTERNAL, a failed write STATUS_IO naming the file. Optional scalar cell
-    !> fields `cell_values(:, k)` called `cell_names(k)` go to CellData (both or neither).
-    subroutine write_vtu(path, m, names, vectors, format, stat, cell_names, cell_values)
+    !> fields `cell_values(:, k)` called `cell_names(k)` go to CellData (both or neither),
+    !> optional numbers `field_values(k)` called `field_names(k)` to FieldData.
+    subroutine write_vtu(path, m, names, vectors, format, stat, cell_names, cell_values, &
+                         field_names, field_values)
         character(len=*), intent(in) :: path
         type(mesh_t), intent(in) :: m
         character(len=*), intent(in) :: names(:)          !! e.g. 'displacement'
@@ -58,6 +60,10 @@ contains
         type(status_t), intent(out) :: stat
         character(len=*), intent(in), optional :: cell_names(:)    !! e.g. 'error_indicator'
         real(wp), intent(in), optional :: cell_values(:, :)        !! (n_cells, size(cell_names))
+        !> one number each for the whole data set (VTK field data: mu, lambda, nu of a mode)
+        character(len=*), intent(in), optional :: field_names(:)
+        real(wp), intent(in), optional :: field_values(:)
+        character(len=:), allocatable :: fields_xml
         character(len=1024) :: msg
         character(len=128), allocatable :: scalar_names(:)
         real(wp), allocatable :: scalars(:, :)
@@ -78,6 +84,9 @@ contains
             allocate (scalar_names(0))
             allocate (scalars(m%n_cells(), 0))
         end if
+        fields_xml = ''
+        if (present(field_names) .and. present(field_values)) &
+            fields_xml = field_data_xml(field_names, field_values)
         select case (format)
         case (VTK_BINARY)
             call check_binary_support(stat)
@@ -94,9 +103,11 @@ contains
         end select
         if (ios == 0) then
             if (format == VTK_BINARY) then
-                call write_binary_grid(unit, m, names, vectors, scalar_names, scalars, ios, msg)
+                call write_binary_grid(unit, m, names, vectors, scalar_names, scalars, &
+                                       fields_xml, ios, msg)
             else
-                call write_ascii_grid(unit, m, names, vectors, scalar_names, scalars, ios, msg)
+                call write_ascii_grid(unit, m, names, vectors, scalar_names, scalars, &
+                                      fields_xml, ios, msg)
             end if
             call end_output(unit, path, ios, msg)
         end if
@@ -138,6 +149,26 @@ contains
               //'byte_order="'//machine_byte_order()//'" header_type="UInt64">'
     end function xml_prolog
 
+    !> The FieldData block (before the Piece: it belongs to the whole data set) of one
+    !> Float64 value per name, inline text in either encoding (VTK reads a mix of inline and
+    !> appended arrays); '' when there is none. Each line ends with LF.
+    pure function field_data_xml(names, values) result(xml)
+        character(len=*), intent(in) :: names(:)
+        real(wp), intent(in) :: values(:)
+        character(len=:), allocatable :: xml
+        character(len=40) :: number
+        integer :: k
+        xml = ''
+        if (size(names) == 0) return
+        xml = '    <FieldData>'//LF
+        do k = 1, min(size(names), size(values))
+            write (number, REAL_FORMAT) values(k)
+            xml = xml//'      <DataArray type="Float64" Name="'//xml_escaped(trim(names(k)))// &
+                  '" NumberOfTuples="1" format="ascii">'//trim(number)//' </DataArray>'//LF
+        end do
+        xml = xml//'    </FieldData>'//LF
+    end function field_data_xml
+
     pure function piece_tag(m) result(tag)
         type(mesh_t), intent(in) :: m
         character(len=:), allocatable :: tag
@@ -165,11 +196,13 @@ contains
     !> The XML with every array in the appended section, laid out as
     !> `_ n1 data1 n2 data2 ...`, each n a UInt64 byte count in the machine's byte order.
     !> Returns at the first failed write with its iostat and message.
-    subroutine write_binary_grid(unit, m, names, vectors, cell_names, cell_values, ios, msg)
+    subroutine write_binary_grid(unit, m, names, vectors, cell_names, cell_values, fields_xml, &
+                                 ios, msg)
         integer, intent(in) :: unit
         type(mesh_t), intent(in) :: m
         character(len=*), intent(in) :: names(:), cell_names(:)
         real(wp), intent(in) :: vectors(:, :, :), cell_values(:, :)
+        character(len=*), intent(in) :: fields_xml   !! field_data_xml's block, or ''
         integer, intent(out) :: ios
         character(len=*), intent(inout) :: msg
         integer(i8) :: bytes(size(names) + size(cell_names) + 4)
@@ -206,7 +239,7 @@ contains
             offset(k + 1) = offset(k) + HEADER_BYTES + bytes(k)
         end do
 
-        xml = xml_prolog()//LF//'  <UnstructuredGrid>'//LF//piece_tag(m)//LF
+        xml = xml_prolog()//LF//'  <UnstructuredGrid>'//LF//fields_xml//piece_tag(m)//LF
         if (n_fields > 0) then
             xml = xml//'      <PointData Vectors="'//xml_escaped(trim(names(1)))//'">'//LF
             do k = 1, n_fields
@@ -346,19 +379,25 @@ contains
 
     !> The XML with every value as text; returns at the first failed write with its iostat
     !> and message.
-    subroutine write_ascii_grid(unit, m, names, vectors, cell_names, cell_values, ios, msg)
+    subroutine write_ascii_grid(unit, m, names, vectors, cell_names, cell_values, fields_xml, &
+                                ios, msg)
         integer, intent(in) :: unit
         type(mesh_t), intent(in) :: m
         character(len=*), intent(in) :: names(:), cell_names(:)
         real(wp), intent(in) :: vectors(:, :, :), cell_values(:, :)
+        character(len=*), intent(in) :: fields_xml   !! field_data_xml's block, or ''
         integer, intent(out) :: ios
         character(len=*), intent(inout) :: msg
         integer, allocatable :: order(:)
         integer(i8), allocatable :: offsets(:)
         integer :: e, k
 
-        write (unit, '(a)', iostat=ios, iomsg=msg) xml_prolog(), '  <UnstructuredGrid>', &
-            piece_tag(m)
+        write (unit, '(a)', iostat=ios, iomsg=msg) xml_prolog(), '  <UnstructuredGrid>'
+        if (ios /= 0) return
+        if (len(fields_xml) > 0) &
+            write (unit, '(a)', iostat=ios, iomsg=msg, advance='no') fields_xml
+        if (ios /= 0) return
+        write (unit, '(a)', iostat=ios, iomsg=msg) piece_tag(m)
         if (ios /= 0) return
 
         if (size(names) > 0) then

@@ -18,7 +18,7 @@ module adaptive_loop
     use kinds, only: wp, i8
     use status, only: status_t, STATUS_BAD_INPUT
     use system_memory, only: available_memory_bytes
-    use strings, only: to_string, short_real_text
+    use strings, only: to_string, short_real_text, given_real_text
     use timer, only: wall_time, timings_t, PHASE_ASSEMBLY
     use run_config, only: config_t
     use mesh, only: mesh_t
@@ -116,7 +116,7 @@ contains
         element = start%mesh%element
         if (enriched_element(element) == 0) then
             call stat%fail(STATUS_BAD_INPUT, config%input_file//': &adapt: tolerance = '// &
-                short_real_text(config%adapt%tolerance)//': expected 0 for '// &
+                given_real_text(config%adapt%tolerance)//': expected 0 for '// &
                 element_name(element)//' cells (adaptation refines triangles p1, p2 or p3)')
             return
         end if
@@ -147,7 +147,7 @@ contains
             ! it (a collision onset's estimate at h = 1/8 was 0.09 times its true error)
             if (error <= config%adapt%tolerance .and. level >= 1) then
                 converged = .true.
-                outcome = 'tolerance '//short_real_text(config%adapt%tolerance)// &
+                outcome = 'tolerance '//given_real_text(config%adapt%tolerance)// &
                     ' met at level '//to_string(level)//': error bar '// &
                     short_real_text(error)//', '//to_string(prob%dofs%n_free)//' dofs'
                 exit
@@ -159,7 +159,7 @@ contains
                 exit
             end if
             if (config%adapt%max_levels > 0 .and. level >= config%adapt%max_levels) then
-                outcome = 'tolerance '//short_real_text(config%adapt%tolerance)// &
+                outcome = 'tolerance '//given_real_text(config%adapt%tolerance)// &
                     ' not met: max_levels = '//to_string(config%adapt%max_levels)// &
                     ' reached with error bar '//short_real_text(error)//' at '// &
                     to_string(prob%dofs%n_free)//' dofs'
@@ -175,7 +175,7 @@ contains
                 to_string(level + 1)//', '//to_string(size(marked))//' cells marked, '// &
                 to_string(refined%n_cells())//' cells, '//to_string(next%dofs%n_free)//' dofs')
             if (next%dofs%n_free > max_dofs) then
-                outcome = 'tolerance '//short_real_text(config%adapt%tolerance)// &
+                outcome = 'tolerance '//given_real_text(config%adapt%tolerance)// &
                     ' not met: the next level would have '//to_string(next%dofs%n_free)// &
                     ' dofs, more than '//dof_limit// &
                     '; reached error bar '//short_real_text(error)//' at '// &

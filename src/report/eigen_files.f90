@@ -14,7 +14,7 @@ module eigen_files
     use problem, only: problem_t
     use eigen_analysis, only: eigen_result_t, solver_name, operator_name, critical_cn
     use critical_point, only: slip_sign, critical_c_t
-    use spectrum, only: spectrum_t, kind_name, KIND_COMPLEX
+    use spectrum, only: spectrum_t, kind_name, KIND_COMPLEX, KIND_POSITIVE
     use output_stage, only: output_stage_t
     use json_writer, only: json_object_t
     use csv_writer, only: csv_writer_t
@@ -24,10 +24,12 @@ module eigen_files
     use pictures, only: draw_mode
     use blas_info, only: blas_in_use
     use error_estimate, only: error_estimate_t, estimate_label
+    use hp_adaptive, only: HP_ESTIMATE
     implicit none
     private
     public :: eigen_summary_json, no_eigen_summary_json, summary_lines, &
-              write_eigenvalues_csv, write_modes, write_eigen_files
+              write_eigenvalues_csv, write_modes, write_eigen_files, modes_to_write, &
+              mode_field_names, mode_field_values
 
 contains
 
@@ -79,7 +81,7 @@ contains
         call summary%add_string('analysis', trim(config%analysis%kind))
         call summary%add_real('lambda', lambda)
         ! From the mesh: a Gmsh file decides its element type, not &mesh element.
-        call summary%add_string('element', element_name(prob%mesh%element))
+        call summary%add_string('element', mesh_element(config, prob))
         call summary%add_string('mesh_source', trim(config%mesh%source))
         if (config%mesh%source == 'rectangle') then
             call summary%add_integer('nx', config%mesh%nx)
@@ -196,10 +198,40 @@ contains
         call csv%close(stat)
     end subroutine write_eigenvalues_csv
 
+    !> How many modes of `spec` a run writes (mode files, and mode_001.png when at least one):
+    !> the first &output modes; for 'threshold' and 'lambda_sweep', whose modes are those of
+    !> the critical c_n, only the positive real mu among them (they come first), so none at
+    !> a lambda without a positive mu.
+    pure integer function modes_to_write(config, spec)
+        type(config_t), intent(in) :: config
+        type(spectrum_t), intent(in) :: spec
+        modes_to_write = max(0, min(config%output%modes, size(spec%vectors, 2)))
+        if (trim(config%analysis%kind) == 'threshold' .or. &
+            trim(config%analysis%kind) == 'lambda_sweep') &
+            modes_to_write = min(modes_to_write, count(spec%kind == KIND_POSITIVE))
+    end function modes_to_write
+
+    !> The field data of a mode file: what the mode is the mode of.
+    pure function mode_field_names() result(names)
+        character(len=7) :: names(4)
+        names = [character(len=7) :: 'mu', 'mu_imag', 'lambda', 'nu']
+    end function mode_field_names
+
+    !> mu (its real and imaginary parts, in the input's units) of mode i of `spec`, at
+    !> `lambda` for the material of Poisson ratio `nu`, in mode_field_names' order.
+    pure function mode_field_values(spec, i, lambda, nu) result(values)
+        type(spectrum_t), intent(in) :: spec
+        integer, intent(in) :: i
+        real(wp), intent(in) :: lambda, nu
+        real(wp) :: values(4)
+        values = [real(spec%mu(i), wp), aimag(spec%mu(i)), lambda, nu]
+    end function mode_field_values
+
     !> mode_001.vtu ...: displacement (real part) and, for complex modes, displacement_imag;
     !> the mode of the lowest positive mu gets the cell data error_indicator when `error`
-    !> holds its estimate (eta_K relative to mu, see error_estimate).
-    subroutine write_modes(stage, prob, spec, n_modes, vtk_format, stat, error)
+    !> holds its estimate (eta_K relative to mu, see error_estimate); every file the field
+    !> data mu, mu_imag, lambda (the run's, `lambda`) and nu.
+    subroutine write_modes(stage, prob, spec, n_modes, vtk_format, stat, error, lambda)
         type(output_stage_t), intent(inout) :: stage
         type(problem_t), intent(in) :: prob
         type(spectrum_t), intent(in) :: spec
@@ -207,6 +239,7 @@ contains
         character(len=*), intent(in) :: vtk_format   !! VTK_BINARY or VTK_ASCII
         type(status_t), intent(out) :: stat
         type(error_estimate_t), intent(in), optional :: error
+        real(wp), intent(in) :: lambda
         character(len=*), parameter :: FIELD_NAMES(2) = [character(len=17) :: &
                                                           'displacement', 'displacement_imag']
         real(wp), allocatable :: fields(:, :, :)
@@ -227,10 +260,13 @@ contains
                 call write_vtu(path, prob%mesh, &
                                FIELD_NAMES(1:size(fields, 3)), fields, vtk_format, stat, &
                                ['error_indicator'], reshape(error%indicators, &
-                                                            [size(error%indicators), 1]))
+                                                            [size(error%indicators), 1]), &
+                               mode_field_names(), &
+                               mode_field_values(spec, i, lambda, prob%poisson))
             else
                 call write_vtu(path, prob%mesh, FIELD_NAMES(1:size(fields, 3)), fields, &
-                               vtk_format, stat)
+                               vtk_format, stat, field_names=mode_field_names(), &
+                               field_values=mode_field_values(spec, i, lambda, prob%poisson))
             end if
             deallocate (fields)
             if (.not. stat%ok()) return
@@ -247,6 +283,17 @@ contains
         end function with_indicators
     end subroutine write_modes
 
+    !> The element of the run: its name, or 'hp' for an hp run, whose graded mesh carries a
+    !> degree per cell (the p1 of its geometry is not the element solved).
+    function mesh_element(config, prob) result(name)
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(in) :: prob
+        character(len=:), allocatable :: name
+        name = element_name(prob%mesh%element)
+        if (config%adapt%tolerance > 0.0_wp .and. trim(config%adapt%strategy) == 'hp') &
+            name = 'hp'
+    end function mesh_element
+
     !> The human summary: mesh, sizes, the headline eigenvalue and the time of each phase.
     function summary_lines(config, prob, res, timings, plot_note) result(text)
         type(config_t), intent(in) :: config
@@ -261,7 +308,7 @@ contains
         real(wp), allocatable :: critical(:)
 
         text = 'nceig '//NCEIG_VERSION//': '//config%input_file//NL// &
-            '  mesh        '//trim(config%mesh%source)//', '//element_name(prob%mesh%element)// &
+            '  mesh        '//trim(config%mesh%source)//', '//mesh_element(config, prob)// &
             ', '//to_string(prob%mesh%n_cells())//' cells, '//to_string(prob%mesh%n_nodes())// &
             ' nodes'//NL// &
             '  problem     '//to_string(prob%dofs%n_free)//' dofs, '// &
@@ -275,14 +322,26 @@ contains
             ! the headline quotes its bar, absolute: c_n = X +- B
             if (res%error%computed .and. res%error%bar >= 0.0_wp) text = text//' +- '// &
                 short_real_text(res%error%bar*mu)
+            if (res%error%computed .and. res%error%bar >= 1.0_wp) text = text// &
+                ' (no certain digit)'
             text = text//NL// &
                 '  critical c_t = mu |lambda| = '//real_to_text(critical_c_t(mu, res%lambda))// &
                 ', slip sign s = '//to_string(slip_sign(res%lambda))// &
                 ' (u_t '//merge('< 0', '> 0', slip_sign(res%lambda) < 0)//' along t)'//NL
-            if (res%error%computed) text = text//'  relative error estimate of mu: '// &
-                short_real_text(abs(res%error%relative))//' ('// &
-                estimate_label(res%error)//'); error bar '// &
-                short_real_text(res%error%bar)//NL
+            if (res%error%computed) then
+                if (estimate_label(res%error) == HP_ESTIMATE) then
+                    ! the change is the previous level's error: the bar may be below it
+                    text = text//'  relative change of mu to the previous hp level: '// &
+                        short_real_text(abs(res%error%relative))// &
+                        ' (the error of that level); error bar '// &
+                        short_real_text(res%error%bar)//NL
+                else
+                    text = text//'  relative error estimate of mu: '// &
+                        short_real_text(abs(res%error%relative))//' ('// &
+                        estimate_label(res%error)//'); error bar '// &
+                        short_real_text(res%error%bar)//NL
+                end if
+            end if
             if (allocated(res%error%skipped)) text = text//'  relative error estimate of mu: '// &
                 res%error%skipped//NL
             if (res%roundoff >= 0.0_wp) then
@@ -336,12 +395,18 @@ contains
         call stage%add('eigenvalues.csv', path)
         call write_eigenvalues_csv(path, res%spec, stat, res%error)
         if (stat%ok() .and. config%output%vtk) call write_modes(stage, prob, res%spec, &
-            config%output%modes, trim(config%output%vtk_format), stat, res%error)
+            modes_to_write(config, res%spec), trim(config%output%vtk_format), stat, &
+            res%error, res%lambda)
         if (stat%ok() .and. config%output%matrices) call write_matrices(stage, prob, res, stat)
         if (.not. present(plot_note)) return
         plot_note = ''
-        if (stat%ok() .and. config%output%plot .and. config%output%modes > 0 .and. &
-            size(res%spec%vectors, 2) > 0) call draw_first_mode(stage, config, prob, res, plot_note)
+        if (.not. (stat%ok() .and. config%output%plot)) return
+        if (modes_to_write(config, res%spec) > 0) then
+            call draw_first_mode(stage, config, prob, res, plot_note)
+        else if (config%output%modes > 0 .and. size(res%spec%vectors, 2) > 0) then
+            plot_note = 'none, and no mode file: no positive mu at lambda = '// &
+                real_to_text(res%lambda)//' (a threshold or sweep run writes those only)'
+        end if
     end subroutine write_eigen_files
 
     !> K.mtx and B.mtx of the input problem: prob%k and res%b are in prob%units (powers of

@@ -16,7 +16,8 @@ module hp_adapt_run
     use problem, only: problem_t
     use analysis_base, only: analysis_t
     use hp_adaptive, only: hp_adapt_eigen, hp_result_t
-    use eigen_files, only: eigen_summary_json, summary_lines, write_eigenvalues_csv
+    use eigen_files, only: eigen_summary_json, summary_lines, write_eigenvalues_csv, &
+                           modes_to_write, mode_field_names, mode_field_values
     use adapt_files, only: add_adapt_keys, write_adapted_mesh
     use output_stage, only: output_stage_t
     use json_writer, only: json_object_t
@@ -80,7 +81,7 @@ contains
         call stage%add('eigenvalues.csv', path)
         call write_eigenvalues_csv(path, this%out%res%spec, stat, this%out%res%error)
         if (stat%ok() .and. config%output%vtk) call write_hp_modes(stage, config, &
-            this%out%prob, this%out%space, this%out%res%spec, stat)
+            this%out%prob, this%out%space, this%out%res%spec, this%out%res%lambda, stat)
         if (stat%ok()) then
             call stage%add('adapt.csv', path)
             call write_hp_adapt_csv(path, this%out, stat)
@@ -104,21 +105,22 @@ contains
                                           this%start_dofs, this%out%levels, this%picture_note)
     end subroutine hp_run_write_files
 
-    !> mode_NNN.vtu: the real part of each kept mode of `spec` (on the hp problem `prob`
-    !> with space `space`), sampled on the sub-triangulation of hp_field, with each
-    !> sub-cell's degree.
-    subroutine write_hp_modes(stage, config, prob, space, spec, stat)
+    !> mode_NNN.vtu: the real part of each kept mode (modes_to_write) of `spec` (on the hp
+    !> problem `prob` with space `space`, at `lambda`), sampled on the sub-triangulation of
+    !> hp_field, with each sub-cell's degree and the field data of eigen_files' modes.
+    subroutine write_hp_modes(stage, config, prob, space, spec, lambda, stat)
         type(output_stage_t), intent(inout) :: stage
         type(config_t), intent(in) :: config
         type(problem_t), intent(in) :: prob
         type(hp_space_t), intent(in) :: space
         type(spectrum_t), intent(in) :: spec
+        real(wp), intent(in) :: lambda
         type(status_t), intent(out) :: stat
         type(mesh_t) :: sub
         real(wp), allocatable :: values(:, :), degree(:), mode(:)
         integer :: i
         character(len=:), allocatable :: path
-        do i = 1, min(config%output%modes, size(spec%vectors, 2))
+        do i = 1, modes_to_write(config, spec)
             mode = real(spec%vectors(:, i), wp)
             call sample_hp_field(prob%mesh, space, prob%young, prob%poisson, &
                                  mode, sub, values, degree, stat)
@@ -127,7 +129,8 @@ contains
             call write_vtu(path, sub, &
                            ['displacement'], reshape(values, [2, size(values, 2), 1]), &
                            trim(config%output%vtk_format), stat, ['degree'], &
-                           reshape(degree, [size(degree), 1]))
+                           reshape(degree, [size(degree), 1]), mode_field_names(), &
+                           mode_field_values(spec, i, lambda, prob%poisson))
             if (.not. stat%ok()) return
         end do
     end subroutine write_hp_modes

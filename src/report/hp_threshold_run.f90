@@ -69,7 +69,8 @@ contains
         call stage%add('eigenvalues.csv', path)
         call write_eigenvalues_csv(path, this%res%eigen%spec, stat, this%res%eigen%error)
         if (stat%ok() .and. config%output%vtk) call write_hp_modes(stage, config, &
-            this%out%adapted%prob, this%out%space, this%res%eigen%spec, stat)
+            this%out%adapted%prob, this%out%space, this%res%eigen%spec, this%res%eigen%lambda, &
+            stat)
         do i = 1, size(extra)
             extra(i) = ','//to_string(this%out%layers(i))//','// &
                        to_string(this%out%p_min(i))//','//to_string(this%out%p_max(i))

@@ -28,10 +28,12 @@ module threshold_run
     use output_stage, only: output_stage_t
     use json_writer, only: json_object_t
     use csv_writer, only: csv_writer_t
+    use hp_adaptive, only: HP_ESTIMATE
+    use process_exit, only: naming_file
     implicit none
     private
     public :: write_sweep_csv, no_digit_verdict, write_threshold_adapt_csv, add_threshold_keys, &
-              threshold_summary_lines
+              threshold_summary_lines, boundary_lines
 
     character(len=*), parameter :: SWEEP_FILE = 'lambda_sweep.csv'
     character(len=*), parameter :: SWEEP_HEADER = &
@@ -125,6 +127,16 @@ contains
         if (.not. allocated(this%res)) allocate (this%res)
         call solve_thresholds(config, prob, .true., this%res, timings, stat)
         if (.not. stat%ok()) return
+        ! a point's loop failed: its failure is the run's, after the partial set is written
+        associate (curve => this%res%sweep)
+            if (.not. curve%failure%ok()) then
+                call this%verdict%fail(curve%failure%code, naming_file( &
+                    curve%failure%message, config%input_file)//' (the sweep stopped there: '// &
+                    'a partial set of the '//to_string(count(curve%complete))//' of '// &
+                    to_string(size(curve%lambda))//' points complete is written)')
+                return
+            end if
+        end associate
         call no_digit_verdict(this, config)
         if (.not. this%verdict%ok()) return
         if (this%res%sweep%n_not_met > 0) call this%verdict%fail(STATUS_NOT_MET, &
@@ -480,6 +492,11 @@ contains
             call summary%add_integer('sweep_n_adapted', size(res%sweep%lambda))
             call summary%add_integer('sweep_n_mesh_reused', res%sweep%n_reused)
             call summary%add_integer('sweep_n_not_met', res%sweep%n_not_met)
+            call summary%add_logical('adapt_converged', res%sweep%n_not_met == 0 .and. &
+                                     res%sweep%failure%ok())
+            ! a point's loop failed: the rows are those of the points complete before
+            call summary%add_logical('sweep_partial', .not. res%sweep%failure%ok())
+            call summary%add_integer('sweep_n_complete', count(res%sweep%complete))
             call summary%add_real_or_null('sweep_max_error_estimate', &
                 maxval(res%sweep%error_estimate), any(res%sweep%error_estimate >= 0.0_wp))
             call summary%add_real_or_null('sweep_max_error_bar', &
@@ -489,8 +506,9 @@ contains
     end subroutine add_sweep_keys
 
     !> lambda,critical_c_n,critical_c_t,slip_sign,n_positive,error_estimate,n_dofs: one row
-    !> per lambda in input order; c_n and c_t are empty where no positive real mu exists,
-    !> error_estimate where none was computed (always without &adapt).
+    !> per lambda in input order (of a partial set, per complete point); c_n and c_t are
+    !> empty where no positive real mu exists, error_estimate where none was computed
+    !> (always without &adapt).
     subroutine write_sweep_csv(path, curve, stat)
         character(len=*), intent(in) :: path
         type(sweep_curve_t), intent(in) :: curve
@@ -501,6 +519,9 @@ contains
 
         call csv%open(path, SWEEP_HEADER)
         do i = 1, size(curve%lambda)
+            if (allocated(curve%complete)) then
+                if (.not. curve%complete(i)) cycle   ! a partial set: its complete points
+            end if
             values = ','
             if (curve%found(i)) values = real_to_text(curve%mu(i))//','// &
                 real_to_text(critical_c_t(curve%mu(i), curve%lambda(i)))
@@ -575,9 +596,17 @@ contains
                     if (res%estimate%halved_mesh) s = ', halved mesh'
                     s = element_name(res%estimate%element)//s
                 end if
-                s = NL//'              relative error estimate '// &
-                    short_real_text(abs(res%estimate%relative(side)))//' ('//s//'); error bar '// &
-                    short_real_text(res%estimate%bar(side))
+                if (s == HP_ESTIMATE) then
+                    ! the change is the previous level's error: the bar may be below it
+                    s = NL//'              relative change to the previous hp level '// &
+                        short_real_text(abs(res%estimate%relative(side)))// &
+                        ' (the error of that level); error bar '// &
+                        short_real_text(res%estimate%bar(side))
+                else
+                    s = NL//'              relative error estimate '// &
+                        short_real_text(abs(res%estimate%relative(side)))//' ('//s// &
+                        '); error bar '//short_real_text(res%estimate%bar(side))
+                end if
             else if (len_trim(res%estimate%skipped(side)) > 0) then
                 s = NL//'              relative error estimate '//trim(res%estimate%skipped(side))
             end if
@@ -594,7 +623,7 @@ contains
 
         text = NL//'  boundary    of {lambda : a positive mu exists} in ['// &
             real_to_text(set%lambda_min)//', '//real_to_text(set%lambda_max)//']: '// &
-            to_string(size(set%points))//' points'
+            to_string(size(set%points))//trim(merge(' point ', ' points', size(set%points) == 1))
         if (set%scan_contact /= set%contact) text = text//' (scanned on a coarser level, '// &
             to_string(set%scan_contact)//' contact functions; located on this one)'
         do i = 1, size(set%points)
@@ -602,11 +631,18 @@ contains
                 text = text//NL//'              lambda = '//real_to_text(b%lambda)
                 if (b%error_bar >= 0.0_wp) text = text//' +- '// &
                     short_real_text(b%error_bar*abs(b%lambda))
-                text = text//' '// &
-                    trim(MECHANISM_NAMES(b%mechanism))//', positive mu '// &
-                    trim(merge('appears ', 'vanishes', b%appears))//' as lambda increases ('// &
-                    to_string(b%n_below)//' -> '//to_string(b%n_above)//'), '// &
-                    trim(merge('confirmed    ', 'NOT confirmed', b%confirmed))
+                text = text//' '//trim(MECHANISM_NAMES(b%mechanism))//', '
+                if (b%n_below == b%n_above) then
+                    ! no change of the count across it: neither appears nor vanishes
+                    text = text//'the count of positive mu is '//to_string(b%n_below)// &
+                        ' on both sides, '
+                else
+                    text = text//'positive mu '// &
+                        trim(merge('appears ', 'vanishes', b%appears))// &
+                        ' as lambda increases ('//to_string(b%n_below)//' -> '// &
+                        to_string(b%n_above)//'), '
+                end if
+                text = text//trim(merge('confirmed    ', 'NOT confirmed', b%confirmed))
             end associate
         end do
         call positive_intervals(set, lower, upper)

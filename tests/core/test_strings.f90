@@ -1,12 +1,15 @@
 ! SPDX-License-Identifier: MIT
 !> The text conversions every message uses: integers of both kinds round-trip exactly
 !> (extremes included), reals to the digits they promise, and the name lists split, join
-!> and normalise as the input file and the mesh reader expect.
+!> and normalise as the input file and the mesh reader expect; given_real_text gives the
+!> fewest digits, three at least, that read back to the value given (a tolerance of
+!> 0.999999 was printed 1.00E+00, which reads back as 1): read back and compared bit for bit.
 program test_strings
     use kinds, only: wp, i8
     use ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use iso_c_binding, only: c_char
-    use strings, only: to_string, zero_padded, short_real_text, seconds_text, lowercase, &
+    use strings, only: to_string, zero_padded, short_real_text, given_real_text, seconds_text, &
+                       lowercase, &
                        split_names, split_words, count_names, normalized_list, quoted, &
                        one_of, joined, from_c_chars, printable, append_text, text_t, &
                        NAME_LEN, LIST_LEN, SHOWN_LEN
@@ -21,6 +24,9 @@ program test_strings
     call check_names()
     call check_lists()
     call check_texts()
+    call three_digits_where_they_suffice()
+    call more_digits_where_three_round()
+    call every_text_reads_back()
     call t%report()
 
 contains
@@ -150,4 +156,33 @@ contains
                      .and. texts(1)%text == 'first' .and. len(texts(2)%text) == 0 .and. &
                      texts(3)%text == 'third one')
     end subroutine check_texts
+
+    subroutine three_digits_where_they_suffice()
+        call t%check('1e-8, 0.25 and 1e-300 keep the three digits of short_real_text', &
+                     given_real_text(1.0e-8_wp) == '1.00E-08' .and. &
+                     given_real_text(0.25_wp) == short_real_text(0.25_wp) .and. &
+                     given_real_text(1.0e-300_wp) == '1.00E-300')
+    end subroutine three_digits_where_they_suffice
+
+    subroutine more_digits_where_three_round()
+        call t%check('0.999999 is 9.99999E-01, not 1.00E+00; 1.23456789e-5 all nine digits', &
+                     given_real_text(0.999999_wp) == '9.99999E-01' .and. &
+                     given_real_text(1.23456789e-5_wp) == '1.23456789E-05')
+    end subroutine more_digits_where_three_round
+
+    subroutine every_text_reads_back()
+        real(wp), parameter :: VALUES(5) = [0.1_wp, 1.0_wp/3.0_wp, 0.999999_wp, 7.0e-13_wp, &
+                                            huge(1.0_wp)]
+        character(len=:), allocatable :: text
+        real(wp) :: back
+        logical :: ok
+        integer :: i, ios
+        ok = .true.
+        do i = 1, size(VALUES)
+            text = given_real_text(VALUES(i))
+            read (text, *, iostat=ios) back
+            ok = ok .and. ios == 0 .and. abs(back - VALUES(i)) <= 0.0_wp
+        end do
+        call t%check('the text of 0.1, 1/3, 0.999999, 7e-13 and huge reads back exactly', ok)
+    end subroutine every_text_reads_back
 end program test_strings

@@ -12,6 +12,8 @@ program test_threshold_run
     use mesh, only: mesh_t
     use analysis_base, only: analysis_t
     use csv_table, only: csv_table_t, read_csv_table
+    use critical_set, only: critical_set_t
+    use threshold_run, only: boundary_lines
     use filesystem, only: remove_tree
     use fixtures, only: single_element_scene, single_element_mu, single_element_lambda_minus, &
                         adaptive_scene, run_checked, json_real, json_value, listed_files, &
@@ -24,6 +26,7 @@ program test_threshold_run
     t%name = 'test_threshold_run'
     call remove_tree(OUT)
     call single_element_threshold(t)
+    call boundary_lines_say_the_counts(t)
     call single_element_sweep(t)
     call adapted_thresholds_hold_the_truth(t)
     call adapted_thresholds_not_met(t)
@@ -53,7 +56,39 @@ contains
                            json_real(summary, 'lowest_positive_mu'), 105.0_wp/208.0_wp, 1.0e-13_wp)
         call t%check('threshold: the report says there is no lambda+', &
                      index(report, 'none (no real eigenvalue of Kt_nn x = lambda Kt_nt x > 0)') > 0)
+        call t%check('threshold: one boundary point, said so in the singular ("1 points")', &
+                     index(report, ': 1 point'//new_line('a')) > 0 .and. &
+                     index(report, '1 points') == 0)
     end subroutine single_element_threshold
+
+    !> A point across which the count of positive mu does not change (0 and 0: not confirmed)
+    !> neither appears nor vanishes: its line says the counts, not '(0 -> 0)' after
+    !> 'positive mu vanishes'; a point from 1 to 0 keeps its wording.
+    subroutine boundary_lines_say_the_counts(t)
+        type(test_suite_t), intent(inout) :: t
+        type(critical_set_t) :: set
+        character(len=:), allocatable :: text
+        set%lambda_min = -20.0_wp
+        set%lambda_max = 20.0_wp
+        set%positive_at_min = .true.
+        allocate (set%points(2))
+        set%points(1)%lambda = -2.0_wp
+        set%points(1)%n_below = 1
+        set%points(1)%n_above = 0
+        set%points(1)%appears = .false.
+        set%points(1)%confirmed = .true.
+        set%points(2)%lambda = 3.0_wp
+        set%points(2)%n_below = 0
+        set%points(2)%n_above = 0
+        set%points(2)%appears = .false.
+        text = boundary_lines(set)
+        call t%check('boundary lines: 0 and 0 are said as such, no "(0 -> 0)"', &
+                     index(text, 'the count of positive mu is 0 on both sides, NOT confirmed') &
+                     > 0 .and. index(text, '(0 -> 0)') == 0)
+        call t%check('boundary lines: 1 -> 0 still vanishes', &
+                     index(text, 'positive mu vanishes as lambda increases (1 -> 0), confirmed') &
+                     > 0 .and. index(text, ': 2 points') > 0)
+    end subroutine boundary_lines_say_the_counts
 
     !> A sweep over the list -5, -3, -2, -1, 2: lambda_sweep.csv has one row per lambda in
     !> input order, critical_c_n the closed form where lambda < lambda- (1e-13) and empty
