@@ -156,8 +156,12 @@ contains
                 return
             end if
         end do
-        r%edge_part = m%edge_part
-        r%part_names = m%part_names
+        ! sourced allocation, not assignment, into the intent(out) record: gfortran 12's
+        ! reallocation reads the unallocated component's stale bounds, which
+        ! -fsanitize=undefined reports as an overflow (now and then, as the stack holds)
+        allocate (r%edge_part, source=m%edge_part)
+        allocate (r%part_names, source=m%part_names)
+        allocate (r%parent(m%n_cells()))
         r%parent = [(c, c=1, m%n_cells())]
 
         call build_edge_table(r%cells, n_vertices, table)
@@ -356,9 +360,9 @@ contains
         allocate (m%part_names, source=this%part_names)
         allocate (m%edge_part, source=this%edge_part)
         if (element == ELEMENT_P1) then
-            m%coords = this%coords
-            m%cells = this%cells
-            m%edges = this%edges
+            allocate (m%coords, source=this%coords)
+            allocate (m%cells, source=this%cells)
+            allocate (m%edges, source=this%edges)
             return
         end if
 
