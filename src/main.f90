@@ -11,11 +11,13 @@ program nceig
     use strings, only: to_string
     use run_config, only: config_t
     use input_config, only: read_input
+    use run_inputs, only: run_inputs_t, translate_input
     use command_line, only: command_t, read_command_line
     use input_help, only: help_text
     use problem, only: problem_t, build_problem
-    use analysis_base, only: analysis_t, run_analysis
+    use analysis_base, only: analysis_t
     use analysis_registry, only: new_analysis
+    use run_report, only: report_run
     use console, only: print_progress
     use process, only: ignore_broken_pipe
     use memory_budget, only: check_address_space
@@ -24,12 +26,14 @@ program nceig
 
     character(len=*), parameter :: PROGRAM_NAME = 'nceig'
     type(config_t) :: config
+    type(run_inputs_t) :: inputs
     type(problem_t) :: prob
     class(analysis_t), allocatable :: analysis
     type(timings_t) :: timings
     type(status_t) :: stat
     type(command_t) :: command
     real(wp) :: start, phase
+    character(len=:), allocatable :: text
     integer :: ios
 
     ! stdout is a report, not the results: a reader that stops early (`| head`) must not end
@@ -53,8 +57,8 @@ program nceig
     call read_input(command%input, config, stat, command%settings)
     call stop_on_failure(PROGRAM_NAME, stat)
 
-    call new_analysis(trim(config%analysis%kind), config%adapt%tolerance > 0.0_wp, analysis, &
-                      trim(config%adapt%strategy))   ! &adapt strategy: 'h' or 'hp'
+    call translate_input(config, inputs)
+    call new_analysis(inputs, analysis)
     if (.not. allocated(analysis)) then
         call stop_with(PROGRAM_NAME, config%input_file//': &analysis: kind = '''// &
                        trim(config%analysis%kind)//''' has no analysis', STATUS_BAD_INPUT)
@@ -66,8 +70,12 @@ program nceig
                             trim(config%analysis%kind)//'), started')
     end if
     phase = wall_time()
-    call build_problem(config, prob, stat, analysis%needs_all_dofs)
-    call stop_on_failure(PROGRAM_NAME, stat, config%input_file)
+    if (analysis%in_input_units()) then
+        call build_problem(inputs%scene, prob, stat, input_units_for=inputs%analysis_name)
+    else
+        call build_problem(inputs%scene, prob, stat)
+    end if
+    call stop_on_failure(PROGRAM_NAME, stat, inputs%scene%name)
     call timings%add(PHASE_ASSEMBLY, wall_time() - phase, ': '//to_string(prob%mesh%n_cells())// &
         ' cells, '//to_string(prob%dofs%n_free)//' dofs, '//to_string(prob%contact%p())// &
         ' contact nodes, K with '//to_string(prob%k%nnz())//' entries')
@@ -78,11 +86,13 @@ program nceig
         write (error_unit, '(a)') 'nceig: '//config%input_file//': '//stat%message
         call exit_now(stat%code)
     end if
-    call run_analysis(analysis, config, prob, start, timings, stat)
-    call stop_on_failure(PROGRAM_NAME, stat, config%input_file)
-    write (output_unit, '(a)', iostat=ios) analysis%report(config, prob)
-    call stop_on_failure(PROGRAM_NAME, analysis%verdict, config%input_file)
+    call analysis%solve(inputs, prob, timings, stat)
+    call stop_on_failure(PROGRAM_NAME, stat, inputs%scene%name)
+    call report_run(analysis, inputs, prob, start, timings, text, stat)
+    call stop_on_failure(PROGRAM_NAME, stat, inputs%scene%name)
+    write (output_unit, '(a)', iostat=ios) text
+    call stop_on_failure(PROGRAM_NAME, analysis%verdict, inputs%scene%name)
     ! gfortran 12 keeps main-program allocatables in a frame gone before LeakSanitizer looks
     deallocate (command%action, command%input, command%settings)
-    deallocate (analysis)
+    deallocate (analysis, text)
 end program nceig

@@ -8,9 +8,9 @@ module branch_analysis
     use kinds, only: wp
     use status, only: status_t, STATUS_BAD_INPUT
     use timer, only: wall_time, timings_t
-    use run_config, only: config_t
+    use run_inputs, only: run_inputs_t
     use problem, only: problem_t
-    use eigen_analysis, only: eigen_result_t, solve_eigen
+    use eigen_solve, only: eigen_result_t, solve_eigen
     use elasticity, only: lame_coefficients
     use loads, only: edge_loads
     use normal_compliance, only: compliance_t, build_compliance
@@ -49,10 +49,10 @@ module branch_analysis
 
 contains
 
-    !> Eigenpair and U for config%analysis%lambda and the &branch alpha, beta. Fails when
+    !> Eigenpair and U for inputs%point%lambda and the &branch alpha, beta. Fails when
     !> Gamma_C is not horizontal with the body above it, or no positive eigenvalue exists.
-    subroutine critical_branch_data(config, prob, timings, crit, stat)
-        type(config_t), intent(in) :: config
+    subroutine critical_branch_data(inputs, prob, timings, crit, stat)
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         type(timings_t), intent(inout) :: timings
         type(critical_data_t), intent(out) :: crit
@@ -60,23 +60,23 @@ contains
         integer :: lowest
 
         if (norm2(prob%contact%normal - [0.0_wp, -1.0_wp]) > NORMAL_TOL) then
-            call stat%fail(STATUS_BAD_INPUT, config%input_file//': &mesh: contact = '''// &
-                trim(config%mesh%contact)//''': analysis '''//trim(config%analysis%kind)// &
+            call stat%fail(STATUS_BAD_INPUT, inputs%scene%name//': &mesh: contact = '''// &
+                trim(inputs%scene%contact)//''': analysis '''//inputs%analysis_name// &
                 ''' needs Gamma_C along the x1-axis with outward normal (0, -1) (docs/'// &
                 'model.md, section 9); this one has normal ('// &
                 real_to_text(prob%contact%normal(1))// &
                 ', '//real_to_text(prob%contact%normal(2))//')')
             return
         end if
-        crit%lambda = config%analysis%lambda
-        crit%alpha = config%branch%alpha
-        crit%beta = config%branch%beta
+        crit%lambda = inputs%point%lambda
+        crit%alpha = inputs%branch%alpha
+        crit%beta = inputs%branch%beta
         crit%contact_height = prob%mesh%coords(2, prob%contact%nodes(1))
-        call solve_eigen(config, prob, crit%lambda, crit%eig, timings, stat)
+        call solve_eigen(inputs%scene, prob, crit%lambda, inputs%eigen, crit%eig, timings, stat)
         if (.not. stat%ok()) return
         lowest = crit%eig%spec%lowest_positive()
         if (lowest == 0) then
-            call stat%fail(STATUS_BAD_INPUT, config%input_file//': &analysis: lambda = '// &
+            call stat%fail(STATUS_BAD_INPUT, inputs%scene%name//': &analysis: lambda = '// &
                 real_to_text(crit%lambda)//': no positive real eigenvalue, so no critical '// &
                 'c_n and no branch (|lambda| must exceed the critical threshold)')
             return
@@ -209,8 +209,8 @@ contains
     end function branch_deltas
 
     !> The whole analysis: eigenpair, U, delta_max, and the residual of every member.
-    subroutine run_branch(config, prob, res, timings, stat)
-        type(config_t), intent(in) :: config
+    subroutine run_branch(inputs, prob, res, timings, stat)
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         type(branch_result_t), intent(out) :: res
         type(timings_t), intent(inout) :: timings
@@ -219,7 +219,7 @@ contains
         real(wp) :: start
         integer :: i
 
-        call critical_branch_data(config, prob, timings, res%critical, stat)
+        call critical_branch_data(inputs, prob, timings, res%critical, stat)
         if (.not. stat%ok()) return
         start = wall_time()
         call branch_compliance(prob, res%critical, 1.0_wp, res%cp, stat)
@@ -228,7 +228,7 @@ contains
         res%residual_base = res%cp%relative_residual(x_base)
         call branch_delta_max(res%cp, x_base, res%critical%phi, res%critical%slip_sign, &
                               res%delta_max, res%beyond_sign)
-        res%deltas = branch_deltas(res%delta_max, config%branch%n_delta)
+        res%deltas = branch_deltas(res%delta_max, inputs%branch%n_delta)
         allocate (res%residuals(size(res%deltas)))
         do i = 1, size(res%deltas)
             res%residuals(i) = res%cp%relative_residual(x_base + res%deltas(i)*res%critical%phi)

@@ -9,7 +9,7 @@ module solve_analysis
     use strings, only: short_real_text, to_string
     use ieee_arithmetic, only: ieee_is_finite
     use timer, only: wall_time, timings_t
-    use run_config, only: config_t
+    use run_inputs, only: run_inputs_t
     use problem, only: problem_t
     use loads, only: edge_loads, body_force_loads
     use dof_map, only: node_dofs
@@ -43,8 +43,8 @@ contains
 
     !> Set up the data, the starting guess, and run Newton. A Newton failure is recorded in
     !> res%report (solve_status turns it into an error after the outputs are written).
-    subroutine run_solve(config, prob, res, timings, stat)
-        type(config_t), intent(in) :: config
+    subroutine run_solve(inputs, prob, res, timings, stat)
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         type(solve_result_t), intent(out) :: res
         type(timings_t), intent(inout) :: timings
@@ -56,10 +56,10 @@ contains
         integer :: node, a
         logical :: finite
 
-        associate (c => config%solve)
+        associate (c => inputs%solve)
             res%on_branch_data = c%data == 'branch'
             if (res%on_branch_data .or. c%start == 'branch' .or. c%start == 'mode') then
-                call critical_branch_data(config, prob, timings, res%critical, stat)
+                call critical_branch_data(inputs, prob, timings, res%critical, stat)
                 if (.not. stat%ok()) return
                 res%has_critical = .true.
             end if
@@ -109,7 +109,7 @@ contains
         finite = all(ieee_is_finite(res%x))
         if (finite) finite = all(ieee_is_finite(res%report%residual))
         if (.not. finite) then
-            call stat%fail(STATUS_SOLVER, config%input_file//': &solve: the Newton iteration '// &
+            call stat%fail(STATUS_SOLVER, inputs%scene%name//': &solve: the Newton iteration '// &
                 'produced a non-finite value (NaN or infinity) after '// &
                 to_string(res%report%iterations)//' iterations: the data overflow the '// &
                 'arithmetic (young, the loads and c_n, c_t in the input''s units)')
@@ -141,14 +141,14 @@ contains
     end subroutine branch_coordinates
 
     !> STATUS_SOLVER with the residual history when Newton did not converge.
-    subroutine solve_status(config, res, stat)
-        type(config_t), intent(in) :: config
+    subroutine solve_status(inputs, res, stat)
+        type(run_inputs_t), intent(in) :: inputs
         type(solve_result_t), intent(in) :: res
         type(status_t), intent(out) :: stat
         if (res%report%converged) return
-        call stat%fail(STATUS_SOLVER, config%input_file//': &solve: Newton did not converge ('// &
+        call stat%fail(STATUS_SOLVER, inputs%scene%name//': &solve: Newton did not converge ('// &
             res%report%reason//'); relative residual history: '// &
-            newton_history_text(res%report)//' (tol = '//short_real_text(config%solve%tol)// &
+            newton_history_text(res%report)//' (tol = '//short_real_text(inputs%solve%tol)// &
             '; see newton.csv)')
     end subroutine solve_status
 

@@ -14,8 +14,11 @@ module threshold_analysis
     use timer, only: wall_time, timings_t, PHASE_ASSEMBLY, PHASE_REDUCTION
     use strings, only: to_string, seconds_text, short_real_text
     use real_format, only: real_to_text
-    use run_config, only: config_t, sweep_lambdas
+    use scene, only: scene_t
+    use method_options, only: eigen_options_t, adapt_options_t, SOLVER_ARPACK, REFINE_NONE, &
+                              REFINE_HP
     use problem, only: problem_t, explain_singular_k
+    use unit_scaling, only: units_t
     use enrichment, only: enriched_element
     use sparse_cholesky, only: cholesky_t
     use contact_boundary, only: assemble_b
@@ -27,10 +30,9 @@ module threshold_analysis
                                lowest_positive_mu, SIDE_PLUS, SIDE_MINUS, SIDE_LABELS
     use roundoff, only: threshold_roundoff, collision_roundoffs
     use critical_set, only: critical_set_t, search_critical_set, MECHANISM_COMPLEX_PAIR
-    use adaptive_eigen, only: adapt_eigen, adaptive_result_t
-    use hp_adaptive, only: hp_adapt_lambdas, hp_result_t
-    use eigen_analysis, only: eigen_result_t, choose_solver, eigen_with_factor, SOLVER_ARPACK, &
-                              to_input_units, estimate_wanted
+    use eigen_goal, only: adapt_eigen, adapted_eigen_t
+    use eigen_solve, only: eigen_result_t, choose_solver, eigen_with_factor, estimate_wanted, &
+                           check_real_range
     use error_estimate, only: ENRICHED_CONTACT_MAX
     use boundary_estimate, only: estimate_boundary_bars, onset_bars_t
     use threshold_estimate, only: threshold_estimate_t, threshold_displacements, &
@@ -40,17 +42,17 @@ module threshold_analysis
     use halved_mesh, only: build_halved_problem
     implicit none
     private
-    public :: threshold_result_t, solve_thresholds, factor_with_contact_blocks, scan_lambdas, &
+    public :: threshold_result_t, solve_thresholds, factor_with_contact_blocks, &
               confirm_and_bound
-
-    !> 'threshold' counts positive mu on at most this many of the &sweep lambdas (spacing 1
-    !> on the default range [-20, 20]); 'lambda_sweep' on all of them (see scan_lambdas).
-    integer, parameter, public :: THRESHOLD_SCAN_POINTS = 41
 
     !> The curve of a lambda sweep, one entry per lambda.
     type, public :: sweep_curve_t
         real(wp), allocatable :: lambda(:)
-        real(wp), allocatable :: mu(:)           !! lowest positive mu where found(i)
+        !> lowest positive mu where found(i), in `units`
+        real(wp), allocatable :: mu(:)
+        !> of mu: those of the problems the points were solved on (problem_t%units: the
+        !> sweep's problem, whose E and extent an h-adapted point's share; hp levels')
+        type(units_t) :: units
         logical, allocatable :: found(:)
         !> positive real eigenvalues at lambda(i); -1 where ARPACK decided (it sees a few)
         !> or the point was adapted
@@ -87,44 +89,48 @@ module threshold_analysis
 
 contains
 
-    !> Factor K, form Kt_nn and Kt_nt, and compute the spectrum at &analysis lambda, the
-    !> thresholds with their error estimates and confirmations, and (with `with_sweep`) the
-    !> &sweep curve. `estimate`: the thresholds' estimate on this very problem, known
-    !> already (the adaptive loop's last level), not computed again; `onsets` likewise the
-    !> bars of its collision onsets.
-    subroutine solve_thresholds(config, prob, with_sweep, res, timings, stat, estimate, onsets, &
-                                coarse)
-        type(config_t), intent(in) :: config
+    !> Factor K of `prob` (the problem of the scene `scn`), form Kt_nn and Kt_nt, and compute
+    !> the spectrum at `lambda` as `options` ask, the thresholds with their error estimates
+    !> and confirmations, the boundary of the positive set over the lambdas `scan`, and (with
+    !> `sweep`, its lambdas) the sweep curve, adapted as `adapt` asks. `estimate`: the
+    !> thresholds' estimate on this very problem, known already (the adaptive loop's last
+    !> level), not computed again; `onsets` likewise the bars of its collision onsets.
+    subroutine solve_thresholds(scn, prob, lambda, options, scan, res, timings, stat, sweep, &
+                                adapt, estimate, onsets, coarse)
+        type(scene_t), intent(in) :: scn
         type(problem_t), intent(in) :: prob
-        logical, intent(in) :: with_sweep
+        real(wp), intent(in) :: lambda
+        type(eigen_options_t), intent(in) :: options
+        real(wp), intent(in) :: scan(:)
         type(threshold_result_t), intent(out) :: res
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
+        real(wp), intent(in), optional :: sweep(:)
+        type(adapt_options_t), intent(in), optional :: adapt
         type(threshold_estimate_t), intent(in), optional :: estimate
         type(onset_bars_t), intent(in), optional :: onsets
         !> the boundary a coarser level found, to carry (confirm_and_bound)
         type(critical_set_t), intent(in), optional :: coarse
         type(cholesky_t) :: chol
         type(reduced_blocks_t) :: blocks
-        type(arpack_options_t) :: options
+        type(arpack_options_t) :: arpack
         real(wp) :: start
         real(wp), allocatable :: u_threshold(:, :)
         integer :: i, n_operator
         logical :: certified, estimated
 
-        res%eigen%solver = choose_solver(config%eigen%solver, prob%contact%p(), &
-                                         config%eigen%dense_max_contact, config%eigen%operator)
-        res%eigen%lambda = config%analysis%lambda
+        res%eigen%solver = choose_solver(options, prob%contact%p())
+        res%eigen%lambda = lambda
         start = wall_time()
         call assemble_b(prob%contact, prob%dofs%n_free, res%eigen%lambda, res%eigen%b, stat)
         if (.not. stat%ok()) return
         call timings%add(PHASE_ASSEMBLY, wall_time() - start, ': B for lambda = '// &
                          real_to_text(res%eigen%lambda))
 
-        call factor_with_contact_blocks(config, prob, chol, blocks%kt_nn, blocks%kt_nt, timings, &
+        call factor_with_contact_blocks(scn, prob, chol, blocks%kt_nn, blocks%kt_nt, timings, &
                                         stat)
         if (.not. stat%ok()) return
-        call eigen_with_factor(config, prob, chol, res%eigen, timings, stat, blocks%kt_nn, &
+        call eigen_with_factor(scn, prob, options, chol, res%eigen, timings, stat, blocks%kt_nn, &
                                blocks%kt_nt)
         start = wall_time()
         if (stat%ok()) call pencil_thresholds(blocks%kt_nn, blocks%kt_nt, res%thresholds, stat)
@@ -142,7 +148,7 @@ contains
         ! the confirmations and the boundary of the positive set while the factor is there:
         ! the round-off part of a collision needs two solves with it
         blocks%mass = prob%contact%mass
-        if (stat%ok()) call confirm_and_bound(config, prob, chol, blocks, with_sweep, &
+        if (stat%ok()) call confirm_and_bound(scn, prob, lambda, scan, chol, blocks, &
                                               res%thresholds, res%set, stat, coarse)
         call chol%free()
         if (.not. stat%ok()) return
@@ -156,10 +162,11 @@ contains
         call warn_roundoff(.true.)
         res%time_threshold = wall_time() - start
         call timings%note('thresholds '//seconds_text(res%time_threshold)//' s')
-        if (.not. with_sweep) return
+        if (.not. present(sweep)) return
 
         start = wall_time()
-        res%sweep%lambda = sweep_lambdas(config%sweep)
+        res%sweep%lambda = sweep
+        res%sweep%units = prob%units
         associate (n => size(res%sweep%lambda))
             allocate (res%sweep%mu(n), res%sweep%found(n), res%sweep%n_positive(n))
             allocate (res%sweep%error_estimate(n), source=-1.0_wp)
@@ -167,30 +174,34 @@ contains
             allocate (res%sweep%n_dofs(n), source=prob%dofs%n_free)
         end associate
         allocate (res%sweep%complete(size(res%sweep%lambda)), source=.true.)
-        if (config%adapt%tolerance > 0.0_wp) then
-            call adaptive_sweep(config, prob, res%sweep, timings, stat)
-            if (.not. stat%ok()) return
-            if (.not. res%sweep%failure%ok()) res%eigen%warnings = [character(len=WARNING_LEN) &
-                :: res%eigen%warnings, 'the sweep is partial: '// &
-                to_string(count(res%sweep%complete))//' of its '// &
-                to_string(size(res%sweep%lambda))//' points are complete ('// &
-                'sweep_partial), a point''s loop failed: '//res%sweep%failure%message]
-            ! the points' own warnings are not kept (record): the run's stands for them
-            if (config%adapt%strategy /= 'hp') res%eigen%warnings = [character(len=WARNING_LEN) &
-                :: res%eigen%warnings, theta_warnings(config%adapt%theta)]
-            ! where a user looks, not only in the exit status and sweep_n_not_met
-            if (res%sweep%n_not_met > 0) res%eigen%warnings = [character(len=WARNING_LEN) :: &
-                res%eigen%warnings, to_string(res%sweep%n_not_met)//' of the '// &
-                to_string(size(res%sweep%lambda))//' sweep points did not meet the '// &
-                'tolerance (sweep_n_not_met; the first at '//res%sweep%not_met//')']
-            res%time_sweep = wall_time() - start
-            call timings%note('sweep      '//seconds_text(res%time_sweep)//' s: '// &
-                to_string(size(res%sweep%lambda))//' lambdas, adapted to '// &
-                seconds_text(config%adapt%tolerance))
-            return
+        if (present(adapt)) then
+            if (adapt%refine /= REFINE_NONE) then
+                call adaptive_sweep(scn, prob, options, adapt, res%sweep, timings, stat)
+                if (.not. stat%ok()) return
+                if (.not. res%sweep%failure%ok()) res%eigen%warnings = &
+                    [character(len=WARNING_LEN) :: res%eigen%warnings, 'the sweep is partial: '// &
+                     to_string(count(res%sweep%complete))//' of its '// &
+                     to_string(size(res%sweep%lambda))//' points are complete ('// &
+                     'sweep_partial), a point''s loop failed: '//res%sweep%failure%message]
+                ! the points' own warnings are not kept (record): the run's stands for them
+                if (adapt%refine /= REFINE_HP) res%eigen%warnings = &
+                    [character(len=WARNING_LEN) :: res%eigen%warnings, &
+                     theta_warnings(adapt%theta)]
+                ! where a user looks, not only in the exit status and sweep_n_not_met
+                if (res%sweep%n_not_met > 0) res%eigen%warnings = &
+                    [character(len=WARNING_LEN) :: res%eigen%warnings, &
+                     to_string(res%sweep%n_not_met)//' of the '// &
+                     to_string(size(res%sweep%lambda))//' sweep points did not meet the '// &
+                     'tolerance (sweep_n_not_met; the first at '//res%sweep%not_met//')']
+                res%time_sweep = wall_time() - start
+                call timings%note('sweep      '//seconds_text(res%time_sweep)//' s: '// &
+                    to_string(size(res%sweep%lambda))//' lambdas, adapted to '// &
+                    seconds_text(adapt%tolerance))
+                return
+            end if
         end if
-        options = arpack_options_t(nev=config%eigen%nev, ncv=config%eigen%ncv, &
-            maxit=config%eigen%maxit, tol=config%eigen%tol)
+        arpack = arpack_options_t(nev=options%nev, ncv=options%ncv, maxit=options%maxit, &
+                                  tol=options%tol)
         do i = 1, size(res%sweep%lambda)
             call timings%tick('sweep, lambda', i, size(res%sweep%lambda))
             certified = .false.
@@ -199,7 +210,7 @@ contains
             ! judged wrongly is still right: ARPACK that cannot certify falls back to dgeev.
             if (res%eigen%solver == SOLVER_ARPACK .and. &
                 res%set%positive_at(res%sweep%lambda(i))) then
-                call arpack_lowest_positive(blocks%matrix(res%sweep%lambda(i)), options, &
+                call arpack_lowest_positive(blocks%matrix(res%sweep%lambda(i)), arpack, &
                                             res%sweep%mu(i), res%sweep%found(i), certified, &
                                             n_operator, stat)
                 if (.not. stat%ok()) return
@@ -216,7 +227,8 @@ contains
                 res%sweep%n_dense = res%sweep%n_dense + 1
             end if
         end do
-        call mu_to_input_units(config, prob, res%sweep%mu, stat, maxval(abs(res%sweep%lambda)))
+        call check_real_range(scn, prob%units, maxval(abs(res%sweep%lambda)), .true., &
+                              res%sweep%mu, stat)
         if (.not. stat%ok()) return
         res%time_sweep = wall_time() - start
         call timings%note('sweep      '//seconds_text(res%time_sweep)//' s: '// &
@@ -258,7 +270,7 @@ contains
         !> the sides with a threshold.
         logical function wants_estimate()
             character(len=:), allocatable :: why_not
-            wants_estimate = estimate_wanted(config, prob%dofs%n_free, why_not)
+            wants_estimate = estimate_wanted(options, prob%dofs%n_free, why_not)
             where (res%thresholds%found) res%estimate%skipped = why_not
         end function wants_estimate
 
@@ -268,7 +280,7 @@ contains
             real(wp) :: begin
             begin = wall_time()
             if (enriched_element(prob%mesh%element) == 0) then
-                call halved_mesh_thresholds(config, prob, res%thresholds, res%estimate, failed)
+                call halved_mesh_thresholds(scn, prob, res%thresholds, res%estimate, failed)
             else
                 call estimate_threshold_errors(prob, res%thresholds, u_threshold, &
                                                ENRICHED_CONTACT_MAX, res%estimate, failed)
@@ -287,7 +299,7 @@ contains
             type(status_t) :: failed
             real(wp) :: begin
             begin = wall_time()
-            call estimate_boundary_bars(config, prob, res%thresholds, res%estimate, &
+            call estimate_boundary_bars(scn, prob, res%thresholds, res%estimate, &
                                         ENRICHED_CONTACT_MAX, res%set, failed, onsets)
             if (.not. failed%ok()) then
                 res%eigen%warnings = [character(len=WARNING_LEN) :: res%eigen%warnings, &
@@ -300,8 +312,9 @@ contains
     end subroutine solve_thresholds
 
     !> The confirmations of the thresholds `thr` and the boundary `set` of {lambda : a
-    !> positive mu exists} over the scan of `config` (scan_lambdas), from the contact
-    !> `blocks` (mass set) of `prob`, their mu in the input's units, and the round-off part
+    !> positive mu exists} over the lambdas `scan`, from the contact `blocks` (mass set) of
+    !> `prob` (of the scene `scn`, at the run's `lambda`: for messages), their mu in the
+    !> input's units, and the round-off part
     !> of each collision point (two solves each with `chol`, the factor of K with the contact
     !> dofs last): what every threshold report gives on its (last) problem. Dense on
     !> purpose, whatever the solver: just inside a threshold there is no positive mu, which
@@ -312,13 +325,14 @@ contains
     !> scan; scan_contact 0: none), its points are carried (carry_critical_set) unless the
     !> structure differs here (its own solves, n_evaluations, are counted with these);
     !> with `known` (found on these blocks over the same scan), that set is taken.
-    subroutine confirm_and_bound(config, prob, chol, blocks, with_sweep, thr, set, stat, &
-                                 coarse, known)
-        type(config_t), intent(in) :: config
+    subroutine confirm_and_bound(scn, prob, lambda, scan, chol, blocks, thr, set, stat, coarse, &
+                                 known)
+        type(scene_t), intent(in) :: scn
         type(problem_t), intent(in) :: prob
+        real(wp), intent(in) :: lambda
+        real(wp), intent(in) :: scan(:)
         type(cholesky_t), intent(in) :: chol
         type(reduced_blocks_t), intent(in) :: blocks
-        logical, intent(in) :: with_sweep
         type(thresholds_t), intent(inout) :: thr
         type(critical_set_t), intent(out) :: set
         type(status_t), intent(out) :: stat
@@ -327,9 +341,10 @@ contains
         integer, allocatable :: confirmed_count(:)
         call confirm_thresholds(blocks, thr, stat)
         if (.not. stat%ok()) return
-        ! mu of the confirmations, in the units of prob%k, to the input's (lambda has none)
-        call mu_to_input_units(config, prob, thr%mu_outside, stat)
-        if (stat%ok()) call mu_to_input_units(config, prob, thr%mu_inside, stat)
+        ! their mu must be reportable in the input's units (lambda has none)
+        call check_real_range(scn, prob%units, lambda, .false., thr%mu_outside, stat)
+        if (stat%ok()) call check_real_range(scn, prob%units, lambda, .false., thr%mu_inside, &
+                                             stat)
         if (.not. stat%ok()) return
         ! the confirmations' counts bracket the pencil points: the search need not redo them
         confirmed_lambda = pack([thr%lambda_outside, thr%lambda_inside], &
@@ -338,65 +353,48 @@ contains
         if (present(known)) then
             set = known
         else
-            call search_critical_set(blocks, scan_lambdas(config, with_sweep), &
-                                     thr%real_lambdas, set, stat, coarse, confirmed_lambda, &
-                                     confirmed_count)
+            call search_critical_set(blocks, scan, thr%real_lambdas, set, stat, coarse, &
+                                     confirmed_lambda, confirmed_count)
             ! the coarse scan made for this report (none for a loop level's own search)
             if (stat%ok() .and. present(coarse)) set%n_evaluations = set%n_evaluations + &
                                                                      coarse%n_evaluations
         end if
-        ! before mu_meet leaves the units of the blocks: the bound reads it
         if (stat%ok()) call collision_roundoffs(prob%k, chol, prob%contact, blocks, set, stat)
-        if (.not. stat%ok()) return
-        if (size(set%points) == 0) return
+        if (.not. stat%ok() .or. size(set%points) == 0) return
         mu_meet = set%points%mu_meet   ! a plain array: no temporary for the call
-        call mu_to_input_units(config, prob, mu_meet, stat)
-        if (stat%ok()) set%points%mu_meet = mu_meet
+        call check_real_range(scn, prob%units, lambda, .false., mu_meet, stat)
     end subroutine confirm_and_bound
-
-    !> Real mu of `prob` (its units) to the input's (to_input_units).
-    subroutine mu_to_input_units(config, prob, mu, stat, sweep_lambda)
-        type(config_t), intent(in) :: config
-        type(problem_t), intent(in) :: prob
-        real(wp), intent(inout) :: mu(:)
-        type(status_t), intent(out) :: stat
-        real(wp), intent(in), optional :: sweep_lambda
-        complex(wp) :: values(size(mu))
-        values = cmplx(mu, 0.0_wp, wp)
-        call to_input_units(config, prob, values, stat, sweep_lambda)
-        if (stat%ok()) mu = real(values, wp)
-    end subroutine mu_to_input_units
 
     !> Factor K with the contact dofs last and form Kt_nn and Kt_nt, which every threshold
     !> computation needs (their memory checked first); `chol` stays factored for the
     !> caller's solves (free it), and is freed here on failure.
-    subroutine factor_with_contact_blocks(config, prob, chol, kt_nn, kt_nt, timings, stat)
-        type(config_t), intent(in) :: config
+    subroutine factor_with_contact_blocks(scn, prob, chol, kt_nn, kt_nt, timings, stat)
+        type(scene_t), intent(in) :: scn
         type(problem_t), intent(in) :: prob
         type(cholesky_t), intent(inout) :: chol
         real(wp), allocatable, intent(out) :: kt_nn(:, :), kt_nt(:, :)
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
-        call check_contact_memory(config, prob%contact%p(), contact_peak_blocks(.false.), stat)
+        call check_contact_memory(scn, prob%contact%p(), contact_peak_blocks(.false.), stat)
         if (.not. stat%ok()) return
         call factor_contact_blocks(prob%k, prob%mesh, prob%dofs, prob%contact, chol, kt_nn, &
                                    kt_nt, timings, stat)
-        call explain_singular_k(config, prob%mesh, stat)
+        call explain_singular_k(scn, prob%mesh, stat)
         if (.not. stat%ok()) call chol%free()
     end subroutine factor_with_contact_blocks
 
     !> `est` for an element with no degree above it (Q1, Q2, P4): the thresholds of the same
     !> element on the rectangle of halved cells (2 nx x 2 ny), whose space holds this one's,
     !> relative = (lambda_h/2 - lambda_h) / lambda_h and the bar from it (error_bar), as the
-    !> estimate of mu does (eigen_analysis); no cell indicators. It costs the factor and the
+    !> estimate of mu does (eigen_solve); no cell indicators. It costs the factor and the
     !> contact blocks of a mesh with four times the dofs and twice the contact nodes.
-    subroutine halved_mesh_thresholds(config, prob, thr, est, stat)
-        type(config_t), intent(in) :: config
+    subroutine halved_mesh_thresholds(scn, prob, thr, est, stat)
+        type(scene_t), intent(in) :: scn
         type(problem_t), intent(in) :: prob
         type(thresholds_t), intent(in) :: thr
         type(threshold_estimate_t), intent(inout) :: est
         type(status_t), intent(out) :: stat
-        type(config_t) :: halved
+        type(scene_t) :: halved
         type(problem_t) :: fine
         type(thresholds_t) :: fine_thr
         type(timings_t) :: quiet
@@ -408,7 +406,7 @@ contains
 
         start = wall_time()
         if (.not. any(thr%found)) return
-        call build_halved_problem(config, prob, halved, fine, why_not, stat)
+        call build_halved_problem(scn, prob, halved, fine, why_not, stat)
         if (len(why_not) > 0) then
             where (thr%found) est%skipped = 'not computed: '//why_not
             return
@@ -439,39 +437,44 @@ contains
     !> at a lambda before (the mesh of a neighbouring lambda is usually fine already: the
     !> point then costs one solve and one estimate), and a point whose loop stops short
     !> keeps its last mu and estimate, its mesh not passed on. With 'hp' every point climbs
-    !> the hp levels of the input mesh, which do not depend on lambda: one climb
-    !> (hp_adapt_lambdas) builds and factors each level once for all points not yet stopped.
-    subroutine adaptive_sweep(config, prob, curve, timings, stat)
-        type(config_t), intent(in) :: config
+    !> the hp levels of the input mesh, which do not depend on lambda: one climb (one goal
+    !> with a target per lambda, eigen_goal) builds and factors each level once for all
+    !> points not yet stopped.
+    subroutine adaptive_sweep(scn, prob, options, adapt, curve, timings, stat)
+        type(scene_t), intent(in) :: scn
         type(problem_t), intent(in) :: prob
+        type(eigen_options_t), intent(in) :: options
+        type(adapt_options_t), intent(in) :: adapt
         type(sweep_curve_t), intent(inout) :: curve
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
-        type(config_t) :: point_config
         type(problem_t) :: current
-        type(adaptive_result_t) :: out
-        type(hp_result_t), allocatable :: hp_outs(:)
+        type(adapted_eigen_t), allocatable :: outs(:)
         !> a point's phases would flood the progress lines; the sweep's time is time_sweep
         type(timings_t) :: quiet
         integer :: i
 
-        if (config%adapt%strategy == 'hp') then
-            call hp_adapt_lambdas(config, prob, curve%lambda, hp_outs, quiet, stat, &
-                                  keep_problem=.false.)
+        if (adapt%refine == REFINE_HP) then
+            call adapt_eigen(scn, curve%lambda, options, adapt, prob, outs, quiet, stat, &
+                             keep_problem=.false.)
             if (.not. stat%ok()) then
                 ! the points whose loops had ended (an outcome) are complete: a partial set
-                if (.not. allocated(hp_outs)) return
+                if (.not. allocated(outs)) return
                 curve%failure = stat
                 stat = status_t()
                 do i = 1, size(curve%lambda)
-                    curve%complete(i) = allocated(hp_outs(i)%outcome)
-                    if (curve%complete(i)) curve%complete(i) = len(hp_outs(i)%outcome) > 0
+                    curve%complete(i) = len(outs(i)%outcome) > 0
                 end do
             end if
             do i = 1, size(curve%lambda)
+                if (size(outs(i)%levels) == 0) cycle
+                curve%units = outs(i)%units   ! (every hp level's)
+                exit
+            end do
+            do i = 1, size(curve%lambda)
                 call timings%tick('sweep, lambda', i, size(curve%lambda))
                 if (.not. curve%complete(i)) cycle
-                associate (o => hp_outs(i))
+                associate (o => outs(i))
                     call record(o%res, last_dofs(o), o%converged, .false., o%mu_vanished, &
                                 o%outcome)
                 end associate
@@ -480,11 +483,10 @@ contains
             return
         end if
         current = prob
-        point_config = config
         do i = 1, size(curve%lambda)
             call timings%tick('sweep, lambda', i, size(curve%lambda))
-            point_config%analysis%lambda = curve%lambda(i)
-            call adapt_eigen(point_config, current, out, quiet, stat)
+            call adapt_eigen(scn, [curve%lambda(i)], options, adapt, current, outs, quiet, stat, &
+                             keep_problem=.true.)
             if (.not. stat%ok()) then
                 ! the points before are complete: a partial set, the failure its verdict
                 curve%failure = stat
@@ -493,9 +495,11 @@ contains
                 call clear_incomplete()
                 return
             end if
-            call record(out%res, out%prob%dofs%n_free, out%converged, &
-                        size(out%levels) == 1, out%mu_vanished, out%outcome)
-            if (out%converged) current = out%prob
+            associate (o => outs(1))
+                call record(o%res, o%prob%dofs%n_free, o%converged, size(o%levels) == 1, &
+                            o%mu_vanished, o%outcome)
+                if (o%converged) current = o%prob
+            end associate
         end do
 
     contains
@@ -537,29 +541,9 @@ contains
 
         !> The free dofs of the last level an hp point solved (0: none).
         pure integer function last_dofs(o)
-            type(hp_result_t), intent(in) :: o
+            type(adapted_eigen_t), intent(in) :: o
             last_dofs = 0
             if (size(o%levels) > 0) last_dofs = o%levels(size(o%levels))%n_dofs
         end function last_dofs
     end subroutine adaptive_sweep
-
-    !> The lambdas the boundary search counts positive mu at: a sweep's own lambdas (it solves
-    !> there anyway), or for 'threshold' every k-th of them, at most THRESHOLD_SCAN_POINTS with
-    !> both ends: each is a dense p x p eigen-solve, and 401 of them made 'threshold' 10 times
-    !> slower at p = 257 (1.1 s -> 11.5 s); the pencil eigenvalues are added either way.
-    function scan_lambdas(config, with_sweep) result(lambdas)
-        type(config_t), intent(in) :: config
-        logical, intent(in) :: with_sweep
-        real(wp), allocatable :: lambdas(:)
-        real(wp), allocatable :: all(:)
-        integer :: step, n
-        allocate (all, source=sweep_lambdas(config%sweep))
-        n = size(all)
-        step = max(1, (n - 1 + THRESHOLD_SCAN_POINTS - 2)/(THRESHOLD_SCAN_POINTS - 1))
-        if (with_sweep .or. step == 1) then
-            lambdas = all
-        else
-            lambdas = [all(1:n - 1:step), all(n)]
-        end if
-    end function scan_lambdas
 end module threshold_analysis

@@ -206,7 +206,7 @@ contains
     end subroutine full_setup
 
     !> |sigma| ||A|| <= TARGET_RANGE, with a_norm = ||A / lambda_scale||_inf; written with
-    !> quotients, which cannot overflow (sigma may be clamped to huge, see eigen_analysis).
+    !> quotients, which cannot overflow (sigma may be clamped to huge: units_mu_to_scaled).
     !> Otherwise STATUS_BAD_INPUT in one line naming the variable (the caller adds the file).
     subroutine operator_check_target(this, a_norm, target_input, units, stat)
         class(contact_operator_t), intent(in) :: this

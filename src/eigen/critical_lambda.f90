@@ -53,7 +53,8 @@ module critical_lambda
         integer :: n_outside(2) = -1, n_inside(2) = -1
         logical :: has_mu_outside(2) = .false.     !! a positive mu exists there (expected)
         logical :: has_mu_inside(2) = .false.      !! a positive mu exists there (not expected)
-        real(wp) :: mu_outside(2) = 0.0_wp         !! lowest positive mu there, if any
+        !> lowest positive mu there, if any, in the units of the blocks (problem_t%units)
+        real(wp) :: mu_outside(2) = 0.0_wp
         real(wp) :: mu_inside(2) = 0.0_wp
         !> every finite real pencil eigenvalue, ascending: where a real theta = 1/mu crosses 0
         real(wp), allocatable :: real_lambdas(:)

@@ -16,7 +16,9 @@ module spectrum
     integer, parameter :: KIND_COMPLEX = 3
 
     type, public :: spectrum_t
-        complex(wp), allocatable :: mu(:)          !! (n_ev) in output order
+        !> (n_ev) in output order, in the units of the matrices solved (problem_t%units: the
+        !> scaled ones of the eigen analyses; the report converts)
+        complex(wp), allocatable :: mu(:)
         integer, allocatable :: kind(:)            !! KIND_* of each
         real(wp), allocatable :: residual(:)       !! relative backward error on (K, B)
         real(wp), allocatable :: condition(:)      !! relative condition number; < 0: unknown

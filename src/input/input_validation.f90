@@ -45,10 +45,9 @@ module input_validation
     character(len=*), parameter :: ADAPT_ELEMENTS(*) = [character(len=2) :: 'p1', 'p2', 'p3']
     character(len=*), parameter :: ADAPT_ANALYSES(*) = [character(len=12) :: 'eigen', &
                                                          'threshold', 'lambda_sweep']
-    !> &adapt strategy; 'hp' (modules hp_adaptive, hp_threshold) adapts the same analyses
-    !> on triangles of any degree (it keeps their vertices only), with cell
-    !> degrees up to hp_basis's
-    !> MAX_HP_DEGREE, which this repeats (the input layer sits below the elements).
+    !> &adapt strategy; 'hp' (module hp_levels, a refiner of the adaptive loop) adapts the same
+    !> analyses on triangles of any degree (it keeps their vertices only), with cell degrees up
+    !> to hp_basis's MAX_HP_DEGREE, which this repeats (the input layer sits below the elements).
     character(len=*), parameter :: ADAPT_STRATEGIES(*) = [character(len=2) :: 'h', 'hp']
     integer, parameter :: MAX_HP_INPUT_DEGREE = 20
     !> &adapt sigma's range: what the geometric meshes can be built with (see the check)

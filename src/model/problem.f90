@@ -6,9 +6,9 @@ module problem
     use status, only: status_t, STATUS_BAD_INPUT, STATUS_SINGULAR
     use strings, only: NAME_LEN, split_names, to_string, short => short_real_text, joined
     use real_format, only: real_to_text
-    use run_config, only: config_t, UNSCALED_YOUNG_RANGE, UNSCALED_SIZE_RANGE
+    use run_config, only: UNSCALED_YOUNG_RANGE, UNSCALED_SIZE_RANGE
+    use scene, only: scene_t, MESH_RECTANGLE, MESH_GMSH
     use mesh, only: mesh_t
-    use element_types, only: element_from_name
     use cell_geometry, only: cell_thinness
     use mesh_structured, only: structured_rectangle
     use mesh_gmsh, only: read_gmsh
@@ -59,19 +59,19 @@ module problem
 
 contains
 
-    !> Mesh the domain, resolve the boundary part names, number the free dofs, collect the
-    !> contact boundary and assemble K; `with_all_dofs` also keeps K and Gamma_C on all dofs.
-    !> Without `with_all_dofs` (the eigen analyses) K and Gamma_C are in the scaled units of
-    !> prob%units; prob%mesh keeps the input coordinates. `given_mesh` replaces the mesh of
-    !> &mesh (a level of an adaptive loop).
-    subroutine build_problem(config, prob, stat, with_all_dofs, given_mesh)
-        type(config_t), intent(in) :: config
+    !> Mesh the scene, resolve its boundary part names, number the free dofs, collect the
+    !> contact boundary and assemble K. Without `input_units_for` (the eigen analyses) K and
+    !> Gamma_C are in the scaled units of prob%units; prob%mesh keeps the input coordinates.
+    !> With it (the name of an analysis with non-zero Dirichlet data, for messages) K and
+    !> Gamma_C are in the input's units and also kept on all dofs. `given_mesh` replaces the
+    !> scene's own mesh (a level of an adaptive loop, a halved mesh).
+    subroutine build_problem(scn, prob, stat, input_units_for, given_mesh)
+        type(scene_t), intent(in) :: scn
         type(problem_t), intent(out) :: prob
         type(status_t), intent(out) :: stat
-        logical, intent(in), optional :: with_all_dofs   !! default false
+        character(len=*), intent(in), optional :: input_units_for
         type(mesh_t), intent(in), optional :: given_mesh
         integer, allocatable :: contact_parts(:)
-        logical :: all_dofs
 
         if (present(given_mesh)) then
             prob%mesh = given_mesh
@@ -79,27 +79,25 @@ contains
             call make_mesh(stat)
             if (.not. stat%ok()) return
         end if
-        call resolve_parts('dirichlet', config%mesh%dirichlet, prob%dirichlet_parts, stat)
+        call resolve_parts('dirichlet', scn%dirichlet, prob%dirichlet_parts, stat)
         if (.not. stat%ok()) return
-        call resolve_parts('neumann', config%mesh%neumann, prob%neumann_parts, stat)
+        call resolve_parts('neumann', scn%neumann, prob%neumann_parts, stat)
         if (.not. stat%ok()) return
-        call resolve_parts('contact', config%mesh%contact, contact_parts, stat)
+        call resolve_parts('contact', scn%contact, contact_parts, stat)
         if (.not. stat%ok()) return
         prob%contact_part = contact_parts(1)
         call check_mesh(prob%mesh, prob%dirichlet_parts, prob%neumann_parts, contact_parts, stat)
         if (.not. stat%ok()) then
             if (.not. allocated(prob%mesh%file)) &
-                stat%message = config%input_file//': &mesh: '//stat%message
+                stat%message = scn%name//': &mesh: '//stat%message
             return
         end if
-        prob%young = config%material%young
-        prob%poisson = config%material%poisson
+        prob%young = scn%material%young
+        prob%poisson = scn%material%poisson
         call build_dof_map(prob%mesh, prob%dirichlet_parts, prob%dofs, stat)
         if (.not. stat%ok()) return
 
-        all_dofs = .false.
-        if (present(with_all_dofs)) all_dofs = with_all_dofs
-        if (all_dofs) then
+        if (present(input_units_for)) then
             call all_dof_system(stat)
         else
             call unit_system(stat)
@@ -107,21 +105,17 @@ contains
 
     contains
 
-        !> The mesh of &mesh source: the rectangle generator or a Gmsh file.
+        !> The mesh of the scene's source: the rectangle generator or a Gmsh file.
         subroutine make_mesh(stat)
             type(status_t), intent(out) :: stat
-            select case (config%mesh%source)
-            case ('rectangle')
-                call structured_rectangle(config%mesh%width, config%mesh%height, &
-                    config%mesh%nx, config%mesh%ny, element_from_name(config%mesh%element), &
-                    config%mesh%diagonal, prob%mesh, stat)
-                if (.not. stat%ok()) stat%message = config%input_file//': &mesh: '//stat%message
-            case ('gmsh')
+            select case (scn%source)
+            case (MESH_RECTANGLE)
+                call structured_rectangle(scn%width, scn%height, scn%nx, scn%ny, scn%element, &
+                                          scn%diagonal, prob%mesh, stat)
+                if (.not. stat%ok()) stat%message = scn%name//': &mesh: '//stat%message
+            case (MESH_GMSH)
                 ! The element type comes from the file; &mesh element is not used.
-                call read_gmsh(trim(config%mesh%file), prob%mesh, stat)
-            case default
-                call stat%fail(STATUS_BAD_INPUT, config%input_file//': &mesh: source = '''// &
-                    trim(config%mesh%source)//''': expected ''rectangle'' or ''gmsh''')
+                call read_gmsh(scn%file, prob%mesh, stat)
             end select
         end subroutine make_mesh
 
@@ -131,7 +125,7 @@ contains
             type(status_t), intent(out) :: stat
             call build_contact(prob%mesh, prob%contact_part, prob%dofs, prob%contact, stat)
             if (.not. stat%ok() .and. .not. allocated(prob%mesh%file)) &
-                stat%message = config%input_file//': &mesh: contact: '//stat%message
+                stat%message = scn%name//': &mesh: contact: '//stat%message
         end subroutine free_contact
 
         !> The eigen analyses: K and Gamma_C in the scaled units (units_t), where E and the
@@ -146,7 +140,7 @@ contains
             ! height = 1e300) leaves the normal range in any one unit
             if (any(abs(physical_coords) > 0.0_wp .and. &
                     abs(prob%mesh%coords) < tiny(1.0_wp))) then
-                call stat%fail(STATUS_BAD_INPUT, config%input_file//': &mesh: coordinates '// &
+                call stat%fail(STATUS_BAD_INPUT, scn%name//': &mesh: coordinates '// &
                     'from '//short(minval(abs(physical_coords), abs(physical_coords) > 0.0_wp)) &
                     //' to '//short(maxval(abs(physical_coords)))//' in magnitude: more than '// &
                     'the 2.2e-308 to 1.8e308 of binary64 can hold in one unit of length')
@@ -169,17 +163,17 @@ contains
             size_of_mesh = maxval(abs(prob%mesh%coords))
             if (prob%young > UNSCALED_YOUNG_RANGE .or. &
                 prob%young < 1.0_wp/UNSCALED_YOUNG_RANGE) then
-                call stat%fail(STATUS_BAD_INPUT, config%input_file//': &material: young = '// &
+                call stat%fail(STATUS_BAD_INPUT, scn%name//': &material: young = '// &
                     real_to_text(prob%young)//': expected 1e-100 <= young <= 1e100 for '// &
-                    'analysis '''//trim(config%analysis%kind)//''', which works in the '// &
+                    'analysis '''//input_units_for//''', which works in the '// &
                     'input''s units (the eigen analyses rescale E away)')
                 return
             end if
             if (size_of_mesh > UNSCALED_SIZE_RANGE .or. &
                 size_of_mesh < 1.0_wp/UNSCALED_SIZE_RANGE) then
-                call stat%fail(STATUS_BAD_INPUT, config%input_file//': &mesh: the largest '// &
+                call stat%fail(STATUS_BAD_INPUT, scn%name//': &mesh: the largest '// &
                     '|coordinate| is '//short(size_of_mesh)//': expected 1e-50 to 1e50 '// &
-                    'for analysis '''//trim(config%analysis%kind)//''', which works in the '// &
+                    'for analysis '''//input_units_for//''', which works in the '// &
                     'input''s units (the eigen analyses scale the size away)')
                 return
             end if
@@ -212,13 +206,13 @@ contains
                     known = joined(prob%mesh%part_names)
                     if (allocated(prob%mesh%file)) then
                         ! A Gmsh file: the parts are its 1D physical groups.
-                        call stat%fail(STATUS_BAD_INPUT, config%input_file//': &mesh: '// &
+                        call stat%fail(STATUS_BAD_INPUT, scn%name//': &mesh: '// &
                             variable//' = '''//trim(list)//''': the mesh file '// &
                             prob%mesh%file//' has no 1D physical group '''//trim(names(i))// &
                             ''' (it has: '//known//')')
                         return
                     end if
-                    call stat%fail(STATUS_BAD_INPUT, config%input_file//': &mesh: '//variable// &
+                    call stat%fail(STATUS_BAD_INPUT, scn%name//': &mesh: '//variable// &
                         ' = '''//trim(list)//''': the mesh has no boundary part '''// &
                         trim(names(i))//''' (it has: '//known//')')
                     return
@@ -232,8 +226,8 @@ contains
     !> naming that input instead (STATUS_BAD_INPUT): poisson so near 0.5, or rectangle cells
     !> so elongated, that K is singular in binary64 although not in exact arithmetic; or, still
     !> STATUS_SINGULAR, naming a sliver cell of `m` (a mesh file's) as the likely cause.
-    subroutine explain_singular_k(config, m, stat)
-        type(config_t), intent(in) :: config
+    subroutine explain_singular_k(scn, m, stat)
+        type(scene_t), intent(in) :: scn
         type(mesh_t), intent(in) :: m
         type(status_t), intent(inout) :: stat
         character(len=:), allocatable :: detail, place
@@ -245,10 +239,10 @@ contains
         detail = ''
         at = index(stat%message, '(CHOLMOD')
         if (at > 0) detail = ' '//stat%message(at:)
-        ratio = lame_ratio(config%material%poisson)
+        ratio = lame_ratio(scn%material%poisson)
         if (ratio >= SINGULAR_LAME_RATIO) then
-            call stat%fail(STATUS_BAD_INPUT, config%input_file//': &material: poisson = '// &
-                real_to_text(config%material%poisson)//': so close to 0.5 that L/G = 2 nu / '// &
+            call stat%fail(STATUS_BAD_INPUT, scn%name//': &material: poisson = '// &
+                real_to_text(scn%material%poisson)//': so close to 0.5 that L/G = 2 nu / '// &
                 '(1 - 2 nu) = '//short(ratio)//' makes K numerically singular'//detail// &
                 '; expected L/G below '//short(SINGULAR_LAME_RATIO)//' (poisson <= 0.49999999995)')
             return
@@ -256,27 +250,26 @@ contains
         ! a rectangle's cells are all alike: their aspect ratio, below, says more
         worst = 0
         thinness = huge(1.0_wp)
-        if (config%mesh%source /= 'rectangle') call thinnest_cell(m, worst, thinness)
+        if (scn%source /= MESH_RECTANGLE) call thinnest_cell(m, worst, thinness)
         if (worst > 0 .and. thinness < SLIVER_THINNESS) then
             place = 'cell '//to_string(worst)
             if (allocated(m%file) .and. allocated(m%cell_line)) place = 'the cell at '// &
                 m%file//':'//to_string(m%cell_line(worst))
-            stat%message = config%input_file//': &mesh: the stiffness matrix K is singular, '// &
+            stat%message = scn%name//': &mesh: the stiffness matrix K is singular, '// &
                 'likely from a sliver: '//place//' has |det J| = '//short(thinness)// &
                 ' x its squared diameter (a near-zero area; its stiffness swamps the '// &
                 'others'')'//detail//'; expected cells with |det J| above '// &
                 short(SLIVER_THINNESS)//' x their squared diameter (remesh)'
             return
         end if
-        if (config%mesh%source /= 'rectangle') return
+        if (scn%source /= MESH_RECTANGLE) return
         ! log10 of the aspect ratio: the ratio can overflow (width = 1e-300, height = 1e300)
-        aspect = abs(log10(config%mesh%width/config%mesh%nx) - &
-                     log10(config%mesh%height/config%mesh%ny))
+        aspect = abs(log10(scn%width/scn%nx) - log10(scn%height/scn%ny))
         if (aspect >= log10(SINGULAR_ASPECT_RATIO)) then
-            call stat%fail(STATUS_BAD_INPUT, config%input_file//': &mesh: width = '// &
-                real_to_text(config%mesh%width)//', height = '// &
-                real_to_text(config%mesh%height)//', nx = '//to_string(config%mesh%nx)// &
-                ', ny = '//to_string(config%mesh%ny)//': cells of aspect ratio 1e'// &
+            call stat%fail(STATUS_BAD_INPUT, scn%name//': &mesh: width = '// &
+                real_to_text(scn%width)//', height = '// &
+                real_to_text(scn%height)//', nx = '//to_string(scn%nx)// &
+                ', ny = '//to_string(scn%ny)//': cells of aspect ratio 1e'// &
                 to_string(nint(aspect))//' make K numerically singular (its condition grows '// &
                 'like the square)'//detail//'; expected (width / nx) / (height / ny) within '// &
                 'a factor '//short(SINGULAR_ASPECT_RATIO)//' of 1')

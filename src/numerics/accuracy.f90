@@ -7,6 +7,7 @@ module accuracy
     use strings, only: to_string, short => short_real_text
     use real_format, only: real_to_text
     use spectrum, only: spectrum_t
+    use unit_scaling, only: units_t
     use elasticity, only: lame_ratio
     implicit none
     private
@@ -90,8 +91,9 @@ contains
     !> `roundoff`: the round-off bound of the lowest positive mu (module roundoff; < 0:
     !> unknown), which replaces the condition x backward error of the reduced problem where
     !> it is known.
-    function accuracy_warnings(spec, element, poisson, roundoff) result(warnings)
+    function accuracy_warnings(spec, units, element, poisson, roundoff) result(warnings)
         type(spectrum_t), intent(in) :: spec
+        type(units_t), intent(in) :: units   !! of spec%mu: the warnings quote mu in the input's
         character(len=*), intent(in) :: element   !! 'p1', 'q1', 'p2', 'q2'
         real(wp), intent(in) :: poisson, roundoff
         character(len=WARNING_LEN), allocatable :: warnings(:)
@@ -122,7 +124,8 @@ contains
         end do
         if (n_bad > 0) call add(to_string(n_bad)//' of '//to_string(spec%n())// &
             ' eigenpairs have a backward error above '//short(BACKWARD_ERROR_BOUND)// &
-            ' (largest '//short(spec%residual(worst))//' at |mu| = '//short(abs(spec%mu(worst))) &
+            ' (largest '//short(spec%residual(worst))//' at |mu| = '// &
+            short(units%mu_to_input(abs(spec%mu(worst)))) &
             //'): the largest |mu| (short-wave contact modes) suffer first from a badly ' &
             //'conditioned K, e.g. with elongated cells')
 
@@ -139,7 +142,8 @@ contains
         if (allocated(spec%lambda_sensitivity)) then
             do i = 1, spec%n()
                 if (spec%lambda_sensitivity(i) <= LAMBDA_SENSITIVITY_BOUND) cycle
-                call add('lambda is near a critical value: mu = '//short(real(spec%mu(i), wp)) &
+                call add('lambda is near a critical value: mu = '// &
+                    short(units%mu_to_input(real(spec%mu(i), wp))) &
                     //' changes '//short(spec%lambda_sensitivity(i))//' times faster than ' &
                     //'lambda (relative), i.e. lambda is within about '// &
                     short(1.0_wp/spec%lambda_sensitivity(i))//' relative of a threshold, ' &

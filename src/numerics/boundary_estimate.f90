@@ -10,7 +10,7 @@
 !> meshes and the halved one misses a slow order: on Delaunay trapezoids (P2 h = 1/8, P3 h =
 !> 1/16) both were a tenth of the true error. Plus the point's round-off part (roundoff:
 !> collision_roundoff). An adaptive loop uses the enriched difference at each level and its
-!> window of levels (adaptive_threshold).
+!> window of levels (threshold_goal).
 module boundary_estimate
     use kinds, only: wp
     use status, only: status_t
@@ -21,13 +21,13 @@ module boundary_estimate
     use critical_set, only: critical_set_t, find_critical_set, onset_point, MECHANISM_PENCIL, &
                             MECHANISM_COMPLEX_PAIR
     use enrichment, only: enrichment_t, build_enrichment
-    use run_config, only: config_t
+    use scene, only: scene_t
     use halved_mesh, only: build_halved_problem
     use timer, only: timings_t
     use contact_reduction, only: factor_contact_blocks
     use threshold_estimate, only: threshold_estimate_t
     use error_bar, only: single_bar, three_mesh_bar
-    use adaptive_loop, only: adaptive_dof_limit
+    use h_refiner, only: adaptive_dof_limit
     use system_memory, only: available_memory_bytes
     implicit none
     private
@@ -57,11 +57,12 @@ module boundary_estimate
 contains
 
     !> set%points(:)%error_bar for the points of `set`, the boundary of the positive set of
-    !> `prob` whose thresholds are `thr` with bars `est`. Points it cannot estimate keep -1
+    !> `prob` (of the scene `scn`) whose thresholds are `thr` with bars `est`. Points it
+    !> cannot estimate keep -1
     !> (stat ok); `max_contact` bounds the enriched contact nodes (dense reduction). The
     !> collision onsets of `onsets` take its bars, and nothing is computed for them.
-    subroutine estimate_boundary_bars(config, prob, thr, est, max_contact, set, stat, onsets)
-        type(config_t), intent(in) :: config
+    subroutine estimate_boundary_bars(scn, prob, thr, est, max_contact, set, stat, onsets)
+        type(scene_t), intent(in) :: scn
         type(problem_t), intent(in) :: prob
         type(thresholds_t), intent(in) :: thr
         type(threshold_estimate_t), intent(in) :: est
@@ -94,7 +95,7 @@ contains
         if (.not. stat%ok()) return
         ! the halved meshes are a second opinion: where they fail (memory), the enriched
         ! difference alone makes the bar
-        call halved_pair_lambdas(config, prob, set, pair, halved, quartered, halved_stat)
+        call halved_pair_lambdas(scn, prob, set, pair, halved, quartered, halved_stat)
         do i = 1, size(set%points)
             if (.not. pair(i)) cycle
             lambda = set%points(i)%lambda
@@ -113,26 +114,26 @@ contains
     !> where there is none, or no halved mesh, or (quartered) where 16 times the dofs are more
     !> than QUARTER_MAX_DOFS or would not fit the memory available (stat ok); where a fine
     !> problem fails, the points not found stay huge.
-    subroutine halved_pair_lambdas(config, prob, set, pair, halved, quartered, stat)
-        type(config_t), intent(in) :: config
+    subroutine halved_pair_lambdas(scn, prob, set, pair, halved, quartered, stat)
+        type(scene_t), intent(in) :: scn
         type(problem_t), intent(in) :: prob
         type(critical_set_t), intent(in) :: set
         logical, intent(in) :: pair(:)
         real(wp), allocatable, intent(out) :: halved(:), quartered(:)
         type(status_t), intent(out) :: stat
-        type(config_t) :: half_config, quarter_config
+        type(scene_t) :: half_scene, quarter_scene
         type(problem_t) :: half, quarter
         character(len=:), allocatable :: why_not
 
         allocate (halved(size(set%points)), quartered(size(set%points)), source=huge(1.0_wp))
         if (.not. any(pair)) return
-        call build_halved_problem(config, prob, half_config, half, why_not, stat)
+        call build_halved_problem(scn, prob, half_scene, half, why_not, stat)
         if (.not. stat%ok() .or. len(why_not) > 0) return
         call points_on(half, halved, stat)
         if (.not. stat%ok()) return
         if (4*half%dofs%n_free > min(QUARTER_MAX_DOFS, &
                                      adaptive_dof_limit(available_memory_bytes()))) return
-        call build_halved_problem(half_config, half, quarter_config, quarter, why_not, stat)
+        call build_halved_problem(half_scene, half, quarter_scene, quarter, why_not, stat)
         if (.not. stat%ok() .or. len(why_not) > 0) return
         call points_on(quarter, quartered, stat)
 

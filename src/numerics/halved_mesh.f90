@@ -7,7 +7,7 @@
 !> h / 2, parts and the contact segment carried to the children).
 module halved_mesh
     use status, only: status_t
-    use run_config, only: config_t
+    use scene, only: scene_t, MESH_RECTANGLE
     use mesh, only: mesh_t
     use mesh_refine, only: refinable_mesh_t, build_refinable_mesh
     use element_types, only: element_name
@@ -19,13 +19,13 @@ module halved_mesh
 
 contains
 
-    !> `fine`, the problem of `config` and `prob` on the halved mesh, and `halved`, its
-    !> configuration (the error estimate off: the fine problem is itself the estimate).
-    !> `why_not` says why there is none ('' when built; a failure to build is stat's).
-    subroutine build_halved_problem(config, prob, halved, fine, why_not, stat)
-        type(config_t), intent(in) :: config
+    !> `fine`, the problem of the scene `scn` on the mesh of `prob` with every cell halved,
+    !> and `halved`, its scene (scene_halved: the one to halve again). `why_not` says why
+    !> there is none ('' when built; a failure to build is stat's).
+    subroutine build_halved_problem(scn, prob, halved, fine, why_not, stat)
+        type(scene_t), intent(in) :: scn
         type(problem_t), intent(in) :: prob
-        type(config_t), intent(out) :: halved
+        type(scene_t), intent(out) :: halved
         type(problem_t), intent(out) :: fine
         character(len=:), allocatable, intent(out) :: why_not
         type(status_t), intent(out) :: stat
@@ -34,11 +34,8 @@ contains
         integer :: i, pass
 
         why_not = ''
-        halved = config
-        halved%eigen%estimate = 'off'
-        if (trim(config%mesh%source) == 'rectangle') then
-            halved%mesh%nx = 2*config%mesh%nx
-            halved%mesh%ny = 2*config%mesh%ny
+        halved = scn%halved()
+        if (scn%source == MESH_RECTANGLE) then
             call build_problem(halved, fine, stat)
         else if (enriched_element(prob%mesh%element) /= 0) then   ! triangles P1 to P3
             call build_refinable_mesh(prob%mesh, tree, stat)

@@ -6,7 +6,7 @@ module memory_budget
     use kinds, only: wp, i8
     use status, only: status_t, STATUS_BAD_INPUT, STATUS_SOLVER
     use strings, only: to_string
-    use run_config, only: config_t
+    use scene, only: scene_t
     use system_memory, only: available_memory_bytes, address_space_headroom_bytes, &
                              threads_still_running
     use blas_info, only: blas_in_use
@@ -58,17 +58,16 @@ contains
 
     !> STATUS_BAD_INPUT when `blocks` (contact_peak_blocks) dense p x p arrays of the
     !> problem's p contact nodes need more than `available` bytes (default:
-    !> available_memory_bytes(); a negative value skips the check), naming nx and ny or the
-    !> mesh file, the estimate and the memory available.
-    subroutine check_contact_memory(config, p, blocks, stat, available)
-        type(config_t), intent(in) :: config
+    !> available_memory_bytes(); a negative value skips the check), naming the scene's nx and
+    !> ny or mesh file, the estimate and the memory available.
+    subroutine check_contact_memory(scn, p, blocks, stat, available)
+        type(scene_t), intent(in) :: scn
         integer, intent(in) :: p                       !! contact nodes
         integer, intent(in) :: blocks
         type(status_t), intent(out) :: stat
         integer(i8), intent(in), optional :: available   !! bytes
         integer(i8) :: limit
         real(wp) :: needed
-        character(len=:), allocatable :: source
 
         if (present(available)) then
             limit = available
@@ -78,12 +77,7 @@ contains
         if (limit < 0) return
         needed = contact_blocks_bytes(p, blocks)
         if (needed <= real(limit, wp)) return
-        if (trim(config%mesh%source) == 'gmsh') then
-            source = 'file = '''//trim(config%mesh%file)//''''
-        else
-            source = 'nx = '//to_string(config%mesh%nx)//', ny = '//to_string(config%mesh%ny)
-        end if
-        call stat%fail(STATUS_BAD_INPUT, config%input_file//': &mesh: '//source// &
+        call stat%fail(STATUS_BAD_INPUT, scn%name//': &mesh: '//scn%mesh_words()// &
             ': the contact boundary has p = '//to_string(p)//' nodes; its dense blocks ('// &
             to_string(blocks)//' p x p doubles) need an estimated '// &
             gigabytes(needed)//' GB, more than the '//gigabytes(real(limit, wp))// &

@@ -1,173 +1,33 @@
 ! SPDX-License-Identifier: MIT
-!> The files, summary.json keys and stdout lines of an eigen solve, from its result
-!> (eigen_result_t): eigenvalues.csv, mode_NNN.vtu, K.mtx and B.mtx, mode_001.png, the keys
-!> every summary.json starts with, and the summary lines. The eigen run writes them, and so
-!> do the other analyses for the eigen solve they contain.
+!> The files of a spectrum, from an eigen result in the input's units (reported_units):
+!> eigenvalues.csv, mode_NNN.vtu (on the mesh, or for an hp level on the sub-triangulation
+!> of its hp field), K.mtx and B.mtx, mode_001.png. Every analysis with a spectrum writes
+!> them.
 module eigen_files
     use kinds, only: wp
     use status, only: status_t
-    use strings, only: to_string, zero_padded, short_real_text, seconds_text
+    use strings, only: to_string, zero_padded
     use real_format, only: real_to_text, known_text
-    use timer, only: timings_t
-    use version, only: NCEIG_VERSION
-    use run_config, only: config_t
+    use run_inputs, only: run_inputs_t
     use problem, only: problem_t
-    use eigen_analysis, only: eigen_result_t, solver_name, operator_name, critical_cn
-    use critical_point, only: slip_sign, critical_c_t
+    use eigen_solve, only: eigen_result_t
     use spectrum, only: spectrum_t, kind_name, KIND_COMPLEX, KIND_POSITIVE
+    use run_inputs, only: ANALYSIS_THRESHOLD, ANALYSIS_SWEEP
     use output_stage, only: output_stage_t
-    use json_writer, only: json_object_t
     use csv_writer, only: csv_writer_t
     use vtk_writer, only: write_vtu
     use matrix_market, only: write_matrix_market
-    use element_types, only: element_name, element_corners
+    use element_types, only: element_corners
+    use mesh, only: mesh_t
+    use hp_space, only: hp_space_t
+    use hp_field, only: sample_hp_field
     use pictures, only: draw_mode
-    use blas_info, only: blas_in_use
-    use error_estimate, only: error_estimate_t, estimate_label
-    use hp_adaptive, only: HP_ESTIMATE
+    use error_estimate, only: error_estimate_t
     implicit none
     private
-    public :: eigen_summary_json, no_eigen_summary_json, summary_lines, &
-              write_eigenvalues_csv, write_modes, write_eigen_files, modes_to_write, &
-              mode_field_names, mode_field_values
+    public :: write_eigenvalues_csv, write_modes, write_eigen_files, write_hp_modes
 
 contains
-
-    !> summary.json of an eigen run; other analyses add their own keys to it.
-    function eigen_summary_json(config, prob, res, timings) result(summary)
-        type(config_t), intent(in) :: config
-        type(problem_t), intent(in) :: prob
-        type(eigen_result_t), intent(in) :: res
-        type(timings_t), intent(in) :: timings
-        type(json_object_t) :: summary
-        summary = summary_json(config, prob, timings, res)
-    end function eigen_summary_json
-
-    !> The same keys for a run that solved no eigenproblem: those of the spectrum are null
-    !> (n_eigenvalues 0), lambda is &analysis lambda.
-    function no_eigen_summary_json(config, prob, timings) result(summary)
-        type(config_t), intent(in) :: config
-        type(problem_t), intent(in) :: prob
-        type(timings_t), intent(in) :: timings
-        type(json_object_t) :: summary
-        summary = summary_json(config, prob, timings)
-    end function no_eigen_summary_json
-
-    !> The keys every summary.json starts with: the run, the mesh, the problem sizes, the
-    !> lowest positive eigenvalue with its meaning (null without `res`), the timings.
-    function summary_json(config, prob, timings, res) result(summary)
-        type(config_t), intent(in) :: config
-        type(problem_t), intent(in) :: prob
-        type(timings_t), intent(in) :: timings
-        type(eigen_result_t), intent(in), optional :: res
-        type(json_object_t) :: summary
-        character(len=*), parameter :: LOWEST_KEYS(8) = [character(len=30) :: &
-            'lowest_positive_mu', 'critical_c_n', 'critical_c_t', &
-            'lowest_positive_condition', 'lowest_positive_residual', &
-            'lowest_positive_error_estimate', 'lowest_positive_error_bar', &
-            'lowest_positive_roundoff']
-        integer :: lowest, i, blas_threads
-        real(wp) :: mu, lambda
-        character(len=:), allocatable :: blas_library, blas_config
-
-        lambda = config%analysis%lambda
-        lowest = 0
-        if (present(res)) then
-            lambda = res%lambda
-            lowest = res%spec%lowest_positive()
-        end if
-        call summary%add_string('nceig_version', NCEIG_VERSION)
-        call summary%add_string('input', config%input_file)
-        call summary%add_string('analysis', trim(config%analysis%kind))
-        call summary%add_real('lambda', lambda)
-        ! From the mesh: a Gmsh file decides its element type, not &mesh element.
-        call summary%add_string('element', mesh_element(config, prob))
-        call summary%add_string('mesh_source', trim(config%mesh%source))
-        if (config%mesh%source == 'rectangle') then
-            call summary%add_integer('nx', config%mesh%nx)
-            call summary%add_integer('ny', config%mesh%ny)
-            call summary%add_string('diagonal', trim(config%mesh%diagonal))
-        end if
-        if (config%mesh%source == 'gmsh') call summary%add_string('mesh_file', &
-                                                                 trim(config%mesh%file))
-        call summary%add_real('young', prob%young)
-        call summary%add_real('poisson', prob%poisson)
-        call summary%add_integer('n_nodes', prob%mesh%n_nodes())
-        call summary%add_integer('n_cells', prob%mesh%n_cells())
-        call summary%add_integer('n_dofs', prob%dofs%n_free)
-        call summary%add_integer('nnz_k', prob%k%nnz())
-        call summary%add_integer('n_contact', prob%contact%p())
-        if (present(res)) then
-            call summary%add_string('solver', solver_name(res%solver))
-            call summary%add_string('operator', operator_name(res%solver, config%eigen%operator))
-        else
-            call summary%add_null('solver')
-            call summary%add_null('operator')
-        end if
-        if (lowest > 0) then
-            mu = real(res%spec%mu(lowest), wp)
-            call summary%add_real('lowest_positive_mu', mu)
-            call summary%add_real('critical_c_n', mu)
-            call summary%add_real('critical_c_t', critical_c_t(mu, res%lambda))
-            ! ARPACK gives no condition number (-1 inside): null, never a number to misread
-            call summary%add_real_or_null('lowest_positive_condition', &
-                                          res%spec%condition(lowest), &
-                                          res%spec%condition(lowest) >= 0.0_wp)
-            call summary%add_real('lowest_positive_residual', res%spec%residual(lowest))
-            ! |mu - mu_h| / mu_h estimated (error_estimate); null where not computed
-            call summary%add_real_or_null('lowest_positive_error_estimate', &
-                                          abs(res%error%relative), res%error%computed)
-            ! the relative bar quoted with c_n (error_bar); null where there is none
-            call summary%add_real_or_null('lowest_positive_error_bar', res%error%bar, &
-                                          res%error%computed .and. res%error%bar >= 0.0_wp)
-            ! the round-off part of that bar (module roundoff); null where unknown
-            call summary%add_real_or_null('lowest_positive_roundoff', res%roundoff, &
-                                          res%roundoff >= 0.0_wp)
-        else
-            do i = 1, size(LOWEST_KEYS)
-                call summary%add_null(trim(LOWEST_KEYS(i)))
-            end do
-        end if
-        call summary%add_real('cn_max', config%eigen%cn_max)
-        if (present(res)) then
-            call summary%add_real_array('critical_cn', critical_cn(res%spec, config%eigen%cn_max))
-        else
-            call summary%add_real_array('critical_cn', [real(wp) ::])
-        end if
-        call summary%add_integer('slip_sign', slip_sign(lambda))
-        if (present(res)) then
-            call summary%add_integer('n_eigenvalues', res%spec%n())
-            call summary%add_real('max_residual', res%spec%max_residual())
-            call summary%add_integer('operator_applications', res%spec%n_operator)
-            call summary%add_logical('dense_decision', res%spec%dense_decision)
-        else
-            call summary%add_integer('n_eigenvalues', 0)
-            call summary%add_null('max_residual')
-            call summary%add_integer('operator_applications', 0)
-            call summary%add_null('dense_decision')
-        end if
-        call blas_in_use(blas_library, blas_config, blas_threads)
-        call summary%add_string('blas_library', blas_library)
-        call summary%add_string('blas_config', blas_config)
-        call summary%add_integer('blas_threads', blas_threads)
-        call summary%add_real('time_assembly_s', timings%assembly)
-        call summary%add_real('time_ordering_s', timings%ordering)
-        call summary%add_real('time_factor_s', timings%factor)
-        call summary%add_real('time_reduction_s', timings%reduction)
-        call summary%add_real('time_eigen_s', timings%eigen)
-        ! part of time_eigen_s: the left eigenvector and the round-off bound
-        if (present(res)) then
-            call summary%add_real('time_roundoff_s', res%spec%roundoff_seconds)
-        else
-            call summary%add_real('time_roundoff_s', 0.0_wp)
-        end if
-        call summary%add_real('time_output_s', timings%output)
-        call summary%add_real('time_total_s', timings%total)
-        call summary%add_string_array('warnings', [character(len=1) ::])
-        if (present(res)) then
-            if (allocated(res%warnings)) call summary%add_string_array('warnings', res%warnings)
-        end if
-    end function summary_json
 
     !> index,re,im,kind,residual,condition,error_estimate,error_bar; an unknown condition is
     !> left empty, and so are error_estimate and error_bar but for the lowest positive mu
@@ -202,12 +62,11 @@ contains
     !> the first &output modes; for 'threshold' and 'lambda_sweep', whose modes are those of
     !> the critical c_n, only the positive real mu among them (they come first), so none at
     !> a lambda without a positive mu.
-    pure integer function modes_to_write(config, spec)
-        type(config_t), intent(in) :: config
+    pure integer function modes_to_write(inputs, spec)
+        type(run_inputs_t), intent(in) :: inputs
         type(spectrum_t), intent(in) :: spec
-        modes_to_write = max(0, min(config%output%modes, size(spec%vectors, 2)))
-        if (trim(config%analysis%kind) == 'threshold' .or. &
-            trim(config%analysis%kind) == 'lambda_sweep') &
+        modes_to_write = max(0, min(inputs%output%modes, size(spec%vectors, 2)))
+        if (inputs%analysis == ANALYSIS_THRESHOLD .or. inputs%analysis == ANALYSIS_SWEEP) &
             modes_to_write = min(modes_to_write, count(spec%kind == KIND_POSITIVE))
     end function modes_to_write
 
@@ -283,110 +142,12 @@ contains
         end function with_indicators
     end subroutine write_modes
 
-    !> The element of the run: its name, or 'hp' for an hp run, whose graded mesh carries a
-    !> degree per cell (the p1 of its geometry is not the element solved).
-    function mesh_element(config, prob) result(name)
-        type(config_t), intent(in) :: config
-        type(problem_t), intent(in) :: prob
-        character(len=:), allocatable :: name
-        name = element_name(prob%mesh%element)
-        if (config%adapt%tolerance > 0.0_wp .and. trim(config%adapt%strategy) == 'hp') &
-            name = 'hp'
-    end function mesh_element
-
-    !> The human summary: mesh, sizes, the headline eigenvalue and the time of each phase.
-    function summary_lines(config, prob, res, timings, plot_note) result(text)
-        type(config_t), intent(in) :: config
-        type(problem_t), intent(in) :: prob
-        type(eigen_result_t), intent(in) :: res
-        type(timings_t), intent(in) :: timings
-        character(len=*), intent(in), optional :: plot_note   !! from write_eigen_files
-        character(len=:), allocatable :: text
-        character(len=*), parameter :: NL = new_line('a')
-        integer :: lowest, i
-        real(wp) :: mu
-        real(wp), allocatable :: critical(:)
-
-        text = 'nceig '//NCEIG_VERSION//': '//config%input_file//NL// &
-            '  mesh        '//trim(config%mesh%source)//', '//mesh_element(config, prob)// &
-            ', '//to_string(prob%mesh%n_cells())//' cells, '//to_string(prob%mesh%n_nodes())// &
-            ' nodes'//NL// &
-            '  problem     '//to_string(prob%dofs%n_free)//' dofs, '// &
-            to_string(prob%contact%p())//' contact nodes, lambda = '//real_to_text(res%lambda)// &
-            NL//'  solver      '//solver_name(res%solver)//': '//to_string(res%spec%n())// &
-            ' eigenvalues, max backward error '//short_real_text(res%spec%max_residual())//NL
-        lowest = res%spec%lowest_positive()
-        if (lowest > 0) then
-            mu = real(res%spec%mu(lowest), wp)
-            text = text//'  lowest positive mu = critical c_n = '//real_to_text(mu)
-            ! the headline quotes its bar, absolute: c_n = X +- B
-            if (res%error%computed .and. res%error%bar >= 0.0_wp) text = text//' +- '// &
-                short_real_text(res%error%bar*mu)
-            if (res%error%computed .and. res%error%bar >= 1.0_wp) text = text// &
-                ' (no certain digit)'
-            text = text//NL// &
-                '  critical c_t = mu |lambda| = '//real_to_text(critical_c_t(mu, res%lambda))// &
-                ', slip sign s = '//to_string(slip_sign(res%lambda))// &
-                ' (u_t '//merge('< 0', '> 0', slip_sign(res%lambda) < 0)//' along t)'//NL
-            if (res%error%computed) then
-                if (estimate_label(res%error) == HP_ESTIMATE) then
-                    ! the change is the previous level's error: the bar may be below it
-                    text = text//'  relative change of mu to the previous hp level: '// &
-                        short_real_text(abs(res%error%relative))// &
-                        ' (the error of that level); error bar '// &
-                        short_real_text(res%error%bar)//NL
-                else
-                    text = text//'  relative error estimate of mu: '// &
-                        short_real_text(abs(res%error%relative))//' ('// &
-                        estimate_label(res%error)//'); error bar '// &
-                        short_real_text(res%error%bar)//NL
-                end if
-            end if
-            if (allocated(res%error%skipped)) text = text//'  relative error estimate of mu: '// &
-                res%error%skipped//NL
-            if (res%roundoff >= 0.0_wp) then
-                text = text//'  round-off bound of mu: '//short_real_text(res%roundoff)// &
-                       ' relative'
-                if (res%quotient) text = text//' (Rayleigh quotient without a stored K)'
-                if (res%error%computed) text = text//' (in the error bar)'
-                text = text//NL
-            end if
-        else
-            text = text//'  no positive real eigenvalue for this lambda'//NL
-        end if
-        if (config%eigen%cn_max > 0.0_wp) then
-            critical = critical_cn(res%spec, config%eigen%cn_max)
-            text = text//'  critical c_n in (0, '//real_to_text(config%eigen%cn_max)//']: '// &
-                to_string(size(critical))
-            do i = 1, size(critical)
-                text = text//merge(': ', ', ', i == 1)//real_to_text(critical(i))
-            end do
-            text = text//NL
-        end if
-        text = text//'  time [s]    assembly '//seconds_text(timings%assembly)// &
-            ', ordering '//seconds_text(timings%ordering)// &
-            ', factor '//seconds_text(timings%factor)// &
-            ', reduction '//seconds_text(timings%reduction)// &
-            ', eigen '//seconds_text(timings%eigen)// &
-            ', output '//seconds_text(timings%output)// &
-            ', total '//seconds_text(timings%total)//NL// &
-            '  output      '//trim(config%output%directory)
-        if (present(plot_note)) then
-            if (len(plot_note) > 0) text = text//NL//'  mode plot   '//plot_note
-        end if
-        if (allocated(res%warnings)) then
-            do i = 1, size(res%warnings)
-                text = text//NL//'warning: '//trim(res%warnings(i))
-            end do
-        end if
-    end function summary_lines
-
     !> eigenvalues.csv, mode_NNN.vtu and K.mtx, B.mtx as &output asks, and mode_001.png, into
     !> `stage`: the files of an eigen run, which the threshold and sweep runs write too.
     !> `plot_note`: where the picture is, why it is missing, or '' when none was asked for.
-    subroutine write_eigen_files(stage, config, prob, res, stat, plot_note)
+    subroutine write_eigen_files(stage, inputs, prob, res, stat, plot_note)
         type(output_stage_t), intent(inout) :: stage
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         type(eigen_result_t), intent(in) :: res
         type(status_t), intent(out) :: stat
@@ -394,16 +155,16 @@ contains
         character(len=:), allocatable :: path
         call stage%add('eigenvalues.csv', path)
         call write_eigenvalues_csv(path, res%spec, stat, res%error)
-        if (stat%ok() .and. config%output%vtk) call write_modes(stage, prob, res%spec, &
-            modes_to_write(config, res%spec), trim(config%output%vtk_format), stat, &
+        if (stat%ok() .and. inputs%output%vtk) call write_modes(stage, prob, res%spec, &
+            modes_to_write(inputs, res%spec), trim(inputs%output%vtk_format), stat, &
             res%error, res%lambda)
-        if (stat%ok() .and. config%output%matrices) call write_matrices(stage, prob, res, stat)
+        if (stat%ok() .and. inputs%output%matrices) call write_matrices(stage, prob, res, stat)
         if (.not. present(plot_note)) return
         plot_note = ''
-        if (.not. (stat%ok() .and. config%output%plot)) return
-        if (modes_to_write(config, res%spec) > 0) then
-            call draw_first_mode(stage, config, prob, res, plot_note)
-        else if (config%output%modes > 0 .and. size(res%spec%vectors, 2) > 0) then
+        if (.not. (stat%ok() .and. inputs%output%plot)) return
+        if (modes_to_write(inputs, res%spec) > 0) then
+            call draw_first_mode(stage, inputs, prob, res, plot_note)
+        else if (inputs%output%modes > 0 .and. size(res%spec%vectors, 2) > 0) then
             plot_note = 'none, and no mode file: no positive mu at lambda = '// &
                 real_to_text(res%lambda)//' (a threshold or sweep run writes those only)'
         end if
@@ -425,15 +186,44 @@ contains
     end subroutine write_matrices
 
     !> mode_001.png of the first mode (its real part), joined to the set when drawn.
-    subroutine draw_first_mode(stage, config, prob, res, note)
+    subroutine draw_first_mode(stage, inputs, prob, res, note)
         type(output_stage_t), intent(inout) :: stage
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         type(eigen_result_t), intent(in) :: res
         character(len=:), allocatable, intent(out) :: note
-        call draw_mode(stage, trim(config%output%directory), 'mode 1: mu = '// &
+        call draw_mode(stage, trim(inputs%output%directory), 'mode 1: mu = '// &
             real_to_text(real(res%spec%mu(1), wp))//', lambda = '//real_to_text(res%lambda), &
             prob%mesh%coords, prob%mesh%cells, element_corners(prob%mesh%element), &
             prob%dofs%nodal_field(real(res%spec%vectors(:, 1), wp)), note)
     end subroutine draw_first_mode
+    !> mode_NNN.vtu: the real part of each kept mode (modes_to_write) of `spec` (on the hp
+    !> problem `prob` with space `space`, at `lambda`), sampled on the sub-triangulation of
+    !> hp_field, with each sub-cell's degree and the field data of write_modes' files.
+    subroutine write_hp_modes(stage, inputs, prob, space, spec, lambda, stat)
+        type(output_stage_t), intent(inout) :: stage
+        type(run_inputs_t), intent(in) :: inputs
+        type(problem_t), intent(in) :: prob
+        type(hp_space_t), intent(in) :: space
+        type(spectrum_t), intent(in) :: spec
+        real(wp), intent(in) :: lambda
+        type(status_t), intent(out) :: stat
+        type(mesh_t) :: sub
+        real(wp), allocatable :: values(:, :), degree(:), mode(:)
+        integer :: i
+        character(len=:), allocatable :: path
+        do i = 1, modes_to_write(inputs, spec)
+            mode = real(spec%vectors(:, i), wp)
+            call sample_hp_field(prob%mesh, space, prob%young, prob%poisson, &
+                                 mode, sub, values, degree, stat)
+            if (.not. stat%ok()) return
+            call stage%add('mode_'//zero_padded(i, 3)//'.vtu', path)
+            call write_vtu(path, sub, &
+                           ['displacement'], reshape(values, [2, size(values, 2), 1]), &
+                           trim(inputs%output%vtk_format), stat, ['degree'], &
+                           reshape(degree, [size(degree), 1]), mode_field_names(), &
+                           mode_field_values(spec, i, lambda, prob%poisson))
+            if (.not. stat%ok()) return
+        end do
+    end subroutine write_hp_modes
 end module eigen_files

@@ -15,12 +15,14 @@ module pictures
     use filesystem, only: remove_file
     use gnuplot, only: not_drawable_note, gnuplot_string, path_argument, run_gnuplot
     use output_stage, only: output_stage_t
-    use adaptive_eigen, only: adapt_level_t
-    use adaptive_threshold, only: threshold_level_t
-    use hp_adaptive, only: hp_level_t, hp_result_t
+    use eigen_goal, only: eigen_level_t
+    use eigen_solve, only: eigen_result_t
+    use hp_space, only: hp_space_t
+    use threshold_goal, only: threshold_level_t
     use threshold_analysis, only: threshold_result_t
     use critical_point, only: critical_c_t
-    use run_config, only: config_t
+    use run_inputs, only: run_inputs_t
+    use scene, only: MESH_RECTANGLE
     use problem, only: problem_t
     use element_types, only: element_name, element_corners
     use mesh, only: mesh_t
@@ -79,7 +81,7 @@ contains
 
     !> The h loop of analysis 'eigen': the lowest positive mu.
     pure subroutine eigen_adapt_curves(levels, curves)
-        type(adapt_level_t), intent(in) :: levels(:)
+        type(eigen_level_t), intent(in) :: levels(:)
         type(adapt_curve_t), allocatable, intent(out) :: curves(:)
         integer :: i, n
         n = size(levels)
@@ -140,7 +142,7 @@ contains
     !> The hp loop: mu with its bar, and in place of an estimate the change from the previous
     !> level, |mu_k - mu_(k-1)| / |mu_k| (known where both levels have a mu).
     pure subroutine hp_adapt_curves(levels, curves)
-        type(hp_level_t), intent(in) :: levels(:)
+        type(eigen_level_t), intent(in) :: levels(:)
         type(adapt_curve_t), allocatable, intent(out) :: curves(:)
         integer :: i, n
         n = size(levels)
@@ -157,7 +159,7 @@ contains
 
     !> The degree range of each hp level, 'p 1-4' (or 'p 2' when all cells have one).
     pure function hp_degree_labels(levels) result(labels)
-        type(hp_level_t), intent(in) :: levels(:)
+        type(eigen_level_t), intent(in) :: levels(:)
         character(len=16) :: labels(size(levels))
         integer :: i
         do i = 1, size(levels)
@@ -383,25 +385,25 @@ contains
     end subroutine draw_picture
     !> adapt.png of the h loop of analysis 'eigen' (`element`, at `lambda`, from
     !> `start_dofs`), when &output plot is on.
-    subroutine draw_eigen_adapt(stage, config, element, lambda, start_dofs, levels, note)
+    subroutine draw_eigen_adapt(stage, inputs, element, lambda, start_dofs, levels, note)
         type(output_stage_t), intent(inout) :: stage
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         integer, intent(in) :: element, start_dofs
         real(wp), intent(in) :: lambda
-        type(adapt_level_t), intent(in) :: levels(:)
+        type(eigen_level_t), intent(in) :: levels(:)
         character(len=:), allocatable, intent(out) :: note
         type(adapt_curve_t), allocatable :: curves(:)
         integer :: i
         call eigen_adapt_curves(levels, curves)
-        call draw_adapt(stage, config, element_name(element)//', lambda = '// &
+        call draw_adapt(stage, inputs, element_name(element)//', lambda = '// &
             real_to_text(lambda)//', start '//to_string(start_dofs)//' dofs', MU_GOAL, &
             [(levels(i)%n_dofs, i = 1, size(levels))], curves, note)
     end subroutine draw_eigen_adapt
 
     !> adapt.png of the threshold loop: both critical lambdas, and the collision onsets.
-    subroutine draw_threshold_adapt(stage, config, element, start_dofs, levels, note, method)
+    subroutine draw_threshold_adapt(stage, inputs, element, start_dofs, levels, note, method)
         type(output_stage_t), intent(inout) :: stage
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         integer, intent(in) :: element, start_dofs
         type(threshold_level_t), intent(in) :: levels(:)
         character(len=:), allocatable, intent(out) :: note
@@ -412,33 +414,33 @@ contains
         by = element_name(element)
         if (present(method)) by = method
         call threshold_adapt_curves(levels, curves)
-        call draw_adapt(stage, config, by//', the critical lambdas, start '// &
+        call draw_adapt(stage, inputs, by//', the critical lambdas, start '// &
             to_string(start_dofs)//' dofs', 'critical {/Symbol l}  (dimensionless)', &
             [(levels(i)%n_dofs, i = 1, size(levels))], curves, note)
     end subroutine draw_threshold_adapt
 
     !> adapt.png of the hp loop: the bar and the change per level, each level labelled with
     !> its degrees.
-    subroutine draw_hp_adapt(stage, config, lambda, start_dofs, levels, note)
+    subroutine draw_hp_adapt(stage, inputs, lambda, start_dofs, levels, note)
         type(output_stage_t), intent(inout) :: stage
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         real(wp), intent(in) :: lambda
         integer, intent(in) :: start_dofs
-        type(hp_level_t), intent(in) :: levels(:)
+        type(eigen_level_t), intent(in) :: levels(:)
         character(len=:), allocatable, intent(out) :: note
         type(adapt_curve_t), allocatable :: curves(:)
         integer :: i
         call hp_adapt_curves(levels, curves)
-        call draw_adapt(stage, config, 'hp, lambda = '//real_to_text(lambda)//', start '// &
+        call draw_adapt(stage, inputs, 'hp, lambda = '//real_to_text(lambda)//', start '// &
             to_string(start_dofs)//' dofs, each level labelled with its degrees', &
             MU_GOAL, [(levels(i)%n_dofs, i = 1, size(levels))], curves, note, &
             hp_degree_labels(levels))
     end subroutine draw_hp_adapt
 
     !> adapt.png when &output plot is on and some level has an error to draw.
-    subroutine draw_adapt(stage, config, title, goal, dofs, curves, note, labels)
+    subroutine draw_adapt(stage, inputs, title, goal, dofs, curves, note, labels)
         type(output_stage_t), intent(inout) :: stage
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         character(len=*), intent(in) :: title, goal
         integer, intent(in) :: dofs(:)
         type(adapt_curve_t), intent(in) :: curves(:)
@@ -447,7 +449,7 @@ contains
         logical :: any_error
         integer :: k
         note = ''
-        if (.not. config%output%plot) return
+        if (.not. inputs%output%plot) return
         any_error = .false.
         do k = 1, size(curves)
             any_error = any_error .or. .not. all(ieee_is_nan(curves(k)%estimate)) .or. &
@@ -457,38 +459,38 @@ contains
             note = 'not drawn: no level has an error estimate'
             return
         end if
-        call draw_picture(stage, trim(config%output%directory), ADAPT_PNG, &
-            adapt_script(stage%scratch(ADAPT_PNG), title, goal, config%adapt%tolerance, dofs, &
+        call draw_picture(stage, trim(inputs%output%directory), ADAPT_PNG, &
+            adapt_script(stage%scratch(ADAPT_PNG), title, goal, inputs%adapt%tolerance, dofs, &
                          curves, labels), note)
     end subroutine draw_adapt
 
     !> lambda_sweep.png of a sweep on `prob` (its starting mesh where the points were
     !> adapted), when &sweep plot and &output plot (every picture's switch) are on; `note`
     !> stays unallocated when either is off.
-    subroutine draw_sweep(stage, config, prob, res, note)
+    subroutine draw_sweep(stage, inputs, prob, res, note)
         type(output_stage_t), intent(inout) :: stage
-        type(config_t), intent(in) :: config
+        type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
         type(threshold_result_t), intent(in) :: res
         character(len=:), allocatable, intent(inout) :: note
         character(len=:), allocatable :: title
         character(len=2) :: element
         logical :: log_x
-        if (.not. (config%sweep%plot .and. config%output%plot)) return
+        if (.not. (inputs%sweep_plot .and. inputs%output%plot)) return
         if (.not. any(res%sweep%found)) then   ! gnuplot would fail on an empty curve
             note = 'not drawn: no lambda has a positive mu'
             return
         end if
         element = element_name(prob%mesh%element)
-        title = element//' '//trim(config%mesh%source)
-        if (config%mesh%source == 'rectangle') then
-            title = title//' '//to_string(config%mesh%nx)//'x'//to_string(config%mesh%ny)
+        title = element//' '//inputs%scene%source_name()
+        if (inputs%scene%source == MESH_RECTANGLE) then
+            title = title//' '//to_string(inputs%scene%nx)//'x'//to_string(inputs%scene%ny)
             if (element(1:1) == 'p') &   ! triangles only
-                title = title//' '//trim(config%mesh%diagonal)
+                title = title//' '//trim(inputs%scene%diagonal)
         end if
         associate (curve => res%sweep)
             ! an adapted sweep solves each lambda on its own mesh: `prob` is where all started
-            if (config%adapt%tolerance > 0.0_wp) then
+            if (inputs%adapt%tolerance > 0.0_wp) then
                 title = title//' start, each lambda adapted'
                 if (any(curve%error_estimate >= 0.0_wp)) title = title//' (largest estimate '// &
                     short_real_text(maxval(curve%error_estimate), 1)//')'
@@ -496,35 +498,37 @@ contains
                 title = title//', '//to_string(prob%contact%p())//' contact nodes'
             end if
             ! a list of lambdas is drawn as a linear sweep
-            log_x = config%sweep%spacing == 'log' .and. &
-                    .not. config%sweep%lambdas(1) < huge(1.0_wp)
-            call draw_picture(stage, trim(config%output%directory), SWEEP_PNG, &
+            log_x = inputs%sweep_spacing == 'log'
+            call draw_picture(stage, trim(inputs%output%directory), SWEEP_PNG, &
                 sweep_script(stage%scratch(SWEEP_PNG), title, curve%lambda, curve%mu, &
                              curve%found, curve%error_bar, log_x, res%thresholds%lambda, &
                              res%thresholds%found), note)
         end associate
     end subroutine draw_sweep
 
-    !> mode_001.png of an hp run: the first mode's real part sampled on the linear
-    !> sub-triangulation of hp_field, when &output plot is on.
-    subroutine draw_hp_mode(stage, config, out, note, stat)
+    !> mode_001.png of an hp run: the first mode of `res` (input units) on the hp level `prob`
+    !> with space `space`, its real part sampled on the linear sub-triangulation of hp_field,
+    !> when &output plot is on.
+    subroutine draw_hp_mode(stage, inputs, prob, space, res, note, stat)
         type(output_stage_t), intent(inout) :: stage
-        type(config_t), intent(in) :: config
-        type(hp_result_t), intent(in) :: out
+        type(run_inputs_t), intent(in) :: inputs
+        type(problem_t), intent(in) :: prob
+        type(hp_space_t), intent(in) :: space
+        type(eigen_result_t), intent(in) :: res
         character(len=:), allocatable, intent(out) :: note
         type(status_t), intent(out) :: stat
         type(mesh_t) :: sub
         real(wp), allocatable :: values(:, :), degree(:), mode(:)
         note = ''
-        if (.not. config%output%plot .or. config%output%modes < 1 .or. &
-            size(out%res%spec%vectors, 2) < 1) return
-        mode = real(out%res%spec%vectors(:, 1), wp)
-        call sample_hp_field(out%prob%mesh, out%space, out%prob%young, out%prob%poisson, mode, &
+        if (.not. inputs%output%plot .or. inputs%output%modes < 1 .or. &
+            size(res%spec%vectors, 2) < 1) return
+        mode = real(res%spec%vectors(:, 1), wp)
+        call sample_hp_field(prob%mesh, space, prob%young, prob%poisson, mode, &
                              sub, values, degree, stat)
         if (.not. stat%ok()) return
-        call draw_mode(stage, trim(config%output%directory), 'mode 1: mu = '// &
-            real_to_text(real(out%res%spec%mu(1), wp))//', lambda = '// &
-            real_to_text(out%res%lambda)//' (hp, sampled)', sub%coords, sub%cells, &
+        call draw_mode(stage, trim(inputs%output%directory), 'mode 1: mu = '// &
+            real_to_text(real(res%spec%mu(1), wp))//', lambda = '// &
+            real_to_text(res%lambda)//' (hp, sampled)', sub%coords, sub%cells, &
             element_corners(sub%element), values, note)
     end subroutine draw_hp_mode
 

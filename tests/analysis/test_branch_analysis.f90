@@ -4,6 +4,8 @@
 !> geometry and eigenvalue preconditions fail with clear messages.
 program test_branch_analysis
     use kinds, only: wp
+    use run_inputs, only: run_inputs_t, translate_input
+    use fixtures, only: problem_of
     use status, only: status_t, STATUS_BAD_INPUT
     use testing, only: test_suite_t
     use timer, only: timings_t
@@ -40,6 +42,7 @@ contains
         character(len=5), parameter :: DIAGONALS(5) = ['right', 'left ', 'right', 'left ', 'right']
         real(wp), parameter :: LAMBDAS(5) = [5.0_wp, -6.0_wp, 5.0_wp, 8.0_wp, -5.0_wp]
         type(config_t) :: config
+        type(run_inputs_t) :: inputs
         type(problem_t) :: prob
         type(branch_result_t) :: res
         type(timings_t) :: timings
@@ -62,8 +65,9 @@ contains
             config%branch%n_delta = 9
             write (what, '(a, a, 1x, a, a, f5.1)') ELEMENTS(c), '/', trim(DIAGONALS(c)), &
                 ', lambda', LAMBDAS(c)
-            call build_problem(config, prob, stat, with_all_dofs=.true.)
-            if (stat%ok()) call run_branch(config, prob, res, timings, stat)
+            call problem_of(config, prob, stat, with_all_dofs=.true.)
+            call translate_input(config, inputs)
+            if (stat%ok()) call run_branch(inputs, prob, res, timings, stat)
             call t%check(trim(what)//': runs', stat%ok())
             if (.not. stat%ok()) then
                 call t%check(stat%message, .false.)
@@ -90,6 +94,7 @@ contains
     subroutine geometry_and_eigenvalue_preconditions(t)
         type(test_suite_t), intent(inout) :: t
         type(config_t) :: config
+        type(run_inputs_t) :: inputs
         type(problem_t) :: prob
         type(critical_data_t) :: crit
         type(timings_t) :: timings
@@ -101,8 +106,9 @@ contains
         config%mesh%dirichlet = 'bottom'
         config%mesh%contact = 'top'
         config%analysis%kind = 'branch'
-        call build_problem(config, prob, stat, with_all_dofs=.true.)
-        call critical_branch_data(config, prob, timings, crit, stat)
+        call problem_of(config, prob, stat, with_all_dofs=.true.)
+        call translate_input(config, inputs)
+        call critical_branch_data(inputs, prob, timings, crit, stat)
         call t%check('contact on top: bad input', stat%code == STATUS_BAD_INPUT)
         if (.not. stat%ok()) call t%check('contact on top: message names the normal', &
                                           index(stat%message, 'normal (0, -1)') > 0)
@@ -110,8 +116,9 @@ contains
         config%mesh%dirichlet = 'top'
         config%mesh%contact = 'bottom'
         config%analysis%lambda = 0.5_wp   ! below the threshold: no positive eigenvalue
-        call build_problem(config, prob, stat, with_all_dofs=.true.)
-        call critical_branch_data(config, prob, timings, crit, stat)
+        call problem_of(config, prob, stat, with_all_dofs=.true.)
+        call translate_input(config, inputs)
+        call critical_branch_data(inputs, prob, timings, crit, stat)
         call t%check('lambda = 0.5: bad input', stat%code == STATUS_BAD_INPUT)
         if (.not. stat%ok()) call t%check('lambda = 0.5: message says no positive eigenvalue', &
                                           index(stat%message, 'no positive real eigenvalue') > 0)

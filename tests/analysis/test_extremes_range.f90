@@ -7,12 +7,14 @@
 !> so the Debug build's floating-point traps watch every case.
 program test_extremes_range
     use kinds, only: wp
+    use fixtures, only: problem_of, eigen_of
+    use reported_units, only: to_input_units
     use status, only: status_t, STATUS_BAD_INPUT
     use testing, only: test_suite_t
     use timer, only: timings_t
     use run_config, only: config_t
     use problem, only: problem_t, build_problem
-    use eigen_analysis, only: eigen_result_t, solve_eigen
+    use eigen_solve, only: eigen_result_t, solve_eigen
     use spectrum, only: KIND_COMPLEX
     use accuracy, only: BACKWARD_ERROR_BOUND
     use sparse_cholesky, only: cholesky_t
@@ -182,7 +184,7 @@ contains
         real(wp) :: vl(1, 1), vr(1, 1), nu(2), query(1)
         integer :: p, info, sgn
         c = scene()
-        call build_problem(c, prob, stat)
+        call problem_of(c, prob, stat)
         if (stat%ok()) call factor_stiffness(prob%k, prob%mesh, prob%dofs, prob%contact, chol, &
                                              timings, stat)
         if (stat%ok()) call contact_flexibility(chol, prob%contact, kt_nn, kt_nt, stat)
@@ -382,7 +384,9 @@ contains
         type(status_t), intent(out) :: stat
         type(problem_t) :: prob
         type(timings_t) :: timings
-        call build_problem(c, prob, stat)
-        if (stat%ok()) call solve_eigen(c, prob, c%analysis%lambda, res, timings, stat)
+        call problem_of(c, prob, stat)
+        if (stat%ok()) call eigen_of(c, prob, c%analysis%lambda, res, timings, stat)
+        ! the spectrum of the input problem, as the report gives it (reported_units)
+        if (stat%ok()) call to_input_units(prob%units, res%spec%mu)
     end subroutine run
 end program test_extremes_range

@@ -5,13 +5,14 @@
 !> for the single element of model.md section 8 in closed form, -(L + 3G)/(L + G).
 program test_extremes_threshold
     use kinds, only: wp
+    use fixtures, only: problem_of, eigen_of
     use status, only: status_t
     use testing, only: test_suite_t
     use fixtures, only: has_warning, single_triangle_mesh => single_triangle
     use timer, only: timings_t
     use run_config, only: config_t
     use problem, only: problem_t, build_problem
-    use eigen_analysis, only: eigen_result_t, solve_eigen
+    use eigen_solve, only: eigen_result_t, solve_eigen
     use dof_map, only: build_dof_map
     use contact_boundary, only: build_contact
     use assembly, only: assemble_stiffness
@@ -99,7 +100,7 @@ contains
             c%mesh%ny = 8
             c%mesh%element = ELEMENTS(e)
             c%eigen%solver = 'dense'
-            call build_problem(c, prob, stat)
+            call problem_of(c, prob, stat)
             call pencil_thresholds(prob, thresholds)
             call t%check(ELEMENTS(e)//': thresholds on both sides of 0', &
                          thresholds(1) < 0.0_wp .and. thresholds(2) > 0.0_wp)
@@ -174,7 +175,7 @@ contains
         type(eigen_result_t), intent(out) :: res
         type(timings_t) :: timings
         type(status_t) :: stat
-        call solve_eigen(c, prob, lambda, res, timings, stat)
+        call eigen_of(c, prob, lambda, res, timings, stat)
         if (.not. stat%ok()) then
             call t%check('solve: '//stat%message, .false.)
             error stop 1

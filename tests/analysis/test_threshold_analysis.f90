@@ -5,6 +5,8 @@
 !> curve must agree, and the sweep must really have used ARPACK where it could certify.
 program test_threshold_analysis
     use kinds, only: wp
+    use run_inputs, only: run_inputs_t, translate_input
+    use fixtures, only: problem_of
     use status, only: status_t
     use testing, only: test_suite_t
     use run_config, only: config_t
@@ -13,7 +15,7 @@ program test_threshold_analysis
     use threshold_analysis, only: threshold_result_t, solve_thresholds
     use critical_lambda, only: SIDE_PLUS, SIDE_MINUS
     use arpack_eigen, only: arpack_options_t, arpack_lowest_positive
-    use eigen_analysis, only: SOLVER_DENSE, SOLVER_ARPACK
+    use method_options, only: SOLVER_DENSE, SOLVER_ARPACK
     implicit none
 
     type(test_suite_t) :: t
@@ -32,6 +34,7 @@ contains
         logical, intent(out) :: ok
         type(config_t) :: config
         type(problem_t) :: prob
+        type(run_inputs_t) :: inputs
         type(timings_t) :: timings
         type(status_t) :: stat
         config%input_file = 'test'
@@ -48,8 +51,10 @@ contains
         config%sweep%lambda_min = -40.0_wp
         config%sweep%lambda_max = 40.0_wp
         config%sweep%n_lambda = 41
-        call build_problem(config, prob, stat)
-        if (stat%ok()) call solve_thresholds(config, prob, .true., res, timings, stat)
+        call problem_of(config, prob, stat)
+        call translate_input(config, inputs)
+        if (stat%ok()) call solve_thresholds(inputs%scene, prob, inputs%point%lambda, &
+            inputs%eigen, inputs%scan, res, timings, stat, inputs%sweep, inputs%adapt)
         ok = stat%ok()
     end subroutine run
 

@@ -6,13 +6,14 @@
 !> node ordering puts the contact dofs last, the certificate logic, the info sentences.
 program test_arpack_eigen
     use kinds, only: wp
+    use fixtures, only: problem_of, eigen_of
     use status, only: status_t
     use testing, only: test_suite_t
     use fixtures, only: square_scene
     use run_config, only: config_t
     use problem, only: problem_t, build_problem
     use timer, only: timings_t
-    use eigen_analysis, only: eigen_result_t, solve_eigen
+    use eigen_solve, only: eigen_result_t, solve_eigen
     use sparse_cholesky, only: cholesky_t
     use contact_reduction, only: factor_stiffness
     use node_ordering, only: nested_dissection_last
@@ -85,8 +86,8 @@ contains
         type(status_t) :: stat
         integer :: i
         config%eigen%solver = solver
-        call build_problem(config, prob, stat)
-        if (stat%ok()) call solve_eigen(config, prob, lambda, res, timings, stat)
+        call problem_of(config, prob, stat)
+        if (stat%ok()) call eigen_of(config, prob, lambda, res, timings, stat)
         ok = stat%ok()
         mu = 0.0_wp
         residual = 0.0_wp
@@ -110,7 +111,7 @@ contains
         integer, allocatable :: perm(:), seen(:)
         integer :: n, p
         call square_scene(12, 'q1', 'right', config)
-        call build_problem(config, prob, stat)
+        call problem_of(config, prob, stat)
         call nested_dissection_last(prob%mesh, prob%dofs, prob%contact%nodes, perm, stat)
         call t%check('node ordering succeeds', stat%ok())
         if (.not. stat%ok()) return
@@ -140,7 +141,7 @@ contains
         real(wp), allocatable :: l_tail(:, :), rhs(:, :), x(:, :), inverse(:, :)
         integer :: m, j, n
         call square_scene(10, 'p1', 'left', config)
-        call build_problem(config, prob, stat)
+        call problem_of(config, prob, stat)
         call nested_dissection_last(prob%mesh, prob%dofs, prob%contact%nodes, perm, stat)
         call factor_stiffness(prob%k, prob%mesh, prob%dofs, prob%contact, chol, timings, stat)
         call t%check('factor with the contact dofs last', stat%ok())
@@ -355,8 +356,8 @@ contains
         type(status_t) :: stat
         call square_scene(1, 'p1', 'right', config)
         config%eigen%solver = 'arpack'
-        call build_problem(config, prob, stat)
-        call solve_eigen(config, prob, 5.0_wp, res, timings, stat)
+        call problem_of(config, prob, stat)
+        call eigen_of(config, prob, 5.0_wp, res, timings, stat)
         call t%check('p = 2 with arpack fails', .not. stat%ok())
         if (stat%ok()) return
         call t%check('p = 2: the message points to the dense solver', &

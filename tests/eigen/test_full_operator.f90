@@ -16,14 +16,16 @@
 !> differs by more than 1e-3 relative (the neighbours are at least 10x away).
 program test_full_operator
     use kinds, only: wp
+    use fixtures, only: problem_of, eigen_of
     use status, only: status_t, STATUS_BAD_INPUT, STATUS_SINGULAR
     use testing, only: test_suite_t
     use fixtures, only: square_scene
     use run_config, only: config_t
     use problem, only: problem_t, build_problem
     use timer, only: timings_t
-    use eigen_analysis, only: eigen_result_t, solve_eigen, critical_cn, operator_name, &
-                              SOLVER_ARPACK, SOLVER_DENSE
+    use eigen_solve, only: eigen_result_t
+    use reported_units, only: critical_cn
+    use method_options, only: operator_name, SOLVER_ARPACK, SOLVER_DENSE, OPERATOR_FULL
     use input_validation, only: validate_config
     use csr_matrix, only: csr_matrix_t
     use sparse_lu, only: lu_t
@@ -152,9 +154,9 @@ contains
         call t%check('negative cn_max: refused', .not. negative%ok() .and. &
                      index(negative%message, 'cn_max') > 0)
         call t%check('operator name: arpack + full is full', &
-                     operator_name(SOLVER_ARPACK, 'full') == 'full')
+                     operator_name(SOLVER_ARPACK, OPERATOR_FULL) == 'full')
         call t%check('operator name: dense is always reduced', &
-                     operator_name(SOLVER_DENSE, 'full') == 'reduced')
+                     operator_name(SOLVER_DENSE, OPERATOR_FULL) == 'reduced')
     end subroutine full_needs_an_arpack_solver
 
     !> P1 (both diagonals), Q1, P2, Q2, P3 on 8 x 8, lambda of both signs: the full and the
@@ -269,8 +271,8 @@ contains
         config%eigen%target = 1.0e9_wp
         config%eigen%solver = 'arpack'
         config%eigen%operator = 'full'
-        call build_problem(config, prob, stat)
-        if (stat%ok()) call solve_eigen(config, prob, 5.0_wp, res, timings, stat)
+        call problem_of(config, prob, stat)
+        if (stat%ok()) call eigen_of(config, prob, 5.0_wp, res, timings, stat)
         call t%check('target 1e9: full refuses it as bad input naming target', &
                      stat%code == STATUS_BAD_INPUT .and. index(stat%message, 'target') > 0)
     end subroutine full_refuses_targets_beyond_the_range
@@ -392,8 +394,8 @@ contains
         type(timings_t) :: timings
         type(status_t) :: stat
         config%eigen%operator = operator
-        call build_problem(config, prob, stat)
-        if (stat%ok()) call solve_eigen(config, prob, lambda, res, timings, stat)
+        call problem_of(config, prob, stat)
+        if (stat%ok()) call eigen_of(config, prob, lambda, res, timings, stat)
         ok = stat%ok()
     end subroutine solve
 

@@ -5,6 +5,7 @@
 !> (e.g. a Gmsh physical group of one point).
 program test_singular_stiffness
     use kinds, only: wp
+    use fixtures, only: eigen_of
     use status, only: status_t, STATUS_SINGULAR
     use testing, only: test_suite_t
     use timer, only: timings_t
@@ -12,7 +13,7 @@ program test_singular_stiffness
     use element_types, only: ELEMENT_P1, ELEMENT_Q2
     use mesh_structured, only: structured_rectangle
     use problem, only: problem_t
-    use eigen_analysis, only: eigen_result_t, solve_eigen
+    use eigen_solve, only: eigen_result_t, solve_eigen
     use dof_map, only: build_dof_map
     use contact_boundary, only: build_contact
     use assembly, only: assemble_stiffness
@@ -45,7 +46,7 @@ contains
                                           prob%contact, stat)
         if (stat%ok()) call assemble_stiffness(prob%mesh, prob%dofs, 1.0_wp, 0.3_wp, prob%k, stat)
         call t%check('setup', stat%ok())
-        call solve_eigen(c, prob, 5.0_wp, res, timings, stat)
+        call eigen_of(c, prob, 5.0_wp, res, timings, stat)
         call t%check('no Dirichlet boundary: STATUS_SINGULAR', stat%code == STATUS_SINGULAR)
         ! No message at all is a failure too, not a skipped check.
         call t%check('the message names K, singular and the Dirichlet boundary', &

@@ -5,7 +5,7 @@
 program test_memory_budget
     use kinds, only: wp, i8
     use status, only: status_t, STATUS_BAD_INPUT, STATUS_SOLVER
-    use run_config, only: config_t
+    use scene, only: scene_t, MESH_RECTANGLE, MESH_GMSH
     use memory_budget, only: contact_blocks_bytes, check_contact_memory, contact_peak_blocks, &
                              check_address_space
     use system_memory, only: available_memory_bytes
@@ -13,7 +13,7 @@ program test_memory_budget
     implicit none
 
     type(test_suite_t) :: t
-    type(config_t) :: config
+    type(scene_t) :: strip
     type(status_t) :: stat
     integer(i8) :: here
 
@@ -33,11 +33,12 @@ program test_memory_budget
     call check_address_space(stat, headroom=-1_i8)
     call t%check('address space: no limit (-1) passes', stat%ok())
     call check_address_space_accounting()
-    config%input_file = 'strip.nml'
-    config%mesh%source = 'rectangle'
-    config%mesh%nx = 20000
-    config%mesh%ny = 1
-    call check_contact_memory(config, 20001, 10, stat, available=16_i8*1024_i8**3)
+
+    strip%name = 'strip.nml'
+    strip%source = MESH_RECTANGLE
+    strip%nx = 20000
+    strip%ny = 1
+    call check_contact_memory(strip, 20001, 10, stat, available=16_i8*1024_i8**3)
     call t%check('thin strip over the budget: bad input', stat%code == STATUS_BAD_INPUT)
     if (.not. stat%ok()) then
         print '(a)', '      '//stat%message
@@ -48,14 +49,14 @@ program test_memory_budget
                      index(stat%message, 'estimated 32.0 GB') > 0 .and. &
                      index(stat%message, 'than the 17.2 GB') > 0)
     end if
-    call check_contact_memory(config, 2001, 10, stat, available=16_i8*1024_i8**3)
+    call check_contact_memory(strip, 2001, 10, stat, available=16_i8*1024_i8**3)
     call t%check('p = 2001 (320 MB) fits in 16 GiB', stat%ok())
-    call check_contact_memory(config, 20001, 10, stat, available=-1_i8)
+    call check_contact_memory(strip, 20001, 10, stat, available=-1_i8)
     call t%check('no memory figure (not Linux): no check', stat%ok())
 
-    config%mesh%source = 'gmsh'
-    config%mesh%file = 'meshes/long.msh'
-    call check_contact_memory(config, 50000, 8, stat, available=1024_i8**3)
+    strip%source = MESH_GMSH
+    strip%file = 'meshes/long.msh'
+    call check_contact_memory(strip, 50000, 8, stat, available=1024_i8**3)
     call t%check('a Gmsh mesh: names the file', &
                  index(stat%message, 'strip.nml: &mesh: file = ''meshes/long.msh'': ') == 1)
 

@@ -8,6 +8,7 @@
 !> u_n = 0.
 program test_mode_resolution
     use kinds, only: wp
+    use fixtures, only: problem_of
     use status, only: status_t
     use testing, only: test_suite_t
     use run_config, only: config_t
@@ -37,7 +38,7 @@ contains
         type(config_t) :: config
         type(status_t) :: stat
         call square_scene(n, element, 'right', config)
-        call build_problem(config, prob, stat)
+        call problem_of(config, prob, stat)
         if (.not. stat%ok()) error stop 'test_mode_resolution: problem not built'
     end subroutine scene
 
@@ -98,7 +99,7 @@ contains
         type(status_t) :: stat
         real(wp), allocatable :: phi(:)
         call single_element_scene('unused', config, m)
-        call build_problem(config, prob, stat, given_mesh=m)
+        call problem_of(config, prob, stat, given_mesh=m)
         allocate (phi(prob%dofs%n_free), source=1.0_wp)
         call t%check('one contact node: not measured', stat%ok() .and. &
                      contact_mode_cells(prob, phi) < 0.0_wp)

@@ -5,6 +5,8 @@
 !> solver at the critical point and a unique solution away from it, and the failure report.
 program test_semismooth_newton
     use kinds, only: wp
+    use run_inputs, only: run_inputs_t, translate_input
+    use fixtures, only: problem_of
     use status, only: status_t
     use testing, only: test_suite_t
     use fixtures, only: single_triangle
@@ -47,6 +49,7 @@ contains
             1.0_wp, 0.5_wp, 0.01_wp, 0.02_wp, -0.02_wp, &    ! c_n, c_t, t1, u_d1, u_d2
             0.3_wp, 0.3_wp, 0.0_wp, 0.05_wp, -0.05_wp], [5, 2])
         type(config_t) :: config
+        type(run_inputs_t) :: inputs
         type(problem_t) :: prob
         type(solve_result_t) :: res
         type(timings_t) :: timings
@@ -65,8 +68,9 @@ contains
             config%solve%u_d1 = DATA(4, c)
             config%solve%u_d2 = DATA(5, c)
             config%solve%tol = 1.0e-14_wp
-            call build_problem(config, prob, stat, with_all_dofs=.true.)
-            if (stat%ok()) call run_solve(config, prob, res, timings, stat)
+            call problem_of(config, prob, stat, with_all_dofs=.true.)
+            call translate_input(config, inputs)
+            if (stat%ok()) call run_solve(inputs, prob, res, timings, stat)
             call t%check(trim(NAMES(c))//': converges', stat%ok() .and. res%report%converged)
             if (.not. res%report%converged) cycle
             associate (e => res%report%residual)
@@ -204,6 +208,7 @@ contains
         type(test_suite_t), intent(inout) :: t
         real(wp), parameter :: DELTA0(4) = [0.0_wp, 0.04_wp, -0.04_wp, 0.06_wp]
         type(config_t) :: config
+        type(run_inputs_t) :: inputs
         type(problem_t) :: prob
         type(critical_data_t) :: crit
         type(compliance_t) :: cp
@@ -223,8 +228,9 @@ contains
         config%branch%alpha = 0.1_wp
         config%branch%beta = 0.1_wp
         options%tol = 1.0e-11_wp
-        call build_problem(config, prob, stat, with_all_dofs=.true.)
-        if (stat%ok()) call critical_branch_data(config, prob, timings, crit, stat)
+        call problem_of(config, prob, stat, with_all_dofs=.true.)
+        call translate_input(config, inputs)
+        if (stat%ok()) call critical_branch_data(inputs, prob, timings, crit, stat)
         call t%check('branch data set up', stat%ok())
         if (.not. stat%ok()) return
         do f = 1, 2
@@ -264,6 +270,7 @@ contains
     subroutine failure_is_reported(t)
         type(test_suite_t), intent(inout) :: t
         type(config_t) :: config
+        type(run_inputs_t) :: inputs
         type(problem_t) :: prob
         type(solve_result_t) :: res
         type(timings_t) :: timings
@@ -274,8 +281,9 @@ contains
         config%analysis%kind = 'solve'
         config%solve%u_d2 = -0.05_wp
         config%solve%max_iterations = 1
-        call build_problem(config, prob, stat, with_all_dofs=.true.)
-        if (stat%ok()) call run_solve(config, prob, res, timings, stat)
+        call problem_of(config, prob, stat, with_all_dofs=.true.)
+        call translate_input(config, inputs)
+            if (stat%ok()) call run_solve(inputs, prob, res, timings, stat)
         call t%check('max_iterations = 1: runs', stat%ok())
         call t%check('max_iterations = 1: not converged', .not. res%report%converged)
         call t%check('max_iterations = 1: reason names the limit', &

@@ -1,11 +1,13 @@
 ! SPDX-License-Identifier: MIT
 !> The error estimate of the critical lambdas (threshold_estimate) and the adaptive loop
-!> with them as its goal (adaptive_threshold): the estimate is the two-level difference to
+!> with them as its goal (threshold_goal): the estimate is the two-level difference to
 !> round-off, the enriched threshold is that of an independent solve one degree higher,
 !> mirror meshes give mirror answers, the indicators bound the estimate, the loop meets its
 !> tolerance with an estimate that tracks the true error, and Q1 has no estimate.
 program test_threshold_estimate
     use kinds, only: wp
+    use run_inputs, only: run_inputs_t, translate_input
+    use fixtures, only: problem_of
     use status, only: status_t
     use testing, only: test_suite_t
     use fixtures, only: square_scene
@@ -19,7 +21,8 @@ program test_threshold_estimate
     use error_estimate, only: ENRICHED_CONTACT_MAX
     use threshold_estimate, only: threshold_estimate_t, threshold_displacements, &
                                   estimate_threshold_errors
-    use adaptive_threshold, only: adaptive_thresholds_t, adapt_thresholds
+    use threshold_goal, only: adaptive_thresholds_t, solve_adapted_thresholds
+    use threshold_analysis, only: threshold_result_t
     use error_bar, only: level_bar_factor
     implicit none
 
@@ -48,7 +51,7 @@ contains
         type(config_t) :: config
         type(status_t) :: stat
         call square_scene(n, element, diagonal, config)
-        call build_problem(config, prob, stat)
+        call problem_of(config, prob, stat)
         call t%check('build_problem: '//stat%message, stat%ok())
     end subroutine square
 
@@ -175,6 +178,8 @@ contains
         type(config_t) :: config
         type(problem_t) :: start
         type(adaptive_thresholds_t) :: out
+        type(threshold_result_t) :: res
+        type(run_inputs_t) :: inputs
         type(thresholds_t) :: thr
         type(threshold_estimate_t) :: est
         type(timings_t) :: timings
@@ -183,8 +188,10 @@ contains
         integer :: side
         call square_scene(4, 'p2', 'right', config)
         config%adapt%tolerance = 1.0e-6_wp
-        call build_problem(config, start, stat)
-        if (stat%ok()) call adapt_thresholds(config, start, out, timings, stat)
+        call problem_of(config, start, stat)
+        call translate_input(config, inputs)
+        if (stat%ok()) call solve_adapted_thresholds(inputs%scene, inputs%point%lambda, &
+            inputs%eigen, inputs%adapt, inputs%scan, start, out, res, timings, stat)
         call t%check('adaptive thresholds: '//stat%message, stat%ok())
         if (.not. stat%ok()) return
         call t%check('adaptive thresholds: converged', out%converged)

@@ -6,14 +6,18 @@
 !> c_n = mu, c_t = |lambda| mu (the threshold of slip at the lowest positive mu).
 program test_eigen_files
     use kinds, only: wp
+    use run_inputs, only: run_inputs_t, translate_input
+    use fixtures, only: problem_of
     use status, only: status_t
     use testing, only: test_suite_t
     use timer, only: timings_t
     use run_config, only: config_t
     use problem, only: problem_t, build_problem
     use spectrum, only: spectrum_t, KIND_POSITIVE, KIND_NEGATIVE, KIND_COMPLEX
-    use eigen_analysis, only: eigen_result_t
-    use eigen_files, only: write_eigenvalues_csv, eigen_summary_json, no_eigen_summary_json
+    use eigen_solve, only: eigen_result_t
+    use eigen_files, only: write_eigenvalues_csv
+    use run_report, only: record_problem, record_eigen, record_no_eigen
+    use summary_record, only: run_summary_t, summary_json, summary_text
     use json_writer, only: json_object_t
     use fixtures, only: square_scene, file_text, index_of_newline, &
                         value_text => json_value, real_value => json_real
@@ -104,17 +108,23 @@ contains
         type(eigen_result_t) :: res
         type(timings_t) :: timings
         type(json_object_t) :: summary
+        type(run_inputs_t) :: inputs
+        type(run_summary_t) :: rec
         type(status_t) :: stat
         character(len=:), allocatable :: text
 
         call square_scene(2, 'p1', 'right', config)
         config%eigen%cn_max = 2.0_wp
-        call build_problem(config, prob, stat)
+        call problem_of(config, prob, stat)
         call t%check('summary: problem built', stat%ok())
         if (.not. stat%ok()) return
         res%lambda = -5.0_wp
         res%spec = spec
-        summary = eigen_summary_json(config, prob, res, timings)
+        call translate_input(config, inputs)
+        call record_problem(rec, inputs, prob)
+        call record_eigen(rec%eigen, inputs, res)
+        rec%timings = timings
+        summary = summary_json(rec)
         text = summary%to_text()
         call t%check('summary: lambda', same(real_value(text, 'lambda'), res%lambda))
         call t%check('summary: lowest_positive_mu', &
@@ -139,7 +149,8 @@ contains
                      value_text(text, 'lowest_positive_error_estimate') == 'null' .and. &
                      value_text(text, 'lowest_positive_roundoff') == 'null')
 
-        summary = no_eigen_summary_json(config, prob, timings)
+        call record_no_eigen(rec%eigen, inputs)
+        summary = summary_json(rec)
         text = summary%to_text()
         call t%check('no result: lowest_positive_mu and critical_c_t null', &
                      value_text(text, 'lowest_positive_mu') == 'null' .and. &

@@ -9,9 +9,8 @@ program test_pictures
     use ieee_arithmetic, only: ieee_is_nan
     use pictures, only: adapt_script, sweep_script, adapt_curve_t, eigen_adapt_curves, &
                         threshold_adapt_curves, hp_adapt_curves, hp_degree_labels
-    use adaptive_eigen, only: adapt_level_t
-    use adaptive_threshold, only: threshold_level_t
-    use hp_adaptive, only: hp_level_t
+    use eigen_goal, only: eigen_level_t
+    use threshold_goal, only: threshold_level_t
     use gnuplot, only: gnuplot_string
     use testing, only: test_suite_t
     implicit none
@@ -33,7 +32,7 @@ contains
 
     !> Three levels: an estimate without a bar, then both, then no positive mu.
     subroutine check_eigen_adapt()
-        type(adapt_level_t) :: levels(3)
+        type(eigen_level_t) :: levels(3)
         type(adapt_curve_t), allocatable :: curves(:)
         real(wp), allocatable :: rows(:, :)
         character(len=:), allocatable :: text
@@ -114,10 +113,10 @@ contains
         call t%check('threshold adapt: no collision at any level, two curves', size(curves) == 2)
     end subroutine check_threshold_without_collision
 
-    !> The change per level as the levels carry it (hp_adaptive forms it: error_bar's
+    !> The change per level as the levels carry it (eigen_goal forms it: error_bar's
     !> hp_run_bar), none at level 1, and the degree labels.
     subroutine check_hp_adapt()
-        type(hp_level_t) :: levels(3)
+        type(eigen_level_t) :: levels(3)
         type(adapt_curve_t), allocatable :: curves(:)
         character(len=16) :: labels(3)
         real(wp), allocatable :: rows(:, :)
@@ -192,7 +191,7 @@ contains
     subroutine check_quoting()
         character(len=*), parameter :: EVIL = "out/Bob's x'; system('touch INJECTED') #/adapt.png"
         character(len=:), allocatable :: text
-        type(adapt_level_t) :: levels(1)
+        type(eigen_level_t) :: levels(1)
         type(adapt_curve_t), allocatable :: curves(:)
         levels(1)%estimated = .true.
         levels(1)%error_estimate = 0.5_wp

@@ -9,8 +9,9 @@ module fixtures
     use mesh, only: mesh_t
     use element_types, only: ELEMENT_P1
     use csr_matrix, only: csr_matrix_t
-    use eigen_analysis, only: eigen_result_t
-    use status, only: status_t, STATUS_SUCCESS
+    use eigen_solve, only: eigen_result_t, solve_eigen
+    use run_inputs, only: run_inputs_t, translate_input
+    use status, only: status_t, STATUS_SUCCESS, STATUS_NOT_MET
     use run_config, only: config_t
     use dof_map, only: dof_map_t, build_dof_map
     use assembly, only: assemble_stiffness
@@ -19,8 +20,9 @@ module fixtures
     use contact_reduction, only: factor_stiffness, contact_flexibility, reduced_blocks_t
     use timer, only: timings_t
     use problem, only: problem_t, build_problem
-    use analysis_base, only: analysis_t, run_analysis
+    use analysis_base, only: analysis_t
     use analysis_registry, only: new_analysis
+    use run_report, only: report_run
     use filesystem, only: file_exists
     use testing, only: test_suite_t
     use strings, only: to_string
@@ -32,7 +34,7 @@ module fixtures
     public :: single_element_scene, single_element_mu, single_element_lambda_minus
     public :: run_as_main, json_value, json_real, listed_files, data_rows, index_of_newline
     public :: all_present, adaptive_scene, run_checked, thresholds_within_bars
-    public :: is_permutation
+    public :: problem_of, eigen_of, check_limit_not_met, is_permutation
 
     !> The reference scene's continuum values (tests/data/truths.csv, scenes 'ref' and
     !> 'ref-threshold': graded P4 meshes, uncertainties 4.6e-12 and 5.7e-10).
@@ -119,6 +121,39 @@ contains
         single_element_lambda_minus = -(lame_l + 3.0_wp*shear_g)/(lame_l + shear_g)
     end function single_element_lambda_minus
 
+    !> build_problem on the scene of `config`; `with_all_dofs`: in the input's units on all
+    !> dofs, as 'branch' and 'solve' need.
+    subroutine problem_of(config, prob, stat, with_all_dofs, given_mesh)
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(out) :: prob
+        type(status_t), intent(out) :: stat
+        logical, intent(in), optional :: with_all_dofs
+        type(mesh_t), intent(in), optional :: given_mesh
+        type(run_inputs_t) :: inputs
+        logical :: all_dofs
+        call translate_input(config, inputs)
+        all_dofs = .false.
+        if (present(with_all_dofs)) all_dofs = with_all_dofs
+        if (all_dofs) then
+            call build_problem(inputs%scene, prob, stat, inputs%analysis_name, given_mesh)
+        else
+            call build_problem(inputs%scene, prob, stat, given_mesh=given_mesh)
+        end if
+    end subroutine problem_of
+
+    !> solve_eigen at `lambda` on `prob`, the problem of `config`, with its &eigen options.
+    subroutine eigen_of(config, prob, lambda, res, timings, stat)
+        type(config_t), intent(in) :: config
+        type(problem_t), intent(in) :: prob
+        real(wp), intent(in) :: lambda
+        type(eigen_result_t), intent(out) :: res
+        type(timings_t), intent(inout) :: timings
+        type(status_t), intent(out) :: stat
+        type(run_inputs_t) :: inputs
+        call translate_input(config, inputs)
+        call solve_eigen(inputs%scene, prob, lambda, inputs%eigen, res, timings, stat)
+    end subroutine eigen_of
+
     !> What the nceig program does after reading its input, in process: the analysis of
     !> &analysis kind and &adapt from the registry, the problem (on `given_mesh` when
     !> present), the run into &output directory. `summary`: the text of the
@@ -132,15 +167,19 @@ contains
         character(len=:), allocatable, intent(out), optional :: report
         type(problem_t) :: prob
         type(timings_t) :: timings
+        type(run_inputs_t) :: inputs
+        character(len=:), allocatable :: text
         summary = ''
-        call new_analysis(trim(config%analysis%kind), config%adapt%tolerance > 0.0_wp, &
-                          analysis, trim(config%adapt%strategy))
-        call build_problem(config, prob, stat, analysis%needs_all_dofs, given_mesh)
+        call translate_input(config, inputs)
+        call new_analysis(inputs, analysis)
+        call problem_of(config, prob, stat, analysis%in_input_units(), given_mesh)
         if (.not. stat%ok()) return
-        call run_analysis(analysis, config, prob, 0.0_wp, timings, stat)
+        call analysis%solve(inputs, prob, timings, stat)
+        if (.not. stat%ok()) return
+        call report_run(analysis, inputs, prob, 0.0_wp, timings, text, stat)
         if (.not. stat%ok()) return
         summary = file_text(trim(config%output%directory)//'/summary.json', new_line('a'))
-        if (present(report)) report = analysis%report(config, prob)
+        if (present(report)) report = text
     end subroutine run_as_main
 
     !> run_as_main with the checks every run gets, named `label`: it ran, its verdict has
@@ -173,6 +212,24 @@ contains
         call t%check(label//': every file summary.json lists is in place', &
                      all_present(trim(config%output%directory), listed_files(summary)))
     end subroutine run_checked
+
+    !> The reference scene from 2 x 2 P1 adapted by `kind` ('eigen', 'threshold') on
+    !> `strategy` levels to 1e-8 within max_levels = `levels`, into `folder`: the verdict
+    !> STATUS_NOT_MET, the set complete (run_checked) with `rows` rows of adapt.csv.
+    subroutine check_limit_not_met(t, kind, strategy, levels, folder, rows)
+        type(test_suite_t), intent(inout) :: t
+        character(len=*), intent(in) :: kind, strategy, folder
+        integer, intent(in) :: levels, rows
+        type(config_t) :: config
+        class(analysis_t), allocatable :: analysis
+        character(len=:), allocatable :: summary
+        logical :: ran
+        call adaptive_scene(kind, strategy, 1.0e-8_wp, levels, folder, config)
+        call run_checked(t, strategy//' not met', config, analysis, summary, ran, &
+                         verdict=STATUS_NOT_MET)
+        if (ran) call t%check(strategy//' not met: adapt.csv has '//to_string(rows)// &
+                              ' rows', data_rows(folder//'/adapt.csv') == rows)
+    end subroutine check_limit_not_met
 
     !> Whether the summary's lambda+ and lambda- hold `plus` and `minus` within their
     !> relative error bars.

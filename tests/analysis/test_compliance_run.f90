@@ -1,12 +1,12 @@
 ! SPDX-License-Identifier: MIT
-!> analysis = 'branch' (branch_run) and 'solve' (solve_run) on the single element, run in
-!> process as the program runs them. At lambda = -5 its one eigenvalue is mu = 105/208
-!> (docs/model.md section 8), so the critical compliances are c_n = mu and
+!> analysis = 'branch' and 'solve' (compliance_run: branch_run_t, solve_run_t) on the single
+!> element, run in process as the program runs them. At lambda = -5 its one eigenvalue is
+!> mu = 105/208 (docs/model.md section 8), so the critical compliances are c_n = mu and
 !> c_t = mu |lambda| = 5 mu; the members U + delta phi of the branch (section 9) solve the
 !> problem to round-off, and Newton started near the branch lands on it, the one contact
 !> node slipping with s = -sgn(lambda) = +1. A Newton iteration that is stopped short still
 !> writes its history and ends with a failed verdict.
-program test_branch_solve_runs
+program test_compliance_run
     use kinds, only: wp
     use status, only: STATUS_SOLVER
     use testing, only: test_suite_t
@@ -18,11 +18,11 @@ program test_branch_solve_runs
                         listed_files, data_rows
     implicit none
 
-    character(len=*), parameter :: OUT = 'test_branch_solve_runs.out'
+    character(len=*), parameter :: OUT = 'test_compliance_run.out'
     real(wp), parameter :: MU = 105.0_wp/208.0_wp
     type(test_suite_t) :: t
 
-    t%name = 'test_branch_solve_runs'
+    t%name = 'test_compliance_run'
     call remove_tree(OUT)
     call branch_members_solve(t)
     call solve_lands_on_the_branch(t)
@@ -76,13 +76,15 @@ contains
         if (.not. ran) return
         call t%check('solve: converged', json_value(summary, 'converged') == 'true')
         call t%check_close('solve: c_n = 105/208', json_real(summary, 'c_n'), MU, 1.0e-13_wp)
-        call t%check('solve: on the branch to 1e-12', json_real(summary, 'branch_distance') >= 0.0_wp &
+        call t%check('solve: on the branch to 1e-12', &
+                     json_real(summary, 'branch_distance') >= 0.0_wp &
                      .and. json_real(summary, 'branch_distance') < 1.0e-12_wp)
         call t%check('solve: the contact node slips along +t', &
                      nint(json_real(summary, 'n_slip_plus')) == 1 .and. &
                      nint(json_real(summary, 'n_slip_minus')) == 0)
         call t%check('solve: newton.csv has iterations + 1 rows', &
-                     data_rows(OUT//'/solve/newton.csv') == nint(json_real(summary, 'iterations')) + 1)
+                     data_rows(OUT//'/solve/newton.csv') == &
+                     nint(json_real(summary, 'iterations')) + 1)
         call t%check('solve: contact_states.csv has the one contact node', &
                      data_rows(OUT//'/solve/contact_states.csv') == 1)
         call t%check('solve: solution.vtu listed', any(listed_files(summary) == 'solution.vtu'))
@@ -120,4 +122,4 @@ contains
         config%solve%start_noise = 0.01_wp
         config%solve%tol = 1.0e-13_wp
     end subroutine solve_scene
-end program test_branch_solve_runs
+end program test_compliance_run

@@ -1,11 +1,13 @@
 ! SPDX-License-Identifier: MIT
-!> &adapt strategy = 'hp' for analysis 'threshold' (hp_threshold): on the reference scene the
+!> &adapt strategy = 'hp' for analysis 'threshold' (threshold_goal): on the reference scene the
 !> loop meets 1e-10 with both critical lambdas within their bars of the independent truth
 !> and of each other's mirror image; its levels climb the hp ladder; a level whose contact
 !> blocks do not fit the memory stops the loop (before the first level: STATUS_NOT_MET), as
 !> max_levels does.
-program test_hp_threshold
+program test_threshold_goal
     use kinds, only: wp, i8
+    use run_inputs, only: run_inputs_t, translate_input
+    use fixtures, only: problem_of
     use status, only: status_t, STATUS_NOT_MET
     use testing, only: test_suite_t
     use fixtures, only: square_scene
@@ -13,7 +15,7 @@ program test_hp_threshold
     use timer, only: timings_t
     use problem, only: problem_t, build_problem
     use threshold_analysis, only: threshold_result_t
-    use hp_threshold, only: hp_thresholds_t, hp_adapt_thresholds
+    use threshold_goal, only: adaptive_thresholds_t, solve_adapted_thresholds
     use critical_lambda, only: SIDE_PLUS, SIDE_MINUS
     implicit none
 
@@ -22,7 +24,7 @@ program test_hp_threshold
     !> image (x -> 1 - x reverses t, so lambda -> -lambda)
     real(wp), parameter :: TRUTH_PLUS = 1.9447114426738574_wp, TRUTH_UNCERTAINTY = 5.65e-10_wp
     type(test_suite_t) :: t
-    t%name = 'test_hp_threshold'
+    t%name = 'test_threshold_goal'
     call reference_meets_tolerance(t)
     call memory_stops_the_loop(t)
     call max_levels_stops_the_loop(t)
@@ -47,14 +49,17 @@ contains
 
     subroutine run(config, out, res, stat, available)
         type(config_t), intent(in) :: config
-        type(hp_thresholds_t), intent(out) :: out
+        type(adaptive_thresholds_t), intent(out) :: out
         type(threshold_result_t), intent(out) :: res
         type(status_t), intent(out) :: stat
         integer(i8), intent(in), optional :: available
         type(problem_t) :: start
         type(timings_t) :: timings
-        call build_problem(config, start, stat)
-        if (stat%ok()) call hp_adapt_thresholds(config, start, out, res, timings, stat, available)
+        type(run_inputs_t) :: inputs
+        call problem_of(config, start, stat)
+        call translate_input(config, inputs)
+        if (stat%ok()) call solve_adapted_thresholds(inputs%scene, inputs%point%lambda, &
+            inputs%eigen, inputs%adapt, inputs%scan, start, out, res, timings, stat, available)
     end subroutine run
 
     !> The bar is meant to hold: |lambda - truth| <= bar |lambda| plus the truth's own
@@ -63,7 +68,7 @@ contains
     !> level 2 on.
     subroutine reference_meets_tolerance(t)
         type(test_suite_t), intent(inout) :: t
-        type(hp_thresholds_t) :: out
+        type(adaptive_thresholds_t) :: out
         type(threshold_result_t) :: res
         type(status_t) :: stat
         real(wp) :: plus, minus, bar(2)
@@ -72,7 +77,7 @@ contains
         call run(reference_config(1.0e-10_wp), out, res, stat)
         call t%check('reference: runs', stat%ok())
         if (.not. stat%ok()) return
-        call t%check('reference: 1e-10 met', out%adapted%converged .and. &
+        call t%check('reference: 1e-10 met', out%converged .and. &
                      all(res%estimate%computed) .and. all(res%estimate%bar <= 1.0e-10_wp))
         plus = res%thresholds%lambda(SIDE_PLUS)
         minus = res%thresholds%lambda(SIDE_MINUS)
@@ -84,15 +89,15 @@ contains
         call t%check('reference: lambda- mirrors lambda+ within the bars', &
                      abs(plus + minus) <= sum(bar))
         ladder = .true.
-        do k = 1, size(out%layers)
-            ladder = ladder .and. out%layers(k) == k .and. out%p_min(k) == 1 .and. &
-                     out%p_max(k) == k + 1
-            if (k > 1) ladder = ladder .and. out%adapted%levels(k)%n_dofs > &
-                                out%adapted%levels(k - 1)%n_dofs .and. &
-                                all(out%adapted%levels(k)%error_bar >= 0.0_wp)
+        do k = 1, size(out%levels)
+            ladder = ladder .and. out%levels(k)%layers == k .and. out%levels(k)%p_min == 1 &
+                     .and. out%levels(k)%p_max == k + 1
+            if (k > 1) ladder = ladder .and. out%levels(k)%n_dofs > &
+                                out%levels(k - 1)%n_dofs .and. &
+                                all(out%levels(k)%error_bar >= 0.0_wp)
         end do
         call t%check('reference: the levels climb the hp ladder, bars from level 2', ladder .and. &
-                     all(out%adapted%levels(1)%error_bar < 0.0_wp))
+                     all(out%levels(1)%error_bar < 0.0_wp))
     end subroutine reference_meets_tolerance
 
     !> Level 1 has 15 contact functions (10 p^2 doubles: 18000 bytes), level 2 has 27
@@ -100,16 +105,16 @@ contains
     !> 1000 bytes nothing is solved.
     subroutine memory_stops_the_loop(t)
         type(test_suite_t), intent(inout) :: t
-        type(hp_thresholds_t) :: out
+        type(adaptive_thresholds_t) :: out
         type(threshold_result_t) :: res
         type(status_t) :: stat
         call run(reference_config(1.0e-10_wp), out, res, stat, available=30000_i8)
         call t%check('memory: stops after level 1', stat%ok() .and. &
-                     .not. out%adapted%converged .and. size(out%layers) == 1)
+                     .not. out%converged .and. size(out%levels) == 1)
         if (.not. stat%ok()) return
         call t%check('memory: the outcome says so, and what the level needs', &
-                     index(out%adapted%outcome, 'level 2 has p = 27 contact functions') > 0 &
-                     .and. index(out%adapted%outcome, 'more than the memory available') > 0)
+                     index(out%outcome, 'level 2 has p = 27 contact functions') > 0 &
+                     .and. index(out%outcome, 'more than the memory available') > 0)
         call t%check('memory: the last level is reported', &
                      res%thresholds%found(SIDE_PLUS) .and. res%thresholds%found(SIDE_MINUS))
         call run(reference_config(1.0e-10_wp), out, res, stat, available=1000_i8)
@@ -119,7 +124,7 @@ contains
 
     subroutine max_levels_stops_the_loop(t)
         type(test_suite_t), intent(inout) :: t
-        type(hp_thresholds_t) :: out
+        type(adaptive_thresholds_t) :: out
         type(threshold_result_t) :: res
         type(status_t) :: stat
         type(config_t) :: config
@@ -127,7 +132,7 @@ contains
         config%adapt%max_levels = 2
         call run(config, out, res, stat)
         call t%check('max_levels: two levels, not converged, the limit named', stat%ok() .and. &
-                     size(out%layers) == 2 .and. .not. out%adapted%converged .and. &
-                     index(out%adapted%outcome, 'max_levels = 2') > 0)
+                     size(out%levels) == 2 .and. .not. out%converged .and. &
+                     index(out%outcome, 'max_levels = 2') > 0)
     end subroutine max_levels_stops_the_loop
-end program test_hp_threshold
+end program test_threshold_goal

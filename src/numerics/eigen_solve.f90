@@ -1,13 +1,17 @@
 ! SPDX-License-Identifier: MIT
-!> analysis = 'eigen': the boundary eigenproblem K phi = mu B phi for one lambda, solved by
-!> the solver the input asks for, with the phase timings of docs/outputs.md.
-module eigen_analysis
+!> The boundary eigenproblem K phi = mu B_lambda phi of a problem at one lambda, solved by
+!> the solver the options ask for (eigen_options_t), with its error estimate and the phase
+!> timings of docs/outputs.md: what every analysis that solves the eigenproblem calls.
+module eigen_solve
     use kinds, only: wp
     use status, only: status_t, STATUS_BAD_INPUT
     use timer, only: wall_time, timings_t, PHASE_ASSEMBLY, PHASE_REDUCTION, PHASE_EIGEN
     use strings, only: to_string, short_real_text
     use real_format, only: real_to_text
-    use run_config, only: config_t
+    use scene, only: scene_t, MESH_RECTANGLE
+    use unit_scaling, only: units_t
+    use method_options, only: eigen_options_t, SOLVER_AUTO, SOLVER_DENSE, SOLVER_ARPACK, &
+                              ESTIMATE_ON, ESTIMATE_AUTO, OPERATOR_FULL, operator_name
     use problem, only: problem_t, explain_singular_k
     use element_types, only: element_name
     use csr_matrix, only: csr_matrix_t
@@ -15,7 +19,7 @@ module eigen_analysis
     use contact_reduction, only: factor_stiffness
     use memory_budget, only: check_contact_memory, contact_peak_blocks
     use contact_boundary, only: assemble_b
-    use spectrum, only: spectrum_t, KIND_POSITIVE
+    use spectrum, only: spectrum_t
     use dense_eigen, only: dense_spectrum
     use accuracy, only: accuracy_warnings, roundoff_warnings, WARNING_LEN, FORWARD_ERROR_BOUND
     use arpack_eigen, only: arpack_search, arpack_finish, arpack_search_t, arpack_options_t
@@ -27,15 +31,8 @@ module eigen_analysis
     use halved_mesh, only: build_halved_problem
     implicit none
     private
-    public :: eigen_result_t, solve_eigen, estimate_eigen, choose_solver, eigen_with_factor, &
-              solver_name
-    public :: operator_name, critical_cn
-    public :: to_input_units, estimate_wanted
-    public :: SOLVER_DENSE, SOLVER_ARPACK
-
-    !> The eigensolver a run used (&eigen solver = 'auto' resolves to one of them).
-    integer, parameter :: SOLVER_DENSE = 1    !! all p eigenpairs of the reduced problem
-    integer, parameter :: SOLVER_ARPACK = 2   !! a few, by ARPACK, with the certificate
+    public :: eigen_result_t, solve_eigen, estimate_eigen, choose_solver, eigen_with_factor
+    public :: estimate_wanted, check_input_range, check_real_range
     !> &eigen estimate = 'auto' computes the error estimate up to this many free dofs: it
     !> assembles and factors the enriched (P2) problem, a few times the cost of the solve
     !> (measured 4-7x: 2.3 s at 33k dofs, 22 s at 525k), which beyond would break the speed
@@ -44,7 +41,7 @@ module eigen_analysis
 
     type, public :: eigen_result_t
         real(wp) :: lambda = 0.0_wp
-        integer :: solver = SOLVER_DENSE          !! the solver actually used
+        integer :: solver = SOLVER_DENSE          !! the solver actually used (SOLVER_*)
         type(csr_matrix_t) :: b                   !! B for this lambda
         type(spectrum_t) :: spec
         !> accuracy lost or the result not certified, and why (empty when trustworthy)
@@ -61,49 +58,30 @@ module eigen_analysis
 
 contains
 
-    !> The solver &eigen solver names; 'auto' means dense while the p x p dense problem is
-    !> cheap, and ARPACK always with &eigen operator = 'full' (an ARPACK operator).
-    pure integer function choose_solver(requested, p, dense_max_contact, operator) &
-        result(solver)
-        character(len=*), intent(in) :: requested
-        integer, intent(in) :: p, dense_max_contact
-        character(len=*), intent(in), optional :: operator   !! &eigen operator
+    !> The solver `options` name for a problem of `p` contact nodes; SOLVER_AUTO means dense
+    !> while the p x p dense problem is cheap, and ARPACK always with the full operator (an
+    !> ARPACK operator).
+    pure integer function choose_solver(options, p) result(solver)
+        type(eigen_options_t), intent(in) :: options
+        integer, intent(in) :: p
         solver = SOLVER_DENSE
-        select case (trim(requested))
-        case ('arpack')
+        select case (options%solver)
+        case (SOLVER_ARPACK)
             solver = SOLVER_ARPACK
-        case ('auto')
-            if (p > dense_max_contact) solver = SOLVER_ARPACK
-            if (present(operator)) then
-                if (trim(operator) == 'full') solver = SOLVER_ARPACK
-            end if
+        case (SOLVER_AUTO)
+            if (p > options%dense_max_contact) solver = SOLVER_ARPACK
+            if (options%operator == OPERATOR_FULL) solver = SOLVER_ARPACK
         end select
     end function choose_solver
 
-    !> 'reduced' or 'full': what the run's eigensolver worked on (the dense solver always
-    !> works on the reduced p x p matrix), as summary.json names it.
-    pure function operator_name(solver, operator) result(name)
-        integer, intent(in) :: solver
-        character(len=*), intent(in) :: operator   !! &eigen operator
-        character(len=:), allocatable :: name
-        name = 'reduced'
-        if (solver == SOLVER_ARPACK .and. trim(operator) == 'full') name = 'full'
-    end function operator_name
-
-    !> 'dense' or 'arpack', as summary.json and the stdout summary name the solver.
-    pure function solver_name(solver) result(name)
-        integer, intent(in) :: solver
-        character(len=:), allocatable :: name
-        name = 'dense'
-        if (solver == SOLVER_ARPACK) name = 'arpack'
-    end function solver_name
-
     !> Assemble B for `lambda`, factor K (factor_stiffness: contact dofs last, which both
-    !> solvers read the contact blocks from), and compute the spectrum.
-    recursive subroutine solve_eigen(config, prob, lambda, res, timings, stat)
-        type(config_t), intent(in) :: config
+    !> solvers read the contact blocks from), and compute the spectrum of `prob`, the problem
+    !> of the scene `scn`.
+    subroutine solve_eigen(scn, prob, lambda, options, res, timings, stat)
+        type(scene_t), intent(in) :: scn
         type(problem_t), intent(in) :: prob
         real(wp), intent(in) :: lambda
+        type(eigen_options_t), intent(in) :: options
         type(eigen_result_t), intent(out) :: res
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
@@ -118,45 +96,47 @@ contains
         call timings%add(PHASE_ASSEMBLY, wall_time() - start, ': B for lambda = '// &
                          real_to_text(lambda))
 
-        res%solver = choose_solver(config%eigen%solver, prob%contact%p(), &
-                                   config%eigen%dense_max_contact, config%eigen%operator)
+        res%solver = choose_solver(options, prob%contact%p())
         ! The full operator only solves with K: CHOLMOD's own ordering, without the dense
         ! 2p x 2p block of the contact dofs last, which costs O(p^3) and dominates when p is
         ! a large part of n (eigen_with_factor makes that factor only if the dense decision
         ! needs it). Every other run reads that block: factored so from the start.
-        contact_last = operator_name(res%solver, config%eigen%operator) /= 'full'
+        contact_last = operator_name(res%solver, options%operator) /= 'full'
         if (contact_last) then
-            call check_contact_memory(config, prob%contact%p(), contact_peak_blocks( &
-                res%solver == SOLVER_ARPACK .and. .not. abs(config%eigen%target) > 0.0_wp), stat)
+            call check_contact_memory(scn, prob%contact%p(), contact_peak_blocks( &
+                res%solver == SOLVER_ARPACK .and. .not. abs(options%target) > 0.0_wp), stat)
             if (.not. stat%ok()) return
         end if
         call factor_stiffness(prob%k, prob%mesh, prob%dofs, prob%contact, chol, timings, stat, &
                               contact_last)
-        call explain_singular_k(config, prob%mesh, stat)
+        call explain_singular_k(scn, prob%mesh, stat)
         if (.not. stat%ok()) return
-        call eigen_with_factor(config, prob, chol, res, timings, stat, contact_last=contact_last)
+        call eigen_with_factor(scn, prob, options, chol, res, timings, stat, &
+                               contact_last=contact_last)
         call chol%free()
     end subroutine solve_eigen
 
-    !> res%error of a spectrum solve_eigen found, as &eigen estimate asks: the enriched
-    !> estimate, or the halved mesh's for an element without a degree above, and the
-    !> resolution check; `res%error%skipped` says why none where 'auto' leaves it out. Only
-    !> the eigen analyses call it (a threshold's spectra carry no estimate of mu).
-    recursive subroutine estimate_eigen(config, prob, res, timings)
-        type(config_t), intent(in) :: config
+    !> res%error of a spectrum solve_eigen found, as options%estimate asks: the enriched
+    !> estimate, or the halved mesh's for an element without a degree above, and with
+    !> `resolution` the resolution check (an adaptive run judges resolution by the change of
+    !> mu between its levels instead); `res%error%skipped` says why none where ESTIMATE_AUTO
+    !> leaves it out. Only the eigen analyses call it (a threshold's spectra carry no
+    !> estimate of mu).
+    subroutine estimate_eigen(scn, prob, options, resolution, res, timings)
+        type(scene_t), intent(in) :: scn
         type(problem_t), intent(in) :: prob
+        type(eigen_options_t), intent(in) :: options
+        logical, intent(in) :: resolution
         type(eigen_result_t), intent(inout) :: res
         type(timings_t), intent(inout) :: timings
         character(len=:), allocatable :: why_not
-        if (estimate_wanted(config, prob%dofs%n_free, why_not)) then
+        if (estimate_wanted(options, prob%dofs%n_free, why_not)) then
             if (enriched_element(prob%mesh%element) /= 0) then
                 call add_error_estimate(prob, res, timings)
             else
-                call add_halved_mesh_estimate(config, prob, res, timings)
+                call add_halved_mesh_estimate(scn, prob, options, res, timings)
             end if
-            ! an adaptive run judges resolution by the change of mu between its levels
-            if (.not. config%adapt%tolerance > 0.0_wp) call check_resolution(config, prob, &
-                                                                             res, timings)
+            if (resolution) call check_resolution(scn, prob, options, res, timings)
         else if (len(why_not) > 0) then
             res%error%skipped = why_not
         end if
@@ -175,18 +155,18 @@ contains
             'positive mu at all (kind = ''threshold'' gives the critical lambdas and their bars)']
     end subroutine estimate_eigen
 
-    !> Whether &eigen estimate asks for the error estimates on a problem of `n_free` dofs:
-    !> 'on', 'off', or 'auto' (up to ESTIMATE_AUTO_MAX_DOFS); `why_not` the sentence for a
-    !> problem 'auto' leaves out ('' otherwise: 'off' is the user's own choice).
-    logical function estimate_wanted(config, n_free, why_not)
-        type(config_t), intent(in) :: config
+    !> Whether options%estimate asks for the error estimates on a problem of `n_free` dofs:
+    !> ESTIMATE_ON, _OFF, or _AUTO (up to ESTIMATE_AUTO_MAX_DOFS); `why_not` the sentence for
+    !> a problem _AUTO leaves out ('' otherwise: _OFF is the user's own choice).
+    logical function estimate_wanted(options, n_free, why_not)
+        type(eigen_options_t), intent(in) :: options
         integer, intent(in) :: n_free
         character(len=:), allocatable, intent(out) :: why_not
         why_not = ''
-        select case (trim(config%eigen%estimate))
-        case ('on')
+        select case (options%estimate)
+        case (ESTIMATE_ON)
             estimate_wanted = .true.
-        case ('auto')
+        case (ESTIMATE_AUTO)
             estimate_wanted = n_free <= ESTIMATE_AUTO_MAX_DOFS
             if (.not. estimate_wanted) why_not = 'not computed: '//to_string(n_free)// &
                 ' dofs, more than the '//to_string(ESTIMATE_AUTO_MAX_DOFS)//' of &eigen '// &
@@ -209,7 +189,7 @@ contains
         lowest = res%spec%lowest_positive()
         if (lowest == 0 .or. size(res%spec%vectors, 2) < lowest) return
         call estimate_lowest_error(prob, res%lambda, &
-            prob%units%mu_to_scaled(real(res%spec%mu(lowest), wp)), &
+            real(res%spec%mu(lowest), wp), &
             real(res%spec%vectors(:, lowest), wp), ENRICHED_CONTACT_MAX, res%error, stat)
         if (.not. stat%ok()) then
             res%error%failure = stat%message
@@ -227,9 +207,10 @@ contains
     !> same element on the mesh of halved cells, whose space holds this one's,
     !> (mu_h/2 - mu_h) / mu_h; no cell indicators. It costs about four times the solve. A
     !> failure only costs the estimate (a warning), never the run.
-    recursive subroutine add_halved_mesh_estimate(config, prob, res, timings)
-        type(config_t), intent(in) :: config
+    subroutine add_halved_mesh_estimate(scn, prob, options, res, timings)
+        type(scene_t), intent(in) :: scn
         type(problem_t), intent(in) :: prob
+        type(eigen_options_t), intent(in) :: options
         type(eigen_result_t), intent(inout) :: res
         type(timings_t), intent(inout) :: timings
         real(wp) :: start, mu, mu_fine, cells_fine
@@ -237,7 +218,7 @@ contains
 
         if (res%spec%lowest_positive() == 0) return
         start = wall_time()
-        call halved_mesh_mu(config, prob, res, mu_fine, cells_fine, why_not)
+        call halved_mesh_mu(scn, prob, options, res, mu_fine, cells_fine, why_not)
         if (len(why_not) > 0) then
             res%error%skipped = 'not computed: '//why_not
             return
@@ -247,7 +228,7 @@ contains
         res%error%halved_mesh = .true.
         res%error%element = prob%mesh%element
         res%error%relative = (mu_fine - mu)/mu
-        res%error%mu_enriched = prob%units%mu_to_scaled(mu_fine)   ! prob%k's units
+        res%error%mu_enriched = mu_fine
         res%error%mode_cells_halved = cells_fine
         allocate (res%error%indicators(0))
         res%error%bar = single_bar(abs(res%error%relative), res%roundoff)
@@ -267,9 +248,10 @@ contains
     !> value at this resolution.
     !> Coarse meshes of resolved scenes pay about four times the solve; the reference scene's
     !> mode spans 2 cells from N = 16 on.
-    recursive subroutine check_resolution(config, prob, res, timings)
-        type(config_t), intent(in) :: config
+    subroutine check_resolution(scn, prob, options, res, timings)
+        type(scene_t), intent(in) :: scn
         type(problem_t), intent(in) :: prob
+        type(eigen_options_t), intent(in) :: options
         type(eigen_result_t), intent(inout) :: res
         type(timings_t), intent(inout) :: timings
         real(wp), parameter :: RESOLVED_CELLS = 2.0_wp, WIDENING = 1.5_wp, MOVED = 0.1_wp
@@ -288,7 +270,7 @@ contains
             mu_fine = mu*(1.0_wp + res%error%relative)
             cells_fine = res%error%mode_cells_halved
         else
-            call halved_mesh_mu(config, prob, res, mu_fine, cells_fine, why_not)
+            call halved_mesh_mu(scn, prob, options, res, mu_fine, cells_fine, why_not)
             if (len(why_not) > 0) return
             res%error%mode_cells_halved = cells_fine
             call timings%add(PHASE_EIGEN, wall_time() - start, ': resolution check, the '// &
@@ -305,17 +287,19 @@ contains
             'at this resolution']
     end subroutine check_resolution
 
-    !> The lowest positive mu (input units) and its mode's width in cells
+    !> The lowest positive mu (in the units of `prob`, which the halved problem shares: the
+    !> same E and extent) and its mode's width in cells
     !> (contact_mode_cells) on the mesh of `prob` with every cell halved: the rectangle with
-    !> 2 nx x 2 ny cells, or a Gmsh triangle mesh (P1 to P3) bisected twice. `why_not`
-    !> says why there is none ('' when computed).
-    recursive subroutine halved_mesh_mu(config, prob, res, mu_fine, cells_fine, why_not)
-        type(config_t), intent(in) :: config
+    !> 2 nx x 2 ny cells, or a Gmsh triangle mesh (P1 to P3) bisected twice (halved_mesh),
+    !> solved as `options` ask. `why_not` says why there is none ('' when computed).
+    subroutine halved_mesh_mu(scn, prob, options, res, mu_fine, cells_fine, why_not)
+        type(scene_t), intent(in) :: scn
         type(problem_t), intent(in) :: prob
+        type(eigen_options_t), intent(in) :: options
         type(eigen_result_t), intent(in) :: res
         real(wp), intent(out) :: mu_fine, cells_fine
         character(len=:), allocatable, intent(out) :: why_not
-        type(config_t) :: halved
+        type(scene_t) :: halved
         type(problem_t) :: fine
         type(eigen_result_t) :: fine_res
         type(timings_t) :: quiet
@@ -324,9 +308,9 @@ contains
 
         mu_fine = 0.0_wp
         cells_fine = -1.0_wp
-        call build_halved_problem(config, prob, halved, fine, why_not, stat)
+        call build_halved_problem(scn, prob, halved, fine, why_not, stat)
         if (len(why_not) > 0) return
-        if (stat%ok()) call solve_eigen(halved, fine, res%lambda, fine_res, quiet, stat)
+        if (stat%ok()) call solve_eigen(halved, fine, res%lambda, options, fine_res, quiet, stat)
         if (.not. stat%ok()) then
             why_not = 'the halved mesh failed: '//stat%message
             return
@@ -345,10 +329,11 @@ contains
     !> the contact blocks off the same factor; the full operator may use one without the
     !> contact dofs last). A caller that already has Kt_nn and Kt_nt
     !> passes them to spare the dense solver forming them again.
-    subroutine eigen_with_factor(config, prob, chol, res, timings, stat, kt_nn, kt_nt, &
+    subroutine eigen_with_factor(scn, prob, options, chol, res, timings, stat, kt_nn, kt_nt, &
                                  contact_last)
-        type(config_t), intent(in) :: config
+        type(scene_t), intent(in) :: scn
         type(problem_t), intent(in) :: prob
+        type(eigen_options_t), intent(in) :: options
         type(cholesky_t), intent(in) :: chol
         type(eigen_result_t), intent(inout) :: res
         type(timings_t), intent(inout) :: timings
@@ -357,7 +342,7 @@ contains
         !> `chol` has the contact dofs last (default); without, only the full operator runs,
         !> and the dense decision, if its search needs one, gets a contact-last factor here
         logical, intent(in), optional :: contact_last
-        type(arpack_options_t) :: options
+        type(arpack_options_t) :: arpack
         type(arpack_search_t) :: search
         type(cholesky_t) :: ordered   !! contact dofs last, for the full operator's decision
         logical :: chol_contact_last
@@ -366,44 +351,43 @@ contains
         character(len=:), allocatable :: certificate   !! why ARPACK's answer is not certified
         integer :: n_keep
 
-        n_keep = max(1, config%output%modes)
+        n_keep = max(1, options%modes)
         start = wall_time()
         certificate = ''
         if (res%solver == SOLVER_ARPACK) then
             ! the target in the units of prob%k; clamped where that overflows, which is far
             ! outside the accepted range anyway (arpack_eigen: TARGET_RANGE)
-            options = arpack_options_t(nev=config%eigen%nev, ncv=config%eigen%ncv, &
-                maxit=config%eigen%maxit, tol=config%eigen%tol, &
-                target=prob%units%mu_to_scaled(config%eigen%target), &
-                cn_max=prob%units%mu_to_scaled(config%eigen%cn_max), &
-                full=config%eigen%operator == 'full', &
-                units=prob%units, target_input=config%eigen%target)
+            arpack = arpack_options_t(nev=options%nev, ncv=options%ncv, &
+                maxit=options%maxit, tol=options%tol, &
+                target=prob%units%mu_to_scaled(options%target), &
+                cn_max=prob%units%mu_to_scaled(options%cn_max), &
+                full=options%operator == OPERATOR_FULL, &
+                units=prob%units, target_input=options%target)
             chol_contact_last = .true.
             if (present(contact_last)) chol_contact_last = contact_last
             refactor_seconds = 0.0_wp
-            call arpack_search(prob%k, res%b, chol, prob%contact, res%lambda, options, search, &
+            call arpack_search(prob%k, res%b, chol, prob%contact, res%lambda, arpack, search, &
                                stat)
             if (stat%ok()) then
                 if (search%needs_dense_decision() .and. .not. chol_contact_last) then
                     refactor_start = wall_time()
-                    call check_contact_memory(config, prob%contact%p(), contact_peak_blocks( &
-                        .not. abs(config%eigen%target) > 0.0_wp), stat)
+                    call check_contact_memory(scn, prob%contact%p(), contact_peak_blocks( &
+                        .not. abs(options%target) > 0.0_wp), stat)
                     if (stat%ok()) call factor_stiffness(prob%k, prob%mesh, prob%dofs, &
                                                          prob%contact, ordered, timings, stat)
                     refactor_seconds = wall_time() - refactor_start
                     if (stat%ok()) call arpack_finish(prob%k, res%b, ordered, prob%contact, &
-                        res%lambda, options, n_keep, search, res%spec, certificate, stat)
+                        res%lambda, arpack, n_keep, search, res%spec, certificate, stat)
                 else
-                    call arpack_finish(prob%k, res%b, chol, prob%contact, res%lambda, options, &
+                    call arpack_finish(prob%k, res%b, chol, prob%contact, res%lambda, arpack, &
                                        n_keep, search, res%spec, certificate, stat)
                 end if
             end if
-            if (stat%code == STATUS_BAD_INPUT) stat%message = config%input_file//': '// &
-                                                              stat%message
+            if (stat%code == STATUS_BAD_INPUT) stat%message = scn%name//': '//stat%message
             if (.not. stat%ok()) return
             call timings%add(PHASE_EIGEN, wall_time() - start - refactor_seconds, &
                              ': arpack on the '// &
-                             operator_name(res%solver, config%eigen%operator)//' operator, '// &
+                             operator_name(res%solver, options%operator)//' operator, '// &
                              to_string(res%spec%n())//' eigenvalues')
         else
             reduction_seconds = 0.0_wp
@@ -425,13 +409,13 @@ contains
         ! to lambda from its full left vector (the round-off bound's), so that a lambda near
         ! a critical value is said on every solver path
         if (.not. allocated(res%spec%lambda_sensitivity)) call add_lambda_sensitivity(prob, res)
-        call to_input_units(config, prob, res%spec%mu, stat)
+        call check_input_range(scn, prob%units, res%lambda, .false., res%spec%mu, stat)
         if (.not. stat%ok()) return
         res%roundoff = -1.0_wp
         if (allocated(res%spec%roundoff) .and. res%spec%lowest_positive() > 0) &
             res%roundoff = res%spec%roundoff(res%spec%lowest_positive())
-        res%warnings = accuracy_warnings(res%spec, element_name(prob%mesh%element), prob%poisson, &
-                                         res%roundoff)
+        res%warnings = accuracy_warnings(res%spec, prob%units, element_name(prob%mesh%element), &
+                                         prob%poisson, res%roundoff)
         if (len(certificate) > 0) res%warnings = [character(len=WARNING_LEN) :: certificate, &
                                                   res%warnings]
     end subroutine eigen_with_factor
@@ -462,47 +446,29 @@ contains
             abs(dot_product(res%spec%left, b_double_phi - b_phi))/denominator
     end subroutine add_lambda_sensitivity
 
-    !> The critical c_n a run reports: every positive real mu of `spec` (input units) in
-    !> (0, cn_max], ascending; with cn_max = 0 the lowest alone. Complete as certified by the
-    !> solver (both solvers hold every positive real mu up to cn_max in their spectrum).
-    pure function critical_cn(spec, cn_max) result(values)
-        type(spectrum_t), intent(in) :: spec
-        real(wp), intent(in) :: cn_max
-        real(wp), allocatable :: values(:)
-        integer :: lowest
-        allocate (values(0))
-        lowest = spec%lowest_positive()
-        if (lowest == 0) return
-        ! output order: positive real ascending first
-        if (.not. cn_max > 0.0_wp) then
-            values = [real(spec%mu(lowest), wp)]
-        else
-            values = pack(real(spec%mu, wp), spec%kind == KIND_POSITIVE .and. &
-                          real(spec%mu, wp) <= cn_max)
-        end if
-    end function critical_cn
-
-    !> Eigenvalues of (prob%k, B(prob%contact)) to those of the input problem (prob%units),
-    !> exactly. Fails (STATUS_BAD_INPUT, naming &material young or the
-    !> mesh size, whichever pushes further) when an |mu| would leave the normal binary64
-    !> range [tiny, huge] = [2.2e-308, 1.8e308]: overflow, or digits lost to underflow.
-    subroutine to_input_units(config, prob, mu, stat, sweep_lambda)
-        type(config_t), intent(in) :: config
-        type(problem_t), intent(in) :: prob
-        complex(wp), intent(inout) :: mu(:)
+    !> Whether eigenvalues `mu` in the scaled `units` of a problem of the scene `scn` can be
+    !> reported in the input's units (reported_units converts them, exactly): fails
+    !> (STATUS_BAD_INPUT, naming &material young or the mesh size of the scene, or `lambda`,
+    !> whichever pushes further) when an |mu| would leave the normal binary64 range [tiny,
+    !> huge] = [2.2e-308, 1.8e308]: overflow, or digits lost to underflow. Checked as each
+    !> result is computed, so that such a run stops at once. `lambda`: &analysis lambda, or
+    !> with `of_sweep` the largest |lambda| of a sweep whose points `mu` are.
+    subroutine check_input_range(scn, units, lambda, of_sweep, mu, stat)
+        type(scene_t), intent(in) :: scn
+        type(units_t), intent(in) :: units
+        real(wp), intent(in) :: lambda
+        logical, intent(in) :: of_sweep
+        complex(wp), intent(in) :: mu(:)
         type(status_t), intent(out) :: stat
-        !> the largest |lambda| of a sweep, when mu are its points (default: &analysis lambda)
-        real(wp), intent(in), optional :: sweep_lambda
         integer :: i, worst, worst_exponent
         character(len=:), allocatable :: what, lambda_name
-        real(wp) :: lambda
 
         if (size(mu) == 0) return
         worst = 0
         worst_exponent = 0
         do i = 1, size(mu)
             if (.not. abs(mu(i)) > 0.0_wp) cycle
-            associate (x => prob%units%input_exponent(abs(mu(i))))
+            associate (x => units%input_exponent(abs(mu(i))))
                 if (x > maxexponent(1.0_wp) .or. x < minexponent(1.0_wp)) then
                     if (worst == 0 .or. abs(x) > abs(worst_exponent)) then
                         worst = i
@@ -513,36 +479,27 @@ contains
         end do
         if (worst > 0) then
             ! the input pushing furthest: E/size, or lambda (mu ~ 1/lambda for large |lambda|)
-            lambda = config%analysis%lambda
             lambda_name = '&analysis: lambda = '
-            if (present(sweep_lambda)) then
-                lambda = sweep_lambda
-                lambda_name = '&sweep: lambda = '
-            end if
-            if (worst_exponent < 0 .and. prob%units%lambda_dominates(lambda)) then
+            if (of_sweep) lambda_name = '&sweep: lambda = '
+            if (worst_exponent < 0 .and. units%lambda_dominates(lambda)) then
                 what = lambda_name//real_to_text(lambda)//' (a point of the sweep)'
-                if (.not. present(sweep_lambda)) what = lambda_name//real_to_text(lambda)
-            else if (prob%units%young_dominates()) then
-                what = '&material: young = '//real_to_text(prob%young)
-            else if (config%mesh%source == 'rectangle') then
-                what = '&mesh: width = '//real_to_text(config%mesh%width)//', height = '// &
-                       real_to_text(config%mesh%height)
+                if (.not. of_sweep) what = lambda_name//real_to_text(lambda)
+            else if (units%young_dominates()) then
+                what = '&material: young = '//real_to_text(scn%material%young)
+            else if (scn%source == MESH_RECTANGLE) then
+                what = '&mesh: width = '//real_to_text(scn%width)//', height = '// &
+                       real_to_text(scn%height)
             else
-                what = '&mesh: the mesh in '//trim(config%mesh%file)//' (size 2^'// &
-                       to_string(prob%units%length_exponent)//')'
+                what = '&mesh: the mesh in '//scn%file//' (size 2^'// &
+                       to_string(units%length_exponent)//')'
             end if
-            call stat%fail(STATUS_BAD_INPUT, config%input_file//': '//what// &
+            call stat%fail(STATUS_BAD_INPUT, scn%name//': '//what// &
                 ': an eigenvalue mu would be about '// &
-                decimal_text(prob%units%input_log10(abs(mu(worst))))// &
+                decimal_text(units%input_log10(abs(mu(worst))))// &
                 ' (mu scales like young / size, '// &
                 'and like 1 / lambda for large |lambda|), '// &
                 'outside the 2.2e-308 to 1.8e308 that binary64 holds to full precision')
-            return
         end if
-        do i = 1, size(mu)
-            mu(i) = cmplx(prob%units%mu_to_input(real(mu(i), wp)), &
-                          prob%units%mu_to_input(aimag(mu(i))), wp)
-        end do
 
     contains
 
@@ -562,5 +519,18 @@ contains
             write (mantissa, '(f3.1)') m
             text = trim(mantissa)//'e'//to_string(power)
         end function decimal_text
-    end subroutine to_input_units
-end module eigen_analysis
+    end subroutine check_input_range
+
+    !> check_input_range of real mu.
+    subroutine check_real_range(scn, units, lambda, of_sweep, mu, stat)
+        type(scene_t), intent(in) :: scn
+        type(units_t), intent(in) :: units
+        real(wp), intent(in) :: lambda
+        logical, intent(in) :: of_sweep
+        real(wp), intent(in) :: mu(:)
+        type(status_t), intent(out) :: stat
+        complex(wp) :: values(size(mu))
+        values = cmplx(mu, 0.0_wp, wp)
+        call check_input_range(scn, units, lambda, of_sweep, values, stat)
+    end subroutine check_real_range
+end module eigen_solve

@@ -1,9 +1,10 @@
 ! SPDX-License-Identifier: MIT
 !> analysis = 'threshold' and 'lambda_sweep' (threshold_run), and 'threshold' with &adapt
-!> strategy 'h', run in process as the program runs them. The single element (docs/model.md
-!> section 8) has one threshold, lambda- = -(L + 3G)/(L + G) = -1.8, and no lambda+, and
-!> at each lambda below lambda- the one eigenvalue of its closed form; the reference scene's
-!> adapted thresholds hold the continuum values of tests/data/truths.csv within their bars.
+!> on h and on hp levels, run in process as the program runs them. The single element
+!> (docs/model.md section 8) has one threshold, lambda- = -(L + 3G)/(L + G) = -1.8, and no
+!> lambda+, and at each lambda below lambda- the one eigenvalue of its closed form; the
+!> reference scene's adapted thresholds hold the continuum values of tests/data/truths.csv
+!> within their bars.
 program test_threshold_run
     use kinds, only: wp
     use status, only: status_t, STATUS_NOT_MET
@@ -12,10 +13,9 @@ program test_threshold_run
     use mesh, only: mesh_t
     use analysis_base, only: analysis_t
     use csv_table, only: csv_table_t, read_csv_table
-    use critical_set, only: critical_set_t
-    use threshold_run, only: boundary_lines
     use filesystem, only: remove_tree
     use fixtures, only: single_element_scene, single_element_mu, single_element_lambda_minus, &
+                        check_limit_not_met, &
                         adaptive_scene, run_checked, json_real, json_value, listed_files, &
                         data_rows, thresholds_within_bars, REF_LAMBDA_PLUS, REF_LAMBDA_MINUS
     implicit none
@@ -26,10 +26,12 @@ program test_threshold_run
     t%name = 'test_threshold_run'
     call remove_tree(OUT)
     call single_element_threshold(t)
-    call boundary_lines_say_the_counts(t)
     call single_element_sweep(t)
     call adapted_thresholds_hold_the_truth(t)
     call adapted_thresholds_not_met(t)
+    call hp_thresholds_meet_their_tolerance(t)
+    ! hp levels: 1e-8 within max_levels = 2: not met, 2 rows of adapt.csv
+    call check_limit_not_met(t, 'threshold', 'hp', 2, OUT//'/hp_not_met', 2)
     call remove_tree(OUT)
     call t%report()
 
@@ -51,44 +53,17 @@ contains
         call t%check_close('threshold: lambda- = -(L + 3G)/(L + G)', &
                            json_real(summary, 'lambda_critical_minus'), &
                            single_element_lambda_minus(0.3_wp), 1.0e-13_wp)
-        call t%check('threshold: no lambda+', json_value(summary, 'lambda_critical_plus') == 'null')
+        call t%check('threshold: no lambda+', &
+                     json_value(summary, 'lambda_critical_plus') == 'null')
         call t%check_close('threshold: mu at lambda = -5 is 105/208', &
                            json_real(summary, 'lowest_positive_mu'), 105.0_wp/208.0_wp, 1.0e-13_wp)
         call t%check('threshold: the report says there is no lambda+', &
-                     index(report, 'none (no real eigenvalue of Kt_nn x = lambda Kt_nt x > 0)') > 0)
+                     index(report, 'none (no real eigenvalue of Kt_nn x = lambda Kt_nt x > 0)') &
+                     > 0)
         call t%check('threshold: one boundary point, said so in the singular ("1 points")', &
                      index(report, ': 1 point'//new_line('a')) > 0 .and. &
                      index(report, '1 points') == 0)
     end subroutine single_element_threshold
-
-    !> A point across which the count of positive mu does not change (0 and 0: not confirmed)
-    !> neither appears nor vanishes: its line says the counts, not '(0 -> 0)' after
-    !> 'positive mu vanishes'; a point from 1 to 0 keeps its wording.
-    subroutine boundary_lines_say_the_counts(t)
-        type(test_suite_t), intent(inout) :: t
-        type(critical_set_t) :: set
-        character(len=:), allocatable :: text
-        set%lambda_min = -20.0_wp
-        set%lambda_max = 20.0_wp
-        set%positive_at_min = .true.
-        allocate (set%points(2))
-        set%points(1)%lambda = -2.0_wp
-        set%points(1)%n_below = 1
-        set%points(1)%n_above = 0
-        set%points(1)%appears = .false.
-        set%points(1)%confirmed = .true.
-        set%points(2)%lambda = 3.0_wp
-        set%points(2)%n_below = 0
-        set%points(2)%n_above = 0
-        set%points(2)%appears = .false.
-        text = boundary_lines(set)
-        call t%check('boundary lines: 0 and 0 are said as such, no "(0 -> 0)"', &
-                     index(text, 'the count of positive mu is 0 on both sides, NOT confirmed') &
-                     > 0 .and. index(text, '(0 -> 0)') == 0)
-        call t%check('boundary lines: 1 -> 0 still vanishes', &
-                     index(text, 'positive mu vanishes as lambda increases (1 -> 0), confirmed') &
-                     > 0 .and. index(text, ': 2 points') > 0)
-    end subroutine boundary_lines_say_the_counts
 
     !> A sweep over the list -5, -3, -2, -1, 2: lambda_sweep.csv has one row per lambda in
     !> input order, critical_c_n the closed form where lambda < lambda- (1e-13) and empty
@@ -162,4 +137,26 @@ contains
         if (ran) call t%check('not met: adapt.csv has 2 rows', &
                               data_rows(OUT//'/not_met/adapt.csv') == 2)
     end subroutine adapted_thresholds_not_met
+
+    !> Tolerance 1e-3: converged, both continuum thresholds within their bars, a row per
+    !> level in adapt.csv and per cell in degrees.csv.
+    subroutine hp_thresholds_meet_their_tolerance(t)
+        type(test_suite_t), intent(inout) :: t
+        type(config_t) :: config
+        class(analysis_t), allocatable :: analysis
+        character(len=:), allocatable :: summary
+        logical :: ran
+        call adaptive_scene('threshold', 'hp', 1.0e-3_wp, 0, OUT//'/hp', config)
+        call run_checked(t, 'hp', config, analysis, summary, ran)
+        if (.not. ran) return
+        call t%check('hp: converged', json_value(summary, 'adapt_converged') == 'true')
+        call t%check('hp: lambda+ and lambda- within their bars of the truth', &
+                     thresholds_within_bars(summary, REF_LAMBDA_PLUS, REF_LAMBDA_MINUS))
+        call t%check('hp: adapt.csv has a row per level', &
+                     data_rows(OUT//'/hp/adapt.csv') == &
+                     nint(json_real(summary, 'adapt_levels')))
+        call t%check('hp: degrees.csv has a row per cell', &
+                     data_rows(OUT//'/hp/degrees.csv') == &
+                     nint(json_real(summary, 'n_cells')))
+    end subroutine hp_thresholds_meet_their_tolerance
 end program test_threshold_run

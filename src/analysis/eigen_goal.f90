@@ -1,0 +1,417 @@
+! SPDX-License-Identifier: MIT
+!> The goal of the adaptive loop (adapt_driver) for analysis 'eigen' and the points of an
+!> adapted 'lambda_sweep': the lowest positive mu at each of its lambdas, one target each.
+!> On h levels (h_refiner: Doerfler marking on the cell indicators of the estimate, which
+!> refines where the eigenfunction is singular, the corners of Gamma_C, and leaves the
+!> smooth interior coarse) each level solves the eigenproblem as the eigen analysis does
+!> (dense or ARPACK as &eigen asks) and estimates the error of mu (error_estimate); h levels
+!> serve one lambda (a sweep adapts each point by a loop of its own). On hp levels
+!> (hp_levels) each level is factored once and solved at every lambda still active, the
+!> lowest mu refined to its Rayleigh quotient where its round-off could decide the stop
+!> (hp_rayleigh); its bar comes from the changes between levels.
+module eigen_goal
+    use kinds, only: wp
+    use status, only: status_t
+    use strings, only: to_string, short_real_text
+    use timer, only: wall_time, timings_t
+    use scene, only: scene_t
+    use method_options, only: eigen_options_t, adapt_options_t, ESTIMATE_ON, REFINE_HP
+    use problem, only: problem_t
+    use unit_scaling, only: units_t
+    use hp_space, only: hp_space_t
+    use sparse_cholesky, only: cholesky_t
+    use contact_boundary, only: assemble_b
+    use eigen_solve, only: eigen_result_t, solve_eigen, estimate_eigen, eigen_with_factor, &
+                           choose_solver
+    use accuracy, only: WARNING_LEN, MU_VANISHED
+    use error_bar, only: theta_warnings
+    use hp_rayleigh, only: refine_lowest_mu
+    use adapt_driver, only: adapt_goal_t, refiner_t, adapt_level_t, adapt_levels, judge_target
+    use h_refiner, only: h_refiner_t, doerfler_marking
+    use hp_levels, only: hp_refiner_t
+    implicit none
+    private
+    public :: adapt_eigen
+
+    character(len=*), parameter, public :: HP_ESTIMATE = 'change to the previous hp level'
+
+    !> One level of one lambda's loop: a row of adapt.csv.
+    type, public :: eigen_level_t
+        integer :: level = 0
+        integer :: layers = 0        !! hp: the layers of grading (the level); h: 0
+        integer :: p_min = 0         !! hp: the lowest cell degree; h: 0
+        integer :: p_max = 0         !! hp: the highest cell degree; h: 0
+        integer :: n_dofs = 0        !! free dofs (hp: of the condensed system)
+        integer :: n_contact = 0     !! contact nodes (hp: contact functions)
+        integer :: n_cells = 0
+        logical :: has_mu = .false.           !! a positive mu exists
+        !> lowest positive mu, in the units of the loop's problems (adapted_eigen_t%units:
+        !> every level's, whose E and extent are the starting mesh's)
+        real(wp) :: mu = 0.0_wp
+        logical :: estimated = .false.        !! h: the level's estimate was computed
+        real(wp) :: error_estimate = 0.0_wp   !! h: |relative error estimate| of mu
+        real(wp) :: error_bar = -1.0_wp       !! the bar at this level (error_bar); < 0: none
+        !> hp: |mu - mu of the previous level| / |mu|, what the bar is made of; < 0: none
+        real(wp) :: change = -1.0_wp
+        real(wp) :: roundoff = -1.0_wp        !! its round-off part (module roundoff); < 0: unknown
+        !> hp: mu has stopped converging (error_bar: hp_run_bar): no bar, the loop stops
+        logical :: stalled = .false.
+        real(wp) :: time_s = 0.0_wp           !! wall time from the loop's start to the level's end
+    end type eigen_level_t
+
+    !> One lambda's loop.
+    type, public :: adapted_eigen_t
+        real(wp) :: lambda = 0.0_wp
+        type(eigen_level_t), allocatable :: levels(:)
+        !> the last level solved (kept on request): its problem (hp: graded P1 mesh, condensed
+        !> K, hp contact, dofs%n_free only) and its hp space (cell degrees; h: none)
+        type(problem_t) :: prob
+        type(hp_space_t) :: space
+        type(eigen_result_t) :: res        !! its spectrum, error estimate, bar and warnings
+        !> of mu in `levels` and `res`: the levels' problems' (problem_t%units; hp: the input's)
+        type(units_t) :: units
+        logical :: converged = .false.     !! the bar met the tolerance
+        logical :: floor_reached = .false. !! stopped by round-off, not by a limit
+        !> the last level has no positive mu where an earlier one had (accuracy: MU_VANISHED)
+        logical :: mu_vanished = .false.
+        !> one line: the tolerance met, or why not and what was reached
+        character(len=:), allocatable :: outcome
+    end type adapted_eigen_t
+
+    !> The lowest positive mu at each of `points`' lambdas.
+    type, extends(adapt_goal_t) :: eigen_goal_t
+        !> the run's, with the estimate on (h): the loop is driven by it, whatever the size
+        type(eigen_options_t) :: options
+        real(wp) :: tolerance = 0.0_wp
+        logical :: keep_problem = .true.
+        type(adapted_eigen_t), allocatable :: points(:)
+    contains
+        procedure :: solve => eigen_goal_solve
+        procedure :: judge => eigen_goal_judge
+        procedure :: bar_text => eigen_goal_bar_text
+        procedure :: mark => eigen_goal_mark
+    end type eigen_goal_t
+
+contains
+
+    !> The loop of the lowest positive mu at each of `lambdas` from the problem `start` of the
+    !> scene `scn`, solved as `options` and refined as `adapt` asks (h: one lambda; hp: one
+    !> climb of the levels for all). outs(i) is lambdas(i)'s loop; its problem and space are
+    !> the last level's with `keep_problem`. A limit reached is no failure (stat ok,
+    !> outs(i)%converged false, its outcome heading its warnings). A failure (stat) still
+    !> gives outs: outs(i)%outcome is '' where lambdas(i)'s loop had not ended, and its
+    !> result is complete where it had.
+    subroutine adapt_eigen(scn, lambdas, options, adapt, start, outs, timings, stat, &
+                           keep_problem)
+        type(scene_t), intent(in) :: scn
+        real(wp), intent(in) :: lambdas(:)
+        type(eigen_options_t), intent(in) :: options
+        type(adapt_options_t), intent(in) :: adapt
+        type(problem_t), intent(in) :: start
+        type(adapted_eigen_t), allocatable, intent(out) :: outs(:)
+        type(timings_t), intent(inout) :: timings
+        type(status_t), intent(out) :: stat
+        logical, intent(in) :: keep_problem
+        class(refiner_t), allocatable :: refiner
+        type(eigen_goal_t) :: goal
+        integer :: i
+
+        if (adapt%refine == REFINE_HP) then
+            allocate (hp_refiner_t :: refiner)
+        else
+            allocate (h_refiner_t :: refiner)
+        end if
+        goal%options = options
+        if (.not. adapt%refine == REFINE_HP) goal%options%estimate = ESTIMATE_ON
+        goal%tolerance = adapt%tolerance
+        goal%keep_problem = keep_problem
+        allocate (goal%targets(size(lambdas)), goal%points(size(lambdas)))
+        do i = 1, size(lambdas)
+            goal%targets(i)%outcome = ''
+            goal%points(i)%lambda = lambdas(i)
+            allocate (goal%points(i)%levels(0))
+        end do
+        call adapt_levels(scn, adapt, start, refiner, goal, timings, stat)
+        ! a failed loop still gives the points whose targets had ended (an outcome, not ''):
+        ! a sweep writes those as a partial set
+        call move_alloc(goal%points, outs)
+        do i = 1, size(outs)
+            associate (o => outs(i), t => goal%targets(i))
+                o%outcome = t%outcome
+                if (.not. stat%ok() .and. t%active()) cycle
+                o%converged = t%converged()
+                o%floor_reached = t%floor_reached()
+                o%mu_vanished = o%res%spec%lowest_positive() == 0 .and. any(o%levels%has_mu)
+                if (.not. o%converged) o%res%warnings = [character(len=WARNING_LEN) :: &
+                                                         o%outcome, o%res%warnings]
+                if (refiner%estimated()) o%res%warnings = [character(len=WARNING_LEN) :: &
+                    o%res%warnings, theta_warnings(adapt%theta)]
+            end associate
+        end do
+    end subroutine adapt_eigen
+
+    !> Each active lambda on `level`: h, its own solve and estimate; hp, one factor for all.
+    subroutine eigen_goal_solve(this, scn, refiner, level, loop_start, timings, refused, stat)
+        class(eigen_goal_t), intent(inout) :: this
+        type(scene_t), intent(in) :: scn
+        class(refiner_t), intent(in) :: refiner
+        type(adapt_level_t), intent(in) :: level
+        real(wp), intent(in) :: loop_start
+        type(timings_t), intent(inout) :: timings
+        character(len=:), allocatable, intent(out) :: refused
+        type(status_t), intent(out) :: stat
+        type(cholesky_t) :: chol
+        integer :: i
+
+        refused = ''
+        if (.not. refiner%estimated()) then
+            call refiner%factor(level, chol, timings, stat)
+            if (.not. stat%ok()) return
+        end if
+        do i = 1, size(this%points)
+            if (.not. this%targets(i)%active()) cycle
+            if (refiner%estimated()) then
+                call solve_h_level(this%points(i), stat)
+            else
+                call solve_hp_level(this%points(i), stat)
+            end if
+            if (.not. stat%ok()) exit
+        end do
+        if (.not. refiner%estimated()) call chol%free()
+
+    contains
+
+        !> An h level at p%lambda: the eigen solve with its own factor, the estimate (which
+        !> drives the loop and marks the cells), the row and the bar over the levels so far.
+        subroutine solve_h_level(p, stat)
+            type(adapted_eigen_t), intent(inout) :: p
+            type(status_t), intent(out) :: stat
+            type(eigen_level_t) :: row
+            call solve_eigen(scn, level%prob, p%lambda, this%options, p%res, timings, stat)
+            if (.not. stat%ok()) return
+            ! an adaptive run judges resolution by the change of mu between its levels
+            call estimate_eigen(scn, level%prob, this%options, .false., p%res, timings)
+            call fill_row(row, p%res)
+            row%estimated = p%res%error%computed
+            if (row%estimated) row%error_estimate = abs(p%res%error%relative)
+            row%time_s = wall_time() - loop_start
+            p%levels = [p%levels, row]
+            call set_bar(p%levels, refiner)
+            if (p%levels(size(p%levels))%estimated) &
+                p%res%error%bar = p%levels(size(p%levels))%error_bar
+            if (this%keep_problem) p%prob = level%prob
+            p%units = level%prob%units
+            call timings%note(h_level_line(p%levels(size(p%levels)), level%prob%units))
+        end subroutine solve_h_level
+
+        !> An hp level, factored in `chol`, at p%lambda: the eigen solve, the row and its bar
+        !> from the changes between levels; the result becomes p%res.
+        subroutine solve_hp_level(p, stat)
+            type(adapted_eigen_t), intent(inout) :: p
+            type(status_t), intent(out) :: stat
+            type(eigen_result_t) :: res
+            type(eigen_level_t) :: row
+            integer :: k
+            res%lambda = p%lambda
+            call assemble_b(level%prob%contact, level%prob%dofs%n_free, res%lambda, res%b, stat)
+            if (.not. stat%ok()) return
+            res%solver = choose_solver(this%options, level%prob%contact%p())
+            call eigen_with_factor(scn, level%prob, this%options, chol, res, timings, stat)
+            if (.not. stat%ok()) return
+            k = res%spec%lowest_positive()
+            if (k > 0) then
+                call refine_level_mu(res, k, stat)
+                if (.not. stat%ok()) return
+            end if
+            call fill_row(row, res)
+            row%layers = level%number
+            row%p_min = minval(level%degree)
+            row%p_max = maxval(level%degree)
+            p%levels = [p%levels, row]
+            call set_bar(p%levels, refiner)
+            row = p%levels(size(p%levels))
+            if (row%error_bar >= 0.0_wp) then
+                res%error%computed = .true.
+                res%error%bar = row%error_bar
+                res%error%relative = row%change
+                res%error%method = HP_ESTIMATE
+            else if (row%stalled) then
+                res%error%skipped = 'none: mu does not converge under hp refinement'
+            end if
+            p%levels(size(p%levels))%time_s = wall_time() - loop_start
+            if (this%keep_problem) then
+                p%prob = level%prob
+                p%space = level%space
+            end if
+            p%res = res
+            p%units = level%prob%units
+            call timings%note(hp_level_line(p%levels(size(p%levels)), level%prob%units))
+        end subroutine solve_hp_level
+
+        !> The row's sizes and mu from the level and `res`.
+        subroutine fill_row(row, res)
+            type(eigen_level_t), intent(out) :: row
+            type(eigen_result_t), intent(in) :: res
+            integer :: lowest
+            row%level = level%number
+            row%n_dofs = level%prob%dofs%n_free
+            row%n_contact = level%prob%contact%p()
+            row%n_cells = level%prob%mesh%n_cells()
+            lowest = res%spec%lowest_positive()
+            row%has_mu = lowest > 0
+            if (row%has_mu) row%mu = real(res%spec%mu(lowest), wp)
+            row%roundoff = res%roundoff
+        end subroutine fill_row
+
+        !> res%spec%mu(i), the lowest positive mu, and res%roundoff replaced by the Rayleigh
+        !> quotient of its vectors that never stores K (hp_rayleigh) when the double value's
+        !> round-off bound is at least REFINE_FRACTION of the tolerance: below, it cannot
+        !> decide the stop, and the quotient costs about half of a level's assembly.
+        subroutine refine_level_mu(res, i, stat)
+            type(eigen_result_t), intent(inout) :: res
+            integer, intent(in) :: i
+            type(status_t), intent(out) :: stat
+            real(wp), parameter :: REFINE_FRACTION = 0.01_wp
+            real(wp) :: mu, refined, refined_bound, gap, start
+            integer :: j
+            if (.not. (res%roundoff >= REFINE_FRACTION*this%tolerance .and. &
+                       allocated(res%spec%left))) return
+            start = wall_time()
+            mu = real(res%spec%mu(i), wp)
+            gap = 1.0_wp
+            do j = 1, res%spec%n()
+                if (j /= i) gap = min(gap, abs(res%spec%mu(j) - mu)/abs(mu))
+            end do
+            associate (prob => level%prob)
+                call refine_lowest_mu(prob%mesh, level%space, prob%young, prob%poisson, &
+                    prob%contact, res%b, res%lambda, mu, &
+                    real(res%spec%vectors(:, i), wp), res%spec%left, res%roundoff, gap, &
+                    refined, refined_bound, stat)
+                if (.not. stat%ok()) return
+                res%spec%mu(i) = refined
+            end associate
+            res%roundoff = refined_bound
+            res%quotient = .true.
+            res%spec%roundoff_seconds = res%spec%roundoff_seconds + wall_time() - start
+            res%spec%roundoff(i) = refined_bound
+        end subroutine refine_level_mu
+    end subroutine eigen_goal_solve
+
+    !> The bar (and change, and stall) of the last of `levels` over the levels so far, as the
+    !> refiner makes bars: h from the estimates (only where the last level has one), hp from
+    !> the values since the last level without a mu. Plain arrays, filled level by level: a
+    !> component of an array of derived type passed as an array makes a temporary (a
+    !> runtime warning under -fcheck=all).
+    pure subroutine set_bar(levels, refiner)
+        type(eigen_level_t), intent(inout) :: levels(:)
+        class(refiner_t), intent(in) :: refiner
+        logical :: have(size(levels))
+        real(wp) :: estimates(size(levels)), mu(size(levels))
+        integer :: dofs(size(levels)), i, k
+        k = size(levels)
+        if (refiner%estimated() .and. .not. levels(k)%estimated) return
+        do i = 1, k
+            have(i) = levels(i)%has_mu
+            estimates(i) = -1.0_wp
+            if (levels(i)%estimated .and. levels(i)%has_mu) estimates(i) = levels(i)%error_estimate
+            mu(i) = levels(i)%mu
+            dofs(i) = levels(i)%n_dofs
+        end do
+        associate (last => levels(k))
+            call refiner%series_bar(have, mu, estimates, dofs, last%roundoff, last%error_bar, &
+                                    last%change, last%stalled)
+        end associate
+    end subroutine set_bar
+
+    !> Each active lambda after `level`: judge_target on its last row. An h level without a
+    !> bar stops it (the estimate is missing: why); an hp level without a positive mu does.
+    subroutine eigen_goal_judge(this, refiner, level, tolerance)
+        class(eigen_goal_t), intent(inout) :: this
+        class(refiner_t), intent(in) :: refiner
+        integer, intent(in) :: level
+        real(wp), intent(in) :: tolerance
+        character(len=:), allocatable :: no_value
+        real(wp) :: bar, roundoff
+        integer :: i
+
+        do i = 1, size(this%points)
+            if (.not. this%targets(i)%active()) cycle
+            associate (p => this%points(i), &
+                       last => this%points(i)%levels(size(this%points(i)%levels)))
+                no_value = 'tolerance not met: no positive mu at level '//to_string(level)
+                if (any(p%levels%has_mu)) no_value = no_value//': '//MU_VANISHED
+                if (refiner%estimated()) then
+                    ! the bar quoted; its round-off part where the level is estimated
+                    bar = -1.0_wp
+                    if (p%res%error%computed) bar = p%res%error%bar
+                    roundoff = -1.0_wp
+                    if (last%estimated) roundoff = p%res%roundoff
+                else
+                    bar = last%error_bar
+                    roundoff = last%roundoff
+                end if
+                call judge_target(this%targets(i), refiner, level, tolerance, last%n_dofs, &
+                                  last%has_mu, no_value, bar, roundoff, last%stalled, 'mu', &
+                                  missing(p))
+            end associate
+        end do
+    end subroutine eigen_goal_judge
+
+    !> Why the estimate of a lambda's last level is missing: no positive mu (none at all, or
+    !> none left of the earlier levels': MU_VANISHED), its size (skipped), or its failure.
+    function missing(p) result(reason)
+        type(adapted_eigen_t), intent(in) :: p
+        character(len=:), allocatable :: reason
+        reason = 'the estimate failed'
+        if (p%res%spec%lowest_positive() == 0) then
+            reason = 'no positive mu to adapt to'
+            if (any(p%levels%has_mu)) reason = reason//': '//MU_VANISHED
+        else if (allocated(p%res%error%skipped)) then
+            reason = p%res%error%skipped
+        else if (allocated(p%res%error%failure)) then
+            reason = 'the estimate failed: '//p%res%error%failure
+        end if
+    end function missing
+
+    function eigen_goal_bar_text(this, i) result(text)
+        class(eigen_goal_t), intent(in) :: this
+        integer, intent(in) :: i
+        character(len=:), allocatable :: text
+        text = 'none'
+        if (size(this%points(i)%levels) == 0) return
+        associate (last => this%points(i)%levels(size(this%points(i)%levels)))
+            if (last%error_bar >= 0.0_wp) text = short_real_text(last%error_bar)
+            text = text//' at '//to_string(last%n_dofs)//' dofs'
+        end associate
+    end function eigen_goal_bar_text
+
+    !> Doerfler's set of the (one) lambda's indicators.
+    function eigen_goal_mark(this, theta) result(marked)
+        class(eigen_goal_t), intent(in) :: this
+        real(wp), intent(in) :: theta
+        integer, allocatable :: marked(:)
+        marked = doerfler_marking(this%points(1)%res%error%indicators, theta)
+    end function eigen_goal_mark
+
+    !> The progress line of an h level (mu in the input's units: `units` are the level's).
+    function h_level_line(row, units) result(line)
+        type(eigen_level_t), intent(in) :: row
+        type(units_t), intent(in) :: units
+        character(len=:), allocatable :: line
+        line = 'adapt level '//to_string(row%level)//': '//to_string(row%n_dofs)//' dofs'
+        if (row%has_mu) line = line//', mu = '//short_real_text(units%mu_to_input(row%mu), 12)
+        if (row%estimated) line = line//', estimate '//short_real_text(row%error_estimate)// &
+            ', bar '//short_real_text(row%error_bar)
+    end function h_level_line
+
+    !> The progress line of an hp level (mu in the input's units: `units` are the level's).
+    function hp_level_line(r, units) result(line)
+        type(eigen_level_t), intent(in) :: r
+        type(units_t), intent(in) :: units
+        character(len=:), allocatable :: line
+        line = 'hp level '//to_string(r%level)//': '//to_string(r%n_dofs)//' dofs, '// &
+            'degrees '//to_string(r%p_min)//' to '//to_string(r%p_max)
+        if (r%has_mu) line = line//', mu = '//short_real_text(units%mu_to_input(r%mu), 12)
+        if (r%error_bar >= 0.0_wp) line = line//', bar '//short_real_text(r%error_bar)
+    end function hp_level_line
+end module eigen_goal

@@ -1,0 +1,923 @@
+! SPDX-License-Identifier: MIT
+!> The goal of the adaptive loop (adapt_driver) for analysis 'threshold': the critical
+!> lambdas, lambda+ and lambda-, the real eigenvalues of the pencil Kt_nn x = lambda Kt_nt x
+!> nearest zero, one target per side (SIDE_PLUS, SIDE_MINUS). The two sides are still judged
+!> together (the loop stops when both meet the tolerance, or for the worse of the two), as
+!> they were before the loop was shared; each keeps its own values and bars level by level.
+!>
+!> h levels (h_refiner): each side has its own error estimate (threshold_estimate). Each
+!> level marks, for every side whose estimate is still above the tolerance, the Doerfler set
+!> of that side's indicators, and refines the union. The two sides need different refinement
+!> (on the reference scene each threshold's mode is singular at the other corner of Gamma_C),
+!> so the mesh is finer than either side alone needs; in exchange one mesh carries both
+!> answers and everything else a threshold run reports on it (the spectrum at &analysis
+!> lambda, the confirmations and the boundary of the set where a positive mu exists), and a
+!> side that meets the tolerance first stops asking for cells.
+!>
+!> Where a side's onset (the boundary point of {lambda : a positive mu exists} nearest zero
+!> on that side) is a collision of two real mu (complex_pair), that collision, not the
+!> pencil eigenvalue, is the side's goal: its estimate is the difference to the same point
+!> one degree higher on the same cells (boundary_estimate), its bar level_bar's, and its
+!> indicators those of the dual-weighted residual of the lowest positive mu just on the real
+!> side of it. Why they fit: at the collision A(lambda_c) has a 2 x 2 Jordan block with right
+!> and left eigenvectors x, y (y'x = 0); a perturbation E of A keeps the double eigenvalue
+!> where y'(E + A' d lambda)x = 0, so d lambda_c = -y'Ex / y'A'x, a residual of x weighted
+!> by y. Just beside the collision the two colliding eigenpairs tend to x and y, so the
+!> weighted residual of either, cell by cell, tends to that of lambda_c up to one factor;
+!> Doerfler's marking ignores the factor.
+!>
+!> hp levels (hp_levels): the same thresholds and collision onsets on each level, with the
+!> bar of each from its changes between levels (hp_run_bar) plus its round-off part; a level
+!> whose dense contact blocks would not fit the memory is refused before they are formed.
+!> The last level solved is then reported on its own factor as the threshold analysis
+!> reports its mesh: the spectrum at &analysis lambda, the confirmations, the boundary of
+!> the positive set. (On h levels the analysis reports the final mesh afresh:
+!> threshold_analysis.)
+module threshold_goal
+    use kinds, only: wp, i8
+    use status, only: status_t
+    use strings, only: to_string, short_real_text, given_real_text, seconds_text
+    use timer, only: wall_time, timings_t, PHASE_REDUCTION
+    use scene, only: scene_t
+    use method_options, only: eigen_options_t, adapt_options_t, SOLVER_DENSE, REFINE_HP
+    use problem, only: problem_t
+    use hp_space, only: hp_space_t
+    use sparse_cholesky, only: cholesky_t
+    use threshold_analysis, only: factor_with_contact_blocks, threshold_result_t, &
+                                  solve_thresholds, confirm_and_bound
+    use critical_lambda, only: thresholds_t, pencil_thresholds, SIDE_PLUS, SIDE_MINUS, &
+                               SIDE_LABELS, SIDE_NAMES, lowest_positive_mu
+    use error_estimate, only: ENRICHED_CONTACT_MAX
+    use threshold_estimate, only: threshold_estimate_t, threshold_displacements, &
+                                  estimate_threshold_errors
+    use contact_reduction, only: reduced_blocks_t, contact_flexibility
+    use contact_boundary, only: assemble_b
+    use critical_set, only: critical_set_t, find_critical_set, search_critical_set, &
+                            onset_point, side_offset, MECHANISM_COMPLEX_PAIR, MECHANISM_PENCIL
+    use boundary_estimate, only: enriched_pair_lambdas, onset_bars_t
+    use eigen_solve, only: eigen_result_t, eigen_with_factor, choose_solver
+    use error_estimate, only: error_estimate_t, estimate_lowest_error
+    use error_bar, only: theta_warnings, floor_reached, floor_outcome, stall_outcome
+    use roundoff, only: threshold_roundoff, collision_roundoffs
+    use memory_budget, only: check_contact_memory, contact_peak_blocks, contact_blocks_bytes
+    use accuracy, only: WARNING_LEN
+    use adapt_driver, only: adapt_goal_t, refiner_t, adapt_level_t, adapt_levels, judge_target, &
+                            TARGET_MET, TARGET_FLOOR, TARGET_STOPPED
+    use h_refiner, only: h_refiner_t, doerfler_marking
+    use hp_levels, only: hp_refiner_t
+    implicit none
+    private
+    public :: solve_adapted_thresholds
+
+    character(len=*), parameter :: HP_ESTIMATE = 'change to the previous hp level'
+
+    !> coarse_scan_t: the largest level scanned at the end, in contact functions
+    integer, parameter :: SCAN_CONTACT_MAX = 100
+
+    !> One level of the loop: a row of adapt.csv, arrays by SIDE_PLUS, SIDE_MINUS.
+    type, public :: threshold_level_t
+        integer :: level = 0
+        integer :: layers = 0                     !! hp: the layers of grading; h: 0
+        integer :: p_min = 0                      !! hp: the lowest cell degree; h: 0
+        integer :: p_max = 0                      !! hp: the highest cell degree; h: 0
+        integer :: n_dofs = 0
+        integer :: n_contact = 0
+        integer :: n_cells = 0
+        logical :: found(2) = .false.             !! a threshold on that side
+        real(wp) :: lambda(2) = 0.0_wp
+        logical :: estimated(2) = .false.
+        real(wp) :: error_estimate(2) = 0.0_wp    !! |relative error estimate| of lambda
+        real(wp) :: error_bar(2) = -1.0_wp         !! the bars at this level; < 0: none
+        !> the side's onset is a collision (complex_pair): its lambda, |relative estimate|
+        !> (< 0: none) and bar (< 0: none)
+        logical :: collision(2) = .false.
+        real(wp) :: collision_lambda(2) = 0.0_wp
+        real(wp) :: collision_estimate(2) = -1.0_wp
+        real(wp) :: collision_bar(2) = -1.0_wp
+        real(wp) :: collision_roundoff(2) = -1.0_wp   !! its round-off part; < 0: unknown
+        !> hp: the side's goal has stopped converging at this level or before (error_bar:
+        !> hp_run_bar): no bar from then on
+        logical :: stalled(2) = .false.
+        real(wp) :: time_s = 0.0_wp
+    end type threshold_level_t
+
+    type, public :: adaptive_thresholds_t
+        type(threshold_level_t), allocatable :: levels(:)
+        !> the problem of the last level solved (hp: graded P1 mesh, condensed K, hp contact,
+        !> dofs%n_free only) and its hp space (cell degrees; h: none)
+        type(problem_t) :: prob
+        type(hp_space_t) :: space
+        type(threshold_estimate_t) :: estimate    !! of its thresholds
+        logical :: converged = .false.
+        logical :: floor_reached = .false.   !! stopped by round-off, not by a limit
+        character(len=:), allocatable :: outcome
+        !> the boundary the final report carries (coarse_scan_t); scan_contact 0: none
+        type(critical_set_t) :: coarse
+    end type adaptive_thresholds_t
+
+    !> The boundary of the positive set for a loop's last level, found cheaply: the set of the
+    !> last level that searched it (onset_search), else a scan of the last level with at most
+    !> SCAN_CONTACT_MAX contact functions, made once at the end (coarse_set); the last level
+    !> then carries its points (carry_critical_set). The scan's hundred dense p x p solves cost
+    !> 1/8 or less of the last level's (hp to 1e-10 on the reference scene: 75 of 291
+    !> contact functions; before, the scan on the last level took three times the loop).
+    type, public :: coarse_scan_t
+        type(critical_set_t) :: searched   !! scan_contact 0: no level searched
+        type(reduced_blocks_t), private :: blocks
+        real(wp), allocatable, private :: pencil(:)
+    contains
+        procedure :: note => coarse_scan_note
+        procedure :: coarse_set => coarse_scan_coarse_set
+    end type coarse_scan_t
+
+    type, extends(adapt_goal_t) :: threshold_goal_t
+        type(threshold_level_t), allocatable :: levels(:)
+        type(thresholds_t) :: thr
+        type(threshold_estimate_t) :: est
+        real(wp) :: tolerance = 0.0_wp   !! &adapt tolerance: the sides above it mark cells
+        type(eigen_options_t) :: options   !! of the spectra beside a collision
+        real(wp), allocatable :: scan(:)   !! the lambdas of the boundary search
+        !> per side, the indicators of its collision onset (n_cells, 2), summing to 1
+        real(wp), allocatable :: collision_indicators(:, :)
+        real(wp) :: collision_estimate(2) = -1.0_wp
+        character(len=200) :: collision_skipped(2) = ''
+        !> the dofs of the last level that found both onsets at the pencil eigenvalues
+        !> (onset_search); 0: none yet
+        integer :: pencil_dofs = 0
+        !> what the next level and the final report carry the boundary of the positive set from
+        type(coarse_scan_t) :: scan_state
+        !> the round-off part of the floor test (h): that of the side with the largest bar
+        real(wp) :: roundoff = -1.0_wp
+        !> the last level solved: its problem and space; hp keeps its factor, contact blocks
+        !> and boundary for the final report (`factored`)
+        type(problem_t) :: prob
+        type(hp_space_t) :: space
+        type(cholesky_t) :: chol
+        logical :: factored = .false.
+        type(reduced_blocks_t) :: blocks
+        type(critical_set_t) :: set
+        !> hp: the memory a level's contact blocks may take, in bytes (negative: as the
+        !> machine has; absent: the memory available)
+        logical :: memory_given = .false.
+        integer(i8) :: memory = -1_i8
+    contains
+        procedure :: solve => threshold_goal_solve
+        procedure :: judge => threshold_goal_judge
+        procedure :: bar_text => threshold_goal_bar_text
+        procedure :: mark => threshold_goal_mark
+    end type threshold_goal_t
+
+contains
+
+    !> The adaptive 'threshold' analysis: the loop from the problem `start` of the scene
+    !> `scn` as `adapt` asks, the boundary searched over `scan`, then the report of the last
+    !> level at `lambda` as `options` ask: on h levels the threshold analysis on the final
+    !> problem with the loop's estimates and the collision onsets' level bars
+    !> (last_onset_bars: their one-mesh bars are not computed), on hp levels the report of
+    !> the last level on its own factor (report_last_level). A limit reached is no failure
+    !> (stat ok, out%converged false, its outcome heading the warnings of `res`); an hp first
+    !> level whose contact blocks do not fit `available` bytes (default: the memory
+    !> available) is (STATUS_NOT_MET).
+    subroutine solve_adapted_thresholds(scn, lambda, options, adapt, scan, start, out, res, &
+                                        timings, stat, available)
+        type(scene_t), intent(in) :: scn
+        real(wp), intent(in) :: lambda
+        type(eigen_options_t), intent(in) :: options
+        type(adapt_options_t), intent(in) :: adapt
+        real(wp), intent(in) :: scan(:)
+        type(problem_t), intent(in) :: start
+        type(adaptive_thresholds_t), intent(out) :: out
+        type(threshold_result_t), intent(out) :: res
+        type(timings_t), intent(inout) :: timings
+        type(status_t), intent(out) :: stat
+        integer(i8), intent(in), optional :: available
+        class(refiner_t), allocatable :: refiner
+        type(threshold_goal_t) :: goal
+
+        if (adapt%refine == REFINE_HP) then
+            allocate (hp_refiner_t :: refiner)
+        else
+            allocate (h_refiner_t :: refiner)
+        end if
+        allocate (goal%levels(0), goal%targets(2))
+        goal%targets(1)%outcome = ''
+        goal%targets(2)%outcome = ''
+        goal%tolerance = adapt%tolerance
+        goal%options = options
+        goal%scan = scan
+        if (present(available)) then
+            goal%memory_given = .true.
+            goal%memory = available
+        end if
+        call adapt_levels(scn, adapt, start, refiner, goal, timings, stat)
+        ! both sides are judged together: the first's state and outcome are the loop's
+        out%converged = goal%targets(1)%converged()
+        out%floor_reached = goal%targets(1)%floor_reached()
+        out%outcome = goal%targets(1)%outcome
+        call move_alloc(goal%levels, out%levels)
+        out%prob = goal%prob
+        out%space = goal%space
+        if (refiner%estimated()) then
+            if (stat%ok()) then
+                out%estimate = goal%est
+                call goal%scan_state%coarse_set(scan, out%prob%contact%p(), out%coarse, stat)
+            end if
+            if (stat%ok()) call solve_thresholds(scn, out%prob, lambda, options, scan, res, &
+                timings, stat, estimate=out%estimate, onsets=last_onset_bars(out), &
+                coarse=out%coarse)
+        else
+            if (stat%ok() .and. goal%factored) call report_last_level(scn, goal, out, lambda, &
+                                                                      res, timings, stat)
+            out%estimate = res%estimate
+        end if
+        if (goal%factored) call goal%chol%free()
+        if (.not. stat%ok()) return
+        if (.not. out%converged) res%eigen%warnings = &
+            [character(len=len(res%eigen%warnings)) :: out%outcome, res%eigen%warnings]
+        if (refiner%estimated()) res%eigen%warnings = [character(len=len(res%eigen%warnings)) &
+            :: res%eigen%warnings, theta_warnings(adapt%theta)]
+    end subroutine solve_adapted_thresholds
+
+    !> Both thresholds on `level`, with their error estimates (h) or their bars from the
+    !> changes between levels (hp), and each side's collision onset where it has one.
+    subroutine threshold_goal_solve(this, scn, refiner, level, loop_start, timings, refused, &
+                                    stat)
+        class(threshold_goal_t), intent(inout) :: this
+        type(scene_t), intent(in) :: scn
+        class(refiner_t), intent(in) :: refiner
+        type(adapt_level_t), intent(in) :: level
+        real(wp), intent(in) :: loop_start
+        type(timings_t), intent(inout) :: timings
+        character(len=:), allocatable, intent(out) :: refused
+        type(status_t), intent(out) :: stat
+        refused = ''
+        if (refiner%estimated()) then
+            call solve_h_level(this, scn, refiner, level, loop_start, timings, stat)
+        else
+            call solve_hp_level(this, scn, refiner, level, loop_start, timings, refused, stat)
+        end if
+    end subroutine threshold_goal_solve
+
+    !> An h level: factor K, form the contact blocks, solve the pencil, estimate both
+    !> thresholds and the collision onsets; the row and each side's bar over the levels.
+    subroutine solve_h_level(this, scn, refiner, level, loop_start, timings, stat)
+        class(threshold_goal_t), intent(inout) :: this
+        type(scene_t), intent(in) :: scn
+        class(refiner_t), intent(in) :: refiner
+        type(adapt_level_t), intent(in) :: level
+        real(wp), intent(in) :: loop_start
+        type(timings_t), intent(inout) :: timings
+        type(status_t), intent(out) :: stat
+        type(cholesky_t) :: chol
+        type(reduced_blocks_t) :: blocks
+        type(critical_set_t) :: set
+        type(eigen_result_t) :: beside(2)
+        real(wp), allocatable :: u(:, :)
+        real(wp) :: start, bar(2), roundoff(2)
+        real(wp), allocatable :: nearest(:)
+        integer :: onset(2)
+
+        associate (prob => level%prob)
+            call factor_with_contact_blocks(scn, prob, chol, blocks%kt_nn, blocks%kt_nt, &
+                                            timings, stat)
+            if (.not. stat%ok()) return
+            start = wall_time()
+            call pencil_thresholds(blocks%kt_nn, blocks%kt_nt, this%thr, stat)
+            if (stat%ok()) call threshold_roundoff(prob%k, chol, prob%contact, blocks%kt_nn, &
+                                                   blocks%kt_nt, this%thr, stat)
+            if (stat%ok()) call threshold_displacements(chol, prob%contact, prob%dofs%n_free, &
+                                                        this%thr, u, stat)
+            blocks%mass = prob%contact%mass
+            if (stat%ok()) call onset_search(this%scan, blocks, this%thr, prob%dofs%n_free, &
+                                             this%pencil_dofs, set, stat, this%scan_state%searched)
+            if (stat%ok()) call this%scan_state%note(blocks, this%thr%real_lambdas, set)
+            if (stat%ok()) call collision_onsets(set, onset)
+            if (stat%ok() .and. any(onset > 0)) call collision_roundoffs(prob%k, chol, &
+                prob%contact, blocks, set, stat)
+            allocate (nearest(size(set%points)), source=huge(1.0_wp))
+            if (stat%ok() .and. any(onset > 0)) call enriched_pair_lambdas(prob, &
+                ENRICHED_CONTACT_MAX, set, nearest, stat)
+            if (stat%ok() .and. any(onset > 0)) call collision_spectra(scn, prob, &
+                this%options, chol, blocks, set, onset, nearest, beside, stat)
+            call chol%free()
+            if (.not. stat%ok()) return
+            deallocate (blocks%kt_nn, blocks%kt_nt)
+            call estimate_threshold_errors(prob, this%thr, u, ENRICHED_CONTACT_MAX, this%est, &
+                                           stat)
+            if (stat%ok()) call estimate_collisions(this, prob, set, onset, nearest, beside)
+            if (.not. stat%ok()) return
+            call timings%add(PHASE_REDUCTION, wall_time() - start, ': thresholds and their '// &
+                             'error estimates, level '//to_string(level%number))
+            this%levels = [this%levels, level_row(level, this%thr, set, onset, loop_start)]
+            associate (row => this%levels(size(this%levels)))
+                row%estimated = this%est%computed
+                row%error_estimate = abs(this%est%relative)
+                row%collision_estimate = this%collision_estimate
+            end associate
+            call set_bars(this%levels, refiner, this%thr%roundoff)
+            where (this%levels(size(this%levels))%found .and. &
+                   this%levels(size(this%levels))%estimated) &
+                this%est%bar = this%levels(size(this%levels))%error_bar
+            ! the floor test's round-off part: that of the side with the largest bar
+            call goal_bars(this%levels(size(this%levels)), this%thr%roundoff, bar, roundoff)
+            this%roundoff = -1.0_wp
+            if (maxval(bar) >= 0.0_wp) this%roundoff = roundoff(maxloc(bar, 1))
+            this%prob = prob
+        end associate
+        call timings%note(level_line(this%levels(size(this%levels)), 'adapt level'))
+    end subroutine solve_h_level
+
+    !> An hp level: refused (`refused` says why) when its dense contact blocks would not fit
+    !> the memory, else factored (the last level's factor kept for the final report), its
+    !> contact blocks, thresholds, round-off and collision onsets; a row with the bars.
+    subroutine solve_hp_level(this, scn, refiner, level, loop_start, timings, refused, stat)
+        class(threshold_goal_t), intent(inout) :: this
+        type(scene_t), intent(in) :: scn
+        class(refiner_t), intent(in) :: refiner
+        type(adapt_level_t), intent(in) :: level
+        real(wp), intent(in) :: loop_start
+        type(timings_t), intent(inout) :: timings
+        character(len=:), allocatable, intent(inout) :: refused
+        type(status_t), intent(out) :: stat
+        type(status_t) :: memory
+        real(wp) :: start
+        integer :: onset(2), p
+
+        p = level%prob%contact%p()
+        if (this%memory_given) then
+            call check_contact_memory(scn, p, contact_peak_blocks(.false.), memory, this%memory)
+        else
+            call check_contact_memory(scn, p, contact_peak_blocks(.false.), memory)
+        end if
+        if (.not. memory%ok()) then
+            refused = 'level '//to_string(level%number)//' has p = '//to_string(p)// &
+                ' contact functions, whose dense blocks ('// &
+                to_string(contact_peak_blocks(.false.))//' p x p doubles) need an estimated '// &
+                short_real_text(contact_blocks_bytes(p, contact_peak_blocks(.false.))/1.0e9_wp)// &
+                ' GB, more than the memory available'
+            return
+        end if
+        if (this%factored) call this%chol%free()
+        this%factored = .false.
+        this%prob = level%prob
+        this%space = level%space
+        call refiner%factor(level, this%chol, timings, stat)
+        if (.not. stat%ok()) return
+        this%factored = .true.
+        associate (prob => this%prob, blocks => this%blocks, set => this%set)
+            start = wall_time()
+            call contact_flexibility(this%chol, prob%contact, blocks%kt_nn, blocks%kt_nt, stat)
+            if (stat%ok()) call pencil_thresholds(blocks%kt_nn, blocks%kt_nt, this%thr, stat)
+            if (stat%ok()) call threshold_roundoff(prob%k, this%chol, prob%contact, &
+                blocks%kt_nn, blocks%kt_nt, this%thr, stat)
+            if (.not. stat%ok()) return
+            blocks%mass = prob%contact%mass
+            call onset_search(this%scan, blocks, this%thr, prob%dofs%n_free, this%pencil_dofs, &
+                              set, stat, this%scan_state%searched)
+            if (.not. stat%ok()) return
+            call this%scan_state%note(blocks, this%thr%real_lambdas, set)
+            call collision_onsets(set, onset)
+            if (any(onset > 0)) call collision_roundoffs(prob%k, this%chol, prob%contact, &
+                                                         blocks, set, stat)
+            if (.not. stat%ok()) return
+            call timings%add(PHASE_REDUCTION, wall_time() - start, ': contact blocks, '// &
+                             'thresholds and the boundary search, hp level '// &
+                             to_string(level%number))
+            this%levels = [this%levels, level_row(level, this%thr, set, onset, loop_start)]
+        end associate
+        associate (row => this%levels(size(this%levels)))
+            row%layers = level%number
+            row%p_min = minval(level%degree)
+            row%p_max = maxval(level%degree)
+        end associate
+        call set_bars(this%levels, refiner, this%thr%roundoff)
+        this%levels(size(this%levels))%time_s = wall_time() - loop_start
+        call timings%note(level_line(this%levels(size(this%levels)), 'hp level'))
+    end subroutine solve_hp_level
+
+    !> The row of `level` with its thresholds `thr` and collision onsets (`onset`, in `set`).
+    type(threshold_level_t) function level_row(level, thr, set, onset, loop_start) result(row)
+        type(adapt_level_t), intent(in) :: level
+        type(thresholds_t), intent(in) :: thr
+        type(critical_set_t), intent(in) :: set
+        integer, intent(in) :: onset(2)
+        real(wp), intent(in) :: loop_start
+        row%level = level%number
+        row%n_dofs = level%prob%dofs%n_free
+        row%n_contact = level%prob%contact%p()
+        row%n_cells = level%prob%mesh%n_cells()
+        row%found = thr%found
+        row%lambda = thr%lambda
+        row%collision = onset > 0
+        where (row%collision) row%collision_lambda = set%points(max(onset, 1))%lambda
+        where (row%collision) row%collision_roundoff = set%points(max(onset, 1))%roundoff
+        row%time_s = wall_time() - loop_start
+    end function level_row
+
+    !> After `level`: both sides judged together. h: the larger of their bars (judge_target;
+    !> none where either is missing); hp: every side's goal within the tolerance, or each side
+    !> that is not stalled or at the floor.
+    subroutine threshold_goal_judge(this, refiner, level, tolerance)
+        class(threshold_goal_t), intent(inout) :: this
+        class(refiner_t), intent(in) :: refiner
+        integer, intent(in) :: level
+        real(wp), intent(in) :: tolerance
+        if (refiner%estimated()) then
+            associate (last => this%levels(size(this%levels)))
+                call judge_target(this%targets(1), refiner, level, tolerance, last%n_dofs, &
+                                  .true., '', largest_bar(this), this%roundoff, .false., '', &
+                                  missing(this))
+            end associate
+        else
+            call judge_hp(this, tolerance)
+        end if
+        this%targets(2) = this%targets(1)
+    end subroutine threshold_goal_judge
+
+    !> The largest bar of the sides' goals (goal_bars); negative when one of them has none,
+    !> or when there is neither.
+    real(wp) function largest_bar(this)
+        type(threshold_goal_t), intent(in) :: this
+        real(wp) :: bar(2), roundoff(2)
+        largest_bar = -1.0_wp
+        associate (row => this%levels(size(this%levels)))
+            if (.not. any(row%found .or. row%collision)) return
+            call goal_bars(row, this%thr%roundoff, bar, roundoff)
+            if (any(bar < 0.0_wp)) return
+            largest_bar = maxval(bar)
+        end associate
+    end function largest_bar
+
+    !> hp: whether both sides stop after the level just solved: no goal, the tolerance met on
+    !> every side, or each side that does not meet it stalled or at the floor.
+    subroutine judge_hp(this, tolerance)
+        type(threshold_goal_t), intent(inout) :: this
+        real(wp), intent(in) :: tolerance
+        real(wp) :: bar(2), roundoff(2)
+        integer :: side, worst, stalled
+        call goal_bars(this%levels(size(this%levels)), this%thr%roundoff, bar, roundoff)
+        associate (last => this%levels(size(this%levels)), t => this%targets(1))
+            if (.not. any(last%found .or. last%collision)) then
+                call t%finish(TARGET_STOPPED, 'tolerance not met: no real eigenvalue of the '// &
+                    'pencil Kt_nn x = lambda Kt_nt x at hp level '//to_string(last%level))
+                return
+            end if
+            ! a goal without a bar yet
+            if (any(bar < -0.5_wp .and. .not. last%stalled)) return
+            if (all(bar <= tolerance .and. .not. last%stalled)) then
+                call t%finish(TARGET_MET, 'tolerance '//given_real_text(tolerance)// &
+                    ' met at level '//to_string(last%level)//': error bar '// &
+                    this%bar_text(1))
+                return
+            end if
+            worst = 0
+            stalled = 0
+            do side = SIDE_PLUS, SIDE_MINUS
+                if (last%stalled(side)) then
+                    stalled = side
+                    cycle
+                end if
+                if (bar(side) <= tolerance) cycle
+                if (.not. floor_reached(bar(side), roundoff(side))) return
+                if (worst == 0) worst = side
+                if (bar(side) > bar(worst)) worst = side
+            end do
+            if (stalled > 0) then
+                call t%finish(TARGET_STOPPED, stall_outcome(tolerance, &
+                    'the '//trim(SIDE_NAMES(stalled))//' side'))
+                return
+            end if
+            call t%finish(TARGET_FLOOR, floor_outcome(tolerance, roundoff(worst), bar(worst), &
+                                                      to_string(last%n_dofs)))
+        end associate
+    end subroutine judge_hp
+
+    !> The bar of both sides at the last level, as outcomes quote it: the larger of the
+    !> sides' goal bars ('none' where one has none) at its dofs.
+    function threshold_goal_bar_text(this, i) result(text)
+        class(threshold_goal_t), intent(in) :: this
+        integer, intent(in) :: i   !! (both sides are judged together)
+        character(len=:), allocatable :: text
+        real(wp) :: bar(2), roundoff(2)
+        text = 'none'
+        if (size(this%levels) == 0 .or. i < 1) return
+        associate (last => this%levels(size(this%levels)))
+            call goal_bars(last, this%thr%roundoff, bar, roundoff)
+            if (all(bar >= -0.5_wp)) text = short_real_text(maxval(bar))
+            text = text//' at '//to_string(last%n_dofs)//' dofs'
+        end associate
+    end function threshold_goal_bar_text
+
+    !> hp: the report of the last level solved, on its factor and contact blocks (still in
+    !> `goal`): the spectrum at `lambda`, the thresholds confirmed, the boundary of the
+    !> positive set, and the hp bars as the estimate of the thresholds and of the collision
+    !> onsets.
+    subroutine report_last_level(scn, goal, out, lambda, res, timings, stat)
+        type(scene_t), intent(in) :: scn
+        type(threshold_goal_t), intent(inout) :: goal
+        type(adaptive_thresholds_t), intent(in) :: out
+        real(wp), intent(in) :: lambda
+        type(threshold_result_t), intent(out) :: res
+        type(timings_t), intent(inout) :: timings
+        type(status_t), intent(out) :: stat
+        real(wp) :: begin
+        integer :: side, i, k
+        type(critical_set_t) :: coarse
+        begin = wall_time()
+        associate (prob => goal%prob, blocks => goal%blocks, thr => goal%thr)
+            res%eigen%solver = choose_solver(goal%options, prob%contact%p())
+            res%eigen%lambda = lambda
+            call assemble_b(prob%contact, prob%dofs%n_free, res%eigen%lambda, res%eigen%b, stat)
+            if (stat%ok()) call eigen_with_factor(scn, prob, goal%options, goal%chol, res%eigen, &
+                                                  timings, stat, blocks%kt_nn, blocks%kt_nt)
+            res%thresholds = thr
+            if (.not. stat%ok()) return
+            if (goal%set%scan_contact > 0) then   ! the last level searched: its set stands
+                call confirm_and_bound(scn, prob, lambda, goal%scan, goal%chol, blocks, &
+                                       res%thresholds, res%set, stat, known=goal%set)
+            else
+                call goal%scan_state%coarse_set(goal%scan, prob%contact%p(), coarse, stat)
+                if (stat%ok()) call confirm_and_bound(scn, prob, lambda, goal%scan, goal%chol, &
+                    blocks, res%thresholds, res%set, stat, coarse)
+            end if
+            if (.not. stat%ok()) return
+            k = size(out%levels)
+            res%estimate%method = HP_ESTIMATE
+            associate (last => out%levels(k))
+                do side = SIDE_PLUS, SIDE_MINUS
+                    if (.not. thr%found(side)) cycle
+                    if (last%stalled(side)) then
+                        res%estimate%skipped(side) = 'none: the '//trim(SIDE_NAMES(side))// &
+                            ' side does not converge under hp refinement'
+                        cycle
+                    end if
+                    if (last%error_bar(side) < 0.0_wp) then
+                        res%estimate%skipped(side) = 'none at the first hp level'
+                        cycle
+                    end if
+                    res%estimate%computed(side) = .true.
+                    res%estimate%bar(side) = last%error_bar(side)
+                    res%estimate%relative(side) = last%error_estimate(side)
+                    res%estimate%lambda_enriched(side) = out%levels(k - 1)%lambda(side)
+                    ! the boundary point at this threshold carries its bar
+                    do i = 1, size(res%set%points)
+                        if (res%set%points(i)%mechanism == MECHANISM_PENCIL .and. &
+                            abs(res%set%points(i)%lambda - thr%lambda(side)) <= &
+                            1.0e-12_wp*abs(thr%lambda(side))) &
+                            res%set%points(i)%error_bar = last%error_bar(side)
+                    end do
+                end do
+            end associate
+        end associate
+        call apply_collision_bars(out, res%set)
+        res%time_threshold = wall_time() - begin
+        call timings%note('thresholds '//seconds_text(res%time_threshold)//' s')
+    end subroutine report_last_level
+
+    !> Each side's bars at the last of `levels`, from its threshold and its collision onset
+    !> over the levels (refiner_t: series_bar): h, over the levels where that side was found
+    !> and estimated (the threshold) or where its onset was a collision; hp, plus the
+    !> round-off part `roundoff` (of the last level's thresholds), the change to the level
+    !> before as the estimate, and a side whose goal (its collision onset where it has one,
+    !> else its threshold) has stalled stays stalled, with no bar, at every later level.
+    subroutine set_bars(levels, refiner, roundoff)
+        type(threshold_level_t), intent(inout) :: levels(:)
+        class(refiner_t), intent(in) :: refiner
+        real(wp), intent(in) :: roundoff(2)
+        real(wp) :: values(size(levels)), estimates(size(levels)), change, bar
+        logical :: have(size(levels)), stalled(2)
+        integer :: dofs(size(levels)), k, side, i
+        k = size(levels)
+        do i = 1, k
+            dofs(i) = levels(i)%n_dofs
+        end do
+        do side = SIDE_PLUS, SIDE_MINUS
+            ! plain arrays: components of a derived-type array would make temporaries
+            do i = 1, k
+                have(i) = levels(i)%found(side)
+                values(i) = levels(i)%lambda(side)
+                estimates(i) = -1.0_wp
+                if (levels(i)%found(side) .and. levels(i)%estimated(side)) &
+                    estimates(i) = levels(i)%error_estimate(side)
+            end do
+            stalled = .false.
+            if (.not. refiner%estimated() .or. (levels(k)%found(side) .and. &
+                                                levels(k)%estimated(side))) then
+                call refiner%series_bar(have, values, estimates, dofs, roundoff(side), bar, &
+                                        change, stalled(1))
+                levels(k)%error_bar(side) = bar
+                if (.not. refiner%estimated()) then
+                    levels(k)%estimated(side) = bar >= 0.0_wp
+                    if (levels(k)%estimated(side)) levels(k)%error_estimate(side) = change
+                end if
+            end if
+            do i = 1, k
+                have(i) = levels(i)%collision(side)
+                values(i) = levels(i)%collision_lambda(side)
+                estimates(i) = -1.0_wp
+                if (levels(i)%collision(side)) estimates(i) = levels(i)%collision_estimate(side)
+            end do
+            if (.not. refiner%estimated() .or. levels(k)%collision(side)) then
+                call refiner%series_bar(have, values, estimates, dofs, &
+                                        levels(k)%collision_roundoff(side), bar, change, &
+                                        stalled(2))
+                levels(k)%collision_bar(side) = bar
+                if (.not. refiner%estimated()) levels(k)%collision_estimate(side) = change
+            end if
+            if (refiner%estimated()) cycle
+            associate (row => levels(k))
+                row%stalled(side) = merge(stalled(2), stalled(1), row%collision(side))
+                if (k > 1) row%stalled(side) = row%stalled(side) .or. levels(k - 1)%stalled(side)
+                if (row%stalled(side)) then
+                    row%error_bar(side) = -1.0_wp
+                    row%estimated(side) = .false.
+                    row%collision_bar(side) = -1.0_wp
+                end if
+            end associate
+        end do
+    end subroutine set_bars
+
+    !> The boundary of the positive set (find_critical_set over the analysis' scan) on a
+    !> level of `n_free` dofs, searched only where a side may have a collision onset: where
+    !> it has no pencil eigenvalue, or a positive mu just inside it (NOT confirmed). Where
+    !> both are confirmed `set` stays empty and the thresholds are the goals, and that check
+    !> (two dense p x p eigen-solves) is made again only once the dofs have doubled since
+    !> `pencil_dofs`, the last level it held on: at every level the check cost as much as
+    !> the rest of input/threshold_adapt.nml (scan: twice that), for an answer that does
+    !> not change there. With `previous` (the set a coarser level found, if it searched),
+    !> its points are carried (carry_critical_set) unless the structure differs here.
+    subroutine onset_search(scan, blocks, thr, n_free, pencil_dofs, set, stat, previous)
+        real(wp), intent(in) :: scan(:)   !! the lambdas of the search
+        type(reduced_blocks_t), intent(in) :: blocks
+        type(thresholds_t), intent(in) :: thr
+        integer, intent(in) :: n_free
+        integer, intent(inout) :: pencil_dofs
+        type(critical_set_t), intent(out) :: set
+        type(status_t), intent(out) :: stat
+        type(critical_set_t), intent(in), optional :: previous
+        real(wp) :: mu, inside
+        logical :: found, search
+        integer :: side, n_positive
+
+        allocate (set%points(0))
+        search = .not. all(thr%found)
+        if (.not. search .and. pencil_dofs > 0 .and. n_free < 2*pencil_dofs) return
+        do side = SIDE_PLUS, SIDE_MINUS
+            if (search) exit
+            inside = thr%lambda(side) - sign(side_offset(thr%lambda(side)), thr%lambda(side))
+            call lowest_positive_mu(blocks, inside, mu, found, n_positive, stat)
+            if (.not. stat%ok()) return
+            search = found
+        end do
+        pencil_dofs = 0
+        if (.not. search) pencil_dofs = n_free
+        if (search) call search_critical_set(blocks, scan, thr%real_lambdas, set, stat, previous)
+    end subroutine onset_search
+
+    !> onset(side): the index in `set` of the side's onset where it is a collision of two
+    !> real mu (complex_pair), 0 where the side has none or it is a pencil eigenvalue.
+    subroutine collision_onsets(set, onset)
+        type(critical_set_t), intent(in) :: set
+        integer, intent(out) :: onset(2)
+        integer :: side
+        do side = SIDE_PLUS, SIDE_MINUS
+            onset(side) = onset_point(set, side)
+            if (onset(side) == 0) cycle
+            if (set%points(onset(side))%mechanism /= MECHANISM_COMPLEX_PAIR) onset(side) = 0
+        end do
+    end subroutine collision_onsets
+
+    !> beside(side): the spectrum (dense, with vectors) where the two colliding mu of the
+    !> side's collision onset are real on this mesh and on the enriched one (`nearest`, the
+    !> enriched point; huge: none): past both points by their distance, at least
+    !> side_offset.
+    subroutine collision_spectra(scn, prob, options, chol, blocks, set, onset, nearest, beside, &
+                                 stat)
+        type(scene_t), intent(in) :: scn
+        type(problem_t), intent(in) :: prob
+        type(eigen_options_t), intent(in) :: options
+        type(cholesky_t), intent(in) :: chol
+        type(reduced_blocks_t), intent(in) :: blocks
+        type(critical_set_t), intent(in) :: set
+        integer, intent(in) :: onset(2)
+        real(wp), intent(in) :: nearest(:)
+        type(eigen_result_t), intent(inout) :: beside(2)
+        type(status_t), intent(out) :: stat
+        type(timings_t) :: quiet
+        real(wp) :: lambda, gap
+        integer :: side
+
+        do side = SIDE_PLUS, SIDE_MINUS
+            if (onset(side) == 0) cycle
+            if (.not. nearest(onset(side)) < huge(1.0_wp)) cycle
+            lambda = set%points(onset(side))%lambda
+            gap = abs(nearest(onset(side)) - lambda)
+            if (set%points(onset(side))%appears) then   ! real above
+                lambda = max(lambda, nearest(onset(side))) + max(gap, side_offset(lambda))
+            else
+                lambda = min(lambda, nearest(onset(side))) - max(gap, side_offset(lambda))
+            end if
+            beside(side)%lambda = lambda
+            beside(side)%solver = SOLVER_DENSE
+            call assemble_b(prob%contact, prob%dofs%n_free, lambda, beside(side)%b, stat)
+            if (stat%ok()) call eigen_with_factor(scn, prob, options, chol, beside(side), quiet, &
+                                                  stat, blocks%kt_nn, blocks%kt_nt)
+            if (.not. stat%ok()) return
+        end do
+    end subroutine collision_spectra
+
+    !> The estimate and the indicators of each collision onset: |lambda+ - lambda_h| /
+    !> |lambda_h| to the enriched point `nearest`, and the weighted-residual indicators of
+    !> the lowest positive mu of `beside` scaled to sum 1. A side that cannot be estimated
+    !> keeps estimate -1 and says why in collision_skipped (never a failure of the run).
+    subroutine estimate_collisions(this, prob, set, onset, nearest, beside)
+        type(threshold_goal_t), intent(inout) :: this
+        type(problem_t), intent(in) :: prob
+        type(critical_set_t), intent(in) :: set
+        integer, intent(in) :: onset(2)
+        real(wp), intent(in) :: nearest(:)
+        type(eigen_result_t), intent(in) :: beside(2)
+        type(error_estimate_t) :: err
+        type(status_t) :: stat
+        real(wp) :: lambda
+        integer :: side, lowest
+
+        if (allocated(this%collision_indicators)) deallocate (this%collision_indicators)
+        allocate (this%collision_indicators(prob%mesh%n_cells(), 2), source=0.0_wp)
+        this%collision_estimate = -1.0_wp
+        this%collision_skipped = ''
+        do side = SIDE_PLUS, SIDE_MINUS
+            if (onset(side) == 0) cycle
+            lambda = set%points(onset(side))%lambda
+            this%collision_skipped(side) = 'collision onset: no collision of the problem '// &
+                'one degree higher near it'
+            if (.not. nearest(onset(side)) < huge(1.0_wp)) cycle
+            this%collision_skipped(side) = 'collision onset: no positive mu beside it'
+            lowest = beside(side)%spec%lowest_positive()
+            if (lowest == 0 .or. size(beside(side)%spec%vectors, 2) < lowest) cycle
+            call estimate_lowest_error(prob, beside(side)%lambda, &
+                real(beside(side)%spec%mu(lowest), wp), &
+                real(beside(side)%spec%vectors(:, lowest), wp), ENRICHED_CONTACT_MAX, err, stat)
+            this%collision_skipped(side) = 'collision onset: no indicators beside it'
+            if (.not. stat%ok()) this%collision_skipped(side) = 'collision onset: '//stat%message
+            if (.not. stat%ok() .or. .not. err%computed) cycle
+            if (.not. sum(err%indicators) > 0.0_wp) cycle
+            this%collision_indicators(:, side) = err%indicators/sum(err%indicators)
+            this%collision_estimate(side) = abs(nearest(onset(side)) - lambda)/abs(lambda)
+            this%collision_skipped(side) = ''
+        end do
+    end subroutine estimate_collisions
+
+    !> The progress line of a level: each threshold found, then each collision onset, with
+    !> its estimate and bar where it has them.
+    function level_line(row, name) result(line)
+        type(threshold_level_t), intent(in) :: row
+        character(len=*), intent(in) :: name   !! of the level: 'adapt level', 'hp level'
+        character(len=:), allocatable :: line
+        integer :: side
+        line = name//' '//to_string(row%level)//': '//to_string(row%n_dofs)//' dofs'
+        do side = SIDE_PLUS, SIDE_MINUS
+            if (.not. row%found(side)) cycle
+            line = line//', '//SIDE_LABELS(side)//' = '// &
+                short_real_text(row%lambda(side), 12)
+            if (row%estimated(side)) line = line//' (estimate '// &
+                short_real_text(row%error_estimate(side))//', bar '// &
+                short_real_text(row%error_bar(side))//')'
+        end do
+        do side = SIDE_PLUS, SIDE_MINUS
+            if (.not. row%collision(side)) cycle
+            line = line//', collision onset '//trim(SIDE_NAMES(side))//' = '// &
+                short_real_text(row%collision_lambda(side), 12)
+            if (row%collision_estimate(side) >= 0.0_wp) line = line//' (estimate '// &
+                short_real_text(row%collision_estimate(side))//', bar '// &
+                short_real_text(row%collision_bar(side))//')'
+        end do
+        do side = SIDE_PLUS, SIDE_MINUS
+            if (row%stalled(side)) line = line//', '//trim(SIDE_NAMES(side))// &
+                ' side stalled (no bar)'
+        end do
+    end function level_line
+
+    !> Per side, the bar of its goal at level `row` (the collision onset where its onset is
+    !> one, else the threshold; 0 where the side has neither: nothing to meet; -1 where the
+    !> goal has no bar yet) and that bar's round-off part (-1: unknown).
+    pure subroutine goal_bars(row, threshold_roundoff, bar, roundoff)
+        type(threshold_level_t), intent(in) :: row
+        real(wp), intent(in) :: threshold_roundoff(2)
+        real(wp), intent(out) :: bar(2), roundoff(2)
+        integer :: side
+        do side = SIDE_PLUS, SIDE_MINUS
+            bar(side) = 0.0_wp
+            roundoff(side) = -1.0_wp
+            if (row%collision(side)) then
+                bar(side) = row%collision_bar(side)
+                roundoff(side) = row%collision_roundoff(side)
+            else if (row%found(side)) then
+                bar(side) = row%error_bar(side)
+                roundoff(side) = threshold_roundoff(side)
+            end if
+            if (bar(side) < 0.0_wp) bar(side) = -1.0_wp
+        end do
+    end subroutine goal_bars
+
+    !> The union of the Doerfler sets of the sides still above the tolerance.
+    function threshold_goal_mark(this, theta) result(marked)
+        class(threshold_goal_t), intent(in) :: this
+        real(wp), intent(in) :: theta
+        integer, allocatable :: marked(:)
+        logical, allocatable :: chosen(:)
+        integer :: side, i
+
+        allocate (chosen(size(this%collision_indicators, 1)), source=.false.)
+        associate (row => this%levels(size(this%levels)))
+            do side = SIDE_PLUS, SIDE_MINUS
+                if (row%collision(side)) then
+                    if (row%collision_bar(side) <= this%tolerance) cycle
+                    chosen(doerfler_marking(this%collision_indicators(:, side), theta)) = .true.
+                    cycle
+                end if
+                if (.not. this%thr%found(side)) cycle
+                if (this%est%bar(side) <= this%tolerance) cycle
+                chosen(doerfler_marking(this%est%indicators(:, side), theta)) = .true.
+            end do
+        end associate
+        marked = pack([(i, i=1, size(chosen))], chosen)
+    end function threshold_goal_mark
+
+    !> Why a side's estimate is missing at the last h level (the first such side).
+    function missing(this) result(reason)
+        type(threshold_goal_t), intent(in) :: this
+        character(len=:), allocatable :: reason
+        integer :: side
+        reason = 'no real eigenvalue of the pencil Kt_nn x = lambda Kt_nt x: no threshold '// &
+                 'to adapt to'
+        do side = SIDE_PLUS, SIDE_MINUS
+            if (len_trim(this%collision_skipped(side)) > 0) then
+                reason = SIDE_LABELS(side)//': '//trim(this%collision_skipped(side))
+                return
+            end if
+            if (this%levels(size(this%levels))%collision(side)) cycle
+            if (this%thr%found(side) .and. .not. this%est%computed(side)) then
+                reason = SIDE_LABELS(side)//': '//trim(this%est%skipped(side))
+                if (len_trim(this%est%skipped(side)) == 0) reason = reason// &
+                    'no enrichment for these cells'
+                return
+            end if
+        end do
+    end function missing
+
+    !> The bars of the final level's collision onsets into the boundary points of `set`
+    !> (the same problem's search: the same points), replacing their one-mesh bars.
+    subroutine apply_collision_bars(out, set)
+        type(adaptive_thresholds_t), intent(in) :: out
+        type(critical_set_t), intent(inout) :: set
+        logical :: known(size(set%points))
+        type(onset_bars_t) :: onsets
+        onsets = last_onset_bars(out)
+        known = .false.
+        call onsets%apply(set, known)
+    end subroutine apply_collision_bars
+
+    !> The collision onsets of the final level and their bars (none before a level).
+    type(onset_bars_t) function last_onset_bars(out) result(onsets)
+        type(adaptive_thresholds_t), intent(in) :: out
+        if (size(out%levels) == 0) return
+        associate (row => out%levels(size(out%levels)))
+            onsets%collision = row%collision
+            onsets%lambda = row%collision_lambda
+            onsets%bar = row%collision_bar
+        end associate
+    end function last_onset_bars
+
+    !> A level's contact `blocks` (mass set) and pencil eigenvalues, and its boundary `set`
+    !> if it searched (set%scan_contact > 0).
+    subroutine coarse_scan_note(this, blocks, pencil, set)
+        class(coarse_scan_t), intent(inout) :: this
+        type(reduced_blocks_t), intent(in) :: blocks
+        real(wp), intent(in) :: pencil(:)
+        type(critical_set_t), intent(in) :: set
+        if (size(blocks%kt_nn, 1) <= SCAN_CONTACT_MAX) then
+            this%blocks = blocks
+            this%pencil = pencil
+        end if
+        if (set%scan_contact > 0) this%searched = set
+    end subroutine coarse_scan_note
+
+    !> The set for a last level of `p_last` contact functions to carry: the searched one, else
+    !> the scan of the noted blocks where they have at most half as many contact functions
+    !> (its solves in set%n_evaluations), else none (scan_contact 0: the last level scans).
+    subroutine coarse_scan_coarse_set(this, scan, p_last, set, stat)
+        class(coarse_scan_t), intent(in) :: this
+        real(wp), intent(in) :: scan(:)   !! the lambdas of the search
+        integer, intent(in) :: p_last
+        type(critical_set_t), intent(out) :: set
+        type(status_t), intent(out) :: stat
+        if (this%searched%scan_contact > 0) then
+            set = this%searched
+            set%n_evaluations = 0   ! counted where it was searched
+        else if (allocated(this%pencil)) then
+            if (2*size(this%blocks%kt_nn, 1) <= p_last) call find_critical_set(this%blocks, &
+                scan, this%pencil, set, stat)
+        end if
+    end subroutine coarse_scan_coarse_set
+end module threshold_goal

@@ -1,0 +1,360 @@
+! SPDX-License-Identifier: MIT
+!> The adaptive loop of &adapt tolerance > 0, once for every goal and every refinement: a
+!> refiner (refiner_t: h_refiner, Doerfler marking and bisection at a fixed degree; hp_levels,
+!> graded meshes with rising degrees) makes the levels, and a goal (adapt_goal_t: the lowest
+!> positive mu at one or more lambdas, the critical lambdas) solves each level for its
+!> targets still active and judges them. The loop stops when no target is active, or at a
+!> limit: max_levels, max_dofs (or the memory available), a level the goal cannot take.
+!>
+!> A target (adapt_target_t) is one value the goal adapts to, with its own state and the
+!> one line that says how it ended (its outcome). The goal keeps each target's values and
+!> bars level by level; the refiner says how a series of levels makes a bar (series_bar:
+!> from the enriched estimates of h levels, from the changes between hp levels) and whether
+!> a level carries an estimate of its own (estimated). judge_target is the rule of one
+!> target with one bar: met (from level 1 on, where an earlier level confirms the bar),
+!> at the floating-point floor, or stopped with its reason.
+!>
+!> With the default limits (max_levels = 0, max_dofs = 0) only the memory the machine has
+!> ends a loop that has not met its tolerance, never a level count.
+module adapt_driver
+    use kinds, only: wp
+    use status, only: status_t, STATUS_NOT_MET
+    use strings, only: to_string, short_real_text, given_real_text
+    use timer, only: wall_time, timings_t
+    use scene, only: scene_t
+    use method_options, only: adapt_options_t
+    use problem, only: problem_t
+    use hp_space, only: hp_space_t
+    use sparse_cholesky, only: cholesky_t
+    use error_bar, only: floor_reached, floor_outcome, stall_outcome
+    implicit none
+    private
+    public :: adapt_levels, judge_target
+
+    integer, parameter, public :: TARGET_ACTIVE = 0    !! the loop still refines for it
+    integer, parameter, public :: TARGET_MET = 1       !! its bar met the tolerance
+    integer, parameter, public :: TARGET_FLOOR = 2     !! its bar stopped at round-off
+    integer, parameter, public :: TARGET_STOPPED = 3   !! stopped short: its outcome says why
+
+    !> One value a goal adapts to: its state and how it ended.
+    type, public :: adapt_target_t
+        integer :: state = TARGET_ACTIVE
+        !> one line: the tolerance met, or why not and what was reached ('' while active)
+        character(len=:), allocatable :: outcome
+    contains
+        procedure :: active => target_is_active
+        procedure :: converged => target_converged
+        procedure :: floor_reached => target_floor_reached
+        procedure :: finish => target_finish
+    end type adapt_target_t
+
+    !> A level as the refiner made it.
+    type, public :: adapt_level_t
+        !> h: 0 (the starting mesh), 1, 2, ...; hp: the layers of grading, 1, 2, ...
+        integer :: number = 0
+        !> h: the problem on the refined mesh; hp: the graded P1 mesh with the input's parts
+        !> and material, the condensed K and the hp contact (nodes: basis functions),
+        !> dofs%n_free only
+        type(problem_t) :: prob
+        type(hp_space_t) :: space            !! hp: the level's space (cell degrees)
+        integer, allocatable :: degree(:)    !! hp: per cell of prob%mesh; h: unallocated
+    end type adapt_level_t
+
+    !> What makes the levels.
+    type, abstract, public :: refiner_t
+        character(len=:), allocatable :: name    !! the scene's, for messages
+        type(adapt_options_t) :: adapt
+        integer :: max_dofs = 0                  !! a level's free dofs at most
+        character(len=:), allocatable :: dof_limit   !! the words naming that limit
+        integer :: next_dofs = 0                 !! the free dofs of the level made last
+        !> why the next level cannot be made, where not its dofs (hp: the mesh builder's
+        !> limits); unallocated: the dofs (too_big_words)
+        character(len=:), allocatable :: stop_reason
+    contains
+        !> before the first level: check the starting problem, set the limits
+        procedure(refiner_begin), deferred :: begin
+        !> the next level (the first: `solved` = 0); `too_big`: it has more free dofs than the
+        !> limit while earlier levels were solved (the loop stops before it)
+        procedure(refiner_next), deferred :: next
+        !> K of a level factored with the contact dofs last
+        procedure(refiner_factor), deferred :: factor
+        !> the bar of the last of a series of levels of one value (and the relative change to
+        !> the level before, and whether it has stopped converging: hp)
+        procedure(refiner_series_bar), deferred :: series_bar
+        !> whether each level carries its own error estimate (h: the enriched one, which
+        !> also marks the cells to refine) rather than a bar from the changes between levels
+        procedure(refiner_estimated), deferred :: estimated
+        !> the words after '&adapt: ' in a message about a level ("strategy = 'hp': " or '')
+        procedure(refiner_words), deferred :: strategy_words
+        procedure :: too_big_words => refiner_too_big_words
+    end type refiner_t
+
+    !> What the loop adapts to: a set of targets, each with its own state.
+    type, abstract, public :: adapt_goal_t
+        type(adapt_target_t), allocatable :: targets(:)
+    contains
+        !> solve `level` for the targets still active; `refused` (not '' ) says why the level
+        !> cannot be solved at all (the memory of its contact blocks), before any change
+        procedure(goal_solve), deferred :: solve
+        !> the state of each active target after the level just solved
+        procedure(goal_judge), deferred :: judge
+        !> target i's bar at its last level, as outcomes quote it: 'B at N dofs' ('none at ...')
+        procedure(goal_bar_text), deferred :: bar_text
+        !> the cells of the last level to refine (h levels)
+        procedure(goal_mark), deferred :: mark
+        procedure :: any_active => goal_any_active
+    end type adapt_goal_t
+
+    abstract interface
+        subroutine refiner_begin(this, scn, adapt, start, stat)
+            import :: refiner_t, scene_t, adapt_options_t, problem_t, status_t
+            class(refiner_t), intent(inout) :: this
+            type(scene_t), intent(in) :: scn
+            type(adapt_options_t), intent(in) :: adapt
+            type(problem_t), intent(in) :: start
+            type(status_t), intent(out) :: stat
+        end subroutine refiner_begin
+
+        subroutine refiner_next(this, scn, start, goal, solved, level, too_big, timings, stat)
+            import :: refiner_t, scene_t, problem_t, adapt_goal_t, adapt_level_t, timings_t, &
+                      status_t
+            class(refiner_t), intent(inout) :: this
+            type(scene_t), intent(in) :: scn
+            type(problem_t), intent(in) :: start
+            class(adapt_goal_t), intent(in) :: goal
+            integer, intent(in) :: solved
+            type(adapt_level_t), intent(inout) :: level
+            logical, intent(out) :: too_big
+            type(timings_t), intent(inout) :: timings
+            type(status_t), intent(out) :: stat
+        end subroutine refiner_next
+
+        subroutine refiner_factor(this, level, chol, timings, stat)
+            import :: refiner_t, adapt_level_t, cholesky_t, timings_t, status_t
+            class(refiner_t), intent(in) :: this
+            type(adapt_level_t), intent(in) :: level
+            type(cholesky_t), intent(inout) :: chol
+            type(timings_t), intent(inout) :: timings
+            type(status_t), intent(out) :: stat
+        end subroutine refiner_factor
+
+        pure subroutine refiner_series_bar(this, have, values, estimates, dofs, roundoff, bar, &
+                                           change, stalled)
+            import :: refiner_t, wp
+            class(refiner_t), intent(in) :: this
+            !> per level: the value exists, the value, its |relative estimate| (< 0: none),
+            !> the free dofs; the last level's round-off bound (< 0: unknown)
+            logical, intent(in) :: have(:)
+            real(wp), intent(in) :: values(:), estimates(:)
+            integer, intent(in) :: dofs(:)
+            real(wp), intent(in) :: roundoff
+            real(wp), intent(out) :: bar      !! relative; < 0: none
+            real(wp), intent(out) :: change   !! |relative change| to the level before; < 0: none
+            logical, intent(out) :: stalled
+        end subroutine refiner_series_bar
+
+        pure logical function refiner_estimated(this)
+            import :: refiner_t
+            class(refiner_t), intent(in) :: this
+        end function refiner_estimated
+
+        pure function refiner_words(this) result(words)
+            import :: refiner_t
+            class(refiner_t), intent(in) :: this
+            character(len=:), allocatable :: words
+        end function refiner_words
+
+        subroutine goal_solve(this, scn, refiner, level, loop_start, timings, refused, stat)
+            import :: adapt_goal_t, scene_t, refiner_t, adapt_level_t, timings_t, status_t, wp
+            class(adapt_goal_t), intent(inout) :: this
+            type(scene_t), intent(in) :: scn
+            class(refiner_t), intent(in) :: refiner
+            type(adapt_level_t), intent(in) :: level
+            real(wp), intent(in) :: loop_start   !! wall_time() at the start of the loop
+            type(timings_t), intent(inout) :: timings
+            character(len=:), allocatable, intent(out) :: refused
+            type(status_t), intent(out) :: stat
+        end subroutine goal_solve
+
+        subroutine goal_judge(this, refiner, level, tolerance)
+            import :: adapt_goal_t, refiner_t, wp
+            class(adapt_goal_t), intent(inout) :: this
+            class(refiner_t), intent(in) :: refiner
+            integer, intent(in) :: level
+            real(wp), intent(in) :: tolerance
+        end subroutine goal_judge
+
+        function goal_bar_text(this, i) result(text)
+            import :: adapt_goal_t
+            class(adapt_goal_t), intent(in) :: this
+            integer, intent(in) :: i
+            character(len=:), allocatable :: text
+        end function goal_bar_text
+
+        function goal_mark(this, theta) result(marked)
+            import :: adapt_goal_t, wp
+            class(adapt_goal_t), intent(in) :: this
+            real(wp), intent(in) :: theta
+            integer, allocatable :: marked(:)
+        end function goal_mark
+    end interface
+
+contains
+
+    !> Run the loop from the problem `start` of the scene `scn`, as `adapt` asks, with the
+    !> levels of `refiner` and the targets of `goal` (allocated, all active). A limit reached
+    !> is no failure (stat ok; the targets still active are stopped, their outcomes say
+    !> what was reached); bad input is (refiner: a start it cannot refine, a first level
+    !> over an explicit max_dofs), and so is a first level the goal refuses
+    !> (STATUS_NOT_MET). The goal keeps what it solved.
+    subroutine adapt_levels(scn, adapt, start, refiner, goal, timings, stat)
+        type(scene_t), intent(in) :: scn
+        type(adapt_options_t), intent(in) :: adapt
+        type(problem_t), intent(in) :: start
+        class(refiner_t), intent(inout) :: refiner
+        class(adapt_goal_t), intent(inout) :: goal
+        type(timings_t), intent(inout) :: timings
+        type(status_t), intent(out) :: stat
+        type(adapt_level_t) :: level
+        character(len=:), allocatable :: refused
+        real(wp) :: loop_start
+        integer :: solved
+        logical :: too_big
+
+        loop_start = wall_time()
+        call refiner%begin(scn, adapt, start, stat)
+        if (.not. stat%ok()) return
+        solved = 0
+        do
+            call refiner%next(scn, start, goal, solved, level, too_big, timings, stat)
+            if (.not. stat%ok()) return
+            if (too_big) then
+                call stop_active(goal, 'tolerance '//given_real_text(adapt%tolerance)// &
+                    ' not met: '//refiner%too_big_words()//'; reached error bar ')
+                exit
+            end if
+            call goal%solve(scn, refiner, level, loop_start, timings, refused, stat)
+            if (.not. stat%ok()) return
+            if (len(refused) > 0) then
+                if (solved == 0) then
+                    call stat%fail(STATUS_NOT_MET, scn%name//': &adapt: '// &
+                                   refiner%strategy_words()//refused)
+                    return
+                end if
+                call stop_active(goal, 'tolerance '//given_real_text(adapt%tolerance)// &
+                                 ' not met: the next '//refused//'; reached error bar ')
+                exit
+            end if
+            solved = solved + 1
+            call goal%judge(refiner, level%number, adapt%tolerance)
+            if (.not. goal%any_active()) exit
+            if (adapt%max_levels > 0 .and. level%number >= adapt%max_levels) then
+                call stop_active(goal, 'tolerance '//given_real_text(adapt%tolerance)// &
+                    ' not met: max_levels = '//to_string(adapt%max_levels)// &
+                    ' reached with error bar ')
+                exit
+            end if
+        end do
+    end subroutine adapt_levels
+
+    !> Why the next level is too big (refiner_next's too_big): stop_reason, else its dofs
+    !> over the limit.
+    function refiner_too_big_words(this) result(words)
+        class(refiner_t), intent(in) :: this
+        character(len=:), allocatable :: words
+        if (allocated(this%stop_reason)) then
+            words = this%stop_reason
+        else
+            words = 'the next level would have '//to_string(this%next_dofs)// &
+                ' dofs, more than '//this%dof_limit
+        end if
+    end function refiner_too_big_words
+
+    !> Every active target of `goal` stopped, its outcome `words` and its bar.
+    subroutine stop_active(goal, words)
+        class(adapt_goal_t), intent(inout) :: goal
+        character(len=*), intent(in) :: words
+        integer :: i
+        do i = 1, size(goal%targets)
+            if (goal%targets(i)%active()) call goal%targets(i)%finish(TARGET_STOPPED, &
+                                                                      words//goal%bar_text(i))
+        end do
+    end subroutine stop_active
+
+    !> The rule of one target with one bar after level `level` (`dofs` free dofs), as the
+    !> refiner makes bars. With levels that carry their own estimate (h) a missing `bar` (< 0)
+    !> stops the target, `missing` saying why, and the tolerance can be met from level 1 on:
+    !> a bar needs an earlier level to confirm it (a collision onset's estimate at h = 1/8
+    !> was 0.09 times its true error). With bars from the changes between levels (hp) the
+    !> first level has none, and a target stops without a value (`no_value`: why) or when it
+    !> has stopped converging (`stalled`; `stall_what` names it). Both stop at the
+    !> floating-point floor (the round-off part `roundoff` at least the rest of the bar).
+    subroutine judge_target(t, refiner, level, tolerance, dofs, has_value, no_value, bar, &
+                            roundoff, stalled, stall_what, missing)
+        type(adapt_target_t), intent(inout) :: t
+        class(refiner_t), intent(in) :: refiner
+        integer, intent(in) :: level, dofs
+        real(wp), intent(in) :: tolerance, bar, roundoff
+        logical, intent(in) :: has_value, stalled
+        character(len=*), intent(in) :: no_value, stall_what, missing
+
+        if (refiner%estimated()) then
+            if (bar < 0.0_wp) then
+                call t%finish(TARGET_STOPPED, 'tolerance not met: no error estimate at level '// &
+                              to_string(level)//' ('//missing//')')
+            else if (bar <= tolerance .and. level >= 1) then
+                call t%finish(TARGET_MET, 'tolerance '//given_real_text(tolerance)// &
+                    ' met at level '//to_string(level)//': error bar '// &
+                    short_real_text(bar)//', '//to_string(dofs)//' dofs')
+            else if (floor_reached(bar, roundoff)) then
+                call t%finish(TARGET_FLOOR, floor_outcome(tolerance, roundoff, bar, &
+                                                          to_string(dofs)))
+            end if
+            return
+        end if
+        if (.not. has_value) then
+            call t%finish(TARGET_STOPPED, no_value)
+        else if (stalled) then
+            call t%finish(TARGET_STOPPED, stall_outcome(tolerance, stall_what))
+        else if (bar >= 0.0_wp .and. bar <= tolerance) then
+            call t%finish(TARGET_MET, 'tolerance '//given_real_text(tolerance)// &
+                ' met at level '//to_string(level)//': error bar '//short_real_text(bar)// &
+                ' at '//to_string(dofs)//' dofs')
+        else if (floor_reached(bar, roundoff)) then
+            call t%finish(TARGET_FLOOR, floor_outcome(tolerance, roundoff, bar, to_string(dofs)))
+        end if
+    end subroutine judge_target
+
+    pure logical function target_is_active(this)
+        class(adapt_target_t), intent(in) :: this
+        target_is_active = this%state == TARGET_ACTIVE
+    end function target_is_active
+
+    pure logical function target_converged(this)
+        class(adapt_target_t), intent(in) :: this
+        target_converged = this%state == TARGET_MET
+    end function target_converged
+
+    pure logical function target_floor_reached(this)
+        class(adapt_target_t), intent(in) :: this
+        target_floor_reached = this%state == TARGET_FLOOR
+    end function target_floor_reached
+
+    !> The target ends in `state` (TARGET_MET, _FLOOR or _STOPPED) with `outcome`.
+    pure subroutine target_finish(this, state, outcome)
+        class(adapt_target_t), intent(inout) :: this
+        integer, intent(in) :: state
+        character(len=*), intent(in) :: outcome
+        this%state = state
+        this%outcome = outcome
+    end subroutine target_finish
+
+    pure logical function goal_any_active(this)
+        class(adapt_goal_t), intent(in) :: this
+        integer :: i
+        goal_any_active = .false.
+        do i = 1, size(this%targets)
+            if (this%targets(i)%active()) goal_any_active = .true.
+        end do
+    end function goal_any_active
+end module adapt_driver
