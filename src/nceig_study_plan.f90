@@ -198,8 +198,9 @@ contains
         open (newunit=unit, file=path, status='replace', action='write', iostat=ios, &
               iomsg=msg)
         if (ios /= 0) call stop_with(PROGRAM_NAME, path//': '//trim(msg), STATUS_IO)
-        write (unit, '(a)') '! Written by nceig-study-plan (nceig '//NCEIG_VERSION// &
-            ') from '//study_path
+        ! Nothing but the point itself: the text is hashed (the task key), so the study
+        ! file's name or folder must not be in it.
+        write (unit, '(a)') '! A point of a study, written by nceig-study-plan'
         do
             read (scratch, '(a)', iostat=ios) line
             if (ios /= 0) exit
