@@ -22,6 +22,7 @@ program nceig_study_plan
     use filesystem, only: make_directories, is_directory
     use run_config, only: config_t
     use input_config, only: read_input
+    use command_line, only: command_argument
     use input_records, only: read_record, LISTING_LINE_LEN
     use input_table, only: KNOWN_GROUPS
     use study_input, only: study_t, read_study
@@ -73,6 +74,8 @@ program nceig_study_plan
         end do
     end do
     close (unit_tasks)
+    deallocate (study%path, study%geometry, study%geometry_kind, study%label, study%width, &
+                study%poisson, study%lambdas, study%template)
     call exit_with(0)
 
 contains
@@ -82,7 +85,7 @@ contains
         character(len=:), allocatable :: first
         select case (command_argument_count())
         case (1)
-            first = argument(1)
+            first = command_argument(1)
             if (first == '--help' .or. first == '-h') then
                 write (output_unit, '(a)') USAGE
                 call exit_with(0)
@@ -92,23 +95,14 @@ contains
             end if
             call stop_with(PROGRAM_NAME, USAGE, STATUS_BAD_INPUT)
         case (2)
-            study_path = argument(1)
-            outdir = argument(2)
+            study_path = command_argument(1)
+            outdir = command_argument(2)
             if (.not. is_directory(outdir)) call stop_with(PROGRAM_NAME, outdir// &
                 ': no such folder: expected the study''s output folder', STATUS_BAD_INPUT)
         case default
             call stop_with(PROGRAM_NAME, USAGE, STATUS_BAD_INPUT)
         end select
     end subroutine parse_arguments
-
-    function argument(i) result(text)
-        integer, intent(in) :: i
-        character(len=:), allocatable :: text
-        integer :: length
-        call get_command_argument(i, length=length)
-        allocate (character(len=length) :: text)
-        if (length > 0) call get_command_argument(i, text)
-    end function argument
 
     !> 'cn thr', 'cn' or 'thr': the runs of every task.
     function runs() result(text)
