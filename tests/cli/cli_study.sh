@@ -131,6 +131,15 @@ check 'a changed Poisson ratio: exit 0, the table holds nu = 0.35 and no 0.3' \
 check '... its two tasks are redone, the two others reused' \
     '[[ $(redone "$before" "$(stamps out)") == "g01_nu02 g02_nu02" ]]'
 
+# A shorter list: the tasks it drops leave the table (their folders stay, out of the study).
+sed 's/poisson = 0.25, 0.3/poisson = 0.25/' s.nml >s3.nml
+before=$(stamps out)
+"${study[@]}" -j 2 -o out s3.nml >run4.out 2>run4.err
+rc=$?
+check 'one Poisson ratio fewer: exit 0, nothing run, the table has its 14 rows only' \
+    '[[ $rc -eq 0 && $(stamps out) == "$before" && $(wc -l <out/study.csv) -eq 15 && $(jq .tasks out/study.json) -eq 2 ]]'
+"${study[@]}" -j 2 -o out s2.nml >run5.out 2>run5.err
+
 # Bad input: one line naming the file, the group, the variable and what was expected; exit 2;
 # the previous study stays as it was.
 cp out/study.csv before.csv
