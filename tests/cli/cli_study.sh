@@ -57,8 +57,9 @@ check 'study.json has the same 28 rows, every one converged with exit status 0' 
 check 'each row carries its input hash, the nceig version and one BLAS thread' \
     '[[ $(jq -r "[.rows[] | select((.input_hash | length) == 64 and .nceig_version != null
           and (.blas | test(\"[(]1 thread[)]\")))] | length" out/study.json) -eq 28 ]]'
-check 'one progress line per task on stderr, the last one all done' \
-    '[[ $(grep -c "tasks done" run1.err) -ge 4 ]] && grep -q "4/4 tasks done, 0 failed.*all done" run1.err'
+check 'one progress line per task on stderr, each with an ETA, the last one all done' \
+    '[[ $(grep -c "tasks done" run1.err) -ge 4 && $(grep -c "tasks done, 0 failed or missed the tolerance, ETA [0-9]* s$" run1.err) -eq 3 ]] &&
+     grep -q "4/4 tasks done, 0 failed.*all done" run1.err && [[ -z $(grep -v "^nceig-study: " run1.err) ]]'
 # The rectangle is its own mirror image under x -> -x, which maps lambda to -lambda: c_n(5)
 # and c_n(-5) are one continuum value (the hp meshes are not mirror images: each is within
 # its bar of it), and lambda- = -lambda+.
