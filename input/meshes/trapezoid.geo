@@ -2,7 +2,8 @@
 // A trapezoid for the example study (input/studies/study_example.nml): bottom 0..2 at
 // y = 0 (group bottom, in contact), top 0.5..1.5 at y = 1 (group top, fixed), slanted free
 // sides right and left; the body of the trapezoid scene of tests/data/truths.csv without
-// its grading (the hp levels grade the mesh themselves). Element size from the command line, e.g.
+// its grading (the hp levels grade the mesh themselves). Element size from the command
+// line, e.g.
 //   gmsh input/meshes/trapezoid.geo -2 -order 1 -clmax 0.5 -format msh41 -o trapezoid.msh
 Point(1) = {0, 0, 0, 1};
 Point(2) = {2, 0, 0, 1};
