@@ -14,6 +14,7 @@ program nceig_extrapolate
     use real_format, only: real_to_text, known_text
     use strings, only: to_string
     use csv_table, only: csv_table_t, csv_field_t, read_csv_table
+    use command_line, only: command_argument
     use extrapolation, only: family_estimate_t, family_estimate, reference_index, fit_note, &
                              FIT_OK, FIT_CONSTANT
     implicit none
@@ -62,28 +63,19 @@ contains
         mode = 'extrapolation'
         select case (command_argument_count())
         case (1)
-            path = argument(1)
+            path = command_argument(1)
             if (path == '--help' .or. path == '-h') then
                 write (output_unit, '(a)') USAGE
                 call exit_with(0)
             end if
         case (2)
-            if (argument(1) /= '--tradeoff') call usage_error()
+            if (command_argument(1) /= '--tradeoff') call usage_error()
             mode = 'tradeoff'
-            path = argument(2)
+            path = command_argument(2)
         case default
             call usage_error()
         end select
     end subroutine parse_arguments
-
-    function argument(i) result(text)
-        integer, intent(in) :: i
-        character(len=:), allocatable :: text
-        integer :: length
-        call get_command_argument(i, length=length)
-        allocate (character(len=length) :: text)
-        call get_command_argument(i, text)
-    end function argument
 
     subroutine usage_error()
         call stop_with(PROGRAM_NAME, USAGE, STATUS_BAD_INPUT)

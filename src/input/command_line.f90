@@ -7,7 +7,7 @@ module command_line
     use strings, only: text_t, append_text, printable
     implicit none
     private
-    public :: command_t, read_command_line, parse_arguments
+    public :: command_t, read_command_line, parse_arguments, command_argument
 
     !> What the command line asks for.
     type :: command_t
@@ -96,4 +96,13 @@ contains
         end if
     end subroutine parse_arguments
 
+    !> Argument `i` of this process, whole (any length).
+    function command_argument(i) result(text)
+        integer, intent(in) :: i
+        character(len=:), allocatable :: text
+        integer :: length
+        call get_command_argument(i, length=length)
+        allocate (character(len=length) :: text)
+        if (length > 0) call get_command_argument(i, text)
+    end function command_argument
 end module command_line

@@ -1,0 +1,86 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# The cost of a study (docs/studies.md, "Cost"): a table, not a test.
+#   bash scripts/bench/bench_study.sh [REPEATS]
+# The study: the rectangle at widths 1 and 2 and input/meshes/trapezoid.geo, NU (default five
+# Poisson ratios), N_LAMBDA lambdas from -20 to 20 (default 41), c_n and both thresholds, hp
+# to TOL (default 1e-8); every size can be made smaller through the environment:
+#   NU='0.1 0.3' N_LAMBDA=11 TOL=1e-6 bash scripts/bench/bench_study.sh 1
+# It measures, REPEATS times (default 3; medians quoted):
+#   study CPU     user + system CPU of `nceig-study -j 1` and everything it started
+#   tasks CPU     the sum of its nceig runs' CPU (the hp climbs and their dense solves)
+#   per point     one nceig run per point instead: kind 'eigen' per (geometry, nu, lambda),
+#                 plus one 'threshold' run per (geometry, nu), CPU summed
+#   wall -j1, -j2 the study's wall time on one and on two jobs (fresh folders each)
+# NCEIG (default build/nceig) is the program; GNU time is needed (/usr/bin/time).
+set -uo pipefail
+root=$(cd "$(dirname "$0")/../.." && pwd)
+export NCEIG=${NCEIG:-$root/build/nceig}
+repeats=${1:-3}
+nu_list=${NU:-0.1 0.2 0.3 0.4 0.45}
+n_lambda=${N_LAMBDA:-41}
+tol=${TOL:-1e-8}
+[[ -x /usr/bin/time ]] || { echo "bench_study: GNU time (/usr/bin/time) is needed" >&2; exit 1; }
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cp "$root/input/meshes/trapezoid.geo" "$work/"
+cat >"$work/bench.nml" <<EOF
+&study
+    geometry = 'rectangle', 'trapezoid.geo'
+    widths = 1.0, 2.0
+    poisson = $(echo "$nu_list" | sed 's/ /, /g')
+    lambda_min = -20.0, lambda_max = 20.0, n_lambda = $n_lambda
+/
+&mesh nx = 2, ny = 2, element = 'p1' /
+&adapt tolerance = $tol, strategy = 'hp' /
+&output progress = .false. /
+EOF
+study=$root/scripts/nceig-study
+
+# cpu_of FILE: user + system seconds from a GNU time output '%e %U %S'
+cpu_of() { awk '{ printf "%.2f", $2 + $3 }' "$1"; }
+wall_of() { awk '{ printf "%.2f", $1 }' "$1"; }
+median() { sort -g | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
+
+declare -a study_cpu tasks_cpu point_cpu wall1 wall2
+for ((r = 1; r <= repeats; r++)); do
+    rm -rf "$work/j1" "$work/j2" "$work/points"
+    /usr/bin/time -f '%e %U %S' -o "$work/t1" bash "$study" -j 1 -o "$work/j1" "$work/bench.nml" \
+        >/dev/null 2>"$work/j1.err"
+    study_cpu+=("$(cpu_of "$work/t1")")
+    wall1+=("$(wall_of "$work/t1")")
+    tasks_cpu+=("$(cat "$work"/j1/tasks/*/result | sed -n 's/^[a-z]*_cpu=//p' | awk '{ s += $1 } END { printf "%.2f", s }')")
+    /usr/bin/time -f '%e %U %S' -o "$work/t2" bash "$study" -j 2 -o "$work/j2" "$work/bench.nml" \
+        >/dev/null 2>"$work/j2.err"
+    wall2+=("$(wall_of "$work/t2")")
+    # One nceig run per point, on one BLAS thread, from the study's own task inputs.
+    : >"$work/points.cpu"
+    for task in "$work"/j1/tasks/*/; do
+        while read -r lambda; do
+            (cd "$task" && OPENBLAS_NUM_THREADS=1 /usr/bin/time -f '%e %U %S' -a -o "$work/points.cpu" \
+                "$NCEIG" cn.nml --set analysis%kind=eigen --set "analysis%lambda=$lambda" \
+                --set output%directory=point --set output%vtk=.false. >/dev/null 2>&1)
+        done <"$work/j1/plan/lambdas"
+        (cd "$task" && OPENBLAS_NUM_THREADS=1 /usr/bin/time -f '%e %U %S' -a -o "$work/points.cpu" \
+            "$NCEIG" thr.nml --set output%directory=point_thr >/dev/null 2>&1)
+    done
+    point_cpu+=("$(grep -v '^Command' "$work/points.cpu" | awk '{ s += $2 + $3 } END { printf "%.2f", s }')")
+done
+n_tasks=$(wc -l <"$work/j1/plan/tasks")
+n_points=$((n_tasks * $(wc -l <"$work/j1/plan/lambdas")))
+sc=$(printf '%s\n' "${study_cpu[@]}" | median)
+tc=$(printf '%s\n' "${tasks_cpu[@]}" | median)
+pc=$(printf '%s\n' "${point_cpu[@]}" | median)
+w1=$(printf '%s\n' "${wall1[@]}" | median)
+w2=$(printf '%s\n' "${wall2[@]}" | median)
+echo "study: 3 geometries x $(wc -w <<<"$nu_list") nu x $n_lambda lambdas ($n_tasks tasks, $n_points c_n points), hp to $tol; medians of $repeats; load $(cut -d' ' -f1-3 /proc/loadavg)"
+printf '| %-34s | %10s |\n' quantity value
+printf '|%s|%s|\n' "------------------------------------" "------------"
+printf '| %-34s | %8s s |\n' "study CPU (-j 1, all processes)" "$sc"
+printf '| %-34s | %8s s |\n' "sum of its nceig runs' CPU" "$tc"
+printf '| %-34s | %10s |\n' "study / its runs" "$(awk -v a="$sc" -v b="$tc" 'BEGIN { printf "%.2f", a / b }')"
+printf '| %-34s | %8s s |\n' "one nceig run per point, CPU" "$pc"
+printf '| %-34s | %10s |\n' "per point / study" "$(awk -v a="$pc" -v b="$sc" 'BEGIN { printf "%.1f", a / b }')"
+printf '| %-34s | %8s s |\n' "wall -j 1" "$w1"
+printf '| %-34s | %8s s |\n' "wall -j 2" "$w2"
+printf '| %-34s | %10s |\n' "speed-up -j 2 / -j 1" "$(awk -v a="$w1" -v b="$w2" 'BEGIN { printf "%.2f", a / b }')"
