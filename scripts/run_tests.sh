@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 # Quick start 2: install what is missing, then build and run the whole test suite in Release
-# and in Debug (-fcheck=all, floating-point traps), and the fast tests (labels unit and cli)
-# with AddressSanitizer, LeakSanitizer and UndefinedBehaviorSanitizer (build-asan/), where
-# any report fails the test.
+# and in Debug (-fcheck=all, floating-point traps), and the labels unit and cli but not
+# repeat (tests/CMakeLists.txt says why) with AddressSanitizer, LeakSanitizer and
+# UndefinedBehaviorSanitizer (build-asan/), where any report fails the test.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 bash "$root/scripts/dev/install_deps.sh"
@@ -14,7 +14,7 @@ for type in Release Debug Asan; do
     folder="$root/build-$(echo "$type" | tr '[:upper:]' '[:lower:]')"
     [[ $type != Release ]] || folder="$root/build"
     labels=()
-    [[ $type != Asan ]] || labels=(-L 'unit|cli')
+    [[ $type != Asan ]] || labels=(-L 'unit|cli' -LE repeat)
     echo "== ctest ($type${labels:+, labels unit and cli})"
     ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 \
     LSAN_OPTIONS=suppressions="$root/tests/lsan.supp":print_suppressions=0 \
