@@ -38,7 +38,7 @@
 module threshold_goal
     use kinds, only: wp, i8
     use status, only: status_t
-    use strings, only: to_string, short_real_text, seconds_text
+    use strings, only: to_string, short_real_text, given_real_text, seconds_text
     use timer, only: wall_time, timings_t, PHASE_REDUCTION
     use scene, only: scene_t
     use method_options, only: eigen_options_t, adapt_options_t, SOLVER_DENSE, REFINE_HP
@@ -569,7 +569,7 @@ contains
             ! a goal without a bar yet
             if (any(bar < -0.5_wp .and. .not. last%stalled)) return
             if (all(bar <= tolerance .and. .not. last%stalled)) then
-                call t%finish(TARGET_MET, 'tolerance '//short_real_text(tolerance)// &
+                call t%finish(TARGET_MET, 'tolerance '//given_real_text(tolerance)// &
                     ' met at level '//to_string(last%level)//': error bar '// &
                     this%bar_text(1))
                 return
