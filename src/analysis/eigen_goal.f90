@@ -368,8 +368,7 @@ contains
                         to_string(row%check_dofs)//' dofs) moves mu by '// &
                         short_real_text(row%check_change)//' (relative): error bar '// &
                         short_real_text(bar)//' at '//to_string(row%n_dofs)//' dofs'
-                    p%res%error%method = HP_ESTIMATE//'; to one degree higher '// &
-                        short_real_text(row%check_change)
+                    p%res%error%check = row%check_change
                 else
                     bar = -1.0_wp
                     why = 'the check with every degree raised by one ('// &
@@ -383,7 +382,9 @@ contains
                 if (len(refiner%cap_words(last)) > 0) why = why//'; '//refiner%cap_words(last)
                 row%error_bar = bar
                 if (bar >= 0.0_wp) p%res%error%bar = bar
-                call check_target(this%targets(i), tolerance, series, bar, row%roundoff, &
+                ! the checked bar's round-off part is both values' (the floor test)
+                call check_target(this%targets(i), tolerance, series, bar, &
+                                  max(row%roundoff, 0.0_wp) + max(res%roundoff, 0.0_wp), &
                                   reopen .and. row%level == last%number, why)
             end associate
         end do

@@ -459,7 +459,8 @@ contains
         type(reduced_blocks_t) :: blocks
         type(thresholds_t) :: thr
         type(critical_set_t) :: set
-        real(wp) :: before(2), after(2), roundoff(2), value, moved(2), begin
+        real(wp) :: before(2), after(2), roundoff(2), value, moved(2), begin, check_roundoff(2), &
+                    check_value
         character(len=:), allocatable :: why
         integer :: side, onset(2), worst
         logical :: has_check
@@ -497,20 +498,25 @@ contains
                 return
             end if
             moved = -1.0_wp
+            check_roundoff = 0.0_wp
             do side = SIDE_PLUS, SIDE_MINUS
                 if (before(side) <= 0.0_wp) cycle
                 if (row%collision(side)) then
                     value = row%collision_lambda(side)
                     has_check = onset(side) > 0
-                    if (has_check) moved(side) = abs(set%points(max(onset(side), 1))%lambda - &
-                                                     value)/abs(value)
+                    check_value = 0.0_wp
+                    if (has_check) then
+                        check_value = set%points(onset(side))%lambda
+                        check_roundoff(side) = max(set%points(onset(side))%roundoff, 0.0_wp)
+                        moved(side) = abs(check_value - value)/abs(value)
+                    end if
                     row%collision_bar(side) = checked_bar(before(side), value, has_check, &
-                        set%points(max(onset(side), 1))%lambda, roundoff(side), &
-                        set%points(max(onset(side), 1))%roundoff)
+                        check_value, roundoff(side), check_roundoff(side))
                 else
                     value = row%lambda(side)
                     has_check = thr%found(side)
                     if (has_check) moved(side) = abs(thr%lambda(side) - value)/abs(value)
+                    if (has_check) check_roundoff(side) = max(thr%roundoff(side), 0.0_wp)
                     row%error_bar(side) = checked_bar(before(side), value, has_check, &
                         thr%lambda(side), roundoff(side), thr%roundoff(side))
                 end if
@@ -533,7 +539,8 @@ contains
             call check_target(this%targets(1), tolerance, maxval(before), &
                               merge(-1.0_wp, maxval(after), any(after < 0.0_wp .and. &
                                                                 before > 0.0_wp)), &
-                              roundoff(worst), reopen .and. row%level == last%number, why)
+                              max(roundoff(worst), 0.0_wp) + check_roundoff(worst), &
+                              reopen .and. row%level == last%number, why)
             this%targets(2) = this%targets(1)
         end associate
     end subroutine threshold_goal_check
