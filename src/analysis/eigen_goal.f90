@@ -8,11 +8,12 @@
 !> serve one lambda (a sweep adapts each point by a loop of its own). On hp levels
 !> (hp_levels) each level is factored once and solved at every lambda still active, the
 !> lowest mu refined to its Rayleigh quotient where its round-off could decide the stop
-!> (hp_rayleigh); its bar comes from the changes between levels.
+!> (hp_rayleigh); its bar comes from the changes between levels, and once the loop ends
+!> from one check on the last level's cells with every degree raised by one (eigen_goal_check).
 module eigen_goal
     use kinds, only: wp
     use status, only: status_t
-    use strings, only: to_string, short_real_text
+    use strings, only: to_string, short_real_text, seconds_text
     use timer, only: wall_time, timings_t
     use scene, only: scene_t
     use method_options, only: eigen_options_t, adapt_options_t, ESTIMATE_ON, REFINE_HP
@@ -24,9 +25,10 @@ module eigen_goal
     use eigen_solve, only: eigen_result_t, solve_eigen, estimate_eigen, eigen_with_factor, &
                            choose_solver
     use accuracy, only: WARNING_LEN, MU_VANISHED
-    use error_bar, only: theta_warnings
+    use error_bar, only: theta_warnings, checked_bar
     use hp_rayleigh, only: refine_lowest_mu
-    use adapt_driver, only: adapt_goal_t, refiner_t, adapt_level_t, adapt_levels, judge_target
+    use adapt_driver, only: adapt_goal_t, refiner_t, adapt_level_t, adapt_levels, judge_target, &
+                            check_target
     use h_refiner, only: h_refiner_t, doerfler_marking
     use hp_levels, only: hp_refiner_t
     implicit none
@@ -56,6 +58,10 @@ module eigen_goal
         real(wp) :: roundoff = -1.0_wp        !! its round-off part (module roundoff); < 0: unknown
         !> hp: mu has stopped converging (error_bar: hp_run_bar): no bar, the loop stops
         logical :: stalled = .false.
+        !> hp, the last level of a lambda: |mu - mu of the check one degree higher| / |mu|
+        !> (eigen_goal_check), folded into error_bar; < 0: not checked (or no positive mu there)
+        real(wp) :: check_change = -1.0_wp
+        integer :: check_dofs = 0             !! the check's free dofs; 0: no check
         real(wp) :: time_s = 0.0_wp           !! wall time from the loop's start to the level's end
     end type eigen_level_t
 
@@ -90,6 +96,7 @@ module eigen_goal
         procedure :: judge => eigen_goal_judge
         procedure :: bar_text => eigen_goal_bar_text
         procedure :: mark => eigen_goal_mark
+        procedure :: check => eigen_goal_check
     end type eigen_goal_t
 
 contains
@@ -220,7 +227,7 @@ contains
             if (.not. stat%ok()) return
             k = res%spec%lowest_positive()
             if (k > 0) then
-                call refine_level_mu(res, k, stat)
+                call refine_level_mu(level, this%tolerance, res, k, stat)
                 if (.not. stat%ok()) return
             end if
             call fill_row(row, res)
@@ -262,40 +269,130 @@ contains
             if (row%has_mu) row%mu = real(res%spec%mu(lowest), wp)
             row%roundoff = res%roundoff
         end subroutine fill_row
-
-        !> res%spec%mu(i), the lowest positive mu, and res%roundoff replaced by the Rayleigh
-        !> quotient of its vectors that never stores K (hp_rayleigh) when the double value's
-        !> round-off bound is at least REFINE_FRACTION of the tolerance: below, it cannot
-        !> decide the stop, and the quotient costs about half of a level's assembly.
-        subroutine refine_level_mu(res, i, stat)
-            type(eigen_result_t), intent(inout) :: res
-            integer, intent(in) :: i
-            type(status_t), intent(out) :: stat
-            real(wp), parameter :: REFINE_FRACTION = 0.01_wp
-            real(wp) :: mu, refined, refined_bound, gap, start
-            integer :: j
-            if (.not. (res%roundoff >= REFINE_FRACTION*this%tolerance .and. &
-                       allocated(res%spec%left))) return
-            start = wall_time()
-            mu = real(res%spec%mu(i), wp)
-            gap = 1.0_wp
-            do j = 1, res%spec%n()
-                if (j /= i) gap = min(gap, abs(res%spec%mu(j) - mu)/abs(mu))
-            end do
-            associate (prob => level%prob)
-                call refine_lowest_mu(prob%mesh, level%space, prob%young, prob%poisson, &
-                    prob%contact, res%b, res%lambda, mu, &
-                    real(res%spec%vectors(:, i), wp), res%spec%left, res%roundoff, gap, &
-                    refined, refined_bound, stat)
-                if (.not. stat%ok()) return
-                res%spec%mu(i) = refined
-            end associate
-            res%roundoff = refined_bound
-            res%quotient = .true.
-            res%spec%roundoff_seconds = res%spec%roundoff_seconds + wall_time() - start
-            res%spec%roundoff(i) = refined_bound
-        end subroutine refine_level_mu
     end subroutine eigen_goal_solve
+
+    !> res%spec%mu(i), the lowest positive mu on the hp level `level`, and res%roundoff
+    !> replaced by the Rayleigh quotient of its vectors that never stores K (hp_rayleigh) when
+    !> the double value's round-off bound is at least REFINE_FRACTION of `tolerance`: below,
+    !> it cannot decide the stop, and the quotient costs about half of a level's assembly.
+    subroutine refine_level_mu(level, tolerance, res, i, stat)
+        type(adapt_level_t), intent(in) :: level
+        real(wp), intent(in) :: tolerance
+        type(eigen_result_t), intent(inout) :: res
+        integer, intent(in) :: i
+        type(status_t), intent(out) :: stat
+        real(wp), parameter :: REFINE_FRACTION = 0.01_wp
+        real(wp) :: mu, refined, refined_bound, gap, start
+        integer :: j
+        if (.not. (res%roundoff >= REFINE_FRACTION*tolerance .and. &
+                   allocated(res%spec%left))) return
+        start = wall_time()
+        mu = real(res%spec%mu(i), wp)
+        gap = 1.0_wp
+        do j = 1, res%spec%n()
+            if (j /= i) gap = min(gap, abs(res%spec%mu(j) - mu)/abs(mu))
+        end do
+        associate (prob => level%prob)
+            call refine_lowest_mu(prob%mesh, level%space, prob%young, prob%poisson, &
+                prob%contact, res%b, res%lambda, mu, &
+                real(res%spec%vectors(:, i), wp), res%spec%left, res%roundoff, gap, &
+                refined, refined_bound, stat)
+            if (.not. stat%ok()) return
+            res%spec%mu(i) = refined
+        end associate
+        res%roundoff = refined_bound
+        res%quotient = .true.
+        res%spec%roundoff_seconds = res%spec%roundoff_seconds + wall_time() - start
+        res%spec%roundoff(i) = refined_bound
+    end subroutine refine_level_mu
+
+    !> The check of the last level `last` (adapt_driver): for every lambda whose last row has
+    !> a bar, the lowest positive mu on the same cells with every degree raised by one
+    !> (refiner%check_level; one factor for all lambdas, the mu refined as a level's is),
+    !> folded into that row's bar and the result's (error_bar: checked_bar), and the target
+    !> judged again (check_target: one met at `last` climbs on with `reopen`).
+    subroutine eigen_goal_check(this, scn, start, refiner, last, tolerance, reopen, timings, &
+                                stat)
+        class(eigen_goal_t), intent(inout) :: this
+        type(scene_t), intent(in) :: scn
+        type(problem_t), intent(in) :: start
+        class(refiner_t), intent(in) :: refiner
+        type(adapt_level_t), intent(in) :: last
+        real(wp), intent(in) :: tolerance
+        logical, intent(in) :: reopen
+        type(timings_t), intent(inout) :: timings
+        type(status_t), intent(out) :: stat
+        type(adapt_level_t) :: check
+        type(cholesky_t) :: chol
+        type(eigen_result_t) :: res
+        real(wp) :: series, bar, begin
+        character(len=:), allocatable :: why
+        integer :: i, k
+        logical :: built
+
+        begin = wall_time()
+        built = .false.
+        do i = 1, size(this%points)
+            if (size(this%points(i)%levels) == 0) cycle
+            associate (p => this%points(i), &
+                       row => this%points(i)%levels(size(this%points(i)%levels)))
+                if (row%error_bar < 0.0_wp) cycle
+                if (.not. built) then
+                    select type (refiner)
+                    class is (hp_refiner_t)
+                        call refiner%check_level(start, last, check, timings, stat)
+                    class default
+                        return   ! h levels carry their own estimate: no check
+                    end select
+                    if (stat%ok()) call refiner%factor(check, chol, timings, stat)
+                    if (.not. stat%ok()) return
+                    built = .true.
+                end if
+                res%lambda = p%lambda
+                call assemble_b(check%prob%contact, check%prob%dofs%n_free, res%lambda, res%b, &
+                                stat)
+                if (.not. stat%ok()) exit
+                res%solver = choose_solver(this%options, check%prob%contact%p())
+                call eigen_with_factor(scn, check%prob, this%options, chol, res, timings, stat)
+                if (.not. stat%ok()) exit
+                k = res%spec%lowest_positive()
+                if (k > 0) call refine_level_mu(check, tolerance, res, k, stat)
+                if (.not. stat%ok()) exit
+                row%check_dofs = check%prob%dofs%n_free
+                series = row%error_bar
+                if (k > 0) then
+                    row%check_change = abs(row%mu - real(res%spec%mu(k), wp))/abs(row%mu)
+                    bar = checked_bar(series, row%mu, .true., real(res%spec%mu(k), wp), &
+                                      row%roundoff, res%roundoff)
+                    why = 'the check with every degree raised by one ('// &
+                        to_string(row%check_dofs)//' dofs) moves mu by '// &
+                        short_real_text(row%check_change)//' (relative): error bar '// &
+                        short_real_text(bar)//' at '//to_string(row%n_dofs)//' dofs'
+                    p%res%error%check = row%check_change
+                else
+                    bar = -1.0_wp
+                    why = 'the check with every degree raised by one ('// &
+                        to_string(row%check_dofs)//' dofs) has no positive mu, so mu has '// &
+                        'no error bar'
+                    p%res%error%computed = .false.
+                    p%res%error%skipped = 'none: the check one degree higher has no positive mu'
+                end if
+                call timings%note('hp check of level '//to_string(last%number)// &
+                    ' at lambda = '//short_real_text(p%lambda)//': '//why)
+                if (len(refiner%cap_words(last)) > 0) why = why//'; '//refiner%cap_words(last)
+                row%error_bar = bar
+                if (bar >= 0.0_wp) p%res%error%bar = bar
+                ! the checked bar's round-off part is both values' (the floor test)
+                call check_target(this%targets(i), tolerance, series, bar, &
+                                  max(row%roundoff, 0.0_wp) + max(res%roundoff, 0.0_wp), &
+                                  reopen .and. row%level == last%number, why)
+            end associate
+        end do
+        if (.not. built) return
+        call chol%free()
+        call timings%note('hp check of level '//to_string(last%number)//': '// &
+                          seconds_text(wall_time() - begin)//' s')
+    end subroutine eigen_goal_check
 
     !> The bar (and change, and stall) of the last of `levels` over the levels so far, as the
     !> refiner makes bars: h from the estimates (only where the last level has one), hp from

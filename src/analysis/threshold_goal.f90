@@ -29,6 +29,8 @@
 !> hp levels (hp_levels): the same thresholds and collision onsets on each level, with the
 !> bar of each from its changes between levels (hp_run_bar) plus its round-off part; a level
 !> whose dense contact blocks would not fit the memory is refused before they are formed.
+!> Once the loop ends, each side's goal is checked on the last level's cells with every
+!> degree raised by one (threshold_goal_check), folded into its bar (error_bar: checked_bar).
 !> The last level solved is then reported on its own factor as the threshold analysis
 !> reports its mesh: the spectrum at &analysis lambda, the confirmations, the boundary of
 !> the positive set. (On h levels the analysis reports the final mesh afresh:
@@ -57,12 +59,13 @@ module threshold_goal
     use boundary_estimate, only: enriched_pair_lambdas, onset_bars_t
     use eigen_solve, only: eigen_result_t, eigen_with_factor, choose_solver
     use error_estimate, only: error_estimate_t, estimate_lowest_error
-    use error_bar, only: theta_warnings, floor_reached, floor_outcome, stall_outcome
+    use error_bar, only: theta_warnings, floor_reached, floor_outcome, stall_outcome, &
+                         checked_bar
     use roundoff, only: threshold_roundoff, collision_roundoffs
     use memory_budget, only: check_contact_memory, contact_peak_blocks, contact_blocks_bytes
     use accuracy, only: WARNING_LEN
     use adapt_driver, only: adapt_goal_t, refiner_t, adapt_level_t, adapt_levels, judge_target, &
-                            TARGET_MET, TARGET_FLOOR, TARGET_STOPPED
+                            check_target, TARGET_MET, TARGET_FLOOR, TARGET_STOPPED
     use h_refiner, only: h_refiner_t, doerfler_marking
     use hp_levels, only: hp_refiner_t
     implicit none
@@ -165,6 +168,7 @@ module threshold_goal
         procedure :: judge => threshold_goal_judge
         procedure :: bar_text => threshold_goal_bar_text
         procedure :: mark => threshold_goal_mark
+        procedure :: check => threshold_goal_check
     end type threshold_goal_t
 
 contains
@@ -433,6 +437,113 @@ contains
         end if
         this%targets(2) = this%targets(1)
     end subroutine threshold_goal_judge
+
+    !> hp, once the loop ends: each side's goal with a bar at the last level `last` (its
+    !> threshold, or its collision onset carried to the check's blocks as a level carries
+    !> it) computed again on the same cells with every degree raised by one (hp_levels:
+    !> check_level), folded into that side's bar (error_bar: checked_bar); both sides are
+    !> then judged again together (check_target on the largest bar; `reopen`: climb on).
+    subroutine threshold_goal_check(this, scn, start, refiner, last, tolerance, reopen, &
+                                    timings, stat)
+        class(threshold_goal_t), intent(inout) :: this
+        type(scene_t), intent(in) :: scn
+        type(problem_t), intent(in) :: start
+        class(refiner_t), intent(in) :: refiner
+        type(adapt_level_t), intent(in) :: last
+        real(wp), intent(in) :: tolerance
+        logical, intent(in) :: reopen
+        type(timings_t), intent(inout) :: timings
+        type(status_t), intent(out) :: stat
+        type(adapt_level_t) :: check
+        type(cholesky_t) :: chol
+        type(reduced_blocks_t) :: blocks
+        type(thresholds_t) :: thr
+        type(critical_set_t) :: set
+        real(wp) :: before(2), after(2), roundoff(2), value, moved(2), begin, check_roundoff(2), &
+                    check_value
+        character(len=:), allocatable :: why
+        integer :: side, onset(2), worst
+        logical :: has_check
+
+        if (size(this%levels) == 0) return
+        begin = wall_time()
+        associate (row => this%levels(size(this%levels)))
+            call goal_bars(row, this%thr%roundoff, before, roundoff)
+            if (all(before <= 0.0_wp)) return   ! no bar to check (none yet, or nothing to meet)
+            select type (refiner)
+            class is (hp_refiner_t)
+                call refiner%check_level(start, last, check, timings, stat)
+            class default
+                return
+            end select
+            if (stat%ok()) call refiner%factor(check, chol, timings, stat)
+            if (.not. stat%ok()) return
+            call contact_flexibility(chol, check%prob%contact, blocks%kt_nn, blocks%kt_nt, stat)
+            if (stat%ok()) call pencil_thresholds(blocks%kt_nn, blocks%kt_nt, thr, stat)
+            if (stat%ok()) call threshold_roundoff(check%prob%k, chol, check%prob%contact, &
+                                                   blocks%kt_nn, blocks%kt_nt, thr, stat)
+            onset = 0
+            if (stat%ok() .and. any(row%collision)) then
+                blocks%mass = check%prob%contact%mass
+                call search_critical_set(blocks, this%scan, thr%real_lambdas, set, stat, &
+                                         this%set)
+                if (stat%ok()) call collision_onsets(set, onset)
+                if (stat%ok() .and. any(onset > 0)) call collision_roundoffs(check%prob%k, &
+                    chol, check%prob%contact, blocks, set, stat)
+            end if
+            call chol%free()
+            if (.not. stat%ok()) then
+                stat%message = scn%name//': the check of hp level '//to_string(last%number)// &
+                    ': '//stat%message
+                return
+            end if
+            moved = -1.0_wp
+            check_roundoff = 0.0_wp
+            do side = SIDE_PLUS, SIDE_MINUS
+                if (before(side) <= 0.0_wp) cycle
+                if (row%collision(side)) then
+                    value = row%collision_lambda(side)
+                    has_check = onset(side) > 0
+                    check_value = 0.0_wp
+                    if (has_check) then
+                        check_value = set%points(onset(side))%lambda
+                        check_roundoff(side) = max(set%points(onset(side))%roundoff, 0.0_wp)
+                        moved(side) = abs(check_value - value)/abs(value)
+                    end if
+                    row%collision_bar(side) = checked_bar(before(side), value, has_check, &
+                        check_value, roundoff(side), check_roundoff(side))
+                else
+                    value = row%lambda(side)
+                    has_check = thr%found(side)
+                    if (has_check) moved(side) = abs(thr%lambda(side) - value)/abs(value)
+                    if (has_check) check_roundoff(side) = max(thr%roundoff(side), 0.0_wp)
+                    row%error_bar(side) = checked_bar(before(side), value, has_check, &
+                        thr%lambda(side), roundoff(side), thr%roundoff(side))
+                end if
+            end do
+            call goal_bars(row, this%thr%roundoff, after, roundoff)
+            worst = maxloc(merge(huge(1.0_wp), after, after < 0.0_wp .and. before > 0.0_wp), 1)
+            why = 'the check with every degree raised by one ('// &
+                to_string(check%prob%dofs%n_free)//' dofs)'
+            if (moved(worst) >= 0.0_wp) then
+                why = why//' moves the '//trim(SIDE_NAMES(worst))//' side by '// &
+                    short_real_text(moved(worst))//' (relative): error bar '// &
+                    short_real_text(after(worst))//' at '//to_string(row%n_dofs)//' dofs'
+            else
+                why = why//' does not find the '//trim(SIDE_NAMES(worst))//' side''s goal, '// &
+                    'which has no error bar'
+            end if
+            call timings%note('hp check of level '//to_string(last%number)//': '//why// &
+                              ', '//seconds_text(wall_time() - begin)//' s')
+            if (len(refiner%cap_words(last)) > 0) why = why//'; '//refiner%cap_words(last)
+            call check_target(this%targets(1), tolerance, maxval(before), &
+                              merge(-1.0_wp, maxval(after), any(after < 0.0_wp .and. &
+                                                                before > 0.0_wp)), &
+                              max(roundoff(worst), 0.0_wp) + check_roundoff(worst), &
+                              reopen .and. row%level == last%number, why)
+            this%targets(2) = this%targets(1)
+        end associate
+    end subroutine threshold_goal_check
 
     !> The largest bar of the sides' goals (goal_bars); negative when one of them has none,
     !> or when there is neither.

@@ -14,6 +14,12 @@
 !> target with one bar: met (from level 1 on, where an earlier level confirms the bar),
 !> at the floating-point floor, or stopped with its reason.
 !>
+!> Where the refiner's bars rest on the changes between its levels (hp), the last level is
+!> checked once the loop ends (the goal's check: one solve with every degree raised by one,
+!> folded into each target's bar by error_bar's checked_bar; check_target): a target that
+!> the check takes above its tolerance climbs again where more levels can lower its error,
+!> and otherwise stops, the refiner saying why more levels would not help (&adapt p_max).
+!>
 !> With the default limits (max_levels = 0, max_dofs = 0) only the memory the machine has
 !> ends a loop that has not met its tolerance, never a level count.
 module adapt_driver
@@ -29,7 +35,7 @@ module adapt_driver
     use error_bar, only: floor_reached, floor_outcome, stall_outcome
     implicit none
     private
-    public :: adapt_levels, judge_target
+    public :: adapt_levels, judge_target, check_target
 
     integer, parameter, public :: TARGET_ACTIVE = 0    !! the loop still refines for it
     integer, parameter, public :: TARGET_MET = 1       !! its bar met the tolerance
@@ -87,6 +93,11 @@ module adapt_driver
         !> the words after '&adapt: ' in a message about a level ("strategy = 'hp': " or '')
         procedure(refiner_words), deferred :: strategy_words
         procedure :: too_big_words => refiner_too_big_words
+        !> whether the last level gets an independent check (hp: its bars come from the
+        !> changes between levels alone); h: no
+        procedure(refiner_estimated), deferred :: checked
+        !> why more levels cannot lower an error the check found at level `last` ('': they can)
+        procedure(refiner_cap_words), deferred :: cap_words
     end type refiner_t
 
     !> What the loop adapts to: a set of targets, each with its own state.
@@ -102,6 +113,9 @@ module adapt_driver
         procedure(goal_bar_text), deferred :: bar_text
         !> the cells of the last level to refine (h levels)
         procedure(goal_mark), deferred :: mark
+        !> the check of the last level solved where refiner%checked() (hp: hp_levels'
+        !> check_level), folded into the targets' bars (check_target)
+        procedure(goal_check), deferred :: check
         procedure :: any_active => goal_any_active
     end type adapt_goal_t
 
@@ -158,6 +172,13 @@ module adapt_driver
             class(refiner_t), intent(in) :: this
         end function refiner_estimated
 
+        pure function refiner_cap_words(this, last) result(words)
+            import :: refiner_t, adapt_level_t
+            class(refiner_t), intent(in) :: this
+            type(adapt_level_t), intent(in) :: last
+            character(len=:), allocatable :: words
+        end function refiner_cap_words
+
         pure function refiner_words(this) result(words)
             import :: refiner_t
             class(refiner_t), intent(in) :: this
@@ -191,6 +212,22 @@ module adapt_driver
             character(len=:), allocatable :: text
         end function goal_bar_text
 
+        subroutine goal_check(this, scn, start, refiner, last, tolerance, reopen, timings, stat)
+            import :: adapt_goal_t, scene_t, problem_t, refiner_t, adapt_level_t, timings_t, &
+                      status_t, wp
+            class(adapt_goal_t), intent(inout) :: this
+            type(scene_t), intent(in) :: scn
+            type(problem_t), intent(in) :: start
+            class(refiner_t), intent(in) :: refiner
+            !> the last level solved: its number, mesh (prob%mesh) and degrees only
+            type(adapt_level_t), intent(in) :: last
+            real(wp), intent(in) :: tolerance
+            !> a target met at `last` that the check takes above the tolerance may climb on
+            logical, intent(in) :: reopen
+            type(timings_t), intent(inout) :: timings
+            type(status_t), intent(out) :: stat
+        end subroutine goal_check
+
         function goal_mark(this, theta) result(marked)
             import :: adapt_goal_t, wp
             class(adapt_goal_t), intent(in) :: this
@@ -216,21 +253,25 @@ contains
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
         type(adapt_level_t) :: level
+        !> the last level solved: its number, mesh and degrees (what its check is made of)
+        type(adapt_level_t) :: last
         character(len=:), allocatable :: refused
         real(wp) :: loop_start
-        integer :: solved
+        integer :: solved, checked
         logical :: too_big
 
         loop_start = wall_time()
         call refiner%begin(scn, adapt, start, stat)
         if (.not. stat%ok()) return
         solved = 0
+        checked = -1
         do
             call refiner%next(scn, start, goal, solved, level, too_big, timings, stat)
             if (.not. stat%ok()) return
             if (too_big) then
                 call stop_active(goal, 'tolerance '//given_real_text(adapt%tolerance)// &
                     ' not met: '//refiner%too_big_words()//'; reached error bar ')
+                call check_last(.false., stat)
                 exit
             end if
             call goal%solve(scn, refiner, level, loop_start, timings, refused, stat)
@@ -243,18 +284,41 @@ contains
                 end if
                 call stop_active(goal, 'tolerance '//given_real_text(adapt%tolerance)// &
                                  ' not met: the next '//refused//'; reached error bar ')
+                call check_last(.false., stat)
                 exit
             end if
             solved = solved + 1
+            last%number = level%number
+            last%prob%mesh = level%prob%mesh
+            if (allocated(level%degree)) last%degree = level%degree
             call goal%judge(refiner, level%number, adapt%tolerance)
-            if (.not. goal%any_active()) exit
+            if (.not. goal%any_active()) then
+                ! more levels may lower what the check finds: unless capped or at max_levels
+                call check_last(len(refiner%cap_words(last)) == 0 .and. .not. &
+                    (adapt%max_levels > 0 .and. level%number >= adapt%max_levels), stat)
+                if (.not. stat%ok()) return
+                if (.not. goal%any_active()) exit
+            end if
             if (adapt%max_levels > 0 .and. level%number >= adapt%max_levels) then
                 call stop_active(goal, 'tolerance '//given_real_text(adapt%tolerance)// &
                     ' not met: max_levels = '//to_string(adapt%max_levels)// &
                     ' reached with error bar ')
+                call check_last(.false., stat)
                 exit
             end if
         end do
+
+    contains
+
+        !> The goal's check of the last level solved, once per level (a level whose check
+        !> reopened a target and that the loop then stops at is not checked again).
+        subroutine check_last(reopen, stat)
+            logical, intent(in) :: reopen
+            type(status_t), intent(out) :: stat
+            if (.not. refiner%checked() .or. solved == 0 .or. checked == last%number) return
+            checked = last%number
+            call goal%check(scn, start, refiner, last, adapt%tolerance, reopen, timings, stat)
+        end subroutine check_last
     end subroutine adapt_levels
 
     !> Why the next level is too big (refiner_next's too_big): stop_reason, else its dofs
@@ -269,6 +333,36 @@ contains
                 ' dofs, more than '//this%dof_limit
         end if
     end function refiner_too_big_words
+
+    !> The target `t` after the check of the last level: its bar `series` from the levels
+    !> became `bar` (checked_bar; `roundoff` its round-off part), `why` the words that say
+    !> what the check found. A target met or at the floor that the check takes above the
+    !> tolerance (off the floor) climbs again with `reopen`, else stops (TARGET_STOPPED,
+    !> exit 8) saying why; a stopped target whose bar grew says so in its outcome.
+    subroutine check_target(t, tolerance, series, bar, roundoff, reopen, why)
+        type(adapt_target_t), intent(inout) :: t
+        real(wp), intent(in) :: tolerance, series, bar, roundoff
+        logical, intent(in) :: reopen
+        character(len=*), intent(in) :: why
+        logical :: fails
+        select case (t%state)
+        case (TARGET_MET)
+            fails = bar < 0.0_wp .or. bar > tolerance
+        case (TARGET_FLOOR)
+            fails = .not. floor_reached(bar, roundoff)
+        case default
+            if (bar > series .or. (bar < 0.0_wp .and. series >= 0.0_wp)) &
+                t%outcome = t%outcome//'; '//why
+            return
+        end select
+        if (.not. fails) return
+        if (reopen) then
+            call t%finish(TARGET_ACTIVE, '')
+        else
+            call t%finish(TARGET_STOPPED, 'tolerance '//given_real_text(tolerance)// &
+                          ' not met: '//why)
+        end if
+    end subroutine check_target
 
     !> Every active target of `goal` stopped, its outcome `words` and its bar.
     subroutine stop_active(goal, words)

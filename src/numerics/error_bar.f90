@@ -26,6 +26,9 @@
 !> keep P1 and P2 at least 1.58 and 1.22; P3's 3.5 leaves 1.04 at theta = 0.5 and 1.30 at
 !> 0.25, where 3.7 would add values above ten times the error (docs/accuracy.md, "Quality
 !> of the error bars"). A single factor of 3 leaves P2 at 0.915 (0.77 with three levels).
+!> hp levels: the changes between levels (hp_run_bar), folded at the last level with the
+!> difference to one solve with every degree raised by one (checked_bar), which does not
+!> rest on those changes.
 !> The floating-point part is added where known (roundoff >= 0); once it is at least the
 !> rest of the bar, a finer level cannot lower the bar (floor_reached).
 module error_bar
@@ -35,8 +38,8 @@ module error_bar
     implicit none
     private
     public :: single_bar, level_bar, hp_level_bar, hp_run_bar, three_mesh_bar, floor_reached, &
-              floor_outcome, stall_outcome, theta_warnings
-    public :: level_bar_factor, BAR_FACTOR, LEVEL_FACTOR, BAR_WINDOW, HP_FASTEST
+              floor_outcome, stall_outcome, theta_warnings, checked_bar
+    public :: level_bar_factor, BAR_FACTOR, LEVEL_FACTOR, BAR_WINDOW, HP_FASTEST, CHECK_FACTOR
 
     real(wp), parameter :: BAR_FACTOR = 5.0_wp
     !> hp_level_bar's and three_mesh_bar's factor (level_bar's: level_bar_factor)
@@ -61,6 +64,11 @@ module error_bar
     !> is at most 1.3e-3 (sigma = 0.15), 8.4e-4 (0.1) and 6.5e-3 (0.25); contact on part of a
     !> side gives 0.17 (a pencil threshold) and 1.1 (a mu that grows with every layer)
     real(wp), parameter :: HP_STALL = 0.1_wp
+    !> checked_bar's factor on the difference to the check one degree higher: the check's
+    !> error e_c and the level's e satisfy |e| <= |d| + |e_c|, so |e| <= |d| / (1 - q) while
+    !> |e_c| <= q |e|; 3 covers q up to 2/3 (measured q: docs/accuracy.md, "The check one
+    !> degree higher")
+    real(wp), parameter :: CHECK_FACTOR = 3.0_wp
     !> hp_level_bar's fastest rate per level believed on one ratio (the third level)
     real(wp), parameter :: HP_FASTEST = 0.05_wp
     !> three_mesh_bar's bounds on the observed ratio q = 2^-r of successive changes: at most
@@ -241,6 +249,25 @@ contains
         end do
         if (.not. stalled) bar = hp_level_bar(values(first:n), roundoff)
     end subroutine hp_run_bar
+
+    !> The bar of a value `value` whose bar from its levels is `series` (relative; < 0: none)
+    !> folded with one independent check: the same value `check` on the last level's cells
+    !> with every degree raised by one (hp_levels: check_level), which does not rest on the
+    !> changes between levels. Where those changes vanish while the error stays (&adapt
+    !> p_max caps the degrees of the inner cells: more levels grade only toward the singular
+    !> points) the difference does not. The bar is the larger of `series` and CHECK_FACTOR
+    !> |value - check| / |value| plus both round-off parts (`roundoff`, `check_roundoff`;
+    !> negative: unknown, nothing added). None (-1) without a series bar, and without a
+    !> check value (`has_check` false): a check that finds no value confirms nothing.
+    elemental real(wp) function checked_bar(series, value, has_check, check, roundoff, &
+                                            check_roundoff) result(bar)
+        real(wp), intent(in) :: series, value, check, roundoff, check_roundoff
+        logical, intent(in) :: has_check
+        bar = -1.0_wp
+        if (series < 0.0_wp .or. .not. has_check) return
+        bar = max(series, CHECK_FACTOR*abs(value - check)/abs(value) + max(roundoff, 0.0_wp) &
+                  + max(check_roundoff, 0.0_wp))
+    end function checked_bar
 
     !> The outcome of an hp loop stopped because `what` (mu, lambda+, ...) stalled
     !> (hp_run_bar): `tolerance` not met, and why the value may have no limit.

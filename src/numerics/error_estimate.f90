@@ -70,6 +70,9 @@ module error_estimate
         character(len=:), allocatable :: failure
         !> what the estimate is when no enrichment made it (an hp run's level differences)
         character(len=:), allocatable :: method
+        !> hp, the last level: |mu - mu with every degree raised by one| / |mu|, folded into
+        !> the bar (error_bar: checked_bar); < 0: no check
+        real(wp) :: check = -1.0_wp
     end type error_estimate_t
 
     public :: estimate_label

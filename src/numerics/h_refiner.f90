@@ -46,6 +46,8 @@ module h_refiner
         procedure :: series_bar => h_series_bar
         procedure :: estimated => h_estimated
         procedure :: strategy_words => h_strategy_words
+        procedure :: checked => h_checked
+        procedure :: cap_words => h_cap_words
     end type h_refiner_t
 
 contains
@@ -146,6 +148,19 @@ contains
         change = -1.0_wp
         stalled = .false.
     end subroutine h_series_bar
+
+    !> No check of the last level: each h level carries its own estimate.
+    pure logical function h_checked(this)
+        class(h_refiner_t), intent(in) :: this
+        h_checked = .false.
+    end function h_checked
+
+    pure function h_cap_words(this, last) result(words)
+        class(h_refiner_t), intent(in) :: this
+        type(adapt_level_t), intent(in) :: last
+        character(len=:), allocatable :: words
+        words = ''
+    end function h_cap_words
 
     pure logical function h_estimated(this)
         class(h_refiner_t), intent(in) :: this

@@ -5,7 +5,12 @@
 !> factor &adapt sigma), with cell degrees 1 + layer up to min(k + 1, &adapt p_max)
 !> (mesh_geometric), on hp_space's space with the interior functions condensed. A level
 !> carries no estimate of its own: a value's bar comes from its changes between levels
-!> (error_bar: hp_run_bar), which also tells a value that has stopped converging.
+!> (error_bar: hp_run_bar), which also tells a value that has stopped converging, and at the
+!> last level from one check that does not rest on those changes: the same cells with every
+!> degree raised by one (check_level; error_bar: checked_bar). Where &adapt p_max caps the
+!> degrees, more levels refine only toward the singular points: the inner cells keep their
+!> size and degree, the changes between levels vanish and their error stays; the check sees
+!> it, and cap_words says why climbing on would not help.
 module hp_levels
     use kinds, only: wp
     use status, only: status_t, STATUS_BAD_INPUT
@@ -21,6 +26,7 @@ module hp_levels
     use mesh_geometric, only: geometric_mesh, cell_layers, layer_degrees, MESH_GRADED, &
                               MESH_BELOW_RESOLUTION
     use hp_space, only: build_hp_space
+    use hp_basis, only: MAX_HP_DEGREE
     use hp_eigen, only: hp_assembled_problem, factor_hp_stiffness
     use sparse_cholesky, only: cholesky_t
     use error_bar, only: hp_run_bar
@@ -43,6 +49,10 @@ module hp_levels
         procedure :: series_bar => hp_series_bar
         procedure :: estimated => hp_estimated
         procedure :: strategy_words => hp_strategy_words
+        procedure :: checked => hp_checked
+        !> the check of a solved level: its cells, every degree raised by one
+        procedure :: check_level => hp_check_level
+        procedure :: cap_words => hp_cap_words
     end type hp_refiner_t
 
 contains
@@ -140,34 +150,80 @@ contains
         end if
         too_big = this%next_dofs > this%max_dofs .and. solved > 0
         if (too_big) return
-        call level_problem(stat)
-
-    contains
-
-        !> The level as a problem: the graded P1 mesh with the input's parts and material, the
-        !> condensed K and the hp contact (nodes: basis functions), dofs%n_free only.
-        subroutine level_problem(stat)
-            type(status_t), intent(out) :: stat
-            type(problem_t) :: prob
-            prob%mesh = graded
-            prob%dirichlet_parts = start%dirichlet_parts
-            prob%neumann_parts = start%neumann_parts
-            prob%contact_part = start%contact_part
-            prob%young = start%young
-            prob%poisson = start%poisson
-            call hp_assembled_problem(graded, level%space, start%contact_part, start%young, &
-                                      start%poisson, prob%contact, prob%k, timings, stat)
-            if (.not. stat%ok()) then
-                call prefix(this%name, level%number, stat)
-                return
-            end if
-            prob%dofs%n_free = level%space%n_free()
-            level%prob = prob
-            call timings%note('hp level '//to_string(level%number)//': '// &
-                to_string(graded%n_cells())//' cells, degrees 1 to '// &
-                to_string(maxval(level%degree))//', '//to_string(level%space%n_free())//' dofs')
-        end subroutine level_problem
+        call level_problem(this%name, start, graded, 'hp level ', level, timings, stat)
     end subroutine hp_next
+
+    !> `level` (its number, space and degrees on the cells of `graded`) as a problem: the
+    !> graded P1 mesh with the input's (`start`) parts and material, the condensed K and the
+    !> hp contact (nodes: basis functions), dofs%n_free only; `what` heads the timings' note.
+    subroutine level_problem(name, start, graded, what, level, timings, stat)
+        character(len=*), intent(in) :: name, what
+        type(problem_t), intent(in) :: start
+        type(mesh_t), intent(in) :: graded
+        type(adapt_level_t), intent(inout) :: level
+        type(timings_t), intent(inout) :: timings
+        type(status_t), intent(out) :: stat
+        type(problem_t) :: prob
+        prob%mesh = graded
+        prob%dirichlet_parts = start%dirichlet_parts
+        prob%neumann_parts = start%neumann_parts
+        prob%contact_part = start%contact_part
+        prob%young = start%young
+        prob%poisson = start%poisson
+        call hp_assembled_problem(graded, level%space, start%contact_part, start%young, &
+                                  start%poisson, prob%contact, prob%k, timings, stat)
+        if (.not. stat%ok()) then
+            call prefix(name, level%number, stat)
+            return
+        end if
+        prob%dofs%n_free = level%space%n_free()
+        level%prob = prob
+        call timings%note(what//to_string(level%number)//': '// &
+            to_string(graded%n_cells())//' cells, degrees '//to_string(minval(level%degree))// &
+            ' to '//to_string(maxval(level%degree))//', '//to_string(level%space%n_free())// &
+            ' dofs')
+    end subroutine level_problem
+
+    pure logical function hp_checked(this)
+        class(hp_refiner_t), intent(in) :: this
+        hp_checked = .true.
+    end function hp_checked
+
+    !> The check of the solved level `last` (its number, graded mesh and degrees): the same
+    !> cells with every degree raised by one (at most MAX_HP_DEGREE), as a problem.
+    subroutine hp_check_level(this, start, last, check, timings, stat)
+        class(hp_refiner_t), intent(in) :: this
+        type(problem_t), intent(in) :: start
+        type(adapt_level_t), intent(in) :: last
+        type(adapt_level_t), intent(out) :: check
+        type(timings_t), intent(inout) :: timings
+        type(status_t), intent(out) :: stat
+        check%number = last%number
+        check%degree = min(last%degree + 1, MAX_HP_DEGREE)
+        call build_hp_space(last%prob%mesh, check%degree, start%dirichlet_parts, check%space, &
+                            stat)
+        if (.not. stat%ok()) then
+            call prefix(this%name, last%number, stat)
+            return
+        end if
+        call level_problem(this%name, start, last%prob%mesh, 'hp check of level ', check, &
+                           timings, stat)
+    end subroutine hp_check_level
+
+    !> Why more levels cannot lower an error the check found at `last`: &adapt p_max holds
+    !> the degrees of its inner cells (level k would give them k + 1), so further levels only
+    !> add layers at the singular points. '' while the degrees still rise.
+    pure function hp_cap_words(this, last) result(words)
+        class(hp_refiner_t), intent(in) :: this
+        type(adapt_level_t), intent(in) :: last
+        character(len=:), allocatable :: words
+        words = ''
+        if (last%number + 1 <= this%adapt%p_max) return
+        words = '&adapt p_max = '//to_string(this%adapt%p_max)//' caps the degrees, so '// &
+            'more levels only add layers at the singular points and leave the error of the '// &
+            'inner cells, which keep their size and degree: the cap stops convergence (raise '// &
+            'p_max, or give a finer input mesh)'
+    end function hp_cap_words
 
     !> K of `level` factored with the contact dofs last.
     subroutine hp_factor(this, level, chol, timings, stat)

@@ -486,6 +486,7 @@ contains
             f%estimate = abs(res%error%relative)
             f%estimate_label = estimate_label(res%error)
             f%level_change = f%estimate_label == HP_ESTIMATE
+            f%check = res%error%check
         end if
         f%bar = res%error%bar
         if (allocated(res%error%skipped)) f%skipped = res%error%skipped

@@ -43,6 +43,8 @@ module summary_record
         !> the estimate is the change to the previous hp level (that level's error: the bar
         !> may be below it)
         logical :: level_change = .false.
+        !> hp: the relative change of mu to the check one degree higher (in the bar); < 0: none
+        real(wp) :: check = -1.0_wp
         real(wp) :: bar = -1.0_wp              !! relative error bar; < 0: none
         character(len=:), allocatable :: skipped   !! why no estimate (unallocated: no reason)
         real(wp) :: roundoff = -1.0_wp         !! relative round-off bound of mu; < 0: unknown
@@ -319,7 +321,10 @@ contains
                     ! the change is the previous level's error: the bar may be below it
                     text = text//'  relative change of mu to the previous hp level: '// &
                         short_real_text(e%estimate)//' (the error of that level); error bar '// &
-                        short_real_text(e%bar)//NL
+                        short_real_text(e%bar)
+                    if (e%check >= 0.0_wp) text = text//' (with the check one degree higher, '// &
+                        'which moves mu by '//short_real_text(e%check)//')'
+                    text = text//NL
                 else if (e%estimated) then
                     text = text//'  relative error estimate of mu: '// &
                         short_real_text(e%estimate)//' ('//e%estimate_label//'); error bar '// &

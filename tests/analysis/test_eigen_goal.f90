@@ -38,6 +38,7 @@ program test_eigen_goal
         call degrees_rise_by_one_per_level(t, hp)
     end if
     call one_climb_serves_many_lambdas(t)
+    call capped_degrees_cannot_fool_the_bar(t)
     call t%report()
 
 contains
@@ -204,11 +205,48 @@ contains
             call t%check('hp: the result''s mu and bar are the last level''s', &
                          abs(real(out%res%spec%mu(out%res%spec%lowest_positive()), wp) - mu) <= &
                          0.0_wp .and. abs(out%res%error%bar - bar) <= 0.0_wp .and. &
-                         out%res%error%method == HP_ESTIMATE)
+                         out%res%error%method == HP_ESTIMATE .and. out%res%error%check >= 0.0_wp)
             call t%check('hp: the outcome says the tolerance was met', &
                          index(out%outcome, ' met at level ') > 0)
         end associate
     end subroutine converges_to_the_truth
+
+    !> &adapt p_max = 2 to 1e-6 from 2 x 2 P1: the inner cells stay at degree 2, the changes
+    !> between levels vanish while the error stays (1e-4 relative, docs/adaptive.md). The
+    !> quoted bar (last level, with the check one degree higher folded in) covers the true
+    !> error against REF_MU (graded P4, an independent computation), the run does not claim
+    !> the tolerance and says the cap stops convergence. The uncapped loop (hp_loop's run)
+    !> made its check with more dofs than its last level and stays met within its bar.
+    subroutine capped_degrees_cannot_fool_the_bar(t)
+        type(test_suite_t), intent(inout) :: t
+        type(adapted_eigen_t) :: out
+        type(config_t) :: config
+        type(status_t) :: stat
+        real(wp) :: true_error
+        call adaptive_scene('eigen', 'hp', 1.0e-6_wp, 0, 'unused', config)
+        config%adapt%p_max = 2
+        call run(config, out, stat)
+        call t%check('p_max = 2: runs', stat%ok() .and. allocated(out%levels))
+        if (.not. stat%ok()) return
+        associate (last => out%levels(size(out%levels)))
+            true_error = abs(last%mu - REF_MU)/REF_MU
+            call t%check('p_max = 2: the error stays above the tolerance', &
+                         true_error > 1.0e-6_wp)
+            call t%check('p_max = 2: bar >= |mu - truth| / truth', last%error_bar >= true_error)
+            call t%check('p_max = 2: the check ran one degree higher', &
+                         last%check_dofs > last%n_dofs .and. last%check_change > 0.0_wp)
+            call t%check('p_max = 2: not converged, the cap named', .not. out%converged .and. &
+                         index(out%outcome, 'p_max = 2 caps the degrees') > 0 .and. &
+                         index(out%outcome, 'the check with every degree raised by one') > 0)
+        end associate
+        call hp_loop(out)
+        if (.not. allocated(out%levels)) return
+        associate (last => out%levels(size(out%levels)))
+            call t%check('p_max = 20: checked with more dofs, met, bar >= true error', &
+                         last%check_dofs > last%n_dofs .and. out%converged .and. &
+                         last%error_bar >= abs(last%mu - REF_MU)/REF_MU)
+        end associate
+    end subroutine capped_degrees_cannot_fool_the_bar
 
     !> Every level after the first carries a bar, at least its true relative error; the
     !> first has none (no previous level to compare with).

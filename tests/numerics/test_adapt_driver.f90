@@ -9,7 +9,7 @@ module adapt_driver_doubles
     use method_options, only: adapt_options_t
     use problem, only: problem_t
     use sparse_cholesky, only: cholesky_t
-    use adapt_driver, only: refiner_t, adapt_goal_t, adapt_level_t, judge_target
+    use adapt_driver, only: refiner_t, adapt_goal_t, adapt_level_t, judge_target, check_target
     implicit none
     private
     public :: counting_refiner_t, geometric_goal_t
@@ -17,6 +17,8 @@ module adapt_driver_doubles
     !> Levels 1, 2, ... of 4^k free dofs; bars from the change between levels.
     type, extends(refiner_t) :: counting_refiner_t
         logical :: with_estimates = .false.   !! answer estimated() so (for judge_target)
+        logical :: with_check = .false.       !! answer checked() so
+        integer :: capped_from = huge(0)      !! cap_words says 'capped' from this level on
     contains
         procedure :: begin => counting_begin
         procedure :: next => counting_next
@@ -24,6 +26,8 @@ module adapt_driver_doubles
         procedure :: series_bar => counting_series_bar
         procedure :: estimated => counting_estimated
         procedure :: strategy_words => counting_words
+        procedure :: checked => counting_checked
+        procedure :: cap_words => counting_cap_words
     end type counting_refiner_t
 
     !> Target i converges like 1 + rate(i)^k; levels from `refuse_from` on are refused.
@@ -33,11 +37,15 @@ module adapt_driver_doubles
         real(wp), allocatable :: bar(:)       !! each target's bar at its last level
         integer, allocatable :: dofs(:)       !! and that level's dofs
         integer :: refuse_from = huge(0)
+        !> its check (counting_refiner_t with_check) finds this times the bar from the levels
+        real(wp) :: check_factor = 0.0_wp
+        integer :: checks = 0                 !! checks made
     contains
         procedure :: solve => geometric_solve
         procedure :: judge => geometric_judge
         procedure :: bar_text => geometric_bar_text
         procedure :: mark => geometric_mark
+        procedure :: check => geometric_check
     end type geometric_goal_t
 
 contains
@@ -114,6 +122,48 @@ contains
         character(len=:), allocatable :: words
         words = ''
     end function counting_words
+
+    pure logical function counting_checked(this)
+        class(counting_refiner_t), intent(in) :: this
+        counting_checked = this%with_check
+    end function counting_checked
+
+    pure function counting_cap_words(this, last) result(words)
+        class(counting_refiner_t), intent(in) :: this
+        type(adapt_level_t), intent(in) :: last
+        character(len=:), allocatable :: words
+        words = ''
+        if (last%number >= this%capped_from) words = 'capped'
+    end function counting_cap_words
+
+    !> The check of level `last`: each target's bar becomes the larger of its own and
+    !> check_factor times it ('the check says so'; '; capped' where the refiner says so).
+    subroutine geometric_check(this, scn, start, refiner, last, tolerance, reopen, timings, &
+                               stat)
+        class(geometric_goal_t), intent(inout) :: this
+        type(scene_t), intent(in) :: scn
+        type(problem_t), intent(in) :: start
+        class(refiner_t), intent(in) :: refiner
+        type(adapt_level_t), intent(in) :: last
+        real(wp), intent(in) :: tolerance
+        logical, intent(in) :: reopen
+        type(timings_t), intent(inout) :: timings
+        type(status_t), intent(out) :: stat
+        real(wp) :: series
+        character(len=:), allocatable :: why
+        integer :: i
+        this%checks = this%checks + 1
+        why = 'the check says so'
+        if (len(refiner%cap_words(last)) > 0) why = why//'; '//refiner%cap_words(last)
+        do i = 1, size(this%rate)
+            if (this%bar(i) < 0.0_wp) cycle
+            series = this%bar(i)
+            this%bar(i) = max(series, this%check_factor*series)
+            call check_target(this%targets(i), tolerance, series, this%bar(i), -1.0_wp, &
+                              reopen, why)
+        end do
+        stat = status_t()
+    end subroutine geometric_check
 
     !> Every active target's value 1 + q^k at level k, its bar over its levels so far.
     subroutine geometric_solve(this, scn, refiner, level, loop_start, timings, refused, stat)
@@ -208,6 +258,8 @@ program test_adapt_driver
     call max_dofs_stops_before_the_level(t)
     call refused_levels_stop_the_loop(t)
     call judge_target_rules(t)
+    call a_failed_check_climbs_on(t)
+    call a_capped_check_stops(t)
     call t%report()
 
 contains
@@ -290,6 +342,52 @@ contains
                      index(stat%message, 'scene.nml: &adapt: level 1 is refused') == 1)
     end subroutine refused_levels_stop_the_loop
 
+    !> A check that finds 4 times the bar of the levels (rate 0.5: the bar at level k is
+    !> 0.5^(k-1) 0.5 / (1 + 0.5^k)) at every level where the target meets the tolerance:
+    !> the target climbs on until 4 times its bar meets it, at level 12 (closed form: 4 b(11)
+    !> = 1.95e-3, 4 b(12) = 9.8e-4), checked at levels 10, 11 and 12; met. Without the
+    !> refiner's check (with_check false) no check is made.
+    subroutine a_failed_check_climbs_on(t)
+        type(test_suite_t), intent(inout) :: t
+        type(geometric_goal_t) :: goal
+        type(status_t) :: stat
+        call run([0.5_wp], adapt_options_t(tolerance=TOLERANCE), goal, stat, with_check=.true., &
+                 check_factor=4.0_wp)
+        call t%check('failed check: climbs on to level 12, checked 3 times, met', &
+                     stat%ok() .and. goal%solves(1) == 12 .and. goal%checks == 3 .and. &
+                     goal%targets(1)%converged() .and. &
+                     4.0_wp*0.5_wp**12/(1.0_wp + 0.5_wp**12) <= TOLERANCE .and. &
+                     4.0_wp*0.5_wp**11/(1.0_wp + 0.5_wp**11) > TOLERANCE)
+        call run([0.5_wp], adapt_options_t(tolerance=TOLERANCE), goal, stat, &
+                 check_factor=4.0_wp)
+        call t%check('no check without the refiner''s: met at level 10', &
+                     goal%checks == 0 .and. goal%solves(1) == 10 .and. &
+                     goal%targets(1)%converged())
+    end subroutine a_failed_check_climbs_on
+
+    !> The same check where the refiner says more levels cannot help (capped): the target
+    !> stops at level 10 with the check's words and the refiner's, not converged; a check
+    !> that agrees (factor 1) leaves it met; at max_levels a failed check stops it too.
+    subroutine a_capped_check_stops(t)
+        type(test_suite_t), intent(inout) :: t
+        type(geometric_goal_t) :: goal
+        type(status_t) :: stat
+        call run([0.5_wp], adapt_options_t(tolerance=TOLERANCE), goal, stat, with_check=.true., &
+                 check_factor=4.0_wp, capped_from=1)
+        call t%check('capped check: stopped at level 10, saying why', stat%ok() .and. &
+                     goal%solves(1) == 10 .and. goal%checks == 1 .and. &
+                     goal%targets(1)%state == TARGET_STOPPED .and. goal%targets(1)%outcome == &
+                     'tolerance 1.00E-03 not met: the check says so; capped')
+        call run([0.5_wp], adapt_options_t(tolerance=TOLERANCE), goal, stat, with_check=.true., &
+                 check_factor=1.0_wp, capped_from=1)
+        call t%check('agreeing check: met at level 10', goal%solves(1) == 10 .and. &
+                     goal%checks == 1 .and. goal%targets(1)%converged())
+        call run([0.5_wp], adapt_options_t(tolerance=TOLERANCE, max_levels=10), goal, stat, &
+                 with_check=.true., check_factor=4.0_wp)
+        call t%check('failed check at max_levels: stopped', goal%solves(1) == 10 .and. &
+                     goal%checks == 1 .and. goal%targets(1)%state == TARGET_STOPPED)
+    end subroutine a_capped_check_stops
+
     !> judge_target, case by case. With levels that carry their estimate: a missing bar
     !> stops the target with the reason; a bar within the tolerance at level 0 is not yet met
     !> (nothing confirms it), at level 1 it is; a round-off part at least half the bar is the
@@ -343,12 +441,14 @@ contains
     end subroutine judge
 
     !> The loop with targets of `rates` as `adapt` asks.
-    subroutine run(rates, adapt, goal, stat, refuse_from)
+    subroutine run(rates, adapt, goal, stat, refuse_from, with_check, check_factor, capped_from)
         real(wp), intent(in) :: rates(:)
         type(adapt_options_t), intent(in) :: adapt
         type(geometric_goal_t), intent(out) :: goal
         type(status_t), intent(out) :: stat
-        integer, intent(in), optional :: refuse_from
+        integer, intent(in), optional :: refuse_from, capped_from
+        logical, intent(in), optional :: with_check
+        real(wp), intent(in), optional :: check_factor
         type(counting_refiner_t) :: refiner
         type(scene_t) :: scn
         type(problem_t) :: start
@@ -365,6 +465,9 @@ contains
             goal%targets(i)%outcome = ''
         end do
         if (present(refuse_from)) goal%refuse_from = refuse_from
+        if (present(with_check)) refiner%with_check = with_check
+        if (present(capped_from)) refiner%capped_from = capped_from
+        if (present(check_factor)) goal%check_factor = check_factor
         call adapt_levels(scn, adapt, start, refiner, goal, timings, stat)
     end subroutine run
 

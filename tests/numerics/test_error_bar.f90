@@ -7,7 +7,8 @@
 program test_error_bar
     use kinds, only: wp
     use error_bar, only: single_bar, level_bar, hp_level_bar, hp_run_bar, three_mesh_bar, &
-                         level_bar_factor, BAR_FACTOR, LEVEL_FACTOR, BAR_WINDOW, HP_FASTEST
+                         level_bar_factor, BAR_FACTOR, LEVEL_FACTOR, BAR_WINDOW, HP_FASTEST, &
+                         checked_bar, CHECK_FACTOR
     use testing, only: test_suite_t
     implicit none
     type(test_suite_t) :: t
@@ -27,9 +28,38 @@ program test_error_bar
     call check_hp_stall()
     call check_three_mesh_orders()
     call check_three_mesh_limits()
+    call check_checked_bar()
     call t%report()
 
 contains
+
+    !> The check one degree higher: a level whose changes vanish (series bar 1e-12) while it
+    !> is 2e-3 from the check gets CHECK_FACTOR times that plus both round-off parts; a
+    !> check that agrees leaves the series bar; no series bar or no check value: none. And
+    !> the factor's claim: a level error e with the check's error q e, q <= 2/3 of either
+    !> sign, is covered (|e| <= CHECK_FACTOR |d|, d = e - q e).
+    subroutine check_checked_bar()
+        real(wp), parameter :: RATIOS(5) = [-0.66_wp, -0.5_wp, 0.0_wp, 0.5_wp, 0.66_wp]
+        real(wp) :: q, e
+        integer :: i
+        call t%check_close('checked: the difference decides', checked_bar(1.0e-12_wp, 1.0_wp, &
+                           .true., 1.002_wp, 1.0e-13_wp, 2.0e-13_wp), &
+                           CHECK_FACTOR*2.0e-3_wp + 3.0e-13_wp, 1.0e-15_wp)
+        call t%check_close('checked: an agreeing check leaves the series bar', &
+                           checked_bar(1.0e-6_wp, 2.0_wp, .true., 2.0_wp + 2.0e-9_wp, -1.0_wp, &
+                                       -1.0_wp), 1.0e-6_wp, 1.0e-20_wp)
+        call t%check('checked: no series bar, none', checked_bar(-1.0_wp, 1.0_wp, .true., &
+                     1.5_wp, 0.0_wp, 0.0_wp) < 0.0_wp)
+        call t%check('checked: no check value, none', checked_bar(1.0e-6_wp, 1.0_wp, .false., &
+                     0.0_wp, 0.0_wp, 0.0_wp) < 0.0_wp)
+        do i = 1, size(RATIOS)
+            q = RATIOS(i)
+            e = 1.0e-3_wp
+            call t%check('checked: covers a check error q e, |q| <= 2/3', &
+                         checked_bar(0.0_wp, 1.0_wp + e, .true., 1.0_wp + q*e, -1.0_wp, &
+                                     -1.0_wp) >= e/(1.0_wp + e))
+        end do
+    end subroutine check_checked_bar
 
     subroutine check_single()
         call t%check_close('one mesh: BAR_FACTOR times the estimate', &

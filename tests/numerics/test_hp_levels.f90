@@ -31,6 +31,7 @@ program test_hp_levels
     call levels_climb(t, 2)
     call limits(t)
     call bar_is_hp_run_bar(t)
+    call check_level_is_one_degree_higher(t)
     call t%report()
 
 contains
@@ -78,6 +79,44 @@ contains
             previous = level%prob%dofs%n_free
         end do
     end subroutine levels_climb
+
+    !> The check of level 3 with p_max = 2: the same cells, every degree the level's + 1
+    !> (degrees 2 to 3), more dofs, K symmetric positive definite; the refiner is checked and
+    !> names the cap (level 3 would have degree 4 without it), and with p_max = 20 it names
+    !> none.
+    subroutine check_level_is_one_degree_higher(t)
+        type(test_suite_t), intent(inout) :: t
+        type(run_inputs_t) :: inputs
+        type(problem_t) :: start
+        type(hp_refiner_t) :: refiner
+        type(every_cell_t) :: goal
+        type(adapt_level_t) :: level, check
+        type(timings_t) :: timings
+        type(cholesky_t) :: chol
+        type(status_t) :: stat
+        logical :: too_big
+        integer :: n
+        call begin(2, 0, inputs, start, refiner, stat)
+        do n = 1, 3
+            if (stat%ok()) call refiner%next(inputs%scene, start, goal, n - 1, level, too_big, &
+                                             timings, stat)
+        end do
+        if (stat%ok()) call refiner%check_level(start, level, check, timings, stat)
+        call t%check('check of level 3: built', stat%ok())
+        if (.not. stat%ok()) return
+        call t%check('check: the same cells, every degree + 1', &
+                     check%prob%mesh%n_cells() == level%prob%mesh%n_cells() .and. &
+                     all(check%degree == level%degree + 1) .and. check%number == 3)
+        call t%check('check: more dofs, the space''s', check%prob%dofs%n_free > &
+                     level%prob%dofs%n_free .and. check%prob%dofs%n_free == check%space%n_free())
+        call refiner%factor(check, chol, timings, stat)
+        call t%check('check: K factored (positive definite)', stat%ok())
+        call chol%free()
+        call t%check('p_max = 2 at level 3: checked, the cap named', refiner%checked() .and. &
+                     index(refiner%cap_words(level), 'p_max = 2 caps the degrees') > 0)
+        call begin(20, 0, inputs, start, refiner, stat)
+        call t%check('p_max = 20 at level 3: no cap', len(refiner%cap_words(level)) == 0)
+    end subroutine check_level_is_one_degree_higher
 
     !> Quadrilaterals refused at begin; max_dofs below the first level's dofs: bad input;
     !> between the first's and the second's: the second is too big.

@@ -6,6 +6,7 @@ module goal_doubles
     use status, only: status_t
     use timer, only: timings_t
     use scene, only: scene_t
+    use problem, only: problem_t
     use adapt_driver, only: adapt_goal_t, adapt_level_t, refiner_t
     implicit none
     private
@@ -19,6 +20,7 @@ module goal_doubles
         procedure :: judge => every_judge
         procedure :: bar_text => every_bar_text
         procedure :: mark => every_mark
+        procedure :: check => every_check
     end type every_cell_t
 
 contains
@@ -50,6 +52,19 @@ contains
         character(len=:), allocatable :: text
         text = 'none'
     end function every_bar_text
+
+    !> Nothing to check (it solves nothing).
+    subroutine every_check(this, scn, start, refiner, last, tolerance, reopen, timings, stat)
+        class(every_cell_t), intent(inout) :: this
+        type(scene_t), intent(in) :: scn
+        type(problem_t), intent(in) :: start
+        class(refiner_t), intent(in) :: refiner
+        type(adapt_level_t), intent(in) :: last
+        real(wp), intent(in) :: tolerance
+        logical, intent(in) :: reopen
+        type(timings_t), intent(inout) :: timings
+        type(status_t), intent(out) :: stat
+    end subroutine every_check
 
     function every_mark(this, theta) result(marked)
         class(every_cell_t), intent(in) :: this
