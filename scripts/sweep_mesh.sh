@@ -280,7 +280,7 @@ collect() {
     [[ -d $outdir/runs ]] || die "$outdir/runs: no runs to collect"
     tmp=$(mktemp -d) || exit 1
     {
-        echo "family,element,mesh,n,h,n_dofs,n_contact,solver,lowest_positive_mu,time_total_s,time_output_s,time_mesh_s,wall_s,peak_rss_mb,status,message"
+        echo "family,element,mesh,n,h,n_dofs,n_contact,solver,lowest_positive_mu,time_total_s,time_output_s,time_mesh_s,wall_s,peak_rss_mb,status,message,error_bar"
         for dir in "$outdir"/runs/*/; do
             [[ -f $dir/run.info ]] || continue
             collect_row "$dir"
@@ -326,12 +326,12 @@ collect_row() {
         # The last line of time.txt is "wall_s peak_rss_kb" (GNU time) or "wall_s".
         read -r wall rss < <(tail -n 1 "$dir/time.txt" 2>/dev/null)
         [[ -n ${rss:-} ]] && rss=$(awk -v k="$rss" 'BEGIN { printf "%.1f", k / 1024 }')
-        echo "$family,$element,$mesh,$n,$h,$(json_value "$summary" n_dofs),$(json_value "$summary" n_contact),$(json_value "$summary" solver),$(json_value "$summary" lowest_positive_mu),$(json_value "$summary" time_total_s),$(json_value "$summary" time_output_s),$mesh_s,${wall:-},${rss:-},ok,"
+        echo "$family,$element,$mesh,$n,$h,$(json_value "$summary" n_dofs),$(json_value "$summary" n_contact),$(json_value "$summary" solver),$(json_value "$summary" lowest_positive_mu),$(json_value "$summary" time_total_s),$(json_value "$summary" time_output_s),$mesh_s,${wall:-},${rss:-},ok,,$(json_value "$summary" lowest_positive_error_bar)"
     else
         status=$(cat "$dir/status" 2>/dev/null || echo "failed: not finished")
         [[ $status == ok ]] && status="failed: summary.json missing"
         message=$(echo "${status#failed: }" | tr ',' ';')
-        echo "$family,$element,$mesh,$n,$h,,,,,,,$mesh_s,,,failed,$message"
+        echo "$family,$element,$mesh,$n,$h,,,,,,,$mesh_s,,,failed,$message,"
     fi
 }
 
@@ -345,16 +345,18 @@ print_tables() {
     echo
     echo "results ($outdir/results.csv):"
     awk -F, 'NR == 1 { next }
-        { printf "  %-12s N = %-5s mu = %-20s time %9.3g s  peak %8.1f MB  %s\n", $1, $4, \
-              ($15 == "ok" ? $9 : "-"), $10, $14, ($15 == "ok" ? "" : "FAILED: " $16) }' \
+        { printf "  %-12s N = %-5s mu = %-20s bar %-9s time %9.3g s  peak %8.1f MB  %s\n", \
+              $1, $4, ($15 == "ok" ? $9 : "-"), ($17 == "" ? "-" : sprintf("%.3g", $17)), \
+              $10, $14, ($15 == "ok" ? "" : "FAILED: " $16) }' \
         "$outdir/results.csv"
     if [[ -s $outdir/extrapolation.csv ]]; then
         echo "extrapolation ($outdir/extrapolation.csv):"
         awk -F, 'NR == 1 { next }
-            { printf "  %-12s N = %s,%s,%s  limit %-20s order %-8.5s error %-9s %s\n", \
+            { printf "  %-12s N = %s,%s,%s  limit %-20s order %-8.5s est %-9s bar %-9s %s\n", \
                   $1, $5, $6, $7, ($9 == "" ? "-" : $9), ($10 == "" ? "-" : $10), \
-                  ($12 == "" ? "-" : sprintf("%.3g", $12)), \
-                  ($16 == "yes" ? "(reference) " : "") $17 }' \
+                  ($13 == "" ? "-" : sprintf("%.3g", $13)), \
+                  ($14 == "" ? "-" : sprintf("%.3g", $14)), \
+                  ($17 == "yes" ? "(reference) " : "") $18 }' \
             "$outdir/extrapolation.csv"
     fi
 }
@@ -401,7 +403,7 @@ plot() {
             "$outdir/tradeoff.csv" | sort -g >>"$tmp/tradeoff.dat"
         printf '\n\n' >>"$tmp/tradeoff.dat"
     done
-    reference=$(awk -F, 'NR == 2 { print $12 }' "$outdir/tradeoff.csv")
+    reference=$(awk -F, 'NR == 2 { print $13 }' "$outdir/tradeoff.csv")
     # Tics at h = 1/N labelled '1/N': every N of the sweep, or only powers of two when many.
     local xtics
     xtics=$(awk -F, -v cn="$(csv_column "$outdir/results.csv" n)" -v cs="$col_status" \
@@ -412,7 +414,7 @@ plot() {
          function and_pow2(n) { while (n > 1 && n % 2 == 0) n /= 2; return n == 1 }' \
         "$outdir/results.csv")
     local ref_limit
-    ref_limit=$(awk -F, 'NR == 2 { print $11 }' "$outdir/tradeoff.csv")
+    ref_limit=$(awk -F, 'NR == 2 { print $12 }' "$outdir/tradeoff.csv")
 
     cat >"$tmp/plot.gp" <<EOF
 set terminal $terminal

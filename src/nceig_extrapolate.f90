@@ -2,9 +2,12 @@
 !> nceig-extrapolate RESULTS.csv | --tradeoff RESULTS.csv: the numerics of a mesh
 !> refinement sweep (scripts/sweep_mesh.sh). From the table of runs (columns family, h,
 !> lowest_positive_mu; optional status, element, mesh, n, n_dofs, time_total_s,
-!> time_output_s, wall_s, peak_rss_mb) it prints on standard output either the Richardson
-!> extrapolation of each family (extrapolation.csv) or, with --tradeoff, every run's relative
-!> error against the best extrapolated limit next to its cost (tradeoff.csv).
+!> time_output_s, wall_s, peak_rss_mb, error_bar) it prints on standard output either the
+!> Richardson extrapolation of each family (extrapolation.csv) or, with --tradeoff, every
+!> run's relative error against the best extrapolated limit next to its cost (tradeoff.csv).
+!> Each run's own error bar (error_bar, from its summary.json) is carried beside the
+!> extrapolation's estimate: the finest run's in extrapolation.csv, every run's in
+!> tradeoff.csv, so that a reader sees both and never has to trust the extrapolation alone.
 program nceig_extrapolate
     use iso_fortran_env, only: output_unit
     use kinds, only: wp
@@ -150,7 +153,7 @@ contains
 
         write (output_unit, '(a)') 'family,element,mesh,n_meshes,n_coarse,n_middle,n_fine,'// &
             'mu_finest,limit,order,constant,error_estimate,relative_error_estimate,'// &
-            'previous_limit,previous_order,reference,note'
+            'finest_error_bar,previous_limit,previous_order,reference,note'
         do f = 1, size(families)
             e = estimates(f)
             note = fit_note(e%code)
@@ -169,7 +172,8 @@ contains
                 mesh_n(e%h_used(1))//','//mesh_n(e%h_used(2))//','//mesh_n(e%h_used(3))//','// &
                 field(e%finest)//','//field(e%limit)//','//field(e%order)//','// &
                 field(e%constant)//','//field(e%error_estimate)//','// &
-                field(relative(e%error_estimate, e%limit))//','//field(e%previous_limit)//','// &
+                field(relative(e%error_estimate, e%limit))//','// &
+                column_text(finest_row(f), 'error_bar')//','//field(e%previous_limit)//','// &
                 field(e%previous_order)//','//trim(merge('yes', 'no ', f == best))//','//note
         end do
     end subroutine print_extrapolation
@@ -182,7 +186,7 @@ contains
         col_total = table%column('time_total_s')
         col_output = table%column('time_output_s')
         write (output_unit, '(a)') 'family,element,mesh,n,n_dofs,time_s,wall_s,peak_rss_mb,'// &
-            'lowest_positive_mu,relative_error,reference_limit,reference_family'
+            'lowest_positive_mu,relative_error,error_bar,reference_limit,reference_family'
         do row = 1, table%n_rows()
             if (family_of_row(row) == 0) cycle
             mu = table%number(row, col_mu)
@@ -196,15 +200,33 @@ contains
                 column_text(row, 'n')//','//column_text(row, 'n_dofs')//','//field(time)//','// &
                 column_text(row, 'wall_s')//','//column_text(row, 'peak_rss_mb')//','// &
                 field(mu)//','//field(relative(abs(mu - reference), reference))//','// &
-                field(reference)//','//families(best)%text
+                column_text(row, 'error_bar')//','//field(reference)//','//families(best)%text
         end do
     end subroutine print_tradeoff
 
+    !> The row of family f with the finest mesh (smallest h) and a value; 0 when none.
+    integer function finest_row(f) result(finest)
+        integer, intent(in) :: f
+        integer :: row
+        finest = 0
+        do row = 1, table%n_rows()
+            if (family_of_row(row) /= f) cycle
+            if (.not. ieee_is_finite(table%number(row, col_mu))) cycle
+            if (finest == 0) then
+                finest = row
+            else if (table%number(row, col_h) < table%number(finest, col_h)) then
+                finest = row
+            end if
+        end do
+    end function finest_row
+
+    !> Text of column `name` in `row`; '' for row 0 or an absent column.
     function column_text(row, name) result(text)
         integer, intent(in) :: row
         character(len=*), intent(in) :: name
         character(len=:), allocatable :: text
-        text = table%text(row, table%column(name))
+        text = ''
+        if (row > 0) text = table%text(row, table%column(name))
     end function column_text
 
     !> A real as the shortest exact text; empty for NaN and infinities (no value).

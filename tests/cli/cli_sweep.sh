@@ -61,6 +61,28 @@ check 'extrapolation.csv: a row per family' '[[ $(wc -l <"$out/extrapolation.csv
 for key in limit order error_estimate; do
     check "extrapolation.csv has column $key" '[[ -n $(column_of "$out/extrapolation.csv" $key) ]]'
 done
+# Each run's own bar beside the extrapolation: results.csv and tradeoff.csv carry every run's
+# lowest_positive_error_bar, extrapolation.csv the finest run's, copied from summary.json
+# (the same text, so compared exactly; the tiny meshes are under estimate = 'auto''s size).
+bar_of() { jq -r '.lowest_positive_error_bar // empty' "$out/runs/$1/output/summary.json"; }
+for table in results tradeoff; do
+    check "$table.csv has column error_bar, each run's summary.json bar" \
+        '[[ -n $(column_of "$out/$table.csv" error_bar) ]] &&
+         awk -F, -v f="$(column_of "$out/$table.csv" family)" -v n="$(column_of "$out/$table.csv" n)" \
+             -v b="$(column_of "$out/$table.csv" error_bar)" \
+             "NR > 1 { gsub(\":\", \"-\", \$f); printf \"%s_n%04d %s\\n\", \$f, \$n, \$b }" \
+             "$out/$table.csv" >"$work/bars" && [[ $(wc -l <"$work/bars") -eq 6 ]] &&
+         while read -r run bar; do
+             [[ -n $bar && $bar == "$(bar_of "$run")" ]] || exit 1
+         done <"$work/bars"'
+done
+check 'extrapolation.csv: finest_error_bar is the N = 8 run'"'"'s summary.json bar' \
+    '[[ -n $(column_of "$out/extrapolation.csv" finest_error_bar) ]] &&
+     for family in p1:right q1; do
+         [[ $(awk -F, -v f="$family" -v b="$(column_of "$out/extrapolation.csv" finest_error_bar)" \
+                  "\$1 == f { print \$b }" "$out/extrapolation.csv") == \
+            "$(bar_of "${family//:/-}_n0008")" && -n $(bar_of "${family//:/-}_n0008") ]] || exit 1
+     done'
 check 'tradeoff.csv: a row per run with a value' '[[ $(wc -l <"$out/tradeoff.csv") -eq 7 ]]'
 check 'tradeoff.csv has relative_error and time_s' \
     '[[ -n $(column_of "$out/tradeoff.csv" relative_error) && -n $(column_of "$out/tradeoff.csv" time_s) ]]'
