@@ -257,9 +257,10 @@ contains
         end if
     end function contact_free_crossing
 
-    !> The lambda of a contact-clamped wedge at which a real exponent passes through alpha =
-    !> 0: (2 kappa omega - sin 2 omega) / (2 sin^2 omega), kappa = 3 - 4 nu. There the
-    !> exponent that is negative below it turns positive (its field gains finite energy);
+    !> The lambda of a contact-clamped wedge at which a real exponent reaches alpha = 0:
+    !> (2 kappa omega - sin 2 omega) / (2 sin^2 omega), kappa = 3 - 4 nu. At 90 degrees the
+    !> exponent is negative below it and positive above; at 60 degrees it is positive on
+    !> both sides, touching 0 there before it leaves the real axis (scripts/dev/wedge_table);
     !> huge for omega = pi or 2 pi.
     elemental real(wp) function contact_clamped_crossing(omega, poisson) result(lambda)
         real(wp), intent(in) :: omega, poisson
