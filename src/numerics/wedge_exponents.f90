@@ -27,6 +27,7 @@
 !> leaves these out. A field has finite energy near the apex when Re alpha > 0.
 module wedge_exponents
     use kinds, only: wp
+    use sorting, only: sort_index
     implicit none
     private
     public :: wedge_determinant, wedge_roots, contact_free_crossing, contact_clamped_crossing
@@ -223,22 +224,12 @@ contains
         end function is_trivial
     end subroutine wedge_roots
 
-    !> Insertion sort by real part, then imaginary part.
+    !> Ascending by real part, then imaginary part: two stable sorts (sorting: sort_index),
+    !> the second key first.
     pure subroutine sort_roots(z)
         complex(wp), intent(inout) :: z(:)
-        complex(wp) :: key
-        integer :: i, j
-        do i = 2, size(z)
-            key = z(i)
-            j = i - 1
-            do while (j >= 1)
-                if (real(z(j)) < real(key) - SAME_ROOT) exit
-                if (abs(real(z(j)) - real(key)) <= SAME_ROOT .and. aimag(z(j)) <= aimag(key)) exit
-                z(j + 1) = z(j)
-                j = j - 1
-            end do
-            z(j + 1) = key
-        end do
+        z = z(sort_index(aimag(z)))
+        z = z(sort_index(real(z)))
     end subroutine sort_roots
 
     !> The lambda of a contact-free wedge of opening omega at which a real exponent passes

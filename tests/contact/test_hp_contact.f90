@@ -8,10 +8,7 @@ program test_hp_contact
     use status, only: status_t
     use testing, only: test_suite_t
     use mesh, only: mesh_t
-    use element_types, only: ELEMENT_P1
-    use mesh_structured, only: structured_rectangle
-    use mesh_singular, only: singular_vertices
-    use mesh_geometric, only: geometric_mesh, cell_layers, layer_degrees
+    use fixtures, only: square_hp_level, REF_LAMBDA_PLUS
     use hp_space, only: hp_space_t
     use hp_eigen, only: hp_factored_problem
     use hp_contact, only: half_degree_forces
@@ -23,9 +20,8 @@ program test_hp_contact
     use critical_lambda, only: thresholds_t, pencil_thresholds, restricted_pencil, SIDE_PLUS, &
                                SIDE_MINUS
     implicit none
-    !> the graded-P4 continuum value of the reference scene's lambda+ (tests/data/truths.csv,
-    !> uncertain by 5.6e-10 relative); lambda- is its mirror image
-    real(wp), parameter :: LAMBDA_TRUTH = 1.9447114426738574_wp
+    !> REF_LAMBDA_PLUS: the graded-P4 continuum value of the reference scene's lambda+
+    !> (tests/data/truths.csv, uncertain by 5.6e-10 relative); lambda- is its mirror image
     type(test_suite_t) :: t
 
     t%name = 'test_hp_contact'
@@ -48,17 +44,10 @@ contains
         type(csr_matrix_t) :: k
         type(cholesky_t) :: chol
         type(timings_t) :: timings
-        real(wp), allocatable :: points(:, :)
         integer, allocatable :: degree(:)
-        real(wp) :: h_min
-        call structured_rectangle(1.0_wp, 1.0_wp, 2, 2, ELEMENT_P1, 'right', m, stat)
+        call square_hp_level(level, level + 1, m, graded, degree, stat)
         if (.not. stat%ok()) return
         if (present(bottom)) bottom = m%part_index('bottom')
-        allocate (points(2, 0))   ! (gfortran 12 warns of an unallocated one at -O3)
-        points = m%coords(:, singular_vertices(m))
-        call geometric_mesh(m, points, 0.15_wp, level, graded, h_min, stat)
-        if (.not. stat%ok()) return
-        degree = layer_degrees(cell_layers(graded, points, 0.15_wp, h_min), 1, 1.0_wp, level + 1)
         call hp_factored_problem(graded, degree, [m%part_index('top')], m%part_index('bottom'), &
                                  1.0_wp, 0.3_wp, space, contact, k, chol, timings, stat)
         if (stat%ok()) call contact_flexibility(chol, contact, kt_nn, kt_nt, stat)
@@ -118,9 +107,9 @@ contains
             write (what, '(a, i0)') 'half-degree forces, level ', level
             call t%check(trim(what)//': both thresholds', all(thr%found))
             if (.not. all(thr%found)) cycle
-            call t%check_close(trim(what)//': lambda+', thr%lambda(SIDE_PLUS), LAMBDA_TRUTH, &
+            call t%check_close(trim(what)//': lambda+', thr%lambda(SIDE_PLUS), REF_LAMBDA_PLUS, &
                                tolerance)
-            call t%check_close(trim(what)//': lambda-', thr%lambda(SIDE_MINUS), -LAMBDA_TRUTH, &
+            call t%check_close(trim(what)//': lambda-', thr%lambda(SIDE_MINUS), -REF_LAMBDA_PLUS, &
                                tolerance)
             call t%check_close(trim(what)//': mirror image', -thr%lambda(SIDE_MINUS), &
                                thr%lambda(SIDE_PLUS), 1.0e-9_wp)

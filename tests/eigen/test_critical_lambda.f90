@@ -6,7 +6,7 @@ program test_critical_lambda
     use kinds, only: wp
     use status, only: status_t
     use testing, only: test_suite_t
-    use fixtures, only: single_triangle, contact_scene
+    use fixtures, only: single_triangle, contact_scene, csr_to_dense
     use mesh, only: mesh_t
     use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2
     use mesh_structured, only: structured_rectangle
@@ -312,18 +312,13 @@ contains
         type(thresholds_t) :: full, restricted
         type(status_t) :: stat
         real(wp), allocatable :: rn(:, :), rt(:, :), c(:, :), mass(:, :)
-        integer :: side, i, k
+        integer :: side
         call structured_rectangle(1.0_wp, 1.0_wp, 8, 8, ELEMENT_P2, 'right', m, stat)
         call contact_scene(m, [m%part_index('top')], m%part_index('bottom'), 0.3_wp, s, stat)
         if (stat%ok()) call pencil_thresholds(s%kt_nn, s%kt_nt, full, stat)
         call t%check('every force kept: scene built', stat%ok())
         if (.not. stat%ok()) return
-        allocate (mass(s%mass%n(), s%mass%n()), source=0.0_wp)
-        do i = 1, s%mass%n()
-            do k = s%mass%row_start(i), s%mass%row_start(i + 1) - 1
-                mass(i, s%mass%col(k)) = s%mass%val(k)
-            end do
-        end do
+        mass = csr_to_dense(s%mass)
         call restricted_pencil(s%kt_nn, s%kt_nt, mass, [(.true., side=1, size(mass, 1))], rn, &
                                rt, c)
         call pencil_thresholds(rn, rt, restricted, stat)
