@@ -140,7 +140,8 @@ program pencil_probe
         end select
     end do
     if (len(input) == 0) call fail('usage: pencil_probe INPUT.nml [--set g%v=x]... '// &
-                                   '[--level L] [--degrees D] [--window A B] [--scan A B N] [--profile]')
+                                   '[--level L] [--degrees D] [--window A B] [--scan A B N] '// &
+                                   '[--profile]')
 
     call read_input(input, config, stat, settings)
     call check(stat)
@@ -358,7 +359,8 @@ contains
             if (f <= space%n_vertices) cycle
             do e = 1, space%n_edges()
                 if (space%edge_degree(e) < 2) cycle
-                if (f < space%edge_first(e) .or. f > space%edge_first(e) + space%edge_degree(e) - 2) cycle
+                if (f < space%edge_first(e) .or. &
+                    f > space%edge_first(e) + space%edge_degree(e) - 2) cycle
                 ! function f has degree f - edge_first + 2; keep degrees up to the multiplier's
                 if (f - space%edge_first(e) + 2 > multiplier_degree(space%edge_degree(e))) &
                     keep(a) = .false.

@@ -20,7 +20,8 @@ program wedge_table
                                          0.5_wp, 1.0_wp, 2.0_wp]
     integer :: i, j
 
-    write (output_unit, '(a)') '| angle | contact-free | contact-clamped, nu = 0.1 | 0.2 | 0.3 | 0.45 |'
+    write (output_unit, '(a)') '| angle | contact-free | contact-clamped, nu = 0.1 | 0.2 | 0.3 '// &
+        '| 0.45 |'
     write (output_unit, '(a)') '|---|---|---|---|---|---|'
     do i = 1, size(ANGLES)
         write (output_unit, '(a, f5.0, a, a, 4(a, a), a)') '| ', ANGLES(i), ' | ', &

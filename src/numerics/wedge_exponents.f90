@@ -19,7 +19,8 @@
 !>   contact-free     (kappa+1) (sin 2 alpha w + alpha sin 2w)
 !>                    + 2 lambda (alpha (2 alpha + kappa + 1) sin^2 w + (kappa - 1) sin^2 alpha w)
 !>   contact-clamped  (kappa+1) (alpha sin 2w - kappa sin 2 alpha w)
-!>                    + 2 lambda (alpha (2 alpha + kappa + 1) sin^2 w - kappa (kappa-1) sin^2 alpha w)
+!>                    + 2 lambda (alpha (2 alpha + kappa + 1) sin^2 w
+!>                                - kappa (kappa - 1) sin^2 alpha w)
 !> (tests/numerics/test_wedge_exponents.f90 checks each against the 4 x 4 system built from
 !> the fields). alpha = 0 is a root of all but clamped-free: the translations of a free or
 !> contact face (for contact-clamped and clamped-clamped an artefact of the basis, whose

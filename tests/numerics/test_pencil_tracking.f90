@@ -34,8 +34,9 @@ contains
     subroutine check_breakpoints()
         real(wp) :: b(N_PROFILE_BINS + 1)
         b = profile_breakpoints()
-        call t%check('breakpoints: from 0 to 1, increasing, symmetric', b(1) == 0.0_wp .and. &
-                     b(size(b)) == 1.0_wp .and. all(b(2:) > b(:size(b) - 1)) .and. &
+        call t%check('breakpoints: from 0 to 1, increasing, symmetric', abs(b(1)) <= 0.0_wp &
+                     .and. abs(b(size(b)) - 1.0_wp) <= 0.0_wp .and. &
+                     all(b(2:) > b(:size(b) - 1)) .and. &
                      all(abs(b + b(size(b):1:-1) - 1.0_wp) <= 1.0e-15_wp))
         call t%check_close('breakpoints: the smallest bin is 2^-13', b(2), 2.0_wp**(-13), &
                            1.0e-15_wp)
@@ -46,7 +47,7 @@ contains
     !> 60 cells graded by 2 toward s = 0: the profiles (bin integrals of g up to the cells the
     !> bin ends cut) agree to better than 0.99, and each agrees with the exact bin integrals.
     subroutine check_profile_mesh_independent()
-        real(wp), allocatable :: uniform(:), graded(:)
+        real(wp) :: uniform(4001), graded(61)
         real(wp) :: exact(N_PROFILE_BINS), b(N_PROFILE_BINS + 1)
         integer :: k
         uniform = [(real(k, wp)/4000.0_wp, k=0, 4000)]
@@ -107,7 +108,7 @@ contains
                      maxval(abs(a - b)) <= 1.0e-15_wp)
         call t%check('profile: largest bin positive', a(maxloc(abs(a), dim=1)) > 0.0_wp)
         call t%check('profile: zero forces give a zero profile', &
-                     all(pencil_profile_bins(s, 0.0_wp*x) == 0.0_wp))
+                     maxval(abs(pencil_profile_bins(s, 0.0_wp*x))) <= 0.0_wp)
     end subroutine check_profile_sign_and_scale
 
     !> Level k - 1 holds a value at 4.35 with its mode at the s = 0 end; level k a value at
@@ -133,6 +134,7 @@ contains
         levels(2)%values = [value_at(3.7_wp, zigzag_mode())]   ! no alike mode: the chain stops
         levels(3)%values = [value_at(4.36_wp, end_mode(0.9_wp)), value_at(3.6_wp, zigzag_mode())]
         levels(4)%values = [value_at(3.5_wp, zigzag_mode()), value_at(4.353_wp, end_mode(0.9_wp))]
+        allocate (chain(0))   ! (gfortran 12 warns of an unallocated one at -O3)
         chain = track_chain(levels, 2)
         call t%check('chain: back to level 3 only', size(chain) == 2 .and. chain(1) == 1)
         chain = track_chain(levels, 1)
