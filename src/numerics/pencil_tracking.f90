@@ -125,8 +125,8 @@ contains
         do a = 1, n
             left = 0.0_wp
             right = 1.0_wp
-            if (a > 1) left = s(a - 1)
-            if (a < n) right = s(a + 1)
+            if (a > 1) left = s(max(1, a - 1))   ! (max: gfortran warns of s(0) otherwise)
+            if (a < n) right = s(min(n, a + 1))
             area = 0.5_wp*(right - left)
             if (area <= 0.0_wp) then   ! a hat of no width: its force at its point
                 k = min(N_PROFILE_BINS, max(1, count(b(2:N_PROFILE_BINS) <= s(a)) + 1))
