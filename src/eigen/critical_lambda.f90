@@ -24,7 +24,7 @@ module critical_lambda
     implicit none
     private
     public :: thresholds_t, pencil_thresholds, lowest_positive_mu, confirm_thresholds
-    public :: reduced_eigenvalues, count_positive
+    public :: reduced_eigenvalues, count_positive, restricted_pencil
     public :: SIDE_PLUS, SIDE_MINUS, SIDE_NAMES, SIDE_LABELS, CONFIRM_OFFSET
 
     integer, parameter :: SIDE_PLUS = 1    !! index of lambda+ > 0 in thresholds_t arrays
@@ -157,6 +157,29 @@ contains
         end do
         thr%real_lambdas = thr%real_lambdas(sort_index(thr%real_lambdas))
     end subroutine pencil_thresholds
+
+    !> The pencil with the contact forces restricted to a coarser space (hp_contact:
+    !> half_degree_forces): forces x = C y, C the columns `keep` of the contact mass `mass`
+    !> (the forces of the kept functions' tractions), each scaled to unit length (a diagonal
+    !> scaling, which leaves the eigenvalues alone and keeps QZ's perturbations relative to
+    !> every column: the columns of cells 1e-8 long are 1e-8 small), and u_n = 0 imposed
+    !> against the same space: (C' Kt_nn C) y = lambda (C' Kt_nt C) y. With every function
+    !> kept, C is invertible and the real eigenvalues are the full pencil's.
+    pure subroutine restricted_pencil(kt_nn, kt_nt, mass, keep, rn, rt, c)
+        real(wp), intent(in) :: kt_nn(:, :), kt_nt(:, :), mass(:, :)   !! (p, p)
+        logical, intent(in) :: keep(:)                                  !! (p)
+        real(wp), allocatable, intent(out) :: rn(:, :), rt(:, :)        !! (q, q)
+        real(wp), allocatable, intent(out) :: c(:, :)                   !! (p, q)
+        integer :: j
+        allocate (c(size(mass, 1), count(keep)))
+        c(:, :) = mass(:, pack([(j, j=1, size(keep))], keep))
+        do j = 1, size(c, 2)
+            c(:, j) = c(:, j)/norm2(c(:, j))
+        end do
+        allocate (rn(size(c, 2), size(c, 2)), rt(size(c, 2), size(c, 2)))
+        rn(:, :) = matmul(transpose(c), matmul(kt_nn, c))
+        rt(:, :) = matmul(transpose(c), matmul(kt_nt, c))
+    end subroutine restricted_pencil
 
     !> The right and left null vectors x, y of C = Kt_nn - lambda Kt_nt at an eigenvalue lambda
     !> of the pencil (QZ's, so C is singular to round-off), each scaled to a largest entry of
