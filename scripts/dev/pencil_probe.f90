@@ -35,6 +35,7 @@ program pencil_probe
     use timer, only: timings_t
     use run_config, only: config_t
     use input_config, only: read_input
+    use run_inputs, only: run_inputs_t, translate_input
     use problem, only: problem_t, build_problem
     use mesh, only: mesh_t
     use mesh_singular, only: singular_vertices
@@ -64,6 +65,7 @@ program pencil_probe
     end interface
 
     type(config_t) :: config
+    type(run_inputs_t) :: inputs
     type(problem_t) :: start, prob
     type(cholesky_t) :: chol
     type(timings_t) :: timings
@@ -145,7 +147,8 @@ program pencil_probe
 
     call read_input(input, config, stat, settings)
     call check(stat)
-    call build_problem(config, start, stat)
+    call translate_input(config, inputs)
+    call build_problem(inputs%scene, start, stat)
     call check(stat)
     if (level == 0) then
         prob = start
