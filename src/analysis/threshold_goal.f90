@@ -46,7 +46,8 @@ module threshold_goal
     use threshold_analysis, only: factor_with_contact_blocks, threshold_result_t, &
                                   solve_thresholds, confirm_and_bound
     use critical_lambda, only: thresholds_t, pencil_thresholds, SIDE_PLUS, SIDE_MINUS, &
-                               SIDE_LABELS, SIDE_NAMES, lowest_positive_mu
+                               SIDE_LABELS, SIDE_NAMES, lowest_positive_mu, restricted_thresholds
+    use hp_contact, only: half_degree_forces
     use error_estimate, only: ENRICHED_CONTACT_MAX
     use threshold_estimate, only: threshold_estimate_t, threshold_displacements, &
                                   estimate_threshold_errors
@@ -155,6 +156,10 @@ module threshold_goal
         type(cholesky_t) :: chol
         logical :: factored = .false.
         type(reduced_blocks_t) :: blocks
+        !> hp: the blocks of the half-degree forces and their lift to the contact functions
+        !> (critical_lambda: restricted_thresholds), where the thresholds are found
+        type(reduced_blocks_t) :: restricted
+        real(wp), allocatable :: lift(:, :)
         type(critical_set_t) :: set
         !> hp: the memory a level's contact blocks may take, in bytes (negative: as the
         !> machine has; absent: the memory available)
@@ -367,18 +372,22 @@ contains
         associate (prob => this%prob, blocks => this%blocks, set => this%set)
             start = wall_time()
             call contact_flexibility(this%chol, prob%contact, blocks%kt_nn, blocks%kt_nt, stat)
-            if (stat%ok()) call pencil_thresholds(blocks%kt_nn, blocks%kt_nt, this%thr, stat)
+            if (.not. stat%ok()) return
+            blocks%mass = prob%contact%mass
+            ! the thresholds, the positive set and its boundary with the forces of half the
+            ! degree (docs/thresholds.md); `blocks` stay whole for the spectrum at lambda
+            call restricted_thresholds(blocks, half_degree_forces(this%space, prob%contact), &
+                                       this%thr, this%restricted, this%lift, stat)
             if (stat%ok()) call threshold_roundoff(prob%k, this%chol, prob%contact, &
                 blocks%kt_nn, blocks%kt_nt, this%thr, stat)
             if (.not. stat%ok()) return
-            blocks%mass = prob%contact%mass
-            call onset_search(this%scan, blocks, this%thr, prob%dofs%n_free, this%pencil_dofs, &
-                              set, stat, this%scan_state%searched)
+            call onset_search(this%scan, this%restricted, this%thr, prob%dofs%n_free, &
+                              this%pencil_dofs, set, stat, this%scan_state%searched)
             if (.not. stat%ok()) return
-            call this%scan_state%note(blocks, this%thr%real_lambdas, set)
+            call this%scan_state%note(this%restricted, this%thr%real_lambdas, set)
             call collision_onsets(set, onset)
             if (any(onset > 0)) call collision_roundoffs(prob%k, this%chol, prob%contact, &
-                                                         blocks, set, stat)
+                                                         this%restricted, set, stat, this%lift)
             if (.not. stat%ok()) return
             call timings%add(PHASE_REDUCTION, wall_time() - start, ': contact blocks, '// &
                              'thresholds and the boundary search, hp level '// &
@@ -533,12 +542,14 @@ contains
             res%thresholds = thr
             if (.not. stat%ok()) return
             if (goal%set%scan_contact > 0) then   ! the last level searched: its set stands
-                call confirm_and_bound(scn, prob, lambda, goal%scan, goal%chol, blocks, &
-                                       res%thresholds, res%set, stat, known=goal%set)
+                call confirm_and_bound(scn, prob, lambda, goal%scan, goal%chol, &
+                                       goal%restricted, res%thresholds, res%set, stat, &
+                                       known=goal%set, lift=goal%lift)
             else
-                call goal%scan_state%coarse_set(goal%scan, prob%contact%p(), coarse, stat)
+                call goal%scan_state%coarse_set(goal%scan, size(goal%restricted%kt_nn, 1), &
+                                                coarse, stat)
                 if (stat%ok()) call confirm_and_bound(scn, prob, lambda, goal%scan, goal%chol, &
-                    blocks, res%thresholds, res%set, stat, coarse)
+                    goal%restricted, res%thresholds, res%set, stat, coarse, lift=goal%lift)
             end if
             if (.not. stat%ok()) return
             k = size(out%levels)
