@@ -165,6 +165,8 @@ module threshold_goal
         !> machine has; absent: the memory available)
         logical :: memory_given = .false.
         integer(i8) :: memory = -1_i8
+        !> hp: each side its own target (judge_hp); h: judged together, the first's state
+        logical :: per_side = .false.
     contains
         procedure :: solve => threshold_goal_solve
         procedure :: judge => threshold_goal_judge
@@ -214,11 +216,9 @@ contains
             goal%memory_given = .true.
             goal%memory = available
         end if
+        goal%per_side = .not. refiner%estimated()
         call adapt_levels(scn, adapt, start, refiner, goal, timings, stat)
-        ! both sides are judged together: the first's state and outcome are the loop's
-        out%converged = goal%targets(1)%converged()
-        out%floor_reached = goal%targets(1)%floor_reached()
-        out%outcome = goal%targets(1)%outcome
+        call loop_outcome(goal, out)
         call move_alloc(goal%levels, out%levels)
         out%prob = goal%prob
         out%space = goal%space
@@ -242,6 +242,43 @@ contains
         if (refiner%estimated()) res%eigen%warnings = [character(len=len(res%eigen%warnings)) &
             :: res%eigen%warnings, theta_warnings(adapt%theta)]
     end subroutine solve_adapted_thresholds
+
+    !> The loop's verdict: converged only when every side met the tolerance (h: both sides
+    !> are one target); the outcome, one clause per side on hp levels, each naming its side,
+    !> those not met first.
+    subroutine loop_outcome(goal, out)
+        type(threshold_goal_t), intent(in) :: goal
+        type(adaptive_thresholds_t), intent(inout) :: out
+        integer :: side
+        out%converged = all([(goal%targets(side)%converged(), side=1, 2)])
+        out%floor_reached = goal%targets(1)%floor_reached()
+        out%outcome = goal%targets(1)%outcome
+        if (.not. goal%per_side) return
+        out%floor_reached = .not. out%converged .and. all([(goal%targets(side)%converged() &
+            .or. goal%targets(side)%floor_reached(), side=1, 2)])
+        out%outcome = ''
+        do side = SIDE_PLUS, SIDE_MINUS
+            if (goal%targets(side)%converged()) cycle
+            out%outcome = out%outcome//merge('; ', '  ', len(out%outcome) > 0)// &
+                labelled(side, goal%targets(side)%outcome)
+        end do
+        do side = SIDE_PLUS, SIDE_MINUS
+            if (.not. goal%targets(side)%converged()) cycle
+            out%outcome = out%outcome//merge('; ', '  ', len(out%outcome) > 0)// &
+                labelled(side, goal%targets(side)%outcome)
+        end do
+        out%outcome = trim(adjustl(out%outcome))
+    end subroutine loop_outcome
+
+    !> `text` headed by the side's label, unless it is already.
+    function labelled(side, text) result(line)
+        integer, intent(in) :: side
+        character(len=*), intent(in) :: text
+        character(len=:), allocatable :: line
+        line = text
+        if (index(text, trim(SIDE_LABELS(side))//':') /= 1) line = trim(SIDE_LABELS(side))// &
+            ': '//text
+    end function labelled
 
     !> Both thresholds on `level`, with their error estimates (h) or their bars from the
     !> changes between levels (hp), and each side's collision onset where it has one.
@@ -437,10 +474,10 @@ contains
                                   .true., '', largest_bar(this), this%roundoff, .false., '', &
                                   missing(this))
             end associate
+            this%targets(2) = this%targets(1)
         else
             call judge_hp(this, tolerance)
         end if
-        this%targets(2) = this%targets(1)
     end subroutine threshold_goal_judge
 
     !> The largest bar of the sides' goals (goal_bars); negative when one of them has none,
@@ -457,62 +494,68 @@ contains
         end associate
     end function largest_bar
 
-    !> hp: whether both sides stop after the level just solved: no goal, the tolerance met on
-    !> every side, or each side that does not meet it stalled or at the floor.
+    !> hp: each side is its own target, judged on its own goal (its collision onset where it
+    !> has one, else its threshold): met within the tolerance, stopped where its goal stalls,
+    !> at the floor where round-off dominates its bar; a side without a value at the last
+    !> NONE_LEVELS levels is met as 'none'. A side whose value appears or vanishes between
+    !> levels has no bar (series_bar needs it on consecutive levels) and stays active, so it
+    !> ends at a limit, named, never as met. One side never stops or fails the other.
     subroutine judge_hp(this, tolerance)
         type(threshold_goal_t), intent(inout) :: this
         real(wp), intent(in) :: tolerance
+        integer, parameter :: NONE_LEVELS = 3
         real(wp) :: bar(2), roundoff(2)
-        integer :: side, worst, stalled
-        call goal_bars(this%levels(size(this%levels)), this%thr%roundoff, bar, roundoff)
-        associate (last => this%levels(size(this%levels)), t => this%targets(1))
-            if (.not. any(last%found .or. last%collision)) then
-                call t%finish(TARGET_STOPPED, 'tolerance not met: no real eigenvalue of the '// &
-                    'pencil Kt_nn x = lambda Kt_nt x at hp level '//to_string(last%level))
-                return
-            end if
-            ! a goal without a bar yet
-            if (any(bar < -0.5_wp .and. .not. last%stalled)) return
-            if (all(bar <= tolerance .and. .not. last%stalled)) then
-                call t%finish(TARGET_MET, 'tolerance '//short_real_text(tolerance)// &
-                    ' met at level '//to_string(last%level)//': error bar '// &
-                    this%bar_text(1))
-                return
-            end if
-            worst = 0
-            stalled = 0
-            do side = SIDE_PLUS, SIDE_MINUS
-                if (last%stalled(side)) then
-                    stalled = side
+        integer :: side, k, i
+        logical :: absent
+        k = size(this%levels)
+        call goal_bars(this%levels(k), this%thr%roundoff, bar, roundoff)
+        do side = SIDE_PLUS, SIDE_MINUS
+            associate (last => this%levels(k), t => this%targets(side))
+                if (.not. t%active()) cycle
+                if (.not. (last%found(side) .or. last%collision(side))) then
+                    absent = k >= NONE_LEVELS
+                    do i = max(1, k - NONE_LEVELS + 1), k
+                        absent = absent .and. .not. (this%levels(i)%found(side) .or. &
+                                                     this%levels(i)%collision(side))
+                    end do
+                    if (absent) call t%finish(TARGET_MET, SIDE_LABELS(side)//': none at hp '// &
+                        'levels '//to_string(k - NONE_LEVELS + 1)//' to '//to_string(k))
                     cycle
                 end if
-                if (bar(side) <= tolerance) cycle
-                if (.not. floor_reached(bar(side), roundoff(side))) return
-                if (worst == 0) worst = side
-                if (bar(side) > bar(worst)) worst = side
-            end do
-            if (stalled > 0) then
-                call t%finish(TARGET_STOPPED, stall_outcome(tolerance, &
-                    'the '//trim(SIDE_NAMES(stalled))//' side'))
-                return
-            end if
-            call t%finish(TARGET_FLOOR, floor_outcome(tolerance, roundoff(worst), bar(worst), &
-                                                      to_string(last%n_dofs)))
-        end associate
+                if (last%stalled(side)) then
+                    call t%finish(TARGET_STOPPED, trim(SIDE_LABELS(side))//': '// &
+                        stall_outcome(tolerance, 'the '//trim(SIDE_NAMES(side))//' side'))
+                else if (bar(side) < -0.5_wp) then
+                    cycle   ! no bar yet, or the value has just appeared
+                else if (bar(side) <= tolerance) then
+                    call t%finish(TARGET_MET, trim(SIDE_LABELS(side))//': tolerance '// &
+                        short_real_text(tolerance)//' met at level '//to_string(last%level)// &
+                        ': error bar '//this%bar_text(side))
+                else if (floor_reached(bar(side), roundoff(side))) then
+                    call t%finish(TARGET_FLOOR, trim(SIDE_LABELS(side))//': '// &
+                        floor_outcome(tolerance, roundoff(side), bar(side), &
+                                      to_string(last%n_dofs)))
+                end if
+            end associate
+        end do
     end subroutine judge_hp
 
     !> The bar of both sides at the last level, as outcomes quote it: the larger of the
     !> sides' goal bars ('none' where one has none) at its dofs.
     function threshold_goal_bar_text(this, i) result(text)
         class(threshold_goal_t), intent(in) :: this
-        integer, intent(in) :: i   !! (both sides are judged together)
+        integer, intent(in) :: i   !! the side (hp); h: both sides are judged together
         character(len=:), allocatable :: text
         real(wp) :: bar(2), roundoff(2)
         text = 'none'
         if (size(this%levels) == 0 .or. i < 1) return
         associate (last => this%levels(size(this%levels)))
             call goal_bars(last, this%thr%roundoff, bar, roundoff)
-            if (all(bar >= -0.5_wp)) text = short_real_text(maxval(bar))
+            if (this%per_side) then   ! hp: the side's own
+                if (bar(i) >= -0.5_wp) text = short_real_text(bar(i))
+            else if (all(bar >= -0.5_wp)) then
+                text = short_real_text(maxval(bar))
+            end if
             text = text//' at '//to_string(last%n_dofs)//' dofs'
         end associate
     end function threshold_goal_bar_text
@@ -564,6 +607,11 @@ contains
                     end if
                     if (last%error_bar(side) < 0.0_wp) then
                         res%estimate%skipped(side) = 'none at the first hp level'
+                        cycle
+                    end if
+                    if (.not. goal%targets(side)%converged()) then   ! its own reason
+                        res%estimate%skipped(side) = 'none: '// &
+                            labelled(side, goal%targets(side)%outcome)
                         cycle
                     end if
                     res%estimate%computed(side) = .true.
