@@ -21,6 +21,7 @@ program nceig
     use console, only: print_progress
     use process, only: ignore_broken_pipe
     use memory_budget, only: check_address_space
+    use program_start, only: start_signal_thread
     implicit none
 
     character(len=*), parameter :: PROGRAM_NAME = 'nceig'
@@ -49,6 +50,9 @@ program nceig
         call exit_with(0)
     end select
 
+    ! From here SIGTERM, SIGINT, SIGHUP and SIGXCPU end the run by that signal, whatever
+    ! library runs (blocked in every thread since the start, taken by a thread of their own).
+    call start_signal_thread(command%input)
     start = wall_time()
     call read_input(command%input, config, stat, command%settings)
     call stop_on_failure(PROGRAM_NAME, stat)
@@ -71,7 +75,7 @@ program nceig
     else
         call build_problem(inputs%scene, prob, stat)
     end if
-    call stop_on_failure(PROGRAM_NAME, stat)
+    call stop_on_failure(PROGRAM_NAME, stat, inputs%scene%name)
     call timings%add(PHASE_ASSEMBLY, wall_time() - phase, ': '//to_string(prob%mesh%n_cells())// &
         ' cells, '//to_string(prob%dofs%n_free)//' dofs, '//to_string(prob%contact%p())// &
         ' contact nodes, K with '//to_string(prob%k%nnz())//' entries')
@@ -83,11 +87,11 @@ program nceig
         call exit_now(stat%code)
     end if
     call analysis%solve(inputs, prob, timings, stat)
-    call stop_on_failure(PROGRAM_NAME, stat)
+    call stop_on_failure(PROGRAM_NAME, stat, inputs%scene%name)
     call report_run(analysis, inputs, prob, start, timings, text, stat)
-    call stop_on_failure(PROGRAM_NAME, stat)
+    call stop_on_failure(PROGRAM_NAME, stat, inputs%scene%name)
     write (output_unit, '(a)', iostat=ios) text
-    call stop_on_failure(PROGRAM_NAME, analysis%verdict)
+    call stop_on_failure(PROGRAM_NAME, analysis%verdict, inputs%scene%name)
     ! gfortran 12 keeps main-program allocatables in a frame gone before LeakSanitizer looks
     deallocate (command%action, command%input, command%settings)
     deallocate (analysis, text)

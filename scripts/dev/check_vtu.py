@@ -3,8 +3,10 @@
 """Read nceig's .vtu files with VTK's own XML reader (the one ParaView uses) and check
 what a viewer needs: no reader error or warning, points and cells, every cell a valid
 VTK cell whose area is positive, the cells tiling the body (their areas add up to
---area), the point data 'displacement' (3 components, finite) and, for hp runs, the cell
-data 'degree' (integers from 1 up). One line per file, exit 1 if any check fails.
+--area), the point data 'displacement' (3 components, finite), for hp runs the cell
+data 'degree' (integers from 1 up), and the field data of a mode file (mu, mu_imag,
+lambda, nu: one finite value each), which the line shows. One line per file, exit 1 if
+any check fails.
 Usage: /usr/bin/python3 scripts/dev/check_vtu.py [--area A] FILE.vtu ...
 Needs Debian's python3-vtk9 (for /usr/bin/python3)."""
 import argparse
@@ -63,8 +65,24 @@ def check(path, area):
         if d.min() < 1 or (d != d.round()).any():
             problems.append("cell data 'degree' not integers from 1 up")
         degrees = f", degrees {int(d.min())} to {int(d.max())}"
+    fields = grid.GetFieldData()
+    shown = ""
+    if fields.GetNumberOfArrays() > 0:
+        values = {}
+        for k in range(fields.GetNumberOfArrays()):
+            array = fields.GetArray(k)
+            if array is None or array.GetNumberOfTuples() != 1:
+                problems.append(f"field data {fields.GetArrayName(k)!r} not one value")
+                continue
+            values[fields.GetArrayName(k)] = array.GetValue(0)
+        missing = [n for n in ("mu", "mu_imag", "lambda", "nu") if n not in values]
+        if missing:
+            problems.append(f"field data without {', '.join(missing)}")
+        if not all(math.isfinite(v) for v in values.values()):
+            problems.append("a field data value is not finite")
+        shown = ", field data " + ", ".join(f"{n} = {v!r}" for n, v in values.items())
     info = (f"{n_points} points, {n_cells} cells of VTK types {sorted(types)}, "
-            f"area {total:.15g}{degrees}")
+            f"area {total:.15g}{degrees}{shown}")
     return problems, info
 
 

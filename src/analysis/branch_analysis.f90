@@ -5,7 +5,7 @@
 !> for every |delta| <= delta_max. The residual of the full stick/slip law is evaluated along
 !> that segment of solutions.
 module branch_analysis
-    use kinds, only: wp, N_DIM
+    use kinds, only: wp
     use status, only: status_t, STATUS_BAD_INPUT
     use timer, only: wall_time, timings_t
     use run_inputs, only: run_inputs_t
@@ -94,7 +94,7 @@ contains
                                 poisson) result(u)
         real(wp), intent(in) :: coords(:, :), lambda, mu, alpha, beta, contact_height, &
                                 young, poisson
-        real(wp) :: u(N_DIM*size(coords, 2))
+        real(wp) :: u(size(coords))
         real(wp) :: lame_l, shear_g, y
         integer :: node
         call lame_coefficients(young, poisson, lame_l, shear_g)
@@ -108,7 +108,7 @@ contains
     !> sigma(U), constant: eps22 = -alpha mu / (L + 2G), 2 eps12 = alpha lambda mu / G.
     pure function base_stress(lambda, mu, alpha, young, poisson) result(stress)
         real(wp), intent(in) :: lambda, mu, alpha, young, poisson
-        real(wp) :: stress(N_DIM, N_DIM)
+        real(wp) :: stress(2, 2)   !! in the plane
         real(wp) :: lame_l, shear_g, eps22
         call lame_coefficients(young, poisson, lame_l, shear_g)
         eps22 = -alpha*mu/(lame_l + 2.0_wp*shear_g)
@@ -133,7 +133,7 @@ contains
         allocate (loaded(size(prob%mesh%part_names)), source=.true.)
         loaded(prob%dirichlet_parts) = .false.
         loaded(prob%contact_part) = .false.
-        allocate (load(N_DIM*prob%mesh%n_nodes()), source=0.0_wp)
+        allocate (load(size(prob%mesh%coords)), source=0.0_wp)
         call edge_loads(prob%mesh, loaded, [0.0_wp, 0.0_wp], base_stress(crit%lambda, crit%mu, &
                         crit%alpha, prob%young, prob%poisson), load, stat)
         if (.not. stat%ok()) return

@@ -98,7 +98,9 @@ contains
     !> scene `scn`, solved as `options` and refined as `adapt` asks (h: one lambda; hp: one
     !> climb of the levels for all). outs(i) is lambdas(i)'s loop; its problem and space are
     !> the last level's with `keep_problem`. A limit reached is no failure (stat ok,
-    !> outs(i)%converged false, its outcome heading its warnings).
+    !> outs(i)%converged false, its outcome heading its warnings). A failure (stat) still
+    !> gives outs: outs(i)%outcome is '' where lambdas(i)'s loop had not ended, and its
+    !> result is complete where it had.
     subroutine adapt_eigen(scn, lambdas, options, adapt, start, outs, timings, stat, &
                            keep_problem)
         type(scene_t), intent(in) :: scn
@@ -130,13 +132,15 @@ contains
             allocate (goal%points(i)%levels(0))
         end do
         call adapt_levels(scn, adapt, start, refiner, goal, timings, stat)
-        if (.not. stat%ok()) return
+        ! a failed loop still gives the points whose targets had ended (an outcome, not ''):
+        ! a sweep writes those as a partial set
         call move_alloc(goal%points, outs)
         do i = 1, size(outs)
             associate (o => outs(i), t => goal%targets(i))
+                o%outcome = t%outcome
+                if (.not. stat%ok() .and. t%active()) cycle
                 o%converged = t%converged()
                 o%floor_reached = t%floor_reached()
-                o%outcome = t%outcome
                 o%mu_vanished = o%res%spec%lowest_positive() == 0 .and. any(o%levels%has_mu)
                 if (.not. o%converged) o%res%warnings = [character(len=WARNING_LEN) :: &
                                                          o%outcome, o%res%warnings]

@@ -4,7 +4,7 @@
 !> every contact node. With data = 'branch' the data are those of model.md section 9 and the
 !> solution is located on the line U + delta phi (its delta and its distance from the line).
 module solve_analysis
-    use kinds, only: wp, i8, N_DIM
+    use kinds, only: wp, i8
     use status, only: status_t, STATUS_SOLVER
     use strings, only: short_real_text, to_string
     use ieee_arithmetic, only: ieee_is_finite
@@ -67,7 +67,7 @@ contains
             if (res%on_branch_data) then
                 call branch_compliance(prob, res%critical, c%critical_factor, res%cp, stat)
             else
-                allocate (load(N_DIM*prob%mesh%n_nodes()), source=0.0_wp)
+                allocate (load(size(prob%mesh%coords)), source=0.0_wp)
                 allocate (loaded(size(prob%mesh%part_names)), source=.false.)
                 loaded(prob%neumann_parts) = .true.
                 call edge_loads(prob%mesh, loaded, [c%t1, c%t2], &
@@ -76,7 +76,7 @@ contains
                 call body_force_loads(prob%mesh, [c%f1, c%f2], load)
                 allocate (prescribed(size(load)))
                 do node = 1, prob%mesh%n_nodes()
-                    prescribed(node_dofs(node)) = [c%u_d1, c%u_d2]
+                    prescribed(node_dofs(node, prob%mesh%dim())) = [c%u_d1, c%u_d2]
                 end do
                 call build_compliance(prob%k_all, prob%all_contact, prob%dofs, c%c_n, c%c_t, &
                                       load, prescribed, res%cp, stat)

@@ -69,6 +69,10 @@ module threshold_analysis
         character(len=:), allocatable :: not_met
         integer :: n_arpack = 0                  !! points certified by ARPACK
         integer :: n_dense = 0                   !! points decided densely (incl. fallbacks)
+        !> &adapt: a point's loop failed (a library, the memory): the points whose loops had
+        !> ended are kept, complete(i), as a partial set; `failure` is the loop's status
+        logical, allocatable :: complete(:)
+        type(status_t) :: failure
     end type sweep_curve_t
 
     type, public :: threshold_result_t
@@ -169,14 +173,26 @@ contains
             allocate (res%sweep%error_bar(n), source=-1.0_wp)
             allocate (res%sweep%n_dofs(n), source=prob%dofs%n_free)
         end associate
+        allocate (res%sweep%complete(size(res%sweep%lambda)), source=.true.)
         if (present(adapt)) then
             if (adapt%refine /= REFINE_NONE) then
                 call adaptive_sweep(scn, prob, options, adapt, res%sweep, timings, stat)
                 if (.not. stat%ok()) return
+                if (.not. res%sweep%failure%ok()) res%eigen%warnings = &
+                    [character(len=WARNING_LEN) :: res%eigen%warnings, 'the sweep is partial: '// &
+                     to_string(count(res%sweep%complete))//' of its '// &
+                     to_string(size(res%sweep%lambda))//' points are complete ('// &
+                     'sweep_partial), a point''s loop failed: '//res%sweep%failure%message]
                 ! the points' own warnings are not kept (record): the run's stands for them
                 if (adapt%refine /= REFINE_HP) res%eigen%warnings = &
                     [character(len=WARNING_LEN) :: res%eigen%warnings, &
                      theta_warnings(adapt%theta)]
+                ! where a user looks, not only in the exit status and sweep_n_not_met
+                if (res%sweep%n_not_met > 0) res%eigen%warnings = &
+                    [character(len=WARNING_LEN) :: res%eigen%warnings, &
+                     to_string(res%sweep%n_not_met)//' of the '// &
+                     to_string(size(res%sweep%lambda))//' sweep points did not meet the '// &
+                     'tolerance (sweep_n_not_met; the first at '//res%sweep%not_met//')']
                 res%time_sweep = wall_time() - start
                 call timings%note('sweep      '//seconds_text(res%time_sweep)//' s: '// &
                     to_string(size(res%sweep%lambda))//' lambdas, adapted to '// &
@@ -444,15 +460,29 @@ contains
         if (adapt%refine == REFINE_HP) then
             call adapt_eigen(scn, curve%lambda, options, adapt, prob, outs, quiet, stat, &
                              keep_problem=.false.)
-            if (.not. stat%ok()) return
-            curve%units = outs(1)%units
+            if (.not. stat%ok()) then
+                ! the points whose loops had ended (an outcome) are complete: a partial set
+                if (.not. allocated(outs)) return
+                curve%failure = stat
+                stat = status_t()
+                do i = 1, size(curve%lambda)
+                    curve%complete(i) = len(outs(i)%outcome) > 0
+                end do
+            end if
+            do i = 1, size(curve%lambda)
+                if (size(outs(i)%levels) == 0) cycle
+                curve%units = outs(i)%units   ! (every hp level's)
+                exit
+            end do
             do i = 1, size(curve%lambda)
                 call timings%tick('sweep, lambda', i, size(curve%lambda))
+                if (.not. curve%complete(i)) cycle
                 associate (o => outs(i))
                     call record(o%res, last_dofs(o), o%converged, .false., o%mu_vanished, &
                                 o%outcome)
                 end associate
             end do
+            call clear_incomplete()
             return
         end if
         current = prob
@@ -460,7 +490,14 @@ contains
             call timings%tick('sweep, lambda', i, size(curve%lambda))
             call adapt_eigen(scn, [curve%lambda(i)], options, adapt, current, outs, quiet, stat, &
                              keep_problem=.true.)
-            if (.not. stat%ok()) return
+            if (.not. stat%ok()) then
+                ! the points before are complete: a partial set, the failure its verdict
+                curve%failure = stat
+                stat = status_t()
+                curve%complete(i:) = .false.
+                call clear_incomplete()
+                return
+            end if
             associate (o => outs(1))
                 call record(o%res, o%prob%dofs%n_free, o%converged, size(o%levels) == 1, &
                             o%mu_vanished, o%outcome)
@@ -469,6 +506,17 @@ contains
         end do
 
     contains
+
+        !> The points not complete (a failed loop): no mu, no estimate, no bar.
+        subroutine clear_incomplete()
+            where (.not. curve%complete)
+                curve%found = .false.
+                curve%mu = 0.0_wp
+                curve%n_positive = -1
+                curve%error_estimate = -1.0_wp
+                curve%error_bar = -1.0_wp
+            end where
+        end subroutine clear_incomplete
 
         !> Point i from the result `res` of its loop on `n_free` dofs. A point misses the
         !> tolerance when it has a mu not converged, or had one at a coarser level (vanished).

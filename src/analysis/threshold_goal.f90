@@ -36,7 +36,7 @@
 module threshold_goal
     use kinds, only: wp, i8
     use status, only: status_t
-    use strings, only: to_string, short_real_text, seconds_text
+    use strings, only: to_string, short_real_text, given_real_text, seconds_text
     use timer, only: wall_time, timings_t, PHASE_REDUCTION
     use scene, only: scene_t
     use method_options, only: eigen_options_t, adapt_options_t, SOLVER_DENSE, REFINE_HP

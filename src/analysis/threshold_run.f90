@@ -15,6 +15,7 @@ module threshold_run
     use threshold_analysis, only: threshold_result_t, solve_thresholds
     use threshold_goal, only: adaptive_thresholds_t, solve_adapted_thresholds
     use analysis_base, only: analysis_t
+    use process_exit, only: naming_file
     implicit none
     private
 
@@ -65,6 +66,16 @@ contains
         call solve_thresholds(inputs%scene, prob, inputs%point%lambda, inputs%eigen, inputs%scan, &
                               this%res, timings, stat, inputs%sweep, inputs%adapt)
         if (.not. stat%ok()) return
+        ! a point's loop failed: its failure is the run's, after the partial set is written
+        associate (curve => this%res%sweep)
+            if (.not. curve%failure%ok()) then
+                call this%verdict%fail(curve%failure%code, naming_file( &
+                    curve%failure%message, inputs%scene%name)//' (the sweep stopped there: '// &
+                    'a partial set of the '//to_string(count(curve%complete))//' of '// &
+                    to_string(size(curve%lambda))//' points complete is written)')
+                return
+            end if
+        end associate
         call no_digit_verdict(this%res, inputs%scene%name, this%verdict)
         if (.not. this%verdict%ok()) return
         if (this%res%sweep%n_not_met > 0) call this%verdict%fail(STATUS_NOT_MET, &

@@ -18,7 +18,7 @@
 !> force the foundation must supply). Where every node slips with sign s and u_n > 0, H = 0 is
 !> the slipping problem K u + c_n N^T M N u + s c_t T^T M N u = f of model.md section 3.
 module normal_compliance
-    use kinds, only: wp, N_DIM
+    use kinds, only: wp
     use status, only: status_t, STATUS_INTERNAL
     use dof_map, only: dof_map_t
     use contact_boundary, only: contact_t
@@ -39,7 +39,7 @@ module normal_compliance
         type(contact_t) :: contact               !! Gamma_C, all its nodes, all-dof numbering
         type(dof_map_t) :: dofs                  !! the free dofs x lives on
         integer, allocatable :: free_to_all(:)   !! (n_free) all-dof number of each free dof
-        integer, allocatable :: contact_free(:, :) !! (2, p) free dofs of contact node a, or 0
+        integer, allocatable :: contact_free(:, :) !! (dim, p) free dofs of contact node a, or 0
         real(wp), allocatable :: load(:)         !! (2 n_nodes) consistent nodal forces f
         real(wp), allocatable :: prescribed(:)   !! (2 n_nodes) u on prescribed dofs, else 0
         real(wp), allocatable :: rho(:)          !! (p) t^T K_aa t of each contact node
@@ -96,14 +96,14 @@ contains
         cp%prescribed(cp%free_to_all) = 0.0_wp
 
         p = cp%contact%p()
-        allocate (cp%contact_free(N_DIM, p), cp%rho(p))
+        allocate (cp%contact_free(dofs%dim(), p), cp%rho(p))
         do a = 1, p
             node = cp%contact%nodes(a)
             cp%contact_free(:, a) = dofs%free_dof(:, node)
             if (any(cp%contact_free(:, a) == 0)) cp%contact_free(:, a) = 0
             cp%rho(a) = 0.0_wp
-            do i = 1, N_DIM
-                do c = 1, N_DIM
+            do i = 1, dofs%dim()
+                do c = 1, dofs%dim()
                     k = cp%k_all%slot(cp%contact%dofs(i, a), cp%contact%dofs(c, a))
                     if (k > 0) cp%rho(a) = cp%rho(a) + &
                         cp%contact%tangent(i)*cp%k_all%val(k)*cp%contact%tangent(c)
@@ -302,7 +302,7 @@ contains
         !> jac(row, dofs of node b) += value * n
         subroutine add_pair(row, b, value, n, stat)
             integer, intent(in) :: row, b
-            real(wp), intent(in) :: value, n(N_DIM)
+            real(wp), intent(in) :: value, n(2)   !! a unit vector of the contact line
             type(status_t), intent(inout) :: stat
             call jac%add_to(row, this%contact_free(1, b), value*n(1), stat)
             if (stat%ok()) call jac%add_to(row, this%contact_free(2, b), value*n(2), stat)

@@ -15,7 +15,7 @@ module filesystem
               is_directory, process_id, is_real_directory, process_gone, list_directory
     public :: close_output, end_output, sync_path, sync_filesystem, replace_directory, make_link, &
               copy_mode, remove_tree, lock_file, unlock_file, real_path, can_replace, &
-              canonical_path
+              canonical_path, may_write, link_target
     public :: cleanup_on_signal, hold_signals, end_cleanup_on_signal
     integer, parameter, public :: MAX_NAME_LEN = 255   !! NAME_MAX of Linux file systems
 
@@ -153,6 +153,21 @@ module filesystem
             character(kind=c_char), intent(in) :: path(*), parent(*)
             integer(c_int) :: answer
         end function c_can_replace
+
+        function c_link_target(path, buffer, capacity) bind(C, name='nceig_link_target') &
+                result(length)
+            import :: c_int, c_char
+            character(kind=c_char), intent(in) :: path(*)
+            character(kind=c_char), intent(out) :: buffer(*)
+            integer(c_int), value :: capacity
+            integer(c_int) :: length           ! -1: not a link
+        end function c_link_target
+
+        function c_may_write(path) bind(C, name='nceig_may_write') result(answer)
+            import :: c_int, c_char
+            character(kind=c_char), intent(in) :: path(*)
+            integer(c_int) :: answer
+        end function c_may_write
 
         function c_link(from, to) bind(C, name='nceig_link') result(status)
             import :: c_int, c_char
@@ -443,13 +458,18 @@ contains
 
     !> The absolute path of `path` with links, '.', '..' and repeated '/'
     !> resolved: realpath where it exists, else that of its nearest existing ancestor
-    !> followed by the rest, resolved as written (nothing there can be a link yet).
-    recursive function canonical_path(path) result(canonical)
+    !> followed by the rest, resolved as written. A link to nothing yet (dangling) is
+    !> followed too, to the path it names (as the kernel would, at most 40 links deep), so
+    !> that a directory made there leaves the link a link.
+    recursive function canonical_path(path, depth) result(canonical)
         character(len=*), intent(in) :: path
+        integer, intent(in), optional :: depth   !! links followed so far (internal)
         character(len=:), allocatable :: canonical
-        character(len=:), allocatable :: rest, last, up
-        integer :: slash
+        character(len=:), allocatable :: rest, last, up, target
+        integer :: slash, links
         rest = path
+        links = 0
+        if (present(depth)) links = depth
         do while (len(rest) > 1)
             if (rest(len(rest):) /= '/') exit
             rest = rest(:len(rest) - 1)
@@ -460,6 +480,12 @@ contains
             if (canonical(1:1) == '/') return
         end if
         slash = index(rest, '/', back=.true.)
+        target = link_target(rest)
+        if (len(target) > 0 .and. links < 40) then
+            if (target(1:1) /= '/' .and. slash > 0) target = rest(:slash)//target
+            canonical = canonical_path(target, links + 1)
+            return
+        end if
         last = rest(slash + 1:)
         if (slash == 0) then
             up = real_path('.')
@@ -480,7 +506,25 @@ contains
         end select
     end function canonical_path
 
-    !> Until end_cleanup_on_signal, SIGTERM, SIGINT and SIGHUP remove the staging folder
+    !> The target of the symbolic link `path` as stored in the link; '' when `path` is none.
+    function link_target(path) result(target)
+        character(len=*), intent(in) :: path
+        character(len=:), allocatable :: target
+        character(kind=c_char) :: buffer(MAX_PATH_LEN)
+        integer :: length
+        length = int(c_link_target(c_path(path), buffer, int(MAX_PATH_LEN, c_int)))
+        target = ''
+        if (length > 0) target = from_c_chars(buffer, length)
+    end function link_target
+
+    !> Whether `path` has a write permission bit and the caller may write it (a directory
+    !> made read-only with chmod a-w is read-only for root too).
+    logical function may_write(path)
+        character(len=*), intent(in) :: path
+        may_write = c_may_write(c_path(path)) /= 0
+    end function may_write
+
+    !> Until end_cleanup_on_signal, SIGTERM, SIGINT, SIGHUP and SIGXCPU remove the staging folder
     !> `staging` (its files, then itself) and the last `created_levels` directories of its
     !> parent, then end the process by that signal (see filesystem_c.c).
     subroutine cleanup_on_signal(staging, created_levels, stat)

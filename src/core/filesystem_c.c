@@ -14,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/file.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/syscall.h>
 #include <sys/types.h>
@@ -165,6 +166,27 @@ int nceig_can_replace(const char *path, const char *parent)
     return access(parent, W_OK | X_OK) == 0;
 }
 
+/* The target of the symbolic link `path` into buffer[0..capacity) (not NUL-terminated): its
+   length, or -1 when `path` is no link (or its target does not fit). */
+int nceig_link_target(const char *path, char *buffer, int capacity)
+{
+    struct stat info;
+    ssize_t length;
+    if (capacity <= 0 || lstat(path, &info) != 0 || !S_ISLNK(info.st_mode)) return -1;
+    length = readlink(path, buffer, (size_t)capacity);
+    if (length < 0 || length >= capacity) return -1;
+    return (int)length;
+}
+
+/* 1 when `path` has a write permission bit and the caller may write it: a directory its
+   owner made read-only (chmod a-w) counts as such even for root, whom access() lets by. */
+int nceig_may_write(const char *path)
+{
+    struct stat info;
+    if (stat(path, &info) != 0) return 0;
+    return (info.st_mode & 0222) != 0 && access(path, W_OK) == 0;
+}
+
 /* Make `to` a new name (hard link) of file `from`; a symbolic link is linked, not followed. */
 int nceig_link(const char *from, const char *to) { return link(from, to); }
 
@@ -241,17 +263,19 @@ int nceig_real_path(const char *path, char *buffer, int capacity)
     return (int)length;
 }
 
-/* ---- Cleanup on SIGTERM, SIGINT, SIGHUP ----
+/* ---- Cleanup on SIGTERM, SIGINT, SIGHUP, SIGXCPU ----
    While a run writes its staging folder, these signals remove the folder (its files, then
    itself) and the parent directories the run created, then end the process by the same
    signal with its default action. Only async-signal-safe calls are made in the handler
-   (open, getdents64, unlinkat, rmdir, close, sigaction, raise) on static storage; the
-   signal may arrive on any thread (OpenMP and BLAS start some). During the commit the
-   handler only notes the signal: the commit finishes (or fails and cleans up), then
-   nceig_cleanup_disarm raises it again. */
+   (open, getdents64, unlinkat, rmdir, close, sigaction, sigprocmask, write, raise) on static
+   storage; the signal may arrive on any thread (OpenMP and BLAS start some). During the
+   commit the handler only notes the signal: the commit finishes (or fails and cleans up),
+   then nceig_cleanup_disarm ends the process by it. The nceig program blocks these signals
+   in every thread and takes them in a thread of its own (program_start_c.c), which hands
+   each to nceig_signal_on_main: a library's handler (METIS's) never sees them. */
 
-enum { N_SIGNALS = 3 };
-static const int cleanup_signals[N_SIGNALS] = {SIGTERM, SIGINT, SIGHUP};
+enum { N_SIGNALS = 4 };
+static const int cleanup_signals[N_SIGNALS] = {SIGTERM, SIGINT, SIGHUP, SIGXCPU};
 static struct sigaction previous_actions[N_SIGNALS];
 static int installed[N_SIGNALS];
 static char staging_path[PATH_MAX + 1];
@@ -259,6 +283,8 @@ static int created_levels;               /* parents of the staging folder this r
 static volatile sig_atomic_t armed;      /* staging_path is complete and to be removed */
 static volatile sig_atomic_t holding;    /* in the commit: defer the signal */
 static volatile sig_atomic_t pending;    /* the signal deferred */
+static char run_name[PATH_MAX + 1];      /* the input file, for the line a signal prints */
+static volatile sig_atomic_t run_named;
 
 static void remove_staging_now(void)
 {
@@ -303,18 +329,58 @@ static void remove_staging_now(void)
     }
 }
 
-static void on_signal(int signal_number)
+static void write_text(const char *text)
+{
+    size_t length = strlen(text);
+    while (length > 0) {
+        ssize_t written = write(2, text, length);
+        if (written <= 0) return;
+        text += written;
+        length -= (size_t)written;
+    }
+}
+
+/* One line on stderr naming the run and the signal (the nceig program only: run_named),
+   then the end of the process by `signal_number` and its default action: exit status
+   128 + n to the shell. SIGXCPU's default action dumps core: not for a time limit. */
+static void end_by_signal(int signal_number)
+{
+    int i;
+    struct sigaction default_action;
+    sigset_t unblock;
+    if (run_named) {
+        write_text("nceig: ");
+        write_text(run_name);
+        write_text(signal_number == SIGTERM  ? ": stopped by SIGTERM\n"
+                   : signal_number == SIGINT ? ": stopped by SIGINT\n"
+                   : signal_number == SIGHUP ? ": stopped by SIGHUP\n"
+                                             : ": stopped by SIGXCPU: the CPU time limit "
+                                               "(ulimit -t) is reached\n");
+    }
+    for (i = 0; i < N_SIGNALS; i++)
+        if (installed[i]) (void)sigaction(cleanup_signals[i], &previous_actions[i], NULL);
+    if (signal_number == SIGXCPU) {
+        struct rlimit no_core;
+        if (getrlimit(RLIMIT_CORE, &no_core) == 0) {
+            no_core.rlim_cur = 0;
+            (void)setrlimit(RLIMIT_CORE, &no_core);
+        }
+    }
+    memset(&default_action, 0, sizeof default_action);
+    default_action.sa_handler = SIG_DFL;
+    sigemptyset(&default_action.sa_mask);
+    (void)sigaction(signal_number, &default_action, NULL);
+    sigemptyset(&unblock);
+    sigaddset(&unblock, signal_number);
+    (void)sigprocmask(SIG_UNBLOCK, &unblock, NULL);
+    (void)raise(signal_number);
+}
+
+/* On the main thread: note the signal during the commit, else remove the staging folder
+   (if any) and end the process by it. */
+void nceig_signal_on_main(int signal_number)
 {
     int saved = errno;
-    int i;
-    /* A thread of OpenMP or BLAS got it: hand it to the main thread (whose thread id is the
-       process id), which writes the staging folder, so that the removal does not race with
-       a file being created there. */
-    if (syscall(SYS_gettid) != (long)getpid()) {
-        (void)syscall(SYS_tgkill, (long)getpid(), (long)getpid(), (long)signal_number);
-        errno = saved;
-        return;
-    }
     if (holding) {
         pending = signal_number;
         errno = saved;
@@ -324,16 +390,33 @@ static void on_signal(int signal_number)
         armed = 0;
         remove_staging_now();
     }
-    for (i = 0; i < N_SIGNALS; i++)
-        if (installed[i]) (void)sigaction(cleanup_signals[i], &previous_actions[i], NULL);
-    if (signal_number == SIGTERM || signal_number == SIGINT || signal_number == SIGHUP) {
-        struct sigaction default_action;
-        memset(&default_action, 0, sizeof default_action);
-        default_action.sa_handler = SIG_DFL;
-        sigemptyset(&default_action.sa_mask);
-        (void)sigaction(signal_number, &default_action, NULL);
+    end_by_signal(signal_number);
+    errno = saved;
+}
+
+/* The name the line of end_by_signal gives the run (the input file). */
+void nceig_signal_set_name(const char *name)
+{
+    size_t length = strlen(name);
+    if (length > PATH_MAX) length = PATH_MAX;
+    run_named = 0;
+    memcpy(run_name, name, length);
+    run_name[length] = '\0';
+    run_named = 1;
+}
+
+static void on_signal(int signal_number)
+{
+    int saved = errno;
+    /* A thread of OpenMP or BLAS got it: hand it to the main thread (whose thread id is the
+       process id), which writes the staging folder, so that the removal does not race with
+       a file being created there. */
+    if (syscall(SYS_gettid) != (long)getpid()) {
+        (void)syscall(SYS_tgkill, (long)getpid(), (long)getpid(), (long)signal_number);
+        errno = saved;
+        return;
     }
-    (void)raise(signal_number);
+    nceig_signal_on_main(signal_number);
     errno = saved;
 }
 
@@ -387,5 +470,5 @@ void nceig_cleanup_disarm(void)
     holding = 0;
     deferred = pending;
     pending = 0;
-    if (deferred != 0) (void)raise(deferred);
+    if (deferred != 0) end_by_signal(deferred);
 }

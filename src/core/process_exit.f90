@@ -7,7 +7,7 @@ module process_exit
     use status, only: status_t
     implicit none
     private
-    public :: exit_with, exit_now, stop_with, stop_on_failure
+    public :: exit_with, exit_now, stop_with, stop_on_failure, naming_file
 
     interface
         subroutine c_exit(code) bind(C, name='exit')
@@ -50,10 +50,36 @@ contains
     end subroutine stop_with
 
     !> Nothing when `stat` is ok; else its message and code through stop_with (the programs'
-    !> one way to end on an error that travelled up as a status).
-    subroutine stop_on_failure(program, stat)
+    !> one way to end on an error that travelled up as a status). With `file` (the input
+    !> file), a message that names no file gets it in front (naming_file).
+    subroutine stop_on_failure(program, stat, file)
         character(len=*), intent(in) :: program
         type(status_t), intent(in) :: stat
-        if (.not. stat%ok()) call stop_with(program, stat%message, stat%code)
+        character(len=*), intent(in), optional :: file
+        if (stat%ok()) return
+        if (present(file)) then
+            call stop_with(program, naming_file(stat%message, file), stat%code)
+        else
+            call stop_with(program, stat%message, stat%code)
+        end if
     end subroutine stop_on_failure
+
+    !> `message` with 'file: ' in front, unless it starts with a file of its own: `file`
+    !> itself, or a first field (up to ': ') that is a path (holds a '/' or a '.', as
+    !> 'meshes/a.msh:27' or a staging file). A solver's or a generated mesh's failure
+    !> ('left eigenvector: ...', 'mesh: cell 1 is inverted ...') then names the input.
+    pure function naming_file(message, file) result(named)
+        character(len=*), intent(in) :: message, file
+        character(len=:), allocatable :: named
+        integer :: colon
+        named = message
+        if (len(file) == 0) return
+        if (index(message, file) == 1) return
+        colon = index(message, ': ')
+        if (colon > 1) then
+            if (scan(message(:colon - 1), '/.') > 0 .and. index(message(:colon - 1), ' ') == 0) &
+                return
+        end if
+        named = file//': '//message
+    end function naming_file
 end module process_exit

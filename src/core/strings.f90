@@ -8,7 +8,7 @@ module strings
     use ieee_arithmetic, only: ieee_is_nan
     implicit none
     private
-    public :: to_string, zero_padded, short_real_text, seconds_text
+    public :: to_string, zero_padded, short_real_text, given_real_text, seconds_text
     public :: lowercase, split_names, split_words, count_names, normalized_list
     public :: quoted, one_of, joined, from_c_chars, printable, append_text
     public :: NAME_LEN, LIST_LEN, SHOWN_LEN
@@ -92,6 +92,25 @@ contains
         write (buffer, edit) x
         text = trim(adjustl(buffer))
     end function short_real_text
+
+    !> short_real_text with the fewest digits (three at least, as short_real_text gives) that
+    !> read back to `x` exactly: for a value the user gave, such as a tolerance, which three
+    !> digits may round to another ('9.99999E-01', not '1.00E+00'; 1e-8 stays '1.00E-08').
+    pure function given_real_text(x) result(text)
+        real(wp), intent(in) :: x
+        character(len=:), allocatable :: text
+        real(wp) :: back
+        integer :: d, ios
+        text = short_real_text(x, 16)   ! 17 digits: every binary64 reads back from them
+        ! (a shorter text of a value near huge may round past it: reading it would overflow)
+        if (.not. abs(x) < 0.1_wp*huge(x)) return
+        do d = 2, 15
+            text = short_real_text(x, d)
+            read (text, *, iostat=ios) back
+            if (ios == 0 .and. abs(back - x) <= 0.0_wp) return
+        end do
+        text = short_real_text(x, 16)
+    end function given_real_text
 
     !> Seconds with three decimals and a leading zero ('0.042', '12.500') for the summaries.
     pure function seconds_text(t) result(text)

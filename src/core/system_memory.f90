@@ -5,10 +5,11 @@
 !> hold is not ours, and a run that overflows into swap (or the OOM killer) is no answer.
 module system_memory
     use kinds, only: i8
-    use iso_c_binding, only: c_long_long
+    use iso_c_binding, only: c_long_long, c_int, c_double
     implicit none
     private
-    public :: available_memory_bytes, MEMINFO_PATH, address_space_headroom_bytes
+    public :: available_memory_bytes, MEMINFO_PATH, address_space_headroom_bytes, &
+              threads_still_running
 
     character(len=*), parameter :: MEMINFO_PATH = '/proc/meminfo'
     !> The process's own mappings: 'VmSize:   123456 kB'.
@@ -19,6 +20,12 @@ module system_memory
             import :: c_long_long
             integer(c_long_long) :: nceig_address_space_limit
         end function nceig_address_space_limit
+        function nceig_wait_for_sleeping_threads(seconds) &
+                bind(C, name='nceig_wait_for_sleeping_threads')
+            import :: c_int, c_double
+            real(c_double), value :: seconds
+            integer(c_int) :: nceig_wait_for_sleeping_threads
+        end function nceig_wait_for_sleeping_threads
     end interface
 
 contains
@@ -51,6 +58,15 @@ contains
         if (mapped < 0) return
         bytes = max(0_i8, limit - 1024_i8*mapped)
     end function address_space_headroom_bytes
+
+    !> The threads of this process other than the caller's that still run after waiting at
+    !> most `seconds` for all to sleep (system_memory_c.c); -1 when /proc cannot tell.
+    !> OpenBLAS's threads sleep once they hold their buffers; one whose mmap fails runs for
+    !> ever, retrying it.
+    integer function threads_still_running(seconds)
+        real(c_double), intent(in) :: seconds
+        threads_still_running = int(nceig_wait_for_sleeping_threads(seconds))
+    end function threads_still_running
 
     !> The number after `key` on the first line of the /proc file `file` that starts with
     !> it ('MemAvailable:   22846788 kB': kB); -1 when the file, the line or the number

@@ -5,7 +5,7 @@ module element_types
     implicit none
     private
     public :: element_nodes_per_cell, element_nodes_per_edge, element_from_name, element_name
-    public :: element_corners, element_degree, triangle_lattice
+    public :: element_corners, element_degree, element_dimension, triangle_lattice
     public :: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, ELEMENT_P3, ELEMENT_P4
     public :: MAX_ELEMENT
 
@@ -37,6 +37,21 @@ contains
         case default; element_nodes_per_cell = 0
         end select
     end function element_nodes_per_cell
+
+    !> Spatial dimension of the cells of `element`, and so of the reference coordinates of
+    !> its shape functions, of a mesh made of them and of a node's displacement: 2 for every
+    !> element here (plane strain); 0 for an unknown code. A mesh takes its dimension from
+    !> here (mesh_t%dim), and every count that depends on it (dofs per node, Jacobians,
+    !> the coordinates a writer pads to three) from the mesh.
+    pure integer function element_dimension(element)
+        integer, intent(in) :: element
+        select case (element)
+        case (ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, ELEMENT_P3, ELEMENT_P4)
+            element_dimension = 2
+        case default
+            element_dimension = 0
+        end select
+    end function element_dimension
 
     !> Vertices of the cell (the first nodes of a cell, anticlockwise): 3 or 4.
     pure integer function element_corners(element)

@@ -3,7 +3,8 @@
 !> (0,0), (1,0), (0,1) for P1 to P4 and the square [-1, 1]^2 for Q1/Q2; corners
 !> anticlockwise, then edge nodes (edge k from corner k to corner k+1), then interior nodes
 !> (element_types' triangle_lattice). Edges use the segment [-1, 1] with the end nodes at -1
-!> and +1, then the inner nodes equally spaced from -1 towards +1.
+!> and +1, then the inner nodes equally spaced from -1 towards +1. Reference points and
+!> gradients have element_dimension(element) components (2 for every element here).
 module shape_functions
     use kinds, only: wp
     use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, ELEMENT_P3, &
@@ -29,9 +30,9 @@ contains
     !> MAX_NODES-sized buffers serve every element. Unknown element codes leave zeros.
     pure subroutine evaluate_shape(element, xi, values, gradients)
         integer, intent(in) :: element
-        real(wp), intent(in) :: xi(2)
+        real(wp), intent(in) :: xi(:)               !! (element_dimension(element))
         real(wp), intent(out) :: values(:)          !! (>= nodes per cell)
-        real(wp), intent(out) :: gradients(:, :)    !! (2, >= nodes per cell)
+        real(wp), intent(out) :: gradients(:, :)    !! (element dimension, >= nodes per cell)
         real(wp) :: l1, l2, l3, lx(3), ly(3), dlx(3), dly(3)
         integer :: a, ix, iy
 
@@ -84,7 +85,7 @@ contains
     !> rule, with grad l1 = (-1, -1), grad l2 = (1, 0), grad l3 = (0, 1).
     pure subroutine lagrange_triangle(element, xi, values, gradients)
         integer, intent(in) :: element
-        real(wp), intent(in) :: xi(2)
+        real(wp), intent(in) :: xi(:)
         real(wp), intent(inout) :: values(:), gradients(:, :)
         integer :: lattice(3, MAX_NODES), p, a, k
         real(wp) :: l(3), s(0:4, 3), ds(0:4, 3)
@@ -175,7 +176,7 @@ contains
     !> columns (and every column for an unknown code) are zero.
     pure subroutine reference_nodes(element, xi)
         integer, intent(in) :: element
-        real(wp), intent(out) :: xi(:, :)   !! (2, >= nodes per cell)
+        real(wp), intent(out) :: xi(:, :)   !! (element dimension, >= nodes per cell)
         integer :: lattice(3, MAX_NODES), n
         xi = 0.0_wp
         select case (element)

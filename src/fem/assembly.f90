@@ -2,7 +2,7 @@
 !> Global matrices on the free dofs, assembled cell by cell into a CSR pattern built once
 !> from the connectivity.
 module assembly
-    use kinds, only: wp, N_DIM
+    use kinds, only: wp
     use status, only: status_t, STATUS_BAD_INPUT, STATUS_MESH, STATUS_INTERNAL
     use mesh, only: mesh_t
     use element_types, only: element_nodes_per_cell
@@ -31,7 +31,7 @@ contains
         real(wp), allocatable :: ke(:, :), xy(:, :)
         real(wp) :: min_det
         type(stiffness_tables_t) :: tables
-        integer :: n_nodes, cell, info, i
+        integer :: n_nodes, n_dim, cell, info, i
 
         if (.not. (young > 0.0_wp .and. young <= huge(young))) then
             call stat%fail(STATUS_BAD_INPUT, 'assembly: Young''s modulus must be positive '// &
@@ -57,17 +57,23 @@ contains
             call stat%fail(STATUS_INTERNAL, 'assembly: the dof map is not built')
             return
         end if
+        n_dim = m%dim()
+        if (size(m%coords, 1) /= n_dim .or. dofs%dim() /= n_dim) then
+            call stat%fail(STATUS_INTERNAL, 'assembly: the coordinates or the dof map do '// &
+                           'not have the mesh''s dimension '//to_string(n_dim))
+            return
+        end if
 
         call stiffness_pattern(m, dofs, k)
         tables = stiffness_tables(m%element)
 
         ! Work arrays outlive the loop: a temporary per cell costs as much as a P1 matrix.
-        allocate (ke(N_DIM*n_nodes, N_DIM*n_nodes), local_dofs(N_DIM*n_nodes))
-        allocate (xy(N_DIM, n_nodes))
+        allocate (ke(n_dim*n_nodes, n_dim*n_nodes), local_dofs(n_dim*n_nodes))
+        allocate (xy(n_dim, n_nodes))
         do cell = 1, m%n_cells()
             do i = 1, n_nodes
                 xy(:, i) = m%coords(:, m%cells(i, cell))
-                local_dofs(N_DIM*i - 1:N_DIM*i) = dofs%free_dof(:, m%cells(i, cell))
+                local_dofs(n_dim*(i - 1) + 1:n_dim*i) = dofs%free_dof(:, m%cells(i, cell))
             end do
             call element_stiffness(m%element, xy, young, poisson, ke, info, min_det, tables)
             if (info /= ELEMENT_OK) then
@@ -109,7 +115,7 @@ contains
         integer :: cell
 
         if (.not. node_major(dofs)) then
-            allocate (all_dofs(N_DIM*size(m%cells, 1), m%n_cells()))
+            allocate (all_dofs(dofs%dim()*size(m%cells, 1), m%n_cells()))
             do cell = 1, m%n_cells()
                 all_dofs(:, cell) = cell_dofs(dofs, m, cell)
             end do
@@ -135,14 +141,14 @@ contains
         end do
         allocate (k%col(k%row_start(dofs%n_free + 1) - 1))
         do node = 1, m%n_nodes()
-            do component = 1, N_DIM
+            do component = 1, dofs%dim()
                 row = dofs%free_dof(component, node)
                 if (row == 0) cycle
                 pos = k%row_start(row)
                 ! Neighbours are sorted and numbering is node-major: columns come out sorted.
                 do slot = node_graph%row_start(node), node_graph%row_start(node + 1) - 1
                     neighbour = node_graph%col(slot)
-                    do column_component = 1, N_DIM
+                    do column_component = 1, dofs%dim()
                         if (dofs%free_dof(column_component, neighbour) == 0) cycle
                         k%col(pos) = dofs%free_dof(column_component, neighbour)
                         pos = pos + 1

@@ -1,8 +1,9 @@
 ! SPDX-License-Identifier: MIT
-!> Numbering of the free degrees of freedom: two displacement components per node, minus
-!> those prescribed (Dirichlet) on the chosen boundary parts, which are eliminated.
+!> Numbering of the free degrees of freedom: one displacement component per spatial dimension
+!> of the mesh (mesh_t%dim) at each node, minus those prescribed (Dirichlet) on the chosen
+!> boundary parts, which are eliminated.
 module dof_map
-    use kinds, only: wp, N_DIM
+    use kinds, only: wp
     use status, only: status_t, STATUS_BAD_INPUT
     use mesh, only: mesh_t
     use strings, only: to_string
@@ -11,31 +12,41 @@ module dof_map
     public :: build_dof_map, cell_dofs, all_dof, node_dofs
 
     type, public :: dof_map_t
-        !> (2, n_nodes): number of dof (component, node) in the free system, 1-based;
-        !> 0 when the dof is prescribed.
+        !> (dim, n_nodes): number of dof (component, node) in the free system, 1-based;
+        !> 0 when the dof is prescribed. Its first extent is the mesh's dimension.
         integer, allocatable :: free_dof(:, :)
         integer :: n_free = 0   !! size of the free system
     contains
         procedure :: free_to_all => dof_map_free_to_all
         procedure :: expand => dof_map_expand
         procedure :: nodal_field => dof_map_nodal_field
+        procedure :: dim => dof_map_dim
     end type dof_map_t
 
 contains
 
-    !> Number of dof (component, node) in the numbering of all dofs, node-major: the numbering
-    !> build_dof_map gives when no dof is prescribed, in which loads and K on all dofs live.
-    elemental integer function all_dof(component, node)
-        integer, intent(in) :: component, node
-        all_dof = N_DIM*(node - 1) + component
+    !> Number of dof (component, node) in the numbering of all dofs of a mesh of dimension
+    !> `n_dim`, node-major: the numbering build_dof_map gives when no dof is prescribed, in
+    !> which loads and K on all dofs live.
+    elemental integer function all_dof(component, node, n_dim)
+        integer, intent(in) :: component, node, n_dim
+        all_dof = n_dim*(node - 1) + component
     end function all_dof
 
-    !> The two dofs (x, y) of `node` in the numbering of all dofs.
-    pure function node_dofs(node) result(dofs)
-        integer, intent(in) :: node
-        integer :: dofs(N_DIM)
-        dofs = [all_dof(1, node), all_dof(2, node)]
+    !> The dofs (x, y, ...) of `node` in the numbering of all dofs of a mesh of dimension
+    !> `n_dim`.
+    pure function node_dofs(node, n_dim) result(dofs)
+        integer, intent(in) :: node, n_dim
+        integer :: dofs(n_dim), c
+        dofs = [(all_dof(c, node, n_dim), c=1, n_dim)]
     end function node_dofs
+
+    !> Displacement components per node: the dimension of the mesh the map was built on.
+    pure integer function dof_map_dim(this)
+        class(dof_map_t), intent(in) :: this
+        dof_map_dim = 0
+        if (allocated(this%free_dof)) dof_map_dim = size(this%free_dof, 1)
+    end function dof_map_dim
 
     !> (n_free) the number of each free dof in the numbering of all dofs.
     pure function dof_map_free_to_all(this) result(map)
@@ -43,8 +54,9 @@ contains
         integer :: map(this%n_free)
         integer :: node, c
         do node = 1, size(this%free_dof, 2)
-            do c = 1, N_DIM
-                if (this%free_dof(c, node) > 0) map(this%free_dof(c, node)) = all_dof(c, node)
+            do c = 1, this%dim()
+                if (this%free_dof(c, node) > 0) &
+                    map(this%free_dof(c, node)) = all_dof(c, node, this%dim())
             end do
         end do
     end function dof_map_free_to_all
@@ -56,30 +68,31 @@ contains
         class(dof_map_t), intent(in) :: this
         real(wp), intent(in) :: x(:)
         real(wp), intent(in), optional :: prescribed(:)
-        real(wp) :: u(N_DIM*size(this%free_dof, 2))
-        integer :: node, c
+        real(wp) :: u(size(this%free_dof))
+        integer :: node, c, i
         do node = 1, size(this%free_dof, 2)
-            do c = 1, N_DIM
+            do c = 1, this%dim()
+                i = all_dof(c, node, this%dim())
                 if (this%free_dof(c, node) > 0) then
-                    u(all_dof(c, node)) = x(this%free_dof(c, node))
+                    u(i) = x(this%free_dof(c, node))
                 else if (present(prescribed)) then
-                    u(all_dof(c, node)) = prescribed(all_dof(c, node))
+                    u(i) = prescribed(i)
                 else
-                    u(all_dof(c, node)) = 0.0_wp
+                    u(i) = 0.0_wp
                 end if
             end do
         end do
     end function dof_map_expand
 
-    !> A free-dof vector as a (2, n_nodes) nodal field, zero on the prescribed dofs.
+    !> A free-dof vector as a (dim, n_nodes) nodal field, zero on the prescribed dofs.
     pure function dof_map_nodal_field(this, x) result(field)
         class(dof_map_t), intent(in) :: this
         real(wp), intent(in) :: x(:)
-        real(wp) :: field(N_DIM, size(this%free_dof, 2))
+        real(wp) :: field(size(this%free_dof, 1), size(this%free_dof, 2))
         field = reshape(this%expand(x), shape(field))
     end function dof_map_nodal_field
 
-    !> Fix both components of every node of every boundary edge in the parts
+    !> Fix every component of every node of every boundary edge in the parts
     !> `dirichlet_parts` (indices into m%part_names; may be empty), and number the other
     !> dofs node by node in node order, x before y, so the structured mesh's small node
     !> bandwidth carries over to the matrices.
@@ -114,11 +127,11 @@ contains
             if (in_dirichlet(m%edge_part(e))) fixed(m%edges(:, e)) = .true.
         end do
 
-        allocate (dofs%free_dof(N_DIM, m%n_nodes()), source=0)
+        allocate (dofs%free_dof(m%dim(), m%n_nodes()), source=0)
         count = 0
         do node = 1, m%n_nodes()
             if (fixed(node)) cycle
-            do i = 1, N_DIM
+            do i = 1, m%dim()
                 count = count + 1
                 dofs%free_dof(i, node) = count
             end do
@@ -132,7 +145,7 @@ contains
         type(dof_map_t), intent(in) :: dofs
         type(mesh_t), intent(in) :: m
         integer, intent(in) :: cell
-        integer :: numbers(N_DIM*size(m%cells, 1))
+        integer :: numbers(size(dofs%free_dof, 1)*size(m%cells, 1))
         numbers = reshape(dofs%free_dof(:, m%cells(:, cell)), [size(numbers)])
     end function cell_dofs
 end module dof_map

@@ -2,9 +2,9 @@
 !> Isotropic plane-strain elasticity: Hooke's law and element stiffness matrices of the
 !> bilinear form a(u, v) = int sigma(u) : eps(v).
 module elasticity
-    use kinds, only: wp, N_DIM
+    use kinds, only: wp
     use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, ELEMENT_P3, &
-                             ELEMENT_P4, element_nodes_per_cell
+                             ELEMENT_P4, element_nodes_per_cell, element_dimension
     use quadrature, only: quadrature_rule_t, triangle_rule, quad_rule
     use shape_functions, only: evaluate_shape, reference_nodes, MAX_NODES
     use cell_geometry, only: det_range_of, jacobian_of, orientation_of, CELL_ANTICLOCKWISE, &
@@ -133,14 +133,16 @@ contains
         integer, intent(out) :: info
         real(wp), intent(out), optional :: min_det
         type(stiffness_tables_t), intent(in), optional :: tables
-        integer :: n
+        integer :: n, n_dim
         real(wp) :: smallest
 
         ke = 0.0_wp
         if (present(min_det)) min_det = 0.0_wp
         n = element_nodes_per_cell(element)
-        if (n == 0 .or. size(xy, 1) /= N_DIM .or. size(xy, 2) /= n .or. &
-            any(shape(ke) /= [N_DIM*n, N_DIM*n])) then
+        n_dim = element_dimension(element)
+        ! the plane-strain kernel below: a 2-d element only
+        if (n == 0 .or. n_dim /= 2 .or. size(xy, 1) /= n_dim .or. size(xy, 2) /= n .or. &
+            any(shape(ke) /= [n_dim*n, n_dim*n])) then
             info = ELEMENT_BAD_ARGUMENT
             return
         end if
@@ -211,8 +213,8 @@ contains
                     end do
                 end do
             end do
-            do b = 1, N_DIM*n
-                do a = b + 1, N_DIM*n
+            do b = 1, size(ke, 2)
+                do a = b + 1, size(ke, 1)
                     ke(a, b) = ke(b, a)
                 end do
             end do

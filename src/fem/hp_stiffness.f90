@@ -74,7 +74,9 @@ contains
             geta(q, :) = gradient(2, :)
         end do
         allocate (tables%r(n, n, 4))
-        weighted = gxi
+        ! sourced allocation: the reallocation of the unallocated array read an extent that
+        ! -fsanitize=undefined reported as an overflow
+        allocate (weighted, source=gxi)
         do q = 1, rule%n_points()
             weighted(q, :) = rule%weights(q)*gxi(q, :)
         end do
@@ -371,7 +373,7 @@ contains
         end do
         if (.not. allocated(tables)) allocate (tables(16))
         if (n_tables == size(tables)) then
-            allocate (grown(2*n_tables))
+            allocate (grown(max(16, 2*n_tables)))   ! (an empty cache grows too)
             grown(1:n_tables) = tables
             call move_alloc(grown, tables)
         end if

@@ -1,9 +1,10 @@
 ! SPDX-License-Identifier: MIT
 !> Consistent nodal forces of the data of the static problem: tractions on boundary edges and
-!> a body force, as vectors on ALL dofs in the node-major numbering 2 (node - 1) + component
-!> (the numbering build_dof_map gives when no dof is prescribed).
+!> a body force, as vectors on ALL dofs in the node-major numbering dim (node - 1) + component
+!> (dof_map's all_dof, the numbering build_dof_map gives when no dof is prescribed), for a
+!> mesh of dimension dim = 2 (edges bound the plane domain).
 module loads
-    use kinds, only: wp, N_DIM
+    use kinds, only: wp
     use status, only: status_t, STATUS_MESH
     use mesh, only: mesh_t
     use element_types, only: element_nodes_per_edge, element_nodes_per_cell, element_corners
@@ -32,17 +33,20 @@ contains
     subroutine edge_loads(m, in_part, traction, stress, f, stat)
         type(mesh_t), intent(in) :: m
         logical, intent(in) :: in_part(:)          !! (n_parts) parts that carry the load
-        real(wp), intent(in) :: traction(N_DIM)    !! force per unit length
-        real(wp), intent(in) :: stress(N_DIM, N_DIM)
-        real(wp), intent(inout) :: f(:)            !! (2 n_nodes)
+        real(wp), intent(in) :: traction(:)        !! (m%dim()) force per unit length
+        real(wp), intent(in) :: stress(:, :)       !! (m%dim(), m%dim())
+        real(wp), intent(inout) :: f(:)            !! (dim n_nodes)
         type(status_t), intent(out) :: stat
         type(quadrature_rule_t) :: rule
         real(wp) :: values(MAX_EDGE_NODES), derivatives(MAX_EDGE_NODES), &
-                    xy(N_DIM, MAX_EDGE_NODES), dx(N_DIM), normal(N_DIM), &
-                    inner(N_DIM), chord_normal(N_DIM), orientation, length_element, load(N_DIM)
+                    xy(size(traction), MAX_EDGE_NODES), dx(size(traction)), &
+                    normal(size(traction)), inner(size(traction)), &
+                    chord_normal(size(traction)), orientation, length_element, &
+                    load(size(traction))
         real(wp), allocatable :: inner_points(:, :)
-        integer :: e, q, a, per_edge
+        integer :: e, q, a, per_edge, n_dim
 
+        n_dim = m%dim()
         per_edge = element_nodes_per_edge(m%element)
         rule = line_rule(max(MIN_EDGE_POINTS, per_edge))
         call edge_inner_points(m, inner_points, stat)
@@ -62,8 +66,8 @@ contains
                 normal = orientation*[dx(2), -dx(1)]/length_element
                 load = traction + matmul(stress, normal)
                 do a = 1, per_edge
-                    f(node_dofs(m%edges(a, e))) = f(node_dofs(m%edges(a, e))) + &
-                        rule%weights(q)*length_element*values(a)*load
+                    f(node_dofs(m%edges(a, e), n_dim)) = f(node_dofs(m%edges(a, e), n_dim)) &
+                        + rule%weights(q)*length_element*values(a)*load
                 end do
             end do
         end do
@@ -73,14 +77,16 @@ contains
     !> (exact for the shape functions on affine cells).
     subroutine body_force_loads(m, force, f)
         type(mesh_t), intent(in) :: m
-        real(wp), intent(in) :: force(N_DIM)       !! force per unit area
-        real(wp), intent(inout) :: f(:)            !! (2 n_nodes)
+        real(wp), intent(in) :: force(:)           !! (m%dim()) force per unit area
+        real(wp), intent(inout) :: f(:)            !! (dim n_nodes)
         type(quadrature_rule_t) :: rule
-        real(wp) :: values(MAX_NODES), gradients(N_DIM, MAX_NODES), jacobian(N_DIM, N_DIM), det
-        integer :: cell, q, a, n
+        real(wp) :: values(MAX_NODES), gradients(size(force), MAX_NODES), &
+                    jacobian(size(force), size(force)), det
+        integer :: cell, q, a, n, n_dim
 
         if (.not. any(abs(force) > 0.0_wp)) return
         n = element_nodes_per_cell(m%element)
+        n_dim = m%dim()
         rule = load_rule(m%element)
         do cell = 1, m%n_cells()
             do q = 1, rule%n_points
@@ -88,8 +94,8 @@ contains
                 call jacobian_at(m%element, local_coordinates(m%element, &
                                  m%coords(:, m%cells(:, cell))), rule%points(:, q), jacobian, det)
                 do a = 1, n
-                    f(node_dofs(m%cells(a, cell))) = &
-                        f(node_dofs(m%cells(a, cell))) + rule%weights(q)*det*values(a)*force
+                    f(node_dofs(m%cells(a, cell), n_dim)) = &
+                        f(node_dofs(m%cells(a, cell), n_dim)) + rule%weights(q)*det*values(a)*force
                 end do
             end do
         end do
@@ -126,7 +132,7 @@ contains
             end do
         end do
 
-        allocate (points(N_DIM, size(m%edge_part)))
+        allocate (points(m%dim(), size(m%edge_part)))
         do e = 1, size(m%edge_part)
             node = m%edges(1, e)
             found = .false.

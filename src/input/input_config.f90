@@ -498,14 +498,17 @@ contains
         group = lowercase(trim(adjustl(blanked(:percent - 1))))
         variable = trim(adjustl(blanked(percent + 1:equals - 1)))
         value = trim(adjustl(blanked(equals + 1:)))
-        if (len(value) == 0) then
-            call malformed()
-            return
-        end if
         if (.not. any(KNOWN_GROUPS == group)) then
             call stat%fail(STATUS_BAD_INPUT, label//': unknown namelist group &' &
                            //printable(group) &
                            //' (known groups: '//group_list(KNOWN_GROUPS)//')')
+            return
+        end if
+        if (len(value) == 0) then
+            call stat%fail(STATUS_BAD_INPUT, label//': &'//group//': '//printable(variable) &
+                           //": no value after '=': expected one")
+            if (is_text_variable(group, variable)) &
+                stat%message = stat%message//" (an empty text is written '')"
             return
         end if
         if (is_text_variable(group, variable) .and. index('"'//"'", value(1:1)) == 0) then
@@ -570,7 +573,8 @@ contains
     ! -------------------------------------------------------------------------- paths
 
     !> Default output directory of a run: output/<input file name without extension>,
-    !> relative to the working directory.
+    !> relative to the working directory. A stem of dots only ('..nml', '...nml') would
+    !> name output/ itself or its parent: the whole name is kept then (output/..nml).
     function default_output_directory(input_path) result(directory)
         character(len=*), intent(in) :: input_path
         character(len=:), allocatable :: directory
@@ -580,7 +584,10 @@ contains
         base = trim(input_path)
         base = base(index(base, '/', back=.true.) + 1:)
         dot = index(base, '.', back=.true.)
-        if (dot > 1) base = base(:dot - 1)   ! a leading dot starts a hidden name, not a suffix
+        ! a leading dot starts a hidden name, not a suffix
+        if (dot > 1) then
+            if (verify(base(:dot - 1), '.') > 0) base = base(:dot - 1)
+        end if
         if (len(base) == 0) base = 'nceig'
         directory = 'output/'//base
     end function default_output_directory

@@ -20,7 +20,8 @@ module input_validation
     public :: MESH_SOURCES, ELEMENT_NAMES, DIAGONALS, RECTANGLE_SIDES, ACCEPTED_ANALYSES, &
               ACCEPTED_SOLVERS, MAX_CELLS_PER_SIDE, SWEEP_SPACINGS, MAX_SWEEP_POINTS, &
               VTK_FORMATS, SOLVE_DATA, SOLVE_STARTS, ESTIMATE_MODES, EIGEN_OPERATORS, &
-              ADAPT_ELEMENTS, ADAPT_ANALYSES, ADAPT_STRATEGIES, MAX_HP_INPUT_DEGREE
+              ADAPT_ELEMENTS, ADAPT_ANALYSES, ADAPT_STRATEGIES, MAX_HP_INPUT_DEGREE, &
+              SIGMA_MIN, SIGMA_MAX
 
     character(len=*), parameter :: MESH_SOURCES(*) = [character(len=9) :: 'rectangle', 'gmsh']
     character(len=*), parameter :: ELEMENT_NAMES(*) = [character(len=2) :: &
@@ -49,6 +50,8 @@ module input_validation
     !> to hp_basis's MAX_HP_DEGREE, which this repeats (the input layer sits below the elements).
     character(len=*), parameter :: ADAPT_STRATEGIES(*) = [character(len=2) :: 'h', 'hp']
     integer, parameter :: MAX_HP_INPUT_DEGREE = 20
+    !> &adapt sigma's range: what the geometric meshes can be built with (see the check)
+    real(wp), parameter :: SIGMA_MIN = 0.01_wp, SIGMA_MAX = 0.5_wp
     character(len=*), parameter :: SWEEP_SPACINGS(*) = [character(len=6) :: 'linear', 'log']
     integer, parameter :: MAX_SWEEP_POINTS = 100000   !! n_lambda of a &sweep range
     !> &solve works in the input's units, where young and the mesh size keep to
@@ -113,8 +116,17 @@ contains
                 call reject('theta', real_to_text(c%theta), 'a fraction with 0 < theta <= 1')
             else if (.not. any(ADAPT_STRATEGIES == c%strategy)) then
                 call reject('strategy', quoted(c%strategy), 'one of '//one_of(ADAPT_STRATEGIES))
-            else if (.not. (c%sigma > 0.0_wp .and. c%sigma < 1.0_wp)) then
-                call reject('sigma', real_to_text(c%sigma), 'a grading factor with 0 < sigma < 1')
+            else if (.not. (c%sigma >= SIGMA_MIN .and. c%sigma <= SIGMA_MAX)) then
+                ! what the geometric meshes can be built with (mesh_geometric): above 0.5 a
+                ! cell must be smaller than its distance to the singular point, and a level
+                ! holds about (sigma/(1 - sigma))^2 times more cells (0.7 took 3.8 GB and
+                ! minutes for what 0.15 reaches in 0.5 s; 0.999999 did not end); below 0.01
+                ! the cells at the point shrink over 100-fold a level, past binary64's
+                ! resolution of the coordinates in a few levels (1e-20: at the first)
+                call reject('sigma', real_to_text(c%sigma), 'a grading factor with '// &
+                            real_to_text(SIGMA_MIN)//' <= sigma <= '//real_to_text(SIGMA_MAX)// &
+                            ' (above, a level has too many cells to build; below, its cells '// &
+                            'at the singular points pass the resolution of binary64)')
             else if (c%p_max < 1 .or. c%p_max > MAX_HP_INPUT_DEGREE) then
                 call reject('p_max', to_string(c%p_max), 'a degree from 1 to '// &
                             to_string(MAX_HP_INPUT_DEGREE))

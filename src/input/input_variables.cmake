@@ -99,7 +99,7 @@ input_variable(matrices  logical .false.       "write K.mtx and B.mtx (Matrix Ma
 input_variable(vtk_format name   'binary'
                "@ ('binary': raw appended data; 'ascii': text)" LEN 8 CHOICES VTK_FORMATS)
 input_variable(plot      logical .true.
-               "draw mode_001.png with gnuplot (the first mode on the deformed mesh)")
+               "draw mode_001.png, adapt.png, lambda_sweep.png with gnuplot")
 input_variable(progress  logical .true.
                "a line on stdout as each phase ends (.false.: the final summary only)")
 
@@ -117,7 +117,7 @@ input_variable(lambdas   reals   "huge(1.0_wp)"
                "explicit list (up to {MAX_SWEEP_LAMBDAS}), replaces the range"
                DIM MAX_SWEEP_LAMBDAS SHOWN unset)
 input_variable(plot      logical .true.
-               "draw lambda_sweep.png with gnuplot when it is installed")
+               "draw lambda_sweep.png with gnuplot (&output plot on too)")
 
 # analysis = 'branch' (model.md section 9): the base solution U and the members U + delta phi
 input_group(branch HEADER "&branch      (kind = 'branch': U + delta phi, docs/model.md 9)")
@@ -173,7 +173,7 @@ input_variable(theta     real    0.25_wp
 input_variable(strategy  name    'h'
                "@: refine cells, or graded meshes with rising degrees (eigen)"
                CHOICES ADAPT_STRATEGIES)
-# cells shrink by sigma per layer
+# cells shrink by sigma per layer; the range is what the geometric meshes can be built with
 input_variable(sigma     real    0.15_wp
-               "hp: grading factor toward the singular points (0 < sigma < 1)")
+               "hp: grading factor toward the singular points (0.01 to 0.5)")
 input_variable(p_max     integer 20            "hp: highest degree of a cell (1 to 20)")

@@ -79,6 +79,12 @@ contains
         end if
         call m%require_complete('write_gmsh', stat)
         if (.not. stat%ok()) return
+        ! the entities below are a plane's: boundary curves around one surface
+        if (m%dim() /= SURFACE_DIM) then
+            call stat%fail(STATUS_BAD_INPUT, 'write_gmsh: the mesh has dimension '// &
+                           to_string(m%dim())//'; expected a plane mesh (dimension 2)')
+            return
+        end if
         if (m%n_cells() == 0) then
             call stat%fail(STATUS_BAD_INPUT, 'write_gmsh: the mesh has no cells')
             return

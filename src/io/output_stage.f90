@@ -34,7 +34,7 @@ module output_stage
                           file_exists, list_directory, MAX_NAME_LEN, sync_path, &
                           sync_filesystem, replace_directory, make_link, copy_mode, &
                           remove_tree, lock_file, unlock_file, real_path, cleanup_on_signal, &
-                          canonical_path, &
+                          canonical_path, may_write, link_target, &
                           hold_signals, end_cleanup_on_signal
     use text_file, only: read_line
     use strings, only: text_t, append_text, to_string
@@ -132,10 +132,23 @@ contains
                                ': a file of that name is in the way')
                 return
             end if
+            ! A swap could replace it (its parent is what a rename needs): but read-only is
+            ! the user's word, as for any directory we may not write.
+            if (.not. may_write(this%directory)) then
+                call stat%fail(STATUS_IO, 'output directory '//this%directory// &
+                               ' is read-only (no write permission): expected a directory '// &
+                               'nceig may write (chmod u+w), or another &output directory')
+                return
+            end if
             this%inside = .not. can_replace(this%directory, this%parent)
             ! A swap would leave the working directory (ours, the user's shell's) a removed one.
             this%in_place = this%inside
             if (.not. this%in_place) this%in_place = holds_working_directory(this%directory)
+        else if (len(link_target(this%directory)) > 0) then
+            ! canonical_path follows a link to nothing yet; one left is a loop of links
+            call stat%fail(STATUS_IO, 'output directory '//this%directory// &
+                           ': a loop of symbolic links (or more than 40 in a row)')
+            return
         else
             this%inside = .false.
             this%in_place = .false.

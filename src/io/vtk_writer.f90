@@ -7,7 +7,7 @@
 module vtk_writer
     use iso_fortran_env, only: int8, int32, int64, file_storage_size, character_storage_size
     use ieee_arithmetic, only: ieee_support_datatype
-    use kinds, only: wp, i8, N_DIM
+    use kinds, only: wp, i8
     use status, only: status_t, STATUS_IO, STATUS_INTERNAL
     use strings, only: to_string
     use filesystem, only: end_output
@@ -48,16 +48,22 @@ contains
     !> the .vtu file `path` (replaced), encoded as `format` (VTK_BINARY or VTK_ASCII). The
     !> first field is marked as the active vectors. Inconsistent sizes or an unknown format
     !> give STATUS_INTERNAL, a failed write STATUS_IO naming the file. Optional scalar cell
-    !> fields `cell_values(:, k)` called `cell_names(k)` go to CellData (both or neither).
-    subroutine write_vtu(path, m, names, vectors, format, stat, cell_names, cell_values)
+    !> fields `cell_values(:, k)` called `cell_names(k)` go to CellData (both or neither),
+    !> optional numbers `field_values(k)` called `field_names(k)` to FieldData.
+    subroutine write_vtu(path, m, names, vectors, format, stat, cell_names, cell_values, &
+                         field_names, field_values)
         character(len=*), intent(in) :: path
         type(mesh_t), intent(in) :: m
         character(len=*), intent(in) :: names(:)          !! e.g. 'displacement'
-        real(wp), intent(in) :: vectors(:, :, :)          !! (N_DIM, n_nodes, size(names))
+        real(wp), intent(in) :: vectors(:, :, :)          !! (m%dim(), n_nodes, size(names))
         character(len=*), intent(in) :: format            !! VTK_BINARY or VTK_ASCII
         type(status_t), intent(out) :: stat
         character(len=*), intent(in), optional :: cell_names(:)    !! e.g. 'error_indicator'
         real(wp), intent(in), optional :: cell_values(:, :)        !! (n_cells, size(cell_names))
+        !> one number each for the whole data set (VTK field data: mu, lambda, nu of a mode)
+        character(len=*), intent(in), optional :: field_names(:)
+        real(wp), intent(in), optional :: field_values(:)
+        character(len=:), allocatable :: fields_xml
         character(len=1024) :: msg
         character(len=128), allocatable :: scalar_names(:)
         real(wp), allocatable :: scalars(:, :)
@@ -78,6 +84,9 @@ contains
             allocate (scalar_names(0))
             allocate (scalars(m%n_cells(), 0))
         end if
+        fields_xml = ''
+        if (present(field_names) .and. present(field_values)) &
+            fields_xml = field_data_xml(field_names, field_values)
         select case (format)
         case (VTK_BINARY)
             call check_binary_support(stat)
@@ -94,9 +103,11 @@ contains
         end select
         if (ios == 0) then
             if (format == VTK_BINARY) then
-                call write_binary_grid(unit, m, names, vectors, scalar_names, scalars, ios, msg)
+                call write_binary_grid(unit, m, names, vectors, scalar_names, scalars, &
+                                       fields_xml, ios, msg)
             else
-                call write_ascii_grid(unit, m, names, vectors, scalar_names, scalars, ios, msg)
+                call write_ascii_grid(unit, m, names, vectors, scalar_names, scalars, &
+                                      fields_xml, ios, msg)
             end if
             call end_output(unit, path, ios, msg)
         end if
@@ -138,6 +149,26 @@ contains
               //'byte_order="'//machine_byte_order()//'" header_type="UInt64">'
     end function xml_prolog
 
+    !> The FieldData block (before the Piece: it belongs to the whole data set) of one
+    !> Float64 value per name, inline text in either encoding (VTK reads a mix of inline and
+    !> appended arrays); '' when there is none. Each line ends with LF.
+    pure function field_data_xml(names, values) result(xml)
+        character(len=*), intent(in) :: names(:)
+        real(wp), intent(in) :: values(:)
+        character(len=:), allocatable :: xml
+        character(len=40) :: number
+        integer :: k
+        xml = ''
+        if (size(names) == 0) return
+        xml = '    <FieldData>'//LF
+        do k = 1, min(size(names), size(values))
+            write (number, REAL_FORMAT) values(k)
+            xml = xml//'      <DataArray type="Float64" Name="'//xml_escaped(trim(names(k)))// &
+                  '" NumberOfTuples="1" format="ascii">'//trim(number)//' </DataArray>'//LF
+        end do
+        xml = xml//'    </FieldData>'//LF
+    end function field_data_xml
+
     pure function piece_tag(m) result(tag)
         type(mesh_t), intent(in) :: m
         character(len=:), allocatable :: tag
@@ -165,11 +196,13 @@ contains
     !> The XML with every array in the appended section, laid out as
     !> `_ n1 data1 n2 data2 ...`, each n a UInt64 byte count in the machine's byte order.
     !> Returns at the first failed write with its iostat and message.
-    subroutine write_binary_grid(unit, m, names, vectors, cell_names, cell_values, ios, msg)
+    subroutine write_binary_grid(unit, m, names, vectors, cell_names, cell_values, fields_xml, &
+                                 ios, msg)
         integer, intent(in) :: unit
         type(mesh_t), intent(in) :: m
         character(len=*), intent(in) :: names(:), cell_names(:)
         real(wp), intent(in) :: vectors(:, :, :), cell_values(:, :)
+        character(len=*), intent(in) :: fields_xml   !! field_data_xml's block, or ''
         integer, intent(out) :: ios
         character(len=*), intent(inout) :: msg
         integer(i8) :: bytes(size(names) + size(cell_names) + 4)
@@ -206,7 +239,7 @@ contains
             offset(k + 1) = offset(k) + HEADER_BYTES + bytes(k)
         end do
 
-        xml = xml_prolog()//LF//'  <UnstructuredGrid>'//LF//piece_tag(m)//LF
+        xml = xml_prolog()//LF//'  <UnstructuredGrid>'//LF//fields_xml//piece_tag(m)//LF
         if (n_fields > 0) then
             xml = xml//'      <PointData Vectors="'//xml_escaped(trim(names(1)))//'">'//LF
             do k = 1, n_fields
@@ -264,7 +297,8 @@ contains
         write (unit, iostat=ios, iomsg=msg) LF//'  </AppendedData>'//LF//'</VTKFile>'//LF
     end subroutine write_binary_grid
 
-    !> A (2, n) nodal array as n Float64 triples with z = 0, a chunk of nodes at a time.
+    !> A (dim, n) nodal array as n Float64 triples (a plane one with z = 0), a chunk of nodes
+    !> at a time.
     subroutine write_vector_block(unit, xy, ios, msg)
         integer, intent(in) :: unit
         real(wp), intent(in) :: xy(:, :)
@@ -275,10 +309,10 @@ contains
 
         ios = 0
         allocate (buffer(3, min(CHUNK, size(xy, 2))))
-        buffer(3, :) = 0.0_wp
+        buffer(size(xy, 1) + 1:, :) = 0.0_wp
         do first = 1, size(xy, 2), CHUNK
             last = min(first + CHUNK - 1, size(xy, 2))
-            buffer(1:N_DIM, 1:last - first + 1) = xy(:, first:last)
+            buffer(1:size(xy, 1), 1:last - first + 1) = xy(:, first:last)
             write (unit, iostat=ios, iomsg=msg) buffer(:, 1:last - first + 1)
             if (ios /= 0) return
         end do
@@ -345,19 +379,25 @@ contains
 
     !> The XML with every value as text; returns at the first failed write with its iostat
     !> and message.
-    subroutine write_ascii_grid(unit, m, names, vectors, cell_names, cell_values, ios, msg)
+    subroutine write_ascii_grid(unit, m, names, vectors, cell_names, cell_values, fields_xml, &
+                                ios, msg)
         integer, intent(in) :: unit
         type(mesh_t), intent(in) :: m
         character(len=*), intent(in) :: names(:), cell_names(:)
         real(wp), intent(in) :: vectors(:, :, :), cell_values(:, :)
+        character(len=*), intent(in) :: fields_xml   !! field_data_xml's block, or ''
         integer, intent(out) :: ios
         character(len=*), intent(inout) :: msg
         integer, allocatable :: order(:)
         integer(i8), allocatable :: offsets(:)
         integer :: e, k
 
-        write (unit, '(a)', iostat=ios, iomsg=msg) xml_prolog(), '  <UnstructuredGrid>', &
-            piece_tag(m)
+        write (unit, '(a)', iostat=ios, iomsg=msg) xml_prolog(), '  <UnstructuredGrid>'
+        if (ios /= 0) return
+        if (len(fields_xml) > 0) &
+            write (unit, '(a)', iostat=ios, iomsg=msg, advance='no') fields_xml
+        if (ios /= 0) return
+        write (unit, '(a)', iostat=ios, iomsg=msg) piece_tag(m)
         if (ios /= 0) return
 
         if (size(names) > 0) then
@@ -415,22 +455,24 @@ contains
     end subroutine write_ascii_grid
 
     !> One inline Float64 DataArray `name` of `columns` (components x n), a line per column:
-    !> a 2-d vector gets a zero z (VTK's vectors have three components), a scalar stays one.
+    !> a plane vector gets a zero z (VTK's vectors have three components), a scalar stays one.
     subroutine write_ascii_reals(unit, name, columns, ios, msg)
         integer, intent(in) :: unit
         character(len=*), intent(in) :: name
         real(wp), intent(in) :: columns(:, :)
         integer, intent(out) :: ios
         character(len=*), intent(inout) :: msg
+        real(wp), parameter :: PADDING(2) = 0.0_wp
         logical :: vector
         integer :: i
-        vector = size(columns, 1) == 2
+        vector = size(columns, 1) > 1
         write (unit, '(a)', iostat=ios, iomsg=msg) &
             data_array_tag('Float64', name, merge(3, 0, vector), INLINE)
         if (ios /= 0) return
         do i = 1, size(columns, 2)
             if (vector) then
-                write (unit, REAL_FORMAT, iostat=ios, iomsg=msg) columns(:, i), 0.0_wp
+                write (unit, REAL_FORMAT, iostat=ios, iomsg=msg) columns(:, i), &
+                    PADDING(:3 - size(columns, 1))
             else
                 write (unit, REAL_FORMAT, iostat=ios, iomsg=msg) columns(:, i)
             end if
@@ -481,17 +523,19 @@ contains
             call stat%fail(STATUS_INTERNAL, 'write_vtu: cells have ' &
                            //to_string(size(m%cells, 1))//' nodes, the element needs ' &
                            //to_string(element_nodes_per_cell(m%element)))
-        else if (size(m%coords, 1) /= N_DIM) then
-            call stat%fail(STATUS_INTERNAL, 'write_vtu: coordinates must be (2, n_nodes)')
+        else if (size(m%coords, 1) /= m%dim() .or. m%dim() > 3) then
+            call stat%fail(STATUS_INTERNAL, 'write_vtu: coordinates must be ('// &
+                           to_string(m%dim())//', n_nodes), at most 3 components')
         else if (m%n_cells() > 0) then
             if (minval(m%cells) < 1 .or. maxval(m%cells) > m%n_nodes()) then
                 call stat%fail(STATUS_INTERNAL, 'write_vtu: a cell refers to a missing node')
             end if
         end if
         if (.not. stat%ok()) return
-        if (size(vectors, 3) /= size(names) .or. size(vectors, 1) /= N_DIM .or. &
+        if (size(vectors, 3) /= size(names) .or. size(vectors, 1) /= m%dim() .or. &
             (size(names) > 0 .and. size(vectors, 2) /= m%n_nodes())) then
-            call stat%fail(STATUS_INTERNAL, 'write_vtu: fields must be (2, n_nodes, n_names)')
+            call stat%fail(STATUS_INTERNAL, 'write_vtu: fields must be ('// &
+                           to_string(m%dim())//', n_nodes, n_names)')
         end if
     end subroutine check_arguments
 

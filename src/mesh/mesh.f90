@@ -3,8 +3,8 @@
 !> boundary part each belongs to. Generators (structured, Gmsh) fill it; nothing else edits it.
 module mesh
     use kinds, only: wp
-    use element_types, only: ELEMENT_P1
-    use strings, only: NAME_LEN
+    use element_types, only: ELEMENT_P1, element_dimension, element_name
+    use strings, only: NAME_LEN, to_string
     use status, only: status_t, STATUS_BAD_INPUT
     implicit none
     private
@@ -12,7 +12,7 @@ module mesh
 
     type :: mesh_t
         integer :: element = ELEMENT_P1
-        real(wp), allocatable :: coords(:, :)    !! (2, n_nodes)
+        real(wp), allocatable :: coords(:, :)    !! (dim(), n_nodes)
         integer, allocatable :: cells(:, :)      !! (nodes_per_cell, n_cells), anticlockwise
         integer, allocatable :: edges(:, :)      !! (nodes_per_edge, n_edges): ends, then mid node
         integer, allocatable :: edge_part(:)     !! (n_edges) index into part_names
@@ -25,6 +25,7 @@ module mesh
     contains
         procedure :: n_nodes => mesh_n_nodes
         procedure :: n_cells => mesh_n_cells
+        procedure :: dim => mesh_dim
         procedure :: part_index => mesh_part_index
         procedure :: require_complete => mesh_require_complete
     end type mesh_t
@@ -43,6 +44,13 @@ contains
         if (allocated(this%cells)) mesh_n_cells = size(this%cells, 2)
     end function mesh_n_cells
 
+    !> The spatial dimension: that of its element (element_dimension), which its
+    !> coordinates have (coords is (dim, n_nodes)) and every node's displacement.
+    pure integer function mesh_dim(this)
+        class(mesh_t), intent(in) :: this
+        mesh_dim = element_dimension(this%element)
+    end function mesh_dim
+
     !> Index of the boundary part called `name`, or 0 when the mesh has none of that name.
     pure integer function mesh_part_index(this, name)
         class(mesh_t), intent(in) :: this
@@ -59,7 +67,8 @@ contains
     end function mesh_part_index
 
     !> Fail (bad input of `who`, the procedure handed this mesh) unless nodes, cells,
-    !> boundary edges and part names are all there: what a writer or a refinement reads.
+    !> boundary edges and part names are all there, the nodes with dim() coordinates: what a
+    !> writer or a refinement reads.
     subroutine mesh_require_complete(this, who, stat)
         class(mesh_t), intent(in) :: this
         character(len=*), intent(in) :: who
@@ -69,5 +78,10 @@ contains
                    allocated(this%part_names))) &
             call stat%fail(STATUS_BAD_INPUT, who//': the mesh is incomplete (no nodes, cells, '// &
                            'boundary edges or part names)')
+        if (.not. stat%ok()) return
+        if (size(this%coords, 1) /= this%dim()) &
+            call stat%fail(STATUS_BAD_INPUT, who//': the nodes have '// &
+                           to_string(size(this%coords, 1))//' coordinates, the '// &
+                           element_name(this%element)//' element '//to_string(this%dim()))
     end subroutine mesh_require_complete
 end module mesh

@@ -12,7 +12,7 @@
 module mesh_geometric
     use kinds, only: wp
     use status, only: status_t, STATUS_BAD_INPUT
-    use strings, only: to_string
+    use strings, only: to_string, short_real_text
     use mesh, only: mesh_t
     use element_types, only: ELEMENT_P1
     use mesh_refine, only: refinable_mesh_t, build_refinable_mesh
@@ -22,6 +22,15 @@ module mesh_geometric
 
     !> bound on the bisection sweeps (each at least halves the largest marked cell's area)
     integer, parameter :: MAX_SWEEPS = 400
+    !> The smallest cell size a grading may ask for, relative to the largest coordinate: a
+    !> thousand times binary64's resolution of a coordinate (2.2e-16 relative); below, the
+    !> new vertices of a bisection are no longer distinct points.
+    real(wp), parameter :: RESOLVED = 1.0e3_wp*epsilon(1.0_wp)
+
+    !> geometric_mesh's `outcome`
+    integer, parameter, public :: MESH_GRADED = 0       !! the mesh is made
+    integer, parameter, public :: MESH_BELOW_RESOLUTION = 1   !! h_min below RESOLVED |x|
+    integer, parameter, public :: MESH_OVER_CELLS = 2   !! more cells than max_cells
 
 contains
 
@@ -53,9 +62,18 @@ contains
 
     !> The P1 mesh of `m` refined geometrically toward `points` (2, n) with factor `sigma`
     !> and `layers` levels (see the module's comment); `h_min` returns the size reached at
-    !> the points (the largest diameter of the cells touching one). Parts and boundary edges carry over; any triangle mesh (P1 to P4) is
-    !> accepted, its higher-order nodes dropped.
-    subroutine geometric_mesh(m, points, sigma, layers, graded, h_min, stat)
+    !> the points (the largest diameter of the cells touching one). Parts and boundary edges
+    !> carry over; any triangle mesh (P1 to P4) is accepted, its higher-order nodes dropped.
+    !> A cell away from the points is not asked to be smaller than sigma h_min (the size of
+    !> the ring after the last): a vertex of the input mesh a short edge away from a singular
+    !> point (1e-6 on a side 1 long) otherwise asked for cells below its distance, whose
+    !> bisection put a new vertex nearer still, without end. Where no input vertex is that
+    !> near a point no such cell arises, and the mesh is the one the rule alone makes. `outcome` (optional): MESH_BELOW_RESOLUTION when h_min is below what binary64
+    !> resolves of the coordinates (RESOLVED; nothing is refined), MESH_OVER_CELLS when the
+    !> mesh would exceed `max_cells` (the refinement stops; `graded` is not made), else
+    !> MESH_GRADED. Without it, a level below the resolution fails (STATUS_BAD_INPUT).
+    subroutine geometric_mesh(m, points, sigma, layers, graded, h_min, stat, max_cells, &
+                              outcome)
         type(mesh_t), intent(in) :: m
         real(wp), intent(in) :: points(:, :)
         real(wp), intent(in) :: sigma
@@ -63,11 +81,14 @@ contains
         type(mesh_t), intent(out) :: graded
         real(wp), intent(out) :: h_min
         type(status_t), intent(out) :: stat
+        integer, intent(in), optional :: max_cells
+        integer, intent(out), optional :: outcome
         type(refinable_mesh_t) :: r
         integer, allocatable :: marked(:)
-        real(wp) :: ratio, h, d
+        real(wp) :: ratio, h, d, floor_size
         integer :: sweep, c, i
 
+        if (present(outcome)) outcome = MESH_GRADED
         if (.not. (sigma > 0.0_wp .and. sigma < 1.0_wp) .or. layers < 0) then
             call stat%fail(STATUS_BAD_INPUT, 'geometric mesh: expected 0 < sigma < 1 and '// &
                            'layers >= 0, got layers = '//to_string(layers))
@@ -80,7 +101,17 @@ contains
             h_min = max(h_min, cell_diameter(r%coords(:, r%cells(:, c))))
         end do
         h_min = h_min*sigma**layers
+        if (h_min < RESOLVED*maxval(abs(r%coords))) then
+            if (present(outcome)) outcome = MESH_BELOW_RESOLUTION
+            if (.not. present(outcome)) call stat%fail(STATUS_BAD_INPUT, 'geometric mesh: '// &
+                'cells of '//short_real_text(h_min)//' at the singular points are below '// &
+                'the resolution of binary64 coordinates')
+            return
+        end if
         ratio = (1.0_wp - sigma)/sigma
+        ! ring k + 1 would start below h_min: only an input vertex that near a point puts a
+        ! cell there, and refining it toward the point would not end (see above)
+        floor_size = sigma*h_min
         do sweep = 1, MAX_SWEEPS
             allocate (marked(r%n_cells()))
             i = 0
@@ -89,13 +120,20 @@ contains
                     h = cell_diameter(xy)
                     d = nearest_point(xy)
                     if ((d <= 0.0_wp .and. h > h_min*(1.0_wp + 1.0e-12_wp)) .or. &
-                        (d > 0.0_wp .and. h > ratio*d)) then
+                        (d > 0.0_wp .and. h > ratio*d .and. h > floor_size)) then
                         i = i + 1
                         marked(i) = c
                     end if
                 end associate
             end do
             if (i == 0) exit
+            if (present(max_cells)) then
+                ! each marked cell becomes at least two (the closure adds more)
+                if (r%n_cells() + i > max_cells) then
+                    if (present(outcome)) outcome = MESH_OVER_CELLS
+                    return
+                end if
+            end if
             call r%refine(marked(:i), stat)
             if (.not. stat%ok()) return
             deallocate (marked)

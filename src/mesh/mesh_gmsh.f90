@@ -193,9 +193,9 @@ contains
             new_node(node) = n_used
         end do
         m%element = element
-        allocate (m%coords(2, n_used))
+        allocate (m%coords(m%dim(), n_used))
         do node = 1, raw%n_nodes
-            if (new_node(node) > 0) m%coords(:, new_node(node)) = raw%node_xyz(1:2, node)
+            if (new_node(node) > 0) m%coords(:, new_node(node)) = raw%node_xyz(1:m%dim(), node)
         end do
         call check_planar(stat)
         if (.not. stat%ok()) return

@@ -120,7 +120,7 @@ contains
             n_vertices = n_vertices + 1
             vertex_of(node) = n_vertices
         end do
-        allocate (r%coords(2, n_vertices))
+        allocate (r%coords(size(m%coords, 1), n_vertices))
         do node = 1, size(vertex_of)
             if (vertex_of(node) > 0) r%coords(:, vertex_of(node)) = m%coords(:, node)
         end do
@@ -156,8 +156,12 @@ contains
                 return
             end if
         end do
-        r%edge_part = m%edge_part
-        r%part_names = m%part_names
+        ! sourced allocation, not assignment, into the intent(out) record: gfortran 12's
+        ! reallocation reads the unallocated component's stale bounds, which
+        ! -fsanitize=undefined reports as an overflow (now and then, as the stack holds)
+        allocate (r%edge_part, source=m%edge_part)
+        allocate (r%part_names, source=m%part_names)
+        allocate (r%parent(m%n_cells()))
         r%parent = [(c, c=1, m%n_cells())]
 
         call build_edge_table(r%cells, n_vertices, table)
@@ -235,7 +239,7 @@ contains
 
         ! A new vertex at the midpoint of each bisected edge, in edge order.
         allocate (midpoint(table%n_edges), source=0)
-        allocate (coords(2, n_vertices + tail))
+        allocate (coords(size(this%coords, 1), n_vertices + tail))
         coords(:, :n_vertices) = this%coords
         do e = 1, table%n_edges
             if (.not. bisected(e)) cycle
@@ -351,14 +355,14 @@ contains
             return
         end if
         m%element = element
-        m%part_names = this%part_names
         ! sourced allocation, not assignment: gfortran 12's reallocation of the unallocated
         ! component reads an extent that -fsanitize=undefined reports as an overflow
+        allocate (m%part_names, source=this%part_names)
         allocate (m%edge_part, source=this%edge_part)
         if (element == ELEMENT_P1) then
-            m%coords = this%coords
-            m%cells = this%cells
-            m%edges = this%edges
+            allocate (m%coords, source=this%coords)
+            allocate (m%cells, source=this%cells)
+            allocate (m%edges, source=this%edges)
             return
         end if
 
@@ -368,7 +372,7 @@ contains
         n_vertices = this%n_vertices()
         call build_edge_table(this%cells, n_vertices, table)
         first_inner = n_vertices + inner*table%n_edges
-        allocate (m%coords(2, first_inner + n_inner*this%n_cells()))
+        allocate (m%coords(size(this%coords, 1), first_inner + n_inner*this%n_cells()))
         m%coords(:, :n_vertices) = this%coords
         do e = 1, table%n_edges
             do t = 1, inner

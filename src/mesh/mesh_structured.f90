@@ -111,7 +111,7 @@ contains
         n_grid_y = step*ny + 1
 
         m%element = element
-        allocate (m%coords(2, n_grid_x*n_grid_y), &
+        allocate (m%coords(m%dim(), n_grid_x*n_grid_y), &
                   m%cells(element_nodes_per_cell(element), merge(2, 1, triangles)*nx*ny), &
                   m%edges(element_nodes_per_edge(element), 2*(nx + ny)), &
                   m%edge_part(2*(nx + ny)), stat=ierr)

@@ -19,7 +19,7 @@
 module adapt_driver
     use kinds, only: wp
     use status, only: status_t, STATUS_NOT_MET
-    use strings, only: to_string, short_real_text
+    use strings, only: to_string, short_real_text, given_real_text
     use timer, only: wall_time, timings_t
     use scene, only: scene_t
     use method_options, only: adapt_options_t
@@ -67,6 +67,9 @@ module adapt_driver
         integer :: max_dofs = 0                  !! a level's free dofs at most
         character(len=:), allocatable :: dof_limit   !! the words naming that limit
         integer :: next_dofs = 0                 !! the free dofs of the level made last
+        !> why the next level cannot be made, where not its dofs (hp: the mesh builder's
+        !> limits); unallocated: the dofs (too_big_words)
+        character(len=:), allocatable :: stop_reason
     contains
         !> before the first level: check the starting problem, set the limits
         procedure(refiner_begin), deferred :: begin
@@ -83,6 +86,7 @@ module adapt_driver
         procedure(refiner_estimated), deferred :: estimated
         !> the words after '&adapt: ' in a message about a level ("strategy = 'hp': " or '')
         procedure(refiner_words), deferred :: strategy_words
+        procedure :: too_big_words => refiner_too_big_words
     end type refiner_t
 
     !> What the loop adapts to: a set of targets, each with its own state.
@@ -225,10 +229,8 @@ contains
             call refiner%next(scn, start, goal, solved, level, too_big, timings, stat)
             if (.not. stat%ok()) return
             if (too_big) then
-                call stop_active(goal, 'tolerance '//short_real_text(adapt%tolerance)// &
-                    ' not met: the next level would have '// &
-                    to_string(refiner%next_dofs)//' dofs, more than '// &
-                    refiner%dof_limit//'; reached error bar ')
+                call stop_active(goal, 'tolerance '//given_real_text(adapt%tolerance)// &
+                    ' not met: '//refiner%too_big_words()//'; reached error bar ')
                 exit
             end if
             call goal%solve(scn, refiner, level, loop_start, timings, refused, stat)
@@ -239,7 +241,7 @@ contains
                                    refiner%strategy_words()//refused)
                     return
                 end if
-                call stop_active(goal, 'tolerance '//short_real_text(adapt%tolerance)// &
+                call stop_active(goal, 'tolerance '//given_real_text(adapt%tolerance)// &
                                  ' not met: the next '//refused//'; reached error bar ')
                 exit
             end if
@@ -247,13 +249,26 @@ contains
             call goal%judge(refiner, level%number, adapt%tolerance)
             if (.not. goal%any_active()) exit
             if (adapt%max_levels > 0 .and. level%number >= adapt%max_levels) then
-                call stop_active(goal, 'tolerance '//short_real_text(adapt%tolerance)// &
+                call stop_active(goal, 'tolerance '//given_real_text(adapt%tolerance)// &
                     ' not met: max_levels = '//to_string(adapt%max_levels)// &
                     ' reached with error bar ')
                 exit
             end if
         end do
     end subroutine adapt_levels
+
+    !> Why the next level is too big (refiner_next's too_big): stop_reason, else its dofs
+    !> over the limit.
+    function refiner_too_big_words(this) result(words)
+        class(refiner_t), intent(in) :: this
+        character(len=:), allocatable :: words
+        if (allocated(this%stop_reason)) then
+            words = this%stop_reason
+        else
+            words = 'the next level would have '//to_string(this%next_dofs)// &
+                ' dofs, more than '//this%dof_limit
+        end if
+    end function refiner_too_big_words
 
     !> Every active target of `goal` stopped, its outcome `words` and its bar.
     subroutine stop_active(goal, words)
@@ -288,7 +303,7 @@ contains
                 call t%finish(TARGET_STOPPED, 'tolerance not met: no error estimate at level '// &
                               to_string(level)//' ('//missing//')')
             else if (bar <= tolerance .and. level >= 1) then
-                call t%finish(TARGET_MET, 'tolerance '//short_real_text(tolerance)// &
+                call t%finish(TARGET_MET, 'tolerance '//given_real_text(tolerance)// &
                     ' met at level '//to_string(level)//': error bar '// &
                     short_real_text(bar)//', '//to_string(dofs)//' dofs')
             else if (floor_reached(bar, roundoff)) then
@@ -302,7 +317,7 @@ contains
         else if (stalled) then
             call t%finish(TARGET_STOPPED, stall_outcome(tolerance, stall_what))
         else if (bar >= 0.0_wp .and. bar <= tolerance) then
-            call t%finish(TARGET_MET, 'tolerance '//short_real_text(tolerance)// &
+            call t%finish(TARGET_MET, 'tolerance '//given_real_text(tolerance)// &
                 ' met at level '//to_string(level)//': error bar '//short_real_text(bar)// &
                 ' at '//to_string(dofs)//' dofs')
         else if (floor_reached(bar, roundoff)) then

@@ -144,6 +144,15 @@ contains
         if (res%error%computed .and. res%roundoff <= FORWARD_ERROR_BOUND) res%warnings = &
             [character(len=WARNING_LEN) :: res%warnings, roundoff_warnings(res%roundoff, &
                                                            res%error%bar - res%roundoff)]
+        ! a bar of 1 or more: not one digit of c_n, not even its existence, is certain (it
+        ! happens where lambda is near a critical value of this mesh: 1.94 on the reference
+        ! scene at 32 x 32, whose lambda+ is 1.9334 there and 1.9447 in the continuum)
+        if (res%error%computed .and. res%error%bar >= 1.0_wp) res%warnings = &
+            [character(len=WARNING_LEN) :: res%warnings, 'no digit of the lowest positive '// &
+            'mu is certain: its error bar is '//short_real_text(res%error%bar)//' relative, '// &
+            'larger than mu itself; lambda = '//real_to_text(res%lambda)//' may be near a '// &
+            'critical value, where mu passes through infinity and a finer mesh may leave no '// &
+            'positive mu at all (kind = ''threshold'' gives the critical lambdas and their bars)']
     end subroutine estimate_eigen
 
     !> Whether options%estimate asks for the error estimates on a problem of `n_free` dofs:
@@ -396,6 +405,10 @@ contains
             call timings%add(PHASE_EIGEN, wall_time() - start - reduction_seconds, ': dense, '// &
                              to_string(res%spec%n())//' eigenvalues')
         end if
+        ! ARPACK's answer has no dense left vectors: the sensitivity of the lowest positive mu
+        ! to lambda from its full left vector (the round-off bound's), so that a lambda near
+        ! a critical value is said on every solver path
+        if (.not. allocated(res%spec%lambda_sensitivity)) call add_lambda_sensitivity(prob, res)
         call check_input_range(scn, prob%units, res%lambda, .false., res%spec%mu, stat)
         if (.not. stat%ok()) return
         res%roundoff = -1.0_wp
@@ -406,6 +419,32 @@ contains
         if (len(certificate) > 0) res%warnings = [character(len=WARNING_LEN) :: certificate, &
                                                   res%warnings]
     end subroutine eigen_with_factor
+
+    !> |lambda dmu/dlambda / mu| of the lowest positive mu (first in res%spec) from its right
+    !> and left eigenvectors phi, psi on the free dofs (K phi = mu B phi, K psi = mu B^T psi):
+    !> d mu / d lambda = -mu psi^T B' phi / psi^T B phi, and B(lambda) = lambda T' - N' is
+    !> linear in lambda, so lambda B' = B(2 lambda) - B(lambda). The dense solver's value on
+    !> the reduced problem is the same quantity. Left at -1 where psi is unknown or lambda = 0.
+    subroutine add_lambda_sensitivity(prob, res)
+        type(problem_t), intent(in) :: prob
+        type(eigen_result_t), intent(inout) :: res
+        type(csr_matrix_t) :: b_double
+        type(status_t) :: stat
+        real(wp), allocatable :: phi(:), b_phi(:), b_double_phi(:)
+        real(wp) :: denominator
+        allocate (res%spec%lambda_sensitivity(res%spec%n()), source=-1.0_wp)
+        if (res%spec%lowest_positive() /= 1 .or. .not. allocated(res%spec%left)) return
+        if (.not. abs(res%lambda) > 0.0_wp .or. size(res%spec%vectors, 2) < 1) return
+        call assemble_b(prob%contact, prob%dofs%n_free, 2.0_wp*res%lambda, b_double, stat)
+        if (.not. stat%ok()) return
+        phi = real(res%spec%vectors(:, 1), wp)
+        allocate (b_phi(size(phi)), b_double_phi(size(phi)))
+        call res%b%matvec(phi, b_phi)
+        call b_double%matvec(phi, b_double_phi)
+        denominator = abs(dot_product(res%spec%left, b_phi))
+        if (denominator > 0.0_wp) res%spec%lambda_sensitivity(1) = &
+            abs(dot_product(res%spec%left, b_double_phi - b_phi))/denominator
+    end subroutine add_lambda_sensitivity
 
     !> Whether eigenvalues `mu` in the scaled `units` of a problem of the scene `scn` can be
     !> reported in the input's units (reported_units converts them, exactly): fails

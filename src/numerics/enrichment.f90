@@ -14,7 +14,7 @@
 !> with g the contact pressure the discrete pair puts on Gamma_C (mu_h u_h.n for mu, the
 !> pencil's traction for the threshold), so one routine gives the cells' share of both.
 module enrichment
-    use kinds, only: wp, N_DIM
+    use kinds, only: wp
     use status, only: status_t, STATUS_BAD_INPUT, STATUS_SINGULAR
     use strings, only: to_string
     use mesh, only: mesh_t
@@ -146,7 +146,7 @@ contains
         type(problem_t), intent(in) :: prob
         real(wp), intent(in) :: x(:)
         real(wp), allocatable :: x_plus(:)
-        real(wp) :: nodal(N_DIM, prob%mesh%n_nodes()), transfer(MAX_NODES, MAX_NODES), &
+        real(wp) :: nodal(prob%mesh%dim(), prob%mesh%n_nodes()), transfer(MAX_NODES, MAX_NODES), &
                     xi(2, MAX_NODES), gradients(2, MAX_NODES)
         integer :: c, j, n_coarse, node
 
@@ -179,7 +179,8 @@ contains
         type(problem_t), intent(in) :: prob
         real(wp), intent(in) :: x_plus(:)
         real(wp), allocatable :: x(:)
-        real(wp) :: nodal(N_DIM, this%mesh%n_nodes()), xi(2, MAX_NODES), values(MAX_NODES), &
+        real(wp) :: nodal(this%mesh%dim(), this%mesh%n_nodes()), xi(2, MAX_NODES), &
+                    values(MAX_NODES), &
                     gradients(2, MAX_NODES), at(2)
         integer :: c, i, n_fine, node
 
@@ -213,25 +214,26 @@ contains
         logical, allocatable :: in_contact(:)
         integer, allocatable :: cell_of_node(:)
         type(stiffness_tables_t) :: tables
-        integer :: c, j, n_fine, e, i, l, per_edge
+        integer :: c, j, n_fine, e, i, l, per_edge, n_dim
         real(wp) :: row_factor(2)
 
         n_fine = element_nodes_per_cell(this%element)
+        n_dim = this%mesh%dim()
         ! (allocated first: gfortran 12 warns of an unallocated one at -O3)
-        allocate (u_nodal(N_DIM, this%mesh%n_nodes()), w_nodal(N_DIM, this%mesh%n_nodes()), &
-                  z_nodal(N_DIM, this%mesh%n_nodes()))
+        allocate (u_nodal(n_dim, this%mesh%n_nodes()), w_nodal(n_dim, this%mesh%n_nodes()), &
+                  z_nodal(n_dim, this%mesh%n_nodes()))
         u_nodal = this%dofs%nodal_field(u)
         w_nodal = this%dofs%nodal_field(w)
         z_nodal = this%dofs%nodal_field(z)
-        allocate (u_cell(N_DIM*n_fine), z_cell(N_DIM*n_fine), xy(N_DIM, n_fine))
+        allocate (u_cell(n_dim*n_fine), z_cell(n_dim*n_fine), xy(n_dim, n_fine))
         allocate (r_cell(this%mesh%n_cells()), source=0.0_wp)
         ! the cells of V+ are those of the coarse mesh, which the assembly has accepted
         tables = stiffness_tables(this%element)
         do c = 1, this%mesh%n_cells()
             do j = 1, n_fine
                 xy(:, j) = this%mesh%coords(:, this%mesh%cells(j, c))
-                u_cell(N_DIM*j - 1:N_DIM*j) = u_nodal(:, this%mesh%cells(j, c))
-                z_cell(N_DIM*j - 1:N_DIM*j) = z_nodal(:, this%mesh%cells(j, c))
+                u_cell(n_dim*(j - 1) + 1:n_dim*j) = u_nodal(:, this%mesh%cells(j, c))
+                z_cell(n_dim*(j - 1) + 1:n_dim*j) = z_nodal(:, this%mesh%cells(j, c))
             end do
             r_cell(c) = -element_energy(tables, xy, this%young, poisson, u_cell, z_cell)
         end do

@@ -30,7 +30,7 @@
 !> rest of the bar, a finer level cannot lower the bar (floor_reached).
 module error_bar
     use kinds, only: wp
-    use strings, only: short_real_text
+    use strings, only: short_real_text, given_real_text
     use accuracy, only: WARNING_LEN
     implicit none
     private
@@ -90,7 +90,7 @@ contains
         real(wp), intent(in) :: tolerance, roundoff, bar
         character(len=*), intent(in) :: dofs
         character(len=:), allocatable :: outcome
-        outcome = 'tolerance '//short_real_text(tolerance)//' not met: the floating-point '// &
+        outcome = 'tolerance '//given_real_text(tolerance)//' not met: the floating-point '// &
             'floor is reached (round-off bound '//short_real_text(roundoff)// &
             ' of the error bar '//short_real_text(bar)//' at '//dofs//' dofs)'
     end function floor_outcome
@@ -248,7 +248,7 @@ contains
         real(wp), intent(in) :: tolerance
         character(len=*), intent(in) :: what
         character(len=:), allocatable :: outcome
-        outcome = 'tolerance '//short_real_text(tolerance)//' not met: '//what// &
+        outcome = 'tolerance '//given_real_text(tolerance)//' not met: '//what// &
             ' does not converge under hp refinement (its changes between levels fell less '// &
             'than tenfold in four levels), so it has '// &
             'no error bar: the scene may have no converged value (a mode that moves with the '// &

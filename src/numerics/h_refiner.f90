@@ -11,7 +11,7 @@ module h_refiner
     use kinds, only: wp, i8
     use status, only: status_t, STATUS_BAD_INPUT
     use system_memory, only: available_memory_bytes
-    use strings, only: to_string, short_real_text
+    use strings, only: to_string, short_real_text, given_real_text
     use timer, only: wall_time, timings_t, PHASE_ASSEMBLY
     use scene, only: scene_t
     use method_options, only: adapt_options_t
@@ -64,7 +64,7 @@ contains
         this%element = start%mesh%element
         if (enriched_element(this%element) == 0) then
             call stat%fail(STATUS_BAD_INPUT, scn%name//': &adapt: tolerance = '// &
-                short_real_text(adapt%tolerance)//': expected 0 for '// &
+                given_real_text(adapt%tolerance)//': expected 0 for '// &
                 element_name(this%element)//' cells (adaptation refines triangles p1, p2 or p3)')
             return
         end if

@@ -9,7 +9,8 @@
 module hp_levels
     use kinds, only: wp
     use status, only: status_t, STATUS_BAD_INPUT
-    use strings, only: to_string
+    use strings, only: to_string, short_real_text
+    use real_format, only: real_to_text
     use timer, only: timings_t
     use scene, only: scene_t
     use method_options, only: adapt_options_t
@@ -17,7 +18,8 @@ module hp_levels
     use mesh, only: mesh_t
     use element_types, only: element_corners, element_name
     use mesh_singular, only: singular_vertices
-    use mesh_geometric, only: geometric_mesh, cell_layers, layer_degrees
+    use mesh_geometric, only: geometric_mesh, cell_layers, layer_degrees, MESH_GRADED, &
+                              MESH_BELOW_RESOLUTION
     use hp_space, only: build_hp_space
     use hp_eigen, only: hp_assembled_problem, factor_hp_stiffness
     use sparse_cholesky, only: cholesky_t
@@ -77,8 +79,12 @@ contains
     end subroutine hp_begin
 
     !> The next level: its graded mesh, degrees and space and, unless it is too big, its
-    !> problem (not factored: hp_factor). The first level over an explicit &adapt max_dofs
-    !> is refused (STATUS_BAD_INPUT).
+    !> problem (not factored: hp_factor). Too big: more free dofs than the limit, so many
+    !> cells that it must have (the mesh builder stops at CELLS_PER_DOF cells a dof), or
+    !> cells at the singular points below binary64's resolution of the coordinates
+    !> (stop_reason says which but for the dofs). The first level over an explicit &adapt
+    !> max_dofs, or over the memory, or below the resolution is refused (STATUS_BAD_INPUT):
+    !> so every loop checks its limits before its first level.
     subroutine hp_next(this, scn, start, goal, solved, level, too_big, timings, stat)
         class(hp_refiner_t), intent(inout) :: this
         type(scene_t), intent(in) :: scn
@@ -89,14 +95,37 @@ contains
         logical, intent(out) :: too_big
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
+        !> a P1 mesh has about one free dof per cell (two per node, a node per two cells),
+        !> higher degrees more: a level of more cells than 4 max_dofs is over the limit
+        integer, parameter :: CELLS_PER_DOF = 4
         type(mesh_t) :: graded
         real(wp) :: h_min
+        integer :: built, max_cells
         too_big = .false.
+        if (allocated(this%stop_reason)) deallocate (this%stop_reason)
         if (solved == 0) level%number = 0
         level%number = level%number + 1
+        max_cells = huge(0)
+        if (this%max_dofs < (huge(0) - start%mesh%n_cells())/CELLS_PER_DOF) &
+            max_cells = CELLS_PER_DOF*this%max_dofs + start%mesh%n_cells()
         call geometric_mesh(start%mesh, this%points, this%adapt%sigma, level%number, graded, &
-                            h_min, stat)
+                            h_min, stat, max_cells, built)
         if (.not. stat%ok()) return
+        if (built /= MESH_GRADED) then
+            if (built == MESH_BELOW_RESOLUTION) then
+                this%stop_reason = 'level '//to_string(level%number)//'''s cells at the '// &
+                    'singular points ('//short_real_text(h_min)//') would be below what '// &
+                    'binary64 resolves of the coordinates'
+            else
+                this%stop_reason = 'level '//to_string(level%number)//' would have more '// &
+                    'than '//to_string(max_cells)//' cells, more dofs than '//this%dof_limit
+            end if
+            too_big = solved > 0
+            if (solved == 0) call stat%fail(STATUS_BAD_INPUT, scn%name// &
+                ": &adapt: strategy = 'hp': "//this%stop_reason//" (&adapt sigma = "// &
+                real_to_text(this%adapt%sigma)//'): no level can be solved')
+            return
+        end if
         level%degree = hp_level_degrees(graded, this%points, this%adapt%sigma, h_min, &
                                         level%number, this%adapt%p_max)
         call build_hp_space(graded, level%degree, start%dirichlet_parts, level%space, stat)

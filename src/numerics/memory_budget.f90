@@ -7,7 +7,10 @@ module memory_budget
     use status, only: status_t, STATUS_BAD_INPUT, STATUS_SOLVER
     use strings, only: to_string
     use scene, only: scene_t
-    use system_memory, only: available_memory_bytes, address_space_headroom_bytes
+    use system_memory, only: available_memory_bytes, address_space_headroom_bytes, &
+                             threads_still_running
+    use blas_info, only: blas_in_use
+    use iso_c_binding, only: c_double
     implicit none
     private
     public :: contact_blocks_bytes, check_contact_memory, contact_peak_blocks, &
@@ -26,13 +29,17 @@ module memory_budget
     !> 10 p^2 doubles are 1.3 GB.) Measured: nx = 10000, ny = 1, p = 10001: peak RSS 6.28 GB
     !> against 6.40 GB estimated.
     integer, parameter :: PEAK_BLOCKS_ARPACK = 8
-    !> Address space a BLAS call needs beyond what the process maps: OpenBLAS's buffer
-    !> (BUFFER_SIZE, 128 MiB on x86_64) and room to spare (64 MiB, a glibc malloc arena).
-    !> Under less, OpenBLAS retries its failed mmap for ever (blas_memory_alloc, inside
-    !> CHOLMOD). Measured (P1 64 x 64, 2 threads): hangs with 168 MB of headroom, runs with
-    !> 189 MB; its worker threads' buffers are mapped when the library loads, so the number
-    !> of threads does not change it.
-    integer(i8), parameter :: BLAS_HEADROOM_BYTES = 192_i8*1048576_i8
+    !> OpenBLAS's buffer: BUFFER_SIZE (128 MiB on x86_64) and a page. Each of its threads
+    !> maps one: its own threads as they start (at the library's load, before main), the
+    !> calling thread at its first BLAS call (dpotrf inside CHOLMOD). A failed mmap is
+    !> retried for ever (driver/others/memory.c, blas_memory_alloc), so the run must know
+    !> before its first call that every buffer still to come fits.
+    integer(i8), parameter :: BLAS_BUFFER_BYTES = 128_i8*1048576_i8 + 4096_i8
+    !> Room beyond the buffers: a glibc malloc arena (64 MiB), for the libraries' threads.
+    integer(i8), parameter :: SPARE_BYTES = 64_i8*1048576_i8
+    !> How long to wait for OpenBLAS's threads to hold their buffers and sleep (they spin for
+    !> at most about 0.4 s after their mmap); one still running then retries for ever.
+    real(wp), parameter :: THREAD_WAIT_SECONDS = 2.0_wp
 
 contains
 
@@ -86,24 +93,53 @@ contains
     end subroutine check_contact_memory
 
     !> STATUS_SOLVER (exit 5) when the address-space limit (ulimit -v) leaves less room than
-    !> a BLAS call needs: checked before any library call, since OpenBLAS would hang
-    !> retrying its allocation. `headroom` defaults to this process's
-    !> (address_space_headroom_bytes); a negative headroom (no limit) skips the check.
-    subroutine check_address_space(stat, headroom)
+    !> OpenBLAS's buffers still to be mapped need (BLAS_BUFFER_BYTES each) with SPARE_BYTES:
+    !> checked before any BLAS call, since OpenBLAS would hang retrying. Its threads map
+    !> their buffers as they start, which may not have happened yet: when the room does not
+    !> hold a buffer for every thread, the check waits (THREAD_WAIT_SECONDS at most) for
+    !> them to sleep, and counts a buffer for each still running (retrying its mmap) and one
+    !> for the calling thread. So the limit asked for is the same in every run: the process
+    !> without its buffers, plus all of them and the spare. Arguments for the tests:
+    !> `headroom` (default address_space_headroom_bytes(); negative: no limit, no check),
+    !> `blas_threads` (default OpenBLAS's count, the calling thread included) and `running`
+    !> (the threads found running after the wait; given, no wait).
+    subroutine check_address_space(stat, headroom, blas_threads, running)
         type(status_t), intent(out) :: stat
         integer(i8), intent(in), optional :: headroom   !! bytes
-        integer(i8) :: room
+        integer, intent(in), optional :: blas_threads, running
+        integer(i8) :: room, need
+        integer :: threads, still, unmapped
+        character(len=:), allocatable :: library, blas_config
 
         if (present(headroom)) then
             room = headroom
         else
             room = address_space_headroom_bytes()
         end if
-        if (room < 0 .or. room >= BLAS_HEADROOM_BYTES) return
+        if (room < 0) return
+        if (present(blas_threads)) then
+            threads = max(1, blas_threads)
+        else
+            call blas_in_use(library, blas_config, threads)
+            threads = max(1, threads)
+        end if
+        ! Room for every buffer, whichever the threads have mapped already: nothing to wait for.
+        if (room >= threads*BLAS_BUFFER_BYTES + SPARE_BYTES) return
+        if (present(running)) then
+            still = running
+        else
+            still = threads_still_running(real(THREAD_WAIT_SECONDS, c_double))
+            if (.not. present(headroom)) room = address_space_headroom_bytes()
+        end if
+        if (still < 0) still = threads - 1   ! /proc cannot tell: count every buffer
+        unmapped = min(threads, 1 + still)
+        need = unmapped*BLAS_BUFFER_BYTES + SPARE_BYTES
+        if (room >= need) return
         call stat%fail(STATUS_SOLVER, 'the address-space limit (ulimit -v) leaves '// &
-            megabytes(room)//' MB to map, less than the '//megabytes(BLAS_HEADROOM_BYTES)// &
-            ' MB a BLAS call needs (OpenBLAS would retry its 128 MiB buffer for ever); '// &
-            'expected a limit at least '//megabytes(BLAS_HEADROOM_BYTES - room)//' MB higher')
+            megabytes(room)//' MB to map, less than the '//megabytes(need)// &
+            ' MB OpenBLAS still needs (a 128 MiB buffer for '//to_string(unmapped)//' of its '// &
+            to_string(threads)//' threads and 64 MiB to spare; it would retry its buffer for '// &
+            'ever); expected a limit at least '//megabytes(need - room)//' MB higher')
 
     contains
 

@@ -3,7 +3,7 @@
 !> problem's): 'branch' (eigenvalues.csv of the critical point, branch.csv, branch_NNN.vtu)
 !> and 'solve' (newton.csv, contact_states.csv, solution.vtu).
 module compliance_files
-    use kinds, only: wp, N_DIM
+    use kinds, only: wp
     use status, only: status_t
     use strings, only: to_string, zero_padded
     use real_format, only: real_to_text
@@ -50,7 +50,7 @@ contains
             u(:) = res%cp%expand(x_base + res%deltas(i)*res%critical%phi)
             call stage%add('branch_'//zero_padded(i, 3)//'.vtu', path)
             call write_vtu(path, prob%mesh, &
-                ['displacement'], reshape(u, [N_DIM, prob%mesh%n_nodes(), 1]), &
+                ['displacement'], reshape(u, [prob%mesh%dim(), prob%mesh%n_nodes(), 1]), &
                 trim(inputs%output%vtk_format), stat)
             if (.not. stat%ok()) return
         end do
@@ -105,7 +105,7 @@ contains
         if (stat%ok() .and. inputs%output%vtk .and. res%report%converged) then
             call stage%add('solution.vtu', path)
             call write_vtu(path, prob%mesh, ['displacement'], &
-                reshape(res%cp%expand(res%x), [N_DIM, prob%mesh%n_nodes(), 1]), &
+                reshape(res%cp%expand(res%x), [prob%mesh%dim(), prob%mesh%n_nodes(), 1]), &
                 trim(inputs%output%vtk_format), stat)
         end if
     end subroutine write_solve_files

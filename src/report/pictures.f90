@@ -465,7 +465,8 @@ contains
     end subroutine draw_adapt
 
     !> lambda_sweep.png of a sweep on `prob` (its starting mesh where the points were
-    !> adapted), when &sweep plot is on; `note` stays unallocated when it is off.
+    !> adapted), when &sweep plot and &output plot (every picture's switch) are on; `note`
+    !> stays unallocated when either is off.
     subroutine draw_sweep(stage, inputs, prob, res, note)
         type(output_stage_t), intent(inout) :: stage
         type(run_inputs_t), intent(in) :: inputs
@@ -475,7 +476,7 @@ contains
         character(len=:), allocatable :: title
         character(len=2) :: element
         logical :: log_x
-        if (.not. inputs%sweep_plot) return
+        if (.not. (inputs%sweep_plot .and. inputs%output%plot)) return
         if (.not. any(res%sweep%found)) then   ! gnuplot would fail on an empty curve
             note = 'not drawn: no lambda has a positive mu'
             return

@@ -28,7 +28,7 @@ module run_report
     use critical_lambda, only: SIDE_PLUS, SIDE_MINUS, CONFIRM_OFFSET
     use critical_set, only: critical_set_t, onset_point, MECHANISM_NAMES, MECHANISM_COMPLEX_PAIR
     use threshold_analysis, only: threshold_result_t
-    use eigen_goal, only: adapted_eigen_t, eigen_level_t
+    use eigen_goal, only: adapted_eigen_t, eigen_level_t, HP_ESTIMATE
     use threshold_goal, only: adaptive_thresholds_t
     use normal_compliance, only: STATE_SEPARATED, STATE_STICK, STATE_SLIP_PLUS, STATE_SLIP_MINUS
     use analysis_base, only: analysis_t
@@ -208,7 +208,7 @@ contains
             call stage%add('eigenvalues.csv', path)
             call write_eigenvalues_csv(path, eig%spec, stat, eig%error)
             if (stat%ok() .and. inputs%output%vtk) call write_hp_modes(stage, inputs, &
-                o%prob, o%space, eig%spec, stat)
+                o%prob, o%space, eig%spec, eig%lambda, stat)
             if (stat%ok()) then
                 call stage%add('adapt.csv', path)
                 call write_hp_adapt_csv(path, levels, stat)
@@ -264,7 +264,7 @@ contains
             call stage%add('eigenvalues.csv', path)
             call write_eigenvalues_csv(path, shown%eigen%spec, stat, shown%eigen%error)
             if (stat%ok() .and. inputs%output%vtk) call write_hp_modes(stage, inputs, &
-                adapted%prob, adapted%space, shown%eigen%spec, stat)
+                adapted%prob, adapted%space, shown%eigen%spec, shown%eigen%lambda, stat)
         end if
         if (stat%ok() .and. with_sweep .and. allocated(shown%sweep%lambda)) then
             call stage%add(SWEEP_FILE, path)
@@ -435,7 +435,10 @@ contains
         rec%input = inputs%scene%name
         rec%analysis = inputs%analysis_name
         rec%directory = trim(inputs%output%directory)
+        ! an hp run's graded mesh carries a degree per cell: the p1 of its geometry is not
+        ! the element solved
         rec%element = element_name(prob%mesh%element)
+        if (inputs%adapt%refine == REFINE_HP) rec%element = 'hp'
         rec%mesh_source = inputs%scene%source_name()
         rec%nx = inputs%scene%nx
         rec%ny = inputs%scene%ny
@@ -482,6 +485,7 @@ contains
         if (f%estimated) then
             f%estimate = abs(res%error%relative)
             f%estimate_label = estimate_label(res%error)
+            f%level_change = f%estimate_label == HP_ESTIMATE
         end if
         f%bar = res%error%bar
         if (allocated(res%error%skipped)) f%skipped = res%error%skipped
@@ -531,6 +535,7 @@ contains
                     else
                         d%estimate_label = element_name(est%element)//' enrichment'
                     end if
+                    d%level_change = d%estimate_label == HP_ESTIMATE
                     d%skipped = trim(est%skipped(side))
                 end associate
             end do
@@ -603,6 +608,8 @@ contains
             f%adapted = inputs%adapt%refine /= REFINE_NONE
             f%n_reused = c%n_reused
             f%n_not_met = c%n_not_met
+            f%partial = .not. c%failure%ok()
+            f%n_complete = count(c%complete)
             if (any(c%error_estimate >= 0.0_wp)) f%max_estimate = maxval(c%error_estimate)
             if (any(c%error_bar >= 0.0_wp)) f%max_bar = maxval(c%error_bar)
         end associate

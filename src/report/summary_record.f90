@@ -14,7 +14,7 @@ module summary_record
     use ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     implicit none
     private
-    public :: summary_json, summary_text
+    public :: summary_json, summary_text, boundary_lines
 
     character(len=*), parameter :: NL = new_line('a')
     character(len=*), parameter :: SIDE_NAME(2) = [character(len=5) :: 'plus', 'minus']
@@ -40,6 +40,9 @@ module summary_record
         logical :: estimated = .false.         !! the relative error estimate exists
         real(wp) :: estimate = 0.0_wp          !! |relative error estimate|
         character(len=:), allocatable :: estimate_label   !! how it was made
+        !> the estimate is the change to the previous hp level (that level's error: the bar
+        !> may be below it)
+        logical :: level_change = .false.
         real(wp) :: bar = -1.0_wp              !! relative error bar; < 0: none
         character(len=:), allocatable :: skipped   !! why no estimate (unallocated: no reason)
         real(wp) :: roundoff = -1.0_wp         !! relative round-off bound of mu; < 0: unknown
@@ -63,6 +66,7 @@ module summary_record
         real(wp) :: estimate = 0.0_wp          !! |relative error estimate|
         real(wp) :: bar = -1.0_wp              !! relative; < 0: none
         character(len=:), allocatable :: estimate_label
+        logical :: level_change = .false.      !! as eigen_facts_t's
         character(len=:), allocatable :: skipped   !! why no estimate ('' : no reason)
     end type side_facts_t
 
@@ -98,6 +102,9 @@ module summary_record
         real(wp) :: lambda_min = 0.0_wp, lambda_max = 0.0_wp
         logical :: adapted = .false.           !! each point adapted (&adapt)
         integer :: n_reused = 0, n_not_met = 0
+        !> a point's loop failed: the set holds the n_complete points complete before it
+        logical :: partial = .false.
+        integer :: n_complete = 0
         real(wp) :: max_estimate = -1.0_wp, max_bar = -1.0_wp   !! relative; < 0: none
         real(wp) :: time_sweep = 0.0_wp        !! s
     end type sweep_facts_t
@@ -303,13 +310,21 @@ contains
                 ! the headline quotes its bar, absolute: c_n = X +- B
                 if (e%estimated .and. e%bar >= 0.0_wp) text = text//' +- '// &
                     short_real_text(e%bar*e%mu)
+                if (e%estimated .and. e%bar >= 1.0_wp) text = text//' (no certain digit)'
                 text = text//NL// &
                     '  critical c_t = mu |lambda| = '//real_to_text(e%c_t)// &
                     ', slip sign s = '//to_string(e%slip_sign)// &
                     ' (u_t '//merge('< 0', '> 0', e%slip_sign < 0)//' along t)'//NL
-                if (e%estimated) text = text//'  relative error estimate of mu: '// &
-                    short_real_text(e%estimate)//' ('//e%estimate_label//'); error bar '// &
-                    short_real_text(e%bar)//NL
+                if (e%estimated .and. e%level_change) then
+                    ! the change is the previous level's error: the bar may be below it
+                    text = text//'  relative change of mu to the previous hp level: '// &
+                        short_real_text(e%estimate)//' (the error of that level); error bar '// &
+                        short_real_text(e%bar)//NL
+                else if (e%estimated) then
+                    text = text//'  relative error estimate of mu: '// &
+                        short_real_text(e%estimate)//' ('//e%estimate_label//'); error bar '// &
+                        short_real_text(e%bar)//NL
+                end if
                 if (allocated(e%skipped)) text = text//'  relative error estimate of mu: '// &
                     e%skipped//NL
                 if (e%roundoff >= 0.0_wp) then
@@ -497,7 +512,12 @@ contains
                     text = text//' +- '//short_real_text(d%bar*abs(d%lambda))
                 text = text//' (pencil backward error '//short_real_text(d%residual)//'), '// &
                     trim(merge('confirmed    ', 'NOT confirmed', d%confirmed))
-                if (d%estimated) then
+                if (d%estimated .and. d%level_change) then
+                    ! the change is the previous level's error: the bar may be below it
+                    text = text//NL//'              relative change to the previous hp level '// &
+                        short_real_text(d%estimate)//' (the error of that level); error bar '// &
+                        short_real_text(d%bar)
+                else if (d%estimated) then
                     text = text//NL//'              relative error estimate '// &
                         short_real_text(d%estimate)//' ('//d%estimate_label//'); error bar '// &
                         short_real_text(d%bar)
@@ -532,17 +552,25 @@ contains
 
         text = NL//'  boundary    of {lambda : a positive mu exists} in ['// &
             real_to_text(f%lambda_min)//', '//real_to_text(f%lambda_max)//']: '// &
-            to_string(size(f%points))//' points'
+            to_string(size(f%points))//trim(merge(' point ', ' points', size(f%points) == 1))
         if (f%scan_contact /= f%contact) text = text//' (scanned on a coarser level, '// &
             to_string(f%scan_contact)//' contact functions; located on this one)'
         do i = 1, size(f%points)
             associate (b => f%points(i))
                 text = text//NL//'              lambda = '//real_to_text(b%lambda)
                 if (b%bar >= 0.0_wp) text = text//' +- '//short_real_text(b%bar*abs(b%lambda))
-                text = text//' '//trim(b%mechanism)//', positive mu '// &
-                    trim(merge('appears ', 'vanishes', b%appears))//' as lambda increases ('// &
-                    to_string(b%n_below)//' -> '//to_string(b%n_above)//'), '// &
-                    trim(merge('confirmed    ', 'NOT confirmed', b%confirmed))
+                text = text//' '//trim(b%mechanism)//', '
+                if (b%n_below == b%n_above) then
+                    ! no change of the count across it: neither appears nor vanishes
+                    text = text//'the count of positive mu is '//to_string(b%n_below)// &
+                        ' on both sides, '
+                else
+                    text = text//'positive mu '// &
+                        trim(merge('appears ', 'vanishes', b%appears))// &
+                        ' as lambda increases ('//to_string(b%n_below)//' -> '// &
+                        to_string(b%n_above)//'), '
+                end if
+                text = text//trim(merge('confirmed    ', 'NOT confirmed', b%confirmed))
             end associate
         end do
         text = text//NL//'              positive mu on'
@@ -570,6 +598,10 @@ contains
             call summary%add_integer('sweep_n_adapted', f%n_lambda)
             call summary%add_integer('sweep_n_mesh_reused', f%n_reused)
             call summary%add_integer('sweep_n_not_met', f%n_not_met)
+            call summary%add_logical('adapt_converged', f%n_not_met == 0 .and. .not. f%partial)
+            ! a point's loop failed: the rows are those of the points complete before
+            call summary%add_logical('sweep_partial', f%partial)
+            call summary%add_integer('sweep_n_complete', f%n_complete)
             call summary%add_real_or_null('sweep_max_error_estimate', f%max_estimate, &
                                           f%max_estimate >= 0.0_wp)
             call summary%add_real_or_null('sweep_max_error_bar', f%max_bar, f%max_bar >= 0.0_wp)

@@ -20,8 +20,9 @@ module sweep_files
 contains
 
     !> lambda,critical_c_n,critical_c_t,slip_sign,n_positive,error_estimate,n_dofs: one row
-    !> per lambda in input order; c_n and c_t are empty where no positive real mu exists,
-    !> error_estimate where none was computed (always without &adapt).
+    !> per lambda in input order (of a partial set, per complete point); c_n and c_t are
+    !> empty where no positive real mu exists, error_estimate where none was computed
+    !> (always without &adapt).
     subroutine write_sweep_csv(path, curve, stat)
         character(len=*), intent(in) :: path
         type(sweep_curve_t), intent(in) :: curve
@@ -32,6 +33,9 @@ contains
 
         call csv%open(path, SWEEP_HEADER)
         do i = 1, size(curve%lambda)
+            if (allocated(curve%complete)) then
+                if (.not. curve%complete(i)) cycle   ! a partial set: its complete points
+            end if
             values = ','
             if (curve%found(i)) values = real_to_text(curve%mu(i))//','// &
                 real_to_text(critical_c_t(curve%mu(i), curve%lambda(i)))

@@ -3,6 +3,10 @@
  * A flat C API over CHOLMOD for the Fortran module sparse_cholesky: Fortran never sees
  * cholmod_common or cholmod_factor, only an opaque handle owning both.
  *
+ * CHOLMOD's long-index API (cholmod_l_*): every index and count that crosses is an int64_t
+ * (SuiteSparse_long), so that a factor may hold more than 2^31 entries, where the int API
+ * stops with CHOLMOD_TOO_LARGE.
+ *
  * The matrix comes as a full symmetric matrix in 0-based CSR, which is also its CSC.
  * CHOLMOD reads it in place (no copy) as a symmetric matrix through its upper triangle
  * (stype = 1); entries below the diagonal are ignored, so the caller guarantees symmetry.
@@ -11,9 +15,15 @@
  * is meaningful: W = L^{-1} P B gives B1' A^{-1} B2 = W1' W2.
  */
 #include <stddef.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <float.h>
 #include <cholmod.h>
+
+/* The Fortran side passes integer(c_int64_t) arrays where CHOLMOD reads SuiteSparse_long. */
+_Static_assert(sizeof(SuiteSparse_long) == sizeof(int64_t),
+               "SuiteSparse_long must be a 64-bit integer");
+typedef SuiteSparse_long index_t;
 
 /* Return codes, mirrored by the constants of sparse_cholesky.f90. */
 enum {
@@ -21,7 +31,7 @@ enum {
     NCEIG_CHOLMOD_NOT_POSDEF = 1,     /* a pivot was <= 0; info[3] holds the column */
     NCEIG_CHOLMOD_SINGULAR = 2,       /* pivots all > 0 but rcond below the threshold */
     NCEIG_CHOLMOD_OUT_OF_MEMORY = 3,
-    NCEIG_CHOLMOD_TOO_LARGE = 4,      /* nnz(L) overflows CHOLMOD's int indices */
+    NCEIG_CHOLMOD_TOO_LARGE = 4,      /* a size overflows CHOLMOD's size_t arithmetic */
     NCEIG_CHOLMOD_INVALID = 5,        /* bad argument: n, ordering or permutation */
     NCEIG_CHOLMOD_NOT_FACTORED = 6,   /* solve on a null handle */
     NCEIG_CHOLMOD_FAILED = 7          /* any other CHOLMOD failure */
@@ -49,7 +59,7 @@ enum {
 typedef struct {
     cholmod_common common;
     cholmod_factor *factor;
-    int n;
+    index_t n;
 } nceig_cholmod_t;
 
 static int code_from_common(const cholmod_common *common)
@@ -85,11 +95,11 @@ static int cholmod_method(int ordering)
 }
 
 /* 1 if perm0 holds each of 0..n-1 exactly once. */
-static int is_permutation(int n, const int *perm0)
+static int is_permutation(index_t n, const index_t *perm0)
 {
     char *seen = calloc((size_t)n + 1, 1);
     int ok = seen != NULL;
-    for (int k = 0; ok && k < n; k++) {
+    for (index_t k = 0; ok && k < n; k++) {
         ok = perm0[k] >= 0 && perm0[k] < n && !seen[perm0[k]];
         if (ok) seen[perm0[k]] = 1;
     }
@@ -99,8 +109,8 @@ static int is_permutation(int n, const int *perm0)
 
 static void destroy(nceig_cholmod_t *h)
 {
-    cholmod_free_factor(&h->factor, &h->common);
-    cholmod_finish(&h->common);
+    cholmod_l_free_factor(&h->factor, &h->common);
+    cholmod_l_finish(&h->common);
     free(h);
 }
 
@@ -121,27 +131,29 @@ void nceig_cholmod_free(void **handle)
  */
 /* Whether the last `keep_last` pivots of the analysed factor are, as a set, the last
  * `keep_last` entries of the caller's permutation. */
-static int keeps_tail(const cholmod_factor *f, int n, const int *perm0, int keep_last)
+static int keeps_tail(const cholmod_factor *f, index_t n, const index_t *perm0,
+                      index_t keep_last)
 {
-    const int *perm = (const int *)f->Perm;
+    const index_t *perm = (const index_t *)f->Perm;
     char *in_tail = calloc((size_t)n, 1);
     int ok = 1;
     if (in_tail == NULL) return 0;
-    for (int k = n - keep_last; k < n; k++) in_tail[perm0[k]] = 1;
-    for (int k = n - keep_last; k < n; k++) ok = ok && in_tail[perm[k]];
+    for (index_t k = n - keep_last; k < n; k++) in_tail[perm0[k]] = 1;
+    for (index_t k = n - keep_last; k < n; k++) ok = ok && in_tail[perm[k]];
     free(in_tail);
     return ok;
 }
 
-int nceig_cholmod_factor(int n, const int *row_start0, const int *col0, const double *val,
-                         int ordering, const int *perm0, int keep_last, void **handle,
-                         double *info)
+int nceig_cholmod_factor(index_t n, const index_t *row_start0, const index_t *col0,
+                         const double *val, int ordering, const index_t *perm0,
+                         index_t keep_last, void **handle, double *info)
 {
     for (int k = 0; k < 5; k++) info[k] = 0.0;
     info[3] = -1.0;
     *handle = NULL;
     if (n < 1 || ordering < NCEIG_ORDER_DEFAULT || ordering > NCEIG_ORDER_GIVEN)
         return NCEIG_CHOLMOD_INVALID;
+    if (keep_last < 0 || keep_last > n) return NCEIG_CHOLMOD_INVALID;
     if (ordering == NCEIG_ORDER_GIVEN && (perm0 == NULL || !is_permutation(n, perm0)))
         return NCEIG_CHOLMOD_INVALID;
 
@@ -149,7 +161,7 @@ int nceig_cholmod_factor(int n, const int *row_start0, const int *col0, const do
     if (h == NULL) return NCEIG_CHOLMOD_OUT_OF_MEMORY;
     h->n = n;
     cholmod_common *c = &h->common;
-    if (!cholmod_start(c)) {
+    if (!cholmod_l_start(c)) {
         free(h);
         return NCEIG_CHOLMOD_FAILED;
     }
@@ -172,22 +184,22 @@ int nceig_cholmod_factor(int n, const int *row_start0, const int *col0, const do
     a.i = (void *)col0;
     a.x = (void *)val;
     a.stype = 1;
-    a.itype = CHOLMOD_INT;
+    a.itype = CHOLMOD_LONG;
     a.xtype = CHOLMOD_REAL;
     a.dtype = CHOLMOD_DOUBLE;
     a.sorted = 1;
     a.packed = 1;
 
-    int *perm = ordering == NCEIG_ORDER_GIVEN ? (int *)perm0 : NULL;
-    h->factor = cholmod_analyze_p(&a, perm, NULL, 0, c);
+    index_t *perm = ordering == NCEIG_ORDER_GIVEN ? (index_t *)perm0 : NULL;
+    h->factor = cholmod_l_analyze_p(&a, perm, NULL, 0, c);
     if (h->factor != NULL && perm != NULL && keep_last > 0 &&
         !keeps_tail(h->factor, n, perm0, keep_last)) {
         /* CHOLMOD's etree postorder (about 20% faster factors at N = 512) moved some of the
          * last pivots forward, as it can when they hang off separate branches of the tree
          * (bisected meshes): the caller reads a trailing block, so keep its order as it is. */
-        cholmod_free_factor(&h->factor, c);
+        cholmod_l_free_factor(&h->factor, c);
         c->postorder = 0;
-        h->factor = cholmod_analyze_p(&a, perm, NULL, 0, c);
+        h->factor = cholmod_l_analyze_p(&a, perm, NULL, 0, c);
     }
     if (h->factor == NULL) {
         int code = code_from_common(c);
@@ -198,17 +210,17 @@ int nceig_cholmod_factor(int n, const int *row_start0, const int *col0, const do
     info[1] = c->fl;
     info[2] = (double)h->factor->ordering;
 
-    int ok = cholmod_factorize(&a, h->factor, c);
+    int ok = cholmod_l_factorize(&a, h->factor, c);
     int code = ok ? code_from_common(c) : NCEIG_CHOLMOD_FAILED;
     if (code == NCEIG_CHOLMOD_OK && h->factor->minor < (size_t)n)
         code = NCEIG_CHOLMOD_NOT_POSDEF;
     if (code == NCEIG_CHOLMOD_NOT_POSDEF) {
         /* minor is a column of L, i.e. of P A P'; Perm maps it back to A. */
         size_t minor = h->factor->minor < (size_t)n ? h->factor->minor : (size_t)n - 1;
-        info[3] = (double)((const int *)h->factor->Perm)[minor];
+        info[3] = (double)((const index_t *)h->factor->Perm)[minor];
     }
     if (code == NCEIG_CHOLMOD_OK) {
-        info[4] = cholmod_rcond(h->factor, c);
+        info[4] = cholmod_l_rcond(h->factor, c);
         if (info[4] < NCEIG_RCOND_SINGULAR) code = NCEIG_CHOLMOD_SINGULAR;
     }
     if (code != NCEIG_CHOLMOD_OK) {
@@ -220,7 +232,7 @@ int nceig_cholmod_factor(int n, const int *row_start0, const int *col0, const do
 }
 
 /* Dense column-major n x nrhs view of caller memory, which CHOLMOD only reads. */
-static cholmod_dense dense_view(int n, int nrhs, const double *b)
+static cholmod_dense dense_view(index_t n, index_t nrhs, const double *b)
 {
     cholmod_dense d = {0};
     d.nrow = (size_t)n;
@@ -239,23 +251,23 @@ static void copy_and_free(cholmod_dense **x, double *out, cholmod_common *c)
     const double *values = (*x)->x;
     size_t count = (*x)->nrow * (*x)->ncol;
     for (size_t k = 0; k < count; k++) out[k] = values[k];
-    cholmod_free_dense(x, c);
+    cholmod_l_free_dense(x, c);
 }
 
 /* X = S2 S1 B into caller memory for the CHOLMOD systems S1 = first and S2 = second
  * (second < 0: S1 alone), dense column-major n x nrhs B and X. */
-static int solve_in_steps(void *handle, int nrhs, const double *b, double *x, int first,
+static int solve_in_steps(void *handle, index_t nrhs, const double *b, double *x, int first,
                           int second)
 {
     nceig_cholmod_t *h = handle;
     if (h == NULL) return NCEIG_CHOLMOD_NOT_FACTORED;
     if (nrhs < 1) return nrhs == 0 ? NCEIG_CHOLMOD_OK : NCEIG_CHOLMOD_INVALID;
     cholmod_dense bview = dense_view(h->n, nrhs, b);
-    cholmod_dense *result = cholmod_solve(first, h->factor, &bview, &h->common);
+    cholmod_dense *result = cholmod_l_solve(first, h->factor, &bview, &h->common);
     if (result != NULL && second >= 0) {
         cholmod_dense *step = result;
-        result = cholmod_solve(second, h->factor, step, &h->common);
-        cholmod_free_dense(&step, &h->common);
+        result = cholmod_l_solve(second, h->factor, step, &h->common);
+        cholmod_l_free_dense(&step, &h->common);
     }
     if (result == NULL) {
         int code = code_from_common(&h->common);
@@ -266,20 +278,20 @@ static int solve_in_steps(void *handle, int nrhs, const double *b, double *x, in
 }
 
 /* X = A^{-1} B for dense column-major n x nrhs B and X. */
-int nceig_cholmod_solve(void *handle, int nrhs, const double *b, double *x)
+int nceig_cholmod_solve(void *handle, index_t nrhs, const double *b, double *x)
 {
     return solve_in_steps(handle, nrhs, b, x, CHOLMOD_A, -1);
 }
 
 /* W = L^{-1} P B, so that B1' A^{-1} B2 = W1' W2. */
-int nceig_cholmod_forward(void *handle, int nrhs, const double *b, double *w)
+int nceig_cholmod_forward(void *handle, index_t nrhs, const double *b, double *w)
 {
     return solve_in_steps(handle, nrhs, b, w, CHOLMOD_P, CHOLMOD_L);
 }
 
 /* X = P' L^{-T} W: the second half of a solve, for a W = L^{-1} P B known otherwise (e.g.
  * B supported on unknowns ordered last, where W is zero but for a small trailing part). */
-int nceig_cholmod_backward(void *handle, int nrhs, const double *w, double *x)
+int nceig_cholmod_backward(void *handle, index_t nrhs, const double *w, double *x)
 {
     return solve_in_steps(handle, nrhs, w, x, CHOLMOD_Lt, CHOLMOD_Pt);
 }
@@ -291,27 +303,27 @@ int nceig_cholmod_backward(void *handle, int nrhs, const double *w, double *x)
  * complement of A onto them and (A^{-1}) on that set is L_tail^{-T} L_tail^{-1}: the whole
  * inverse restricted to the set without touching the rest of L.
  */
-int nceig_cholmod_trailing(void *handle, int m, double *out, int *perm_tail)
+int nceig_cholmod_trailing(void *handle, index_t m, double *out, index_t *perm_tail)
 {
     nceig_cholmod_t *h = handle;
     if (h == NULL) return NCEIG_CHOLMOD_NOT_FACTORED;
     if (m < 1 || m > h->n) return NCEIG_CHOLMOD_INVALID;
     const cholmod_factor *f = h->factor;
     if (!f->is_super || !f->is_ll) return NCEIG_CHOLMOD_FAILED;
-    const int n = h->n, first = n - m;
-    const int *super = f->super, *pi = f->pi, *px = f->px, *s = f->s, *perm = f->Perm;
+    const index_t n = h->n, first = n - m;
+    const index_t *super = f->super, *pi = f->pi, *px = f->px, *s = f->s, *perm = f->Perm;
     const double *x = f->x;
     for (size_t k = 0; k < (size_t)m * (size_t)m; k++) out[k] = 0.0;
-    for (int k = 0; k < m; k++) perm_tail[k] = perm[first + k];
+    for (index_t k = 0; k < m; k++) perm_tail[k] = perm[first + k];
     for (size_t sn = 0; sn < f->nsuper; sn++) {
-        int k1 = super[sn], k2 = super[sn + 1];
+        index_t k1 = super[sn], k2 = super[sn + 1];
         if (k2 <= first) continue;
-        int nsrow = pi[sn + 1] - pi[sn];
-        const int *rows = s + pi[sn];
-        for (int j = k1 > first ? k1 : first; j < k2; j++) {
+        index_t nsrow = pi[sn + 1] - pi[sn];
+        const index_t *rows = s + pi[sn];
+        for (index_t j = k1 > first ? k1 : first; j < k2; j++) {
             const double *column = x + px[sn] + (size_t)(j - k1) * (size_t)nsrow;
             /* rows of column j: the diagonal block rows k1..k2-1, then the pattern below */
-            for (int i = j - k1; i < nsrow; i++)
+            for (index_t i = j - k1; i < nsrow; i++)
                 out[(size_t)(j - first) * (size_t)m + (size_t)(rows[i] - first)] = column[i];
         }
     }

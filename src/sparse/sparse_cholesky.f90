@@ -1,13 +1,15 @@
 ! SPDX-License-Identifier: MIT
 !> Sparse Cholesky factorization A = P' L L' P of a symmetric positive definite CSR matrix,
-!> through CHOLMOD behind the flat C shim `cholmod_shim.c`.
+!> through CHOLMOD behind the flat C shim `cholmod_shim.c`. The shim runs CHOLMOD's
+!> long-index API: every index and count crosses as integer(c_int64_t), so a factor may hold
+!> more than 2^31 entries (the matrix itself, a CSR of default integers, stays below).
 !>
 !> A `cholesky_t` owns a C handle. It frees itself when it goes out of scope (final) and
 !> `free` may be called any number of times, but it must not be copied: an assigned copy
 !> would share the handle. Pass it by reference or keep it in one place.
 module sparse_cholesky
-    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_null_ptr, c_loc, &
-                                           c_associated
+    use, intrinsic :: iso_c_binding, only: c_int, c_int64_t, c_double, c_ptr, c_null_ptr, &
+                                           c_loc, c_associated
     use kinds, only: wp, i8
     use status, only: status_t, STATUS_BAD_INPUT, STATUS_SINGULAR, STATUS_SOLVER
     use csr_matrix, only: csr_matrix_t
@@ -65,13 +67,13 @@ module sparse_cholesky
         function nceig_cholmod_factor(n, row_start0, col0, val, ordering, perm0, keep_last, &
                                       handle, info) bind(C, name='nceig_cholmod_factor') &
                 result(code)
-            import :: c_int, c_double, c_ptr
-            integer(c_int), value :: n
-            integer(c_int), intent(in) :: row_start0(*), col0(*)   ! 0-based copies
+            import :: c_int, c_int64_t, c_double, c_ptr
+            integer(c_int64_t), value :: n
+            integer(c_int64_t), intent(in) :: row_start0(*), col0(*)   ! 0-based copies
             real(c_double), intent(in) :: val(*)
             integer(c_int), value :: ordering
-            type(c_ptr), value :: perm0                            ! const int *, may be NULL
-            integer(c_int), value :: keep_last                     ! last pivots kept last
+            type(c_ptr), value :: perm0                      ! const int64_t *, may be NULL
+            integer(c_int64_t), value :: keep_last           ! last pivots kept last
             type(c_ptr), intent(out) :: handle                     ! void **
             real(c_double), intent(out) :: info(*)
             integer(c_int) :: code
@@ -79,9 +81,9 @@ module sparse_cholesky
 
         function nceig_cholmod_solve(handle, nrhs, b, x) &
                 bind(C, name='nceig_cholmod_solve') result(code)
-            import :: c_int, c_double, c_ptr
+            import :: c_int, c_int64_t, c_double, c_ptr
             type(c_ptr), value :: handle
-            integer(c_int), value :: nrhs
+            integer(c_int64_t), value :: nrhs
             real(c_double), intent(in) :: b(*)
             real(c_double), intent(out) :: x(*)
             integer(c_int) :: code
@@ -89,9 +91,9 @@ module sparse_cholesky
 
         function nceig_cholmod_forward(handle, nrhs, b, w) &
                 bind(C, name='nceig_cholmod_forward') result(code)
-            import :: c_int, c_double, c_ptr
+            import :: c_int, c_int64_t, c_double, c_ptr
             type(c_ptr), value :: handle
-            integer(c_int), value :: nrhs
+            integer(c_int64_t), value :: nrhs
             real(c_double), intent(in) :: b(*)
             real(c_double), intent(out) :: w(*)
             integer(c_int) :: code
@@ -99,9 +101,9 @@ module sparse_cholesky
 
         function nceig_cholmod_backward(handle, nrhs, w, x) &
                 bind(C, name='nceig_cholmod_backward') result(code)
-            import :: c_int, c_double, c_ptr
+            import :: c_int, c_int64_t, c_double, c_ptr
             type(c_ptr), value :: handle
-            integer(c_int), value :: nrhs
+            integer(c_int64_t), value :: nrhs
             real(c_double), intent(in) :: w(*)
             real(c_double), intent(out) :: x(*)
             integer(c_int) :: code
@@ -109,11 +111,11 @@ module sparse_cholesky
 
         function nceig_cholmod_trailing(handle, m, out, perm_tail) &
                 bind(C, name='nceig_cholmod_trailing') result(code)
-            import :: c_int, c_double, c_ptr
+            import :: c_int, c_int64_t, c_double, c_ptr
             type(c_ptr), value :: handle
-            integer(c_int), value :: m
+            integer(c_int64_t), value :: m
             real(c_double), intent(out) :: out(*)
-            integer(c_int), intent(out) :: perm_tail(*)            ! 0-based rows of A
+            integer(c_int64_t), intent(out) :: perm_tail(*)        ! 0-based rows of A
             integer(c_int) :: code
         end function nceig_cholmod_trailing
 
@@ -138,8 +140,8 @@ contains
         integer, intent(in), optional :: ordering
         integer, intent(in), optional :: permutation(:)
         integer, intent(in), optional :: keep_last
-        integer(c_int), allocatable :: row_start0(:), col0(:)
-        integer(c_int), allocatable, target :: perm0(:)
+        integer(c_int64_t), allocatable :: row_start0(:), col0(:)
+        integer(c_int64_t), allocatable, target :: perm0(:)
         type(c_ptr) :: perm_address
         integer :: chosen, code, n, tail
         character(len=32) :: text
@@ -170,17 +172,17 @@ contains
                     'sparse_cholesky: permutation has length '//trim(text))
                 return
             end if
-            perm0 = int(permutation - 1, c_int)
+            perm0 = int(permutation, c_int64_t) - 1_c_int64_t
             perm_address = c_loc(perm0)
         end if
 
         ! CHOLMOD wants 0-based indices; the caller's CSR stays as it is.
-        row_start0 = int(a%row_start - 1, c_int)
-        col0 = int(a%col - 1, c_int)
+        row_start0 = int(a%row_start, c_int64_t) - 1_c_int64_t
+        col0 = int(a%col, c_int64_t) - 1_c_int64_t
         tail = 0
         if (present(keep_last)) tail = max(0, min(keep_last, n))
-        code = nceig_cholmod_factor(int(n, c_int), row_start0, col0, a%val, &
-                                    int(chosen, c_int), perm_address, int(tail, c_int), &
+        code = nceig_cholmod_factor(int(n, c_int64_t), row_start0, col0, a%val, &
+                                    int(chosen, c_int), perm_address, int(tail, c_int64_t), &
                                     this%handle, this%info)
         if (code /= SHIM_OK) then
             this%handle = c_null_ptr
@@ -199,7 +201,7 @@ contains
         type(status_t), intent(out) :: stat
         integer :: code
         if (.not. shapes_fit(this, b, x, 'solve', stat)) return
-        code = nceig_cholmod_solve(this%handle, int(size(b, 2), c_int), b, x)
+        code = nceig_cholmod_solve(this%handle, int(size(b, 2), c_int64_t), b, x)
         if (code /= SHIM_OK) call stat%fail(status_code(code), cholmod_status_message(code))
     end subroutine cholesky_solve
 
@@ -212,7 +214,7 @@ contains
         type(status_t), intent(out) :: stat
         integer :: code
         if (.not. shapes_fit(this, b, w, 'forward', stat)) return
-        code = nceig_cholmod_forward(this%handle, int(size(b, 2), c_int), b, w)
+        code = nceig_cholmod_forward(this%handle, int(size(b, 2), c_int64_t), b, w)
         if (code /= SHIM_OK) call stat%fail(status_code(code), cholmod_status_message(code))
     end subroutine cholesky_forward
 
@@ -226,7 +228,7 @@ contains
         type(status_t), intent(out) :: stat
         integer :: code
         if (.not. shapes_fit(this, w, x, 'backward', stat)) return
-        code = nceig_cholmod_backward(this%handle, int(size(w, 2), c_int), w, x)
+        code = nceig_cholmod_backward(this%handle, int(size(w, 2), c_int64_t), w, x)
         if (code /= SHIM_OK) call stat%fail(status_code(code), cholmod_status_message(code))
     end subroutine cholesky_backward
 
@@ -300,7 +302,7 @@ contains
         real(wp), allocatable, intent(out) :: l_tail(:, :)
         integer, allocatable, intent(out) :: rows(:)
         type(status_t), intent(out) :: stat
-        integer(c_int), allocatable :: rows0(:)
+        integer(c_int64_t), allocatable :: rows0(:)
         integer :: code, ierr
         if (.not. c_associated(this%handle)) then
             call stat%fail(STATUS_BAD_INPUT, &
@@ -318,7 +320,7 @@ contains
                            'the '//to_string(m)//' x '//to_string(m)//' block: out of memory')
             return
         end if
-        code = nceig_cholmod_trailing(this%handle, int(m, c_int), l_tail, rows0)
+        code = nceig_cholmod_trailing(this%handle, int(m, c_int64_t), l_tail, rows0)
         if (code /= SHIM_OK) then
             call stat%fail(status_code(code), cholmod_status_message(code))
             return
@@ -326,7 +328,7 @@ contains
         ! allocate, then fill: gfortran 12's reallocation of an unallocated intent(out) array
         ! reads its undefined bounds first, which UBSan reports as an integer overflow
         allocate (rows(m))
-        rows(:) = rows0 + 1
+        rows(:) = int(rows0 + 1_c_int64_t)
     end subroutine cholesky_trailing_block
 
     !> A sentence for each code of the shim. `column` (1-based, of A) names where a not
@@ -354,7 +356,8 @@ contains
         case (SHIM_OUT_OF_MEMORY)
             message = 'CHOLMOD: out of memory'
         case (SHIM_TOO_LARGE)
-            message = 'CHOLMOD: the factor is too large for 32-bit integer indices'
+            message = 'CHOLMOD: the factor is too large (its size overflows CHOLMOD''s '// &
+                      'integer arithmetic)'
         case (SHIM_INVALID)
             message = 'CHOLMOD: invalid input (size, ordering or permutation)'
         case (SHIM_NOT_FACTORED)

@@ -60,6 +60,9 @@ contains
         call t%check('threshold: the report says there is no lambda+', &
                      index(report, 'none (no real eigenvalue of Kt_nn x = lambda Kt_nt x > 0)') &
                      > 0)
+        call t%check('threshold: one boundary point, said so in the singular ("1 points")', &
+                     index(report, ': 1 point'//new_line('a')) > 0 .and. &
+                     index(report, '1 points') == 0)
     end subroutine single_element_threshold
 
     !> A sweep over the list -5, -3, -2, -1, 2: lambda_sweep.csv has one row per lambda in

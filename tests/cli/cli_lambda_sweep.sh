@@ -2,7 +2,9 @@
 # SPDX-License-Identifier: MIT
 # kind = 'threshold' and 'lambda_sweep' from the command line: summary keys, confirmations,
 # lambda_sweep.csv (header, rows, empty cells inside the thresholds, c_t = c_n |lambda|, the
-# same mu as the eigen solver at lambda), the optional plot, and &sweep input errors.
+# same mu as the eigen solver at lambda), the optional plot (off with &output plot too), &sweep
+# input errors, an adapted sweep that misses its tolerance (a warning, adapt_converged), one
+# whose point fails (a partial set) and one stopped by a signal (the previous set stays).
 # Usage: cli_lambda_sweep.sh NCEIG SOURCE_DIR
 set -u
 nceig=$1
@@ -99,5 +101,72 @@ check 'arpack sweep: solver arpack, some points certified by ARPACK' '[[ $(json 
 check 'arpack sweep: same thresholds as dense' '[[ $(json "$work/arpack/summary.json" lambda_critical_plus) == $(json "$work/dense/summary.json" lambda_critical_plus) && $(json "$work/arpack/summary.json" lambda_critical_minus) == $(json "$work/dense/summary.json" lambda_critical_minus) ]]'
 # (7 columns each: the arpack row's c_n is field 9 of the pasted line)
 check 'arpack sweep: same curve as dense' 'paste -d, "$work/dense/lambda_sweep.csv" "$work/arpack/lambda_sweep.csv" | tail -n +2 | awk -F, "{ if ((\$2 == \"\") != (\$10 == \"\")) exit 1; if (\$2 != \"\") { d = \$2 - \$10; if (d < 0) d = -d; if (d > 1e-9 * \$2) exit 1 } }"'
+
+# &output plot = .false. is every picture's switch: lambda_sweep.png was drawn all the same.
+cat >"$work/noplot.nml" <<NML
+&mesh nx = 4, ny = 4 /
+&analysis kind = 'lambda_sweep' /
+&sweep lambdas = 3.0, 5.0 /
+&output directory = '$work/noplot', plot = .false. /
+NML
+"$nceig" "$work/noplot.nml" >"$work/stdout" 2>"$work/stderr"; rc=$?
+check '&output plot = .false.: no lambda_sweep.png, none listed' \
+    '[[ $rc -eq 0 && ! -e "$work/noplot/lambda_sweep.png" ]] && ! grep -q lambda_sweep.png "$work/noplot/summary.json"'
+
+# An adapted sweep that misses its tolerance (h and hp) says so where a user looks: a
+# warning in summary.json and on stdout, adapt_converged false; then exit 8.
+for strategy in h hp; do
+    cat >"$work/miss_$strategy.nml" <<NML
+&mesh nx = 4, ny = 4, element = 'p2' /
+&analysis kind = 'lambda_sweep' /
+&sweep lambdas = 3.0, 5.0 /
+&adapt tolerance = 1e-9, max_levels = 1, strategy = '$strategy' /
+&output directory = '$work/miss_$strategy', plot = .false. /
+NML
+    "$nceig" "$work/miss_$strategy.nml" >"$work/stdout" 2>"$work/stderr"; rc=$?
+    summary="$work/miss_$strategy/summary.json"
+    check "adapted sweep ($strategy) missing its tolerance: exit 8, sweep_n_not_met 2" \
+        '[[ $rc -eq 8 && $(json "$summary" sweep_n_not_met) == 2 ]]'
+    check "adapted sweep ($strategy) missing its tolerance: adapt_converged false" \
+        '[[ $(json "$summary" adapt_converged) == false ]]'
+    check "adapted sweep ($strategy) missing its tolerance: a warning in summary.json and on stdout" \
+        'grep -q "\"warnings\": \[\"2 of the 2 sweep points did not meet the tolerance" "$summary" && grep -q "^warning: 2 of the 2 sweep points did not meet the tolerance" "$work/stdout"'
+done
+
+# A point's loop that fails (here: young = 1e-10 makes mu at lambda = 1e300 about 2e-310,
+# which binary64 cannot hold: exit 2 at that point) leaves a partial set of the points
+# complete before it, marked partial (they were lost: nothing was written); the run ends
+# with that failure's status and one line.
+cat >"$work/partial.nml" <<NML
+&mesh nx = 4, ny = 4, element = 'p2' /
+&material young = 1e-10 /
+&analysis kind = 'lambda_sweep' /
+&sweep lambdas = 5.0, 3.0, 1e300, 4.0 /
+&adapt tolerance = 1e-4 /
+&output directory = '$work/partial', plot = .false., modes = 1 /
+NML
+"$nceig" "$work/partial.nml" >"$work/stdout" 2>"$work/stderr"; rc=$?
+summary="$work/partial/summary.json"
+echo "      $(head -c 300 "$work/stderr")"
+check 'a failed point: exit 2, one line saying the partial set is written' \
+    '[[ $rc -eq 2 && $(wc -l <"$work/stderr") -eq 1 ]] && grep -q "a partial set of the 2 of 4 points complete is written" "$work/stderr"'
+check 'a failed point: lambda_sweep.csv holds the two points before it' \
+    '[[ $(tail -n +2 "$work/partial/lambda_sweep.csv" | cut -d, -f1 | tr "\n" " ") == "5.0 3.0 " ]]'
+check 'a failed point: summary.json marks the set partial, with a warning' \
+    '[[ $(json "$summary" sweep_partial) == true && $(json "$summary" sweep_n_complete) == 2 ]] && grep -q "\"warnings\": \[\"the sweep is partial: 2 of its 4 points" "$summary" && grep -q "^warning: the sweep is partial" "$work/stdout"'
+
+# A signal during an adapted sweep commits nothing: the previous set stays.
+sed -i "s|young = 1e-10|young = 1.0|; s|1e300|2.5|" "$work/partial.nml"
+"$nceig" "$work/partial.nml" >/dev/null 2>&1
+cp -a "$work/partial" "$work/partial.kept"
+sed -i "s|tolerance = 1e-4|tolerance = 1e-7|" "$work/partial.nml"
+"$nceig" "$work/partial.nml" >"$work/stdout" 2>&1 &
+pid=$!
+while kill -0 "$pid" 2>/dev/null && ! grep -q 'sweep, lambda 2/' "$work/stdout"; do sleep 0.01; done
+kill -TERM "$pid" 2>/dev/null
+wait "$pid"
+rc=$?
+check 'SIGTERM during an adapted sweep: exit 143, the previous set intact' \
+    '[[ $rc -eq 143 ]] && diff -r "$work/partial" "$work/partial.kept" >/dev/null'
 
 cli_end

@@ -48,7 +48,7 @@ bad 'rule across variables' 'eigen%ncv=3' '&eigen' ncv 'nev + 2'
 bad 'two variables in one --set' 'mesh%nx=3, ny=0' '&mesh' nx 'one variable'
 bad 'a value cut short' 'mesh%nx=3/4' '&mesh' nx 'one value'
 bad 'no group' 'lambda=2' 'group%variable=value'
-bad 'no value' 'analysis%lambda=' 'group%variable=value'
+bad 'no value' 'analysis%lambda=' "&analysis: lambda: no value after '=': expected one"
 bad 'a newline between two settings' $'mesh%nx=4\nmesh%ny=8' 'newline'
 bad 'a newline ending the value' $'analysis%lambda=5\n' 'newline'
 bad 'a carriage return' $'analysis%lambda=5\r' 'control character'

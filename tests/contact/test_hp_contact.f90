@@ -1,119 +1,134 @@
 ! SPDX-License-Identifier: MIT
-!> hp_contact's force space for the threshold pencil (half_degree_forces): every vertex
-!> function and, per contact edge of degree p_e, the edge functions up to degree ceil(p_e/2);
-!> and its pencil (critical_lambda: restricted_pencil) on the hp levels of the reference
-!> scene converges to the continuum thresholds as the full pencil does.
+!> Gamma_C of an hp space: the edge trace mass in closed form (with Lhat_i = (P_i -
+!> P_(i-2))/(2i - 1): (h/2) int Lhat_i^2 = (h/2) 4/((2i - 3)(2i - 1)(2i + 1)), Lhat_i and
+!> Lhat_(i+2) couple by -(h/2) 2/((2i - 1)(2i + 1)(2i + 3)), the vertex functions meet
+!> Lhat_2 with -h/6 and Lhat_3 with +-h/30, nothing higher); the contact functions of a
+!> uniform degree p are the n + 1 vertices and n (p - 1) edge functions of the side, in
+!> order along t; at degree 1 it is build_contact's Gamma_C of the P1 mesh.
 program test_hp_contact
     use kinds, only: wp
     use status, only: status_t
-    use testing, only: test_suite_t
     use mesh, only: mesh_t
-    use fixtures, only: square_hp_level, REF_LAMBDA_PLUS
-    use hp_space, only: hp_space_t
-    use hp_eigen, only: hp_factored_problem
-    use hp_contact, only: half_degree_forces
-    use contact_boundary, only: contact_t
-    use contact_reduction, only: contact_flexibility
-    use csr_matrix, only: csr_matrix_t
-    use sparse_cholesky, only: cholesky_t
-    use timer, only: timings_t
-    use critical_lambda, only: thresholds_t, pencil_thresholds, restricted_pencil, SIDE_PLUS, &
-                               SIDE_MINUS
+    use element_types, only: ELEMENT_P1
+    use mesh_structured, only: structured_rectangle
+    use dof_map, only: dof_map_t, build_dof_map
+    use contact_boundary, only: contact_t, build_contact
+    use hp_space, only: hp_space_t, build_hp_space
+    use hp_contact, only: build_hp_contact, hp_edge_mass
+    use fixtures, only: csr_to_dense
+    use testing, only: test_suite_t
     implicit none
-    !> REF_LAMBDA_PLUS: the graded-P4 continuum value of the reference scene's lambda+
-    !> (tests/data/truths.csv, uncertain by 5.6e-10 relative); lambda- is its mirror image
+
+    integer, parameter :: N = 4
+    real(wp), parameter :: H = 0.7_wp
     type(test_suite_t) :: t
+    type(mesh_t) :: m
+    type(status_t) :: stat
+    integer :: p
 
     t%name = 'test_hp_contact'
-    call forces_kept_by_degree()
-    call half_degree_thresholds_converge()
+    call check_edge_mass()
+    call structured_rectangle(1.0_wp, 1.0_wp, N, N, ELEMENT_P1, 'right', m, stat)
+    call check_degree_one()
+    do p = 2, 5
+        call check_uniform(p)
+    end do
     call t%report()
 
 contains
 
-    !> The reference scene's hp level `level` from 2 x 2 squares (sigma 0.15, degrees 1 +
-    !> layer up to level + 1), factored, with its contact blocks.
-    subroutine reference_level(level, space, contact, kt_nn, kt_nt, stat, bottom)
-        integer, intent(in) :: level
-        type(hp_space_t), intent(out) :: space
-        type(contact_t), intent(out) :: contact
-        real(wp), allocatable, intent(out) :: kt_nn(:, :), kt_nt(:, :)
-        type(status_t), intent(out) :: stat
-        integer, intent(out), optional :: bottom   !! the part index of Gamma_C
-        type(mesh_t) :: m, graded
-        type(csr_matrix_t) :: k
-        type(cholesky_t) :: chol
-        type(timings_t) :: timings
-        integer, allocatable :: degree(:)
-        call square_hp_level(level, level + 1, m, graded, degree, stat)
-        if (.not. stat%ok()) return
-        if (present(bottom)) bottom = m%part_index('bottom')
-        call hp_factored_problem(graded, degree, [m%part_index('top')], m%part_index('bottom'), &
-                                 1.0_wp, 0.3_wp, space, contact, k, chol, timings, stat)
-        if (stat%ok()) call contact_flexibility(chol, contact, kt_nn, kt_nt, stat)
-        call chol%free()
-    end subroutine reference_level
+    !> The closed-form trace mass of an edge of degree p_e and length H.
+    function closed_form(p_e) result(me)
+        integer, intent(in) :: p_e
+        real(wp) :: me(p_e + 1, p_e + 1)
+        integer :: i, a, b
+        me = 0.0_wp
+        me(1:2, 1:2) = H/6.0_wp*reshape([2.0_wp, 1.0_wp, 1.0_wp, 2.0_wp], [2, 2])
+        do i = 2, p_e
+            a = i + 1   ! Lhat_i's row
+            me(a, a) = 0.5_wp*H*4.0_wp/real((2*i - 3)*(2*i - 1)*(2*i + 1), wp)
+            if (i + 2 <= p_e) then
+                b = a + 2
+                me(a, b) = -0.5_wp*H*2.0_wp/real((2*i - 1)*(2*i + 1)*(2*i + 3), wp)
+                me(b, a) = me(a, b)
+            end if
+        end do
+        if (p_e >= 2) then
+            me(1:2, 3) = -H/6.0_wp
+            me(3, 1:2) = -H/6.0_wp
+        end if
+        if (p_e >= 3) then   ! l_a = (1 - s)/2 against Lhat_3 = (P_3 - P_1)/5
+            me(1:2, 4) = [H, -H]/30.0_wp
+            me(4, 1:2) = [H, -H]/30.0_wp
+        end if
+    end function closed_form
 
-    !> Every vertex function is kept, and of each contact edge's functions Lhat_2 .. Lhat_pe
-    !> those of degree at most ceil(p_e / 2): p_e - 1 - (ceil(p_e / 2) - 1) = floor(p_e / 2)
-    !> of them are left out per edge.
-    subroutine forces_kept_by_degree()
+    subroutine check_edge_mass()
+        integer :: p_e
+        real(wp) :: worst
+        worst = 0.0_wp
+        do p_e = 1, 12
+            worst = max(worst, maxval(abs(hp_edge_mass(p_e, H) - closed_form(p_e))))
+        end do
+        call t%check('hp_edge_mass: the closed form, degrees 1 to 12', worst <= 1.0e-15_wp)
+    end subroutine check_edge_mass
+
+    !> Degree 1: the nodes, dofs, normal and mass of build_contact on the P1 dof map.
+    subroutine check_degree_one()
+        type(hp_space_t) :: space
+        type(dof_map_t) :: dofs
+        type(contact_t) :: hp, p1
+        integer :: c
+        call build_hp_space(m, [(1, c=1, m%n_cells())], [m%part_index('top')], space, stat)
+        call build_hp_contact(m, space, m%part_index('bottom'), hp, stat)
+        call build_dof_map(m, [m%part_index('top')], dofs, stat)
+        call build_contact(m, m%part_index('bottom'), dofs, p1, stat)
+        call t%check('degree 1: build_contact''s nodes, dofs, normal and mass', stat%ok() &
+                     .and. all(hp%nodes == p1%nodes) .and. all(hp%dofs == p1%dofs) .and. &
+                     all(abs(hp%normal - p1%normal) <= 0.0_wp) .and. &
+                     maxval(abs(csr_to_dense(hp%mass) - csr_to_dense(p1%mass))) <= 1.0e-16_wp)
+    end subroutine check_degree_one
+
+    subroutine check_uniform(p)
+        integer, intent(in) :: p
         type(hp_space_t) :: space
         type(contact_t) :: contact
-        type(status_t) :: stat
-        real(wp), allocatable :: kt_nn(:, :), kt_nt(:, :)
-        logical, allocatable :: keep(:)
-        integer :: e, left_out, a, bottom
-        call reference_level(5, space, contact, kt_nn, kt_nt, stat, bottom)
-        call t%check('level 5 built', stat%ok())
-        if (.not. stat%ok()) return
-        keep = half_degree_forces(space, contact)
-        left_out = 0
-        do e = 1, space%n_edges()
-            if (space%edge_part(e) == bottom) left_out = left_out + space%edge_degree(e)/2
+        real(wp), allocatable :: mass(:, :), position(:)
+        integer :: c, a, k
+        logical :: ordered, dofs_ok
+        character(len=8) :: label
+        write (label, '(a, i0, a)') ' (p = ', p, ')'
+        call build_hp_space(m, [(p, c=1, m%n_cells())], [m%part_index('top')], space, stat)
+        call build_hp_contact(m, space, m%part_index('bottom'), contact, stat)
+        call t%check('n + 1 vertex and n (p - 1) edge functions'//trim(label), stat%ok() &
+                     .and. contact%p() == N + 1 + N*(p - 1))
+        ! a function's position along t: its vertex, or its edge's midpoint
+        allocate (position(contact%p()))
+        dofs_ok = .true.
+        do a = 1, contact%p()
+            k = contact%nodes(a)
+            if (k <= space%n_vertices) then
+                position(a) = dot_product(m%coords(:, k), contact%tangent)
+            else
+                position(a) = dot_product(0.5_wp*sum(m%coords(:, space%edge_ends(:, &
+                    findloc(space%edge_first <= k .and. k < space%edge_first + &
+                    space%edge_degree - 1, .true., dim=1))), dim=2), contact%tangent)
+            end if
+            dofs_ok = dofs_ok .and. all(contact%dofs(:, a) == [2*space%free_function(k) - 1, &
+                                                               2*space%free_function(k)])
         end do
-        call t%check('forces: floor(p_e / 2) functions left out per contact edge', &
-                     count(.not. keep) == left_out .and. left_out > 0)
-        call t%check('forces: every vertex function kept', all(pack(keep, &
-                     contact%nodes <= space%n_vertices)))
-        a = count(contact%nodes <= space%n_vertices)
-        call t%check('forces: the kept edge functions are the low degrees', &
-                     count(keep) == a + sum(max(0, (pack(space%edge_degree, &
-                     space%edge_part == bottom) + 1)/2 - 1)))
-    end subroutine forces_kept_by_degree
-
-    !> At hp levels 6 and 8 the half-degree pencil's lambda+ and lambda- approach the
-    !> continuum values as the full pencil's do: within 1e-6 at level 6 and within the
-    !> truth's own uncertainty plus 1e-9 at level 8 (the full pencil: 2e-7 and 1e-11 off;
-    !> hp levels gain a factor of about ten per level), and the two sides are mirror images
-    !> (the square and its levels are symmetric under x -> 1 - x) to 1e-9.
-    subroutine half_degree_thresholds_converge()
-        type(hp_space_t) :: space
-        type(contact_t) :: contact
-        type(status_t) :: stat
-        type(thresholds_t) :: thr
-        real(wp), allocatable :: kt_nn(:, :), kt_nt(:, :), rn(:, :), rt(:, :), c(:, :)
-        real(wp) :: tolerance
-        integer :: level
-        character(len=40) :: what
-        do level = 6, 8, 2
-            call reference_level(level, space, contact, kt_nn, kt_nt, stat)
-            if (.not. stat%ok()) exit
-            call restricted_pencil(kt_nn, kt_nt, contact%mass_dense(), &
-                                   half_degree_forces(space, contact), rn, rt, c)
-            call pencil_thresholds(rn, rt, thr, stat)
-            if (.not. stat%ok()) exit
-            tolerance = merge(1.0e-6_wp, 5.6e-10_wp + 1.0e-9_wp, level == 6)
-            write (what, '(a, i0)') 'half-degree forces, level ', level
-            call t%check(trim(what)//': both thresholds', all(thr%found))
-            if (.not. all(thr%found)) cycle
-            call t%check_close(trim(what)//': lambda+', thr%lambda(SIDE_PLUS), REF_LAMBDA_PLUS, &
-                               tolerance)
-            call t%check_close(trim(what)//': lambda-', thr%lambda(SIDE_MINUS), -REF_LAMBDA_PLUS, &
-                               tolerance)
-            call t%check_close(trim(what)//': mirror image', -thr%lambda(SIDE_MINUS), &
-                               thr%lambda(SIDE_PLUS), 1.0e-9_wp)
-        end do
-        call t%check('levels built and solved', stat%ok())
-    end subroutine half_degree_thresholds_converge
+        ordered = all(position(2:) >= position(:contact%p() - 1))
+        call t%check('in order along t, dofs (x, y) of each free function'//trim(label), &
+                     ordered .and. dofs_ok)
+        mass = csr_to_dense(contact%mass)
+        ! the vertex functions sum to one on the side: their block sums to its length
+        call t%check('the vertex functions'' mass sums to the length 1'//trim(label), &
+                     abs(sum(mass(pack([(a, a=1, contact%p())], contact%nodes <= &
+                     space%n_vertices), pack([(a, a=1, contact%p())], contact%nodes <= &
+                     space%n_vertices))) - 1.0_wp) <= 1.0e-14_wp)
+        ! (symmetric to rounding: each product is formed in the order of its column)
+        call t%check('the mass symmetric and positive on the diagonal'//trim(label), &
+                     maxval(abs(mass - transpose(mass))) <= 1.0e-15_wp*maxval(abs(mass)) .and. &
+                     all([(mass(a, a) > 0.0_wp, a=1, contact%p())]))
+    end subroutine check_uniform
 end program test_hp_contact

@@ -59,7 +59,7 @@ contains
         allocate (load(2*m%n_nodes()), prescribed(2*m%n_nodes()))
         load = 0.01_wp*random_vector(size(load), 11)
         do node = 1, m%n_nodes()
-            prescribed(node_dofs(node)) = [0.01_wp, -0.03_wp]
+            prescribed(node_dofs(node, m%dim())) = [0.01_wp, -0.03_wp]
         end do
         call assemble_all_dofs(m, 1.0_wp, 0.3_wp, m%part_index('bottom'), all_dofs, k_all, &
                                all_contact, stat)

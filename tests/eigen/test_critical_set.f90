@@ -409,8 +409,9 @@ contains
                      all(abs(carried_set%points%lambda - set%points%lambda) <= &
                          1.0e-10_wp*abs(set%points%lambda)))
         call t%check('carry: every point confirmed', all(carried_set%points%confirmed))
+        ! exactly: the carried set copies the range (<= 0: no real == for -Wcompare-reals)
         call t%check('carry: the range and its start', &
-                     carried_set%lambda_min == set%lambda_min .and. &
+                     abs(carried_set%lambda_min - set%lambda_min) <= 0.0_wp .and. &
                      (carried_set%positive_at_min .eqv. set%positive_at_min))
         call t%check('carry: fewer than half the solves of the scan', &
                      2*carried_set%n_evaluations < set%n_evaluations)

@@ -20,6 +20,8 @@ program test_dof_map
     call structured_rectangle(1.0_wp, 1.0_wp, 2, 2, ELEMENT_P1, 'right', m, stat)
     call build_dof_map(m, [m%part_index('top')], dofs, stat)
     call t%check('top clamped: ok', stat%ok())
+    call t%check('one dof per component of the mesh''s dimension at each node', &
+                 dofs%dim() == m%dim() .and. size(dofs%free_dof, 1) == 2)
     call t%check('top clamped: the top row (nodes 7-9) fixed', all(dofs%free_dof(:, 7:9) == 0))
     call t%check('top clamped: 12 free dofs numbered node by node, x then y', &
                  dofs%n_free == 12 .and. all(reshape(dofs%free_dof(:, 1:6), [12]) == &

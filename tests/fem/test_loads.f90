@@ -29,8 +29,12 @@ contains
 
     subroutine numbering(t)
         type(test_suite_t), intent(inout) :: t
-        call t%check('all_dof is node-major', all_dof(2, 5) == 10 .and. all_dof(1, 1) == 1)
-        call t%check('node_dofs(3) = (5, 6)', all(node_dofs(3) == [5, 6]))
+        call t%check('all_dof is node-major', all_dof(2, 5, 2) == 10 .and. &
+                     all_dof(1, 1, 2) == 1)
+        call t%check('node_dofs(3) = (5, 6) in the plane', all(node_dofs(3, 2) == [5, 6]))
+        ! the dimension is an argument: three components per node in space
+        call t%check('node_dofs(2) = (4, 5, 6) in space', all(node_dofs(2, 3) == [4, 5, 6]) &
+                     .and. all_dof(3, 2, 3) == 6)
     end subroutine numbering
 
     !> For a linear U, a(U, v) = int_boundary sigma(U) n . v exactly (constant stress), so the
@@ -62,7 +66,8 @@ contains
             call assemble_stiffness(m, all_dofs, YOUNG, POISSON, k, stat)
             allocate (u(2*m%n_nodes()), ku(2*m%n_nodes()), f(2*m%n_nodes()))
             do node = 1, m%n_nodes()
-                u(node_dofs(node)) = [0.2_wp, -0.1_wp] + matmul(GRAD, m%coords(:, node))
+                u(node_dofs(node, m%dim())) = [0.2_wp, -0.1_wp] + &
+                                              matmul(GRAD, m%coords(:, node))
             end do
             call k%matvec(u, ku)
             f = 0.0_wp

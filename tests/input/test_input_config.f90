@@ -154,6 +154,12 @@ program test_input_config
                  default_output_directory('input/square.p1.nml') == 'output/square.p1')
     call t%check('default directory without extension', &
                  default_output_directory('case') == 'output/case')
+    ! '..nml' named output/. (output/ itself), '...nml' output/.. (the working directory)
+    call t%check('default directory of a stem of dots: the whole name', &
+                 default_output_directory('..nml') == 'output/..nml' .and. &
+                 default_output_directory('in/...nml') == 'output/...nml' .and. &
+                 default_output_directory('.nml') == 'output/.nml' .and. &
+                 default_output_directory('a..nml') == 'output/a.')
     call t%check('relative path from the input folder', &
                  resolve_relative('input/a.nml', 'meshes/b.msh') == 'input/meshes/b.msh')
     call t%check('absolute path untouched', &

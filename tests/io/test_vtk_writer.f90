@@ -167,6 +167,7 @@ program test_vtk_writer
     ! gfortran 12 keeps main-program allocatables in a frame gone before LeakSanitizer
     ! looks: free them here so a sanitizer build reports only real leaks.
     deallocate (text, xml, text_ints, binary_ints)
+    call field_data_in_both_encodings()
     call t%report()
 
 contains
@@ -400,4 +401,46 @@ contains
         ends_after_last_array = rest == TAIL
     end function ends_after_last_array
 
+    !> Field data (a mode's mu, lambda, nu): one FieldData block inside UnstructuredGrid and
+    !> before the Piece (VTK's place for data of the whole set), a Float64 DataArray per
+    !> name with NumberOfTuples="1", whose text reads back to the value written, bit for bit
+    !> (es24.16 round-trips binary64), in both encodings.
+    subroutine field_data_in_both_encodings()
+        character(len=*), parameter :: FILES(2) = [character(len=20) :: 'fields_ascii.vtu', &
+                                                   'fields_binary.vtu']
+        character(len=*), parameter :: FORMATS(2) = [character(len=6) :: VTK_ASCII, VTK_BINARY]
+        character(len=7), parameter :: FIELD_NAMES(3) = [character(len=7) :: 'mu', &
+                                                         'lambda', 'nu']
+        real(wp), parameter :: VALUES(3) = [0.7516698639178927_wp, -1.0e-300_wp, 0.3_wp]
+        character(len=:), allocatable :: header
+        real(wp) :: back
+        integer :: f, k, at, close_at, ios
+        logical :: placed, values_ok
+        do f = 1, 2
+            call write_vtu(trim(FILES(f)), m, NAMES(1:1), fields(:, :, 1:1), trim(FORMATS(f)), &
+                           stat, field_names=FIELD_NAMES, field_values=VALUES)
+            header = file_text(trim(FILES(f)), ' ')
+            at = index(header, '<AppendedData')
+            if (at > 0) header = header(:at)
+            placed = stat%ok() .and. index(header, '<FieldData>') > &
+                     index(header, '<UnstructuredGrid>') .and. &
+                     index(header, '</FieldData>') < index(header, '<Piece ') .and. &
+                     index(header, '<FieldData>') == index(header, '<FieldData', back=.true.)
+            values_ok = .true.
+            do k = 1, size(FIELD_NAMES)
+                at = index(header, 'Name="'//trim(FIELD_NAMES(k))//'" NumberOfTuples="1" ' &
+                           //'format="ascii">')
+                values_ok = values_ok .and. at > 0
+                if (.not. values_ok) exit
+                at = at + index(header(at:), '>')
+                close_at = at + index(header(at:), '</DataArray>') - 2
+                read (header(at:close_at), *, iostat=ios) back
+                values_ok = values_ok .and. ios == 0 .and. abs(back - VALUES(k)) <= 0.0_wp
+            end do
+            call t%check('field data ('//trim(FORMATS(f))//'): one block before the Piece', &
+                         placed)
+            call t%check('field data ('//trim(FORMATS(f))//'): mu, lambda, nu read back '// &
+                         'exactly', values_ok)
+        end do
+    end subroutine field_data_in_both_encodings
 end program test_vtk_writer

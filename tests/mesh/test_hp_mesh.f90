@@ -13,7 +13,8 @@ program test_hp_mesh
     use mesh_structured, only: structured_rectangle
     use mesh_singular, only: singular_vertices
     use mesh_geometric, only: geometric_mesh, cell_layers, layer_degrees, cell_diameter, &
-                              point_distance
+                              point_distance, MESH_GRADED, MESH_BELOW_RESOLUTION, &
+                              MESH_OVER_CELLS
     use hp_space, only: hp_space_t, build_hp_space
     implicit none
 
@@ -21,6 +22,8 @@ program test_hp_mesh
     t%name = 'test_hp_mesh'
     call part_change_on_a_straight_side(t)
     call grading_laws_hold(t)
+    call vertex_near_a_singular_point(t)
+    call levels_the_builder_cannot_make(t)
     call degrees_rise_with_the_layer(t)
     call space_counts(t)
     call t%report()
@@ -103,6 +106,63 @@ contains
         call t%check('parts carry over', size(graded%part_names) == size(m%part_names) .and. &
                      size(singular_vertices(graded)) == 4)
     end subroutine grading_laws_hold
+
+    !> A vertex 1e-6 from a corner (a short input edge, as a Gmsh mesh may have): level 1 is
+    !> graded to h_min = 0.15 h_0 and no cell is asked to be smaller than 0.15 h_min
+    !> (bisection may overshoot by 2): it ends, with few cells. Before, the cells beside that vertex were asked to be
+    !> below its distance, each bisection put a vertex nearer the corner, and the sweeps
+    !> never ended (a hang in the first hp level).
+    subroutine vertex_near_a_singular_point(t)
+        type(test_suite_t), intent(inout) :: t
+        type(mesh_t) :: m, graded
+        type(status_t) :: stat
+        real(wp), allocatable :: points(:, :)
+        real(wp) :: h_min, smallest
+        integer :: near, outcome, c
+        call structured_rectangle(1.0_wp, 1.0_wp, 4, 4, ELEMENT_P1, 'right', m, stat)
+        near = minloc(norm2(m%coords - spread([0.25_wp, 0.0_wp], 2, m%n_nodes()), dim=1), &
+                      dim=1)
+        m%coords(:, near) = [1.0e-6_wp, 0.0_wp]
+        allocate (points(2, 0))   ! (gfortran 12 warns of an unallocated one at -O3)
+        points = m%coords(:, singular_vertices(m))
+        call geometric_mesh(m, points, 0.15_wp, 1, graded, h_min, stat, 100000, outcome)
+        call t%check('a vertex 1e-6 from a corner: level 1 is made', &
+                     stat%ok() .and. outcome == MESH_GRADED)
+        if (.not. (stat%ok() .and. outcome == MESH_GRADED)) return
+        smallest = huge(1.0_wp)
+        do c = 1, graded%n_cells()
+            smallest = min(smallest, cell_diameter(graded%coords(:, graded%cells(:, c))))
+        end do
+        ! the short edge itself stays (1e-6); every cell the grading made is at least
+        ! 0.15 h_min / 2
+        call t%check('a vertex 1e-6 from a corner: at most 1000 cells, none made below '// &
+                     '0.15 h_min / 2 but those of the short edge', graded%n_cells() <= 1000 &
+                     .and. count([(cell_diameter(graded%coords(:, graded%cells(:, c))) < &
+                                   0.075_wp*h_min, c=1, graded%n_cells())]) <= 2 .and. &
+                     smallest >= 1.0e-6_wp)
+    end subroutine vertex_near_a_singular_point
+
+    !> Levels the builder cannot make: sigma = 0.01 at 8 layers asks cells of 1e-16 h_0 at
+    !> the corners, below binary64's resolution (MESH_BELOW_RESOLUTION, nothing refined);
+    !> 6 layers at sigma = 0.15 need more than 50 cells (MESH_OVER_CELLS with max_cells =
+    !> 50: the sweeps stop there).
+    subroutine levels_the_builder_cannot_make(t)
+        type(test_suite_t), intent(inout) :: t
+        type(mesh_t) :: m, graded
+        type(status_t) :: stat
+        real(wp), allocatable :: points(:, :)
+        real(wp) :: h_min
+        integer :: outcome
+        call structured_rectangle(1.0_wp, 1.0_wp, 2, 2, ELEMENT_P1, 'right', m, stat)
+        allocate (points(2, 0))   ! (gfortran 12 warns of an unallocated one at -O3)
+        points = m%coords(:, singular_vertices(m))
+        call geometric_mesh(m, points, 0.01_wp, 8, graded, h_min, stat, outcome=outcome)
+        call t%check('cells of 1e-16 at the corners: below the resolution', &
+                     stat%ok() .and. outcome == MESH_BELOW_RESOLUTION)
+        call geometric_mesh(m, points, 0.15_wp, 6, graded, h_min, stat, 50, outcome)
+        call t%check('6 layers within 50 cells: over the cells allowed', &
+                     stat%ok() .and. outcome == MESH_OVER_CELLS)
+    end subroutine levels_the_builder_cannot_make
 
     !> Layer 0 exactly at the singular points; the degree min(p_max, p_min + nint(slope l)).
     subroutine degrees_rise_with_the_layer(t)

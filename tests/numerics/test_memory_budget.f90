@@ -24,7 +24,7 @@ program test_memory_budget
                        80.0_wp*10001.0_wp**2, 1.0e-15_wp)
 
     ! ulimit -v: OpenBLAS hung retrying its 128 MiB buffer under 100 MB of address space.
-    call check_address_space(stat, headroom=35_i8*1000000_i8)
+    call check_address_space(stat, headroom=35_i8*1000000_i8, blas_threads=2, running=0)
     call t%check('address space: 35 MB of headroom is refused, exit 5, naming ulimit -v', &
                  stat%code == STATUS_SOLVER .and. index(stat%message, 'ulimit -v') > 0 .and. &
                  index(stat%message, 'leaves 35 MB') > 0)
@@ -32,6 +32,7 @@ program test_memory_budget
     call t%check('address space: 1 GiB of headroom, or no limit, passes', stat%ok())
     call check_address_space(stat, headroom=-1_i8)
     call t%check('address space: no limit (-1) passes', stat%ok())
+    call check_address_space_accounting()
 
     strip%name = 'strip.nml'
     strip%source = MESH_RECTANGLE
@@ -73,6 +74,42 @@ program test_memory_budget
     call t%report()
 
 contains
+
+    !> The buffers still to map: 128 MiB and a page (BLAS_BUFFER = 134221824 bytes) for the
+    !> calling thread and for each OpenBLAS thread still running (retrying), and 64 MiB
+    !> (67108864 bytes) to spare. The rise asked for is need - room, in MB rounded up.
+    subroutine check_address_space_accounting()
+        integer(i8), parameter :: BUFFER = 134221824_i8, SPARE = 67108864_i8
+        integer(i8) :: room
+        character(len=:), allocatable :: mapped, late
+
+        call check_address_space(stat, headroom=300000000_i8, blas_threads=2, running=0)
+        call t%check('address space: 300 MB hold the calling thread''s buffer and the spare', &
+                     stat%ok())
+        call check_address_space(stat, headroom=150000000_i8, blas_threads=2, running=0)
+        ! 134221824 + 67108864 - 150000000 = 51330688 bytes: 52 MB
+        call t%check('address space: 150 MB are 52 MB short of one buffer and the spare', &
+                     index(stat%message, 'at least 52 MB higher') > 0)
+        call check_address_space(stat, headroom=150000000_i8, blas_threads=2, running=1)
+        ! 2 buffers + spare - 150000000 = 185552512 bytes: 186 MB
+        call t%check('address space: a thread still retrying needs its buffer too: 186 MB', &
+                     index(stat%message, 'at least 186 MB higher') > 0)
+        call check_address_space(stat, headroom=2*BUFFER + SPARE, blas_threads=2, running=1)
+        call t%check('address space: room for every buffer passes without waiting', stat%ok())
+        call check_address_space(stat, headroom=500000000_i8, blas_threads=4, running=3)
+        ! 4 buffers + spare - 500000000 = 103996160 bytes: 104 MB
+        call t%check('address space: 4 threads, 3 retrying: 104 MB short', &
+                     index(stat%message, 'at least 104 MB higher') > 0)
+        ! The same process with OpenBLAS's thread's buffer mapped, or not mapped (its mmap
+        ! failed and it retries): the room differs by that buffer, the limit asked does not.
+        room = 120000000_i8
+        call check_address_space(stat, headroom=room, blas_threads=2, running=0)
+        mapped = stat%message(index(stat%message, 'at least'):)
+        call check_address_space(stat, headroom=room + BUFFER, blas_threads=2, running=1)
+        late = stat%message(index(stat%message, 'at least'):)
+        call t%check('address space: the rise asked for does not depend on the thread''s state', &
+                     mapped == late .and. index(mapped, 'at least 82 MB higher') == 1)
+    end subroutine check_address_space_accounting
 
     subroutine write_meminfo(path, lines)
         character(len=*), intent(in) :: path, lines(:)

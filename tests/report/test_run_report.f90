@@ -13,6 +13,7 @@ program test_run_report
     use mesh, only: mesh_t
     use analysis_base, only: analysis_t
     use filesystem, only: file_exists, remove_tree
+    use summary_record, only: threshold_facts_t, boundary_lines
     use real_format, only: real_to_text
     use fixtures, only: single_element_scene, single_element_mu, single_element_lambda_minus, &
                         run_as_main, run_checked, json_real, json_value, listed_files, &
@@ -28,6 +29,7 @@ program test_run_report
     call a_second_run_replaces_the_set(t)
     call an_unmakeable_directory_fails(t)
     call threshold_summary_says_one_thing(t)
+    call boundary_lines_say_the_counts(t)
     call remove_tree(OUT)
     call t%report()
 
@@ -136,4 +138,35 @@ contains
                      index(report, 'lowest positive mu = critical c_n = '// &
                            json_value(summary, 'lowest_positive_mu')) > 0)
     end subroutine threshold_summary_says_one_thing
+
+    !> A point across which the count of positive mu does not change (0 and 0: not confirmed)
+    !> neither appears nor vanishes: its line says the counts, not '(0 -> 0)' after
+    !> 'positive mu vanishes'; a point from 1 to 0 keeps its wording.
+    subroutine boundary_lines_say_the_counts(t)
+        type(test_suite_t), intent(inout) :: t
+        type(threshold_facts_t) :: set
+        character(len=:), allocatable :: text
+        set%lambda_min = -20.0_wp
+        set%lambda_max = 20.0_wp
+        allocate (set%points(2))
+        set%points(1)%lambda = -2.0_wp
+        set%points(1)%mechanism = 'pencil'
+        set%points(1)%n_below = 1
+        set%points(1)%n_above = 0
+        set%points(1)%appears = .false.
+        set%points(1)%confirmed = .true.
+        set%points(2)%lambda = 3.0_wp
+        set%points(2)%mechanism = 'complex_pair'
+        set%points(2)%n_below = 0
+        set%points(2)%n_above = 0
+        set%points(2)%appears = .false.
+        allocate (set%lower(0), set%upper(0))
+        text = boundary_lines(set)
+        call t%check('summary_record boundary lines: 0 and 0 are said as such, no "(0 -> 0)"', &
+                     index(text, 'the count of positive mu is 0 on both sides, NOT confirmed') &
+                     > 0 .and. index(text, '(0 -> 0)') == 0)
+        call t%check('summary_record boundary lines: 1 -> 0 still vanishes', &
+                     index(text, 'positive mu vanishes as lambda increases (1 -> 0), confirmed') &
+                     > 0 .and. index(text, ': 2 points') > 0)
+    end subroutine boundary_lines_say_the_counts
 end program test_run_report

@@ -37,7 +37,7 @@ module fixtures
     public :: single_element_scene, single_element_mu, single_element_lambda_minus
     public :: run_as_main, json_value, json_real, listed_files, data_rows, index_of_newline
     public :: all_present, adaptive_scene, run_checked, thresholds_within_bars
-    public :: problem_of, eigen_of, check_limit_not_met, square_hp_level
+    public :: problem_of, eigen_of, check_limit_not_met, is_permutation, square_hp_level
 
     !> The reference scene's continuum values (tests/data/truths.csv, scenes 'ref' and
     !> 'ref-threshold': graded P4 meshes, uncertainties 4.6e-12 and 5.7e-10).
@@ -530,4 +530,14 @@ contains
         if (.not. stat%ok()) return
         degree = layer_degrees(cell_layers(graded, points, 0.15_wp, h_min), 1, 1.0_wp, p_max)
     end subroutine square_hp_level
+    !> Whether p holds each of 1..n exactly once.
+    pure logical function is_permutation(p, n)
+        integer, intent(in) :: p(:), n
+        logical :: seen(n)
+        is_permutation = size(p) == n .and. all(p >= 1 .and. p <= n)
+        if (.not. is_permutation) return
+        seen = .false.
+        seen(p) = .true.
+        is_permutation = all(seen)
+    end function is_permutation
 end module fixtures
