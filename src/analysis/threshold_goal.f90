@@ -551,8 +551,9 @@ contains
         if (size(this%levels) == 0 .or. i < 1) return
         associate (last => this%levels(size(this%levels)))
             call goal_bars(last, this%thr%roundoff, bar, roundoff)
-            if (this%per_side) then   ! hp: the side's own
-                if (bar(i) >= -0.5_wp) text = short_real_text(bar(i))
+            if (this%per_side) then   ! hp: the side's own, none where it has no value
+                if (bar(i) >= -0.5_wp .and. (last%found(i) .or. last%collision(i))) &
+                    text = short_real_text(bar(i))
             else if (all(bar >= -0.5_wp)) then
                 text = short_real_text(maxval(bar))
             end if
