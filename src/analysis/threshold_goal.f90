@@ -86,6 +86,10 @@ module threshold_goal
         integer :: n_cells = 0
         logical :: found(2) = .false.             !! a threshold on that side
         real(wp) :: lambda(2) = 0.0_wp
+        !> of lambda at this level: the pencil's backward error and the round-off part of its
+        !> bar (-1: unknown), for a side reported at the level where it met the tolerance
+        real(wp) :: residual(2) = 0.0_wp
+        real(wp) :: roundoff(2) = -1.0_wp
         logical :: estimated(2) = .false.
         real(wp) :: error_estimate(2) = 0.0_wp    !! |relative error estimate| of lambda
         real(wp) :: error_bar(2) = -1.0_wp         !! the bars at this level; < 0: none
@@ -167,6 +171,10 @@ module threshold_goal
         integer(i8) :: memory = -1_i8
         !> hp: each side its own target (judge_hp); h: judged together, the first's state
         logical :: per_side = .false.
+        !> hp: per side, the row of `levels` where its threshold met the tolerance with a bar
+        !> (0: not met, or met as 'none', or its goal is a collision onset); the report quotes
+        !> that level's value and bar (report_last_level)
+        integer :: met_row(2) = 0
     contains
         procedure :: solve => threshold_goal_solve
         procedure :: judge => threshold_goal_judge
@@ -454,6 +462,8 @@ contains
         row%n_cells = level%prob%mesh%n_cells()
         row%found = thr%found
         row%lambda = thr%lambda
+        row%residual = thr%residual
+        row%roundoff = thr%roundoff
         row%collision = onset > 0
         where (row%collision) row%collision_lambda = set%points(max(onset, 1))%lambda
         where (row%collision) row%collision_roundoff = set%points(max(onset, 1))%roundoff
@@ -531,6 +541,7 @@ contains
                     call t%finish(TARGET_MET, trim(SIDE_LABELS(side))//': tolerance '// &
                         short_real_text(tolerance)//' met at level '//to_string(last%level)// &
                         ': error bar '//this%bar_text(side))
+                    if (.not. last%collision(side)) this%met_row(side) = k
                 else if (floor_reached(bar(side), roundoff(side))) then
                     call t%finish(TARGET_FLOOR, trim(SIDE_LABELS(side))//': '// &
                         floor_outcome(tolerance, roundoff(side), bar(side), &
@@ -574,7 +585,7 @@ contains
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
         real(wp) :: begin
-        integer :: side, i, k
+        integer :: side, i, k, m
         type(critical_set_t) :: coarse
         begin = wall_time()
         associate (prob => goal%prob, blocks => goal%blocks, thr => goal%thr)
@@ -598,15 +609,19 @@ contains
             if (.not. stat%ok()) return
             k = size(out%levels)
             res%estimate%method = HP_ESTIMATE
-            associate (last => out%levels(k))
-                do side = SIDE_PLUS, SIDE_MINUS
-                    if (.not. thr%found(side)) cycle
-                    if (last%stalled(side)) then
+            do side = SIDE_PLUS, SIDE_MINUS
+                if (.not. thr%found(side)) cycle
+                ! a side met at an earlier level is quoted with that level's value and bar:
+                ! later levels grade its end further, and its round-off can only grow there
+                m = k
+                if (goal%met_row(side) > 0) m = goal%met_row(side)
+                associate (row => out%levels(m))
+                    if (row%stalled(side)) then
                         res%estimate%skipped(side) = 'none: the '//trim(SIDE_NAMES(side))// &
                             ' side does not converge under hp refinement'
                         cycle
                     end if
-                    if (last%error_bar(side) < 0.0_wp) then
+                    if (row%error_bar(side) < 0.0_wp .or. m == 1) then
                         res%estimate%skipped(side) = 'none at the first hp level'
                         cycle
                     end if
@@ -616,18 +631,26 @@ contains
                         cycle
                     end if
                     res%estimate%computed(side) = .true.
-                    res%estimate%bar(side) = last%error_bar(side)
-                    res%estimate%relative(side) = last%error_estimate(side)
-                    res%estimate%lambda_enriched(side) = out%levels(k - 1)%lambda(side)
-                    ! the boundary point at this threshold carries its bar
+                    res%estimate%bar(side) = row%error_bar(side)
+                    res%estimate%relative(side) = row%error_estimate(side)
+                    res%estimate%lambda_enriched(side) = out%levels(m - 1)%lambda(side)
+                    res%estimate%met_level(side) = row%level
+                    ! the boundary point at this threshold carries its value and bar
                     do i = 1, size(res%set%points)
                         if (res%set%points(i)%mechanism == MECHANISM_PENCIL .and. &
                             abs(res%set%points(i)%lambda - thr%lambda(side)) <= &
-                            1.0e-12_wp*abs(thr%lambda(side))) &
-                            res%set%points(i)%error_bar = last%error_bar(side)
+                            1.0e-12_wp*abs(thr%lambda(side))) then
+                            res%set%points(i)%lambda = row%lambda(side)
+                            res%set%points(i)%error_bar = row%error_bar(side)
+                        end if
                     end do
-                end do
-            end associate
+                    if (m < k) then
+                        res%thresholds%lambda(side) = row%lambda(side)
+                        res%thresholds%residual(side) = row%residual(side)
+                        res%thresholds%roundoff(side) = row%roundoff(side)
+                    end if
+                end associate
+            end do
         end associate
         call apply_collision_bars(out, res%set)
         res%time_threshold = wall_time() - begin
