@@ -427,7 +427,8 @@ contains
                 blocks%kt_nn, blocks%kt_nt, this%thr, stat)
             if (.not. stat%ok()) return
             call onset_search(this%scan, this%restricted, this%thr, prob%dofs%n_free, &
-                              this%pencil_dofs, set, stat, this%scan_state%searched)
+                              this%pencil_dofs, set, stat, this%scan_state%searched, &
+                              carry_width(this%levels))
             if (.not. stat%ok()) return
             call this%scan_state%note(this%restricted, this%thr%real_lambdas, set)
             call collision_onsets(set, onset)
@@ -435,7 +436,8 @@ contains
                                                          this%restricted, set, stat, this%lift)
             if (.not. stat%ok()) return
             call timings%add(PHASE_REDUCTION, wall_time() - start, ': contact blocks, '// &
-                             'thresholds and the boundary search, hp level '// &
+                             'thresholds and the boundary search ('// &
+                             to_string(set%n_evaluations)//' p x p solves), hp level '// &
                              to_string(level%number))
             this%levels = [this%levels, level_row(level, this%thr, set, onset, loop_start)]
         end associate
@@ -729,7 +731,7 @@ contains
     !> the rest of input/threshold_adapt.nml (scan: twice that), for an answer that does
     !> not change there. With `previous` (the set a coarser level found, if it searched),
     !> its points are carried (carry_critical_set) unless the structure differs here.
-    subroutine onset_search(scan, blocks, thr, n_free, pencil_dofs, set, stat, previous)
+    subroutine onset_search(scan, blocks, thr, n_free, pencil_dofs, set, stat, previous, near)
         real(wp), intent(in) :: scan(:)   !! the lambdas of the search
         type(reduced_blocks_t), intent(in) :: blocks
         type(thresholds_t), intent(in) :: thr
@@ -738,6 +740,7 @@ contains
         type(critical_set_t), intent(out) :: set
         type(status_t), intent(out) :: stat
         type(critical_set_t), intent(in), optional :: previous
+        real(wp), intent(in), optional :: near   !! search_critical_set's
         real(wp) :: mu, inside
         logical :: found, search
         integer :: side, n_positive
@@ -754,8 +757,27 @@ contains
         end do
         pencil_dofs = 0
         if (.not. search) pencil_dofs = n_free
-        if (search) call search_critical_set(blocks, scan, thr%real_lambdas, set, stat, previous)
+        if (search) call search_critical_set(blocks, scan, thr%real_lambdas, set, stat, &
+                                             previous, near=near)
     end subroutine onset_search
+
+    !> hp: how near (relative) the previous level's collision points are expected on the
+    !> next level: 8 times the largest relative change between the last two levels (the
+    !> next change is smaller where they converge), at least 1e-9; 0 where no level has had
+    !> two in a row (carry_critical_set then brackets as it always did).
+    pure real(wp) function carry_width(levels)
+        type(threshold_level_t), intent(in) :: levels(:)
+        integer :: side, k
+        carry_width = 0.0_wp
+        k = size(levels)
+        if (k < 2) return
+        do side = SIDE_PLUS, SIDE_MINUS
+            if (.not. (levels(k)%collision(side) .and. levels(k - 1)%collision(side))) cycle
+            carry_width = max(carry_width, 8.0_wp*abs(levels(k)%collision_lambda(side) - &
+                levels(k - 1)%collision_lambda(side))/abs(levels(k)%collision_lambda(side)), &
+                1.0e-9_wp)
+        end do
+    end function carry_width
 
     !> onset(side): the index in `set` of the side's onset where it is a collision of two
     !> real mu (complex_pair), 0 where the side has none or it is a pencil eigenvalue.
