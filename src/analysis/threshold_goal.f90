@@ -507,29 +507,47 @@ contains
     end function largest_bar
 
     !> hp: each side is its own target, judged on its own goal (its collision onset where it
-    !> has one, else its threshold): met within the tolerance, stopped where its goal stalls,
-    !> at the floor where round-off dominates its bar; a side without a value at the last
-    !> NONE_LEVELS levels is met as 'none'. A side whose value appears or vanishes between
-    !> levels has no bar (series_bar needs it on consecutive levels) and stays active, so it
-    !> ends at a limit, named, never as met. One side never stops or fails the other.
+    !> has one, else its threshold): met within the tolerance once the goal has a value at
+    !> the last NONE_LEVELS levels, stopped where its goal stalls, at the floor where
+    !> round-off dominates its bar; a side without a value at the last NONE_LEVELS levels is
+    !> met as 'none'. A side whose value appears or vanishes between levels has no bar
+    !> (series_bar needs it on consecutive levels) and stays active, so it ends at a limit,
+    !> named, never as met; a side met, with a value or as 'none', whose value then vanishes
+    !> or appears at a later level is stopped as not converging (exit 8). One side never
+    !> stops or fails the other.
     subroutine judge_hp(this, tolerance)
         type(threshold_goal_t), intent(inout) :: this
         real(wp), intent(in) :: tolerance
         integer, parameter :: NONE_LEVELS = 3
         real(wp) :: bar(2), roundoff(2)
         integer :: side, k, i
-        logical :: absent
+        logical :: absent, present_all, has
         k = size(this%levels)
         call goal_bars(this%levels(k), this%thr%roundoff, bar, roundoff)
         do side = SIDE_PLUS, SIDE_MINUS
             associate (last => this%levels(k), t => this%targets(side))
+                has = last%found(side) .or. last%collision(side)
+                if (t%converged()) then
+                    ! met at an earlier level: it must keep (or keep lacking) its value
+                    if (has .eqv. (index(t%outcome, ': none') == 0)) cycle
+                    call t%finish(TARGET_STOPPED, trim(SIDE_LABELS(side))//': '// &
+                        merge('a value ', 'no value', has)//' at level '// &
+                        to_string(last%level)//' after '//t%outcome(len_trim(SIDE_LABELS(side)) &
+                        + 3:)//': it '//trim(merge('appears ', 'vanishes', has))// &
+                        ' with the mesh, not converged')
+                    this%met_row(side) = 0
+                    cycle
+                end if
                 if (.not. t%active()) cycle
-                if (.not. (last%found(side) .or. last%collision(side))) then
-                    absent = k >= NONE_LEVELS
-                    do i = max(1, k - NONE_LEVELS + 1), k
-                        absent = absent .and. .not. (this%levels(i)%found(side) .or. &
+                absent = k >= NONE_LEVELS
+                present_all = k >= NONE_LEVELS
+                do i = max(1, k - NONE_LEVELS + 1), k
+                    absent = absent .and. .not. (this%levels(i)%found(side) .or. &
+                                                 this%levels(i)%collision(side))
+                    present_all = present_all .and. (this%levels(i)%found(side) .or. &
                                                      this%levels(i)%collision(side))
-                    end do
+                end do
+                if (.not. has) then
                     if (absent) call t%finish(TARGET_MET, SIDE_LABELS(side)//': none at hp '// &
                         'levels '//to_string(k - NONE_LEVELS + 1)//' to '//to_string(k))
                     cycle
@@ -537,8 +555,8 @@ contains
                 if (last%stalled(side)) then
                     call t%finish(TARGET_STOPPED, trim(SIDE_LABELS(side))//': '// &
                         stall_outcome(tolerance, 'the '//trim(SIDE_NAMES(side))//' side'))
-                else if (bar(side) < -0.5_wp) then
-                    cycle   ! no bar yet, or the value has just appeared
+                else if (bar(side) < -0.5_wp .or. .not. present_all) then
+                    cycle   ! no bar yet, or the value has appeared too recently
                 else if (bar(side) <= tolerance) then
                     call t%finish(TARGET_MET, trim(SIDE_LABELS(side))//': tolerance '// &
                         short_real_text(tolerance)//' met at level '//to_string(last%level)// &
