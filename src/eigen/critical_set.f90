@@ -189,8 +189,8 @@ contains
         integer, intent(in), optional :: known_count(:)
         real(wp), intent(in), optional :: near
         type(boundary_point_t) :: point
-        real(wp) :: lambda_c, lambda_f, width, a, b, middle
-        integer :: i, n_start, count_a, count_b
+        real(wp) :: lambda_c, lambda_f, width, a, b, middle, widths(3)
+        integer :: i, n_start, count_a, count_b, try
 
         carried = .false.
         call take_known(set, known_lambda, known_count)
@@ -225,31 +225,25 @@ contains
                 if (.not. stat%ok()) return
                 point%bracket = [a, b]
             else
-                count_a = 0
-                count_b = 0
+                ! the tightest bracket first: `near`, CARRY_WIDTH, then the scan's own
+                widths = [0.0_wp, CARRY_WIDTH, 1.0_wp]
                 if (present(near)) then
-                    if (near > 0.0_wp .and. near < CARRY_WIDTH) then
-                        width = near*max(1.0_wp, abs(lambda_c))
-                        a = max(lambda_c - width, coarse%points(i)%bracket(1))
-                        b = min(lambda_c + width, coarse%points(i)%bracket(2))
-                        call bracket_counts(a, b)
-                        if (.not. stat%ok()) return
-                    end if
+                    if (near < CARRY_WIDTH) widths(1) = max(near, 0.0_wp)
                 end if
-                if ((count_a > 0) .eqv. (count_b > 0)) then
-                    width = CARRY_WIDTH*max(1.0_wp, abs(lambda_c))
-                    a = max(lambda_c - width, coarse%points(i)%bracket(1))
-                    b = min(lambda_c + width, coarse%points(i)%bracket(2))
-                    call bracket_counts(a, b)
-                    if (.not. stat%ok()) return
-                end if
-                if ((count_a > 0) .eqv. (count_b > 0)) then
+                do try = 1, 3
+                    if (.not. widths(try) > 0.0_wp) cycle
                     a = coarse%points(i)%bracket(1)
                     b = coarse%points(i)%bracket(2)
+                    if (try < 3) then
+                        width = widths(try)*max(1.0_wp, abs(lambda_c))
+                        a = max(lambda_c - width, a)
+                        b = min(lambda_c + width, b)
+                    end if
                     call bracket_counts(a, b)
                     if (.not. stat%ok()) return
-                    if ((count_a > 0) .eqv. (count_b > 0)) return
-                end if
+                    if ((count_a > 0) .neqv. (count_b > 0)) exit
+                end do
+                if ((count_a > 0) .eqv. (count_b > 0)) return
                 call pair_point(blocks, a, b, count_a, count_b, point, set, stat)
                 if (.not. stat%ok()) return
                 point%bracket = coarse%points(i)%bracket
