@@ -326,7 +326,7 @@ contains
     !> structure differs here (its own solves, n_evaluations, are counted with these);
     !> with `known` (found on these blocks over the same scan), that set is taken.
     subroutine confirm_and_bound(scn, prob, lambda, scan, chol, blocks, thr, set, stat, coarse, &
-                                 known)
+                                 known, lift)
         type(scene_t), intent(in) :: scn
         type(problem_t), intent(in) :: prob
         real(wp), intent(in) :: lambda
@@ -337,6 +337,8 @@ contains
         type(critical_set_t), intent(out) :: set
         type(status_t), intent(out) :: stat
         type(critical_set_t), intent(in), optional :: coarse, known
+        !> blocks of restricted forces: their vectors on the contact functions (roundoff)
+        real(wp), intent(in), optional :: lift(:, :)
         real(wp), allocatable :: mu_meet(:), confirmed_lambda(:)
         integer, allocatable :: confirmed_count(:)
         call confirm_thresholds(blocks, thr, stat)
@@ -359,7 +361,8 @@ contains
             if (stat%ok() .and. present(coarse)) set%n_evaluations = set%n_evaluations + &
                                                                      coarse%n_evaluations
         end if
-        if (stat%ok()) call collision_roundoffs(prob%k, chol, prob%contact, blocks, set, stat)
+        if (stat%ok()) call collision_roundoffs(prob%k, chol, prob%contact, blocks, set, stat, &
+                                                lift)
         if (.not. stat%ok() .or. size(set%points) == 0) return
         mu_meet = set%points%mu_meet   ! a plain array: no temporary for the call
         call check_real_range(scn, prob%units, lambda, .false., mu_meet, stat)

@@ -48,7 +48,8 @@ module threshold_goal
     use threshold_analysis, only: factor_with_contact_blocks, threshold_result_t, &
                                   solve_thresholds, confirm_and_bound
     use critical_lambda, only: thresholds_t, pencil_thresholds, SIDE_PLUS, SIDE_MINUS, &
-                               SIDE_LABELS, SIDE_NAMES, lowest_positive_mu
+                               SIDE_LABELS, SIDE_NAMES, lowest_positive_mu, restricted_thresholds
+    use hp_contact, only: half_degree_forces
     use error_estimate, only: ENRICHED_CONTACT_MAX
     use threshold_estimate, only: threshold_estimate_t, threshold_displacements, &
                                   estimate_threshold_errors
@@ -88,6 +89,10 @@ module threshold_goal
         integer :: n_cells = 0
         logical :: found(2) = .false.             !! a threshold on that side
         real(wp) :: lambda(2) = 0.0_wp
+        !> of lambda at this level: the pencil's backward error and the round-off part of its
+        !> bar (-1: unknown), for a side reported at the level where it met the tolerance
+        real(wp) :: residual(2) = 0.0_wp
+        real(wp) :: roundoff(2) = -1.0_wp
         logical :: estimated(2) = .false.
         real(wp) :: error_estimate(2) = 0.0_wp    !! |relative error estimate| of lambda
         real(wp) :: error_bar(2) = -1.0_wp         !! the bars at this level; < 0: none
@@ -158,11 +163,21 @@ module threshold_goal
         type(cholesky_t) :: chol
         logical :: factored = .false.
         type(reduced_blocks_t) :: blocks
+        !> hp: the blocks of the half-degree forces and their lift to the contact functions
+        !> (critical_lambda: restricted_thresholds), where the thresholds are found
+        type(reduced_blocks_t) :: restricted
+        real(wp), allocatable :: lift(:, :)
         type(critical_set_t) :: set
         !> hp: the memory a level's contact blocks may take, in bytes (negative: as the
         !> machine has; absent: the memory available)
         logical :: memory_given = .false.
         integer(i8) :: memory = -1_i8
+        !> hp: each side its own target (judge_hp); h: judged together, the first's state
+        logical :: per_side = .false.
+        !> hp: per side, the row of `levels` where its threshold met the tolerance with a bar
+        !> (0: not met, or met as 'none', or its goal is a collision onset); the report quotes
+        !> that level's value and bar (report_last_level)
+        integer :: met_row(2) = 0
     contains
         procedure :: solve => threshold_goal_solve
         procedure :: judge => threshold_goal_judge
@@ -213,11 +228,9 @@ contains
             goal%memory_given = .true.
             goal%memory = available
         end if
+        goal%per_side = .not. refiner%estimated()
         call adapt_levels(scn, adapt, start, refiner, goal, timings, stat)
-        ! both sides are judged together: the first's state and outcome are the loop's
-        out%converged = goal%targets(1)%converged()
-        out%floor_reached = goal%targets(1)%floor_reached()
-        out%outcome = goal%targets(1)%outcome
+        call loop_outcome(goal, out)
         call move_alloc(goal%levels, out%levels)
         out%prob = goal%prob
         out%space = goal%space
@@ -241,6 +254,43 @@ contains
         if (refiner%estimated()) res%eigen%warnings = [character(len=len(res%eigen%warnings)) &
             :: res%eigen%warnings, theta_warnings(adapt%theta)]
     end subroutine solve_adapted_thresholds
+
+    !> The loop's verdict: converged only when every side met the tolerance (h: both sides
+    !> are one target); the outcome, one clause per side on hp levels, each naming its side,
+    !> those not met first.
+    subroutine loop_outcome(goal, out)
+        type(threshold_goal_t), intent(in) :: goal
+        type(adaptive_thresholds_t), intent(inout) :: out
+        integer :: side
+        out%converged = all([(goal%targets(side)%converged(), side=1, 2)])
+        out%floor_reached = goal%targets(1)%floor_reached()
+        out%outcome = goal%targets(1)%outcome
+        if (.not. goal%per_side) return
+        out%floor_reached = .not. out%converged .and. all([(goal%targets(side)%converged() &
+            .or. goal%targets(side)%floor_reached(), side=1, 2)])
+        out%outcome = ''
+        do side = SIDE_PLUS, SIDE_MINUS
+            if (goal%targets(side)%converged()) cycle
+            out%outcome = out%outcome//merge('; ', '  ', len(out%outcome) > 0)// &
+                labelled(side, goal%targets(side)%outcome)
+        end do
+        do side = SIDE_PLUS, SIDE_MINUS
+            if (.not. goal%targets(side)%converged()) cycle
+            out%outcome = out%outcome//merge('; ', '  ', len(out%outcome) > 0)// &
+                labelled(side, goal%targets(side)%outcome)
+        end do
+        out%outcome = trim(adjustl(out%outcome))
+    end subroutine loop_outcome
+
+    !> `text` headed by the side's label, unless it is already.
+    function labelled(side, text) result(line)
+        integer, intent(in) :: side
+        character(len=*), intent(in) :: text
+        character(len=:), allocatable :: line
+        line = text
+        if (index(text, trim(SIDE_LABELS(side))//':') /= 1) line = trim(SIDE_LABELS(side))// &
+            ': '//text
+    end function labelled
 
     !> Both thresholds on `level`, with their error estimates (h) or their bars from the
     !> changes between levels (hp), and each side's collision onset where it has one.
@@ -371,21 +421,27 @@ contains
         associate (prob => this%prob, blocks => this%blocks, set => this%set)
             start = wall_time()
             call contact_flexibility(this%chol, prob%contact, blocks%kt_nn, blocks%kt_nt, stat)
-            if (stat%ok()) call pencil_thresholds(blocks%kt_nn, blocks%kt_nt, this%thr, stat)
+            if (.not. stat%ok()) return
+            blocks%mass = prob%contact%mass
+            ! the thresholds, the positive set and its boundary with the forces of half the
+            ! degree (docs/thresholds.md); `blocks` stay whole for the spectrum at lambda
+            call restricted_thresholds(blocks, half_degree_forces(this%space, prob%contact), &
+                                       this%thr, this%restricted, this%lift, stat)
             if (stat%ok()) call threshold_roundoff(prob%k, this%chol, prob%contact, &
                 blocks%kt_nn, blocks%kt_nt, this%thr, stat)
             if (.not. stat%ok()) return
-            blocks%mass = prob%contact%mass
-            call onset_search(this%scan, blocks, this%thr, prob%dofs%n_free, this%pencil_dofs, &
-                              set, stat, this%scan_state%searched)
+            call onset_search(this%scan, this%restricted, this%thr, prob%dofs%n_free, &
+                              this%pencil_dofs, set, stat, this%scan_state%searched, &
+                              carry_width(this%levels))
             if (.not. stat%ok()) return
-            call this%scan_state%note(blocks, this%thr%real_lambdas, set)
+            call this%scan_state%note(this%restricted, this%thr%real_lambdas, set)
             call collision_onsets(set, onset)
             if (any(onset > 0)) call collision_roundoffs(prob%k, this%chol, prob%contact, &
-                                                         blocks, set, stat)
+                                                         this%restricted, set, stat, this%lift)
             if (.not. stat%ok()) return
             call timings%add(PHASE_REDUCTION, wall_time() - start, ': contact blocks, '// &
-                             'thresholds and the boundary search, hp level '// &
+                             'thresholds and the boundary search ('// &
+                             to_string(set%n_evaluations)//' p x p solves), hp level '// &
                              to_string(level%number))
             this%levels = [this%levels, level_row(level, this%thr, set, onset, loop_start)]
         end associate
@@ -412,6 +468,8 @@ contains
         row%n_cells = level%prob%mesh%n_cells()
         row%found = thr%found
         row%lambda = thr%lambda
+        row%residual = thr%residual
+        row%roundoff = thr%roundoff
         row%collision = onset > 0
         where (row%collision) row%collision_lambda = set%points(max(onset, 1))%lambda
         where (row%collision) row%collision_roundoff = set%points(max(onset, 1))%roundoff
@@ -432,10 +490,10 @@ contains
                                   .true., '', largest_bar(this), this%roundoff, .false., '', &
                                   missing(this))
             end associate
+            this%targets(2) = this%targets(1)
         else
             call judge_hp(this, tolerance)
         end if
-        this%targets(2) = this%targets(1)
     end subroutine threshold_goal_judge
 
     !> hp, once the loop ends: each side's goal with a bar at the last level `last` (its
@@ -559,62 +617,88 @@ contains
         end associate
     end function largest_bar
 
-    !> hp: whether both sides stop after the level just solved: no goal, the tolerance met on
-    !> every side, or each side that does not meet it stalled or at the floor.
+    !> hp: each side is its own target, judged on its own goal (its collision onset where it
+    !> has one, else its threshold): met within the tolerance once the goal has a value at
+    !> the last NONE_LEVELS levels, stopped where its goal stalls, at the floor where
+    !> round-off dominates its bar; a side without a value at the last NONE_LEVELS levels is
+    !> met as 'none'. A side whose value appears or vanishes between levels has no bar
+    !> (series_bar needs it on consecutive levels) and stays active, so it ends at a limit,
+    !> named, never as met; a side met, with a value or as 'none', whose value then vanishes
+    !> or appears at a later level is stopped as not converging (exit 8). One side never
+    !> stops or fails the other.
     subroutine judge_hp(this, tolerance)
         type(threshold_goal_t), intent(inout) :: this
         real(wp), intent(in) :: tolerance
+        integer, parameter :: NONE_LEVELS = 3
         real(wp) :: bar(2), roundoff(2)
-        integer :: side, worst, stalled
-        call goal_bars(this%levels(size(this%levels)), this%thr%roundoff, bar, roundoff)
-        associate (last => this%levels(size(this%levels)), t => this%targets(1))
-            if (.not. any(last%found .or. last%collision)) then
-                call t%finish(TARGET_STOPPED, 'tolerance not met: no real eigenvalue of the '// &
-                    'pencil Kt_nn x = lambda Kt_nt x at hp level '//to_string(last%level))
-                return
-            end if
-            ! a goal without a bar yet
-            if (any(bar < -0.5_wp .and. .not. last%stalled)) return
-            if (all(bar <= tolerance .and. .not. last%stalled)) then
-                call t%finish(TARGET_MET, 'tolerance '//given_real_text(tolerance)// &
-                    ' met at level '//to_string(last%level)//': error bar '// &
-                    this%bar_text(1))
-                return
-            end if
-            worst = 0
-            stalled = 0
-            do side = SIDE_PLUS, SIDE_MINUS
-                if (last%stalled(side)) then
-                    stalled = side
+        integer :: side, k, i
+        logical :: absent, present_all, has
+        k = size(this%levels)
+        call goal_bars(this%levels(k), this%thr%roundoff, bar, roundoff)
+        do side = SIDE_PLUS, SIDE_MINUS
+            associate (last => this%levels(k), t => this%targets(side))
+                has = last%found(side) .or. last%collision(side)
+                if (t%converged()) then
+                    ! met at an earlier level: it must keep (or keep lacking) its value
+                    if (has .eqv. (index(t%outcome, ': none') == 0)) cycle
+                    call t%finish(TARGET_STOPPED, trim(SIDE_LABELS(side))//': '// &
+                        merge('a value ', 'no value', has)//' at level '// &
+                        to_string(last%level)//' after '//t%outcome(len_trim(SIDE_LABELS(side)) &
+                        + 3:)//': it '//trim(merge('appears ', 'vanishes', has))// &
+                        ' with the mesh, not converged')
+                    this%met_row(side) = 0
                     cycle
                 end if
-                if (bar(side) <= tolerance) cycle
-                if (.not. floor_reached(bar(side), roundoff(side))) return
-                if (worst == 0) worst = side
-                if (bar(side) > bar(worst)) worst = side
-            end do
-            if (stalled > 0) then
-                call t%finish(TARGET_STOPPED, stall_outcome(tolerance, &
-                    'the '//trim(SIDE_NAMES(stalled))//' side'))
-                return
-            end if
-            call t%finish(TARGET_FLOOR, floor_outcome(tolerance, roundoff(worst), bar(worst), &
-                                                      to_string(last%n_dofs)))
-        end associate
+                if (.not. t%active()) cycle
+                absent = k >= NONE_LEVELS
+                present_all = k >= NONE_LEVELS
+                do i = max(1, k - NONE_LEVELS + 1), k
+                    absent = absent .and. .not. (this%levels(i)%found(side) .or. &
+                                                 this%levels(i)%collision(side))
+                    present_all = present_all .and. (this%levels(i)%found(side) .or. &
+                                                     this%levels(i)%collision(side))
+                end do
+                if (.not. has) then
+                    if (absent) call t%finish(TARGET_MET, SIDE_LABELS(side)//': none at hp '// &
+                        'levels '//to_string(k - NONE_LEVELS + 1)//' to '//to_string(k))
+                    cycle
+                end if
+                if (last%stalled(side)) then
+                    call t%finish(TARGET_STOPPED, trim(SIDE_LABELS(side))//': '// &
+                        stall_outcome(tolerance, 'the '//trim(SIDE_NAMES(side))//' side'))
+                else if (bar(side) < -0.5_wp .or. .not. present_all) then
+                    cycle   ! no bar yet, or the value has appeared too recently
+                else if (bar(side) <= tolerance) then
+                    call t%finish(TARGET_MET, trim(SIDE_LABELS(side))//': tolerance '// &
+                        short_real_text(tolerance)//' met at level '//to_string(last%level)// &
+                        ': error bar '//this%bar_text(side))
+                    if (.not. last%collision(side)) this%met_row(side) = k
+                else if (floor_reached(bar(side), roundoff(side))) then
+                    call t%finish(TARGET_FLOOR, trim(SIDE_LABELS(side))//': '// &
+                        floor_outcome(tolerance, roundoff(side), bar(side), &
+                                      to_string(last%n_dofs)))
+                end if
+            end associate
+        end do
     end subroutine judge_hp
 
     !> The bar of both sides at the last level, as outcomes quote it: the larger of the
     !> sides' goal bars ('none' where one has none) at its dofs.
     function threshold_goal_bar_text(this, i) result(text)
         class(threshold_goal_t), intent(in) :: this
-        integer, intent(in) :: i   !! (both sides are judged together)
+        integer, intent(in) :: i   !! the side (hp); h: both sides are judged together
         character(len=:), allocatable :: text
         real(wp) :: bar(2), roundoff(2)
         text = 'none'
         if (size(this%levels) == 0 .or. i < 1) return
         associate (last => this%levels(size(this%levels)))
             call goal_bars(last, this%thr%roundoff, bar, roundoff)
-            if (all(bar >= -0.5_wp)) text = short_real_text(maxval(bar))
+            if (this%per_side) then   ! hp: the side's own, none where it has no value
+                if (bar(i) >= -0.5_wp .and. (last%found(i) .or. last%collision(i))) &
+                    text = short_real_text(bar(i))
+            else if (all(bar >= -0.5_wp)) then
+                text = short_real_text(maxval(bar))
+            end if
             text = text//' at '//to_string(last%n_dofs)//' dofs'
         end associate
     end function threshold_goal_bar_text
@@ -632,7 +716,7 @@ contains
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
         real(wp) :: begin
-        integer :: side, i, k
+        integer :: side, i, k, m
         type(critical_set_t) :: coarse
         begin = wall_time()
         associate (prob => goal%prob, blocks => goal%blocks, thr => goal%thr)
@@ -644,41 +728,60 @@ contains
             res%thresholds = thr
             if (.not. stat%ok()) return
             if (goal%set%scan_contact > 0) then   ! the last level searched: its set stands
-                call confirm_and_bound(scn, prob, lambda, goal%scan, goal%chol, blocks, &
-                                       res%thresholds, res%set, stat, known=goal%set)
+                call confirm_and_bound(scn, prob, lambda, goal%scan, goal%chol, &
+                                       goal%restricted, res%thresholds, res%set, stat, &
+                                       known=goal%set, lift=goal%lift)
             else
-                call goal%scan_state%coarse_set(goal%scan, prob%contact%p(), coarse, stat)
+                call goal%scan_state%coarse_set(goal%scan, size(goal%restricted%kt_nn, 1), &
+                                                coarse, stat)
                 if (stat%ok()) call confirm_and_bound(scn, prob, lambda, goal%scan, goal%chol, &
-                    blocks, res%thresholds, res%set, stat, coarse)
+                    goal%restricted, res%thresholds, res%set, stat, coarse, lift=goal%lift)
             end if
             if (.not. stat%ok()) return
             k = size(out%levels)
             res%estimate%method = HP_ESTIMATE
-            associate (last => out%levels(k))
-                do side = SIDE_PLUS, SIDE_MINUS
-                    if (.not. thr%found(side)) cycle
-                    if (last%stalled(side)) then
+            do side = SIDE_PLUS, SIDE_MINUS
+                if (.not. thr%found(side)) cycle
+                ! a side met at an earlier level is quoted with that level's value and bar:
+                ! later levels grade its end further, and its round-off can only grow there
+                m = k
+                if (goal%met_row(side) > 0) m = goal%met_row(side)
+                associate (row => out%levels(m))
+                    if (row%stalled(side)) then
                         res%estimate%skipped(side) = 'none: the '//trim(SIDE_NAMES(side))// &
                             ' side does not converge under hp refinement'
                         cycle
                     end if
-                    if (last%error_bar(side) < 0.0_wp) then
+                    if (row%error_bar(side) < 0.0_wp .or. m == 1) then
                         res%estimate%skipped(side) = 'none at the first hp level'
                         cycle
                     end if
+                    if (.not. goal%targets(side)%converged()) then   ! its own reason
+                        res%estimate%skipped(side) = 'none: '// &
+                            labelled(side, goal%targets(side)%outcome)
+                        cycle
+                    end if
                     res%estimate%computed(side) = .true.
-                    res%estimate%bar(side) = last%error_bar(side)
-                    res%estimate%relative(side) = last%error_estimate(side)
-                    res%estimate%lambda_enriched(side) = out%levels(k - 1)%lambda(side)
-                    ! the boundary point at this threshold carries its bar
+                    res%estimate%bar(side) = row%error_bar(side)
+                    res%estimate%relative(side) = row%error_estimate(side)
+                    res%estimate%lambda_enriched(side) = out%levels(m - 1)%lambda(side)
+                    res%estimate%met_level(side) = row%level
+                    ! the boundary point at this threshold carries its value and bar
                     do i = 1, size(res%set%points)
                         if (res%set%points(i)%mechanism == MECHANISM_PENCIL .and. &
                             abs(res%set%points(i)%lambda - thr%lambda(side)) <= &
-                            1.0e-12_wp*abs(thr%lambda(side))) &
-                            res%set%points(i)%error_bar = last%error_bar(side)
+                            1.0e-12_wp*abs(thr%lambda(side))) then
+                            res%set%points(i)%lambda = row%lambda(side)
+                            res%set%points(i)%error_bar = row%error_bar(side)
+                        end if
                     end do
-                end do
-            end associate
+                    if (m < k) then
+                        res%thresholds%lambda(side) = row%lambda(side)
+                        res%thresholds%residual(side) = row%residual(side)
+                        res%thresholds%roundoff(side) = row%roundoff(side)
+                    end if
+                end associate
+            end do
         end associate
         call apply_collision_bars(out, res%set)
         res%time_threshold = wall_time() - begin
@@ -757,7 +860,7 @@ contains
     !> the rest of input/threshold_adapt.nml (scan: twice that), for an answer that does
     !> not change there. With `previous` (the set a coarser level found, if it searched),
     !> its points are carried (carry_critical_set) unless the structure differs here.
-    subroutine onset_search(scan, blocks, thr, n_free, pencil_dofs, set, stat, previous)
+    subroutine onset_search(scan, blocks, thr, n_free, pencil_dofs, set, stat, previous, near)
         real(wp), intent(in) :: scan(:)   !! the lambdas of the search
         type(reduced_blocks_t), intent(in) :: blocks
         type(thresholds_t), intent(in) :: thr
@@ -766,6 +869,7 @@ contains
         type(critical_set_t), intent(out) :: set
         type(status_t), intent(out) :: stat
         type(critical_set_t), intent(in), optional :: previous
+        real(wp), intent(in), optional :: near   !! search_critical_set's
         real(wp) :: mu, inside
         logical :: found, search
         integer :: side, n_positive
@@ -782,8 +886,27 @@ contains
         end do
         pencil_dofs = 0
         if (.not. search) pencil_dofs = n_free
-        if (search) call search_critical_set(blocks, scan, thr%real_lambdas, set, stat, previous)
+        if (search) call search_critical_set(blocks, scan, thr%real_lambdas, set, stat, &
+                                             previous, near=near)
     end subroutine onset_search
+
+    !> hp: how near (relative) the previous level's collision points are expected on the
+    !> next level: 8 times the largest relative change between the last two levels (the
+    !> next change is smaller where they converge), at least 1e-9; 0 where no level has had
+    !> two in a row (carry_critical_set then brackets as it always did).
+    pure real(wp) function carry_width(levels)
+        type(threshold_level_t), intent(in) :: levels(:)
+        integer :: side, k
+        carry_width = 0.0_wp
+        k = size(levels)
+        if (k < 2) return
+        do side = SIDE_PLUS, SIDE_MINUS
+            if (.not. (levels(k)%collision(side) .and. levels(k - 1)%collision(side))) cycle
+            carry_width = max(carry_width, 8.0_wp*abs(levels(k)%collision_lambda(side) - &
+                levels(k - 1)%collision_lambda(side))/abs(levels(k)%collision_lambda(side)), &
+                1.0e-9_wp)
+        end do
+    end function carry_width
 
     !> onset(side): the index in `set` of the side's onset where it is a collision of two
     !> real mu (complex_pair), 0 where the side has none or it is a pencil eigenvalue.

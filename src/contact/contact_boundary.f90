@@ -121,7 +121,8 @@ contains
         type(status_t), intent(out) :: stat
         integer, allocatable :: edge_list(:), local(:), edge_local(:, :), order(:), on_edge(:)
         real(wp), allocatable :: position(:)
-        real(wp) :: start(2), finish(2), direction(2), offset, s_min, s_max, inner(2), fraction
+        real(wp) :: start(2), finish(2), direction(2), offset, s_min, s_max, inner(2), fraction, &
+                    first_end(2), last_end(2)
         integer :: e, i, a, node, n_edges, per_edge, p
         character(len=:), allocatable :: name
 
@@ -134,7 +135,10 @@ contains
             return
         end if
 
-        ! The segment's direction from its first edge; every node must lie on that line.
+        ! The segment's line through its two extreme nodes along the first edge's direction;
+        ! every node must lie on it. Not the first edge's own line: on a graded mesh that
+        ! edge may be 1e-9 long, its direction then good only to 1e-7 (the rounding of O(1)
+        ! coordinates over its length), which puts far nodes of a slanted segment off it.
         start = m%coords(:, m%edges(1, edge_list(1)))
         finish = m%coords(:, m%edges(2, edge_list(1)))
         direction = (finish - start)/norm2(finish - start)
@@ -145,11 +149,19 @@ contains
             do a = 1, per_edge
                 node = m%edges(a, edge_list(i))
                 on_edge(node) = edge_list(i)
-                s_min = min(s_min, dot_product(m%coords(:, node) - start, direction))
-                s_max = max(s_max, dot_product(m%coords(:, node) - start, direction))
+                if (dot_product(m%coords(:, node) - start, direction) < s_min) then
+                    s_min = dot_product(m%coords(:, node) - start, direction)
+                    first_end = m%coords(:, node)
+                end if
+                if (dot_product(m%coords(:, node) - start, direction) > s_max) then
+                    s_max = dot_product(m%coords(:, node) - start, direction)
+                    last_end = m%coords(:, node)
+                end if
             end do
         end do
-        contact%length = s_max - s_min
+        start = first_end
+        direction = (last_end - first_end)/norm2(last_end - first_end)
+        contact%length = norm2(last_end - first_end)
         do node = 1, size(on_edge)
             if (on_edge(node) == 0) cycle
             offset = abs(cross(direction, m%coords(:, node) - start))
@@ -157,7 +169,7 @@ contains
                 call stat%fail(STATUS_MESH, place_of(on_edge(node))//'contact boundary '''// &
                     name//''' is not one straight segment: the node at ('// &
                     to_string(m%coords(1, node))//', '//to_string(m%coords(2, node))// &
-                    ') is off the line through its first edge; expected one straight segment')
+                    ') is off the line through its two ends; expected one straight segment')
                 return
             end if
         end do

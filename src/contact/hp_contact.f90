@@ -18,7 +18,7 @@ module hp_contact
     use sorting, only: sort_index
     implicit none
     private
-    public :: build_hp_contact, hp_edge_mass
+    public :: build_hp_contact, hp_edge_mass, half_degree_forces
 
 contains
 
@@ -115,4 +115,34 @@ contains
             if (.not. stat%ok()) return
         end do
     end subroutine build_hp_contact
+
+    !> Which contact functions of `contact` (built by build_hp_contact on `space`) carry the
+    !> forces of a threshold pencil coarser than the trace space: every vertex function, and
+    !> on each contact edge of degree p_e its edge functions of degree at most ceil(p_e / 2).
+    !> With the forces in the trace space itself (equal order) the pencil holds force
+    !> patterns that alternate from function to function, whose real pencil values move with
+    !> the mesh on graded levels; this coarser space removes most of them and keeps every
+    !> converging threshold measured (docs/thresholds.md, "Spurious values from the
+    !> discretisation of the contact forces").
+    pure function half_degree_forces(space, contact) result(keep)
+        type(hp_space_t), intent(in) :: space
+        type(contact_t), intent(in) :: contact
+        logical :: keep(size(contact%nodes))
+        integer :: edge_of(space%n_functions), degree_of(space%n_functions)
+        integer :: e, k, a, f
+        edge_of = 0
+        degree_of = 1
+        do e = 1, space%n_edges()
+            do k = 2, space%edge_degree(e)
+                f = space%edge_first(e) + k - 2
+                edge_of(f) = e
+                degree_of(f) = k
+            end do
+        end do
+        do a = 1, size(contact%nodes)
+            f = contact%nodes(a)
+            keep(a) = .true.
+            if (edge_of(f) > 0) keep(a) = degree_of(f) <= (space%edge_degree(edge_of(f)) + 1)/2
+        end do
+    end function half_degree_forces
 end module hp_contact

@@ -17,14 +17,14 @@ module critical_lambda
     use kinds, only: wp
     use status, only: status_t, STATUS_SOLVER
     use strings, only: to_string
-    use lapack_interfaces, only: dggev, dgeev, lapack_info_message
+    use lapack_interfaces, only: dggev, dgeev, dpotrf, dtrsm, lapack_info_message
     use dual_eigen, only: reduced_left_eigenvector
     use contact_reduction, only: reduced_blocks_t, lambda_unit
     use sorting, only: sort_index
     implicit none
     private
     public :: thresholds_t, pencil_thresholds, lowest_positive_mu, confirm_thresholds
-    public :: reduced_eigenvalues, count_positive
+    public :: reduced_eigenvalues, count_positive, restricted_pencil, restricted_thresholds
     public :: SIDE_PLUS, SIDE_MINUS, SIDE_NAMES, SIDE_LABELS, CONFIRM_OFFSET
 
     integer, parameter :: SIDE_PLUS = 1    !! index of lambda+ > 0 in thresholds_t arrays
@@ -157,6 +157,105 @@ contains
         end do
         thr%real_lambdas = thr%real_lambdas(sort_index(thr%real_lambdas))
     end subroutine pencil_thresholds
+
+    !> The pencil with the contact forces restricted to a coarser space (hp_contact:
+    !> half_degree_forces): forces x = C y, C the columns `keep` of the contact mass `mass`
+    !> (the forces of the kept functions' tractions), each scaled to unit length (a diagonal
+    !> scaling, which leaves the eigenvalues alone and keeps QZ's perturbations relative to
+    !> every column: the columns of cells 1e-8 long are 1e-8 small), and u_n = 0 imposed
+    !> against the same space: (C' Kt_nn C) y = lambda (C' Kt_nt C) y. With every function
+    !> kept, C is invertible and the real eigenvalues are the full pencil's.
+    pure subroutine restricted_pencil(kt_nn, kt_nt, mass, keep, rn, rt, c)
+        real(wp), intent(in) :: kt_nn(:, :), kt_nt(:, :), mass(:, :)   !! (p, p)
+        logical, intent(in) :: keep(:)                                  !! (p)
+        real(wp), allocatable, intent(out) :: rn(:, :), rt(:, :)        !! (q, q)
+        real(wp), allocatable, intent(out) :: c(:, :)                   !! (p, q)
+        integer :: j
+        allocate (c(size(mass, 1), count(keep)))
+        c(:, :) = mass(:, pack([(j, j=1, size(keep))], keep))
+        do j = 1, size(c, 2)
+            c(:, j) = c(:, j)/norm2(c(:, j))
+        end do
+        allocate (rn(size(c, 2), size(c, 2)), rt(size(c, 2), size(c, 2)))
+        rn(:, :) = matmul(transpose(c), matmul(kt_nn, c))
+        rt(:, :) = matmul(transpose(c), matmul(kt_nt, c))
+    end subroutine restricted_pencil
+
+    !> The thresholds of the pencil restricted to the forces `keep` (restricted_pencil), with
+    !> their right and left vectors lifted to the contact functions of `full` (x = C y, each
+    !> scaled to a largest entry of 1), and `restricted`, the reduced problem of the same
+    !> restriction for the positive mu: forces C y tested against the same columns give
+    !> (lambda Rt - Rn) y = theta Mr y with Mr = C' M^-1 C (the kept block of M, scaled), and
+    !> with Mr = L L' the blocks L^-1 Rn L^-T, L^-1 Rt L^-T and the identity as the mass: its
+    !> theta, and so the positive set and its boundary, are those of the restricted pencil
+    !> (with every function kept they are the full problem's). `lift` = C L^-T maps a vector of
+    !> `restricted` to the contact functions. The values themselves come from QZ on (Rn, Rt),
+    !> not on the transformed blocks, whose scaling follows L's.
+    subroutine restricted_thresholds(full, keep, thr, restricted, lift, stat)
+        type(reduced_blocks_t), intent(in) :: full
+        logical, intent(in) :: keep(:)
+        type(thresholds_t), intent(out) :: thr
+        type(reduced_blocks_t), intent(out) :: restricted
+        real(wp), allocatable, intent(out) :: lift(:, :)   !! (p, q)
+        type(status_t), intent(out) :: stat
+        real(wp), allocatable :: mass(:, :), rn(:, :), rt(:, :), c(:, :), mr(:, :), x(:, :), &
+                                 w(:, :), scale(:)
+        integer, allocatable :: kept(:)
+        integer :: p, q, i, k, info, side
+
+        p = size(full%kt_nn, 1)
+        allocate (mass(p, p), source=0.0_wp)
+        do i = 1, p
+            do k = full%mass%row_start(i), full%mass%row_start(i + 1) - 1
+                mass(i, full%mass%col(k)) = full%mass%val(k)
+            end do
+        end do
+        call restricted_pencil(full%kt_nn, full%kt_nt, mass, keep, rn, rt, c)
+        q = size(c, 2)
+        call pencil_thresholds(rn, rt, thr, stat)
+        if (.not. stat%ok()) return
+        ! the vectors of the sides found, as forces on every contact function
+        allocate (x(p, 2), w(p, 2), source=0.0_wp)
+        do side = SIDE_PLUS, SIDE_MINUS
+            if (.not. thr%found(side)) cycle
+            x(:, side) = matmul(c, thr%vectors(:, side))
+            w(:, side) = matmul(c, thr%left_vectors(:, side))
+            x(:, side) = x(:, side)/x(maxloc(abs(x(:, side)), 1), side)
+            w(:, side) = w(:, side)/w(maxloc(abs(w(:, side)), 1), side)
+        end do
+        call move_alloc(x, thr%vectors)
+        call move_alloc(w, thr%left_vectors)
+        kept = pack([(i, i=1, p)], keep)
+        allocate (mr(q, q), scale(q))
+        do k = 1, q
+            scale(k) = 1.0_wp/norm2(mass(:, kept(k)))   ! restricted_pencil's column scaling
+        end do
+        do k = 1, q
+            mr(:, k) = scale*mass(kept, kept(k))*scale(k)
+        end do
+        call dpotrf('L', q, mr, q, info)
+        if (info /= 0) then
+            call stat%fail(STATUS_SOLVER, 'critical lambda: the mass of the restricted '// &
+                           'contact forces: '//lapack_info_message('dpotrf', info))
+            return
+        end if
+        do k = 1, q
+            mr(1:k - 1, k) = 0.0_wp
+        end do
+        call dtrsm('L', 'L', 'N', 'N', q, q, 1.0_wp, mr, q, rn, q)
+        call dtrsm('R', 'L', 'T', 'N', q, q, 1.0_wp, mr, q, rn, q)
+        call dtrsm('L', 'L', 'N', 'N', q, q, 1.0_wp, mr, q, rt, q)
+        call dtrsm('R', 'L', 'T', 'N', q, q, 1.0_wp, mr, q, rt, q)
+        call move_alloc(rn, restricted%kt_nn)
+        call move_alloc(rt, restricted%kt_nt)
+        call dtrsm('R', 'L', 'T', 'N', p, q, 1.0_wp, mr, q, c, p)
+        call move_alloc(c, lift)
+        allocate (restricted%mass%row_start(q + 1), restricted%mass%col(q), &
+                  restricted%mass%val(q))
+        restricted%mass%row_start = [(i, i=1, q + 1)]
+        restricted%mass%col = [(i, i=1, q)]
+        restricted%mass%val = 1.0_wp
+    end subroutine restricted_thresholds
 
     !> The right and left null vectors x, y of C = Kt_nn - lambda Kt_nt at an eigenvalue lambda
     !> of the pencil (QZ's, so C is singular to round-off), each scaled to a largest entry of

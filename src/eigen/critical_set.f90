@@ -169,15 +169,16 @@ contains
 
     !> The points of `coarse` (find_critical_set on a coarser discretisation of the same
     !> scene) located on `blocks`: each pencil point at the nearest of `pencil_lambdas`, each
-    !> complex_pair point by bisection from a bracket CARRY_WIDTH around it (else its scan
-    !> bracket). `carried` is false, and `set` is to be searched afresh, where the finer
+    !> complex_pair point by bisection from a bracket `near` (relative, where given) around
+    !> it, else CARRY_WIDTH around it, else its scan bracket: on hp levels the points move
+    !> by about the change between the levels, and each halving of the bracket is a solve. `carried` is false, and `set` is to be searched afresh, where the finer
     !> blocks disagree with the coarse structure: another answer at the range's start or
     !> in the middle of an interval between points, a point that moves the other way, is
     !> not bracketed, is not confirmed where it was, or does not lie above the point before
     !> it. A change inside an interval that leaves its middle as it was (two points that only
     !> the finer blocks have) is not seen.
     subroutine carry_critical_set(blocks, coarse, pencil_lambdas, set, carried, stat, &
-                                  known_lambda, known_count)
+                                  known_lambda, known_count, near)
         type(reduced_blocks_t), intent(in) :: blocks
         type(critical_set_t), intent(in) :: coarse
         real(wp), intent(in) :: pencil_lambdas(:)   !! ascending
@@ -186,9 +187,10 @@ contains
         type(status_t), intent(out) :: stat
         real(wp), intent(in), optional :: known_lambda(:)   !! as find_critical_set's
         integer, intent(in), optional :: known_count(:)
+        real(wp), intent(in), optional :: near
         type(boundary_point_t) :: point
-        real(wp) :: lambda_c, lambda_f, width, a, b, middle
-        integer :: i, n_start, count_a, count_b
+        real(wp) :: lambda_c, lambda_f, width, a, b, middle, widths(3)
+        integer :: i, n_start, count_a, count_b, try
 
         carried = .false.
         call take_known(set, known_lambda, known_count)
@@ -223,18 +225,25 @@ contains
                 if (.not. stat%ok()) return
                 point%bracket = [a, b]
             else
-                width = CARRY_WIDTH*max(1.0_wp, abs(lambda_c))
-                a = max(lambda_c - width, coarse%points(i)%bracket(1))
-                b = min(lambda_c + width, coarse%points(i)%bracket(2))
-                call bracket_counts(a, b)
-                if (.not. stat%ok()) return
-                if ((count_a > 0) .eqv. (count_b > 0)) then
+                ! the tightest bracket first: `near`, CARRY_WIDTH, then the scan's own
+                widths = [0.0_wp, CARRY_WIDTH, 1.0_wp]
+                if (present(near)) then
+                    if (near < CARRY_WIDTH) widths(1) = max(near, 0.0_wp)
+                end if
+                do try = 1, 3
+                    if (.not. widths(try) > 0.0_wp) cycle
                     a = coarse%points(i)%bracket(1)
                     b = coarse%points(i)%bracket(2)
+                    if (try < 3) then
+                        width = widths(try)*max(1.0_wp, abs(lambda_c))
+                        a = max(lambda_c - width, a)
+                        b = min(lambda_c + width, b)
+                    end if
                     call bracket_counts(a, b)
                     if (.not. stat%ok()) return
-                    if ((count_a > 0) .eqv. (count_b > 0)) return
-                end if
+                    if ((count_a > 0) .neqv. (count_b > 0)) exit
+                end do
+                if ((count_a > 0) .eqv. (count_b > 0)) return
                 call pair_point(blocks, a, b, count_a, count_b, point, set, stat)
                 if (.not. stat%ok()) return
                 point%bracket = coarse%points(i)%bracket
@@ -262,7 +271,7 @@ contains
     !> it was searched (scan_contact > 0) and the finer blocks keep its structure, else found
     !> afresh (find_critical_set); set%n_evaluations counts the solves of both tries.
     subroutine search_critical_set(blocks, scan, pencil_lambdas, set, stat, coarse, &
-                                   known_lambda, known_count)
+                                   known_lambda, known_count, near)
         type(reduced_blocks_t), intent(in) :: blocks
         real(wp), intent(in) :: scan(:), pencil_lambdas(:)   !! as find_critical_set's
         type(critical_set_t), intent(out) :: set
@@ -270,12 +279,13 @@ contains
         type(critical_set_t), intent(in), optional :: coarse
         real(wp), intent(in), optional :: known_lambda(:)
         integer, intent(in), optional :: known_count(:)
+        real(wp), intent(in), optional :: near   !! carry_critical_set's first bracket
         logical :: carried
         integer :: tried
         carried = .false.
         if (present(coarse)) then
             if (coarse%scan_contact > 0) call carry_critical_set(blocks, coarse, &
-                pencil_lambdas, set, carried, stat, known_lambda, known_count)
+                pencil_lambdas, set, carried, stat, known_lambda, known_count, near)
         end if
         if (.not. stat%ok() .or. carried) return
         tried = set%n_evaluations

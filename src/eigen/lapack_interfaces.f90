@@ -8,7 +8,7 @@ module lapack_interfaces
     implicit none
     private
     public :: dgeevx, dggev, dgemm, dsyrk, lapack_info_message
-    public :: dgeev, dtrsv, dtrsm, dgetrf, dgetrs, dpotri, dlacn2, lapack_eigenvector
+    public :: dgeev, dtrsv, dtrsm, dgetrf, dgetrs, dpotri, dpotrf, dlacn2, lapack_eigenvector
 
     interface
         subroutine dgeevx(balanc, jobvl, jobvr, sense, n, a, lda, wr, wi, vl, ldvl, vr, ldvr, &
@@ -73,6 +73,14 @@ module lapack_interfaces
             real(wp), intent(in) :: alpha, a(lda, *)
             real(wp), intent(inout) :: b(ldb, *)
         end subroutine dtrsm
+
+        subroutine dpotrf(uplo, n, a, lda, info)
+            import :: wp
+            character(len=1), intent(in) :: uplo
+            integer, intent(in) :: n, lda
+            real(wp), intent(inout) :: a(lda, *)
+            integer, intent(out) :: info
+        end subroutine dpotrf
 
         subroutine dpotri(uplo, n, a, lda, info)
             import :: wp

@@ -207,16 +207,19 @@ contains
     end function collision_bound
 
     !> The round-off part (collision_roundoff) of every complex_pair point of `set`.
-    subroutine collision_roundoffs(k, chol, contact, blocks, set, stat)
+    subroutine collision_roundoffs(k, chol, contact, blocks, set, stat, lift)
         type(csr_matrix_t), intent(in) :: k
         type(cholesky_t), intent(in) :: chol
         type(contact_t), intent(in) :: contact
         type(reduced_blocks_t), intent(in) :: blocks
         type(critical_set_t), intent(inout) :: set
         type(status_t), intent(out) :: stat
+        !> (p, q) blocks of restricted forces (critical_lambda: restricted_thresholds): their
+        !> vectors on the contact functions
+        real(wp), intent(in), optional :: lift(:, :)
         integer :: i
         do i = 1, size(set%points)
-            call collision_roundoff(k, chol, contact, blocks, set%points(i), stat)
+            call collision_roundoff(k, chol, contact, blocks, set%points(i), stat, lift)
             if (.not. stat%ok()) return
         end do
     end subroutine collision_roundoffs
@@ -228,13 +231,14 @@ contains
     !> tolerates). The data term is that of K, as in threshold_roundoff: A = N K^-1
     !> (lambda T' - N') M, so dK moves y'Ax by the lifts' |K^-1 N'y|' |dK| |K^-1 (lambda T' -
     !> N') M x|; two solves with the factor `chol`. Other points keep -1.
-    subroutine collision_roundoff(k, chol, contact, blocks, point, stat)
+    subroutine collision_roundoff(k, chol, contact, blocks, point, stat, lift)
         type(csr_matrix_t), intent(in) :: k
         type(cholesky_t), intent(in) :: chol
         type(contact_t), intent(in) :: contact
         type(reduced_blocks_t), intent(in) :: blocks
         type(boundary_point_t), intent(inout) :: point
         type(status_t), intent(out) :: stat
+        real(wp), intent(in), optional :: lift(:, :)
         real(wp), allocatable :: a(:, :), vl(:, :), vr(:, :), wr(:), wi(:), work(:), &
                                  rhs(:, :), lifts(:, :)
         real(wp) :: query(1), theta, unit, a_norm
@@ -266,8 +270,14 @@ contains
         call blocks%mass%matvec(x, mx)
         allocate (rhs(k%n(), 2), source=0.0_wp)
         allocate (lifts(k%n(), 2))
-        call contact%scatter(contact%normal, y, rhs(:, 1))
-        call contact%scatter(point%lambda*contact%tangent - contact%normal, mx, rhs(:, 2))
+        if (present(lift)) then
+            call contact%scatter(contact%normal, matmul(lift, y), rhs(:, 1))
+            call contact%scatter(point%lambda*contact%tangent - contact%normal, &
+                                 matmul(lift, mx), rhs(:, 2))
+        else
+            call contact%scatter(contact%normal, y, rhs(:, 1))
+            call contact%scatter(point%lambda*contact%tangent - contact%normal, mx, rhs(:, 2))
+        end if
         call chol%solve(rhs, lifts, stat)
         if (.not. stat%ok()) return
         ! A' x = Kt_nt M x

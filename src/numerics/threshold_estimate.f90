@@ -40,6 +40,9 @@ module threshold_estimate
         !> the relative error bars quoted (error_bar); negative: none
         real(wp) :: bar(2) = -1.0_wp
         real(wp) :: lambda_enriched(2) = 0.0_wp     !! the enriched (or halved) pencil's threshold
+        !> hp: the level whose value and bar are quoted, the one where that side met the
+        !> tolerance (0: not hp, or no bar)
+        integer :: met_level(2) = 0
         !> the estimate is the difference to the same element on the mesh of halved cells
         !> (elements with no degree above them: Q1, Q2, P4 on a rectangle), no cell indicators
         logical :: halved_mesh = .false.

@@ -537,6 +537,7 @@ contains
                         d%estimate_label = element_name(est%element)//' enrichment'
                     end if
                     d%level_change = d%estimate_label == HP_ESTIMATE
+                    d%met_level = est%met_level(side)
                     d%skipped = trim(est%skipped(side))
                 end associate
             end do

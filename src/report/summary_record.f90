@@ -69,6 +69,9 @@ module summary_record
         real(wp) :: bar = -1.0_wp              !! relative; < 0: none
         character(len=:), allocatable :: estimate_label
         logical :: level_change = .false.      !! as eigen_facts_t's
+        !> hp: the level whose value and bar are quoted, where the side met the tolerance
+        !> (0: none)
+        integer :: met_level = 0
         character(len=:), allocatable :: skipped   !! why no estimate ('' : no reason)
     end type side_facts_t
 
@@ -408,6 +411,15 @@ contains
                 '_error_bar', f%side(side)%bar, &
                 f%side(side)%estimated .and. f%side(side)%bar >= 0.0_wp)
         end do
+        ! hp: the level whose value and bar are quoted (where the side met the tolerance)
+        do side = 1, 2
+            if (f%side(side)%met_level > 0) then
+                call summary%add_integer('lambda_critical_'//trim(SIDE_NAME(side))// &
+                                         '_met_level', f%side(side)%met_level)
+            else
+                call summary%add_null('lambda_critical_'//trim(SIDE_NAME(side))//'_met_level')
+            end if
+        end do
         ! |lambda*| is the friction coefficient of the Signorini-Coulomb eigenproblem
         ! (model.md section 7), whether or not a positive mu appears there
         do side = 1, 2
@@ -522,6 +534,9 @@ contains
                     text = text//NL//'              relative change to the previous hp level '// &
                         short_real_text(d%estimate)//' (the error of that level); error bar '// &
                         short_real_text(d%bar)
+                    if (d%met_level > 0) text = text//NL// &
+                        '              the tolerance met at hp level '// &
+                        to_string(d%met_level)//': the value and bar of that level'
                 else if (d%estimated) then
                     text = text//NL//'              relative error estimate '// &
                         short_real_text(d%estimate)//' ('//d%estimate_label//'); error bar '// &

@@ -3,7 +3,9 @@
 !> loop meets 1e-10 with both critical lambdas within their bars of the independent truth
 !> and of each other's mirror image; its levels climb the hp ladder; a level whose contact
 !> blocks do not fit the memory stops the loop (before the first level: STATUS_NOT_MET), as
-!> max_levels does.
+!> max_levels does. With the left side clamped too, the two sides are independent targets:
+!> lambda+ is met at an early level and reported with that level's value and bar, which
+!> the later, finer levels confirm; lambda- appears and vanishes and is not met, with no bar.
 program test_threshold_goal
     use kinds, only: wp, i8
     use run_inputs, only: run_inputs_t, translate_input
@@ -28,6 +30,7 @@ program test_threshold_goal
     call reference_meets_tolerance(t)
     call memory_stops_the_loop(t)
     call max_levels_stops_the_loop(t)
+    call sides_are_independent(t)
     call t%report()
 
 contains
@@ -135,4 +138,54 @@ contains
                      size(out%levels) == 2 .and. .not. out%converged .and. &
                      index(out%outcome, 'max_levels = 2') > 0)
     end subroutine max_levels_stops_the_loop
+
+    !> The unit square with its top and left sides clamped, contact on the bottom, from 2 x 2
+    !> P1 squares, hp to 1e-6 in at most 9 levels. lambda+ (1.99163) has bars that fall by a
+    !> factor of about 4 per level and meets 1e-6 at level 8 (3.7e-7); lambda- (-118.2046)
+    !> has a value at levels 1, 4, 5, 8, 9 only, never at three consecutive levels, so it
+    !> is not met and has no bar. lambda+ is then quoted as at level 8, and the next level,
+    !> a finer discretisation, lies within the sum of both levels' bars of it.
+    subroutine sides_are_independent(t)
+        type(test_suite_t), intent(inout) :: t
+        type(adaptive_thresholds_t) :: out
+        type(threshold_result_t) :: res
+        type(status_t) :: stat
+        type(config_t) :: config
+        integer :: k, m
+        logical :: appears, vanishes
+        config = reference_config(1.0e-6_wp)
+        config%mesh%dirichlet = 'top left'
+        config%mesh%neumann = 'right'
+        config%adapt%max_levels = 9
+        call run(config, out, res, stat)
+        call t%check('independent sides: runs 9 levels', stat%ok() .and. size(out%levels) == 9)
+        if (.not. stat%ok() .or. size(out%levels) /= 9) return
+        k = size(out%levels)
+        m = res%estimate%met_level(SIDE_PLUS)
+        call t%check('independent sides: lambda+ met before the last level, with its bar', &
+                     res%estimate%computed(SIDE_PLUS) .and. m >= 2 .and. m < k .and. &
+                     res%estimate%bar(SIDE_PLUS) <= 1.0e-6_wp)
+        if (m < 2 .or. m >= k) return
+        call t%check('independent sides: lambda+ quoted with the value and bar of its level', &
+                     abs(res%thresholds%lambda(SIDE_PLUS) - out%levels(m)%lambda(SIDE_PLUS)) <= &
+                     0.0_wp .and. abs(res%estimate%bar(SIDE_PLUS) - &
+                                      out%levels(m)%error_bar(SIDE_PLUS)) <= 0.0_wp)
+        call t%check('independent sides: the finer last level within both bars of it', &
+                     abs(out%levels(k)%lambda(SIDE_PLUS) - res%thresholds%lambda(SIDE_PLUS)) <= &
+                     res%estimate%bar(SIDE_PLUS)*abs(res%thresholds%lambda(SIDE_PLUS)) + &
+                     out%levels(k)%error_bar(SIDE_PLUS)*abs(out%levels(k)%lambda(SIDE_PLUS)))
+        appears = .false.
+        vanishes = .false.
+        do m = 2, k
+            appears = appears .or. (out%levels(m)%found(SIDE_MINUS) .and. &
+                                    .not. out%levels(m - 1)%found(SIDE_MINUS))
+            vanishes = vanishes .or. (.not. out%levels(m)%found(SIDE_MINUS) .and. &
+                                      out%levels(m - 1)%found(SIDE_MINUS))
+        end do
+        call t%check('independent sides: lambda- appears and vanishes, not met, no bar', &
+                     appears .and. vanishes .and. .not. out%converged .and. &
+                     .not. res%estimate%computed(SIDE_MINUS) .and. &
+                     index(out%outcome, 'lambda-: tolerance') == 1 .and. &
+                     index(out%outcome, 'max_levels = 9') > 0)
+    end subroutine sides_are_independent
 end program test_threshold_goal

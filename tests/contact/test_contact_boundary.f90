@@ -10,6 +10,7 @@ program test_contact_boundary
     use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2, ELEMENT_Q2, ELEMENT_P3, &
                              ELEMENT_P4, element_degree
     use mesh_structured, only: structured_rectangle
+    use mesh_geometric, only: geometric_mesh
     use dof_map, only: dof_map_t, build_dof_map
     use contact_boundary, only: contact_t, build_contact, assemble_b, edge_mass
     use csr_matrix, only: csr_matrix_t
@@ -22,6 +23,7 @@ program test_contact_boundary
     call mass_integrates_constants_and_linears(t)
     call quadratic_edges_count_mid_nodes(t)
     call bent_contact_is_rejected(t)
+    call graded_slanted_contact_is_straight(t)
     call t%report()
 
 contains
@@ -158,4 +160,42 @@ contains
         if (.not. stat%ok()) call t%check('bent contact: message says straight', &
                                           index(stat%message, 'straight') > 0)
     end subroutine bent_contact_is_rejected
+
+    !> A slanted Gamma_C graded toward one end by newest-vertex bisection (30 halvings: its
+    !> edges from 1e-9 to 0.5 long, as on hp levels): every node is on the segment to
+    !> round-off, and the segment is accepted with its normal. The direction of the 1e-9 edge
+    !> alone is good only to about 1e-16 / 1e-9 = 1e-7, a thousand times the straightness
+    !> tolerance (1e-10 of the length): taken from it, the far nodes looked off the line.
+    subroutine graded_slanted_contact_is_straight(t)
+        type(test_suite_t), intent(inout) :: t
+        real(wp), parameter :: ANGLE = 0.3_wp
+        type(mesh_t) :: m, graded
+        type(dof_map_t) :: dofs
+        type(contact_t) :: contact
+        type(status_t) :: stat
+        real(wp) :: h_min, xy(2)
+        integer :: i, first
+        call structured_rectangle(1.0_wp, 1.0_wp, 2, 2, ELEMENT_P1, 'right', m, stat)
+        do i = 1, m%n_nodes()
+            xy = m%coords(:, i)
+            ! rotated, and moved off the origin: rounding of O(1) coordinates is 1e-16
+            m%coords(:, i) = [cos(ANGLE)*xy(1) - sin(ANGLE)*xy(2) + 0.7_wp, &
+                              sin(ANGLE)*xy(1) + cos(ANGLE)*xy(2) + 0.4_wp]
+        end do
+        ! grade toward both ends of the first edge listed on Gamma_C: its remains stay first
+        first = findloc(m%edge_part, m%part_index('bottom'), dim=1)
+        call geometric_mesh(m, m%coords(:, m%edges(1:2, first)), 0.5_wp, 30, graded, h_min, &
+                            stat)
+        first = findloc(graded%edge_part, graded%part_index('bottom'), dim=1)
+        call t%check('graded slanted contact: first edge on Gamma_C below 1e-8', norm2( &
+            graded%coords(:, graded%edges(2, first)) - graded%coords(:, graded%edges(1, first))) &
+            < 1.0e-8_wp)
+        call t%check('graded slanted contact: mesh built, smallest cells below 1e-8', &
+                     stat%ok() .and. h_min < 1.0e-8_wp)
+        call build_dof_map(graded, [graded%part_index('top')], dofs, stat)
+        call build_contact(graded, graded%part_index('bottom'), dofs, contact, stat)
+        call t%check('graded slanted contact: accepted as one straight segment', stat%ok())
+        if (stat%ok()) call t%check('graded slanted contact: outward normal (sin a, -cos a)', &
+            all(abs(contact%normal - [sin(ANGLE), -cos(ANGLE)]) < 1.0e-12_wp))
+    end subroutine graded_slanted_contact_is_straight
 end program test_contact_boundary

@@ -6,7 +6,7 @@ program test_critical_lambda
     use kinds, only: wp
     use status, only: status_t
     use testing, only: test_suite_t
-    use fixtures, only: single_triangle, contact_scene
+    use fixtures, only: single_triangle, contact_scene, csr_to_dense
     use mesh, only: mesh_t
     use element_types, only: ELEMENT_P1, ELEMENT_Q1, ELEMENT_P2
     use mesh_structured, only: structured_rectangle
@@ -19,7 +19,7 @@ program test_critical_lambda
     use timer, only: timings_t
     use lapack_interfaces, only: dgeev
     use critical_lambda, only: thresholds_t, pencil_thresholds, lowest_positive_mu, &
-                               confirm_thresholds, SIDE_PLUS, SIDE_MINUS
+                               confirm_thresholds, restricted_pencil, SIDE_PLUS, SIDE_MINUS
     use run_config, only: sweep_config_t, sweep_lambdas
     implicit none
 
@@ -33,6 +33,7 @@ program test_critical_lambda
     call mu_has_a_pole_at_the_threshold(t)
     call thresholds_are_confirmed(t)
     call sweep_lambda_lists(t)
+    call every_force_kept_is_the_full_pencil(t)
     call t%report()
 
 contains
@@ -299,4 +300,33 @@ contains
             error stop 1
         end if
     end subroutine build_scene
+
+    !> restricted_pencil keeping every contact function: C is the (scaled) contact mass,
+    !> invertible, so det(C' (Kt_nn - lambda Kt_nt) C) = 0 exactly where the full pencil's
+    !> determinant is: the same real eigenvalues (P2 8 x 8 of the reference scene; QZ on two
+    !> pencils whose entries differ by the scaling agrees to a few 1e-13 here, 1e-10 allowed).
+    subroutine every_force_kept_is_the_full_pencil(t)
+        type(test_suite_t), intent(inout) :: t
+        type(mesh_t) :: m
+        type(reduced_blocks_t) :: s
+        type(thresholds_t) :: full, restricted
+        type(status_t) :: stat
+        real(wp), allocatable :: rn(:, :), rt(:, :), c(:, :), mass(:, :)
+        integer :: side
+        call structured_rectangle(1.0_wp, 1.0_wp, 8, 8, ELEMENT_P2, 'right', m, stat)
+        call contact_scene(m, [m%part_index('top')], m%part_index('bottom'), 0.3_wp, s, stat)
+        if (stat%ok()) call pencil_thresholds(s%kt_nn, s%kt_nt, full, stat)
+        call t%check('every force kept: scene built', stat%ok())
+        if (.not. stat%ok()) return
+        mass = csr_to_dense(s%mass)
+        call restricted_pencil(s%kt_nn, s%kt_nt, mass, [(.true., side=1, size(mass, 1))], rn, &
+                               rt, c)
+        call pencil_thresholds(rn, rt, restricted, stat)
+        call t%check('every force kept: same count of real eigenvalues', stat%ok() .and. &
+                     restricted%n_real == full%n_real)
+        do side = SIDE_PLUS, SIDE_MINUS
+            call t%check_close('every force kept: same threshold', restricted%lambda(side), &
+                               full%lambda(side), 1.0e-10_wp)
+        end do
+    end subroutine every_force_kept_is_the_full_pencil
 end program test_critical_lambda

@@ -19,10 +19,7 @@ program test_hp_rayleigh
     use status, only: status_t
     use testing, only: test_suite_t
     use mesh, only: mesh_t
-    use element_types, only: ELEMENT_P1
-    use mesh_structured, only: structured_rectangle
-    use mesh_singular, only: singular_vertices
-    use mesh_geometric, only: geometric_mesh, cell_layers, layer_degrees
+    use fixtures, only: square_hp_level
     use contact_boundary, only: contact_t, assemble_b
     use csr_matrix, only: csr_matrix_t
     use sparse_cholesky, only: cholesky_t
@@ -72,16 +69,9 @@ contains
         type(status_t), intent(out) :: stat
         type(mesh_t) :: m
         type(timings_t) :: timings
-        real(wp), allocatable :: points(:, :)
         integer, allocatable :: degree(:)
-        real(wp) :: h_min
-        call structured_rectangle(1.0_wp, 1.0_wp, 2, 2, ELEMENT_P1, 'right', m, stat)
+        call square_hp_level(10, 10, m, graded, degree, stat)
         if (.not. stat%ok()) return
-        allocate (points(2, 0))   ! (gfortran 12 warns of an unallocated one at -O3)
-        points = m%coords(:, singular_vertices(m))
-        call geometric_mesh(m, points, 0.15_wp, 10, graded, h_min, stat)
-        if (.not. stat%ok()) return
-        degree = layer_degrees(cell_layers(graded, points, 0.15_wp, h_min), 1, 1.0_wp, 10)
         call hp_dense_spectrum(graded, degree, [3], 1, YOUNG, POISSON, LAMBDA, 1, space, &
                                contact, spec, timings, stat)
     end subroutine graded_level

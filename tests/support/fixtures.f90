@@ -27,6 +27,9 @@ module fixtures
     use testing, only: test_suite_t
     use strings, only: to_string
     use iso_fortran_env, only: output_unit
+    use mesh_structured, only: structured_rectangle
+    use mesh_singular, only: singular_vertices
+    use mesh_geometric, only: geometric_mesh, cell_layers, layer_degrees
     implicit none
     private
     public :: single_triangle, csr_to_dense, file_text, has_warning, five_point_matrix
@@ -34,7 +37,7 @@ module fixtures
     public :: single_element_scene, single_element_mu, single_element_lambda_minus
     public :: run_as_main, json_value, json_real, listed_files, data_rows, index_of_newline
     public :: all_present, adaptive_scene, run_checked, thresholds_within_bars
-    public :: problem_of, eigen_of, check_limit_not_met, is_permutation
+    public :: problem_of, eigen_of, check_limit_not_met, is_permutation, square_hp_level
 
     !> The reference scene's continuum values (tests/data/truths.csv, scenes 'ref' and
     !> 'ref-threshold': graded P4 meshes, uncertainties 4.6e-12 and 5.7e-10).
@@ -508,6 +511,25 @@ contains
         end subroutine blocks_from_factor
     end subroutine contact_scene
 
+    !> The unit square of 2 x 2 squares (P1, 'right') graded geometrically in `layers` layers
+    !> of ratio 0.15 toward its singular vertices, with degrees 1 + layer up to `p_max`: the
+    !> reference scene's hp level of that many layers (&adapt sigma = 0.15); `m` the square
+    !> itself, for its part indices.
+    subroutine square_hp_level(layers, p_max, m, graded, degree, stat)
+        integer, intent(in) :: layers, p_max
+        type(mesh_t), intent(out) :: m, graded
+        integer, allocatable, intent(out) :: degree(:)
+        type(status_t), intent(out) :: stat
+        real(wp), allocatable :: points(:, :)
+        real(wp) :: h_min
+        call structured_rectangle(1.0_wp, 1.0_wp, 2, 2, ELEMENT_P1, 'right', m, stat)
+        if (.not. stat%ok()) return
+        allocate (points(2, 0))   ! (gfortran 12 warns of an unallocated one at -O3)
+        points = m%coords(:, singular_vertices(m))
+        call geometric_mesh(m, points, 0.15_wp, layers, graded, h_min, stat)
+        if (.not. stat%ok()) return
+        degree = layer_degrees(cell_layers(graded, points, 0.15_wp, h_min), 1, 1.0_wp, p_max)
+    end subroutine square_hp_level
     !> Whether p holds each of 1..n exactly once.
     pure logical function is_permutation(p, n)
         integer, intent(in) :: p(:), n

@@ -1,0 +1,166 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# Validation on bodies nobody chose (issue 34): random polygons (scripts/dev/random_bodies.py:
+# 4 to 8 vertices, convex and not, one side in contact, the others clamped or free, nu in
+# [0, 0.49], lambda in [-20, 20]); for each, c_n at lambda and the thresholds lambda+ and
+# lambda- by
+#   uniform P4 on Gmsh meshes of size L/4, L/8, L/16, L/32 (the reference: the last value,
+#     with twice the geometric tail of the last two differences as its uncertainty, when
+#     they fall by at least 0.8; else no reference),
+#   hp levels ('eigen' to 1e-8, 'threshold' to 1e-6, from a Gmsh P1 mesh of size L/2),
+#   h-adaptive runs (P3 'eigen' to 1e-7, P2 'threshold' to 1e-5, from size L/4),
+# and classifies each adaptive value against two references, the uniform one and the other
+# adaptive method's value where that one met its tolerance (a different mesh family, element
+# and bar):
+#   right      quoted with a bar that covers a reference (the distance at most the sum of
+#              the two bars), or none where neither reference has a value;
+#   flagged    quoted without a bar or with a bar of 100 % or more, or not quoted by a run
+#              that says the tolerance was not met (exit 8; a side quoted with a bar in such a
+#              run is judged by its bar);
+#   wrong      quoted with a bar that covers no reference, a bar where no reference has a
+#              value, or "tolerance met" (exit 0) without the value a reference has;
+#   unverified quoted with a bar where there is no reference (the uniform values do not
+#              converge and the other method does not meet its tolerance);
+#   failed     the run failed, or ran out of its time (125: not run yet).
+#   scripts/dev/random_bodies.sh [-s SEED] [-n COUNT] [-o OUTDIR] [-b NCEIG] [-t SECONDS] [-c]
+# -c classifies the runs already in OUTDIR without running anything.
+# Defaults: seed 34, 40 bodies, output/random_bodies, build/nceig, 300 s per run. Writes
+# OUTDIR/values.csv (one row per body, method and value) and prints the counts per method
+# and class, and the classes of failure. Runs one nceig at a time under nice (a shared
+# machine); a second call reuses the runs already done. Needs gmsh, jq, python3, timeout.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/../.." && pwd)
+seed=34 count=40 out=output/random_bodies nceig=$root/build/nceig limit=300 classify_only=0
+while getopts 's:n:o:b:t:c' opt; do
+    case $opt in
+        s) seed=$OPTARG ;; n) count=$OPTARG ;; o) out=$OPTARG ;; b) nceig=$OPTARG ;;
+        t) limit=$OPTARG ;; c) classify_only=1 ;;
+        *) echo 'usage: random_bodies.sh [-s SEED] [-n COUNT] [-o OUTDIR] [-b NCEIG] [-t SECONDS] [-c]' >&2
+           exit 2 ;;
+    esac
+done
+for tool in gmsh jq python3 timeout; do
+    command -v "$tool" >/dev/null || { echo "random_bodies.sh: $tool not found" >&2; exit 3; }
+done
+mkdir -p "$out"
+out=$(cd "$out" && pwd)
+python3 "$root/scripts/dev/random_bodies.py" "$seed" "$count" "$out"
+
+value() { jq -r "$2 // \"null\"" "$1" 2>/dev/null || echo null; }
+
+# run DIR NAME NML [--set ...]: nceig on NML into DIR/NAME (skipped when done); its exit status
+# in DIR/NAME.rc (124: out of time)
+run() {
+    local dir=$1 name=$2 nml=$3
+    shift 3
+    [[ -f $dir/$name.rc ]] && return 0
+    ((classify_only)) && return 0
+    local rc=0
+    (cd "$dir" && timeout "$limit" nice "$nceig" "$nml" --set output%directory="$name" \
+        --set output%vtk=.false. --set output%plot=.false. --set output%progress=.false. "$@" \
+        >"$name.log" 2>&1) || rc=$?
+    echo "$rc" >"$dir/$name.rc"
+    echo "$limit" >"$dir/$name.limit"
+}
+
+# mesh DIR SIZE ORDER FILE
+mesh() {
+    ((classify_only)) && return 0
+    [[ -f $1/$4 ]] || gmsh "$1/body.geo" -2 -order "$3" -clmax "$2" -format msh41 \
+        -o "$1/$4" >/dev/null 2>&1
+}
+
+csv=$out/values.csv
+echo 'body,vertices,convex,nu,lambda,corner_start,corner_end,quantity,method,exit,value,bar,reference,ref_uncertainty,other_value,other_bar,class,reason' >"$csv"
+for ((k = 0; k < count; k++)); do
+    dir=$out/$(printf 'body%02d' "$k")
+    # shellcheck disable=SC1091
+    source "$dir/body.txt"
+    L=$size
+    neumann_line=""
+    [[ -n $neumann ]] && neumann_line=", neumann = '$neumann'"
+    cat >"$dir/body.nml" <<NML
+&mesh source = 'gmsh', file = 'start.msh', dirichlet = 'clamped'$neumann_line, contact = 'contact' /
+&material poisson = $nu /
+&analysis kind = 'threshold', lambda = $lambda /
+&eigen estimate = 'off' /
+NML
+    for n in 4 8 16 32; do
+        mesh "$dir" "$(awk -v l="$L" -v n="$n" 'BEGIN { printf "%.6g", l / n }')" 4 "p4_$n.msh"
+        run "$dir" "uniform_$n" body.nml --set mesh%file="p4_$n.msh"
+    done
+    mesh "$dir" "$(awk -v l="$L" 'BEGIN { printf "%.6g", l / 2 }')" 1 hp_start.msh
+    mesh "$dir" "$(awk -v l="$L" 'BEGIN { printf "%.6g", l / 4 }')" 3 p3_start.msh
+    mesh "$dir" "$(awk -v l="$L" 'BEGIN { printf "%.6g", l / 4 }')" 2 p2_start.msh
+    run "$dir" hp_eigen body.nml --set mesh%file=hp_start.msh --set analysis%kind=eigen \
+        --set adapt%strategy=hp --set adapt%tolerance=1e-8 --set adapt%max_levels=14
+    run "$dir" hp_threshold body.nml --set mesh%file=hp_start.msh --set adapt%strategy=hp \
+        --set adapt%tolerance=1e-6 --set adapt%max_levels=10
+    run "$dir" h_eigen body.nml --set mesh%file=p3_start.msh --set analysis%kind=eigen \
+        --set adapt%tolerance=1e-7 --set adapt%max_levels=60 --set eigen%estimate=auto
+    run "$dir" h_threshold body.nml --set mesh%file=p2_start.msh --set adapt%tolerance=1e-5 \
+        --set adapt%max_levels=60 --set eigen%estimate=auto
+    for quantity in c_n plus minus; do
+        case $quantity in
+            c_n) key=.critical_c_n bar=.lowest_positive_error_bar ;;
+            plus) key=.lambda_critical_plus bar=.lambda_critical_plus_error_bar ;;
+            minus) key=.lambda_critical_minus bar=.lambda_critical_minus_error_bar ;;
+        esac
+        u=()
+        for n in 8 16 32; do u+=("$(value "$dir/uniform_$n/summary.json" "$key")"); done
+        read -r reference uncertainty < <(awk -v a="${u[0]}" -v b="${u[1]}" -v c="${u[2]}" 'BEGIN {
+            if (a == "null" && b == "null" && c == "null") { print "absent 0"; exit }
+            if (a == "null" || b == "null" || c == "null") { print "none 0"; exit }
+            d1 = b - a; d2 = c - b; if (d1 < 0) d1 = -d1; if (d2 < 0) d2 = -d2
+            if (d1 == 0) { printf "%.17g %.3g\n", c, 1e-12 * (c < 0 ? -c : c); exit }
+            q = d2 / d1
+            if (q > 0.8) { print "none 0"; exit }
+            # the geometric tail, twice over, and at least 1e-12 relative
+            t = 2 * d2 * q / (1 - q); m = 1e-12 * (c < 0 ? -c : c); if (t < m) t = m
+            printf "%.17g %.3g\n", c, t }')
+        for method in hp h; do
+            other=h
+            [[ $method == h ]] && other=hp
+            name=${method}_threshold other_name=${other}_threshold
+            [[ $quantity == c_n ]] && name=${method}_eigen other_name=${other}_eigen
+            s=$dir/$name/summary.json
+            rc=$(cat "$dir/$name.rc" 2>/dev/null || echo 125)
+            v=$(value "$s" "$key")
+            b=$(value "$s" "$bar")
+            rc2=$(cat "$dir/$other_name.rc" 2>/dev/null || echo 125)
+            v2=$(value "$dir/$other_name/summary.json" "$key")
+            b2=$(value "$dir/$other_name/summary.json" "$bar")
+            reason=$( (jq -r '.warnings[0] // ""' "$s" 2>/dev/null || tail -1 "$dir/$name.log") \
+                | tr ',\n' ';  ' | cut -c1-160)
+            class=$(awk -v rc="$rc" -v v="$v" -v b="$b" -v r="$reference" -v u="$uncertainty" \
+                -v rc2="$rc2" -v v2="$v2" -v b2="$b2" 'function abs(x) { return x < 0 ? -x : x }
+                BEGIN {
+                if (rc != 0 && rc != 8) { print "failed"; exit }
+                # the other method: its value where it quotes a bar below 1 for it, none where
+                # it met its tolerance without one (absent), else no reference
+                other = (v2 != "null" && b2 != "null" && b2 < 1 && (rc2 == 0 || rc2 == 8)) ? "value" : \
+                    ((rc2 == 0 && v2 == "null") ? "absent" : "none")
+                if (v == "null") {
+                    if ((r == "absent" || r == "none") && other != "value") print (rc == 8 ? "flagged" : "right")
+                    else print (rc == 8 ? "flagged" : "wrong")
+                    exit
+                }
+                if (b == "null" || b >= 1) { print "flagged"; exit }
+                covered = 0
+                if (r != "absent" && r != "none" && abs(v - r) <= b * abs(v) + u) covered = 1
+                if (other == "value" && abs(v - v2) <= b * abs(v) + b2 * abs(v2)) covered = 1
+                if (covered) { print "right"; exit }
+                if ((r == "absent" || r == "none") && other != "value") print (r == "absent" ? "wrong" : "unverified")
+                else print "wrong" }')
+            [[ $rc == 124 ]] && reason="out of time ($(cat "$dir/$name.limit" 2>/dev/null || echo '?') s)"
+            echo "$k,$vertices,$convex,$nu,$lambda,${corner_start// /:},${corner_end// /:},$quantity,$method,$rc,$v,$b,$reference,$uncertainty,$v2,$b2,$class,$reason" >>"$csv"
+        done
+    done
+    echo "body $k done" >&2
+done
+
+echo "counts by method and value (random_bodies.sh -s $seed -n $count):"
+awk -F, 'NR > 1 { n[$9 " " $8 " " $17]++ } END { for (k in n) print "  " k, n[k] }' "$csv" | sort
+echo "classes of failure (wrong, failed):"
+awk -F, 'NR > 1 && ($17 == "wrong" || $17 == "failed") {
+    print "  body " $1 " " $9 " " $8 ": exit " $10 ", value " $11 ", bar " $12 ", reference " $13 " +- " $14 ", other " $15 " bar " $16 ", corners " $6 " " $7 (length($18) ? ": " $18 : "") }' "$csv"
