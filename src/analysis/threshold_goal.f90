@@ -499,8 +499,9 @@ contains
     !> hp, once the loop ends: each side's goal with a bar at the last level `last` (its
     !> threshold, or its collision onset carried to the check's blocks as a level carries
     !> it) computed again on the same cells with every degree raised by one (hp_levels:
-    !> check_level), folded into that side's bar (error_bar: checked_bar); both sides are
-    !> then judged again together (check_target on the largest bar; `reopen`: climb on).
+    !> check_level), folded into that side's bar (error_bar: checked_bar) and, for a side met
+    !> at an earlier level, into that level's bar; each side is then judged again on its own
+    !> (check_target; `reopen`: climb on). The check uses the levels' half-degree forces.
     subroutine threshold_goal_check(this, scn, start, refiner, last, tolerance, reopen, &
                                     timings, stat)
         class(threshold_goal_t), intent(inout) :: this
@@ -514,14 +515,15 @@ contains
         type(status_t), intent(out) :: stat
         type(adapt_level_t) :: check
         type(cholesky_t) :: chol
-        type(reduced_blocks_t) :: blocks
+        type(reduced_blocks_t) :: blocks, restricted
         type(thresholds_t) :: thr
         type(critical_set_t) :: set
+        real(wp), allocatable :: lift(:, :)
         real(wp) :: before(2), after(2), roundoff(2), value, moved(2), begin, check_roundoff(2), &
-                    check_value
-        character(len=:), allocatable :: why
-        integer :: side, onset(2), worst
-        logical :: has_check
+                    check_value(2)
+        character(len=:), allocatable :: why, head
+        integer :: side, onset(2), m
+        logical :: has_check(2)
 
         if (size(this%levels) == 0) return
         begin = wall_time()
@@ -537,17 +539,20 @@ contains
             if (stat%ok()) call refiner%factor(check, chol, timings, stat)
             if (.not. stat%ok()) return
             call contact_flexibility(chol, check%prob%contact, blocks%kt_nn, blocks%kt_nt, stat)
-            if (stat%ok()) call pencil_thresholds(blocks%kt_nn, blocks%kt_nt, thr, stat)
+            ! the same force space as the levels (half the degree): with equal-order forces
+            ! the check would see the spurious values the levels no longer have
+            blocks%mass = check%prob%contact%mass
+            if (stat%ok()) call restricted_thresholds(blocks, &
+                half_degree_forces(check%space, check%prob%contact), thr, restricted, lift, stat)
             if (stat%ok()) call threshold_roundoff(check%prob%k, chol, check%prob%contact, &
                                                    blocks%kt_nn, blocks%kt_nt, thr, stat)
             onset = 0
             if (stat%ok() .and. any(row%collision)) then
-                blocks%mass = check%prob%contact%mass
-                call search_critical_set(blocks, this%scan, thr%real_lambdas, set, stat, &
+                call search_critical_set(restricted, this%scan, thr%real_lambdas, set, stat, &
                                          this%set)
                 if (stat%ok()) call collision_onsets(set, onset)
                 if (stat%ok() .and. any(onset > 0)) call collision_roundoffs(check%prob%k, &
-                    chol, check%prob%contact, blocks, set, stat)
+                    chol, check%prob%contact, restricted, set, stat, lift)
             end if
             call chol%free()
             if (.not. stat%ok()) then
@@ -557,49 +562,65 @@ contains
             end if
             moved = -1.0_wp
             check_roundoff = 0.0_wp
+            check_value = 0.0_wp
+            has_check = .false.
             do side = SIDE_PLUS, SIDE_MINUS
                 if (before(side) <= 0.0_wp) cycle
                 if (row%collision(side)) then
                     value = row%collision_lambda(side)
-                    has_check = onset(side) > 0
-                    check_value = 0.0_wp
-                    if (has_check) then
-                        check_value = set%points(onset(side))%lambda
+                    has_check(side) = onset(side) > 0
+                    if (has_check(side)) then
+                        check_value(side) = set%points(onset(side))%lambda
                         check_roundoff(side) = max(set%points(onset(side))%roundoff, 0.0_wp)
-                        moved(side) = abs(check_value - value)/abs(value)
                     end if
-                    row%collision_bar(side) = checked_bar(before(side), value, has_check, &
-                        check_value, roundoff(side), check_roundoff(side))
+                    row%collision_bar(side) = checked_bar(before(side), value, &
+                        has_check(side), check_value(side), roundoff(side), check_roundoff(side))
                 else
                     value = row%lambda(side)
-                    has_check = thr%found(side)
-                    if (has_check) moved(side) = abs(thr%lambda(side) - value)/abs(value)
-                    if (has_check) check_roundoff(side) = max(thr%roundoff(side), 0.0_wp)
-                    row%error_bar(side) = checked_bar(before(side), value, has_check, &
-                        thr%lambda(side), roundoff(side), thr%roundoff(side))
+                    has_check(side) = thr%found(side)
+                    if (has_check(side)) then
+                        check_value(side) = thr%lambda(side)
+                        check_roundoff(side) = max(thr%roundoff(side), 0.0_wp)
+                    end if
+                    row%error_bar(side) = checked_bar(before(side), value, has_check(side), &
+                        check_value(side), roundoff(side), check_roundoff(side))
                 end if
+                if (has_check(side)) moved(side) = abs(check_value(side) - value)/abs(value)
             end do
             call goal_bars(row, this%thr%roundoff, after, roundoff)
-            worst = maxloc(merge(huge(1.0_wp), after, after < 0.0_wp .and. before > 0.0_wp), 1)
-            why = 'the check with every degree raised by one ('// &
-                to_string(check%prob%dofs%n_free)//' dofs)'
-            if (moved(worst) >= 0.0_wp) then
-                why = why//' moves the '//trim(SIDE_NAMES(worst))//' side by '// &
-                    short_real_text(moved(worst))//' (relative): error bar '// &
-                    short_real_text(after(worst))//' at '//to_string(row%n_dofs)//' dofs'
-            else
-                why = why//' does not find the '//trim(SIDE_NAMES(worst))//' side''s goal, '// &
-                    'which has no error bar'
-            end if
-            call timings%note('hp check of level '//to_string(last%number)//': '//why// &
-                              ', '//seconds_text(wall_time() - begin)//' s')
-            if (len(refiner%cap_words(last)) > 0) why = why//'; '//refiner%cap_words(last)
-            call check_target(this%targets(1), tolerance, maxval(before), &
-                              merge(-1.0_wp, maxval(after), any(after < 0.0_wp .and. &
-                                                                before > 0.0_wp)), &
-                              max(roundoff(worst), 0.0_wp) + check_roundoff(worst), &
-                              reopen .and. row%level == last%number, why)
-            this%targets(2) = this%targets(1)
+            do side = SIDE_PLUS, SIDE_MINUS
+                if (before(side) <= 0.0_wp) cycle
+                ! a side met at an earlier level is quoted with that level's value: the check
+                ! bounds that value too, and its checked bar is the one judged
+                m = this%met_row(side)
+                if (m > 0 .and. m < size(this%levels) .and. has_check(side)) then
+                    associate (met => this%levels(m))
+                        met%error_bar(side) = checked_bar(met%error_bar(side), &
+                            met%lambda(side), .true., check_value(side), &
+                            max(met%roundoff(side), 0.0_wp), check_roundoff(side))
+                        after(side) = met%error_bar(side)
+                    end associate
+                end if
+                head = 'the check with every degree raised by one ('// &
+                    to_string(check%prob%dofs%n_free)//' dofs)'
+                if (moved(side) >= 0.0_wp) then
+                    why = head//' moves the '//trim(SIDE_NAMES(side))//' side by '// &
+                        short_real_text(moved(side))//' (relative): error bar '// &
+                        short_real_text(after(side))//' at '//to_string(row%n_dofs)//' dofs'
+                else
+                    why = head//' does not find the '//trim(SIDE_NAMES(side))//' side''s '// &
+                        'goal, which has no error bar'
+                    after(side) = -1.0_wp
+                end if
+                call timings%note('hp check of level '//to_string(last%number)//': '//why// &
+                                  ', '//seconds_text(wall_time() - begin)//' s')
+                if (len(refiner%cap_words(last)) > 0) why = why//'; '//refiner%cap_words(last)
+                call check_target(this%targets(side), tolerance, before(side), after(side), &
+                                  max(roundoff(side), 0.0_wp) + check_roundoff(side), &
+                                  reopen .and. row%level == last%number, &
+                                  trim(SIDE_LABELS(side))//': '//why)
+                if (this%targets(side)%active()) this%met_row(side) = 0
+            end do
         end associate
     end subroutine threshold_goal_check
 
