@@ -138,18 +138,15 @@ contains
             if (study%width(g) > 0.0_wp) call append_text(settings, 'mesh%width=' &
                 //real_to_text(study%width(g)))
         else
+            ! Relative paths, as nceig sees them from the task's folder where it runs, so
+            ! that the text and its hash do not hold OUTDIR (--set paths stay as given).
             call append_text(settings, 'mesh%source=gmsh')
-            call append_text(settings, 'mesh%file='//outdir//'/meshes/g'//zero_padded(g, 2) &
-                             //'.msh')
+            call append_text(settings, 'mesh%file=../../meshes/g'//zero_padded(g, 2)//'.msh')
         end if
+        call append_text(settings, 'output%directory='//name)
         call read_input(template_path, config, point_stat, settings)
         if (.not. point_stat%ok()) call stop_with(PROGRAM_NAME, in_study_terms( &
             point_stat%message), point_stat%code)
-        ! Relative paths: the input's mesh from its own folder, the output from the task's
-        ! folder (nceig runs there), so that the text and its hash do not hold OUTDIR.
-        if (config%mesh%source == 'gmsh') config%mesh%file = '../../meshes/g'// &
-            zero_padded(g, 2)//'.msh'
-        config%output%directory = name
         call write_input(task_dir//'/'//name//'.nml', config, kind == 'lambda_sweep')
     end subroutine write_point
 
