@@ -30,12 +30,12 @@ module eigen_goal
     use adapt_driver, only: adapt_goal_t, refiner_t, adapt_level_t, adapt_levels, judge_target, &
                             check_target
     use h_refiner, only: h_refiner_t, doerfler_marking
-    use hp_levels, only: hp_refiner_t
+    use hp_levels, only: hp_refiner_t, HP_ESTIMATE
     implicit none
     private
     public :: adapt_eigen
 
-    character(len=*), parameter, public :: HP_ESTIMATE = 'change to the previous hp level'
+    public :: HP_ESTIMATE   ! the hp refiner's, for the report
 
     !> One level of one lambda's loop: a row of adapt.csv.
     type, public :: eigen_level_t

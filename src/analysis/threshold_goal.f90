@@ -68,12 +68,11 @@ module threshold_goal
     use adapt_driver, only: adapt_goal_t, refiner_t, adapt_level_t, adapt_levels, judge_target, &
                             check_target, TARGET_MET, TARGET_FLOOR, TARGET_STOPPED
     use h_refiner, only: h_refiner_t, doerfler_marking
-    use hp_levels, only: hp_refiner_t
+    use hp_levels, only: hp_refiner_t, HP_ESTIMATE
     implicit none
     private
     public :: solve_adapted_thresholds
 
-    character(len=*), parameter :: HP_ESTIMATE = 'change to the previous hp level'
 
     !> coarse_scan_t: the largest level scanned at the end, in contact functions
     integer, parameter :: SCAN_CONTACT_MAX = 100

@@ -36,6 +36,9 @@ module hp_levels
     private
     public :: hp_level_degrees
 
+    !> How an hp value's estimate is named in every report: its change to the previous level
+    character(len=*), parameter, public :: HP_ESTIMATE = 'change to the previous hp level'
+
     !> the degrees rise by this per layer away from the singular points (bench_hp's ladder)
     real(wp), parameter :: DEGREE_SLOPE = 1.0_wp
     integer, parameter :: P_MIN = 1   !! the degree of the cells at a singular point
