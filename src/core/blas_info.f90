@@ -23,8 +23,9 @@ module blas_info
 contains
 
     !> `library`: the path of the library providing dgemm ('' if unknown); `config`:
-    !> OpenBLAS's configuration ('' for another BLAS); `threads`: OpenBLAS's thread count,
-    !> 1 for another BLAS.
+    !> OpenBLAS's configuration ('' for another BLAS); `threads`: the largest count
+    !> blas_threads gave a factorization of this process, else OpenBLAS's thread count (the
+    !> environment's), 1 for another BLAS.
     subroutine blas_in_use(library, config, threads)
         character(len=:), allocatable, intent(out) :: library, config
         integer, intent(out) :: threads

@@ -16,6 +16,7 @@ module run_report
     use filesystem, only: MAX_NAME_LEN
     use strings, only: text_t
     use blas_info, only: blas_in_use
+    use blas_threads, only: blas_threads_source
     use element_types, only: element_name
     use run_inputs, only: run_inputs_t
     use scene, only: scene_t
@@ -429,8 +430,8 @@ contains
         type(run_summary_t), intent(inout) :: rec
         type(run_inputs_t), intent(in) :: inputs
         type(problem_t), intent(in) :: prob
-        integer :: blas_threads
-        character(len=:), allocatable :: blas_library, blas_config
+        integer :: threads, largest
+        character(len=:), allocatable :: blas_library, blas_config, threads_source
         rec%version = NCEIG_VERSION
         rec%input = inputs%scene%name
         rec%analysis = inputs%analysis_name
@@ -451,10 +452,12 @@ contains
         rec%n_dofs = prob%dofs%n_free
         rec%nnz_k = prob%k%nnz()
         rec%n_contact = prob%contact%p()
-        call blas_in_use(blas_library, blas_config, blas_threads)
+        call blas_in_use(blas_library, blas_config, threads)
         rec%blas_library = blas_library
         rec%blas_config = blas_config
-        rec%blas_threads = blas_threads
+        rec%blas_threads = threads
+        call blas_threads_source(threads_source, largest)
+        rec%blas_threads_source = threads_source
     end subroutine record_problem
 
     !> The facts of a spectrum `res` in the input's units.

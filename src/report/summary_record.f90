@@ -155,7 +155,7 @@ module summary_record
         integer :: n_nodes = 0, n_cells = 0, n_dofs = 0, n_contact = 0
         integer(i8) :: nnz_k = 0   !! stored entries of K
         type(eigen_facts_t) :: eigen
-        character(len=:), allocatable :: blas_library, blas_config
+        character(len=:), allocatable :: blas_library, blas_config, blas_threads_source
         integer :: blas_threads = 0
         type(timings_t) :: timings
         !> where a picture is or why not; unallocated where none was asked for
@@ -280,6 +280,7 @@ contains
             call summary%add_string('blas_library', rec%blas_library)
             call summary%add_string('blas_config', rec%blas_config)
             call summary%add_integer('blas_threads', rec%blas_threads)
+            call summary%add_string('blas_threads_source', rec%blas_threads_source)
             call summary%add_real('time_assembly_s', t%assembly)
             call summary%add_real('time_ordering_s', t%ordering)
             call summary%add_real('time_factor_s', t%factor)

@@ -14,6 +14,7 @@ module sparse_cholesky
     use status, only: status_t, STATUS_BAD_INPUT, STATUS_SINGULAR, STATUS_SOLVER
     use csr_matrix, only: csr_matrix_t
     use strings, only: to_string, short_real_text
+    use blas_threads, only: blas_threads_for
     implicit none
     private
     public :: cholmod_status_message
@@ -181,6 +182,7 @@ contains
         col0 = int(a%col, c_int64_t) - 1_c_int64_t
         tail = 0
         if (present(keep_last)) tail = max(0, min(keep_last, n))
+        call blas_threads_for(n)   ! CHOLMOD's supernodes run on the BLAS
         code = nceig_cholmod_factor(int(n, c_int64_t), row_start0, col0, a%val, &
                                     int(chosen, c_int), perm_address, int(tail, c_int64_t), &
                                     this%handle, this%info)

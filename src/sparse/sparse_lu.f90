@@ -12,6 +12,7 @@ module sparse_lu
     use status, only: status_t, STATUS_BAD_INPUT, STATUS_SINGULAR, STATUS_SOLVER
     use csr_matrix, only: csr_matrix_t
     use strings, only: to_string
+    use blas_threads, only: blas_threads_for
     use umfpack_c, only: umfpack_di_symbolic, umfpack_di_numeric, umfpack_di_solve, &
                          umfpack_di_free_symbolic, umfpack_di_free_numeric, umfpack_di_defaults, &
                          umfpack_status_message, UMFPACK_CONTROL, UMFPACK_INFO, UMFPACK_A, &
@@ -136,6 +137,7 @@ contains
         end if
 
         ! Our CSR arrays are the CSC arrays of the transpose, so UMFPACK factorizes A'.
+        call blas_threads_for(int(n))   ! UMFPACK's frontal matrices run on the BLAS
         symbolic = c_null_ptr
         code = umfpack_di_symbolic(n, n, this%ap, this%ai, this%ax, symbolic, &
                                      this%control, this%info)
