@@ -15,8 +15,8 @@
 #include <time.h>
 #include <unistd.h>
 
-/* The largest count nceig_blas_set_threads gave OpenBLAS in this process, 0 if none: the
- * report's blas_threads. OpenBLAS's own count is process-wide state; this mirrors it. */
+/* The largest count OpenBLAS had after nceig_blas_set_threads in this process, 0 if none:
+ * the report's blas_threads. OpenBLAS's own count is process-wide state; this mirrors it. */
 static int largest_threads_set = 0;
 
 static void copy_text(char *to, int capacity, const char *from)
@@ -78,11 +78,15 @@ int nceig_blas_environment_threads(void)
 void nceig_blas_set_threads(int threads)
 {
     void (*set_threads)(int) = (void (*)(int))dlsym(RTLD_DEFAULT, "openblas_set_num_threads");
+    int (*get_threads)(void) = (int (*)(void))dlsym(RTLD_DEFAULT, "openblas_get_num_threads");
+    int now;
     if (!set_threads || threads < 1)
         return;
     set_threads(threads);
-    if (threads > largest_threads_set)
-        largest_threads_set = threads;
+    /* what OpenBLAS took (it caps the count at its cores), not what was asked */
+    now = get_threads ? get_threads() : threads;
+    if (now > largest_threads_set)
+        largest_threads_set = now;
 }
 
 int nceig_blas_largest_threads_set(void) { return largest_threads_set; }
