@@ -23,7 +23,9 @@
 #              converge and the other method does not meet its tolerance);
 #   failed     the run failed, or ran out of its time (125: not run yet).
 #   scripts/dev/random_bodies.sh [-s SEED] [-n COUNT] [-o OUTDIR] [-b NCEIG] [-t SECONDS] [-c]
-# -c classifies the runs already in OUTDIR without running anything.
+#                                [-k 'K1 K2 ...']
+# -c classifies the runs already in OUTDIR without running anything; -k runs and classifies
+# only the bodies numbered K1, K2, ... of the COUNT drawn (the others keep what they have).
 # Defaults: seed 34, 40 bodies, output/random_bodies, build/nceig, 300 s per run. Writes
 # OUTDIR/values.csv (one row per body, method and value) and prints the counts per method
 # and class, and the classes of failure. Runs one nceig at a time under nice (a shared
@@ -31,11 +33,12 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 seed=34 count=40 out=output/random_bodies nceig=$root/build/nceig limit=300 classify_only=0
-while getopts 's:n:o:b:t:c' opt; do
+only=''
+while getopts 's:n:o:b:t:ck:' opt; do
     case $opt in
         s) seed=$OPTARG ;; n) count=$OPTARG ;; o) out=$OPTARG ;; b) nceig=$OPTARG ;;
-        t) limit=$OPTARG ;; c) classify_only=1 ;;
-        *) echo 'usage: random_bodies.sh [-s SEED] [-n COUNT] [-o OUTDIR] [-b NCEIG] [-t SECONDS] [-c]' >&2
+        t) limit=$OPTARG ;; c) classify_only=1 ;; k) only=" $OPTARG " ;;
+        *) echo 'usage: random_bodies.sh [-s SEED] [-n COUNT] [-o OUTDIR] [-b NCEIG] [-t SECONDS] [-c] [-k LIST]' >&2
            exit 2 ;;
     esac
 done
@@ -73,6 +76,7 @@ mesh() {
 csv=$out/values.csv
 echo 'body,vertices,convex,nu,lambda,corner_start,corner_end,quantity,method,exit,value,bar,reference,ref_uncertainty,other_value,other_bar,class,reason' >"$csv"
 for ((k = 0; k < count; k++)); do
+    [[ -z $only || $only == *" $k "* ]] || continue
     dir=$out/$(printf 'body%02d' "$k")
     # shellcheck disable=SC1091
     source "$dir/body.txt"
