@@ -4,14 +4,19 @@
 # 4 to 8 vertices, convex and not, one side in contact, the others clamped or free, nu in
 # [0, 0.49], lambda in [-20, 20]); for each, c_n at lambda and the thresholds lambda+ and
 # lambda- by
-#   uniform P4 on Gmsh meshes of size L/4, L/8, L/16, L/32 (the reference: the last value,
-#     with twice the geometric tail of the last two differences as its uncertainty, when
-#     they fall by at least 0.8; else no reference),
+#   uniform P4 on Gmsh meshes of size L/4 to L/64 (the reference: the last value, with
+#     twice the geometric tail of the last difference at the slower of the last two ratios
+#     of differences as its uncertainty, when both ratios are at most 0.8; else no
+#     reference: near a corner's crossing uniform refinement converges slowly and the
+#     differences of unnested meshes wobble, so one ratio can promise too much),
 #   hp levels ('eigen' to 1e-8, 'threshold' to 1e-6, from a Gmsh P1 mesh of size L/2),
 #   h-adaptive runs (P3 'eigen' to 1e-7, P2 'threshold' to 1e-5, from size L/4),
 # and classifies each adaptive value against two references, the uniform one and the other
 # adaptive method's value where that one met its tolerance (a different mesh family, element
-# and bar):
+# and bar). A threshold side is judged by its goal: the side's onset where that is a collision
+# of two real mu (lambda_onset_*_mechanism complex_pair) with the boundary point's bar, else
+# the pencil value lambda_critical_* with its bar (a pencil value past a collision onset is
+# no goal of the run; the uniform reference is taken the same way, run by run):
 #   right      quoted with a bar that covers a reference (the distance at most the sum of
 #              the two bars), or none where neither reference has a value;
 #   flagged    quoted without a bar or with a bar of 100 % or more, or not quoted by a run
@@ -50,6 +55,15 @@ out=$(cd "$out" && pwd)
 python3 "$root/scripts/dev/random_bodies.py" "$seed" "$count" "$out"
 
 value() { jq -r "$2 // \"null\"" "$1" 2>/dev/null || echo null; }
+# goal SUMMARY SIDE: the side's goal and its bar ('null' where none): its collision onset
+# where the side's onset is one, else its pencil value
+goal() {
+    jq -r --arg s "$2" '(if .["lambda_onset_" + $s + "_mechanism"] == "complex_pair" then
+        .["lambda_onset_" + $s] as $v | [$v, ([.boundary_lambda, .boundary_error_bar]
+            | transpose | map(select(.[0] == $v)) | .[0][1])]
+        else [.["lambda_critical_" + $s], .["lambda_critical_" + $s + "_error_bar"]] end)
+        | map(. // "null") | join(" ")' "$1" 2>/dev/null || echo 'null null'
+}
 
 # run DIR NAME NML [--set ...]: nceig on NML into DIR/NAME (skipped when done); its exit status
 # in DIR/NAME.rc (124: out of time)
@@ -89,7 +103,7 @@ for ((k = 0; k < count; k++)); do
 &analysis kind = 'threshold', lambda = $lambda /
 &eigen estimate = 'off' /
 NML
-    for n in 4 8 16 32; do
+    for n in 4 8 16 32 64; do
         mesh "$dir" "$(awk -v l="$L" -v n="$n" 'BEGIN { printf "%.6g", l / n }')" 4 "p4_$n.msh"
         run "$dir" "uniform_$n" body.nml --set mesh%file="p4_$n.msh"
     done
@@ -111,17 +125,28 @@ NML
             minus) key=.lambda_critical_minus bar=.lambda_critical_minus_error_bar ;;
         esac
         u=()
-        for n in 8 16 32; do u+=("$(value "$dir/uniform_$n/summary.json" "$key")"); done
-        read -r reference uncertainty < <(awk -v a="${u[0]}" -v b="${u[1]}" -v c="${u[2]}" 'BEGIN {
-            if (a == "null" && b == "null" && c == "null") { print "absent 0"; exit }
-            if (a == "null" || b == "null" || c == "null") { print "none 0"; exit }
-            d1 = b - a; d2 = c - b; if (d1 < 0) d1 = -d1; if (d2 < 0) d2 = -d2
-            if (d1 == 0) { printf "%.17g %.3g\n", c, 1e-12 * (c < 0 ? -c : c); exit }
-            q = d2 / d1
+        for n in 8 16 32 64; do
+            if [[ $quantity == c_n ]]; then
+                u+=("$(value "$dir/uniform_$n/summary.json" "$key")")
+            else
+                read -r v _ < <(goal "$dir/uniform_$n/summary.json" "$quantity")
+                u+=("$v")
+            fi
+        done
+        read -r reference uncertainty < <(awk -v a="${u[0]}" -v b="${u[1]}" -v c="${u[2]}" \
+            -v e="${u[3]}" 'BEGIN {
+            if (a == "null" && b == "null" && c == "null" && e == "null") { print "absent 0"; exit }
+            if (a == "null" || b == "null" || c == "null" || e == "null") { print "none 0"; exit }
+            d1 = b - a; d2 = c - b; d3 = e - c
+            if (d1 < 0) d1 = -d1; if (d2 < 0) d2 = -d2; if (d3 < 0) d3 = -d3
+            m = 1e-12 * (e < 0 ? -e : e)
+            if (d3 <= m) { printf "%.17g %.3g\n", e, m; exit }   # settled to round-off
+            if (d1 == 0 || d2 == 0) { print "none 0"; exit }
+            q = d2 / d1; if (d3 / d2 > q) q = d3 / d2
             if (q > 0.8) { print "none 0"; exit }
             # the geometric tail, twice over, and at least 1e-12 relative
-            t = 2 * d2 * q / (1 - q); m = 1e-12 * (c < 0 ? -c : c); if (t < m) t = m
-            printf "%.17g %.3g\n", c, t }')
+            t = 2 * d3 * q / (1 - q); if (t < m) t = m
+            printf "%.17g %.3g\n", e, t }')
         for method in hp h; do
             other=h
             [[ $method == h ]] && other=hp
@@ -129,11 +154,15 @@ NML
             [[ $quantity == c_n ]] && name=${method}_eigen other_name=${other}_eigen
             s=$dir/$name/summary.json
             rc=$(cat "$dir/$name.rc" 2>/dev/null || echo 125)
-            v=$(value "$s" "$key")
-            b=$(value "$s" "$bar")
             rc2=$(cat "$dir/$other_name.rc" 2>/dev/null || echo 125)
-            v2=$(value "$dir/$other_name/summary.json" "$key")
-            b2=$(value "$dir/$other_name/summary.json" "$bar")
+            if [[ $quantity == c_n ]]; then
+                v=$(value "$s" "$key") b=$(value "$s" "$bar")
+                v2=$(value "$dir/$other_name/summary.json" "$key")
+                b2=$(value "$dir/$other_name/summary.json" "$bar")
+            else
+                read -r v b < <(goal "$s" "$quantity")
+                read -r v2 b2 < <(goal "$dir/$other_name/summary.json" "$quantity")
+            fi
             reason=$( (jq -r '.warnings[0] // ""' "$s" 2>/dev/null || tail -1 "$dir/$name.log") \
                 | tr ',\n' ';  ' | cut -c1-160)
             class=$(awk -v rc="$rc" -v v="$v" -v b="$b" -v r="$reference" -v u="$uncertainty" \

@@ -235,10 +235,16 @@ contains
             case (TRACK_MOVING)
                 text = text//' moves with the mesh over '//to_string(v%length)//' levels'
             case (TRACK_CONVERGING)
-                text = text//' converges over '//to_string(v%length)//' levels, too slowly'
+                if (v%rate >= 0.0_wp) then
+                    text = text//' settles over '//to_string(v%length)//' levels'
+                else   ! its last changes within round-off (classify_chain)
+                    text = text//' has settled to round-off over '//to_string(v%length)// &
+                        ' levels'
+                end if
             case default
                 text = text//' has no value of its shape at the level before (followed '// &
-                    'over '//to_string(v%length)//')'
+                    'over '//to_string(v%length)//' level'//trim(merge('s', ' ', &
+                    v%length > 1))//')'
             end select
             if (v%rate >= 0.0_wp) text = text//' (factor '//short_real_text(v%rate)// &
                 ' per level'//trim(merge(', extrapolated limit '//short_real_text(v%limit, 6)// &
@@ -263,6 +269,8 @@ contains
             else if (side%past_crossing) then
                 text = text//', past its crossing '//short_real_text(side%crossing)// &
                     ': the continuum may have no isolated value there'
+            else if (side%has_crossing .and. side%crossing*side%wedge_lambda > 0.0_wp) then
+                text = text//', before its crossing '//short_real_text(side%crossing)
             end if
         end associate
     end function moving_words
