@@ -246,10 +246,12 @@ contains
                     'over '//to_string(v%length)//' level'//trim(merge('s', ' ', &
                     v%length > 1))//')'
             end select
-            if (v%rate >= 0.0_wp) text = text//' (factor '//short_real_text(v%rate)// &
-                ' per level'//trim(merge(', extrapolated limit '//short_real_text(v%limit, 6)// &
-                ', not converged', repeat(' ', 48), v%has_limit .and. v%kind == TRACK_MOVING)) &
-                //')'
+            if (v%rate >= 0.0_wp) then
+                text = text//' (factor '//short_real_text(v%rate)//' per level'
+                if (v%has_limit .and. v%kind == TRACK_MOVING) text = text// &
+                    ', extrapolated limit '//short_real_text(v%limit, 6)//', not converged'
+                text = text//')'
+            end if
             if (side%end == 0) then
                 text = text//'; its vector sits inside Gamma_C at ('// &
                     short_real_text(side%point(1))//', '//short_real_text(side%point(2))//')'
