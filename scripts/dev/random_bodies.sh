@@ -16,7 +16,8 @@
 # and bar). A threshold side is judged by its goal: the side's onset where that is a collision
 # of two real mu (lambda_onset_*_mechanism complex_pair) with the boundary point's bar, else
 # the pencil value lambda_critical_* with its bar (a pencil value past a collision onset is
-# no goal of the run; the uniform reference is taken the same way, run by run):
+# no goal of the run), against references of the same kind: the uniform collision onsets
+# (where each level has one) or pencil values, the other method's value of that kind:
 #   right      quoted with a bar that covers a reference (the distance at most the sum of
 #              the two bars), or none where neither reference has a value;
 #   flagged    quoted without a bar or with a bar of 100 % or more, or not quoted by a run
@@ -55,14 +56,39 @@ out=$(cd "$out" && pwd)
 python3 "$root/scripts/dev/random_bodies.py" "$seed" "$count" "$out"
 
 value() { jq -r "$2 // \"null\"" "$1" 2>/dev/null || echo null; }
-# goal SUMMARY SIDE: the side's goal and its bar ('null' where none): its collision onset
-# where the side's onset is one, else its pencil value
-goal() {
-    jq -r --arg s "$2" '(if .["lambda_onset_" + $s + "_mechanism"] == "complex_pair" then
-        .["lambda_onset_" + $s] as $v | [$v, ([.boundary_lambda, .boundary_error_bar]
-            | transpose | map(select(.[0] == $v)) | .[0][1])]
+# goal_kind SUMMARY SIDE: what the side's goal is, 'collision' where its onset is a collision
+# of two real mu, else 'pencil'
+goal_kind() {
+    [[ $(jq -r ".lambda_onset_$2_mechanism" "$1" 2>/dev/null) == complex_pair ]] &&
+        echo collision || echo pencil
+}
+# side_value SUMMARY SIDE KIND: the value of that kind and its bar ('null' where none): the
+# collision onset where the side's onset is one (else null), or the pencil value
+side_value() {
+    jq -r --arg s "$2" --arg k "$3" '(if $k == "collision" then
+        (if .["lambda_onset_" + $s + "_mechanism"] == "complex_pair" then
+            .["lambda_onset_" + $s] as $v | [$v, ([.boundary_lambda, .boundary_error_bar]
+                | transpose | map(select(.[0] == $v)) | .[0][1])]
+         else [null, null] end)
         else [.["lambda_critical_" + $s], .["lambda_critical_" + $s + "_error_bar"]] end)
         | map(. // "null") | join(" ")' "$1" 2>/dev/null || echo 'null null'
+}
+# reference V8 V16 V32 V64: the uniform reference and its uncertainty (header), 'absent 0'
+# where no level has a value, 'none 0' where they do not converge
+reference() {
+    awk -v a="$1" -v b="$2" -v c="$3" -v e="$4" 'BEGIN {
+        if (a == "null" && b == "null" && c == "null" && e == "null") { print "absent 0"; exit }
+        if (a == "null" || b == "null" || c == "null" || e == "null") { print "none 0"; exit }
+        d1 = b - a; d2 = c - b; d3 = e - c
+        if (d1 < 0) d1 = -d1; if (d2 < 0) d2 = -d2; if (d3 < 0) d3 = -d3
+        m = 1e-12 * (e < 0 ? -e : e)
+        if (d3 <= m) { printf "%.17g %.3g\n", e, m; exit }   # settled to round-off
+        if (d1 == 0 || d2 == 0) { print "none 0"; exit }
+        q = d2 / d1; if (d3 / d2 > q) q = d3 / d2
+        if (q > 0.8) { print "none 0"; exit }
+        # the geometric tail, twice over, and at least 1e-12 relative
+        t = 2 * d3 * q / (1 - q); if (t < m) t = m
+        printf "%.17g %.3g\n", e, t }'
 }
 
 # run DIR NAME NML [--set ...]: nceig on NML into DIR/NAME (skipped when done); its exit status
@@ -124,29 +150,23 @@ NML
             plus) key=.lambda_critical_plus bar=.lambda_critical_plus_error_bar ;;
             minus) key=.lambda_critical_minus bar=.lambda_critical_minus_error_bar ;;
         esac
-        u=()
+        # the uniform references: c_n; or a side's pencil values, and its collision onsets
+        # (none unless the onset is a collision at every level: a collision that merges with
+        # the pencil value as the mesh is refined makes a sequence of two quantities)
+        u=() uc=()
         for n in 8 16 32 64; do
             if [[ $quantity == c_n ]]; then
                 u+=("$(value "$dir/uniform_$n/summary.json" "$key")")
             else
-                read -r v _ < <(goal "$dir/uniform_$n/summary.json" "$quantity")
+                read -r v _ < <(side_value "$dir/uniform_$n/summary.json" "$quantity" pencil)
                 u+=("$v")
+                read -r v _ < <(side_value "$dir/uniform_$n/summary.json" "$quantity" collision)
+                uc+=("$v")
             fi
         done
-        read -r reference uncertainty < <(awk -v a="${u[0]}" -v b="${u[1]}" -v c="${u[2]}" \
-            -v e="${u[3]}" 'BEGIN {
-            if (a == "null" && b == "null" && c == "null" && e == "null") { print "absent 0"; exit }
-            if (a == "null" || b == "null" || c == "null" || e == "null") { print "none 0"; exit }
-            d1 = b - a; d2 = c - b; d3 = e - c
-            if (d1 < 0) d1 = -d1; if (d2 < 0) d2 = -d2; if (d3 < 0) d3 = -d3
-            m = 1e-12 * (e < 0 ? -e : e)
-            if (d3 <= m) { printf "%.17g %.3g\n", e, m; exit }   # settled to round-off
-            if (d1 == 0 || d2 == 0) { print "none 0"; exit }
-            q = d2 / d1; if (d3 / d2 > q) q = d3 / d2
-            if (q > 0.8) { print "none 0"; exit }
-            # the geometric tail, twice over, and at least 1e-12 relative
-            t = 2 * d3 * q / (1 - q); if (t < m) t = m
-            printf "%.17g %.3g\n", e, t }')
+        read -r reference_pencil uncertainty_pencil < <(reference "${u[@]}")
+        [[ $quantity == c_n ]] || read -r reference_collision uncertainty_collision \
+            < <(reference "${uc[@]}")
         for method in hp h; do
             other=h
             [[ $method == h ]] && other=hp
@@ -155,13 +175,19 @@ NML
             s=$dir/$name/summary.json
             rc=$(cat "$dir/$name.rc" 2>/dev/null || echo 125)
             rc2=$(cat "$dir/$other_name.rc" 2>/dev/null || echo 125)
+            reference=$reference_pencil uncertainty=$uncertainty_pencil
             if [[ $quantity == c_n ]]; then
                 v=$(value "$s" "$key") b=$(value "$s" "$bar")
                 v2=$(value "$dir/$other_name/summary.json" "$key")
                 b2=$(value "$dir/$other_name/summary.json" "$bar")
             else
-                read -r v b < <(goal "$s" "$quantity")
-                read -r v2 b2 < <(goal "$dir/$other_name/summary.json" "$quantity")
+                # the run's goal, against references of the same kind
+                kind=$(goal_kind "$s" "$quantity")
+                if [[ $kind == collision ]]; then
+                    reference=$reference_collision uncertainty=$uncertainty_collision
+                fi
+                read -r v b < <(side_value "$s" "$quantity" "$kind")
+                read -r v2 b2 < <(side_value "$dir/$other_name/summary.json" "$quantity" "$kind")
             fi
             reason=$( (jq -r '.warnings[0] // ""' "$s" 2>/dev/null || tail -1 "$dir/$name.log") \
                 | tr ',\n' ';  ' | cut -c1-160)
