@@ -271,8 +271,9 @@ contains
             else if (side%past_crossing) then
                 text = text//', past its crossing '//short_real_text(side%crossing)// &
                     ': the continuum may have no isolated value there'
-            else if (side%has_crossing .and. side%crossing*side%wedge_lambda > 0.0_wp) then
-                text = text//', before its crossing '//short_real_text(side%crossing)
+            else if (side%has_crossing) then   ! (no crossing: +-huge, whose product traps)
+                if (side%crossing*side%wedge_lambda > 0.0_wp) text = text// &
+                    ', before its crossing '//short_real_text(side%crossing)
             end if
         end associate
     end function moving_words

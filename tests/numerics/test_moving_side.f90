@@ -8,7 +8,7 @@
 !> points to and its mirror image at the other (docs/thresholds.md): past the contact-free
 !> crossing -pi/2 of a 90-degree corner the exponent is negative (at -4 and nu = 0.3 below
 !> -1, outside the exponents searched, and still past the crossing); a clamped corner's
-!> crossing is positive.
+!> crossing is positive; a 180-degree end has none.
 program test_moving_side
     use kinds, only: wp
     use status, only: status_t
@@ -152,6 +152,13 @@ contains
         side = track_side(levels, ends, 0.3_wp, 0.0_wp)
         call t%check('clamped 90 degrees, nu = 0.3: +2.5 is before it', &
                      side%has_crossing .and. .not. side%past_crossing)
+        ends%angle(2) = PI   ! Gamma_C ends inside a straight side: no crossing
+        call geometric_levels(6, -3.0_wp, 0.7_wp, 2, levels)
+        side = track_side(levels, ends, 0.3_wp, 0.0_wp)
+        call t%check('a 180-degree end has no crossing, and the words say so without one', &
+                     .not. side%has_crossing .and. .not. side%past_crossing .and. &
+                     index(moving_words('lambda-', side), '180-degree corner') > 0 .and. &
+                     index(moving_words('lambda-', side), 'crossing') == 0)
         call geometric_levels(6, 3.0_wp, 0.7_wp, 1, levels)
         side = track_side(levels, square_ends(), 0.3_wp, 0.0_wp)
         call t%check('lambda = +3 at end 1: the wedge sees -3, exponent < 0', side%end == 1 &
