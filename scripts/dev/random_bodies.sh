@@ -4,14 +4,20 @@
 # 4 to 8 vertices, convex and not, one side in contact, the others clamped or free, nu in
 # [0, 0.49], lambda in [-20, 20]); for each, c_n at lambda and the thresholds lambda+ and
 # lambda- by
-#   uniform P4 on Gmsh meshes of size L/4, L/8, L/16, L/32 (the reference: the last value,
-#     with twice the geometric tail of the last two differences as its uncertainty, when
-#     they fall by at least 0.8; else no reference),
+#   uniform P4 on Gmsh meshes of size L/4 to L/64 (the reference: the last value, with
+#     twice the geometric tail of the last difference at the slower of the last two ratios
+#     of differences as its uncertainty, when both ratios are at most 0.8; else no
+#     reference: near a corner's crossing uniform refinement converges slowly and the
+#     differences of unnested meshes wobble, so one ratio can promise too much),
 #   hp levels ('eigen' to 1e-8, 'threshold' to 1e-6, from a Gmsh P1 mesh of size L/2),
 #   h-adaptive runs (P3 'eigen' to 1e-7, P2 'threshold' to 1e-5, from size L/4),
 # and classifies each adaptive value against two references, the uniform one and the other
 # adaptive method's value where that one met its tolerance (a different mesh family, element
-# and bar):
+# and bar). A threshold side is judged by its goal: the side's onset where that is a collision
+# of two real mu (lambda_onset_*_mechanism complex_pair) with the boundary point's bar, else
+# the pencil value lambda_critical_* with its bar (a pencil value past a collision onset is
+# no goal of the run), against references of the same kind: the uniform collision onsets
+# (where each level has one) or pencil values, the other method's value of that kind:
 #   right      quoted with a bar that covers a reference (the distance at most the sum of
 #              the two bars), or none where neither reference has a value;
 #   flagged    quoted without a bar or with a bar of 100 % or more, or not quoted by a run
@@ -23,7 +29,9 @@
 #              converge and the other method does not meet its tolerance);
 #   failed     the run failed, or ran out of its time (125: not run yet).
 #   scripts/dev/random_bodies.sh [-s SEED] [-n COUNT] [-o OUTDIR] [-b NCEIG] [-t SECONDS] [-c]
-# -c classifies the runs already in OUTDIR without running anything.
+#                                [-k 'K1 K2 ...']
+# -c classifies the runs already in OUTDIR without running anything; -k runs and classifies
+# only the bodies numbered K1, K2, ... of the COUNT drawn (the others keep what they have).
 # Defaults: seed 34, 40 bodies, output/random_bodies, build/nceig, 300 s per run. Writes
 # OUTDIR/values.csv (one row per body, method and value) and prints the counts per method
 # and class, and the classes of failure. Runs one nceig at a time under nice (a shared
@@ -31,11 +39,12 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 seed=34 count=40 out=output/random_bodies nceig=$root/build/nceig limit=300 classify_only=0
-while getopts 's:n:o:b:t:c' opt; do
+only=''
+while getopts 's:n:o:b:t:ck:' opt; do
     case $opt in
         s) seed=$OPTARG ;; n) count=$OPTARG ;; o) out=$OPTARG ;; b) nceig=$OPTARG ;;
-        t) limit=$OPTARG ;; c) classify_only=1 ;;
-        *) echo 'usage: random_bodies.sh [-s SEED] [-n COUNT] [-o OUTDIR] [-b NCEIG] [-t SECONDS] [-c]' >&2
+        t) limit=$OPTARG ;; c) classify_only=1 ;; k) only=" $OPTARG " ;;
+        *) echo 'usage: random_bodies.sh [-s SEED] [-n COUNT] [-o OUTDIR] [-b NCEIG] [-t SECONDS] [-c] [-k LIST]' >&2
            exit 2 ;;
     esac
 done
@@ -47,6 +56,40 @@ out=$(cd "$out" && pwd)
 python3 "$root/scripts/dev/random_bodies.py" "$seed" "$count" "$out"
 
 value() { jq -r "$2 // \"null\"" "$1" 2>/dev/null || echo null; }
+# goal_kind SUMMARY SIDE: what the side's goal is, 'collision' where its onset is a collision
+# of two real mu, else 'pencil'
+goal_kind() {
+    [[ $(jq -r ".lambda_onset_$2_mechanism" "$1" 2>/dev/null) == complex_pair ]] &&
+        echo collision || echo pencil
+}
+# side_value SUMMARY SIDE KIND: the value of that kind and its bar ('null' where none): the
+# collision onset where the side's onset is one (else null), or the pencil value
+side_value() {
+    jq -r --arg s "$2" --arg k "$3" '(if $k == "collision" then
+        (if .["lambda_onset_" + $s + "_mechanism"] == "complex_pair" then
+            .["lambda_onset_" + $s] as $v | [$v, ([.boundary_lambda, .boundary_error_bar]
+                | transpose | map(select(.[0] == $v)) | .[0][1])]
+         else [null, null] end)
+        else [.["lambda_critical_" + $s], .["lambda_critical_" + $s + "_error_bar"]] end)
+        | map(. // "null") | join(" ")' "$1" 2>/dev/null || echo 'null null'
+}
+# reference V8 V16 V32 V64: the uniform reference and its uncertainty (header), 'absent 0'
+# where no level has a value, 'none 0' where they do not converge
+reference() {
+    awk -v a="$1" -v b="$2" -v c="$3" -v e="$4" 'BEGIN {
+        if (a == "null" && b == "null" && c == "null" && e == "null") { print "absent 0"; exit }
+        if (a == "null" || b == "null" || c == "null" || e == "null") { print "none 0"; exit }
+        d1 = b - a; d2 = c - b; d3 = e - c
+        if (d1 < 0) d1 = -d1; if (d2 < 0) d2 = -d2; if (d3 < 0) d3 = -d3
+        m = 1e-12 * (e < 0 ? -e : e)
+        if (d3 <= m) { printf "%.17g %.3g\n", e, m; exit }   # settled to round-off
+        if (d1 == 0 || d2 == 0) { print "none 0"; exit }
+        q = d2 / d1; if (d3 / d2 > q) q = d3 / d2
+        if (q > 0.8) { print "none 0"; exit }
+        # the geometric tail, twice over, and at least 1e-12 relative
+        t = 2 * d3 * q / (1 - q); if (t < m) t = m
+        printf "%.17g %.3g\n", e, t }'
+}
 
 # run DIR NAME NML [--set ...]: nceig on NML into DIR/NAME (skipped when done); its exit status
 # in DIR/NAME.rc (124: out of time)
@@ -73,6 +116,7 @@ mesh() {
 csv=$out/values.csv
 echo 'body,vertices,convex,nu,lambda,corner_start,corner_end,quantity,method,exit,value,bar,reference,ref_uncertainty,other_value,other_bar,class,reason' >"$csv"
 for ((k = 0; k < count; k++)); do
+    [[ -z $only || $only == *" $k "* ]] || continue
     dir=$out/$(printf 'body%02d' "$k")
     # shellcheck disable=SC1091
     source "$dir/body.txt"
@@ -85,7 +129,7 @@ for ((k = 0; k < count; k++)); do
 &analysis kind = 'threshold', lambda = $lambda /
 &eigen estimate = 'off' /
 NML
-    for n in 4 8 16 32; do
+    for n in 4 8 16 32 64; do
         mesh "$dir" "$(awk -v l="$L" -v n="$n" 'BEGIN { printf "%.6g", l / n }')" 4 "p4_$n.msh"
         run "$dir" "uniform_$n" body.nml --set mesh%file="p4_$n.msh"
     done
@@ -106,18 +150,23 @@ NML
             plus) key=.lambda_critical_plus bar=.lambda_critical_plus_error_bar ;;
             minus) key=.lambda_critical_minus bar=.lambda_critical_minus_error_bar ;;
         esac
-        u=()
-        for n in 8 16 32; do u+=("$(value "$dir/uniform_$n/summary.json" "$key")"); done
-        read -r reference uncertainty < <(awk -v a="${u[0]}" -v b="${u[1]}" -v c="${u[2]}" 'BEGIN {
-            if (a == "null" && b == "null" && c == "null") { print "absent 0"; exit }
-            if (a == "null" || b == "null" || c == "null") { print "none 0"; exit }
-            d1 = b - a; d2 = c - b; if (d1 < 0) d1 = -d1; if (d2 < 0) d2 = -d2
-            if (d1 == 0) { printf "%.17g %.3g\n", c, 1e-12 * (c < 0 ? -c : c); exit }
-            q = d2 / d1
-            if (q > 0.8) { print "none 0"; exit }
-            # the geometric tail, twice over, and at least 1e-12 relative
-            t = 2 * d2 * q / (1 - q); m = 1e-12 * (c < 0 ? -c : c); if (t < m) t = m
-            printf "%.17g %.3g\n", c, t }')
+        # the uniform references: c_n; or a side's pencil values, and its collision onsets
+        # (none unless the onset is a collision at every level: a collision that merges with
+        # the pencil value as the mesh is refined makes a sequence of two quantities)
+        u=() uc=()
+        for n in 8 16 32 64; do
+            if [[ $quantity == c_n ]]; then
+                u+=("$(value "$dir/uniform_$n/summary.json" "$key")")
+            else
+                read -r v _ < <(side_value "$dir/uniform_$n/summary.json" "$quantity" pencil)
+                u+=("$v")
+                read -r v _ < <(side_value "$dir/uniform_$n/summary.json" "$quantity" collision)
+                uc+=("$v")
+            fi
+        done
+        read -r reference_pencil uncertainty_pencil < <(reference "${u[@]}")
+        [[ $quantity == c_n ]] || read -r reference_collision uncertainty_collision \
+            < <(reference "${uc[@]}")
         for method in hp h; do
             other=h
             [[ $method == h ]] && other=hp
@@ -125,11 +174,21 @@ NML
             [[ $quantity == c_n ]] && name=${method}_eigen other_name=${other}_eigen
             s=$dir/$name/summary.json
             rc=$(cat "$dir/$name.rc" 2>/dev/null || echo 125)
-            v=$(value "$s" "$key")
-            b=$(value "$s" "$bar")
             rc2=$(cat "$dir/$other_name.rc" 2>/dev/null || echo 125)
-            v2=$(value "$dir/$other_name/summary.json" "$key")
-            b2=$(value "$dir/$other_name/summary.json" "$bar")
+            reference=$reference_pencil uncertainty=$uncertainty_pencil
+            if [[ $quantity == c_n ]]; then
+                v=$(value "$s" "$key") b=$(value "$s" "$bar")
+                v2=$(value "$dir/$other_name/summary.json" "$key")
+                b2=$(value "$dir/$other_name/summary.json" "$bar")
+            else
+                # the run's goal, against references of the same kind
+                kind=$(goal_kind "$s" "$quantity")
+                if [[ $kind == collision ]]; then
+                    reference=$reference_collision uncertainty=$uncertainty_collision
+                fi
+                read -r v b < <(side_value "$s" "$quantity" "$kind")
+                read -r v2 b2 < <(side_value "$dir/$other_name/summary.json" "$quantity" "$kind")
+            fi
             reason=$( (jq -r '.warnings[0] // ""' "$s" 2>/dev/null || tail -1 "$dir/$name.log") \
                 | tr ',\n' ';  ' | cut -c1-160)
             class=$(awk -v rc="$rc" -v v="$v" -v b="$b" -v r="$reference" -v u="$uncertainty" \

@@ -69,6 +69,9 @@ module threshold_goal
                             check_target, TARGET_MET, TARGET_FLOOR, TARGET_STOPPED
     use h_refiner, only: h_refiner_t, doerfler_marking
     use hp_levels, only: hp_refiner_t, HP_ESTIMATE
+    use pencil_tracking, only: N_PROFILE_BINS, level_values_t
+    use moving_side, only: contact_ends_t, contact_ends, level_profile, track_side, &
+                           moving_words
     implicit none
     private
     public :: solve_adapted_thresholds
@@ -105,6 +108,10 @@ module threshold_goal
         !> hp: the side's goal has stopped converging at this level or before (error_bar:
         !> hp_run_bar): no bar from then on
         logical :: stalled(2) = .false.
+        !> hp: the profile on Gamma_C of each side's vector (pencil_tracking; zero where the
+        !> side has no value) and the level's smallest contact cell relative to Gamma_C
+        real(wp) :: profile(N_PROFILE_BINS, 2) = 0.0_wp
+        real(wp) :: resolution = 0.0_wp
         real(wp) :: time_s = 0.0_wp
     end type threshold_level_t
 
@@ -211,7 +218,9 @@ contains
         integer(i8), intent(in), optional :: available
         class(refiner_t), allocatable :: refiner
         type(threshold_goal_t) :: goal
+        character(len=WARNING_LEN), allocatable :: moving_warnings(:)
 
+        allocate (moving_warnings(0))
         if (adapt%refine == REFINE_HP) then
             allocate (hp_refiner_t :: refiner)
         else
@@ -244,12 +253,15 @@ contains
         else
             if (stat%ok() .and. goal%factored) call report_last_level(scn, goal, out, lambda, &
                                                                       res, timings, stat)
+            if (stat%ok() .and. goal%factored) call track_moving(goal, out, res%estimate, &
+                                                                 moving_warnings)
             out%estimate = res%estimate
         end if
         if (goal%factored) call goal%chol%free()
         if (.not. stat%ok()) return
         if (.not. out%converged) res%eigen%warnings = &
-            [character(len=len(res%eigen%warnings)) :: out%outcome, res%eigen%warnings]
+            [character(len=len(res%eigen%warnings)) :: out%outcome, moving_warnings, &
+             res%eigen%warnings]
         if (refiner%estimated()) res%eigen%warnings = [character(len=len(res%eigen%warnings)) &
             :: res%eigen%warnings, theta_warnings(adapt%theta)]
     end subroutine solve_adapted_thresholds
@@ -491,9 +503,64 @@ contains
             end associate
             this%targets(2) = this%targets(1)
         else
+            call note_profiles(this)
             call judge_hp(this, tolerance)
         end if
     end subroutine threshold_goal_judge
+
+    !> hp: the profiles of the last level's vectors (its problem, space and thresholds are
+    !> still in `this`), which the report follows over the levels (track_moving).
+    subroutine note_profiles(this)
+        class(threshold_goal_t), intent(inout) :: this
+        type(contact_ends_t) :: ends
+        integer :: side
+        if (size(this%levels) == 0 .or. .not. allocated(this%thr%vectors)) return
+        ends = contact_ends(this%prob)
+        associate (row => this%levels(size(this%levels)), prob => this%prob)
+            do side = SIDE_PLUS, SIDE_MINUS
+                if (.not. this%thr%found(side)) cycle
+                associate (value => level_profile(prob, ends, prob%contact%nodes <= &
+                           this%space%n_vertices, this%thr%lambda(side), &
+                           this%thr%vectors(:, side)))
+                    row%profile(:, side) = value%profile
+                    row%resolution = value%resolution
+                end associate
+            end do
+        end associate
+    end subroutine note_profiles
+
+    !> hp: what is known about each side of the last level that did not converge (its
+    !> values followed over the levels by their profiles, where its vector sits, the wedge
+    !> there), in `estimate`, and one warning per such side.
+    subroutine track_moving(goal, out, estimate, warnings)
+        type(threshold_goal_t), intent(in) :: goal
+        type(adaptive_thresholds_t), intent(in) :: out
+        type(threshold_estimate_t), intent(inout) :: estimate
+        character(len=WARNING_LEN), allocatable, intent(inout) :: warnings(:)
+        type(level_values_t), allocatable :: levels(:)
+        type(contact_ends_t) :: ends
+        integer :: side, i, k
+        k = size(out%levels)
+        if (k == 0) return
+        ends = contact_ends(goal%prob)
+        allocate (levels(k))
+        do side = SIDE_PLUS, SIDE_MINUS
+            if (goal%targets(side)%converged() .or. .not. out%levels(k)%found(side)) cycle
+            do i = 1, k
+                if (allocated(levels(i)%values)) deallocate (levels(i)%values)
+                allocate (levels(i)%values(merge(1, 0, out%levels(i)%found(side))))
+                if (.not. out%levels(i)%found(side)) cycle
+                levels(i)%values(1)%lambda = out%levels(i)%lambda(side)
+                levels(i)%values(1)%profile = out%levels(i)%profile(:, side)
+                levels(i)%values(1)%resolution = out%levels(i)%resolution
+            end do
+            estimate%moving(side) = track_side(levels, ends, goal%prob%poisson, &
+                                               max(out%levels(k)%roundoff(side), 0.0_wp))
+            if (.not. estimate%moving(side)%known) cycle
+            warnings = [character(len=WARNING_LEN) :: warnings, &
+                        moving_words(trim(SIDE_LABELS(side)), estimate%moving(side))]
+        end do
+    end subroutine track_moving
 
     !> hp, once the loop ends: each side's goal with a bar at the last level `last` (its
     !> threshold, or its collision onset carried to the check's blocks as a level carries

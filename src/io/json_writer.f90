@@ -1,7 +1,7 @@
 ! SPDX-License-Identifier: MIT
-!> A flat JSON object (string, number, logical and null members, and arrays of them), kept in
-!> insertion order and written in one go: enough for summary.json, with no JSON library to
-!> depend on.
+!> A JSON object (string, number, logical and null members, arrays of them, and objects of
+!> such members on one line), kept in insertion order and written in one go: enough for
+!> summary.json, with no JSON library to depend on.
 module json_writer
     use kinds, only: wp, i8
     use status, only: status_t, STATUS_IO
@@ -34,6 +34,7 @@ module json_writer
         procedure :: add_real_array => json_object_add_real_array
         procedure :: add_integer_array => json_object_add_integer_array
         procedure :: add_logical_array => json_object_add_logical_array
+        procedure :: add_object => json_object_add_object
         procedure :: to_text => json_object_to_text
         procedure :: write => json_object_write
     end type json_object_t
@@ -192,6 +193,23 @@ contains
         end do
         text = text//NL//'}'
     end function json_object_to_text
+
+    !> A member whose value is the object `value`, written on one line.
+    subroutine json_object_add_object(this, key, value)
+        class(json_object_t), intent(inout) :: this
+        character(len=*), intent(in) :: key
+        type(json_object_t), intent(in) :: value
+        character(len=:), allocatable :: text
+        integer :: i
+        text = '{'
+        if (allocated(value%members)) then
+            do i = 1, size(value%members)
+                if (i > 1) text = text//', '
+                text = text//'"'//escaped(value%members(i)%key)//'": '//value%members(i)%value
+            end do
+        end if
+        call add_member(this, key, text//'}')
+    end subroutine json_object_add_object
 
     !> Write the object to file `path` (replacing it), ending with a line feed.
     subroutine json_object_write(this, path, stat)

@@ -29,6 +29,7 @@ module threshold_estimate
     use lapack_interfaces, only: dgetrf, dgetrs
     use problem, only: problem_t
     use enrichment, only: enrichment_t, build_enrichment
+    use moving_side, only: moving_side_t
     implicit none
     private
     public :: threshold_estimate_t, threshold_displacements, estimate_threshold_errors
@@ -53,6 +54,9 @@ module threshold_estimate
         real(wp) :: seconds = 0.0_wp
         !> per side, why it was not computed ('' where it was, or where there is no threshold)
         character(len=200) :: skipped(2) = ''
+        !> hp: per side that did not converge, its values followed over the levels, where its
+        !> vector sits and the wedge there (moving_side; known false: none)
+        type(moving_side_t) :: moving(2)
     contains
         procedure :: record => threshold_estimate_record
     end type threshold_estimate_t

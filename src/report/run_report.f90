@@ -542,6 +542,7 @@ contains
                     d%level_change = d%estimate_label == HP_ESTIMATE
                     d%met_level = est%met_level(side)
                     d%skipped = trim(est%skipped(side))
+                    d%moving = est%moving(side)
                 end associate
             end do
             f%confirm_offset = CONFIRM_OFFSET

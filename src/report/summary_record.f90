@@ -12,6 +12,8 @@ module summary_record
     use json_writer, only: json_object_t
     use accuracy, only: WARNING_LEN
     use ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+    use moving_side, only: moving_side_t, moving_words, FAR_NAMES
+    use pencil_tracking, only: TRACK_NAMES, TRACK_MOVING
     implicit none
     private
     public :: summary_json, summary_text, boundary_lines
@@ -73,6 +75,9 @@ module summary_record
         !> (0: none)
         integer :: met_level = 0
         character(len=:), allocatable :: skipped   !! why no estimate ('' : no reason)
+        !> hp, a side that did not converge: its values over the levels, where its vector
+        !> sits, the wedge there (moving_side; known false: none)
+        type(moving_side_t) :: moving
     end type side_facts_t
 
     !> One boundary point of {lambda : a positive mu exists}.
@@ -421,6 +426,11 @@ contains
                 call summary%add_null('lambda_critical_'//trim(SIDE_NAME(side))//'_met_level')
             end if
         end do
+        ! hp: what is known of a side that did not converge (moving_side); null otherwise
+        do side = 1, 2
+            call add_moving(summary, 'lambda_critical_'//trim(SIDE_NAME(side))//'_moving', &
+                            f%side(side)%moving)
+        end do
         ! |lambda*| is the friction coefficient of the Signorini-Coulomb eigenproblem
         ! (model.md section 7), whether or not a positive mu appears there
         do side = 1, 2
@@ -435,6 +445,48 @@ contains
         call add_boundary_keys(summary, f)
         call summary%add_real('time_threshold_s', f%time_threshold)
     end subroutine add_threshold_keys
+
+    !> Key `key`: a side that did not converge (docs/outputs.md), as an object; null when
+    !> `side` is not known.
+    subroutine add_moving(summary, key, side)
+        type(json_object_t), intent(inout) :: summary
+        character(len=*), intent(in) :: key
+        type(moving_side_t), intent(in) :: side
+        type(json_object_t) :: object
+        if (.not. side%known) then
+            call summary%add_null(key)
+            return
+        end if
+        associate (v => side%verdict)
+            call object%add_string('verdict', trim(TRACK_NAMES(v%kind)))
+            call object%add_integer('levels', v%length)
+            call object%add_real('value', v%value)
+            call object%add_real_or_null('rate', v%rate, v%rate >= 0.0_wp)
+            ! an extrapolation of a value that moves, never a converged value
+            call object%add_real_or_null('limit', v%limit, v%has_limit .and. &
+                                         v%kind == TRACK_MOVING)
+            call object%add_real('s', side%s)
+            call object%add_real('length', side%length)
+            call object%add_real_array('point', side%point)
+            call object%add_logical('at_end', side%end > 0)
+            call object%add_real_or_null('end_share', v%end_share(max(side%end, 1)), &
+                                         side%end > 0)
+            call object%add_logical('concentrating', side%end > 0 .and. &
+                                    v%concentrating(max(side%end, 1)))
+            call object%add_real_or_null('corner_degrees', side%angle_degrees, &
+                                         side%end > 0 .and. side%far > 0)
+            if (side%end > 0 .and. side%far > 0) then
+                call object%add_string('other_side', trim(FAR_NAMES(side%far)))
+            else
+                call object%add_null('other_side')
+            end if
+            call object%add_real_or_null('wedge_lambda', side%wedge_lambda, side%has_exponent)
+            call object%add_real_or_null('wedge_exponent', side%exponent, side%has_exponent)
+            call object%add_real_or_null('wedge_crossing', side%crossing, side%has_crossing)
+            call object%add_logical('past_crossing', side%past_crossing)
+        end associate
+        call summary%add_object(key, object)
+    end subroutine add_moving
 
     !> The boundary points of {lambda : a positive mu exists} in the searched range, one
     !> array entry per point (ascending lambda), and the intervals they bound.
@@ -545,6 +597,8 @@ contains
                 else if (len(d%skipped) > 0) then
                     text = text//NL//'              relative error estimate '//d%skipped
                 end if
+                if (d%moving%known) text = text//NL//'              '// &
+                    moving_words('not converged: '//SIDE_LABEL(side), d%moving)
                 text = text//NL// &
                     '              just outside, lambda = '// &
                     real_to_text(d%lambda_outside)//': lowest positive mu = '// &

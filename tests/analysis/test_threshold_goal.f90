@@ -5,7 +5,8 @@
 !> blocks do not fit the memory stops the loop (before the first level: STATUS_NOT_MET), as
 !> max_levels does. With the left side clamped too, the two sides are independent targets:
 !> lambda+ is met at an early level and reported with that level's value and bar, which
-!> the later, finer levels confirm; lambda- appears and vanishes and is not met, with no bar.
+!> the later, finer levels confirm; lambda- appears and vanishes and is not met, with no bar,
+!> and where it has a value at the last level a warning says where its vector sits.
 program test_threshold_goal
     use kinds, only: wp, i8
     use run_inputs, only: run_inputs_t, translate_input
@@ -187,5 +188,14 @@ contains
                      .not. res%estimate%computed(SIDE_MINUS) .and. &
                      index(out%outcome, 'lambda-: tolerance') == 1 .and. &
                      index(out%outcome, 'max_levels = 9') > 0)
+        ! what is known of a side that did not converge: only of lambda-, followed where it
+        ! has a value at the last level, and then named in a warning of its own
+        call t%check('independent sides: nothing said of lambda+ (met) as moving', &
+                     .not. res%estimate%moving(SIDE_PLUS)%known)
+        call t%check('independent sides: lambda- followed where it has a value at the end', &
+                     res%estimate%moving(SIDE_MINUS)%known .eqv. out%levels(k)%found(SIDE_MINUS))
+        if (res%estimate%moving(SIDE_MINUS)%known) call t%check('independent sides: a '// &
+            'warning says where lambda- sits', any(index(res%eigen%warnings, 'lambda- = ') == 1 &
+            .and. index(res%eigen%warnings, 'its vector sits') > 0))
     end subroutine sides_are_independent
 end program test_threshold_goal

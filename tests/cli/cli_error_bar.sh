@@ -116,9 +116,13 @@ NML
     check "contact on the middle of a side, hp: exit 8 (got $code), no bar, the reason" \
         '[[ $code == 8 ]] && [[ $(jq -r .lowest_positive_error_bar "$work/middle_hp/summary.json") == null ]] &&
          grep -q "^warning: tolerance .* not met: mu does not converge under hp refinement" "$work/stdout"'
-    # and its thresholds: lambda+ moves by percents per level (235.5 at level 14 with the
-    # half-degree forces) and lambda- appears and vanishes; each side is its own target, so
-    # neither is met: exit 8, no bars, a warning naming the side (stalled or at a limit)
+    # and its thresholds: lambda+ moves by percents per level (420.1, 235.5 at levels 13 and
+    # 14 with the half-degree forces) and lambda- appears and vanishes (none at level 14);
+    # each side is its own target, so neither is met: exit 8, no bars, each side ends at
+    # binary64's limit of the grading (level 15), named; lambda+, which has a value at the
+    # last level, is followed over the levels by its vector (moving_side): it does not
+    # converge, and its vector sits inside Gamma_C, away from the ends, whose 180-degree
+    # wedges have no crossing (docs/thresholds.md)
     "$nceig" "$work/middle.nml" --set mesh%file="$work/middle1.msh" \
         --set output%directory="$work/middle_hp_threshold" --set adapt%tolerance=1e-10 \
         --set adapt%strategy=hp --set analysis%kind=threshold >"$work/stdout" 2>&1
@@ -127,7 +131,14 @@ NML
     check "contact on the middle of a side, hp thresholds: exit 8 (got $code), no bars" \
         '[[ $code == 8 ]] && [[ $(jq -r .lambda_critical_plus_error_bar "$s") == null ]] &&
          [[ $(jq -r .lambda_critical_minus_error_bar "$s") == null ]] &&
-         grep -q "^warning: lambda[+-]: tolerance .* not met" "$work/stdout"'
+         grep -q "^warning: lambda+: tolerance 1.00E-10 not met: level 15.s cells at the singular points .* binary64.*; lambda-: tolerance 1.00E-10 not met: level 15.s cells" "$work/stdout"'
+    check 'contact on the middle of a side, hp thresholds: lambda+ not converging, inside Gamma_C' \
+        'jq -e ".lambda_critical_plus_moving | (.verdict == \"moving\" or .verdict == \"too short\")
+                and .at_end == false and .past_crossing == false" "$s" >/dev/null &&
+         grep -q "^warning: lambda+ = .* its vector sits inside Gamma_C" "$work/stdout" &&
+         grep -q "^              not converged: lambda+ = " "$work/stdout"'
+    check 'contact on the middle of a side, hp thresholds: nothing followed of lambda- (no value)' \
+        '[[ $(jq -r ".lambda_critical_minus, .lambda_critical_minus_moving" "$s") == $(printf "null\nnull") ]]'
 
     # A boundary point where two positive mu meet (complex_pair) has a bar from the problem
     # one degree higher: the example's point (P2, h = 1/16) against P3 on h = 1/32, whose

@@ -1,5 +1,6 @@
 ! SPDX-License-Identifier: MIT
-!> summary.json's writer: exact text, null for non-finite reals, exact round trip of reals.
+!> summary.json's writer: exact text, null for non-finite reals, exact round trip of reals,
+!> arrays and objects as members.
 program test_json_writer
     use kinds, only: wp, i8
     use status, only: status_t
@@ -9,7 +10,7 @@ program test_json_writer
     use fixtures, only: file_text
     implicit none
     type(test_suite_t) :: t
-    type(json_object_t) :: object, numbers, arrays
+    type(json_object_t) :: object, numbers, arrays, inner, empty, nested
     type(status_t) :: stat
     character(len=:), allocatable :: text, expected
     character(len=*), parameter :: NL = new_line('a')
@@ -81,6 +82,16 @@ program test_json_writer
                  arrays%to_text() == '{'//NL//'  "r": [-1.5, null, 2.0],'//NL// &
                  '  "i": [2, 0, -7],'//NL//'  "l": [true, false],'//NL// &
                  '  "s": ["pencil", "a\"b"],'//NL//'  "none": []'//NL//'}')
+
+    ! An object as a member: its members on one line, ', ' between, {} when empty.
+    call inner%add_string('verdict', 'moving')
+    call inner%add_real_array('point', [1.5_wp, 0.0_wp])
+    call inner%add_null('limit')
+    call nested%add_object('side', inner)
+    call nested%add_object('empty', empty)
+    call t%check('an object member on one line, and an empty one', nested%to_text() == &
+                 '{'//NL//'  "side": {"verdict": "moving", "point": [1.5, 0.0], '// &
+                 '"limit": null},'//NL//'  "empty": {}'//NL//'}')
 
     ! gfortran 12 keeps main-program allocatables in a frame gone before LeakSanitizer
     ! looks: free them here so a sanitizer build reports only real leaks.

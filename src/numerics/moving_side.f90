@@ -1,0 +1,280 @@
+! SPDX-License-Identifier: MIT
+!> What a threshold run can tell about a side (lambda+ or lambda-) that does not converge
+!> over hp levels (docs/thresholds.md): its values followed across the levels by their
+!> vectors' profiles on Gamma_C (pencil_tracking), the verdict on that chain (converging or
+!> moving, the fitted factor of its changes per level, Aitken's limit where the factor is
+!> clear), the point of Gamma_C its last vector concentrates at, and, where that is an end,
+!> the elastic wedge there (wedge_exponents): an exponent with a negative real part at the
+!> side's value means the continuum's critical mode has infinite energy at that end, and the
+!> pencil is not boundedly invertible there, so the continuum may have no isolated value.
+module moving_side
+    use kinds, only: wp
+    use strings, only: short_real_text, to_string
+    use real_format, only: real_to_text
+    use problem, only: problem_t
+    use pencil_tracking, only: N_PROFILE_BINS, pencil_value_t, level_values_t, &
+                               track_verdict_t, track_chain, classify_chain, &
+                               pencil_profile_bins, TRACK_CONVERGING, TRACK_MOVING
+    use wedge_exponents, only: wedge_roots, contact_free_crossing, contact_clamped_crossing, &
+                               WEDGE_CONTACT, WEDGE_FREE, WEDGE_CLAMPED
+    implicit none
+    private
+    public :: moving_side_t, contact_ends_t, contact_ends, level_profile, track_side, &
+              moving_words, FAR_NAMES, END_SHARE_AT
+
+    real(wp), parameter :: PI = acos(-1.0_wp)
+    !> a vector with at least this share of its forces within 2^-6 of an end sits at that end
+    real(wp), parameter :: END_SHARE_AT = 0.5_wp
+    !> the exponents searched: real parts in (RE_MIN, RE_MAX), imaginary parts below IM_BOX
+    real(wp), parameter :: RE_MIN = -0.999_wp, RE_MAX = 1.5_wp, IM_BOX = 0.5_wp
+    !> the other side's condition at an end, by WEDGE_FREE, WEDGE_CLAMPED (0: unknown)
+    !> the side of a crossing is read from the exponent this far (in lambda) beyond it
+    real(wp), parameter :: CROSSING_STEP = 0.1_wp
+    character(len=*), parameter :: FAR_NAMES(0:2) = [character(len=7) :: 'unknown', 'free', &
+                                                      'clamped']
+
+    !> The two ends of Gamma_C (1: the one t points away from, s = 0; 2: the one it points
+    !> to, s = 1), the interior angle of the body at each and the condition of the other side
+    !> there (WEDGE_FREE or WEDGE_CLAMPED; 0: unknown, e.g. Gamma_C ends inside a side).
+    type :: contact_ends_t
+        real(wp) :: point(2, 2) = 0.0_wp       !! (x y, end)
+        real(wp) :: angle(2) = 0.0_wp          !! radians
+        integer :: far(2) = 0
+        real(wp) :: s_min = 0.0_wp, s_max = 0.0_wp   !! positions along t of the ends
+    end type contact_ends_t
+
+    !> What is known about one side that did not converge (known: it has a value at the
+    !> last level).
+    type :: moving_side_t
+        logical :: known = .false.
+        type(track_verdict_t) :: verdict
+        real(wp) :: length = 0.0_wp         !! of Gamma_C
+        real(wp) :: s = 0.0_wp              !! where the last vector sits: distance from end 1
+        integer :: end = 0                  !! the end it sits at (0: neither)
+        real(wp) :: point(2) = 0.0_wp       !! that end, else the point at s
+        !> the wedge at that end: its angle (degrees), the other side's condition, the
+        !> wedge's own lambda (the side's value at end 2, its negative at end 1), its
+        !> exponent nearest Re alpha = 0 in -1 < Re alpha < 1.5 (has_exponent: one was
+        !> found), the lambda where a real exponent crosses 0 (has_crossing: the corner has
+        !> one), and whether the wedge's lambda lies beyond it, away from 0, where an exponent
+        !> has passed Re alpha = 0 (past_crossing: the pencil is not boundedly invertible at
+        !> that end, docs/thresholds.md)
+        real(wp) :: angle_degrees = 0.0_wp
+        integer :: far = 0
+        real(wp) :: wedge_lambda = 0.0_wp
+        logical :: has_exponent = .false.
+        real(wp) :: exponent = 0.0_wp
+        logical :: has_crossing = .false.
+        real(wp) :: crossing = 0.0_wp
+        logical :: past_crossing = .false.
+    end type moving_side_t
+
+contains
+
+    !> The ends of Gamma_C of `prob`, the body's angle at each and the other side's condition.
+    function contact_ends(prob) result(ends)
+        type(problem_t), intent(in) :: prob
+        type(contact_ends_t) :: ends
+        real(wp) :: s, inward(2), along(2), d(2)
+        integer :: e, k, node(2), other, j
+        ends%s_min = huge(1.0_wp)
+        ends%s_max = -huge(1.0_wp)
+        node = 0
+        do e = 1, size(prob%mesh%edge_part)
+            if (prob%mesh%edge_part(e) /= prob%contact_part) cycle
+            do k = 1, 2
+                s = dot_product(prob%mesh%coords(:, prob%mesh%edges(k, e)), prob%contact%tangent)
+                if (s < ends%s_min) then
+                    ends%s_min = s
+                    node(1) = prob%mesh%edges(k, e)
+                end if
+                if (s > ends%s_max) then
+                    ends%s_max = s
+                    node(2) = prob%mesh%edges(k, e)
+                end if
+            end do
+        end do
+        if (any(node == 0)) return
+        inward = -prob%contact%normal
+        do j = 1, 2
+            ends%point(:, j) = prob%mesh%coords(1:2, node(j))
+            along = prob%contact%tangent*merge(1.0_wp, -1.0_wp, j == 1)   ! into Gamma_C
+            do e = 1, size(prob%mesh%edge_part)
+                if (prob%mesh%edge_part(e) == prob%contact_part) cycle
+                if (all(prob%mesh%edges(1:2, e) /= node(j))) cycle
+                other = merge(prob%mesh%edges(2, e), prob%mesh%edges(1, e), &
+                              prob%mesh%edges(1, e) == node(j))
+                d = prob%mesh%coords(1:2, other) - ends%point(:, j)
+                ! the angle from Gamma_C to the other side through the body
+                ends%angle(j) = atan2(dot_product(d, inward), dot_product(d, along))
+                if (ends%angle(j) <= 0.0_wp) ends%angle(j) = ends%angle(j) + 2.0_wp*PI
+                ends%far(j) = WEDGE_FREE
+                if (allocated(prob%dirichlet_parts)) then
+                    if (any(prob%dirichlet_parts == prob%mesh%edge_part(e))) &
+                        ends%far(j) = WEDGE_CLAMPED
+                end if
+                exit
+            end do
+        end do
+    end function contact_ends
+
+    !> The profile of a level's vector `x` of one side (forces on the contact functions of
+    !> `prob`; `vertex`: which are vertex functions, the others left out), with the level's
+    !> smallest contact cell relative to the length of Gamma_C as its resolution.
+    function level_profile(prob, ends, vertex, lambda, x) result(value)
+        type(problem_t), intent(in) :: prob
+        type(contact_ends_t), intent(in) :: ends
+        logical, intent(in) :: vertex(:)
+        real(wp), intent(in) :: lambda, x(:)
+        type(pencil_value_t) :: value
+        real(wp), allocatable :: s(:)
+        real(wp) :: length, h
+        integer :: a, e
+        value%lambda = lambda
+        length = ends%s_max - ends%s_min
+        if (length <= 0.0_wp) return
+        allocate (s(size(vertex)), source=0.0_wp)
+        do a = 1, size(vertex)
+            if (vertex(a)) s(a) = (dot_product(prob%mesh%coords(:, prob%contact%nodes(a)), &
+                                               prob%contact%tangent) - ends%s_min)/length
+        end do
+        value%profile = pencil_profile_bins(pack(s, vertex), pack(x, vertex))
+        h = length
+        do e = 1, size(prob%mesh%edge_part)
+            if (prob%mesh%edge_part(e) /= prob%contact_part) cycle
+            h = min(h, norm2(prob%mesh%coords(:, prob%mesh%edges(2, e)) - &
+                             prob%mesh%coords(:, prob%mesh%edges(1, e))))
+        end do
+        value%resolution = h/length
+    end function level_profile
+
+    !> The side's chain through `levels` (each level's value of this side, none where it had
+    !> none; the last must have one), its verdict (`roundoff`: the last value's relative
+    !> round-off bound) and the wedge of the end its last vector sits at, for Poisson's
+    !> ratio `poisson`.
+    function track_side(levels, ends, poisson, roundoff) result(side)
+        type(level_values_t), intent(in) :: levels(:)
+        type(contact_ends_t), intent(in) :: ends
+        real(wp), intent(in) :: poisson, roundoff
+        type(moving_side_t) :: side
+        integer, allocatable :: chain(:)
+        real(wp), allocatable :: values(:), profiles(:, :)
+        complex(wp), allocatable :: roots(:)
+        logical :: complete
+        integer :: m, j, first, end
+        m = size(levels)
+        if (m == 0) return
+        if (.not. allocated(levels(m)%values)) return
+        if (size(levels(m)%values) == 0) return
+        chain = track_chain(levels, 1)
+        first = m - size(chain)
+        allocate (values(size(chain)), profiles(N_PROFILE_BINS, size(chain)))
+        do j = 1, size(chain)
+            values(j) = levels(first + j)%values(chain(j))%lambda
+            profiles(:, j) = levels(first + j)%values(chain(j))%profile
+        end do
+        side%known = .true.
+        side%verdict = classify_chain(values, profiles, roundoff)
+        side%length = ends%s_max - ends%s_min
+        side%s = max(side%verdict%where, 0.0_wp)*side%length
+        side%point = ends%point(:, 1) + (ends%point(:, 2) - ends%point(:, 1))* &
+                     max(side%verdict%where, 0.0_wp)
+        end = maxloc(side%verdict%end_share, dim=1)
+        if (side%verdict%end_share(end) < END_SHARE_AT .and. &
+            .not. side%verdict%concentrating(end)) return
+        side%end = end
+        side%point = ends%point(:, end)
+        side%angle_degrees = ends%angle(end)*180.0_wp/PI
+        side%far = ends%far(end)
+        if (side%far == 0) return
+        ! t points to end 2: the wedge there sees the side's lambda, end 1 its mirror image
+        side%wedge_lambda = merge(values(size(values)), -values(size(values)), end == 2)
+        call wedge_roots(WEDGE_CONTACT, side%far, ends%angle(end), poisson, &
+                         side%wedge_lambda, RE_MIN, RE_MAX, IM_BOX, roots, complete)
+        side%has_exponent = size(roots) > 0
+        if (side%has_exponent) side%exponent = real(roots(minloc(abs(real(roots, wp)), &
+                                                                 dim=1)), wp)
+        if (side%far == WEDGE_FREE) then
+            side%crossing = contact_free_crossing(ends%angle(end))
+        else
+            side%crossing = contact_clamped_crossing(ends%angle(end), poisson)
+        end if
+        side%has_crossing = abs(side%crossing) < 0.5_wp*huge(1.0_wp)
+        if (.not. side%has_crossing) return
+        ! past it: beyond the crossing, away from lambda = 0, where an exponent has passed
+        ! Re alpha = 0 (just before and just after the crossing the exponents with a negative
+        ! real part differ in number; one that only touched 0 and turned back would not count)
+        if (side%crossing*side%wedge_lambda <= 0.0_wp .or. &
+            abs(side%wedge_lambda) <= abs(side%crossing)) return
+        side%past_crossing = negative_exponents(-1.0_wp) /= negative_exponents(1.0_wp)
+
+    contains
+
+        !> The exponents with a negative real part (in the box searched) CROSSING_STEP before
+        !> (`towards` -1) or after (+1) the crossing, going away from lambda = 0.
+        integer function negative_exponents(towards) result(n)
+            real(wp), intent(in) :: towards
+            call wedge_roots(WEDGE_CONTACT, side%far, ends%angle(end), poisson, &
+                             side%crossing + towards*sign(CROSSING_STEP, side%crossing), &
+                             RE_MIN, RE_MAX, IM_BOX, roots, complete)
+            n = count(real(roots, wp) < 0.0_wp)
+        end function negative_exponents
+    end function track_side
+
+    !> One sentence on side `label` (lambda+, lambda-) for the warnings and stdout: how its
+    !> value moved, where its vector sits, and what the wedge there says.
+    function moving_words(label, side) result(text)
+        character(len=*), intent(in) :: label
+        type(moving_side_t), intent(in) :: side
+        character(len=:), allocatable :: text
+        text = ''
+        if (.not. side%known) return
+        associate (v => side%verdict)
+            text = label//' = '//short_real_text(v%value, 6)
+            select case (v%kind)
+            case (TRACK_MOVING)
+                text = text//' moves with the mesh over '//to_string(v%length)//' levels'
+            case (TRACK_CONVERGING)
+                if (v%rate >= 0.0_wp) then
+                    text = text//' settles over '//to_string(v%length)//' levels'
+                else   ! its last changes within round-off (classify_chain)
+                    text = text//' has settled to round-off over '//to_string(v%length)// &
+                        ' levels'
+                end if
+            case default
+                text = text//' has no value of its shape at the level before (followed '// &
+                    'over '//to_string(v%length)//' level'//trim(merge('s', ' ', &
+                    v%length > 1))//')'
+            end select
+            if (v%rate >= 0.0_wp) then
+                text = text//' (factor '//short_real_text(v%rate)//' per level'
+                if (v%has_limit .and. v%kind == TRACK_MOVING) text = text// &
+                    ', extrapolated limit '//short_real_text(v%limit, 6)//', not converged'
+                text = text//')'
+            end if
+            if (side%end == 0) then
+                text = text//'; its vector sits inside Gamma_C at ('// &
+                    short_real_text(side%point(1))//', '//short_real_text(side%point(2))//')'
+                return
+            end if
+            text = text//'; its vector sits at the end ('//real_to_text(side%point(1))// &
+                ', '//real_to_text(side%point(2))//') of Gamma_C ('// &
+                to_string(nint(100.0_wp*v%end_share(side%end)))//' % within 1/64 of it)'
+            if (side%far > 0) text = text//', a '//to_string(nint(side%angle_degrees))// &
+                '-degree corner beside a '//trim(FAR_NAMES(side%far))//' side'
+            if (side%has_exponent) text = text//', wedge exponent '// &
+                short_real_text(side%exponent)//' at lambda = '//short_real_text(side%wedge_lambda)
+            ! past the crossing a threshold can still exist, ill-conditioned (docs/thresholds.md)
+            if (side%past_crossing .and. v%kind == TRACK_CONVERGING) then
+                text = text//', past its crossing '//short_real_text(side%crossing)// &
+                    ': an ill-conditioned value there'
+            else if (side%past_crossing) then
+                text = text//', past its crossing '//short_real_text(side%crossing)// &
+                    ': the continuum may have no isolated value there'
+            else if (side%has_crossing) then   ! (no crossing: +-huge, whose product traps)
+                if (side%crossing*side%wedge_lambda > 0.0_wp) text = text// &
+                    ', before its crossing '//short_real_text(side%crossing)
+            end if
+        end associate
+    end function moving_words
+end module moving_side
