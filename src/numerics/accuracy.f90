@@ -15,7 +15,9 @@ module accuracy
     public :: WARNING_LEN, MU_VANISHED, FORWARD_ERROR_BOUND, BACKWARD_ERROR_BOUND, &
               LOCKING_RATIO_BOUND, LAMBDA_SENSITIVITY_BOUND
 
-    integer, parameter :: WARNING_LEN = 400
+    !> the longest warning kept whole (a moving side's, with its place and wedge, runs to
+    !> about 450 characters); every writer trims the blanks
+    integer, parameter :: WARNING_LEN = 1000
     !> Why an adaptive loop ends where a positive mu of its earlier levels is gone: such a mu
     !> moves with the mesh (grows like 1/h at nu = 0), a grid-scale mode with no continuum
     !> value; the run exits with the status of a tolerance not met.
