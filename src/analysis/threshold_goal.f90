@@ -56,7 +56,8 @@ module threshold_goal
     use contact_reduction, only: reduced_blocks_t, contact_flexibility
     use contact_boundary, only: assemble_b
     use critical_set, only: critical_set_t, find_critical_set, search_critical_set, &
-                            onset_point, side_offset, MECHANISM_COMPLEX_PAIR, MECHANISM_PENCIL
+                            onset_point, side_offset, MECHANISM_COMPLEX_PAIR, MECHANISM_PENCIL, &
+                            track_onsets
     use boundary_estimate, only: enriched_pair_lambdas, onset_bars_t
     use eigen_solve, only: eigen_result_t, eigen_with_factor, choose_solver
     use error_estimate, only: error_estimate_t, estimate_lowest_error
@@ -76,6 +77,9 @@ module threshold_goal
 
     !> coarse_scan_t: the largest level scanned at the end, in contact functions
     integer, parameter :: SCAN_CONTACT_MAX = 100
+    !> The first bracket (relative) of a collision onset the last level followed, when the
+    !> report carries the whole range to the same blocks: it is there to round-off.
+    real(wp), parameter :: TRACKED_WIDTH = 1.0e-9_wp
 
     !> One level of the loop: a row of adapt.csv, arrays by SIDE_PLUS, SIDE_MINUS.
     type, public :: threshold_level_t
@@ -393,8 +397,9 @@ contains
         character(len=:), allocatable, intent(inout) :: refused
         type(status_t), intent(out) :: stat
         type(status_t) :: memory
-        real(wp) :: start
+        real(wp) :: start, phase(3)
         integer :: onset(2), p
+        type(critical_set_t) :: previous
 
         p = level%prob%contact%p()
         if (this%memory_given) then
@@ -421,6 +426,7 @@ contains
             start = wall_time()
             call contact_flexibility(this%chol, prob%contact, blocks%kt_nn, blocks%kt_nt, stat)
             if (.not. stat%ok()) return
+            phase(1) = wall_time()
             blocks%mass = prob%contact%mass
             ! the thresholds, the positive set and its boundary with the forces of half the
             ! degree (docs/thresholds.md); `blocks` stay whole for the spectrum at lambda
@@ -429,18 +435,24 @@ contains
             if (stat%ok()) call threshold_roundoff(prob%k, this%chol, prob%contact, &
                 blocks%kt_nn, blocks%kt_nt, this%thr, stat)
             if (.not. stat%ok()) return
+            phase(2) = wall_time()
+            previous = set   ! the level before's: each side's onset is followed from it
             call onset_search(this%scan, this%restricted, this%thr, prob%dofs%n_free, &
-                              this%pencil_dofs, set, stat, this%scan_state%searched, &
-                              carry_width(this%levels))
+                              this%pencil_dofs, set, stat, previous, carry_width(this%levels), &
+                              this%scan_state)
             if (.not. stat%ok()) return
             call this%scan_state%note(this%restricted, this%thr%real_lambdas, set)
             call collision_onsets(set, onset)
             if (any(onset > 0)) call collision_roundoffs(prob%k, this%chol, prob%contact, &
                                                          this%restricted, set, stat, this%lift)
             if (.not. stat%ok()) return
-            call timings%add(PHASE_REDUCTION, wall_time() - start, ': contact blocks, '// &
-                             'thresholds and the boundary search ('// &
-                             to_string(set%n_evaluations)//' p x p solves), hp level '// &
+            phase(3) = wall_time()
+            call timings%add(PHASE_REDUCTION, phase(3) - start, ': contact blocks '// &
+                             seconds_text(phase(1) - start)//' s, thresholds '// &
+                             seconds_text(phase(2) - phase(1))//' s, '//search_words(set)// &
+                             ' '//seconds_text(phase(3) - phase(2))//' s ('// &
+                             to_string(set%n_evaluations)//' p x p solves at p = '// &
+                             to_string(size(this%restricted%kt_nn, 1))//'), hp level '// &
                              to_string(level%number))
             this%levels = [this%levels, level_row(level, this%thr, set, onset, loop_start)]
         end associate
@@ -453,6 +465,21 @@ contains
         this%levels(size(this%levels))%time_s = wall_time() - loop_start
         call timings%note(level_line(this%levels(size(this%levels)), 'hp level'))
     end subroutine solve_hp_level
+
+    !> How a level found its boundary points, for its progress line.
+    function search_words(set) result(words)
+        type(critical_set_t), intent(in) :: set
+        character(len=:), allocatable :: words
+        if (set%scan_contact == 0 .and. set%contact > 0) then
+            words = 'the onsets followed'
+        else if (set%scan_contact == 0) then
+            words = 'no boundary search'
+        else if (set%scan_contact == set%contact) then
+            words = 'the boundary scanned'
+        else
+            words = 'the boundary carried from p = '//to_string(set%scan_contact)
+        end if
+    end function search_words
 
     !> The row of `level` with its thresholds `thr` and collision onsets (`onset`, in `set`).
     type(threshold_level_t) function level_row(level, thr, set, onset, loop_start) result(row)
@@ -516,7 +543,7 @@ contains
         type(cholesky_t) :: chol
         type(reduced_blocks_t) :: blocks, restricted
         type(thresholds_t) :: thr
-        type(critical_set_t) :: set
+        type(critical_set_t) :: set, carried
         real(wp), allocatable :: lift(:, :)
         real(wp) :: before(2), after(2), roundoff(2), value, moved(2), begin, check_roundoff(2), &
                     check_value(2)
@@ -547,8 +574,11 @@ contains
                                                    blocks%kt_nn, blocks%kt_nt, thr, stat)
             onset = 0
             if (stat%ok() .and. any(row%collision)) then
-                call search_critical_set(restricted, this%scan, thr%real_lambdas, set, stat, &
-                                         this%set)
+                carried = this%set
+                if (this%set%scan_contact == 0) call this%scan_state%coarse_set(this%scan, &
+                    size(restricted%kt_nn, 1), carried, stat, this%set)
+                if (stat%ok()) call search_critical_set(restricted, this%scan, &
+                    thr%real_lambdas, set, stat, carried, near=carry_width(this%levels))
                 if (stat%ok()) call collision_onsets(set, onset)
                 if (stat%ok() .and. any(onset > 0)) call collision_roundoffs(check%prob%k, &
                     chol, check%prob%contact, restricted, set, stat, lift)
@@ -752,10 +782,12 @@ contains
                                        goal%restricted, res%thresholds, res%set, stat, &
                                        known=goal%set, lift=goal%lift)
             else
+                ! the onsets the last level followed are located on these very blocks
                 call goal%scan_state%coarse_set(goal%scan, size(goal%restricted%kt_nn, 1), &
-                                                coarse, stat)
+                                                coarse, stat, goal%set)
                 if (stat%ok()) call confirm_and_bound(scn, prob, lambda, goal%scan, goal%chol, &
-                    goal%restricted, res%thresholds, res%set, stat, coarse, lift=goal%lift)
+                    goal%restricted, res%thresholds, res%set, stat, coarse, lift=goal%lift, &
+                    near=TRACKED_WIDTH)
             end if
             if (.not. stat%ok()) return
             k = size(out%levels)
@@ -879,8 +911,16 @@ contains
     !> `pencil_dofs`, the last level it held on: at every level the check cost as much as
     !> the rest of input/threshold_adapt.nml (scan: twice that), for an answer that does
     !> not change there. With `previous` (the set a coarser level found, if it searched),
-    !> its points are carried (carry_critical_set) unless the structure differs here.
-    subroutine onset_search(scan, blocks, thr, n_free, pencil_dofs, set, stat, previous, near)
+    !> its points are carried (carry_critical_set) unless the structure differs here. With
+    !> `state` (hp), `previous` is the level before's set, whose onsets are followed alone
+    !> (track_onsets: the bars need no more), and where that fails, the set of the last level
+    !> that searched is carried, else, the first time a level searches, the scan of a level
+    !> of at most SCAN_CONTACT_MAX contact functions (coarse_set): a scan of a late level
+    !> costs a hundred solves at its p (4.4 of the 13 s of the slanted top to 1e-8,
+    !> scripts/bench/bench_thresholds.sh). The last level's whole range is then carried for
+    !> the report from these onsets (coarse_set, `tracked`).
+    subroutine onset_search(scan, blocks, thr, n_free, pencil_dofs, set, stat, previous, near, &
+                            state)
         real(wp), intent(in) :: scan(:)   !! the lambdas of the search
         type(reduced_blocks_t), intent(in) :: blocks
         type(thresholds_t), intent(in) :: thr
@@ -890,9 +930,11 @@ contains
         type(status_t), intent(out) :: stat
         type(critical_set_t), intent(in), optional :: previous
         real(wp), intent(in), optional :: near   !! search_critical_set's
+        type(coarse_scan_t), intent(in), optional :: state
+        type(critical_set_t) :: coarse
         real(wp) :: mu, inside
-        logical :: found, search
-        integer :: side, n_positive
+        logical :: found, search, tracked
+        integer :: side, n_positive, tried
 
         allocate (set%points(0))
         search = .not. all(thr%found)
@@ -906,8 +948,24 @@ contains
         end do
         pencil_dofs = 0
         if (.not. search) pencil_dofs = n_free
-        if (search) call search_critical_set(blocks, scan, thr%real_lambdas, set, stat, &
-                                             previous, near=near)
+        if (.not. search) return
+        if (present(state)) then
+            tried = 0
+            if (present(previous) .and. state%searched%scan_contact > 0) then
+                call track_onsets(blocks, previous, thr, set, tracked, stat, near)
+                if (.not. stat%ok() .or. tracked) return
+                tried = set%n_evaluations
+            end if
+            call state%coarse_set(scan, size(blocks%kt_nn, 1), coarse, stat)
+            if (stat%ok()) call search_critical_set(blocks, scan, thr%real_lambdas, set, stat, &
+                                                    coarse, near=near)
+            if (stat%ok()) set%n_evaluations = set%n_evaluations + tried
+            if (stat%ok() .and. state%searched%scan_contact == 0) &
+                set%n_evaluations = set%n_evaluations + coarse%n_evaluations
+        else
+            call search_critical_set(blocks, scan, thr%real_lambdas, set, stat, previous, &
+                                     near=near)
+        end if
     end subroutine onset_search
 
     !> hp: how near (relative) the previous level's collision points are expected on the
@@ -1160,15 +1218,28 @@ contains
     !> The set for a last level of `p_last` contact functions to carry: the searched one, else
     !> the scan of the noted blocks where they have at most half as many contact functions
     !> (its solves in set%n_evaluations), else none (scan_contact 0: the last level scans).
-    subroutine coarse_scan_coarse_set(this, scan, p_last, set, stat)
+    subroutine coarse_scan_coarse_set(this, scan, p_last, set, stat, tracked)
         class(coarse_scan_t), intent(in) :: this
         real(wp), intent(in) :: scan(:)   !! the lambdas of the search
         integer, intent(in) :: p_last
         type(critical_set_t), intent(out) :: set
         type(status_t), intent(out) :: stat
+        !> the onsets a later level followed (track_onsets): the searched set's collision
+        !> onsets move to them, so that they are bracketed where that level found them
+        type(critical_set_t), intent(in), optional :: tracked
+        integer :: side, i, j
         if (this%searched%scan_contact > 0) then
             set = this%searched
             set%n_evaluations = 0   ! counted where it was searched
+            if (.not. present(tracked)) return
+            if (tracked%scan_contact > 0 .or. .not. allocated(tracked%points)) return
+            do side = SIDE_PLUS, SIDE_MINUS
+                i = onset_point(set, side)
+                j = onset_point(tracked, side)
+                if (i == 0 .or. j == 0) cycle
+                if (set%points(i)%mechanism /= MECHANISM_COMPLEX_PAIR) cycle
+                set%points(i)%lambda = tracked%points(j)%lambda
+            end do
         else if (allocated(this%pencil)) then
             if (2*size(this%blocks%kt_nn, 1) <= p_last) call find_critical_set(this%blocks, &
                 scan, this%pencil, set, stat)
