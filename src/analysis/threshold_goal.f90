@@ -57,7 +57,7 @@ module threshold_goal
     use contact_boundary, only: assemble_b
     use critical_set, only: critical_set_t, find_critical_set, search_critical_set, &
                             onset_point, side_offset, MECHANISM_COMPLEX_PAIR, MECHANISM_PENCIL, &
-                            track_onsets
+                            track_onsets, boundary_point_t
     use boundary_estimate, only: enriched_pair_lambdas, onset_bars_t
     use eigen_solve, only: eigen_result_t, eigen_with_factor, choose_solver
     use error_estimate, only: error_estimate_t, estimate_lowest_error
@@ -126,16 +126,24 @@ module threshold_goal
         type(critical_set_t) :: coarse
     end type adaptive_thresholds_t
 
+    !> A level's restricted contact blocks and real pencil values, for a scan at the end.
+    type :: noted_level_t
+        type(reduced_blocks_t) :: blocks
+        real(wp), allocatable :: pencil(:)
+    end type noted_level_t
+
     !> The boundary of the positive set for a loop's last level, found cheaply: the set of the
-    !> last level that searched it (onset_search), else a scan of the last level with at most
-    !> SCAN_CONTACT_MAX contact functions, made once at the end (coarse_set); the last level
-    !> then carries its points (carry_critical_set). The scan's hundred dense p x p solves cost
+    !> last level that searched it (onset_search), else a scan of the largest level with at
+    !> most SCAN_CONTACT_MAX contact functions and at most half the last level's, made once
+    !> at the end (coarse_set); the last level then carries its points (carry_critical_set),
+    !> each side's onset bracketed where the last level followed it (merge_onsets). The scan's hundred dense p x p solves cost
     !> 1/8 or less of the last level's (hp to 1e-10 on the reference scene: 75 of 291
     !> contact functions; before, the scan on the last level took three times the loop).
     type, public :: coarse_scan_t
         type(critical_set_t) :: searched   !! scan_contact 0: no level searched
-        type(reduced_blocks_t), private :: blocks
-        real(wp), allocatable, private :: pencil(:)
+        !> every level of at most SCAN_CONTACT_MAX contact functions, coarsest first: the
+        !> scan takes the largest with at most half the last level's
+        type(noted_level_t), allocatable, private :: noted(:)
     contains
         procedure :: note => coarse_scan_note
         procedure :: coarse_set => coarse_scan_coarse_set
@@ -436,10 +444,15 @@ contains
                 blocks%kt_nn, blocks%kt_nt, this%thr, stat)
             if (.not. stat%ok()) return
             phase(2) = wall_time()
-            previous = set   ! the level before's: each side's onset is followed from it
-            call onset_search(this%scan, this%restricted, this%thr, prob%dofs%n_free, &
-                              this%pencil_dofs, set, stat, previous, carry_width(this%levels), &
-                              this%scan_state)
+            if (size(this%levels) == 0) then   ! the first level scans where it searches
+                call onset_search(this%scan, this%restricted, this%thr, prob%dofs%n_free, &
+                                  this%pencil_dofs, set, stat, state=this%scan_state)
+            else   ! each side's onset followed from the level before's
+                previous = set
+                call onset_search(this%scan, this%restricted, this%thr, prob%dofs%n_free, &
+                                  this%pencil_dofs, set, stat, previous, &
+                                  carry_width(this%levels), this%scan_state)
+            end if
             if (.not. stat%ok()) return
             call this%scan_state%note(this%restricted, this%thr%real_lambdas, set)
             call collision_onsets(set, onset)
@@ -549,7 +562,7 @@ contains
                     check_value(2)
         character(len=:), allocatable :: why, head
         integer :: side, onset(2), m
-        logical :: has_check(2)
+        logical :: has_check(2), tracked
 
         if (size(this%levels) == 0) return
         begin = wall_time()
@@ -574,11 +587,18 @@ contains
                                                    blocks%kt_nn, blocks%kt_nt, thr, stat)
             onset = 0
             if (stat%ok() .and. any(row%collision)) then
-                carried = this%set
-                if (this%set%scan_contact == 0) call this%scan_state%coarse_set(this%scan, &
-                    size(restricted%kt_nn, 1), carried, stat, this%set)
-                if (stat%ok()) call search_critical_set(restricted, this%scan, &
-                    thr%real_lambdas, set, stat, carried, near=carry_width(this%levels))
+                ! the check needs the onsets alone: followed from the level's, as a level
+                ! follows them (track_onsets), else the whole range carried
+                tracked = .false.
+                if (this%set%lambda_max > this%set%lambda_min) call track_onsets(restricted, &
+                    this%set, thr, set, tracked, stat, carry_width(this%levels))
+                if (stat%ok() .and. .not. tracked) then
+                    carried = this%set
+                    if (this%set%scan_contact == 0) call this%scan_state%coarse_set( &
+                        this%scan, size(restricted%kt_nn, 1), carried, stat, this%set)
+                    if (stat%ok()) call search_critical_set(restricted, this%scan, &
+                        thr%real_lambdas, set, stat, carried, near=carry_width(this%levels))
+                end if
                 if (stat%ok()) call collision_onsets(set, onset)
                 if (stat%ok() .and. any(onset > 0)) call collision_roundoffs(check%prob%k, &
                     chol, check%prob%contact, restricted, set, stat, lift)
@@ -767,7 +787,9 @@ contains
         type(status_t), intent(out) :: stat
         real(wp) :: begin
         integer :: side, i, k, m
-        type(critical_set_t) :: coarse
+        type(critical_set_t) :: coarse, followed
+        logical :: tracked
+        real(wp) :: spectrum
         begin = wall_time()
         associate (prob => goal%prob, blocks => goal%blocks, thr => goal%thr)
             res%eigen%solver = choose_solver(goal%options, prob%contact%p())
@@ -777,6 +799,7 @@ contains
                                                   timings, stat, blocks%kt_nn, blocks%kt_nt)
             res%thresholds = thr
             if (.not. stat%ok()) return
+            spectrum = wall_time()
             if (goal%set%scan_contact > 0) then   ! the last level searched: its set stands
                 call confirm_and_bound(scn, prob, lambda, goal%scan, goal%chol, &
                                        goal%restricted, res%thresholds, res%set, stat, &
@@ -785,11 +808,22 @@ contains
                 ! the onsets the last level followed are located on these very blocks
                 call goal%scan_state%coarse_set(goal%scan, size(goal%restricted%kt_nn, 1), &
                                                 coarse, stat, goal%set)
+                ! a last level that followed nothing: its onsets first, from the coarse ones
+                if (stat%ok() .and. goal%set%contact == 0 .and. coarse%scan_contact > 0) then
+                    call track_onsets(goal%restricted, coarse, thr, followed, tracked, stat)
+                    if (stat%ok() .and. tracked) call merge_onsets(coarse, followed)
+                    coarse%n_evaluations = coarse%n_evaluations + followed%n_evaluations
+                end if
                 if (stat%ok()) call confirm_and_bound(scn, prob, lambda, goal%scan, goal%chol, &
                     goal%restricted, res%thresholds, res%set, stat, coarse, lift=goal%lift, &
                     near=TRACKED_WIDTH)
             end if
             if (.not. stat%ok()) return
+            call timings%note('thresholds of the last level: the spectrum at lambda '// &
+                seconds_text(spectrum - begin)//' s, the confirmations and '// &
+                search_words(res%set)//' '//seconds_text(wall_time() - spectrum)//' s ('// &
+                to_string(res%set%n_evaluations)//' p x p solves at p = '// &
+                to_string(size(goal%restricted%kt_nn, 1))//')')
             k = size(out%levels)
             res%estimate%method = HP_ESTIMATE
             do side = SIDE_PLUS, SIDE_MINUS
@@ -951,8 +985,13 @@ contains
         if (.not. search) return
         if (present(state)) then
             tried = 0
-            if (present(previous) .and. state%searched%scan_contact > 0) then
-                call track_onsets(blocks, previous, thr, set, tracked, stat, near)
+            if (present(previous)) then
+                if (previous%lambda_max > previous%lambda_min) then
+                    call track_onsets(blocks, previous, thr, set, tracked, stat, near)
+                else   ! no level searched: both onsets were their pencil values
+                    call track_onsets(blocks, pencil_onsets(thr, scan), thr, set, tracked, &
+                                      stat, near)
+                end if
                 if (.not. stat%ok() .or. tracked) return
                 tried = set%n_evaluations
             end if
@@ -967,6 +1006,22 @@ contains
                                      near=near)
         end if
     end subroutine onset_search
+
+    !> Both sides' onsets as the pencil values of `thr` (every side found), over the range
+    !> of `scan`: where track_onsets starts when no level has searched.
+    type(critical_set_t) function pencil_onsets(thr, scan) result(set)
+        type(thresholds_t), intent(in) :: thr
+        real(wp), intent(in) :: scan(:)
+        integer :: side
+        set%lambda_min = minval(scan)
+        set%lambda_max = maxval(scan)
+        allocate (set%points(0))
+        do side = SIDE_MINUS, SIDE_PLUS, SIDE_PLUS - SIDE_MINUS
+            if (.not. thr%found(side)) cycle
+            set%points = [set%points, boundary_point_t(lambda=thr%lambda(side), &
+                          mechanism=MECHANISM_PENCIL, appears=side == SIDE_PLUS)]
+        end do
+    end function pencil_onsets
 
     !> hp: how near (relative) the previous level's collision points are expected on the
     !> next level: 8 times the largest relative change between the last two levels (the
@@ -1208,9 +1263,16 @@ contains
         type(reduced_blocks_t), intent(in) :: blocks
         real(wp), intent(in) :: pencil(:)
         type(critical_set_t), intent(in) :: set
+        type(noted_level_t), allocatable :: noted(:)
+        integer :: n
         if (size(blocks%kt_nn, 1) <= SCAN_CONTACT_MAX) then
-            this%blocks = blocks
-            this%pencil = pencil
+            if (.not. allocated(this%noted)) allocate (this%noted(0))
+            n = size(this%noted)
+            allocate (noted(n + 1))
+            noted(1:n) = this%noted
+            noted(n + 1)%blocks = blocks
+            noted(n + 1)%pencil = pencil
+            call move_alloc(noted, this%noted)
         end if
         if (set%scan_contact > 0) this%searched = set
     end subroutine coarse_scan_note
@@ -1224,25 +1286,48 @@ contains
         integer, intent(in) :: p_last
         type(critical_set_t), intent(out) :: set
         type(status_t), intent(out) :: stat
-        !> the onsets a later level followed (track_onsets): the searched set's collision
-        !> onsets move to them, so that they are bracketed where that level found them
+        !> the onsets a later level followed (track_onsets), merged in (merge_onsets)
         type(critical_set_t), intent(in), optional :: tracked
-        integer :: side, i, j
+        integer :: i
         if (this%searched%scan_contact > 0) then
             set = this%searched
             set%n_evaluations = 0   ! counted where it was searched
-            if (.not. present(tracked)) return
-            if (tracked%scan_contact > 0 .or. .not. allocated(tracked%points)) return
-            do side = SIDE_PLUS, SIDE_MINUS
-                i = onset_point(set, side)
-                j = onset_point(tracked, side)
-                if (i == 0 .or. j == 0) cycle
-                if (set%points(i)%mechanism /= MECHANISM_COMPLEX_PAIR) cycle
-                set%points(i)%lambda = tracked%points(j)%lambda
+        else if (allocated(this%noted)) then
+            do i = size(this%noted), 1, -1
+                associate (noted => this%noted(i))
+                    if (2*size(noted%blocks%kt_nn, 1) > p_last) cycle
+                    call find_critical_set(noted%blocks, scan, noted%pencil, set, stat)
+                    exit
+                end associate
             end do
-        else if (allocated(this%pencil)) then
-            if (2*size(this%blocks%kt_nn, 1) <= p_last) call find_critical_set(this%blocks, &
-                scan, this%pencil, set, stat)
         end if
+        if (present(tracked)) call merge_onsets(set, tracked)
     end subroutine coarse_scan_coarse_set
+
+    !> Each side's onset in `set` (searched or scanned) becomes the collision `tracked`
+    !> followed (track_onsets) on that side, or a pencil point where it followed none
+    !> (carry_pairs takes the pencil points afresh), so that a carry brackets each where it
+    !> was followed. Nothing where `set` has no search or `tracked` followed nothing.
+    pure subroutine merge_onsets(set, tracked)
+        type(critical_set_t), intent(inout) :: set
+        type(critical_set_t), intent(in) :: tracked
+        integer :: side, i, j
+        if (set%scan_contact == 0) return
+        if (tracked%scan_contact > 0 .or. tracked%contact == 0) return
+        do side = SIDE_PLUS, SIDE_MINUS
+            i = onset_point(set, side)
+            j = onset_point(tracked, side)
+            if (j > 0) then
+                if (i > 0) then
+                    set%points(i) = tracked%points(j)
+                else if (side == SIDE_PLUS) then
+                    set%points = [set%points, tracked%points(j)]
+                else
+                    set%points = [tracked%points(j), set%points]
+                end if
+            else if (i > 0) then
+                set%points(i)%mechanism = MECHANISM_PENCIL
+            end if
+        end do
+    end subroutine merge_onsets
 end module threshold_goal

@@ -40,6 +40,11 @@ module critical_set
     !> A carried collision point is first bracketed this close (relative): a coarse point is
     !> nearer than that to the fine one where the coarse thresholds have a few digits.
     real(wp), parameter :: CARRY_WIDTH = 1.0e-3_wp
+    !> The count bisection from a bracket `near` a carried point stops here: the pair is
+    !> still split by about sqrt(1e-6) = 1e-3 relative, plenty to tell it from the other
+    !> eigenvalues, and the discriminant's regula falsi, superlinear on its simple root,
+    !> does the rest in fewer solves than the bisection's 13 halvings to BISECTION_WIDTH.
+    real(wp), parameter :: NEAR_BISECTION_WIDTH = 1.0e-6_wp
 
     !> One boundary point of {lambda : a positive real mu exists}.
     type, public :: boundary_point_t
@@ -285,7 +290,12 @@ contains
             if ((count_a > 0) .neqv. (count_b > 0)) exit
         end do
         if ((count_a > 0) .eqv. (count_b > 0)) return
-        call pair_point(blocks, a, b, count_a, count_b, point, set, stat)
+        if (try == 1) then
+            call pair_point(blocks, a, b, count_a, count_b, point, set, stat, &
+                            NEAR_BISECTION_WIDTH)
+        else
+            call pair_point(blocks, a, b, count_a, count_b, point, set, stat)
+        end if
         if (stat%ok()) point%bracket = coarse_point%bracket
     end subroutine locate_pair
 
@@ -409,16 +419,18 @@ contains
     end subroutine search_critical_set
 
     !> Each side's onset (onset_point) followed from `previous` (the set of the level before:
-    !> searched, carried or tracked) to `blocks` without the structure of the whole range:
+    !> searched, carried or followed) to `blocks` without the structure of the whole range:
     !> a complex_pair onset located again from a bracket `near` (relative) around it
-    !> (locate_pair), a pencil onset kept where the pencil `thr` still has that side and no
-    !> positive mu just inside it, no onset kept where the pencil has none on that side;
-    !> on each side one count halfway from 0 to the onset (or to the range's end) must find
-    !> no positive mu. `set` holds the complex_pair onsets (scan_contact 0: not a search of
-    !> the range). `tracked` is false (search instead) where anything else is seen: the onset
-    !> moved beyond its pencil threshold, a side gained or lost its pencil value, a pair that
-    !> is not confirmed or turned. On hp levels this is what the bars need of every level
-    !> but the last, at about a third of the solves of a carry of the whole range.
+    !> (locate_pair); where that fails, or the onset was a pencil value, the side's pencil
+    !> value of `thr` is the onset if no positive mu exists just inside it, else the pair
+    !> that landed inside is located from halfway to just inside (as a scan brackets it);
+    !> no onset where the side had none and the pencil has none on that side. On each side
+    !> one count halfway from 0 to the onset (or to the range's end) must find no positive
+    !> mu. `set` holds the complex_pair onsets (scan_contact 0: not a search of the range).
+    !> `tracked` is false (search instead) where anything else is seen: a side gained or
+    !> lost its pencil value, a pair turned or is no longer confirmed. On hp levels this is
+    !> what the bars need of every level but the last, at a fraction of the solves of a
+    !> carry of the whole range.
     subroutine track_onsets(blocks, previous, thr, set, tracked, stat, near)
         type(reduced_blocks_t), intent(in) :: blocks
         type(critical_set_t), intent(in) :: previous
@@ -429,7 +441,8 @@ contains
         real(wp), intent(in), optional :: near
         type(boundary_point_t) :: point
         real(wp) :: probe
-        integer :: side, i, count_m
+        integer :: side, i, count_m, count_0
+        logical :: located
 
         tracked = .false.
         set%lambda_min = previous%lambda_min
@@ -440,7 +453,8 @@ contains
         allocate (set%points(0))
         ! no search before, or a range without both sides
         if (.not. (previous%lambda_min < 0.0_wp .and. previous%lambda_max > 0.0_wp)) return
-        ! what the pencil alone refuses, before any solve
+        ! what the pencil alone refuses, before any solve: a side that gained or lost its
+        ! pencil value
         do side = SIDE_PLUS, SIDE_MINUS
             i = onset_point(previous, side)
             if (i == 0) then
@@ -452,22 +466,47 @@ contains
         do side = SIDE_MINUS, SIDE_PLUS, SIDE_PLUS - SIDE_MINUS
             i = onset_point(previous, side)
             probe = merge(previous%lambda_max, previous%lambda_min, side == SIDE_PLUS)
-            if (i == 0) then
-                continue
-            else if (previous%points(i)%mechanism == MECHANISM_PENCIL) then
-                probe = thr%lambda(side)
-                call positive_count(blocks, probe - sign(side_offset(probe), probe), count_m, &
-                                    set, stat)
-                if (.not. stat%ok() .or. count_m > 0) return
-            else
-                call locate_pair(blocks, previous%points(i), set, point, stat, near)
-                if (.not. stat%ok() .or. point%mechanism /= MECHANISM_COMPLEX_PAIR) return
-                if (.not. point%confirmed .or. (point%appears .neqv. side == SIDE_PLUS)) return
-                if (thr%found(side)) then
-                    if (abs(thr%lambda(side)) < abs(point%lambda)) return
+            located = .false.
+            if (i > 0) then
+                if (previous%points(i)%mechanism == MECHANISM_COMPLEX_PAIR) then
+                    call locate_pair(blocks, previous%points(i), set, point, stat, near)
+                    if (.not. stat%ok()) return
+                    located = point%mechanism == MECHANISM_COMPLEX_PAIR .and. &
+                              (point%appears .eqv. side == SIDE_PLUS) .and. &
+                              (point%confirmed .or. .not. previous%points(i)%confirmed)
+                    if (located .and. thr%found(side)) located = &
+                        abs(thr%lambda(side)) >= abs(point%lambda)
                 end if
-                probe = point%lambda
-                set%points = [set%points, point]
+                if (.not. located) then
+                    ! the onset is the pencil value, or a pair just inside it
+                    if (.not. thr%found(side)) return
+                    probe = thr%lambda(side) - sign(side_offset(thr%lambda(side)), &
+                                                    thr%lambda(side))
+                    call positive_count(blocks, probe, count_m, set, stat)
+                    if (.not. stat%ok()) return
+                    if (count_m == 0) then
+                        probe = thr%lambda(side)
+                    else
+                        ! bracketed by halfway and just inside, as the scan brackets a pair
+                        ! by its neighbouring scan points
+                        call positive_count(blocks, 0.5_wp*probe, count_0, set, stat)
+                        if (.not. stat%ok() .or. count_0 > 0) return
+                        if (side == SIDE_PLUS) then
+                            call pair_point(blocks, 0.5_wp*probe, probe, count_0, count_m, &
+                                            point, set, stat)
+                        else
+                            call pair_point(blocks, probe, 0.5_wp*probe, count_m, count_0, &
+                                            point, set, stat)
+                        end if
+                        if (.not. stat%ok() .or. (point%appears .neqv. side == SIDE_PLUS)) return
+                        point%bracket = [min(0.5_wp*probe, probe), max(0.5_wp*probe, probe)]
+                        located = .true.
+                    end if
+                end if
+                if (located) then
+                    set%points = [set%points, point]
+                    probe = point%lambda
+                end if
             end if
             call positive_count(blocks, 0.5_wp*probe, count_m, set, stat)
             if (.not. stat%ok() .or. count_m > 0) return
@@ -596,15 +635,16 @@ contains
     !> A boundary point inside [a, b] with no pencil eigenvalue: a pair meeting the real axis.
     !> Bisection on the count to BISECTION_WIDTH, then the Illinois variant of regula falsi on
     !> the discriminant of the meeting pair down to adjacent floating-point numbers.
-    subroutine pair_point(blocks, a_in, b_in, count_a_in, count_b_in, point, set, stat)
+    subroutine pair_point(blocks, a_in, b_in, count_a_in, count_b_in, point, set, stat, width)
         type(reduced_blocks_t), intent(in) :: blocks
         real(wp), intent(in) :: a_in, b_in
         integer, intent(in) :: count_a_in, count_b_in
         type(boundary_point_t), intent(out) :: point
         type(critical_set_t), intent(inout) :: set
         type(status_t), intent(out) :: stat
+        real(wp), intent(in), optional :: width   !! of the bisection; BISECTION_WIDTH
         real(wp), allocatable :: wr(:), wi(:)
-        real(wp) :: a, b, m, fa, fb, fm, theta0, theta_m
+        real(wp) :: a, b, m, fa, fb, fm, theta0, theta_m, stop_width
         integer :: count_a, count_b, count_m, last_kept, step
 
         point%mechanism = MECHANISM_COMPLEX_PAIR
@@ -612,7 +652,9 @@ contains
         b = b_in
         count_a = count_a_in
         count_b = count_b_in
-        do while (b - a > BISECTION_WIDTH*max(1.0_wp, abs(a), abs(b)))
+        stop_width = BISECTION_WIDTH
+        if (present(width)) stop_width = width
+        do while (b - a > stop_width*max(1.0_wp, abs(a), abs(b)))
             m = a + 0.5_wp*(b - a)
             call positive_count(blocks, m, count_m, set, stat)
             if (.not. stat%ok()) return
