@@ -328,6 +328,7 @@ contains
         logical :: positive
         integer :: i, count_m
         integer, allocatable :: order(:)
+        real(wp), allocatable :: lambdas(:)
 
         carried = .false.
         call take_known(set, known_lambda, known_count)
@@ -367,7 +368,11 @@ contains
             point%bracket = [below, above]
             found = [found, point]
         end do
-        order = sort_index(found%lambda)
+        allocate (lambdas(size(found)))   ! a plain array: no temporary for the call
+        do i = 1, size(found)
+            lambdas(i) = found(i)%lambda
+        end do
+        order = sort_index(lambdas)
         found = found(order)
         positive = set%positive_at_min
         do i = 0, size(found)
