@@ -136,9 +136,10 @@ module threshold_goal
     !> last level that searched it (onset_search), else a scan of the largest level with at
     !> most SCAN_CONTACT_MAX contact functions and at most half the last level's, made once
     !> at the end (coarse_set); the last level then carries its points (carry_critical_set),
-    !> each side's onset bracketed where the last level followed it (merge_onsets). The scan's hundred dense p x p solves cost
-    !> 1/8 or less of the last level's (hp to 1e-10 on the reference scene: 75 of 291
-    !> contact functions; before, the scan on the last level took three times the loop).
+    !> each side's onset bracketed where the last level followed it (merge_onsets). The
+    !> scan's hundred dense p x p solves cost 1/8 or less of the last level's (hp to 1e-10 on
+    !> the reference scene: 75 of 291 contact functions; before, the scan on the last level
+    !> took three times the loop).
     type, public :: coarse_scan_t
         type(critical_set_t) :: searched   !! scan_contact 0: no level searched
         !> every level of at most SCAN_CONTACT_MAX contact functions, coarsest first: the
