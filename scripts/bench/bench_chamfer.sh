@@ -36,7 +36,8 @@ side() {
 
 echo "chamfered block, hp thresholds to 1e-8, P1 start meshes (wall and CPU seconds)"
 echo
-echo '| size | nu | wall s | CPU s | exit | levels | lambda- (bar): the run says | lambda+ (bar): the run says |'
+echo '| size | nu | wall s | CPU s | exit | levels |' \
+    'lambda- (bar): the run says | lambda+ (bar): the run says |'
 echo '|---|---|---|---|---|---|---|---|'
 for n in ${SIZES:-1 4}; do
     bash "$root/scripts/make_mesh.sh" "$n" 1 "$work/chamfer_$n.msh" msh41 \

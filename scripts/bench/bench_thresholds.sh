@@ -71,7 +71,8 @@ timed() {
 
 echo "hp threshold run against hp c_n run, tolerance $tolerance, median of $repeats (s)"
 echo
-echo '| scene | c_n: wall s (exit, levels) | thresholds: wall s (exit, levels) | ratio | c_n: CPU s | thresholds: CPU s | CPU ratio |'
+echo '| scene | c_n: wall s (exit, levels) | thresholds: wall s (exit, levels) | ratio |' \
+    'c_n: CPU s | thresholds: CPU s | CPU ratio |'
 echo '|---|---|---|---|---|---|---|'
 ratio() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.2f", a / b }'; }
 for s in half_contact reference slanted; do
