@@ -10,8 +10,10 @@
 #   slanted       tests/data/bodies/slanted.geo (nu = 0.1) from a P1 Delaunay mesh of size 1/8
 # Each run: &adapt strategy = 'hp', the tolerance, &eigen estimate off, no pictures, no VTK;
 # c_n at &analysis lambda, the thresholds with the boundary searched over [-20, 20] (401
-# points, the &sweep default of half_contact.nml). Wall time from /usr/bin/time, median of
-# REPEATS runs; the exit status and the levels of the last run.
+# points, the &sweep default of half_contact.nml). Wall and CPU (user + system) time from
+# /usr/bin/time, medians of REPEATS runs; the exit status and the levels of the last run.
+# On a machine shared with other jobs the wall times follow the load; the CPU times and
+# their ratio much less.
 # Usage: scripts/bench/bench_thresholds.sh [REPEATS] [TOLERANCE]   (defaults: 3, 1e-8)
 # Environment: NCEIG (executable, default build/nceig). Needs gmsh, jq and GNU time.
 set -euo pipefail
@@ -41,9 +43,9 @@ scene() {
 }
 
 # timed SCENE KIND: "median wall seconds (exit, levels)" of REPEATS runs, exit and levels
-# of the last one
+# of the last one; the median CPU seconds in $cpu
 timed() {
-    local times=() i
+    local times=() cpus=() i
     {
         scene "$1"
         echo "&analysis kind = '$2', lambda = 5.0 /"
@@ -55,21 +57,29 @@ timed() {
     for ((i = 0; i < repeats; i++)); do
         rm -rf "$work/out"
         set +e
-        /usr/bin/time -f %e -o "$work/time" "$nceig" "$work/in.nml" >/dev/null 2>&1
+        /usr/bin/time -f '%e %U %S' -o "$work/time" "$nceig" "$work/in.nml" >/dev/null 2>&1
         rc=$?
         set -e
-        times+=("$(tail -n 1 "$work/time")")
+        read -r wall user system < <(tail -n 1 "$work/time")
+        times+=("$wall")
+        cpus+=("$(awk -v u="$user" -v s="$system" 'BEGIN { print u + s }')")
     done
     levels=$(jq -r '.adapt_levels // empty' "$work/out/summary.json" 2>/dev/null || true)
+    cpu=$(echo "${cpus[*]}" | median)
     echo "$(echo "${times[*]}" | median) ($rc, ${levels:-?})"
 }
 
 echo "hp threshold run against hp c_n run, tolerance $tolerance, median of $repeats (s)"
 echo
-echo '| scene | c_n: s (exit, levels) | thresholds: s (exit, levels) | ratio |'
-echo '|---|---|---|---|'
+echo '| scene | c_n: wall s (exit, levels) | thresholds: wall s (exit, levels) | ratio |' \
+    'c_n: CPU s | thresholds: CPU s | CPU ratio |'
+echo '|---|---|---|---|---|---|---|'
+ratio() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.2f", a / b }'; }
 for s in half_contact reference slanted; do
-    cn=$(timed "$s" eigen)
-    thr=$(timed "$s" threshold)
-    echo "| $s | $cn | $thr | $(awk -v a="${thr%% *}" -v b="${cn%% *}" 'BEGIN { printf "%.2f", a / b }') |"
+    timed "$s" eigen >"$work/row"
+    cn=$(cat "$work/row") cn_cpu=$cpu
+    timed "$s" threshold >"$work/row"
+    thr=$(cat "$work/row") thr_cpu=$cpu
+    echo "| $s | $cn | $thr | $(ratio "${thr%% *}" "${cn%% *}") | $cn_cpu | $thr_cpu |" \
+        "$(ratio "$thr_cpu" "$cn_cpu") |"
 done

@@ -326,7 +326,7 @@ contains
     !> structure differs here (its own solves, n_evaluations, are counted with these);
     !> with `known` (found on these blocks over the same scan), that set is taken.
     subroutine confirm_and_bound(scn, prob, lambda, scan, chol, blocks, thr, set, stat, coarse, &
-                                 known, lift)
+                                 known, lift, near)
         type(scene_t), intent(in) :: scn
         type(problem_t), intent(in) :: prob
         real(wp), intent(in) :: lambda
@@ -339,6 +339,8 @@ contains
         type(critical_set_t), intent(in), optional :: coarse, known
         !> blocks of restricted forces: their vectors on the contact functions (roundoff)
         real(wp), intent(in), optional :: lift(:, :)
+        !> the first bracket (relative) of coarse's complex_pair points (carry_critical_set)
+        real(wp), intent(in), optional :: near
         real(wp), allocatable :: mu_meet(:), confirmed_lambda(:)
         integer, allocatable :: confirmed_count(:)
         call confirm_thresholds(blocks, thr, stat)
@@ -356,7 +358,7 @@ contains
             set = known
         else
             call search_critical_set(blocks, scan, thr%real_lambdas, set, stat, coarse, &
-                                     confirmed_lambda, confirmed_count)
+                                     confirmed_lambda, confirmed_count, near)
             ! the coarse scan made for this report (none for a loop level's own search)
             if (stat%ok() .and. present(coarse)) set%n_evaluations = set%n_evaluations + &
                                                                      coarse%n_evaluations

@@ -56,7 +56,8 @@ module threshold_goal
     use contact_reduction, only: reduced_blocks_t, contact_flexibility
     use contact_boundary, only: assemble_b
     use critical_set, only: critical_set_t, find_critical_set, search_critical_set, &
-                            onset_point, side_offset, MECHANISM_COMPLEX_PAIR, MECHANISM_PENCIL
+                            onset_point, side_offset, MECHANISM_COMPLEX_PAIR, MECHANISM_PENCIL, &
+                            track_onsets, boundary_point_t
     use boundary_estimate, only: enriched_pair_lambdas, onset_bars_t
     use eigen_solve, only: eigen_result_t, eigen_with_factor, choose_solver
     use error_estimate, only: error_estimate_t, estimate_lowest_error
@@ -79,6 +80,9 @@ module threshold_goal
 
     !> coarse_scan_t: the largest level scanned at the end, in contact functions
     integer, parameter :: SCAN_CONTACT_MAX = 100
+    !> The first bracket (relative) of a collision onset the last level followed, when the
+    !> report carries the whole range to the same blocks: it is there to round-off.
+    real(wp), parameter :: TRACKED_WIDTH = 1.0e-9_wp
 
     !> One level of the loop: a row of adapt.csv, arrays by SIDE_PLUS, SIDE_MINUS.
     type, public :: threshold_level_t
@@ -129,16 +133,25 @@ module threshold_goal
         type(critical_set_t) :: coarse
     end type adaptive_thresholds_t
 
+    !> A level's restricted contact blocks and real pencil values, for a scan at the end.
+    type :: noted_level_t
+        type(reduced_blocks_t) :: blocks
+        real(wp), allocatable :: pencil(:)
+    end type noted_level_t
+
     !> The boundary of the positive set for a loop's last level, found cheaply: the set of the
-    !> last level that searched it (onset_search), else a scan of the last level with at most
-    !> SCAN_CONTACT_MAX contact functions, made once at the end (coarse_set); the last level
-    !> then carries its points (carry_critical_set). The scan's hundred dense p x p solves cost
-    !> 1/8 or less of the last level's (hp to 1e-10 on the reference scene: 75 of 291
-    !> contact functions; before, the scan on the last level took three times the loop).
+    !> last level that searched it (onset_search), else a scan of the largest level with at
+    !> most SCAN_CONTACT_MAX contact functions and at most half the last level's, made once
+    !> at the end (coarse_set); the last level then carries its points (carry_critical_set),
+    !> each side's onset bracketed where the last level followed it (merge_onsets). The
+    !> scan's hundred dense p x p solves cost 1/8 or less of the last level's (hp to 1e-10 on
+    !> the reference scene: 75 of 291 contact functions; before, the scan on the last level
+    !> took three times the loop).
     type, public :: coarse_scan_t
         type(critical_set_t) :: searched   !! scan_contact 0: no level searched
-        type(reduced_blocks_t), private :: blocks
-        real(wp), allocatable, private :: pencil(:)
+        !> every level of at most SCAN_CONTACT_MAX contact functions, coarsest first: the
+        !> scan takes the largest with at most half the last level's
+        type(noted_level_t), allocatable, private :: noted(:)
     contains
         procedure :: note => coarse_scan_note
         procedure :: coarse_set => coarse_scan_coarse_set
@@ -405,8 +418,9 @@ contains
         character(len=:), allocatable, intent(inout) :: refused
         type(status_t), intent(out) :: stat
         type(status_t) :: memory
-        real(wp) :: start
+        real(wp) :: start, phase(3)
         integer :: onset(2), p
+        type(critical_set_t) :: previous
 
         p = level%prob%contact%p()
         if (this%memory_given) then
@@ -433,6 +447,7 @@ contains
             start = wall_time()
             call contact_flexibility(this%chol, prob%contact, blocks%kt_nn, blocks%kt_nt, stat)
             if (.not. stat%ok()) return
+            phase(1) = wall_time()
             blocks%mass = prob%contact%mass
             ! the thresholds, the positive set and its boundary with the forces of half the
             ! degree (docs/thresholds.md); `blocks` stay whole for the spectrum at lambda
@@ -441,18 +456,29 @@ contains
             if (stat%ok()) call threshold_roundoff(prob%k, this%chol, prob%contact, &
                 blocks%kt_nn, blocks%kt_nt, this%thr, stat)
             if (.not. stat%ok()) return
-            call onset_search(this%scan, this%restricted, this%thr, prob%dofs%n_free, &
-                              this%pencil_dofs, set, stat, this%scan_state%searched, &
-                              carry_width(this%levels))
+            phase(2) = wall_time()
+            if (size(this%levels) == 0) then   ! the first level scans where it searches
+                call onset_search(this%scan, this%restricted, this%thr, prob%dofs%n_free, &
+                                  this%pencil_dofs, set, stat, state=this%scan_state)
+            else   ! each side's onset followed from the level before's
+                previous = set
+                call onset_search(this%scan, this%restricted, this%thr, prob%dofs%n_free, &
+                                  this%pencil_dofs, set, stat, previous, &
+                                  carry_width(this%levels), this%scan_state)
+            end if
             if (.not. stat%ok()) return
             call this%scan_state%note(this%restricted, this%thr%real_lambdas, set)
             call collision_onsets(set, onset)
             if (any(onset > 0)) call collision_roundoffs(prob%k, this%chol, prob%contact, &
                                                          this%restricted, set, stat, this%lift)
             if (.not. stat%ok()) return
-            call timings%add(PHASE_REDUCTION, wall_time() - start, ': contact blocks, '// &
-                             'thresholds and the boundary search ('// &
-                             to_string(set%n_evaluations)//' p x p solves), hp level '// &
+            phase(3) = wall_time()
+            call timings%add(PHASE_REDUCTION, phase(3) - start, ': contact blocks '// &
+                             seconds_text(phase(1) - start)//' s, thresholds '// &
+                             seconds_text(phase(2) - phase(1))//' s, '//search_words(set)// &
+                             ' '//seconds_text(phase(3) - phase(2))//' s ('// &
+                             to_string(set%n_evaluations)//' p x p solves at p = '// &
+                             to_string(size(this%restricted%kt_nn, 1))//'), hp level '// &
                              to_string(level%number))
             this%levels = [this%levels, level_row(level, this%thr, set, onset, loop_start)]
         end associate
@@ -465,6 +491,21 @@ contains
         this%levels(size(this%levels))%time_s = wall_time() - loop_start
         call timings%note(level_line(this%levels(size(this%levels)), 'hp level'))
     end subroutine solve_hp_level
+
+    !> How a level found its boundary points, for its progress line.
+    function search_words(set) result(words)
+        type(critical_set_t), intent(in) :: set
+        character(len=:), allocatable :: words
+        if (set%scan_contact == 0 .and. set%contact > 0) then
+            words = 'the onsets followed'
+        else if (set%scan_contact == 0) then
+            words = 'no boundary search'
+        else if (set%scan_contact == set%contact) then
+            words = 'the boundary scanned'
+        else
+            words = 'the boundary carried from p = '//to_string(set%scan_contact)
+        end if
+    end function search_words
 
     !> The row of `level` with its thresholds `thr` and collision onsets (`onset`, in `set`).
     type(threshold_level_t) function level_row(level, thr, set, onset, loop_start) result(row)
@@ -583,13 +624,13 @@ contains
         type(cholesky_t) :: chol
         type(reduced_blocks_t) :: blocks, restricted
         type(thresholds_t) :: thr
-        type(critical_set_t) :: set
+        type(critical_set_t) :: set, carried
         real(wp), allocatable :: lift(:, :)
         real(wp) :: before(2), after(2), roundoff(2), value, moved(2), begin, check_roundoff(2), &
                     check_value(2)
         character(len=:), allocatable :: why, head
         integer :: side, onset(2), m
-        logical :: has_check(2)
+        logical :: has_check(2), tracked
 
         if (size(this%levels) == 0) return
         begin = wall_time()
@@ -614,8 +655,18 @@ contains
                                                    blocks%kt_nn, blocks%kt_nt, thr, stat)
             onset = 0
             if (stat%ok() .and. any(row%collision)) then
-                call search_critical_set(restricted, this%scan, thr%real_lambdas, set, stat, &
-                                         this%set)
+                ! the check needs the onsets alone: followed from the level's, as a level
+                ! follows them (track_onsets), else the whole range carried
+                tracked = .false.
+                if (this%set%lambda_max > this%set%lambda_min) call track_onsets(restricted, &
+                    this%set, thr, set, tracked, stat, carry_width(this%levels))
+                if (stat%ok() .and. .not. tracked) then
+                    carried = this%set
+                    if (this%set%scan_contact == 0) call this%scan_state%coarse_set( &
+                        this%scan, size(restricted%kt_nn, 1), carried, stat, this%set)
+                    if (stat%ok()) call search_critical_set(restricted, this%scan, &
+                        thr%real_lambdas, set, stat, carried, near=carry_width(this%levels))
+                end if
                 if (stat%ok()) call collision_onsets(set, onset)
                 if (stat%ok() .and. any(onset > 0)) call collision_roundoffs(check%prob%k, &
                     chol, check%prob%contact, restricted, set, stat, lift)
@@ -804,7 +855,9 @@ contains
         type(status_t), intent(out) :: stat
         real(wp) :: begin
         integer :: side, i, k, m
-        type(critical_set_t) :: coarse
+        type(critical_set_t) :: coarse, followed
+        logical :: tracked
+        real(wp) :: spectrum
         begin = wall_time()
         associate (prob => goal%prob, blocks => goal%blocks, thr => goal%thr)
             res%eigen%solver = choose_solver(goal%options, prob%contact%p())
@@ -814,17 +867,31 @@ contains
                                                   timings, stat, blocks%kt_nn, blocks%kt_nt)
             res%thresholds = thr
             if (.not. stat%ok()) return
+            spectrum = wall_time()
             if (goal%set%scan_contact > 0) then   ! the last level searched: its set stands
                 call confirm_and_bound(scn, prob, lambda, goal%scan, goal%chol, &
                                        goal%restricted, res%thresholds, res%set, stat, &
                                        known=goal%set, lift=goal%lift)
             else
+                ! the onsets the last level followed are located on these very blocks
                 call goal%scan_state%coarse_set(goal%scan, size(goal%restricted%kt_nn, 1), &
-                                                coarse, stat)
+                                                coarse, stat, goal%set)
+                ! a last level that followed nothing: its onsets first, from the coarse ones
+                if (stat%ok() .and. goal%set%contact == 0 .and. coarse%scan_contact > 0) then
+                    call track_onsets(goal%restricted, coarse, thr, followed, tracked, stat)
+                    if (stat%ok() .and. tracked) call merge_onsets(coarse, followed)
+                    coarse%n_evaluations = coarse%n_evaluations + followed%n_evaluations
+                end if
                 if (stat%ok()) call confirm_and_bound(scn, prob, lambda, goal%scan, goal%chol, &
-                    goal%restricted, res%thresholds, res%set, stat, coarse, lift=goal%lift)
+                    goal%restricted, res%thresholds, res%set, stat, coarse, lift=goal%lift, &
+                    near=TRACKED_WIDTH)
             end if
             if (.not. stat%ok()) return
+            call timings%note('thresholds of the last level: the spectrum at lambda '// &
+                seconds_text(spectrum - begin)//' s, the confirmations and '// &
+                search_words(res%set)//' '//seconds_text(wall_time() - spectrum)//' s ('// &
+                to_string(res%set%n_evaluations)//' p x p solves at p = '// &
+                to_string(size(goal%restricted%kt_nn, 1))//')')
             k = size(out%levels)
             res%estimate%method = HP_ESTIMATE
             do side = SIDE_PLUS, SIDE_MINUS
@@ -946,8 +1013,16 @@ contains
     !> `pencil_dofs`, the last level it held on: at every level the check cost as much as
     !> the rest of input/threshold_adapt.nml (scan: twice that), for an answer that does
     !> not change there. With `previous` (the set a coarser level found, if it searched),
-    !> its points are carried (carry_critical_set) unless the structure differs here.
-    subroutine onset_search(scan, blocks, thr, n_free, pencil_dofs, set, stat, previous, near)
+    !> its points are carried (carry_critical_set) unless the structure differs here. With
+    !> `state` (hp), `previous` is the level before's set, whose onsets are followed alone
+    !> (track_onsets: the bars need no more), and where that fails, the set of the last level
+    !> that searched is carried, else, the first time a level searches, the scan of a level
+    !> of at most SCAN_CONTACT_MAX contact functions (coarse_set): a scan of a late level
+    !> costs a hundred solves at its p (4.4 of the 13 s of the slanted top to 1e-8,
+    !> scripts/bench/bench_thresholds.sh). The last level's whole range is then carried for
+    !> the report from these onsets (coarse_set, `tracked`).
+    subroutine onset_search(scan, blocks, thr, n_free, pencil_dofs, set, stat, previous, near, &
+                            state)
         real(wp), intent(in) :: scan(:)   !! the lambdas of the search
         type(reduced_blocks_t), intent(in) :: blocks
         type(thresholds_t), intent(in) :: thr
@@ -957,9 +1032,11 @@ contains
         type(status_t), intent(out) :: stat
         type(critical_set_t), intent(in), optional :: previous
         real(wp), intent(in), optional :: near   !! search_critical_set's
+        type(coarse_scan_t), intent(in), optional :: state
+        type(critical_set_t) :: coarse
         real(wp) :: mu, inside
-        logical :: found, search
-        integer :: side, n_positive
+        logical :: found, search, tracked
+        integer :: side, n_positive, tried
 
         allocate (set%points(0))
         search = .not. all(thr%found)
@@ -973,9 +1050,46 @@ contains
         end do
         pencil_dofs = 0
         if (.not. search) pencil_dofs = n_free
-        if (search) call search_critical_set(blocks, scan, thr%real_lambdas, set, stat, &
-                                             previous, near=near)
+        if (.not. search) return
+        if (present(state)) then
+            tried = 0
+            if (present(previous)) then
+                if (previous%lambda_max > previous%lambda_min) then
+                    call track_onsets(blocks, previous, thr, set, tracked, stat, near)
+                else   ! no level searched: both onsets were their pencil values
+                    call track_onsets(blocks, pencil_onsets(thr, scan), thr, set, tracked, &
+                                      stat, near)
+                end if
+                if (.not. stat%ok() .or. tracked) return
+                tried = set%n_evaluations
+            end if
+            call state%coarse_set(scan, size(blocks%kt_nn, 1), coarse, stat)
+            if (stat%ok()) call search_critical_set(blocks, scan, thr%real_lambdas, set, stat, &
+                                                    coarse, near=near)
+            if (stat%ok()) set%n_evaluations = set%n_evaluations + tried
+            if (stat%ok() .and. state%searched%scan_contact == 0) &
+                set%n_evaluations = set%n_evaluations + coarse%n_evaluations
+        else
+            call search_critical_set(blocks, scan, thr%real_lambdas, set, stat, previous, &
+                                     near=near)
+        end if
     end subroutine onset_search
+
+    !> Both sides' onsets as the pencil values of `thr` (every side found), over the range
+    !> of `scan`: where track_onsets starts when no level has searched.
+    type(critical_set_t) function pencil_onsets(thr, scan) result(set)
+        type(thresholds_t), intent(in) :: thr
+        real(wp), intent(in) :: scan(:)
+        integer :: side
+        set%lambda_min = minval(scan)
+        set%lambda_max = maxval(scan)
+        allocate (set%points(0))
+        do side = SIDE_MINUS, SIDE_PLUS, SIDE_PLUS - SIDE_MINUS
+            if (.not. thr%found(side)) cycle
+            set%points = [set%points, boundary_point_t(lambda=thr%lambda(side), &
+                          mechanism=MECHANISM_PENCIL, appears=side == SIDE_PLUS)]
+        end do
+    end function pencil_onsets
 
     !> hp: how near (relative) the previous level's collision points are expected on the
     !> next level: 8 times the largest relative change between the last two levels (the
@@ -1217,9 +1331,16 @@ contains
         type(reduced_blocks_t), intent(in) :: blocks
         real(wp), intent(in) :: pencil(:)
         type(critical_set_t), intent(in) :: set
+        type(noted_level_t), allocatable :: noted(:)
+        integer :: n
         if (size(blocks%kt_nn, 1) <= SCAN_CONTACT_MAX) then
-            this%blocks = blocks
-            this%pencil = pencil
+            if (.not. allocated(this%noted)) allocate (this%noted(0))
+            n = size(this%noted)
+            allocate (noted(n + 1))
+            noted(1:n) = this%noted
+            noted(n + 1)%blocks = blocks
+            noted(n + 1)%pencil = pencil
+            call move_alloc(noted, this%noted)
         end if
         if (set%scan_contact > 0) this%searched = set
     end subroutine coarse_scan_note
@@ -1227,18 +1348,54 @@ contains
     !> The set for a last level of `p_last` contact functions to carry: the searched one, else
     !> the scan of the noted blocks where they have at most half as many contact functions
     !> (its solves in set%n_evaluations), else none (scan_contact 0: the last level scans).
-    subroutine coarse_scan_coarse_set(this, scan, p_last, set, stat)
+    subroutine coarse_scan_coarse_set(this, scan, p_last, set, stat, tracked)
         class(coarse_scan_t), intent(in) :: this
         real(wp), intent(in) :: scan(:)   !! the lambdas of the search
         integer, intent(in) :: p_last
         type(critical_set_t), intent(out) :: set
         type(status_t), intent(out) :: stat
+        !> the onsets a later level followed (track_onsets), merged in (merge_onsets)
+        type(critical_set_t), intent(in), optional :: tracked
+        integer :: i
         if (this%searched%scan_contact > 0) then
             set = this%searched
             set%n_evaluations = 0   ! counted where it was searched
-        else if (allocated(this%pencil)) then
-            if (2*size(this%blocks%kt_nn, 1) <= p_last) call find_critical_set(this%blocks, &
-                scan, this%pencil, set, stat)
+        else if (allocated(this%noted)) then
+            do i = size(this%noted), 1, -1
+                associate (noted => this%noted(i))
+                    if (2*size(noted%blocks%kt_nn, 1) > p_last) cycle
+                    call find_critical_set(noted%blocks, scan, noted%pencil, set, stat)
+                    exit
+                end associate
+            end do
         end if
+        if (present(tracked)) call merge_onsets(set, tracked)
     end subroutine coarse_scan_coarse_set
+
+    !> Each side's onset in `set` (searched or scanned) becomes the collision `tracked`
+    !> followed (track_onsets) on that side, or a pencil point where it followed none
+    !> (carry_pairs takes the pencil points afresh), so that a carry brackets each where it
+    !> was followed. Nothing where `set` has no search or `tracked` followed nothing.
+    pure subroutine merge_onsets(set, tracked)
+        type(critical_set_t), intent(inout) :: set
+        type(critical_set_t), intent(in) :: tracked
+        integer :: side, i, j
+        if (set%scan_contact == 0) return
+        if (tracked%scan_contact > 0 .or. tracked%contact == 0) return
+        do side = SIDE_PLUS, SIDE_MINUS
+            i = onset_point(set, side)
+            j = onset_point(tracked, side)
+            if (j > 0) then
+                if (i > 0) then
+                    set%points(i) = tracked%points(j)
+                else if (side == SIDE_PLUS) then
+                    set%points = [set%points, tracked%points(j)]
+                else
+                    set%points = [tracked%points(j), set%points]
+                end if
+            else if (i > 0) then
+                set%points(i)%mechanism = MECHANISM_PENCIL
+            end if
+        end do
+    end subroutine merge_onsets
 end module threshold_goal

@@ -21,11 +21,12 @@ module critical_set
     use status, only: status_t
     use sorting, only: sort_index
     use contact_reduction, only: reduced_blocks_t, lambda_unit
-    use critical_lambda, only: reduced_eigenvalues, count_positive, CONFIRM_OFFSET, SIDE_PLUS
+    use critical_lambda, only: reduced_eigenvalues, count_positive, CONFIRM_OFFSET, SIDE_PLUS, &
+                               SIDE_MINUS, thresholds_t
     implicit none
     private
     public :: search_critical_set, find_critical_set, carry_critical_set, pair_discriminant, &
-              side_offset, onset_point
+              side_offset, onset_point, track_onsets
 
     integer, parameter, public :: MECHANISM_PENCIL = 1
     integer, parameter, public :: MECHANISM_COMPLEX_PAIR = 2
@@ -39,6 +40,11 @@ module critical_set
     !> A carried collision point is first bracketed this close (relative): a coarse point is
     !> nearer than that to the fine one where the coarse thresholds have a few digits.
     real(wp), parameter :: CARRY_WIDTH = 1.0e-3_wp
+    !> The count bisection from a bracket `near` a carried point stops here: the pair is
+    !> still split by about sqrt(1e-6) = 1e-3 relative, plenty to tell it from the other
+    !> eigenvalues, and the discriminant's regula falsi, superlinear on its simple root,
+    !> does the rest in fewer solves than the bisection's 13 halvings to BISECTION_WIDTH.
+    real(wp), parameter :: NEAR_BISECTION_WIDTH = 1.0e-6_wp
 
     !> One boundary point of {lambda : a positive real mu exists}.
     type, public :: boundary_point_t
@@ -178,7 +184,7 @@ contains
     !> it. A change inside an interval that leaves its middle as it was (two points that only
     !> the finer blocks have) is not seen.
     subroutine carry_critical_set(blocks, coarse, pencil_lambdas, set, carried, stat, &
-                                  known_lambda, known_count, near)
+                                  known_lambda, known_count, near, fresh_pencil)
         type(reduced_blocks_t), intent(in) :: blocks
         type(critical_set_t), intent(in) :: coarse
         real(wp), intent(in) :: pencil_lambdas(:)   !! ascending
@@ -188,11 +194,20 @@ contains
         real(wp), intent(in), optional :: known_lambda(:)   !! as find_critical_set's
         integer, intent(in), optional :: known_count(:)
         real(wp), intent(in), optional :: near
+        !> carry only the complex_pair points, the pencil points taken afresh (carry_pairs)
+        logical, intent(in), optional :: fresh_pencil
         type(boundary_point_t) :: point
-        real(wp) :: lambda_c, lambda_f, width, a, b, middle, widths(3)
-        integer :: i, n_start, count_a, count_b, try
+        real(wp) :: lambda_c, lambda_f, a, b, middle
+        integer :: i, n_start, count_a
 
         carried = .false.
+        if (present(fresh_pencil)) then
+            if (fresh_pencil) then
+                call carry_pairs(blocks, coarse, pencil_lambdas, set, carried, stat, &
+                                 known_lambda, known_count, near)
+                return
+            end if
+        end if
         call take_known(set, known_lambda, known_count)
         set%lambda_min = coarse%lambda_min
         set%lambda_max = coarse%lambda_max
@@ -225,28 +240,8 @@ contains
                 if (.not. stat%ok()) return
                 point%bracket = [a, b]
             else
-                ! the tightest bracket first: `near`, CARRY_WIDTH, then the scan's own
-                widths = [0.0_wp, CARRY_WIDTH, 1.0_wp]
-                if (present(near)) then
-                    if (near < CARRY_WIDTH) widths(1) = max(near, 0.0_wp)
-                end if
-                do try = 1, 3
-                    if (.not. widths(try) > 0.0_wp) cycle
-                    a = coarse%points(i)%bracket(1)
-                    b = coarse%points(i)%bracket(2)
-                    if (try < 3) then
-                        width = widths(try)*max(1.0_wp, abs(lambda_c))
-                        a = max(lambda_c - width, a)
-                        b = min(lambda_c + width, b)
-                    end if
-                    call bracket_counts(a, b)
-                    if (.not. stat%ok()) return
-                    if ((count_a > 0) .neqv. (count_b > 0)) exit
-                end do
-                if ((count_a > 0) .eqv. (count_b > 0)) return
-                call pair_point(blocks, a, b, count_a, count_b, point, set, stat)
-                if (.not. stat%ok()) return
-                point%bracket = coarse%points(i)%bracket
+                call locate_pair(blocks, coarse%points(i), set, point, stat, near)
+                if (.not. stat%ok() .or. point%mechanism /= MECHANISM_COMPLEX_PAIR) return
             end if
             if (point%appears .neqv. coarse%points(i)%appears) return
             if (coarse%points(i)%confirmed .and. .not. point%confirmed) return
@@ -257,15 +252,148 @@ contains
             set%points = [set%points, point]
         end do
         carried = .true.
+    end subroutine carry_critical_set
 
-    contains
+    !> The coarse complex_pair point `coarse_point` located on `blocks` by bisection from the
+    !> tightest bracket around it whose ends differ: `near` (relative), CARRY_WIDTH, its scan
+    !> bracket. point%mechanism is MECHANISM_PENCIL (never a pair point's) where none does.
+    subroutine locate_pair(blocks, coarse_point, set, point, stat, near)
+        type(reduced_blocks_t), intent(in) :: blocks
+        type(boundary_point_t), intent(in) :: coarse_point
+        type(critical_set_t), intent(inout) :: set
+        type(boundary_point_t), intent(out) :: point
+        type(status_t), intent(out) :: stat
+        real(wp), intent(in), optional :: near
+        real(wp) :: widths(3), width, a, b, lambda_c
+        integer :: try, count_a, count_b
 
-        subroutine bracket_counts(a, b)
-            real(wp), intent(in) :: a, b
+        point%mechanism = MECHANISM_PENCIL
+        lambda_c = coarse_point%lambda
+        widths = [0.0_wp, CARRY_WIDTH, 1.0_wp]
+        if (present(near)) then
+            if (near < CARRY_WIDTH) widths(1) = max(near, 0.0_wp)
+        end if
+        count_a = 0
+        count_b = 0
+        do try = 1, 3
+            if (.not. widths(try) > 0.0_wp) cycle
+            a = coarse_point%bracket(1)
+            b = coarse_point%bracket(2)
+            if (try < 3) then
+                width = widths(try)*max(1.0_wp, abs(lambda_c))
+                a = max(lambda_c - width, a)
+                b = min(lambda_c + width, b)
+            end if
             call positive_count(blocks, a, count_a, set, stat)
             if (stat%ok()) call positive_count(blocks, b, count_b, set, stat)
-        end subroutine bracket_counts
-    end subroutine carry_critical_set
+            if (.not. stat%ok()) return
+            if ((count_a > 0) .neqv. (count_b > 0)) exit
+        end do
+        if ((count_a > 0) .eqv. (count_b > 0)) return
+        if (try == 1) then
+            call pair_point(blocks, a, b, count_a, count_b, point, set, stat, &
+                            NEAR_BISECTION_WIDTH)
+        else
+            call pair_point(blocks, a, b, count_a, count_b, point, set, stat)
+        end if
+        if (stat%ok()) point%bracket = coarse_point%bracket
+    end subroutine locate_pair
+
+    !> carry_critical_set where the pencil points may differ between the levels: on graded
+    !> hp levels real pencil values appear and vanish with the mesh (docs/thresholds.md),
+    !> and each such change made the carry fail and the level scan afresh. The pencil points
+    !> are exact on any blocks (QZ, then the counts on both sides: the scan's own test), so
+    !> only the complex_pair points need the coarse brackets. Here: the coarse set must be a
+    !> boundary (its directions alternate from its start); its complex_pair points are
+    !> located again (locate_pair), every real pencil eigenvalue in the range whose sides'
+    !> counts differ from/to zero is a point, and the points in order must alternate from
+    !> the answer at the range's start, with the middle of every interval between them (and
+    !> the range's ends) answering as the alternation says. What it cannot see is what
+    !> carry_critical_set cannot: two points that only the finer blocks have, both inside one
+    !> interval.
+    subroutine carry_pairs(blocks, coarse, pencil_lambdas, set, carried, stat, known_lambda, &
+                           known_count, near)
+        type(reduced_blocks_t), intent(in) :: blocks
+        type(critical_set_t), intent(in) :: coarse
+        real(wp), intent(in) :: pencil_lambdas(:)   !! ascending
+        type(critical_set_t), intent(out) :: set
+        logical, intent(out) :: carried
+        type(status_t), intent(out) :: stat
+        real(wp), intent(in), optional :: known_lambda(:)
+        integer, intent(in), optional :: known_count(:)
+        real(wp), intent(in), optional :: near
+        type(boundary_point_t) :: point
+        type(boundary_point_t), allocatable :: found(:)
+        real(wp) :: a, b, below, above, last_above
+        logical :: positive
+        integer :: i, count_m
+        integer, allocatable :: order(:)
+        real(wp), allocatable :: lambdas(:)
+
+        carried = .false.
+        call take_known(set, known_lambda, known_count)
+        set%lambda_min = coarse%lambda_min
+        set%lambda_max = coarse%lambda_max
+        set%contact = size(blocks%kt_nn, 1)
+        set%scan_contact = coarse%scan_contact
+        allocate (set%points(0), found(0))
+        positive = coarse%positive_at_min
+        do i = 1, size(coarse%points)
+            if (coarse%points(i)%appears .eqv. positive) return   ! not a boundary
+            positive = .not. positive
+        end do
+        call positive_count(blocks, set%lambda_min, count_m, set, stat)
+        if (.not. stat%ok()) return
+        set%positive_at_min = count_m > 0
+        if (set%positive_at_min .neqv. coarse%positive_at_min) return
+        do i = 1, size(coarse%points)
+            if (coarse%points(i)%mechanism /= MECHANISM_COMPLEX_PAIR) cycle
+            call locate_pair(blocks, coarse%points(i), set, point, stat, near)
+            if (.not. stat%ok() .or. point%mechanism /= MECHANISM_COMPLEX_PAIR) return
+            if (point%appears .neqv. coarse%points(i)%appears) return
+            if (coarse%points(i)%confirmed .and. .not. point%confirmed) return
+            found = [found, point]
+        end do
+        ! the pencil points, as scan_points brackets them (one per overlapping bracket)
+        last_above = -huge(1.0_wp)
+        do i = 1, size(pencil_lambdas)
+            below = pencil_lambdas(i) - side_offset(pencil_lambdas(i))
+            above = pencil_lambdas(i) + side_offset(pencil_lambdas(i))
+            if (.not. (below > set%lambda_min .and. above < set%lambda_max)) cycle
+            if (.not. below > last_above) cycle
+            last_above = above
+            call pencil_point(blocks, [pencil_lambdas(i)], below, above, point, set, stat)
+            if (.not. stat%ok()) return
+            if ((point%n_below > 0) .eqv. (point%n_above > 0)) cycle   ! not a boundary point
+            point%bracket = [below, above]
+            found = [found, point]
+        end do
+        allocate (lambdas(size(found)))   ! a plain array: no temporary for the call
+        do i = 1, size(found)
+            lambdas(i) = found(i)%lambda
+        end do
+        order = sort_index(lambdas)
+        found = found(order)
+        positive = set%positive_at_min
+        do i = 0, size(found)
+            if (i > 0) then
+                if ((found(i)%n_below > 0) .neqv. positive) return
+                if (i > 1) then
+                    if (.not. found(i)%lambda > found(i - 1)%lambda) return
+                end if
+                positive = .not. positive
+            end if
+            a = set%lambda_min
+            b = set%lambda_max
+            if (i > 0) a = found(i)%lambda
+            if (i < size(found)) b = found(i + 1)%lambda
+            call positive_count(blocks, a + 0.5_wp*(b - a), count_m, set, stat)
+            if (.not. stat%ok()) return
+            if ((count_m > 0) .neqv. positive) return
+        end do
+        set%points = found
+        carried = .true.
+    end subroutine carry_pairs
 
     !> The boundary points over `scan`: those of `coarse` carried (carry_critical_set) where
     !> it was searched (scan_contact > 0) and the finer blocks keep its structure, else found
@@ -283,15 +411,113 @@ contains
         logical :: carried
         integer :: tried
         carried = .false.
+        ! the pair points alone: pencil values appear and vanish between hp levels
         if (present(coarse)) then
             if (coarse%scan_contact > 0) call carry_critical_set(blocks, coarse, &
-                pencil_lambdas, set, carried, stat, known_lambda, known_count, near)
+                pencil_lambdas, set, carried, stat, known_lambda, known_count, near, &
+                fresh_pencil=.true.)
         end if
         if (.not. stat%ok() .or. carried) return
         tried = set%n_evaluations
         call find_critical_set(blocks, scan, pencil_lambdas, set, stat, known_lambda, known_count)
         set%n_evaluations = set%n_evaluations + tried
     end subroutine search_critical_set
+
+    !> Each side's onset (onset_point) followed from `previous` (the set of the level before:
+    !> searched, carried or followed) to `blocks` without the structure of the whole range:
+    !> a complex_pair onset located again from a bracket `near` (relative) around it
+    !> (locate_pair); where that fails, or the onset was a pencil value, the side's pencil
+    !> value of `thr` is the onset if no positive mu exists just inside it, else the pair
+    !> that landed inside is located from halfway to just inside (as a scan brackets it);
+    !> no onset where the side had none and the pencil has none on that side. On each side
+    !> one count halfway from 0 to the onset (or to the range's end) must find no positive
+    !> mu. `set` holds the complex_pair onsets (scan_contact 0: not a search of the range).
+    !> `tracked` is false (search instead) where anything else is seen: a side gained or
+    !> lost its pencil value, a pair turned or is no longer confirmed. On hp levels this is
+    !> what the bars need of every level but the last, at a fraction of the solves of a
+    !> carry of the whole range.
+    subroutine track_onsets(blocks, previous, thr, set, tracked, stat, near)
+        type(reduced_blocks_t), intent(in) :: blocks
+        type(critical_set_t), intent(in) :: previous
+        type(thresholds_t), intent(in) :: thr
+        type(critical_set_t), intent(out) :: set
+        logical, intent(out) :: tracked
+        type(status_t), intent(out) :: stat
+        real(wp), intent(in), optional :: near
+        type(boundary_point_t) :: point
+        real(wp) :: probe
+        integer :: side, i, count_m, count_0
+        logical :: located
+
+        tracked = .false.
+        set%lambda_min = previous%lambda_min
+        set%lambda_max = previous%lambda_max
+        set%positive_at_min = previous%positive_at_min
+        set%contact = size(blocks%kt_nn, 1)
+        set%scan_contact = 0
+        allocate (set%points(0))
+        ! no search before, or a range without both sides
+        if (.not. (previous%lambda_min < 0.0_wp .and. previous%lambda_max > 0.0_wp)) return
+        ! what the pencil alone refuses, before any solve: a side that gained or lost its
+        ! pencil value
+        do side = SIDE_PLUS, SIDE_MINUS
+            i = onset_point(previous, side)
+            if (i == 0) then
+                if (thr%found(side)) return
+            else if (previous%points(i)%mechanism == MECHANISM_PENCIL) then
+                if (.not. thr%found(side)) return
+            end if
+        end do
+        do side = SIDE_MINUS, SIDE_PLUS, SIDE_PLUS - SIDE_MINUS
+            i = onset_point(previous, side)
+            probe = merge(previous%lambda_max, previous%lambda_min, side == SIDE_PLUS)
+            located = .false.
+            if (i > 0) then
+                if (previous%points(i)%mechanism == MECHANISM_COMPLEX_PAIR) then
+                    call locate_pair(blocks, previous%points(i), set, point, stat, near)
+                    if (.not. stat%ok()) return
+                    located = point%mechanism == MECHANISM_COMPLEX_PAIR .and. &
+                              (point%appears .eqv. side == SIDE_PLUS) .and. &
+                              (point%confirmed .or. .not. previous%points(i)%confirmed)
+                    if (located .and. thr%found(side)) located = &
+                        abs(thr%lambda(side)) >= abs(point%lambda)
+                end if
+                if (.not. located) then
+                    ! the onset is the pencil value, or a pair just inside it
+                    if (.not. thr%found(side)) return
+                    probe = thr%lambda(side) - sign(side_offset(thr%lambda(side)), &
+                                                    thr%lambda(side))
+                    call positive_count(blocks, probe, count_m, set, stat)
+                    if (.not. stat%ok()) return
+                    if (count_m == 0) then
+                        probe = thr%lambda(side)
+                    else
+                        ! bracketed by halfway and just inside, as the scan brackets a pair
+                        ! by its neighbouring scan points
+                        call positive_count(blocks, 0.5_wp*probe, count_0, set, stat)
+                        if (.not. stat%ok() .or. count_0 > 0) return
+                        if (side == SIDE_PLUS) then
+                            call pair_point(blocks, 0.5_wp*probe, probe, count_0, count_m, &
+                                            point, set, stat)
+                        else
+                            call pair_point(blocks, probe, 0.5_wp*probe, count_m, count_0, &
+                                            point, set, stat)
+                        end if
+                        if (.not. stat%ok() .or. (point%appears .neqv. side == SIDE_PLUS)) return
+                        point%bracket = [min(0.5_wp*probe, probe), max(0.5_wp*probe, probe)]
+                        located = .true.
+                    end if
+                end if
+                if (located) then
+                    set%points = [set%points, point]
+                    probe = point%lambda
+                end if
+            end if
+            call positive_count(blocks, 0.5_wp*probe, count_m, set, stat)
+            if (.not. stat%ok() .or. count_m > 0) return
+        end do
+        tracked = .true.
+    end subroutine track_onsets
 
     !> Counts already solved, for positive_count to take (both arguments or none).
     pure subroutine take_known(set, known_lambda, known_count)
@@ -414,15 +640,16 @@ contains
     !> A boundary point inside [a, b] with no pencil eigenvalue: a pair meeting the real axis.
     !> Bisection on the count to BISECTION_WIDTH, then the Illinois variant of regula falsi on
     !> the discriminant of the meeting pair down to adjacent floating-point numbers.
-    subroutine pair_point(blocks, a_in, b_in, count_a_in, count_b_in, point, set, stat)
+    subroutine pair_point(blocks, a_in, b_in, count_a_in, count_b_in, point, set, stat, width)
         type(reduced_blocks_t), intent(in) :: blocks
         real(wp), intent(in) :: a_in, b_in
         integer, intent(in) :: count_a_in, count_b_in
         type(boundary_point_t), intent(out) :: point
         type(critical_set_t), intent(inout) :: set
         type(status_t), intent(out) :: stat
+        real(wp), intent(in), optional :: width   !! of the bisection; BISECTION_WIDTH
         real(wp), allocatable :: wr(:), wi(:)
-        real(wp) :: a, b, m, fa, fb, fm, theta0, theta_m
+        real(wp) :: a, b, m, fa, fb, fm, theta0, theta_m, stop_width
         integer :: count_a, count_b, count_m, last_kept, step
 
         point%mechanism = MECHANISM_COMPLEX_PAIR
@@ -430,7 +657,9 @@ contains
         b = b_in
         count_a = count_a_in
         count_b = count_b_in
-        do while (b - a > BISECTION_WIDTH*max(1.0_wp, abs(a), abs(b)))
+        stop_width = BISECTION_WIDTH
+        if (present(width)) stop_width = width
+        do while (b - a > stop_width*max(1.0_wp, abs(a), abs(b)))
             m = a + 0.5_wp*(b - a)
             call positive_count(blocks, m, count_m, set, stat)
             if (.not. stat%ok()) return

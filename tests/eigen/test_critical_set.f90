@@ -5,6 +5,8 @@
 !> Q1), and at a pencil threshold the limit mode is the Signorini-Coulomb eigenmode: no
 !> normal displacement on Gamma_C and tangential nodal forces -lambda* times the normal ones.
 !> Points carried from a coarser mesh are the finer mesh's own; a structure it lacks is refused.
+!> Onsets followed from a scan are the scan's; a side that gained or lost its pencil value is
+!> refused.
 program test_critical_set
     use kinds, only: wp
     use status, only: status_t
@@ -22,7 +24,8 @@ program test_critical_set
     use critical_lambda, only: thresholds_t, pencil_thresholds, reduced_eigenvalues, &
                                count_positive, SIDE_PLUS, SIDE_MINUS
     use critical_set, only: critical_set_t, find_critical_set, carry_critical_set, &
-                            pair_discriminant, MECHANISM_PENCIL, MECHANISM_COMPLEX_PAIR
+                            pair_discriminant, MECHANISM_PENCIL, MECHANISM_COMPLEX_PAIR, &
+                            track_onsets, onset_point, boundary_point_t
     implicit none
 
     !> The scan of the default &sweep: -20 to 20 by 0.1.
@@ -39,6 +42,9 @@ program test_critical_set
     call limit_of_the_modes_is_the_threshold_mode(t)
     call carried_points_are_the_scan_points(t)
     call carry_refuses_another_structure(t)
+    call pair_carry_takes_the_pencil_afresh(t)
+    call followed_onsets_are_the_scan_onsets(t)
+    call following_refuses_a_changed_side(t)
     call t%report()
 
 contains
@@ -67,12 +73,12 @@ contains
     end subroutine partial_contact_scene
 
     !> The reference scene (contact on the whole bottom, top fixed), 8 x 8 'right', scanned.
-    subroutine reference_scene(element, thr, set)
+    subroutine reference_scene(element, thr, set, blocks)
         integer, intent(in) :: element
         type(thresholds_t), intent(out) :: thr
         type(critical_set_t), intent(out) :: set
+        type(reduced_blocks_t), intent(out) :: blocks
         type(mesh_t) :: m
-        type(reduced_blocks_t) :: blocks
         type(status_t) :: stat
         call structured_rectangle(1.0_wp, 1.0_wp, 8, 8, element, 'right', m, stat)
         call require(stat)
@@ -231,7 +237,8 @@ contains
         type(test_suite_t), intent(inout) :: t
         type(thresholds_t) :: thr
         type(critical_set_t) :: set
-        call reference_scene(ELEMENT_P1, thr, set)
+        type(reduced_blocks_t) :: blocks
+        call reference_scene(ELEMENT_P1, thr, set, blocks)
         call t%check('reference: two points', size(set%points) == 2)
         if (size(set%points) /= 2) return
         call t%check('reference: both pencil, both confirmed', &
@@ -252,8 +259,9 @@ contains
         type(test_suite_t), intent(inout) :: t
         type(thresholds_t) :: thr
         type(critical_set_t) :: set
+        type(reduced_blocks_t) :: blocks
         integer :: n
-        call reference_scene(ELEMENT_Q1, thr, set)
+        call reference_scene(ELEMENT_Q1, thr, set, blocks)
         n = size(set%points)
         call t%check('Q1: an even number of points, at least 2', n >= 2 .and. mod(n, 2) == 0)
         if (n < 2) return
@@ -450,4 +458,135 @@ contains
         call require(stat)
         call t%check('carry: a positive mu everywhere is refused', .not. carried)
     end subroutine carry_refuses_another_structure
+
+    !> On hp levels real pencil values appear and vanish with the mesh: the carry that takes
+    !> the pencil points afresh (fresh_pencil) gives the scan's own points where the coarse
+    !> set has a pair of pencil points the blocks do not have (a gap in the positive set at
+    !> 10 to 12, as a spurious pair of values would make), which the carry of every point
+    !> refuses; and it still refuses the 8 x 8 structure on 16 x 16 (its last pair point is
+    !> elsewhere) and a set whose directions do not alternate.
+    subroutine pair_carry_takes_the_pencil_afresh(t)
+        type(test_suite_t), intent(inout) :: t
+        type(reduced_blocks_t) :: blocks, coarse_blocks
+        type(thresholds_t) :: thr, coarse_thr
+        type(critical_set_t) :: set, gap, carried_set, coarse, wrong
+        type(status_t) :: stat
+        logical :: carried
+        call reference_scene(ELEMENT_P1, thr, set, blocks)
+        if (size(set%points) /= 2) return
+        gap = set
+        gap%points = [set%points, boundary_point_t(lambda=10.0_wp, appears=.false., &
+                      confirmed=.true., bracket=[9.9_wp, 10.1_wp]), boundary_point_t( &
+                      lambda=12.0_wp, appears=.true., confirmed=.true., bracket=[11.9_wp, 12.1_wp])]
+        call carry_critical_set(blocks, gap, thr%real_lambdas, carried_set, carried, stat)
+        call require(stat)
+        call t%check('pair carry: the carry of every point refuses the vanished pair', &
+                     .not. carried)
+        call carry_critical_set(blocks, gap, thr%real_lambdas, carried_set, carried, stat, &
+                                fresh_pencil=.true.)
+        call require(stat)
+        call t%check('pair carry: carried without the vanished pair', &
+                     carried .and. size(carried_set%points) == 2)
+        if (carried .and. size(carried_set%points) == 2) call t%check( &
+            'pair carry: the scan''s points, exactly (the same QZ numbers)', &
+            .not. any(abs(carried_set%points%lambda - set%points%lambda) > 0.0_wp) .and. &
+            all(carried_set%points%appears .eqv. set%points%appears))
+        call partial_contact_scene(8, coarse_blocks, coarse_thr, coarse)
+        call partial_contact_scene(16, blocks, thr, set)
+        call carry_critical_set(blocks, coarse, thr%real_lambdas, carried_set, carried, stat, &
+                                fresh_pencil=.true.)
+        call require(stat)
+        call t%check('pair carry: the 8 x 8 structure is refused on 16 x 16', .not. carried)
+        wrong = set
+        wrong%points(1)%appears = .not. wrong%points(1)%appears
+        call carry_critical_set(blocks, wrong, thr%real_lambdas, carried_set, carried, stat, &
+                                fresh_pencil=.true.)
+        call require(stat)
+        call t%check('pair carry: directions that do not alternate are refused', .not. carried)
+        call carry_critical_set(blocks, set, thr%real_lambdas, carried_set, carried, stat, &
+                                fresh_pencil=.true.)
+        call require(stat)
+        call t%check('pair carry: the partial-contact scan carried to itself', &
+                     carried .and. size(carried_set%points) == size(set%points))
+        if (carried .and. size(carried_set%points) == size(set%points)) call t%check( &
+            'pair carry: the same points (1e-10 relative, as the carry of every point)', &
+            all(abs(carried_set%points%lambda - set%points%lambda) <= &
+                1.0e-10_wp*abs(set%points%lambda)))
+    end subroutine pair_carry_takes_the_pencil_afresh
+
+    !> The onsets followed (track_onsets) from a scan to the same blocks are the scan's:
+    !> lambda- of partial contact is a pair point (its pencil value has a positive mu on
+    !> both sides), found again to 1e-10 relative (the count bisection's width); lambda+ is
+    !> the pencil value, which the followed set does not list. From the scan of 8 x 8 to the
+    !> 16 x 16 blocks, lambda- is the 16 x 16 scan's to 1e-10: its onset moved by less than
+    !> the carry's first bracket. Either costs a small part of a scan.
+    subroutine followed_onsets_are_the_scan_onsets(t)
+        type(test_suite_t), intent(inout) :: t
+        type(reduced_blocks_t) :: blocks, coarse_blocks
+        type(thresholds_t) :: thr, coarse_thr
+        type(critical_set_t) :: set, coarse, followed
+        type(status_t) :: stat
+        logical :: tracked
+        integer :: i, j
+        call partial_contact_scene(16, blocks, thr, set)
+        i = onset_point(set, SIDE_MINUS)
+        call t%check('follow: the scan has a lambda- onset', i > 0)
+        if (i == 0) return
+        call t%check('follow: the scan''s lambda- onset is a pair point', &
+                     set%points(i)%mechanism == MECHANISM_COMPLEX_PAIR)
+        call track_onsets(blocks, set, thr, followed, tracked, stat)
+        call require(stat)
+        j = onset_point(followed, SIDE_MINUS)
+        call t%check('follow: followed on the same blocks', tracked .and. j > 0)
+        if (.not. tracked .or. j == 0) return
+        call t%check('follow: the same lambda- onset (1e-10 relative)', &
+                     abs(followed%points(j)%lambda - set%points(i)%lambda) <= &
+                     1.0e-10_wp*abs(set%points(i)%lambda))
+        call t%check('follow: no pair listed on the plus side', &
+                     onset_point(followed, SIDE_PLUS) == 0 .eqv. &
+                     (onset_point(set, SIDE_PLUS) == 0 .or. &
+                      set%points(max(onset_point(set, SIDE_PLUS), 1))%mechanism == &
+                      MECHANISM_PENCIL))
+        call t%check('follow: under a tenth of the scan''s solves', &
+                     10*followed%n_evaluations < set%n_evaluations)
+        call partial_contact_scene(8, coarse_blocks, coarse_thr, coarse)
+        call track_onsets(blocks, coarse, thr, followed, tracked, stat)
+        call require(stat)
+        j = onset_point(followed, SIDE_MINUS)
+        call t%check('follow: 8 x 8 onsets followed on 16 x 16', tracked .and. j > 0)
+        if (.not. tracked .or. j == 0) return
+        call t%check('follow: the 16 x 16 scan''s lambda- onset (1e-10 relative)', &
+                     abs(followed%points(j)%lambda - set%points(i)%lambda) <= &
+                     1.0e-10_wp*abs(set%points(i)%lambda))
+    end subroutine followed_onsets_are_the_scan_onsets
+
+    !> Following refuses, before any solve, a side that gained a pencil value where the set
+    !> before had no onset (a spurious value that appears), and a side whose pencil onset
+    !> lost its value.
+    subroutine following_refuses_a_changed_side(t)
+        type(test_suite_t), intent(inout) :: t
+        type(reduced_blocks_t) :: blocks
+        type(thresholds_t) :: thr, lost
+        type(critical_set_t) :: set, before, followed
+        type(status_t) :: stat
+        logical :: tracked
+        call reference_scene(ELEMENT_P1, thr, set, blocks)
+        if (size(set%points) /= 2) return
+        before = set
+        before%points = set%points(1:1)   ! no onset on the plus side
+        call track_onsets(blocks, before, thr, followed, tracked, stat)
+        call require(stat)
+        call t%check('follow: a side that gained a pencil value is refused, no solve', &
+                     .not. tracked .and. followed%n_evaluations == 0)
+        lost = thr
+        lost%found(SIDE_PLUS) = .false.
+        call track_onsets(blocks, set, lost, followed, tracked, stat)
+        call require(stat)
+        call t%check('follow: a pencil onset that lost its value is refused, no solve', &
+                     .not. tracked .and. followed%n_evaluations == 0)
+        call track_onsets(blocks, set, thr, followed, tracked, stat)
+        call require(stat)
+        call t%check('follow: pencil onsets kept, no pair listed', &
+                     tracked .and. size(followed%points) == 0)
+    end subroutine following_refuses_a_changed_side
 end program test_critical_set
