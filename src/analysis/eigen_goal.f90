@@ -14,14 +14,16 @@ module eigen_goal
     use kinds, only: wp
     use status, only: status_t
     use strings, only: to_string, short_real_text, seconds_text
-    use timer, only: wall_time, timings_t
+    use timer, only: wall_time, timings_t, PHASE_REDUCTION
     use scene, only: scene_t
-    use method_options, only: eigen_options_t, adapt_options_t, ESTIMATE_ON, REFINE_HP
+    use method_options, only: eigen_options_t, adapt_options_t, ESTIMATE_ON, REFINE_HP, &
+                              SOLVER_DENSE
     use problem, only: problem_t
     use unit_scaling, only: units_t
     use hp_space, only: hp_space_t
     use sparse_cholesky, only: cholesky_t
     use contact_boundary, only: assemble_b
+    use contact_reduction, only: contact_flexibility
     use eigen_solve, only: eigen_result_t, solve_eigen, estimate_eigen, eigen_with_factor, &
                            choose_solver
     use accuracy, only: WARNING_LEN, MU_VANISHED
@@ -168,12 +170,19 @@ contains
         character(len=:), allocatable, intent(out) :: refused
         type(status_t), intent(out) :: stat
         type(cholesky_t) :: chol
+        real(wp), allocatable :: kt_nn(:, :), kt_nt(:, :)
         integer :: i
 
         refused = ''
         if (.not. refiner%estimated()) then
             call refiner%factor(level, chol, timings, stat)
             if (.not. stat%ok()) return
+            if (this%any_active()) call level_blocks(this%options, level%prob, chol, &
+                kt_nn, kt_nt, timings, stat)
+            if (.not. stat%ok()) then
+                call chol%free()
+                return
+            end if
         end if
         do i = 1, size(this%points)
             if (.not. this%targets(i)%active()) cycle
@@ -223,7 +232,12 @@ contains
             call assemble_b(level%prob%contact, level%prob%dofs%n_free, res%lambda, res%b, stat)
             if (.not. stat%ok()) return
             res%solver = choose_solver(this%options, level%prob%contact%p())
-            call eigen_with_factor(scn, level%prob, this%options, chol, res, timings, stat)
+            if (allocated(kt_nn)) then
+                call eigen_with_factor(scn, level%prob, this%options, chol, res, timings, stat, &
+                                       kt_nn, kt_nt)
+            else
+                call eigen_with_factor(scn, level%prob, this%options, chol, res, timings, stat)
+            end if
             if (.not. stat%ok()) return
             k = res%spec%lowest_positive()
             if (k > 0) then
@@ -325,6 +339,7 @@ contains
         type(adapt_level_t) :: check
         type(cholesky_t) :: chol
         type(eigen_result_t) :: res
+        real(wp), allocatable :: kt_nn(:, :), kt_nt(:, :)
         real(wp) :: series, bar, begin
         character(len=:), allocatable :: why
         integer :: i, k
@@ -347,13 +362,21 @@ contains
                     if (stat%ok()) call refiner%factor(check, chol, timings, stat)
                     if (.not. stat%ok()) return
                     built = .true.
+                    call level_blocks(this%options, check%prob, chol, kt_nn, kt_nt, timings, stat)
+                    if (.not. stat%ok()) exit
                 end if
                 res%lambda = p%lambda
                 call assemble_b(check%prob%contact, check%prob%dofs%n_free, res%lambda, res%b, &
                                 stat)
                 if (.not. stat%ok()) exit
                 res%solver = choose_solver(this%options, check%prob%contact%p())
-                call eigen_with_factor(scn, check%prob, this%options, chol, res, timings, stat)
+                if (allocated(kt_nn)) then
+                    call eigen_with_factor(scn, check%prob, this%options, chol, res, timings, &
+                                           stat, kt_nn, kt_nt)
+                else
+                    call eigen_with_factor(scn, check%prob, this%options, chol, res, timings, &
+                                           stat)
+                end if
                 if (.not. stat%ok()) exit
                 k = res%spec%lowest_positive()
                 if (k > 0) call refine_level_mu(check, tolerance, res, k, stat)
@@ -390,9 +413,30 @@ contains
         end do
         if (.not. built) return
         call chol%free()
+        if (.not. stat%ok()) return
         call timings%note('hp check of level '//to_string(last%number)//': '// &
                           seconds_text(wall_time() - begin)//' s')
     end subroutine eigen_goal_check
+
+    !> Kt_nn and Kt_nt of an hp level factored in `chol` (contact dofs last), where `options`
+    !> choose the dense solver for it: they do not depend on lambda, so a level forms them
+    !> once for all its lambdas instead of once per lambda (its largest cost after dgeevx).
+    !> Left unallocated for ARPACK, which applies them through the factor.
+    subroutine level_blocks(options, prob, chol, kt_nn, kt_nt, timings, stat)
+        type(eigen_options_t), intent(in) :: options
+        type(problem_t), intent(in) :: prob
+        type(cholesky_t), intent(in) :: chol
+        real(wp), allocatable, intent(out) :: kt_nn(:, :), kt_nt(:, :)
+        type(timings_t), intent(inout) :: timings
+        type(status_t), intent(out) :: stat
+        real(wp) :: start
+        if (choose_solver(options, prob%contact%p()) /= SOLVER_DENSE) return
+        start = wall_time()
+        call contact_flexibility(chol, prob%contact, kt_nn, kt_nt, stat)
+        if (stat%ok()) call timings%add(PHASE_REDUCTION, wall_time() - start, &
+            ': contact blocks of K^-1, '//to_string(prob%contact%p())//' x '// &
+            to_string(prob%contact%p())//', once for the level''s lambdas')
+    end subroutine level_blocks
 
     !> The bar (and change, and stall) of the last of `levels` over the levels so far, as the
     !> refiner makes bars: h from the estimates (only where the last level has one), hp from
