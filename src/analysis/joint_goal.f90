@@ -33,6 +33,15 @@ module joint_goal
         type(threshold_goal_t) :: sides
         !> the points' phases: one line per lambda and level would flood the progress lines
         type(timings_t) :: quiet
+        !> what a part's own check needs when its targets end before the loop does (judge):
+        !> the scene, the loop's starting problem, the level just solved (number, mesh,
+        !> degrees) and the loop's limits; early(k): part k (1 points, 2 sides) was checked
+        !> so and has not climbed since, so the loop's last check leaves it alone
+        type(scene_t) :: scn
+        type(problem_t), pointer :: start => null()
+        type(adapt_level_t) :: level
+        type(adapt_options_t) :: adapt
+        logical :: early(2) = .false.
     contains
         procedure :: solve => joint_goal_solve
         procedure :: judge => joint_goal_judge
@@ -57,7 +66,7 @@ contains
         type(eigen_options_t), intent(in) :: options
         type(adapt_options_t), intent(in) :: adapt
         real(wp), intent(in) :: scan(:)
-        type(problem_t), intent(in) :: start
+        type(problem_t), intent(in), target :: start
         type(adaptive_thresholds_t), intent(out) :: out
         type(threshold_result_t), intent(out) :: res
         type(timings_t), intent(inout) :: timings
@@ -80,6 +89,8 @@ contains
         ! leaks under gfortran 12 (docs/testing.md)
         allocate (goal%targets(size(lambdas) + 2))
         call goal%join(.false.)
+        goal%start => start
+        goal%adapt = adapt
         call adapt_levels(scn, adapt, start, refiner, goal, timings, loop)
         call goal%join(.false.)
         call goal%points%finish(refiner, adapt, loop, outs)
@@ -122,6 +133,10 @@ contains
         character(len=:), allocatable, intent(out) :: refused
         type(status_t), intent(out) :: stat
         refused = ''
+        this%scn = scn
+        this%level%number = level%number
+        this%level%prob%mesh = level%prob%mesh
+        if (allocated(level%degree)) this%level%degree = level%degree
         call this%join(.true.)
         if (this%sides%any_active()) then
             call this%sides%solve(scn, refiner, level, loop_start, timings, refused, stat)
@@ -135,20 +150,40 @@ contains
         call this%join(.false.)
     end subroutine joint_goal_solve
 
-    !> Each part judges its active targets as it does alone.
+    !> Each part judges its active targets as it does alone. A part whose targets all end
+    !> here while the other climbs on is checked at once, as its own loop would be when it
+    !> ends (adapt_driver: the check of the last level, which may reopen a target that the
+    !> check takes above the tolerance): a check at a later level could not reopen it.
     subroutine joint_goal_judge(this, refiner, level, tolerance)
         class(joint_goal_t), intent(inout) :: this
         class(refiner_t), intent(in) :: refiner
         integer, intent(in) :: level
         real(wp), intent(in) :: tolerance
+        type(status_t) :: stat
+        logical :: was(2), reopen
         call this%join(.true.)
-        if (this%points%any_active()) call this%points%judge(refiner, level, tolerance)
-        if (this%sides%any_active()) call this%sides%judge(refiner, level, tolerance)
+        was = [this%points%any_active(), this%sides%any_active()]
+        if (was(1)) call this%points%judge(refiner, level, tolerance)
+        if (was(2)) call this%sides%judge(refiner, level, tolerance)
+        if (was(1)) this%early(1) = .false.
+        if (was(2)) this%early(2) = .false.
+        reopen = len(refiner%cap_words(this%level)) == 0 .and. .not. &
+            (this%adapt%max_levels > 0 .and. level >= this%adapt%max_levels)
+        if (was(1) .and. .not. this%points%any_active() .and. this%sides%any_active()) then
+            call this%points%check(this%scn, this%start, refiner, this%level, tolerance, &
+                                   reopen, this%quiet, stat)
+            this%early(1) = stat%ok() .and. .not. this%points%any_active()
+        else if (was(2) .and. .not. this%sides%any_active() .and. &
+                 this%points%any_active()) then
+            call this%sides%check(this%scn, this%start, refiner, this%level, tolerance, &
+                                  reopen, this%quiet, stat)
+            this%early(2) = stat%ok() .and. .not. this%sides%any_active()
+        end if
         call this%join(.false.)
     end subroutine joint_goal_judge
 
-    !> Each part's check of the last level: a part whose targets ended at an earlier level
-    !> is checked against the finer one, which bounds its values as well.
+    !> Each part's check of the last level, but a part checked when its targets ended
+    !> (judge) and not reopened: the loop then ends as each part's own loop would have.
     subroutine joint_goal_check(this, scn, start, refiner, last, tolerance, reopen, timings, &
                                 stat)
         class(joint_goal_t), intent(inout) :: this
@@ -161,9 +196,10 @@ contains
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
         call this%join(.true.)
-        call this%sides%check(scn, start, refiner, last, tolerance, reopen, timings, stat)
-        if (stat%ok()) call this%points%check(scn, start, refiner, last, tolerance, reopen, &
-                                              this%quiet, stat)
+        if (.not. this%early(2)) call this%sides%check(scn, start, refiner, last, tolerance, &
+                                                       reopen, timings, stat)
+        if (stat%ok() .and. .not. this%early(1)) call this%points%check(scn, start, refiner, &
+            last, tolerance, reopen, this%quiet, stat)
         call this%join(.false.)
     end subroutine joint_goal_check
 
