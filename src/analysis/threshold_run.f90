@@ -87,11 +87,7 @@ contains
             end if
         end associate
         call no_digit_verdict(this%res, inputs%scene%name, this%verdict)
-        if (.not. this%verdict%ok()) return
-        if (this%res%sweep%n_not_met > 0) call this%verdict%fail(STATUS_NOT_MET, &
-            inputs%scene%name//': &adapt: '//to_string(this%res%sweep%n_not_met)// &
-            ' of the sweep''s points with a positive mu did not meet the tolerance, '// &
-            'the first at '//this%res%sweep%not_met//' (the set is written)')
+        if (this%verdict%ok()) call points_verdict(this%res, inputs%scene%name, this%verdict)
     end subroutine sweep_run_solve
 
     subroutine adapt_threshold_run_solve(this, inputs, prob, timings, stat)
@@ -104,9 +100,7 @@ contains
         if (.not. allocated(this%adapted)) allocate (this%adapted)
         call solve_adapted_thresholds(inputs%scene, inputs%point%lambda, inputs%eigen, &
             inputs%adapt, inputs%scan, prob, this%adapted, this%res, timings, stat)
-        if (stat%ok() .and. .not. this%adapted%converged) call this%verdict%fail( &
-            STATUS_NOT_MET, inputs%scene%name//': &adapt: '//this%adapted%outcome// &
-            ' (the set of the last level is written)')
+        if (stat%ok()) call sides_verdict(this%adapted, inputs%scene%name, this%verdict)
         if (stat%ok()) call no_digit_verdict(this%res, inputs%scene%name, this%verdict)
     end subroutine adapt_threshold_run_solve
 
@@ -123,17 +117,30 @@ contains
         call solve_joint_sweep(inputs%scene, inputs%point%lambda, inputs%sweep, inputs%eigen, &
             inputs%adapt, inputs%scan, prob, this%adapted, this%res, timings, stat)
         if (.not. stat%ok()) return
-        if (.not. this%adapted%converged) then
-            call this%verdict%fail(STATUS_NOT_MET, inputs%scene%name//': &adapt: '// &
-                this%adapted%outcome//' (the set of the last level is written)')
-        else if (this%res%sweep%n_not_met > 0) then
-            call this%verdict%fail(STATUS_NOT_MET, inputs%scene%name//': &adapt: '// &
-                to_string(this%res%sweep%n_not_met)//' of the sweep''s points with a '// &
-                'positive mu did not meet the tolerance, the first at '// &
-                this%res%sweep%not_met//' (the set is written)')
-        end if
+        call sides_verdict(this%adapted, inputs%scene%name, this%verdict)
+        if (this%verdict%ok()) call points_verdict(this%res, inputs%scene%name, this%verdict)
         if (this%verdict%ok()) call no_digit_verdict(this%res, inputs%scene%name, this%verdict)
     end subroutine joint_sweep_run_solve
+
+    !> `verdict` STATUS_NOT_MET where the adapted thresholds missed the tolerance.
+    subroutine sides_verdict(adapted, name, verdict)
+        type(adaptive_thresholds_t), intent(in) :: adapted
+        character(len=*), intent(in) :: name
+        type(status_t), intent(inout) :: verdict
+        if (.not. adapted%converged) call verdict%fail(STATUS_NOT_MET, name//': &adapt: '// &
+            adapted%outcome//' (the set of the last level is written)')
+    end subroutine sides_verdict
+
+    !> `verdict` STATUS_NOT_MET where points of the adapted sweep of `res` missed it.
+    subroutine points_verdict(res, name, verdict)
+        type(threshold_result_t), intent(in) :: res
+        character(len=*), intent(in) :: name
+        type(status_t), intent(inout) :: verdict
+        if (res%sweep%n_not_met > 0) call verdict%fail(STATUS_NOT_MET, name//': &adapt: '// &
+            to_string(res%sweep%n_not_met)//' of the sweep''s points with a positive mu '// &
+            'did not meet the tolerance, the first at '//res%sweep%not_met// &
+            ' (the set is written)')
+    end subroutine points_verdict
 
     !> `verdict` STATUS_NO_DIGIT (after the outputs: the set shows what was computed) where
     !> round-off leaves no correct digit of a critical lambda of `res` or of a collision
