@@ -49,6 +49,7 @@ program test_joint_goal
     config%mesh%width = 2.0_wp
     config%material%poisson = 0.1_wp
     call compare('2 x 1, nu = 0.1: ')
+    deallocate (lambdas)   ! the main program's (AddressSanitizer)
     call t%report()
 
 contains
