@@ -36,6 +36,8 @@ program nceig_study_plan
     type(status_t) :: stat
     character(len=:), allocatable :: study_path, outdir, template_path, id, task_dir
     integer :: g, k, unit_tasks, unit_geometries, unit_lambdas
+    !> the task's c_n run adapts its thresholds too (&sweep adapt_thresholds): no 'thr' run
+    logical :: joint = .false.
 
     call parse_arguments(study_path, outdir)
     call read_study(study_path, study, stat)
@@ -65,8 +67,9 @@ program nceig_study_plan
             id = 'g'//zero_padded(g, 2)//'_nu'//zero_padded(k, 2)
             task_dir = outdir//'/tasks/'//id
             call make_folder(task_dir)
+            joint = .false.
             if (study%c_n) call write_point('lambda_sweep', 'cn')
-            if (study%thresholds) call write_point('threshold', 'thr')
+            if (study%thresholds .and. .not. joint) call write_point('threshold', 'thr')
             write (unit_tasks, '(a)') id//TAB//to_string(g)//TAB//trim(study%label(g))//TAB &
                 //real_to_text(study%poisson(k))//TAB//trim(runs())
             write (output_unit, '(a)') id//'  geometry '//trim(study%label(g))//', nu = ' &
@@ -104,12 +107,14 @@ contains
         end select
     end subroutine parse_arguments
 
-    !> 'cn thr', 'cn' or 'thr': the runs of every task.
+    !> 'cn thr', 'cn' or 'thr': the runs of every task ('cn' alone also where it adapts
+    !> the thresholds in its climb: `joint`).
     function runs() result(text)
         character(len=8) :: text
         text = ''
         if (study%c_n) text = 'cn'
-        if (study%thresholds) text = trim(text)//merge(' thr', 'thr ', study%c_n)
+        if (study%thresholds .and. .not. joint) text = trim(text)//merge(' thr', 'thr ', &
+                                                                         study%c_n)
         text = adjustl(text)
     end function runs
 
@@ -147,6 +152,10 @@ contains
         call read_input(template_path, config, point_stat, settings)
         if (.not. point_stat%ok()) call stop_with(PROGRAM_NAME, in_study_terms( &
             point_stat%message), point_stat%code)
+        ! c_n and the thresholds in one hp climb (&sweep adapt_thresholds), where the
+        ! template adapts on hp levels; h levels adapt each point alone: two runs
+        joint = kind == 'lambda_sweep' .and. study%thresholds .and. &
+            config%adapt%strategy == 'hp' .and. config%adapt%tolerance > 0.0_wp
         call write_input(task_dir//'/'//name//'.nml', config, kind == 'lambda_sweep')
     end subroutine write_point
 
@@ -204,6 +213,7 @@ contains
             do i = 2, size(study%lambdas)
                 write (unit, '(a)') '  , '//real_to_text(study%lambdas(i))
             end do
+            if (joint) write (unit, '(a)') ' adapt_thresholds = T'
             write (unit, '(a)') '/'
         end if
         close (unit)

@@ -10,7 +10,8 @@
 #   study CPU     user + system CPU of `nceig-study -j 1` and everything it started
 #   tasks CPU     the sum of its nceig runs' CPU (the hp climbs and their dense solves)
 #   per point     one nceig run per point instead: kind 'eigen' per (geometry, nu, lambda),
-#                 plus one 'threshold' run per (geometry, nu), CPU summed
+#                 plus one 'threshold' run per (geometry, nu) (the task's input, its kind
+#                 changed, the sweep's lambdas as the boundary search), CPU summed
 #   wall -j1, -j2 the study's wall time on one and on two jobs (fresh folders each)
 # NCEIG (default build/nceig) is the program; GNU time is needed (/usr/bin/time).
 set -uo pipefail
@@ -38,8 +39,8 @@ EOF
 study=$root/scripts/nceig-study
 
 # cpu_of FILE: user + system seconds from a GNU time output '%e %U %S'
-cpu_of() { awk '{ printf "%.2f", $2 + $3 }' "$1"; }
-wall_of() { awk '{ printf "%.2f", $1 }' "$1"; }
+cpu_of() { awk '!/^Command/ { printf "%.2f", $2 + $3 }' "$1"; }
+wall_of() { awk '!/^Command/ { printf "%.2f", $1 }' "$1"; }
 median() { sort -g | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
 
 declare -a study_cpu tasks_cpu point_cpu wall1 wall2
@@ -59,10 +60,12 @@ for ((r = 1; r <= repeats; r++)); do
         while read -r lambda; do
             (cd "$task" && OPENBLAS_NUM_THREADS=1 /usr/bin/time -f '%e %U %S' -a -o "$work/points.cpu" \
                 "$NCEIG" cn.nml --set analysis%kind=eigen --set "analysis%lambda=$lambda" \
+                --set sweep%adapt_thresholds=.false. \
                 --set output%directory=point --set output%vtk=.false. >/dev/null 2>&1)
         done <"$work/j1/plan/lambdas"
         (cd "$task" && OPENBLAS_NUM_THREADS=1 /usr/bin/time -f '%e %U %S' -a -o "$work/points.cpu" \
-            "$NCEIG" thr.nml --set output%directory=point_thr >/dev/null 2>&1)
+            "$NCEIG" cn.nml --set analysis%kind=threshold --set sweep%adapt_thresholds=.false. \
+            --set output%directory=point_thr >/dev/null 2>&1)
     done
     point_cpu+=("$(grep -v '^Command' "$work/points.cpu" | awk '{ s += $2 + $3 } END { printf "%.2f", s }')")
 done

@@ -14,14 +14,16 @@ module eigen_goal
     use kinds, only: wp
     use status, only: status_t
     use strings, only: to_string, short_real_text, seconds_text
-    use timer, only: wall_time, timings_t
+    use timer, only: wall_time, timings_t, PHASE_REDUCTION
     use scene, only: scene_t
-    use method_options, only: eigen_options_t, adapt_options_t, ESTIMATE_ON, REFINE_HP
+    use method_options, only: eigen_options_t, adapt_options_t, ESTIMATE_ON, REFINE_HP, &
+                              SOLVER_DENSE
     use problem, only: problem_t
     use unit_scaling, only: units_t
     use hp_space, only: hp_space_t
     use sparse_cholesky, only: cholesky_t
     use contact_boundary, only: assemble_b
+    use contact_reduction, only: contact_flexibility
     use eigen_solve, only: eigen_result_t, solve_eigen, estimate_eigen, eigen_with_factor, &
                            choose_solver
     use accuracy, only: WARNING_LEN, MU_VANISHED
@@ -85,7 +87,7 @@ module eigen_goal
     end type adapted_eigen_t
 
     !> The lowest positive mu at each of `points`' lambdas.
-    type, extends(adapt_goal_t) :: eigen_goal_t
+    type, extends(adapt_goal_t), public :: eigen_goal_t
         !> the run's, with the estimate on (h): the loop is driven by it, whatever the size
         type(eigen_options_t) :: options
         real(wp) :: tolerance = 0.0_wp
@@ -97,6 +99,9 @@ module eigen_goal
         procedure :: bar_text => eigen_goal_bar_text
         procedure :: mark => eigen_goal_mark
         procedure :: check => eigen_goal_check
+        procedure :: setup => eigen_goal_setup
+        procedure :: finish => eigen_goal_finish
+        procedure :: solve_factored => eigen_goal_solve_factored
     end type eigen_goal_t
 
 contains
@@ -121,29 +126,53 @@ contains
         logical, intent(in) :: keep_problem
         class(refiner_t), allocatable :: refiner
         type(eigen_goal_t) :: goal
-        integer :: i
 
         if (adapt%refine == REFINE_HP) then
             allocate (hp_refiner_t :: refiner)
         else
             allocate (h_refiner_t :: refiner)
         end if
-        goal%options = options
-        if (.not. adapt%refine == REFINE_HP) goal%options%estimate = ESTIMATE_ON
-        goal%tolerance = adapt%tolerance
-        goal%keep_problem = keep_problem
-        allocate (goal%targets(size(lambdas)), goal%points(size(lambdas)))
-        do i = 1, size(lambdas)
-            goal%targets(i)%outcome = ''
-            goal%points(i)%lambda = lambdas(i)
-            allocate (goal%points(i)%levels(0))
-        end do
+        call goal%setup(lambdas, options, adapt, keep_problem)
         call adapt_levels(scn, adapt, start, refiner, goal, timings, stat)
-        ! a failed loop still gives the points whose targets had ended (an outcome, not ''):
-        ! a sweep writes those as a partial set
-        call move_alloc(goal%points, outs)
+        call goal%finish(refiner, adapt, stat, outs)
+    end subroutine adapt_eigen
+
+    !> The goal of the lowest positive mu at each of `lambdas`, every target active, for the
+    !> loop `adapt` asks (h levels: the estimate on, whatever the size).
+    subroutine eigen_goal_setup(this, lambdas, options, adapt, keep_problem)
+        class(eigen_goal_t), intent(inout) :: this
+        real(wp), intent(in) :: lambdas(:)
+        type(eigen_options_t), intent(in) :: options
+        type(adapt_options_t), intent(in) :: adapt
+        logical, intent(in) :: keep_problem
+        integer :: i
+        this%options = options
+        if (.not. adapt%refine == REFINE_HP) this%options%estimate = ESTIMATE_ON
+        this%tolerance = adapt%tolerance
+        this%keep_problem = keep_problem
+        if (allocated(this%targets)) deallocate (this%targets)
+        if (allocated(this%points)) deallocate (this%points)
+        allocate (this%targets(size(lambdas)), this%points(size(lambdas)))
+        do i = 1, size(lambdas)
+            this%targets(i)%outcome = ''
+            this%points(i)%lambda = lambdas(i)
+            allocate (this%points(i)%levels(0))
+        end do
+    end subroutine eigen_goal_setup
+
+    !> Each lambda's loop once the loop (`stat` its status) has ended: outs(i), moved out of
+    !> the goal. A failed loop still gives the points whose targets had ended (an outcome,
+    !> not ''): a sweep writes those as a partial set.
+    subroutine eigen_goal_finish(this, refiner, adapt, stat, outs)
+        class(eigen_goal_t), intent(inout) :: this
+        class(refiner_t), intent(in) :: refiner
+        type(adapt_options_t), intent(in) :: adapt
+        type(status_t), intent(in) :: stat
+        type(adapted_eigen_t), allocatable, intent(out) :: outs(:)
+        integer :: i
+        call move_alloc(this%points, outs)
         do i = 1, size(outs)
-            associate (o => outs(i), t => goal%targets(i))
+            associate (o => outs(i), t => this%targets(i))
                 o%outcome = t%outcome
                 if (.not. stat%ok() .and. t%active()) cycle
                 o%converged = t%converged()
@@ -155,7 +184,7 @@ contains
                     o%res%warnings, theta_warnings(adapt%theta)]
             end associate
         end do
-    end subroutine adapt_eigen
+    end subroutine eigen_goal_finish
 
     !> Each active lambda on `level`: h, its own solve and estimate; hp, one factor for all.
     subroutine eigen_goal_solve(this, scn, refiner, level, loop_start, timings, refused, stat)
@@ -167,13 +196,63 @@ contains
         type(timings_t), intent(inout) :: timings
         character(len=:), allocatable, intent(out) :: refused
         type(status_t), intent(out) :: stat
-        type(cholesky_t) :: chol
+        refused = ''
+        call solve_level(this, scn, refiner, level, loop_start, timings, stat)
+    end subroutine eigen_goal_solve
+
+    !> Each active lambda on the hp `level` with the factor `chol` of its K (contact dofs
+    !> last) that another goal of the same loop made, and its Kt_nn, Kt_nt: a level is then
+    !> factored once for both (joint_goal).
+    subroutine eigen_goal_solve_factored(this, scn, refiner, level, chol, kt_nn, kt_nt, &
+                                         loop_start, timings, stat)
+        class(eigen_goal_t), intent(inout) :: this
+        type(scene_t), intent(in) :: scn
+        class(refiner_t), intent(in) :: refiner
+        type(adapt_level_t), intent(in) :: level
+        type(cholesky_t), intent(in) :: chol
+        real(wp), intent(in) :: kt_nn(:, :), kt_nt(:, :)
+        real(wp), intent(in) :: loop_start
+        type(timings_t), intent(inout) :: timings
+        type(status_t), intent(out) :: stat
+        call solve_level(this, scn, refiner, level, loop_start, timings, stat, chol, kt_nn, &
+                         kt_nt)
+    end subroutine eigen_goal_solve_factored
+
+    !> eigen_goal_solve; on hp levels with the factor and blocks `given` (else its own).
+    subroutine solve_level(this, scn, refiner, level, loop_start, timings, stat, given, &
+                           kt_nn_given, kt_nt_given)
+        class(eigen_goal_t), intent(inout) :: this
+        type(scene_t), intent(in) :: scn
+        class(refiner_t), intent(in) :: refiner
+        type(adapt_level_t), intent(in) :: level
+        real(wp), intent(in) :: loop_start
+        type(timings_t), intent(inout) :: timings
+        type(status_t), intent(out) :: stat
+        type(cholesky_t), intent(in), target, optional :: given
+        real(wp), intent(in), optional :: kt_nn_given(:, :), kt_nt_given(:, :)
+        type(cholesky_t), target :: own
+        type(cholesky_t), pointer :: chol
+        real(wp), allocatable :: kt_nn(:, :), kt_nt(:, :)
         integer :: i
 
-        refused = ''
+        chol => own
         if (.not. refiner%estimated()) then
-            call refiner%factor(level, chol, timings, stat)
-            if (.not. stat%ok()) return
+            if (present(given)) then
+                chol => given
+                if (choose_solver(this%options, level%prob%contact%p()) == SOLVER_DENSE) then
+                    kt_nn = kt_nn_given
+                    kt_nt = kt_nt_given
+                end if
+            else
+                call refiner%factor(level, own, timings, stat)
+                if (.not. stat%ok()) return
+                if (this%any_active()) call level_blocks(this%options, level%prob, own, &
+                    kt_nn, kt_nt, timings, stat)
+                if (.not. stat%ok()) then
+                    call own%free()
+                    return
+                end if
+            end if
         end if
         do i = 1, size(this%points)
             if (.not. this%targets(i)%active()) cycle
@@ -184,7 +263,7 @@ contains
             end if
             if (.not. stat%ok()) exit
         end do
-        if (.not. refiner%estimated()) call chol%free()
+        if (.not. refiner%estimated() .and. .not. present(given)) call own%free()
 
     contains
 
@@ -223,7 +302,12 @@ contains
             call assemble_b(level%prob%contact, level%prob%dofs%n_free, res%lambda, res%b, stat)
             if (.not. stat%ok()) return
             res%solver = choose_solver(this%options, level%prob%contact%p())
-            call eigen_with_factor(scn, level%prob, this%options, chol, res, timings, stat)
+            if (allocated(kt_nn)) then
+                call eigen_with_factor(scn, level%prob, this%options, chol, res, timings, stat, &
+                                       kt_nn, kt_nt)
+            else
+                call eigen_with_factor(scn, level%prob, this%options, chol, res, timings, stat)
+            end if
             if (.not. stat%ok()) return
             k = res%spec%lowest_positive()
             if (k > 0) then
@@ -269,7 +353,7 @@ contains
             if (row%has_mu) row%mu = real(res%spec%mu(lowest), wp)
             row%roundoff = res%roundoff
         end subroutine fill_row
-    end subroutine eigen_goal_solve
+    end subroutine solve_level
 
     !> res%spec%mu(i), the lowest positive mu on the hp level `level`, and res%roundoff
     !> replaced by the Rayleigh quotient of its vectors that never stores K (hp_rayleigh) when
@@ -325,6 +409,7 @@ contains
         type(adapt_level_t) :: check
         type(cholesky_t) :: chol
         type(eigen_result_t) :: res
+        real(wp), allocatable :: kt_nn(:, :), kt_nt(:, :)
         real(wp) :: series, bar, begin
         character(len=:), allocatable :: why
         integer :: i, k
@@ -347,13 +432,21 @@ contains
                     if (stat%ok()) call refiner%factor(check, chol, timings, stat)
                     if (.not. stat%ok()) return
                     built = .true.
+                    call level_blocks(this%options, check%prob, chol, kt_nn, kt_nt, timings, stat)
+                    if (.not. stat%ok()) exit
                 end if
                 res%lambda = p%lambda
                 call assemble_b(check%prob%contact, check%prob%dofs%n_free, res%lambda, res%b, &
                                 stat)
                 if (.not. stat%ok()) exit
                 res%solver = choose_solver(this%options, check%prob%contact%p())
-                call eigen_with_factor(scn, check%prob, this%options, chol, res, timings, stat)
+                if (allocated(kt_nn)) then
+                    call eigen_with_factor(scn, check%prob, this%options, chol, res, timings, &
+                                           stat, kt_nn, kt_nt)
+                else
+                    call eigen_with_factor(scn, check%prob, this%options, chol, res, timings, &
+                                           stat)
+                end if
                 if (.not. stat%ok()) exit
                 k = res%spec%lowest_positive()
                 if (k > 0) call refine_level_mu(check, tolerance, res, k, stat)
@@ -390,9 +483,30 @@ contains
         end do
         if (.not. built) return
         call chol%free()
+        if (.not. stat%ok()) return
         call timings%note('hp check of level '//to_string(last%number)//': '// &
                           seconds_text(wall_time() - begin)//' s')
     end subroutine eigen_goal_check
+
+    !> Kt_nn and Kt_nt of an hp level factored in `chol` (contact dofs last), where `options`
+    !> choose the dense solver for it: they do not depend on lambda, so a level forms them
+    !> once for all its lambdas instead of once per lambda (its largest cost after dgeevx).
+    !> Left unallocated for ARPACK, which applies them through the factor.
+    subroutine level_blocks(options, prob, chol, kt_nn, kt_nt, timings, stat)
+        type(eigen_options_t), intent(in) :: options
+        type(problem_t), intent(in) :: prob
+        type(cholesky_t), intent(in) :: chol
+        real(wp), allocatable, intent(out) :: kt_nn(:, :), kt_nt(:, :)
+        type(timings_t), intent(inout) :: timings
+        type(status_t), intent(out) :: stat
+        real(wp) :: start
+        if (choose_solver(options, prob%contact%p()) /= SOLVER_DENSE) return
+        start = wall_time()
+        call contact_flexibility(chol, prob%contact, kt_nn, kt_nt, stat)
+        if (stat%ok()) call timings%add(PHASE_REDUCTION, wall_time() - start, &
+            ': contact blocks of K^-1, '//to_string(prob%contact%p())//' x '// &
+            to_string(prob%contact%p())//', once for the level''s lambdas')
+    end subroutine level_blocks
 
     !> The bar (and change, and stall) of the last of `levels` over the levels so far, as the
     !> refiner makes bars: h from the estimates (only where the last level has one), hp from

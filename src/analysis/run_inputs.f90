@@ -42,6 +42,8 @@ module run_inputs
         !> 'list' (&sweep lambdas given), 'linear' or 'log': how `sweep` was made
         character(len=:), allocatable :: sweep_spacing
         logical :: sweep_plot = .true.      !! &sweep plot: draw lambda_sweep.png
+        !> &sweep adapt_thresholds: the thresholds adapted in the points' hp climb (joint_goal)
+        logical :: sweep_thresholds = .false.
         !> where the search of the boundary of {lambda : a positive mu exists} counts the
         !> positive mu (scan_points)
         real(wp), allocatable :: scan(:)
@@ -132,6 +134,7 @@ contains
         if (.not. config%sweep%lambdas(1) < huge(1.0_wp)) inputs%sweep_spacing = &
             trim(config%sweep%spacing)
         inputs%sweep_plot = config%sweep%plot
+        inputs%sweep_thresholds = config%sweep%adapt_thresholds
         inputs%scan = scan_points(inputs%sweep, inputs%analysis == ANALYSIS_SWEEP)
         inputs%branch = config%branch
         inputs%solve = config%solve

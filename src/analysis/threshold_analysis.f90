@@ -42,6 +42,7 @@ module threshold_analysis
     use halved_mesh, only: build_halved_problem
     implicit none
     private
+    public :: start_sweep_curve, end_adapted_sweep, record_hp_sweep
     public :: threshold_result_t, solve_thresholds, factor_with_contact_blocks, &
               confirm_and_bound
 
@@ -165,38 +166,12 @@ contains
         if (.not. present(sweep)) return
 
         start = wall_time()
-        res%sweep%lambda = sweep
-        res%sweep%units = prob%units
-        associate (n => size(res%sweep%lambda))
-            allocate (res%sweep%mu(n), res%sweep%found(n), res%sweep%n_positive(n))
-            allocate (res%sweep%error_estimate(n), source=-1.0_wp)
-            allocate (res%sweep%error_bar(n), source=-1.0_wp)
-            allocate (res%sweep%n_dofs(n), source=prob%dofs%n_free)
-        end associate
-        allocate (res%sweep%complete(size(res%sweep%lambda)), source=.true.)
+        call start_sweep_curve(sweep, prob, res%sweep)
         if (present(adapt)) then
             if (adapt%refine /= REFINE_NONE) then
                 call adaptive_sweep(scn, prob, options, adapt, res%sweep, timings, stat)
                 if (.not. stat%ok()) return
-                if (.not. res%sweep%failure%ok()) res%eigen%warnings = &
-                    [character(len=WARNING_LEN) :: res%eigen%warnings, 'the sweep is partial: '// &
-                     to_string(count(res%sweep%complete))//' of its '// &
-                     to_string(size(res%sweep%lambda))//' points are complete ('// &
-                     'sweep_partial), a point''s loop failed: '//res%sweep%failure%message]
-                ! the points' own warnings are not kept (record): the run's stands for them
-                if (adapt%refine /= REFINE_HP) res%eigen%warnings = &
-                    [character(len=WARNING_LEN) :: res%eigen%warnings, &
-                     theta_warnings(adapt%theta)]
-                ! where a user looks, not only in the exit status and sweep_n_not_met
-                if (res%sweep%n_not_met > 0) res%eigen%warnings = &
-                    [character(len=WARNING_LEN) :: res%eigen%warnings, &
-                     to_string(res%sweep%n_not_met)//' of the '// &
-                     to_string(size(res%sweep%lambda))//' sweep points did not meet the '// &
-                     'tolerance (sweep_n_not_met; the first at '//res%sweep%not_met//')']
-                res%time_sweep = wall_time() - start
-                call timings%note('sweep      '//seconds_text(res%time_sweep)//' s: '// &
-                    to_string(size(res%sweep%lambda))//' lambdas, adapted to '// &
-                    seconds_text(adapt%tolerance))
+                call end_adapted_sweep(adapt, start, res, timings)
                 return
             end if
         end if
@@ -437,6 +412,50 @@ contains
         est%seconds = wall_time() - start
     end subroutine halved_mesh_thresholds
 
+    !> The curve of a sweep over `lambdas` on `prob`, before its points are solved: every
+    !> point complete, no estimate, no bar, the dofs of `prob`.
+    subroutine start_sweep_curve(lambdas, prob, curve)
+        real(wp), intent(in) :: lambdas(:)
+        type(problem_t), intent(in) :: prob
+        type(sweep_curve_t), intent(inout) :: curve
+        integer :: n
+        n = size(lambdas)
+        curve%lambda = lambdas
+        curve%units = prob%units
+        allocate (curve%mu(n), curve%found(n), curve%n_positive(n))
+        allocate (curve%error_estimate(n), source=-1.0_wp)
+        allocate (curve%error_bar(n), source=-1.0_wp)
+        allocate (curve%n_dofs(n), source=prob%dofs%n_free)
+        allocate (curve%complete(n), source=.true.)
+    end subroutine start_sweep_curve
+
+    !> The warnings of an adapted sweep (`res%sweep`, started at wall time `start`) in those
+    !> of the spectrum at &analysis lambda, where a user looks, and its time.
+    subroutine end_adapted_sweep(adapt, start, res, timings)
+        type(adapt_options_t), intent(in) :: adapt
+        real(wp), intent(in) :: start
+        type(threshold_result_t), intent(inout) :: res
+        type(timings_t), intent(inout) :: timings
+        if (.not. res%sweep%failure%ok()) res%eigen%warnings = &
+            [character(len=WARNING_LEN) :: res%eigen%warnings, 'the sweep is partial: '// &
+             to_string(count(res%sweep%complete))//' of its '// &
+             to_string(size(res%sweep%lambda))//' points are complete ('// &
+             'sweep_partial), a point''s loop failed: '//res%sweep%failure%message]
+        ! the points' own warnings are not kept (record): the run's stands for them
+        if (adapt%refine /= REFINE_HP) res%eigen%warnings = &
+            [character(len=WARNING_LEN) :: res%eigen%warnings, theta_warnings(adapt%theta)]
+        ! where a user looks, not only in the exit status and sweep_n_not_met
+        if (res%sweep%n_not_met > 0) res%eigen%warnings = &
+            [character(len=WARNING_LEN) :: res%eigen%warnings, &
+             to_string(res%sweep%n_not_met)//' of the '// &
+             to_string(size(res%sweep%lambda))//' sweep points did not meet the '// &
+             'tolerance (sweep_n_not_met; the first at '//res%sweep%not_met//')']
+        res%time_sweep = wall_time() - start
+        call timings%note('sweep      '//seconds_text(res%time_sweep)//' s: '// &
+            to_string(size(res%sweep%lambda))//' lambdas, adapted to '// &
+            seconds_text(adapt%tolerance))
+    end subroutine end_adapted_sweep
+
     !> The curve with &adapt: at each lambda the adaptive loop of analysis 'eigen' until the
     !> bar meets the tolerance. With strategy 'h' it starts from the last mesh that met it
     !> at a lambda before (the mesh of a neighbouring lambda is usually fine already: the
@@ -462,29 +481,7 @@ contains
         if (adapt%refine == REFINE_HP) then
             call adapt_eigen(scn, curve%lambda, options, adapt, prob, outs, quiet, stat, &
                              keep_problem=.false.)
-            if (.not. stat%ok()) then
-                ! the points whose loops had ended (an outcome) are complete: a partial set
-                if (.not. allocated(outs)) return
-                curve%failure = stat
-                stat = status_t()
-                do i = 1, size(curve%lambda)
-                    curve%complete(i) = len(outs(i)%outcome) > 0
-                end do
-            end if
-            do i = 1, size(curve%lambda)
-                if (size(outs(i)%levels) == 0) cycle
-                curve%units = outs(i)%units   ! (every hp level's)
-                exit
-            end do
-            do i = 1, size(curve%lambda)
-                call timings%tick('sweep, lambda', i, size(curve%lambda))
-                if (.not. curve%complete(i)) cycle
-                associate (o => outs(i))
-                    call record(o%res, last_dofs(o), o%converged, .false., o%mu_vanished, &
-                                o%outcome)
-                end associate
-            end do
-            call clear_incomplete()
+            call record_hp_sweep(outs, curve, timings, stat)
             return
         end if
         current = prob
@@ -497,52 +494,50 @@ contains
                 curve%failure = stat
                 stat = status_t()
                 curve%complete(i:) = .false.
-                call clear_incomplete()
+                call clear_incomplete(curve)
                 return
             end if
             associate (o => outs(1))
-                call record(o%res, o%prob%dofs%n_free, o%converged, size(o%levels) == 1, &
-                            o%mu_vanished, o%outcome)
+                call record_point(curve, i, o%res, o%prob%dofs%n_free, o%converged, &
+                                  size(o%levels) == 1, o%mu_vanished, o%outcome)
                 if (o%converged) current = o%prob
             end associate
         end do
+    end subroutine adaptive_sweep
+
+    !> The curve from the points `outs` of one hp climb for all its lambdas (eigen_goal),
+    !> whose loop ended with `stat`: a failed loop (`outs` allocated) makes the points whose
+    !> loops had ended a partial set, its failure the curve's, and `stat` ok.
+    subroutine record_hp_sweep(outs, curve, timings, stat)
+        type(adapted_eigen_t), allocatable, intent(in) :: outs(:)
+        type(sweep_curve_t), intent(inout) :: curve
+        type(timings_t), intent(inout) :: timings
+        type(status_t), intent(inout) :: stat
+        integer :: i
+        if (.not. stat%ok()) then
+            if (.not. allocated(outs)) return
+            curve%failure = stat
+            stat = status_t()
+            do i = 1, size(curve%lambda)
+                curve%complete(i) = len(outs(i)%outcome) > 0
+            end do
+        end if
+        do i = 1, size(curve%lambda)
+            if (size(outs(i)%levels) == 0) cycle
+            curve%units = outs(i)%units   ! (every hp level's)
+            exit
+        end do
+        do i = 1, size(curve%lambda)
+            call timings%tick('sweep, lambda', i, size(curve%lambda))
+            if (.not. curve%complete(i)) cycle
+            associate (o => outs(i))
+                call record_point(curve, i, o%res, last_dofs(o), o%converged, .false., &
+                                  o%mu_vanished, o%outcome)
+            end associate
+        end do
+        call clear_incomplete(curve)
 
     contains
-
-        !> The points not complete (a failed loop): no mu, no estimate, no bar.
-        subroutine clear_incomplete()
-            where (.not. curve%complete)
-                curve%found = .false.
-                curve%mu = 0.0_wp
-                curve%n_positive = -1
-                curve%error_estimate = -1.0_wp
-                curve%error_bar = -1.0_wp
-            end where
-        end subroutine clear_incomplete
-
-        !> Point i from the result `res` of its loop on `n_free` dofs. A point misses the
-        !> tolerance when it has a mu not converged, or had one at a coarser level (vanished).
-        subroutine record(res, n_free, converged, reused, vanished, outcome)
-            type(eigen_result_t), intent(in) :: res
-            integer, intent(in) :: n_free
-            logical, intent(in) :: converged, reused, vanished
-            character(len=*), intent(in) :: outcome
-            integer :: lowest
-            lowest = res%spec%lowest_positive()
-            curve%found(i) = lowest > 0
-            curve%mu(i) = 0.0_wp
-            if (curve%found(i)) curve%mu(i) = real(res%spec%mu(lowest), wp)
-            curve%n_positive(i) = -1
-            if (res%error%computed) curve%error_estimate(i) = abs(res%error%relative)
-            if (res%error%computed) curve%error_bar(i) = res%error%bar
-            curve%n_dofs(i) = n_free
-            if (converged .and. reused) curve%n_reused = curve%n_reused + 1
-            if ((curve%found(i) .or. vanished) .and. .not. converged) then
-                curve%n_not_met = curve%n_not_met + 1
-                if (.not. allocated(curve%not_met)) curve%not_met = 'lambda = '// &
-                    real_to_text(curve%lambda(i))//': '//outcome
-            end if
-        end subroutine record
 
         !> The free dofs of the last level an hp point solved (0: none).
         pure integer function last_dofs(o)
@@ -550,5 +545,43 @@ contains
             last_dofs = 0
             if (size(o%levels) > 0) last_dofs = o%levels(size(o%levels))%n_dofs
         end function last_dofs
-    end subroutine adaptive_sweep
+    end subroutine record_hp_sweep
+
+    !> The points of `curve` not complete (a failed loop): no mu, no estimate, no bar.
+    subroutine clear_incomplete(curve)
+        type(sweep_curve_t), intent(inout) :: curve
+        where (.not. curve%complete)
+            curve%found = .false.
+            curve%mu = 0.0_wp
+            curve%n_positive = -1
+            curve%error_estimate = -1.0_wp
+            curve%error_bar = -1.0_wp
+        end where
+    end subroutine clear_incomplete
+
+    !> Point i of `curve` from the result `res` of its loop on `n_free` dofs. A point misses
+    !> the tolerance when it has a mu not converged, or had one at a coarser level (vanished).
+    subroutine record_point(curve, i, res, n_free, converged, reused, vanished, outcome)
+        type(sweep_curve_t), intent(inout) :: curve
+        integer, intent(in) :: i
+        type(eigen_result_t), intent(in) :: res
+        integer, intent(in) :: n_free
+        logical, intent(in) :: converged, reused, vanished
+        character(len=*), intent(in) :: outcome
+        integer :: lowest
+        lowest = res%spec%lowest_positive()
+        curve%found(i) = lowest > 0
+        curve%mu(i) = 0.0_wp
+        if (curve%found(i)) curve%mu(i) = real(res%spec%mu(lowest), wp)
+        curve%n_positive(i) = -1
+        if (res%error%computed) curve%error_estimate(i) = abs(res%error%relative)
+        if (res%error%computed) curve%error_bar(i) = res%error%bar
+        curve%n_dofs(i) = n_free
+        if (converged .and. reused) curve%n_reused = curve%n_reused + 1
+        if ((curve%found(i) .or. vanished) .and. .not. converged) then
+            curve%n_not_met = curve%n_not_met + 1
+            if (.not. allocated(curve%not_met)) curve%not_met = 'lambda = '// &
+                real_to_text(curve%lambda(i))//': '//outcome
+        end if
+    end subroutine record_point
 end module threshold_analysis

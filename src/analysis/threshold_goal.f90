@@ -75,7 +75,7 @@ module threshold_goal
                            moving_words
     implicit none
     private
-    public :: solve_adapted_thresholds
+    public :: solve_adapted_thresholds, threshold_goal_setup, threshold_goal_finish
 
 
     !> coarse_scan_t: the largest level scanned at the end, in contact functions
@@ -157,7 +157,7 @@ module threshold_goal
         procedure :: coarse_set => coarse_scan_coarse_set
     end type coarse_scan_t
 
-    type, extends(adapt_goal_t) :: threshold_goal_t
+    type, extends(adapt_goal_t), public :: threshold_goal_t
         type(threshold_level_t), allocatable :: levels(:)
         type(thresholds_t) :: thr
         type(threshold_estimate_t) :: est
@@ -239,6 +239,21 @@ contains
         else
             allocate (h_refiner_t :: refiner)
         end if
+        call threshold_goal_setup(goal, refiner, options, adapt, scan, available)
+        call adapt_levels(scn, adapt, start, refiner, goal, timings, stat)
+        call threshold_goal_finish(scn, goal, refiner, lambda, options, adapt, scan, out, res, &
+                                   timings, stat)
+    end subroutine solve_adapted_thresholds
+
+    !> The goal of both thresholds, every target active, for a loop of `refiner` as `adapt`
+    !> asks (solve_adapted_thresholds: the other arguments).
+    subroutine threshold_goal_setup(goal, refiner, options, adapt, scan, available)
+        type(threshold_goal_t), intent(inout) :: goal
+        class(refiner_t), intent(in) :: refiner
+        type(eigen_options_t), intent(in) :: options
+        type(adapt_options_t), intent(in) :: adapt
+        real(wp), intent(in) :: scan(:)
+        integer(i8), intent(in), optional :: available
         allocate (goal%levels(0), goal%targets(2))
         goal%targets(1)%outcome = ''
         goal%targets(2)%outcome = ''
@@ -250,7 +265,23 @@ contains
             goal%memory = available
         end if
         goal%per_side = .not. refiner%estimated()
-        call adapt_levels(scn, adapt, start, refiner, goal, timings, stat)
+    end subroutine threshold_goal_setup
+
+    !> After the loop of `goal` (`stat` its status, kept or replaced by the report's): its
+    !> outcome and levels in `out`, the last level reported in `res` (solve_adapted_thresholds).
+    subroutine threshold_goal_finish(scn, goal, refiner, lambda, options, adapt, scan, out, &
+                                     res, timings, stat)
+        type(scene_t), intent(in) :: scn
+        type(threshold_goal_t), intent(inout) :: goal
+        class(refiner_t), intent(in) :: refiner
+        real(wp), intent(in) :: lambda
+        type(eigen_options_t), intent(in) :: options
+        type(adapt_options_t), intent(in) :: adapt
+        real(wp), intent(in) :: scan(:)
+        type(adaptive_thresholds_t), intent(out) :: out
+        type(threshold_result_t), intent(out) :: res
+        type(timings_t), intent(inout) :: timings
+        type(status_t), intent(inout) :: stat
         call loop_outcome(goal, out)
         call move_alloc(goal%levels, out%levels)
         out%prob = goal%prob
@@ -277,7 +308,7 @@ contains
              res%eigen%warnings]
         if (refiner%estimated()) res%eigen%warnings = [character(len=len(res%eigen%warnings)) &
             :: res%eigen%warnings, theta_warnings(adapt%theta)]
-    end subroutine solve_adapted_thresholds
+    end subroutine threshold_goal_finish
 
     !> The loop's verdict: converged only when every side met the tolerance (h: both sides
     !> are one target); the outcome, one clause per side on hp levels, each naming its side,

@@ -14,6 +14,7 @@ module threshold_run
     use critical_lambda, only: SIDE_PLUS, SIDE_MINUS, SIDE_LABELS
     use threshold_analysis, only: threshold_result_t, solve_thresholds
     use threshold_goal, only: adaptive_thresholds_t, solve_adapted_thresholds
+    use joint_goal, only: solve_joint_sweep
     use analysis_base, only: analysis_t
     use process_exit, only: naming_file
     implicit none
@@ -41,6 +42,15 @@ module threshold_run
     contains
         procedure :: solve => adapt_threshold_run_solve
     end type adapt_threshold_run_t
+
+    !> 'lambda_sweep' with &sweep adapt_thresholds: the points and the thresholds adapted in
+    !> one hp climb (joint_goal), whose last level the thresholds' result describes.
+    type, extends(analysis_t), public :: joint_sweep_run_t
+        type(threshold_result_t), allocatable :: res
+        type(adaptive_thresholds_t), allocatable :: adapted
+    contains
+        procedure :: solve => joint_sweep_run_solve
+    end type joint_sweep_run_t
 
 contains
 
@@ -77,11 +87,7 @@ contains
             end if
         end associate
         call no_digit_verdict(this%res, inputs%scene%name, this%verdict)
-        if (.not. this%verdict%ok()) return
-        if (this%res%sweep%n_not_met > 0) call this%verdict%fail(STATUS_NOT_MET, &
-            inputs%scene%name//': &adapt: '//to_string(this%res%sweep%n_not_met)// &
-            ' of the sweep''s points with a positive mu did not meet the tolerance, '// &
-            'the first at '//this%res%sweep%not_met//' (the set is written)')
+        if (this%verdict%ok()) call points_verdict(this%res, inputs%scene%name, this%verdict)
     end subroutine sweep_run_solve
 
     subroutine adapt_threshold_run_solve(this, inputs, prob, timings, stat)
@@ -94,11 +100,47 @@ contains
         if (.not. allocated(this%adapted)) allocate (this%adapted)
         call solve_adapted_thresholds(inputs%scene, inputs%point%lambda, inputs%eigen, &
             inputs%adapt, inputs%scan, prob, this%adapted, this%res, timings, stat)
-        if (stat%ok() .and. .not. this%adapted%converged) call this%verdict%fail( &
-            STATUS_NOT_MET, inputs%scene%name//': &adapt: '//this%adapted%outcome// &
-            ' (the set of the last level is written)')
+        if (stat%ok()) call sides_verdict(this%adapted, inputs%scene%name, this%verdict)
         if (stat%ok()) call no_digit_verdict(this%res, inputs%scene%name, this%verdict)
     end subroutine adapt_threshold_run_solve
+
+    !> The verdict is the thresholds' (as an adaptive threshold run's), else the points'
+    !> (as an adapted sweep's): each part's outcome is in its own files.
+    subroutine joint_sweep_run_solve(this, inputs, prob, timings, stat)
+        class(joint_sweep_run_t), intent(inout) :: this
+        type(run_inputs_t), intent(in) :: inputs
+        type(problem_t), intent(in) :: prob
+        type(timings_t), intent(inout) :: timings
+        type(status_t), intent(out) :: stat
+        if (.not. allocated(this%res)) allocate (this%res)
+        if (.not. allocated(this%adapted)) allocate (this%adapted)
+        call solve_joint_sweep(inputs%scene, inputs%point%lambda, inputs%sweep, inputs%eigen, &
+            inputs%adapt, inputs%scan, prob, this%adapted, this%res, timings, stat)
+        if (.not. stat%ok()) return
+        call sides_verdict(this%adapted, inputs%scene%name, this%verdict)
+        if (this%verdict%ok()) call points_verdict(this%res, inputs%scene%name, this%verdict)
+        if (this%verdict%ok()) call no_digit_verdict(this%res, inputs%scene%name, this%verdict)
+    end subroutine joint_sweep_run_solve
+
+    !> `verdict` STATUS_NOT_MET where the adapted thresholds missed the tolerance.
+    subroutine sides_verdict(adapted, name, verdict)
+        type(adaptive_thresholds_t), intent(in) :: adapted
+        character(len=*), intent(in) :: name
+        type(status_t), intent(inout) :: verdict
+        if (.not. adapted%converged) call verdict%fail(STATUS_NOT_MET, name//': &adapt: '// &
+            adapted%outcome//' (the set of the last level is written)')
+    end subroutine sides_verdict
+
+    !> `verdict` STATUS_NOT_MET where points of the adapted sweep of `res` missed it.
+    subroutine points_verdict(res, name, verdict)
+        type(threshold_result_t), intent(in) :: res
+        character(len=*), intent(in) :: name
+        type(status_t), intent(inout) :: verdict
+        if (res%sweep%n_not_met > 0) call verdict%fail(STATUS_NOT_MET, name//': &adapt: '// &
+            to_string(res%sweep%n_not_met)//' of the sweep''s points with a positive mu '// &
+            'did not meet the tolerance, the first at '//res%sweep%not_met// &
+            ' (the set is written)')
+    end subroutine points_verdict
 
     !> `verdict` STATUS_NO_DIGIT (after the outputs: the set shows what was computed) where
     !> round-off leaves no correct digit of a critical lambda of `res` or of a collision

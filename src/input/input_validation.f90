@@ -88,7 +88,22 @@ contains
         if (stat%ok()) call validate_branch(config%branch, path, stat)
         if (stat%ok()) call validate_solve(config%solve, path, stat)
         if (stat%ok()) call validate_adapt(config, path, stat)
+        if (stat%ok() .and. config%sweep%adapt_thresholds) call validate_joint(config, path, &
+                                                                                stat)
     end subroutine validate_config
+
+    !> &sweep adapt_thresholds: one hp climb carries the sweep's points and its thresholds,
+    !> so it needs an adapted hp lambda_sweep (h levels refine each point's mesh on its own).
+    subroutine validate_joint(config, path, stat)
+        type(config_t), intent(in) :: config
+        character(len=*), intent(in) :: path
+        type(status_t), intent(inout) :: stat
+        if (config%analysis%kind /= 'lambda_sweep' .or. .not. config%adapt%tolerance > 0.0_wp &
+            .or. config%adapt%strategy /= 'hp') call fail_value(stat, path, 'sweep', &
+            'adapt_thresholds', '.true.', ".false. unless &analysis kind = 'lambda_sweep' "// &
+            "with &adapt tolerance > 0 and strategy = 'hp' (one hp climb for the points "// &
+            'and the thresholds)')
+    end subroutine validate_joint
 
     !> &adapt, and what adaptation needs of the other groups: an analysis that adapts, a
     !> rectangle of triangles with an enriched space (a Gmsh file's cells are checked when

@@ -118,6 +118,8 @@ input_variable(lambdas   reals   "huge(1.0_wp)"
                DIM MAX_SWEEP_LAMBDAS SHOWN unset)
 input_variable(plot      logical .true.
                "draw lambda_sweep.png with gnuplot (&output plot on too)")
+input_variable(adapt_thresholds logical .false.
+               "hp: adapt lambda+- and the onsets in the points' climb")
 
 # analysis = 'branch' (model.md section 9): the base solution U and the members U + delta phi
 input_group(branch HEADER "&branch      (kind = 'branch': U + delta phi, docs/model.md 9)")

@@ -34,7 +34,8 @@ module run_report
     use normal_compliance, only: STATE_SEPARATED, STATE_STICK, STATE_SLIP_PLUS, STATE_SLIP_MINUS
     use analysis_base, only: analysis_t
     use eigen_run, only: eigen_run_t, adapt_eigen_run_t
-    use threshold_run, only: threshold_run_t, sweep_run_t, adapt_threshold_run_t
+    use threshold_run, only: threshold_run_t, sweep_run_t, adapt_threshold_run_t, &
+                             joint_sweep_run_t
     use compliance_run, only: branch_run_t, solve_run_t
     use reported_units, only: to_input_units, critical_cn
     use summary_record, only: run_summary_t, eigen_facts_t, threshold_facts_t, sweep_facts_t, &
@@ -92,6 +93,9 @@ contains
         type is (adapt_threshold_run_t)
             call report_thresholds(a%res, inputs, prob, a%adapted%prob, stage, rec, start, &
                                    stat, adapted=a%adapted)
+        type is (joint_sweep_run_t)
+            call report_thresholds(a%res, inputs, prob, a%adapted%prob, stage, rec, start, &
+                                   stat, sweep=.true., adapted=a%adapted)
         type is (branch_run_t)
             call report_branch(a, inputs, prob, stage, rec, start, stat)
         type is (solve_run_t)

@@ -54,6 +54,10 @@ check 'study.csv: a header and 4 x (3 c_n + 4 threshold) rows' \
     '[[ $(head -n 1 out/study.csv) == "\"geometry\",\"poisson\",\"lambda\",\"quantity\",\"value\",\"error_bar\",\"converged\",\"exit_status\",\"reason\",\"dofs\",\"seconds\",\"input_hash\",\"nceig_version\",\"source_commit\",\"blas\",\"task\"" && $(wc -l <out/study.csv) -eq 29 ]]'
 check 'study.json has the same 28 rows, every one converged with exit status 0' \
     '[[ $(jq "[.rows[] | select(.converged and .exit_status == 0)] | length" out/study.json) -eq 28 ]]'
+check 'one nceig run per task: c_n and thresholds adapted in one hp climb' \
+    '[[ $(ls out/tasks/*/cn.nml | wc -l) -eq 4 && -z $(ls out/tasks/*/thr.nml 2>/dev/null) ]] &&
+     [[ $(grep -li "^ *adapt_thresholds *= *t" out/tasks/*/cn.nml | wc -l) -eq 4 ]] &&
+     [[ $(jq "[.rows[] | select(.quantity == \"lambda_plus\" and .error_bar != null)] | length" out/study.json) -eq 4 ]]'
 check 'each row carries its input hash, the nceig version and one BLAS thread' \
     '[[ $(jq -r "[.rows[] | select((.input_hash | length) == 64 and .nceig_version != null
           and (.blas | test(\"[(]1 thread[)]\")))] | length" out/study.json) -eq 28 ]]'

@@ -69,6 +69,9 @@ check 'two array elements (two tasks each) end COMPLETED' \
 check 'the collection job ends COMPLETED' '[[ $collect_state == COMPLETED ]]'
 check 'the table from SLURM equals the local engine'"'"'s (but times)' \
     'same_study local/study.csv "$out/study.csv"'
+check 'each task was one nceig run on the nodes (c_n and thresholds in one hp climb)' \
+    '[[ -z $(ls "$out"/tasks/*/thr.nml 2>/dev/null) && $(ls "$out"/tasks/*/cn/summary.json | wc -l) -eq 4 ]] &&
+     [[ $(grep -l "^cn_status=0" "$out"/tasks/*/result | wc -l) -eq 4 ]]'
 check 'the collection drew the pictures and study.pvd' \
     '[[ -s $out/study_cn.png && -s $out/study_thresholds.png && $(grep -c "<DataSet " "$out/study.pvd") -eq 4 ]]'
 check 'nothing the paths hold was run (no PWN file)' '[[ -z $(canaries) ]]'

@@ -13,6 +13,7 @@ program test_input_config
     type(test_suite_t) :: t
     type(config_t) :: config, defaults
     type(status_t) :: stat
+    character(len=*), parameter :: NL = new_line('a')
     character(len=NAME_LEN), allocatable :: names(:)
     character(len=:), allocatable :: help
 
@@ -130,6 +131,22 @@ program test_input_config
     call expect_rejected('logical not .true./.false.', '&output vtk = .trash. /', '&output', &
                          '.trash.')
     call expect_rejected('variable twice', '&mesh nx = 4, nx = 6 /', '&mesh', 'given twice')
+    ! one hp climb for the points and the thresholds: an adapted hp lambda_sweep only
+    call expect_rejected('adapt_thresholds without &adapt', "&analysis kind = " // &
+                         "'lambda_sweep' /"//NL//"&sweep adapt_thresholds = .true. /", &
+                         '&sweep', 'adapt_thresholds')
+    call expect_rejected('adapt_thresholds on h levels', "&analysis kind = 'lambda_sweep' /" &
+                         //NL//"&adapt tolerance = 1e-6, strategy = 'h' /"//NL &
+                         //"&sweep adapt_thresholds = .true. /", '&sweep', "strategy = 'hp'")
+    call expect_rejected('adapt_thresholds of a threshold run', "&analysis kind = " // &
+                         "'threshold' /"//NL//"&adapt tolerance = 1e-6, strategy = 'hp' /" &
+                         //NL//"&sweep adapt_thresholds = .true. /", '&sweep', &
+                         'adapt_thresholds')
+    call write_file('joint.nml', [character(len=80) :: "&analysis kind = 'lambda_sweep' /", &
+        "&adapt tolerance = 1e-6, strategy = 'hp' /", '&sweep adapt_thresholds = .true. /'])
+    call read_input('joint.nml', config, stat)
+    call t%check('adapt_thresholds of an adapted hp lambda_sweep is accepted', stat%ok() &
+                 .and. config%sweep%adapt_thresholds)
 
     ! One line per message: main prints it on one line of standard error.
     call write_file('bad.nml', [character(len=40) :: '&mesh', "dirichlet = ''", '/'])
