@@ -231,9 +231,7 @@ contains
         integer(i8), intent(in), optional :: available
         class(refiner_t), allocatable :: refiner
         type(threshold_goal_t) :: goal
-        character(len=WARNING_LEN), allocatable :: moving_warnings(:)
 
-        allocate (moving_warnings(0))
         if (adapt%refine == REFINE_HP) then
             allocate (hp_refiner_t :: refiner)
         else
@@ -282,6 +280,8 @@ contains
         type(threshold_result_t), intent(out) :: res
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(inout) :: stat
+        character(len=WARNING_LEN), allocatable :: moving_warnings(:)
+        allocate (moving_warnings(0))
         call loop_outcome(goal, out)
         call move_alloc(goal%levels, out%levels)
         out%prob = goal%prob
