@@ -72,10 +72,7 @@ contains
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
         class(refiner_t), allocatable :: refiner
-        ! allocatable: gfortran 12 leaves the allocatable components of the threshold part
-        ! (its blocks, its lift) allocated when a plain local of this extended type goes
-        ! out of scope; the deallocation of an allocatable object frees them (Asan)
-        type(joint_goal_t), allocatable :: goal
+        type(joint_goal_t) :: goal
         type(adapted_eigen_t), allocatable :: outs(:)
         type(status_t) :: loop
         real(wp) :: begin
@@ -86,7 +83,6 @@ contains
         end if
         begin = wall_time()
         allocate (hp_refiner_t :: refiner)
-        allocate (goal)
         call threshold_goal_setup(goal%sides, refiner, options, adapt, scan)
         call goal%points%setup(lambdas, options, adapt, .false.)
         ! allocated, then filled: an array constructor of targets (allocatable outcomes)
