@@ -189,7 +189,7 @@ NML
                 read -r v b < <(side_value "$s" "$quantity" "$kind")
                 read -r v2 b2 < <(side_value "$dir/$other_name/summary.json" "$quantity" "$kind")
             fi
-            reason=$( (jq -r '.warnings[0] // ""' "$s" 2>/dev/null || tail -1 "$dir/$name.log") \
+            reason=$( (jq -r '.warnings[0] // ""' "$s" 2>/dev/null || tail -1 "$dir/$name.log" 2>/dev/null || true) \
                 | tr ',\n' ';  ' | cut -c1-160)
             class=$(awk -v rc="$rc" -v v="$v" -v b="$b" -v r="$reference" -v u="$uncertainty" \
                 -v rc2="$rc2" -v v2="$v2" -v b2="$b2" 'function abs(x) { return x < 0 ? -x : x }
