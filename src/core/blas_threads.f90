@@ -16,8 +16,8 @@ module blas_threads
     public :: THREAD_DOFS
 
     !> Rows of the factor per thread: a factor of order n gets n / THREAD_DOFS threads, so
-    !> two from 2 THREAD_DOFS rows on: between the factors that lost (3604 rows) and gained
-    !> (64444) with two threads at a load of 2 to 3 (docs/performance.md, "BLAS threads";
+    !> two from 2 THREAD_DOFS rows on: on idle cores two threads gained from 33024 rows on
+    !> and nothing below (docs/performance.md, "BLAS threads";
     !> scripts/bench/bench_blas_threads.sh --crossover measures it on other cores).
     integer, parameter :: THREAD_DOFS = 20000
 
