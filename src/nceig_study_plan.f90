@@ -22,6 +22,7 @@ program nceig_study_plan
     use filesystem, only: make_directories, is_directory
     use run_config, only: config_t
     use input_config, only: read_input
+    use input_validation, only: one_climb_possible
     use command_line, only: command_argument
     use input_records, only: read_record, LISTING_LINE_LEN
     use input_table, only: KNOWN_GROUPS
@@ -154,8 +155,7 @@ contains
             point_stat%message), point_stat%code)
         ! c_n and the thresholds in one hp climb (&sweep adapt_thresholds), where the
         ! template adapts on hp levels; h levels adapt each point alone: two runs
-        joint = kind == 'lambda_sweep' .and. study%thresholds .and. &
-            config%adapt%strategy == 'hp' .and. config%adapt%tolerance > 0.0_wp
+        joint = study%thresholds .and. one_climb_possible(config)
         call write_input(task_dir//'/'//name//'.nml', config, kind == 'lambda_sweep')
     end subroutine write_point
 

@@ -16,7 +16,7 @@ module input_validation
     use ieee_arithmetic, only: ieee_is_finite
     implicit none
     private
-    public :: validate_config
+    public :: validate_config, one_climb_possible
     public :: MESH_SOURCES, ELEMENT_NAMES, DIAGONALS, RECTANGLE_SIDES, ACCEPTED_ANALYSES, &
               ACCEPTED_SOLVERS, MAX_CELLS_PER_SIDE, SWEEP_SPACINGS, MAX_SWEEP_POINTS, &
               VTK_FORMATS, SOLVE_DATA, SOLVE_STARTS, ESTIMATE_MODES, EIGEN_OPERATORS, &
@@ -98,12 +98,19 @@ contains
         type(config_t), intent(in) :: config
         character(len=*), intent(in) :: path
         type(status_t), intent(inout) :: stat
-        if (config%analysis%kind /= 'lambda_sweep' .or. .not. config%adapt%tolerance > 0.0_wp &
-            .or. config%adapt%strategy /= 'hp') call fail_value(stat, path, 'sweep', &
+        if (.not. one_climb_possible(config)) call fail_value(stat, path, 'sweep', &
             'adapt_thresholds', '.true.', ".false. unless &analysis kind = 'lambda_sweep' "// &
             "with &adapt tolerance > 0 and strategy = 'hp' (one hp climb for the points "// &
             'and the thresholds)')
     end subroutine validate_joint
+
+    !> Whether `config` may set &sweep adapt_thresholds: an adapted hp lambda_sweep (the
+    !> rule of validate_joint; nceig-study-plan asks it before it writes a task's input).
+    pure logical function one_climb_possible(config)
+        type(config_t), intent(in) :: config
+        one_climb_possible = config%analysis%kind == 'lambda_sweep' .and. &
+            config%adapt%tolerance > 0.0_wp .and. config%adapt%strategy == 'hp'
+    end function one_climb_possible
 
     !> &adapt, and what adaptation needs of the other groups: an analysis that adapts, a
     !> rectangle of triangles with an enriched space (a Gmsh file's cells are checked when
