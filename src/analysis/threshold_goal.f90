@@ -304,8 +304,8 @@ contains
         if (goal%factored) call goal%chol%free()
         ! the last level's dense blocks, freed here: where the goal is a component of another
         ! goal (joint_goal), gfortran 12 does not free them with it (Asan)
-        call release_blocks(goal%blocks)
-        call release_blocks(goal%restricted)
+        call goal%blocks%free()
+        call goal%restricted%free()
         if (allocated(goal%lift)) deallocate (goal%lift)
         if (.not. stat%ok()) return
         if (.not. out%converged) res%eigen%warnings = &
@@ -314,16 +314,6 @@ contains
         if (refiner%estimated()) res%eigen%warnings = [character(len=len(res%eigen%warnings)) &
             :: res%eigen%warnings, theta_warnings(adapt%theta)]
     end subroutine threshold_goal_finish
-
-    !> Every array of `blocks` deallocated.
-    subroutine release_blocks(blocks)
-        type(reduced_blocks_t), intent(inout) :: blocks
-        if (allocated(blocks%kt_nn)) deallocate (blocks%kt_nn)
-        if (allocated(blocks%kt_nt)) deallocate (blocks%kt_nt)
-        if (allocated(blocks%mass%row_start)) deallocate (blocks%mass%row_start)
-        if (allocated(blocks%mass%col)) deallocate (blocks%mass%col)
-        if (allocated(blocks%mass%val)) deallocate (blocks%mass%val)
-    end subroutine release_blocks
 
     !> The loop's verdict: converged only when every side met the tolerance (h: both sides
     !> are one target); the outcome, one clause per side on hp levels, each naming its side,
@@ -425,7 +415,7 @@ contains
                 this%options, chol, blocks, set, onset, nearest, beside, stat)
             call chol%free()
             if (.not. stat%ok()) return
-            deallocate (blocks%kt_nn, blocks%kt_nt)
+            call blocks%free()
             call estimate_threshold_errors(prob, this%thr, u, ENRICHED_CONTACT_MAX, this%est, &
                                            stat)
             if (stat%ok()) call estimate_collisions(this, prob, set, onset, nearest, beside)

@@ -53,6 +53,7 @@ module contact_reduction
         type(csr_matrix_t) :: mass             !! (p, p) M, the contact mass matrix
     contains
         procedure :: matrix => reduced_blocks_matrix
+        procedure :: free => reduced_blocks_free
     end type reduced_blocks_t
 
 contains
@@ -427,4 +428,16 @@ contains
             first = last + 1
         end do
     end subroutine lift_eigenvectors
+
+    !> Every array of the blocks deallocated, as soon as their user is done with them (and
+    !> explicitly where the blocks are a component of a goal inside another goal, which
+    !> gfortran 12 does not free whole: joint_goal under Asan).
+    subroutine reduced_blocks_free(this)
+        class(reduced_blocks_t), intent(inout) :: this
+        if (allocated(this%kt_nn)) deallocate (this%kt_nn)
+        if (allocated(this%kt_nt)) deallocate (this%kt_nt)
+        if (allocated(this%mass%row_start)) deallocate (this%mass%row_start)
+        if (allocated(this%mass%col)) deallocate (this%mass%col)
+        if (allocated(this%mass%val)) deallocate (this%mass%val)
+    end subroutine reduced_blocks_free
 end module contact_reduction
