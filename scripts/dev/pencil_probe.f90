@@ -5,7 +5,7 @@
 !>
 !>   pencil_probe INPUT.nml [--set group%variable=value]... [--level L] [--degrees D]
 !>                [--window LMIN LMAX] [--scan LMIN LMAX N] [--profile] [--edges]
-!>                [--vector LAMBDA] [--lower | --half | --coarse | --drop S]
+!>                [--vector LAMBDA] [--theta LMIN LMAX N] [--lower | --half | --coarse | --drop S]
 !>
 !> Without --level the input's own mesh and element (a Lagrange problem, as nceig builds it);
 !> with --level L the hp level L of the input mesh (&adapt sigma, p_max), its degrees by D:
@@ -21,7 +21,9 @@
 !> Kt_nn^-1/2 (Kt_nn - lambda Kt_nt) Kt_nn^-1/2, the inf-sup constant of the threshold
 !> problem in the norms Kt_nn defines (bounded away from 0 under refinement where the
 !> continuum problem is invertible); --vector prints the vector of one eigenvalue; --edges
-!> the contact edges of an hp level with their degrees.
+!> the contact edges of an hp level with their degrees; --theta one 'theta' line per lambda: the
+!> number of positive mu and the six eigenvalues theta = 1/mu of (lambda Kt_nt - Kt_nn) M with
+!> the largest real parts (a pair landing on the real axis, a theta crossing zero).
 !> The multiplier variants (the forces x = M I y of a smaller space, the constraint u_n = 0
 !> tested against it: (I' M Kt M I) y = lambda (I' M Kt_nt M I) y): --lower, degree p_e - 1
 !> on each contact edge of degree p_e >= 2 (hp); --half, degree ceil(p_e / 2) (hp);
@@ -44,7 +46,7 @@ program pencil_probe
     use hp_eigen, only: hp_assembled_problem, factor_hp_stiffness
     use sparse_cholesky, only: cholesky_t
     use contact_reduction, only: factor_contact_blocks, contact_flexibility
-    use lapack_interfaces, only: dggev
+    use lapack_interfaces, only: dggev, dgeev
     use pencil_tracking, only: pencil_profile_bins
     implicit none
 
@@ -79,6 +81,8 @@ program pencil_probe
     character(len=256) :: argument
     real(wp) :: window(2), scan(2), s_min, s_max
     integer :: level, n_scan, i, narg
+    real(wp) :: theta_range(2) = 0.0_wp   !! --theta A B N: the spectrum of A(lambda) near 0
+    integer :: n_theta = 0
     logical :: profile, edges
     real(wp) :: dump = 0.0_wp   !! --vector L: print the vector of the real eigenvalue L
     logical :: half = .false.   !! --half: multipliers of degree ceil(p/2)
@@ -119,6 +123,10 @@ program pencil_probe
         case ('--scan')
             scan = [real_argument(i + 1), real_argument(i + 2)]
             n_scan = int_argument(i + 3)
+            i = i + 3
+        case ('--theta')
+            theta_range = [real_argument(i + 1), real_argument(i + 2)]
+            n_theta = int_argument(i + 3)
             i = i + 3
         case ('--profile')
             profile = .true.
@@ -185,8 +193,39 @@ program pencil_probe
         ', contact functions ', prob%contact%p(), ', smallest contact cell ', smallest_cell()
     call pencil_lines()
     if (n_scan > 0) call scan_lines()
+    if (n_theta > 0) call theta_lines()
 
 contains
+
+    !> For each lambda of the range: the eigenvalues theta = 1/mu of A = (lambda Kt_nt - Kt_nn) M
+    !> with the largest real parts (the positive mu and the pairs about to land), as
+    !> 'theta lambda count Re1 Im1 Re2 Im2 ...' with count the number of positive real mu.
+    subroutine theta_lines()
+        real(wp), allocatable :: mass(:, :), a(:, :), wr(:), wi(:), work(:)
+        integer, allocatable :: order(:)
+        real(wp) :: lambda, query(1), dummy(1, 1)
+        integer :: p, info, j, k, n_pos
+        p = size(kt_nn, 1)
+        mass = prob%contact%mass_dense()
+        allocate (wr(p), wi(p))
+        do j = 0, n_theta - 1
+            lambda = theta_range(1) + (theta_range(2) - theta_range(1))*j/max(1, n_theta - 1)
+            a = matmul(lambda*kt_nt - kt_nn, mass)
+            if (.not. allocated(work)) then
+                call dgeev('N', 'N', p, a, p, wr, wi, dummy, 1, dummy, 1, query, -1, info)
+                allocate (work(int(query(1))))
+            end if
+            call dgeev('N', 'N', p, a, p, wr, wi, dummy, 1, dummy, 1, work, size(work), info)
+            if (info /= 0) call fail('dgeev failed')
+            n_pos = count(wr > 0.0_wp .and. wi == 0.0_wp)
+            order = [(k, k=1, p)]
+            do k = 1, min(6, p)   ! the six largest real parts first
+                order(k:) = cshift(order(k:), maxloc(wr(order(k:)), 1) - 1)
+            end do
+            write (output_unit, '(a, es24.15, i4, *(es13.5))') 'theta ', lambda, n_pos, &
+                (wr(order(k)), wi(order(k)), k=1, min(6, p))
+        end do
+    end subroutine theta_lines
 
     !> settings gains `text` (an array constructor of text_t garbles gfortran 12's copy).
     subroutine add_setting(text)
