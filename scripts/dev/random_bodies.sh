@@ -18,7 +18,7 @@
 # the pencil value lambda_critical_* with its bar (a pencil value past a collision onset is
 # no goal of the run), against references of the same kind: the uniform collision onsets
 # (where each level has one and the same levels' pencil values of the side converge too) or
-# pencil values, the other method's value of that kind where that is its run's goal:
+# pencil values, the other method's value of that kind:
 #   right      quoted with a bar that covers a reference (the distance at most the sum of
 #              the two bars), or none where neither reference has a value;
 #   flagged    quoted without a bar or with a bar of 100 % or more, or not quoted by a run
@@ -198,11 +198,6 @@ NML
                 fi
                 read -r v b < <(side_value "$s" "$quantity" "$kind")
                 read -r v2 b2 < <(side_value "$dir/$other_name/summary.json" "$quantity" "$kind")
-                # a value that is not the other run's goal is no reference: its bar was not
-                # what that run converged (seed 35, body 18, lambda-: the h run's goal a
-                # collision onset, its pencil value 8.5e-3 off with a bar of 3.1e-3)
-                [[ $(goal_kind "$dir/$other_name/summary.json" "$quantity") == "$kind" ]] ||
-                    b2=null
             fi
             reason=$( (jq -r '.warnings[0] // ""' "$s" 2>/dev/null || tail -1 "$dir/$name.log" 2>/dev/null || true) \
                 | tr ',\n' ';  ' | cut -c1-160)
