@@ -203,7 +203,7 @@ contains
     subroutine theta_lines()
         real(wp), allocatable :: mass(:, :), a(:, :), wr(:), wi(:), work(:)
         integer, allocatable :: order(:)
-        real(wp) :: lambda, query(1), dummy(1, 1)
+        real(wp) :: lambda, query(1), left(1, 1), right(1, 1)
         integer :: p, info, j, k, n_pos
         p = size(kt_nn, 1)
         mass = prob%contact%mass_dense()
@@ -212,12 +212,12 @@ contains
             lambda = theta_range(1) + (theta_range(2) - theta_range(1))*j/max(1, n_theta - 1)
             a = matmul(lambda*kt_nt - kt_nn, mass)
             if (.not. allocated(work)) then
-                call dgeev('N', 'N', p, a, p, wr, wi, dummy, 1, dummy, 1, query, -1, info)
+                call dgeev('N', 'N', p, a, p, wr, wi, left, 1, right, 1, query, -1, info)
                 allocate (work(int(query(1))))
             end if
-            call dgeev('N', 'N', p, a, p, wr, wi, dummy, 1, dummy, 1, work, size(work), info)
+            call dgeev('N', 'N', p, a, p, wr, wi, left, 1, right, 1, work, size(work), info)
             if (info /= 0) call fail('dgeev failed')
-            n_pos = count(wr > 0.0_wp .and. wi == 0.0_wp)
+            n_pos = count(wr > 0.0_wp .and. .not. abs(wi) > 0.0_wp)
             order = [(k, k=1, p)]
             do k = 1, min(6, p)   ! the six largest real parts first
                 order(k:) = cshift(order(k:), maxloc(wr(order(k:)), 1) - 1)
