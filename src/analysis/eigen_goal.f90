@@ -22,7 +22,8 @@ module eigen_goal
     use unit_scaling, only: units_t
     use hp_space, only: hp_space_t
     use sparse_cholesky, only: cholesky_t
-    use contact_boundary, only: assemble_b
+    use csr_matrix, only: csr_matrix_t
+    use contact_boundary, only: b_pattern, fill_b
     use contact_reduction, only: contact_flexibility
     use eigen_solve, only: eigen_result_t, solve_eigen, estimate_eigen, eigen_with_factor, &
                            choose_solver
@@ -239,6 +240,7 @@ contains
         type(cholesky_t), target :: own
         type(cholesky_t), pointer :: chol
         real(wp), allocatable :: kt_nn(:, :), kt_nt(:, :)
+        type(csr_matrix_t) :: b_level   !! B's sparsity on the hp level, for every lambda
         integer :: i
 
         chol => own
@@ -260,6 +262,8 @@ contains
                 end if
             end if
         end if
+        if (.not. refiner%estimated()) call b_pattern(level%prob%contact, &
+                                                      level%prob%dofs%n_free, b_level)
         do i = 1, size(this%points)
             if (.not. this%targets(i)%active()) cycle
             if (refiner%estimated()) then
@@ -305,7 +309,8 @@ contains
             type(eigen_level_t) :: row
             integer :: k
             res%lambda = p%lambda
-            call assemble_b(level%prob%contact, level%prob%dofs%n_free, res%lambda, res%b, stat)
+            res%b = b_level
+            call fill_b(level%prob%contact, res%lambda, res%b, stat)
             if (.not. stat%ok()) return
             res%solver = choose_solver(this%options, level%prob%contact%p())
             if (allocated(kt_nn)) then
@@ -417,6 +422,7 @@ contains
         type(cholesky_t) :: chol
         type(eigen_result_t) :: res
         real(wp), allocatable :: kt_nn(:, :), kt_nt(:, :)
+        type(csr_matrix_t) :: b_check   !! B's sparsity on the check's level
         real(wp) :: series, bar, begin
         character(len=:), allocatable :: why
         integer :: i, k
@@ -441,10 +447,11 @@ contains
                     built = .true.
                     call level_blocks(this, check%prob, chol, kt_nn, kt_nt, timings, stat)
                     if (.not. stat%ok()) exit
+                    call b_pattern(check%prob%contact, check%prob%dofs%n_free, b_check)
                 end if
                 res%lambda = p%lambda
-                call assemble_b(check%prob%contact, check%prob%dofs%n_free, res%lambda, res%b, &
-                                stat)
+                res%b = b_check
+                call fill_b(check%prob%contact, res%lambda, res%b, stat)
                 if (.not. stat%ok()) exit
                 res%solver = choose_solver(this%options, check%prob%contact%p())
                 if (allocated(kt_nn)) then

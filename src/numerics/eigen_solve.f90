@@ -328,10 +328,11 @@ contains
     !> by factor_stiffness, which stays allocated for the caller (the threshold analysis reads
     !> the contact blocks off the same factor; the full operator may use one without the
     !> contact dofs last). A caller that already has Kt_nn and Kt_nt
-    !> passes them to spare the dense solver forming them again; ARPACK without shift on the
-    !> reduced operator then runs on the p x p matrix formed from them (arpack_search).
-    !> `lowest_only` (ARPACK): only the lowest positive mu gets its mode, backward error and
-    !> round-off bound (arpack_finish), for a caller that reports that one mu alone.
+    !> passes them to spare the dense solver forming them again. `lowest_only` (ARPACK), for a
+    !> caller that reports the lowest positive mu alone (an hp sweep's points): the search
+    !> without shift on the reduced operator runs on the p x p matrix formed from the blocks
+    !> when given (arpack_search), and only that mu gets its mode, backward error and
+    !> round-off bound (arpack_finish). Every other caller's path is unchanged.
     subroutine eigen_with_factor(scn, prob, options, chol, res, timings, stat, kt_nn, kt_nt, &
                                  contact_last, lowest_only)
         type(scene_t), intent(in) :: scn
@@ -347,6 +348,7 @@ contains
         logical, intent(in), optional :: contact_last
         logical, intent(in), optional :: lowest_only
         type(arpack_options_t) :: arpack
+        logical :: explicit
         type(arpack_search_t) :: search
         type(cholesky_t) :: ordered   !! contact dofs last, for the full operator's decision
         logical :: chol_contact_last
@@ -370,7 +372,10 @@ contains
             chol_contact_last = .true.
             if (present(contact_last)) chol_contact_last = contact_last
             refactor_seconds = 0.0_wp
-            if (present(kt_nn) .and. present(kt_nt) .and. .not. arpack%full) then
+            explicit = .false.
+            if (present(lowest_only)) explicit = lowest_only .and. present(kt_nn) .and. &
+                                                 present(kt_nt) .and. .not. arpack%full
+            if (explicit) then
                 call arpack_search(prob%k, res%b, chol, prob%contact, res%lambda, arpack, &
                     search, stat, scaled_reduced_matrix(kt_nn, kt_nt, prob%contact%mass, &
                                                         res%lambda))
