@@ -17,12 +17,13 @@ module eigen_goal
     use timer, only: wall_time, timings_t, PHASE_REDUCTION
     use scene, only: scene_t
     use method_options, only: eigen_options_t, adapt_options_t, ESTIMATE_ON, REFINE_HP, &
-                              SOLVER_DENSE
+                              SOLVER_DENSE, OPERATOR_REDUCED
     use problem, only: problem_t
     use unit_scaling, only: units_t
     use hp_space, only: hp_space_t
     use sparse_cholesky, only: cholesky_t
-    use contact_boundary, only: assemble_b
+    use csr_matrix, only: csr_matrix_t
+    use contact_boundary, only: b_pattern, fill_b
     use contact_reduction, only: contact_flexibility
     use eigen_solve, only: eigen_result_t, solve_eigen, estimate_eigen, eigen_with_factor, &
                            choose_solver
@@ -92,6 +93,11 @@ module eigen_goal
         type(eigen_options_t) :: options
         real(wp) :: tolerance = 0.0_wp
         logical :: keep_problem = .true.
+        !> the caller keeps of each point its lowest positive mu, bar and outcome alone (an hp
+        !> sweep: keep_problem false): ARPACK then runs on the level's p x p matrix from its
+        !> shared contact blocks and lifts that one mu (its mode, backward error and
+        !> round-off bound), not every eigenvalue found (eigen_with_factor: lowest_only)
+        logical :: lowest_only = .false.
         type(adapted_eigen_t), allocatable :: points(:)
     contains
         procedure :: solve => eigen_goal_solve
@@ -150,6 +156,7 @@ contains
         if (.not. adapt%refine == REFINE_HP) this%options%estimate = ESTIMATE_ON
         this%tolerance = adapt%tolerance
         this%keep_problem = keep_problem
+        this%lowest_only = .not. keep_problem
         if (allocated(this%targets)) deallocate (this%targets)
         if (allocated(this%points)) deallocate (this%points)
         allocate (this%targets(size(lambdas)), this%points(size(lambdas)))
@@ -233,27 +240,30 @@ contains
         type(cholesky_t), target :: own
         type(cholesky_t), pointer :: chol
         real(wp), allocatable :: kt_nn(:, :), kt_nt(:, :)
+        type(csr_matrix_t) :: b_level   !! B's sparsity on the hp level, for every lambda
         integer :: i
 
         chol => own
         if (.not. refiner%estimated()) then
             if (present(given)) then
                 chol => given
-                if (choose_solver(this%options, level%prob%contact%p()) == SOLVER_DENSE) then
+                if (wants_blocks(this, level%prob%contact%p())) then
                     kt_nn = kt_nn_given
                     kt_nt = kt_nt_given
                 end if
             else
                 call refiner%factor(level, own, timings, stat)
                 if (.not. stat%ok()) return
-                if (this%any_active()) call level_blocks(this%options, level%prob, own, &
-                    kt_nn, kt_nt, timings, stat)
+                if (this%any_active()) call level_blocks(this, level%prob, own, kt_nn, kt_nt, &
+                                                         timings, stat)
                 if (.not. stat%ok()) then
                     call own%free()
                     return
                 end if
             end if
         end if
+        if (.not. refiner%estimated()) call b_pattern(level%prob%contact, &
+                                                      level%prob%dofs%n_free, b_level)
         do i = 1, size(this%points)
             if (.not. this%targets(i)%active()) cycle
             if (refiner%estimated()) then
@@ -299,14 +309,16 @@ contains
             type(eigen_level_t) :: row
             integer :: k
             res%lambda = p%lambda
-            call assemble_b(level%prob%contact, level%prob%dofs%n_free, res%lambda, res%b, stat)
+            res%b = b_level
+            call fill_b(level%prob%contact, res%lambda, res%b, stat)
             if (.not. stat%ok()) return
             res%solver = choose_solver(this%options, level%prob%contact%p())
             if (allocated(kt_nn)) then
                 call eigen_with_factor(scn, level%prob, this%options, chol, res, timings, stat, &
-                                       kt_nn, kt_nt)
+                                       kt_nn, kt_nt, lowest_only=this%lowest_only)
             else
-                call eigen_with_factor(scn, level%prob, this%options, chol, res, timings, stat)
+                call eigen_with_factor(scn, level%prob, this%options, chol, res, timings, stat, &
+                                       lowest_only=this%lowest_only)
             end if
             if (.not. stat%ok()) return
             k = res%spec%lowest_positive()
@@ -410,6 +422,7 @@ contains
         type(cholesky_t) :: chol
         type(eigen_result_t) :: res
         real(wp), allocatable :: kt_nn(:, :), kt_nt(:, :)
+        type(csr_matrix_t) :: b_check   !! B's sparsity on the check's level
         real(wp) :: series, bar, begin
         character(len=:), allocatable :: why
         integer :: i, k
@@ -432,20 +445,21 @@ contains
                     if (stat%ok()) call refiner%factor(check, chol, timings, stat)
                     if (.not. stat%ok()) return
                     built = .true.
-                    call level_blocks(this%options, check%prob, chol, kt_nn, kt_nt, timings, stat)
+                    call level_blocks(this, check%prob, chol, kt_nn, kt_nt, timings, stat)
                     if (.not. stat%ok()) exit
+                    call b_pattern(check%prob%contact, check%prob%dofs%n_free, b_check)
                 end if
                 res%lambda = p%lambda
-                call assemble_b(check%prob%contact, check%prob%dofs%n_free, res%lambda, res%b, &
-                                stat)
+                res%b = b_check
+                call fill_b(check%prob%contact, res%lambda, res%b, stat)
                 if (.not. stat%ok()) exit
                 res%solver = choose_solver(this%options, check%prob%contact%p())
                 if (allocated(kt_nn)) then
                     call eigen_with_factor(scn, check%prob, this%options, chol, res, timings, &
-                                           stat, kt_nn, kt_nt)
+                                           stat, kt_nn, kt_nt, lowest_only=this%lowest_only)
                 else
                     call eigen_with_factor(scn, check%prob, this%options, chol, res, timings, &
-                                           stat)
+                                           stat, lowest_only=this%lowest_only)
                 end if
                 if (.not. stat%ok()) exit
                 k = res%spec%lowest_positive()
@@ -488,25 +502,39 @@ contains
                           seconds_text(wall_time() - begin)//' s')
     end subroutine eigen_goal_check
 
-    !> Kt_nn and Kt_nt of an hp level factored in `chol` (contact dofs last), where `options`
-    !> choose the dense solver for it: they do not depend on lambda, so a level forms them
-    !> once for all its lambdas instead of once per lambda (its largest cost after dgeevx).
-    !> Left unallocated for ARPACK, which applies them through the factor.
-    subroutine level_blocks(options, prob, chol, kt_nn, kt_nt, timings, stat)
-        type(eigen_options_t), intent(in) :: options
+    !> Kt_nn and Kt_nt of an hp level factored in `chol` (contact dofs last), where the goal
+    !> solves with them (wants_blocks): they do not depend on lambda, so a level forms them
+    !> once for all its lambdas instead of once per lambda (the dense solver's largest cost
+    !> after dgeevx). Left unallocated otherwise: ARPACK applies them through the factor.
+    subroutine level_blocks(goal, prob, chol, kt_nn, kt_nt, timings, stat)
+        class(eigen_goal_t), intent(in) :: goal
         type(problem_t), intent(in) :: prob
         type(cholesky_t), intent(in) :: chol
         real(wp), allocatable, intent(out) :: kt_nn(:, :), kt_nt(:, :)
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
         real(wp) :: start
-        if (choose_solver(options, prob%contact%p()) /= SOLVER_DENSE) return
+        if (.not. wants_blocks(goal, prob%contact%p())) return
         start = wall_time()
         call contact_flexibility(chol, prob%contact, kt_nn, kt_nt, stat)
         if (stat%ok()) call timings%add(PHASE_REDUCTION, wall_time() - start, &
             ': contact blocks of K^-1, '//to_string(prob%contact%p())//' x '// &
             to_string(prob%contact%p())//', once for the level''s lambdas')
     end subroutine level_blocks
+
+    !> Whether the goal's solves on a level of p contact functions use its contact blocks:
+    !> the dense solver's, and with lowest_only ARPACK's without shift on the reduced
+    !> operator (one O(p^2) product per step on the p x p matrix formed from them, where the
+    !> factor's trailing block costs two triangular solves of order 2p; 41 lambdas repay the
+    !> blocks' O(p^3) once per level many times over: docs/studies.md "Cost").
+    logical function wants_blocks(goal, p)
+        class(eigen_goal_t), intent(in) :: goal
+        integer, intent(in) :: p
+        wants_blocks = choose_solver(goal%options, p) == SOLVER_DENSE
+        if (goal%lowest_only) wants_blocks = wants_blocks .or. &
+            (goal%options%operator == OPERATOR_REDUCED .and. &
+             .not. abs(goal%options%target) > 0.0_wp)
+    end function wants_blocks
 
     !> The bar (and change, and stall) of the last of `levels` over the levels so far, as the
     !> refiner makes bars: h from the estimates (only where the last level has one), hp from

@@ -16,7 +16,7 @@ module contact_boundary
     use sorting, only: sort_index
     implicit none
     private
-    public :: contact_t, build_contact, assemble_b, edge_mass
+    public :: contact_t, build_contact, assemble_b, b_pattern, fill_b, edge_mass
 
     !> Collinearity tolerance, relative to the segment length: Gmsh writes coordinates with
     !> about 16 significant digits, so 1e-10 accepts every straight line it can produce.
@@ -297,10 +297,19 @@ contains
         real(wp), intent(in) :: lambda
         type(csr_matrix_t), intent(out) :: b
         type(status_t), intent(out) :: stat
-        integer, allocatable :: pair_dofs(:, :)
-        integer :: a, k, n_pairs, col_node, i, j
-        real(wp) :: row_factor(2)
+        call b_pattern(contact, n_free, b)
+        call fill_b(contact, lambda, b, stat)
+    end subroutine assemble_b
 
+    !> The sparsity of B on the free dofs, its values zero: it does not depend on lambda, so
+    !> a caller that assembles B at many lambdas on one mesh builds it once (fill_b), the
+    !> larger part of assemble_b's cost.
+    subroutine b_pattern(contact, n_free, b)
+        type(contact_t), intent(in) :: contact
+        integer, intent(in) :: n_free
+        type(csr_matrix_t), intent(out) :: b
+        integer, allocatable :: pair_dofs(:, :)
+        integer :: a, k, n_pairs
         ! Each nonzero M_ab couples the two dofs of a with the two of b: one 4-dof "element".
         n_pairs = size(contact%mass%col)
         allocate (pair_dofs(4, n_pairs))
@@ -310,6 +319,18 @@ contains
             end do
         end do
         call csr_from_element_dofs(n_free, pair_dofs, b)
+    end subroutine b_pattern
+
+    !> B at `lambda` on `b`, a copy of b_pattern's matrix (its values overwritten): the same
+    !> sums in the same order as assemble_b, so the same values to the last bit.
+    subroutine fill_b(contact, lambda, b, stat)
+        type(contact_t), intent(in) :: contact
+        real(wp), intent(in) :: lambda
+        type(csr_matrix_t), intent(inout) :: b
+        type(status_t), intent(out) :: stat
+        integer :: a, k, col_node, i, j
+        real(wp) :: row_factor(2)
+        b%val = 0.0_wp
         row_factor = contact%slip_direction(lambda)
         do a = 1, contact%p()
             do k = contact%mass%row_start(a), contact%mass%row_start(a + 1) - 1
@@ -323,7 +344,7 @@ contains
                 end do
             end do
         end do
-    end subroutine assemble_b
+    end subroutine fill_b
 
     pure real(wp) function cross(u, v)
         real(wp), intent(in) :: u(2), v(2)

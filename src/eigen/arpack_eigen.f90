@@ -191,7 +191,11 @@ contains
     !> The same holds for both operators (options%full); the full one's eigenvectors come
     !> from ARPACK itself. `chol` is a factor of K: the full operator only solves with it
     !> (any ordering), the reduced one reads its trailing block (contact dofs last).
-    subroutine arpack_search(k, b, chol, contact, lambda, options, search, stat)
+    !> `reduced`, A / lambda_unit(lambda) formed from contact blocks the caller shares
+    !> between lambdas (scaled_reduced_matrix), replaces the reduced operator without shift
+    !> by one dense product per step (2 p^2 flops against two triangular solves of order 2p,
+    !> 8 p^2): the same matrix, the same search and certificate.
+    subroutine arpack_search(k, b, chol, contact, lambda, options, search, stat, reduced)
         type(csr_matrix_t), intent(in) :: k, b
         type(cholesky_t), intent(in) :: chol
         type(contact_t), intent(in) :: contact
@@ -199,6 +203,7 @@ contains
         type(arpack_options_t), intent(in) :: options
         type(arpack_search_t), intent(out) :: search
         type(status_t), intent(out) :: stat
+        real(wp), intent(in), optional :: reduced(:, :)   !! (p, p)
         integer :: p
 
         p = contact%p()
@@ -209,6 +214,8 @@ contains
         end if
         if (options%full) then
             allocate (full_operator_t :: search%op)
+        else if (present(reduced) .and. .not. abs(options%target) > 0.0_wp) then
+            allocate (explicit_operator_t :: search%op)
         else
             allocate (reduced_operator_t :: search%op)
         end if
@@ -219,6 +226,8 @@ contains
         type is (reduced_operator_t)
             call op%setup(chol, contact, lambda, options%target, stat, options%target_input, &
                           options%units)
+        type is (explicit_operator_t)
+            call op%setup(reduced, lambda)
         end select
         if (.not. stat%ok()) return
         call certified_search(search%op, chol, options, search%run, search%mu, &
@@ -239,8 +248,12 @@ contains
     !> search is undecided, the eigenvectors and the round-off bound of the lowest. `chol`
     !> is the search's factor, or one with the contact dofs last when
     !> search%needs_dense_decision() and the search's factor is not (the full operator's).
+    !> `lowest_only` (reduced operators): only the lowest positive mu is lifted, with its
+    !> backward error and round-off bound; the other eigenvalues keep their values, their
+    !> backward errors unknown (-1), for a caller that reports that one mu alone (an hp
+    !> sweep's points): the lift and the backward errors of all the others were most of it.
     subroutine arpack_finish(k, b, chol, contact, lambda, options, n_keep, search, spec, &
-                             warning, stat)
+                             warning, stat, lowest_only)
         type(csr_matrix_t), intent(in) :: k, b
         type(cholesky_t), intent(in) :: chol
         type(contact_t), intent(in) :: contact
@@ -251,6 +264,7 @@ contains
         type(spectrum_t), intent(out) :: spec
         character(len=:), allocatable, intent(out) :: warning
         type(status_t), intent(out) :: stat
+        logical, intent(in), optional :: lowest_only
         type(reduced_operator_t) :: decision
         real(wp) :: radius
         integer :: cap
@@ -301,7 +315,7 @@ contains
         end if
         if (lifted) then
             call fill_spectrum(k, b, chol, contact, lambda, search%mu, search%run, n_keep, &
-                               spec, stat)
+                               spec, stat, lowest_only)
         else
             call fill_full_spectrum(k, b, search%mu, search%run, n_keep, spec)
         end if
@@ -650,8 +664,11 @@ contains
 
     !> The spectrum of the final run, in output order: full eigenvectors
     !> phi = K^-1 (lambda T' - N') M y, backward errors on (K, B) for every pair, modes of the
-    !> first n_keep (contact_reduction's lift, as for the dense solver).
-    subroutine fill_spectrum(k, b, chol, contact, lambda, mu, run, n_keep, spec, stat)
+    !> first n_keep (contact_reduction's lift, as for the dense solver). With `lowest_only`
+    !> the lowest positive pair alone (first in output order; none when there is none): its
+    !> mode and backward error, the others' backward errors -1 (not computed).
+    subroutine fill_spectrum(k, b, chol, contact, lambda, mu, run, n_keep, spec, stat, &
+                             lowest_only)
         type(csr_matrix_t), intent(in) :: k, b
         type(cholesky_t), intent(in) :: chol
         type(contact_t), intent(in) :: contact
@@ -661,11 +678,21 @@ contains
         integer, intent(in) :: n_keep
         type(spectrum_t), intent(out) :: spec
         type(status_t), intent(out) :: stat
+        logical, intent(in), optional :: lowest_only
         integer, allocatable :: order(:)
+        real(wp), allocatable :: residual(:)
+        integer :: lift
 
         call ordered_values(mu, run, spec, order)
-        call lift_eigenvectors(k, b, chol, contact, lambda, spec%mu, run%y(:, order), n_keep, &
-                               spec%residual, spec%vectors, stat)
+        lift = size(mu)
+        if (present(lowest_only)) then
+            if (lowest_only) lift = min(1, spec%lowest_positive())
+        end if
+        call lift_eigenvectors(k, b, chol, contact, lambda, spec%mu(1:lift), &
+                               run%y(:, order(1:lift)), n_keep, residual, spec%vectors, stat)
+        if (.not. stat%ok()) return
+        allocate (spec%residual(size(mu)), source=-1.0_wp)
+        spec%residual(1:lift) = residual
     end subroutine fill_spectrum
 
     !> spec%mu, kind and condition (unknown: -1) of a run's eigenvalues `mu` in output order,

@@ -17,7 +17,7 @@ module contact_operator
     use sparse_cholesky, only: cholesky_t
     use contact_boundary, only: contact_t
     use sparse_lu, only: lu_t
-    use lapack_interfaces, only: dtrsv, dgetrf, dgetrs, dgemm, dlacn2
+    use lapack_interfaces, only: dtrsv, dgetrf, dgetrs, dgemv, dlacn2
     use contact_reduction, only: contact_tail, flexibility_blocks, scaled_reduced_matrix, &
                                  lambda_unit, mu_of_theta
     use unit_scaling, only: units_t
@@ -161,11 +161,17 @@ contains
         end if
     end subroutine reduced_setup
 
-    !> The explicit operator on a copy of `a`.
-    subroutine explicit_setup(this, a)
+    !> The explicit operator on a copy of `a`: A itself, or with `lambda` the scaled
+    !> A / lambda_unit(lambda) (scaled_reduced_matrix), whose mu_of then undoes the scaling as
+    !> the reduced operator's does.
+    subroutine explicit_setup(this, a, lambda)
         class(explicit_operator_t), intent(inout) :: this
         real(wp), intent(in) :: a(:, :)
-        call operator_init(this, size(a, 1), size(a, 1), 0.0_wp, 0.0_wp)
+        real(wp), intent(in), optional :: lambda
+        real(wp) :: at
+        at = 0.0_wp
+        if (present(lambda)) at = lambda
+        call operator_init(this, size(a, 1), size(a, 1), at, 0.0_wp)
         this%a = a
     end subroutine explicit_setup
 
@@ -334,7 +340,9 @@ contains
         call dgetrs('N', this%p, 1, this%lu, this%p, this%pivots, out, this%p, info)
     end subroutine reduced_apply
 
-    !> A y or A' y by one dense product. `factor` is not read.
+    !> A y or A' y by one dense product. `factor` is not read. dgemv, not dgemm with one
+    !> column: OpenBLAS's dgemm packs all of A into its buffers on every call, which cost
+    !> twice the product itself (measured with perf on an hp sweep, p = 361).
     subroutine explicit_apply(this, factor, y, out, transposed, stat)
         class(explicit_operator_t), intent(inout) :: this
         type(cholesky_t), intent(in) :: factor
@@ -342,8 +350,8 @@ contains
         real(wp), intent(out) :: out(:)
         logical, intent(in) :: transposed
         type(status_t), intent(out) :: stat
-        call dgemm(merge('T', 'N', transposed), 'N', this%p, 1, this%p, 1.0_wp, this%a, &
-                   this%p, y, this%p, 0.0_wp, out, this%p)
+        call dgemv(merge('T', 'N', transposed), this%p, this%p, 1.0_wp, this%a, this%p, y, 1, &
+                   0.0_wp, out, 1)
     end subroutine explicit_apply
 
     !> (K - sigma B)^-1 B / lambda_scale. Transposed: (K - sigma B)^-T B' =

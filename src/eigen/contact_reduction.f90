@@ -67,10 +67,16 @@ contains
         real(wp), intent(in) :: lambda
         real(wp) :: a(size(kt_nn, 1), size(kt_nn, 2))
         real(wp) :: flex(size(kt_nn, 1), size(kt_nn, 2))
-        integer :: i
+        integer :: j, k
         flex = lambda*kt_nt - kt_nn
-        do i = 1, size(a, 1)   ! row i of flex M is M flex(i, :), M being symmetric
-            call mass%matvec(flex(i, :), a(i, :))
+        ! column j of flex M is the sum over row j of M (symmetric) of M_jk flex(:, k): whole
+        ! columns, where row by row (M flex(i, :)) strode through flex; each entry sums the
+        ! same terms in the same order (that of the CSR row), so the result is the same
+        do j = 1, size(a, 2)
+            a(:, j) = 0.0_wp
+            do k = mass%row_start(j), mass%row_start(j + 1) - 1
+                a(:, j) = a(:, j) + mass%val(k)*flex(:, mass%col(k))
+            end do
         end do
     end function reduced_matrix
 

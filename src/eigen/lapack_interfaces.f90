@@ -7,7 +7,7 @@ module lapack_interfaces
     use strings, only: to_string
     implicit none
     private
-    public :: dgeevx, dggev, dgemm, dsyrk, lapack_info_message
+    public :: dgeevx, dggev, dgemm, dgemv, dsyrk, lapack_info_message
     public :: dgeev, dtrsv, dtrsm, dgetrf, dgetrs, dpotri, dpotrf, dlacn2, lapack_eigenvector
 
     interface
@@ -49,6 +49,14 @@ module lapack_interfaces
             real(wp), intent(in) :: alpha, beta, a(lda, *), b(ldb, *)
             real(wp), intent(inout) :: c(ldc, *)
         end subroutine dgemm
+
+        subroutine dgemv(trans, m, n, alpha, a, lda, x, incx, beta, y, incy)
+            import :: wp
+            character(len=1), intent(in) :: trans
+            integer, intent(in) :: m, n, lda, incx, incy
+            real(wp), intent(in) :: alpha, beta, a(lda, *), x(*)
+            real(wp), intent(inout) :: y(*)
+        end subroutine dgemv
 
         subroutine dsyrk(uplo, trans, n, k, alpha, a, lda, beta, c, ldc)
             import :: wp

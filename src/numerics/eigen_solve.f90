@@ -16,7 +16,7 @@ module eigen_solve
     use element_types, only: element_name
     use csr_matrix, only: csr_matrix_t
     use sparse_cholesky, only: cholesky_t
-    use contact_reduction, only: factor_stiffness
+    use contact_reduction, only: factor_stiffness, scaled_reduced_matrix
     use memory_budget, only: check_contact_memory, contact_peak_blocks
     use contact_boundary, only: assemble_b
     use spectrum, only: spectrum_t
@@ -328,9 +328,13 @@ contains
     !> by factor_stiffness, which stays allocated for the caller (the threshold analysis reads
     !> the contact blocks off the same factor; the full operator may use one without the
     !> contact dofs last). A caller that already has Kt_nn and Kt_nt
-    !> passes them to spare the dense solver forming them again.
+    !> passes them to spare the dense solver forming them again. `lowest_only` (ARPACK), for a
+    !> caller that reports the lowest positive mu alone (an hp sweep's points): the search
+    !> without shift on the reduced operator runs on the p x p matrix formed from the blocks
+    !> when given (arpack_search), and only that mu gets its mode, backward error and
+    !> round-off bound (arpack_finish). Every other caller's path is unchanged.
     subroutine eigen_with_factor(scn, prob, options, chol, res, timings, stat, kt_nn, kt_nt, &
-                                 contact_last)
+                                 contact_last, lowest_only)
         type(scene_t), intent(in) :: scn
         type(problem_t), intent(in) :: prob
         type(eigen_options_t), intent(in) :: options
@@ -342,7 +346,9 @@ contains
         !> `chol` has the contact dofs last (default); without, only the full operator runs,
         !> and the dense decision, if its search needs one, gets a contact-last factor here
         logical, intent(in), optional :: contact_last
+        logical, intent(in), optional :: lowest_only
         type(arpack_options_t) :: arpack
+        logical :: explicit
         type(arpack_search_t) :: search
         type(cholesky_t) :: ordered   !! contact dofs last, for the full operator's decision
         logical :: chol_contact_last
@@ -366,8 +372,17 @@ contains
             chol_contact_last = .true.
             if (present(contact_last)) chol_contact_last = contact_last
             refactor_seconds = 0.0_wp
-            call arpack_search(prob%k, res%b, chol, prob%contact, res%lambda, arpack, search, &
-                               stat)
+            explicit = .false.
+            if (present(lowest_only)) explicit = lowest_only .and. present(kt_nn) .and. &
+                                                 present(kt_nt) .and. .not. arpack%full
+            if (explicit) then
+                call arpack_search(prob%k, res%b, chol, prob%contact, res%lambda, arpack, &
+                    search, stat, scaled_reduced_matrix(kt_nn, kt_nt, prob%contact%mass, &
+                                                        res%lambda))
+            else
+                call arpack_search(prob%k, res%b, chol, prob%contact, res%lambda, arpack, &
+                                   search, stat)
+            end if
             if (stat%ok()) then
                 if (search%needs_dense_decision() .and. .not. chol_contact_last) then
                     refactor_start = wall_time()
@@ -380,7 +395,7 @@ contains
                         res%lambda, arpack, n_keep, search, res%spec, certificate, stat)
                 else
                     call arpack_finish(prob%k, res%b, chol, prob%contact, res%lambda, arpack, &
-                                       n_keep, search, res%spec, certificate, stat)
+                                       n_keep, search, res%spec, certificate, stat, lowest_only)
                 end if
             end if
             if (stat%code == STATUS_BAD_INPUT) stat%message = scn%name//': '//stat%message

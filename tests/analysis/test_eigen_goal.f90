@@ -38,6 +38,7 @@ program test_eigen_goal
         call degrees_rise_by_one_per_level(t, hp)
     end if
     call one_climb_serves_many_lambdas(t)
+    call lowest_only_matches_full_path(t)
     call capped_degrees_cannot_fool_the_bar(t)
     call t%report()
 
@@ -339,4 +340,73 @@ contains
         call t%check('mirror image: c_n(-5) = c_n(5) within their bars', &
                      abs(mu(1) - mu(3)) <= (bar(1) + bar(3))*max(mu(1), mu(3)))
     end subroutine one_climb_serves_many_lambdas
+
+    !> The sweep's per-point path (keep_problem false: eigen_goal's lowest_only, ARPACK on the
+    !> p x p matrix formed from the level's contact blocks, only the lowest positive mu lifted)
+    !> against the full path (keep_problem true: ARPACK through the factor's trailing block,
+    !> every eigenvalue lifted) in one climb for lambda = -12, -5, 1, 5 and 12 (|lambda| > 8
+    !> exercises the lambda_unit scaling of the matrix): the same levels and verdicts, a
+    !> positive mu at the same levels, and at every level the two mu within the sum of their
+    !> round-off bounds, each of which bounds |mu - the exact eigenvalue of that level's
+    !> discrete problem| / |mu| (docs/accuracy.md), so a wrong eigenvalue or scaling fails
+    !> by orders of magnitude. Every level with a mu has its bound on both paths (the floor
+    !> test needs it), and the bars, multiples of changes of mu between levels (>= 1e-7 at
+    !> this tolerance) beside mu differing by round-off (~1e-14), agree to 1e-3 relative.
+    !> The last level's lowest pair has its backward error (<= 1e-12: backward stable, as
+    !> test_arpack_eigen), the unlifted eigenvalues none (-1).
+    subroutine lowest_only_matches_full_path(t)
+        type(test_suite_t), intent(inout) :: t
+        real(wp), parameter :: LAMBDAS(5) = [-12.0_wp, -5.0_wp, 1.0_wp, 5.0_wp, 12.0_wp]
+        type(config_t) :: config
+        type(problem_t) :: start
+        type(timings_t) :: timings
+        type(status_t) :: stat
+        type(run_inputs_t) :: inputs
+        type(adapted_eigen_t), allocatable :: fast(:), full(:)
+        character(len=:), allocatable :: what
+        integer :: i, k
+        logical :: within, bounded, bars
+        call adaptive_scene('eigen', 'hp', 1.0e-6_wp, 0, 'unused', config)
+        call problem_of(config, start, stat)
+        call translate_input(config, inputs)
+        if (stat%ok()) call adapt_eigen(inputs%scene, LAMBDAS, inputs%eigen, inputs%adapt, &
+                                        start, fast, timings, stat, .false.)
+        if (stat%ok()) call adapt_eigen(inputs%scene, LAMBDAS, inputs%eigen, inputs%adapt, &
+                                        start, full, timings, stat, .true.)
+        call t%check('lowest_only: both paths run', stat%ok())
+        if (.not. stat%ok()) return
+        do i = 1, size(LAMBDAS)
+            what = 'lowest_only, lambda '//trim(real_to_text(LAMBDAS(i)))//': '
+            associate (a => fast(i), b => full(i))
+                call t%check(what//'the same levels and verdict', &
+                             size(a%levels) == size(b%levels) .and. &
+                             (a%converged .eqv. b%converged))
+                if (size(a%levels) /= size(b%levels)) cycle
+                call t%check(what//'a positive mu at the same levels', &
+                             all(a%levels%has_mu .eqv. b%levels%has_mu))
+                within = .true.
+                bounded = .true.
+                bars = .true.
+                do k = 1, size(a%levels)
+                    associate (x => a%levels(k), y => b%levels(k))
+                        if (.not. (x%has_mu .and. y%has_mu)) cycle
+                        bounded = bounded .and. x%roundoff >= 0.0_wp .and. y%roundoff >= 0.0_wp
+                        within = within .and. abs(x%mu - y%mu) <= &
+                                 (max(x%roundoff, 0.0_wp) + max(y%roundoff, 0.0_wp))*abs(y%mu)
+                        if (y%error_bar >= 0.0_wp) bars = bars .and. &
+                            abs(x%error_bar - y%error_bar) <= 1.0e-3_wp*y%error_bar
+                    end associate
+                end do
+                call t%check(what//'every mu has its round-off bound', bounded)
+                call t%check(what//'the same mu within the round-off bounds', within)
+                call t%check(what//'the same bars', bars)
+                if (a%res%spec%lowest_positive() /= 1) cycle
+                call t%check(what//'the lowest pair''s backward error, no other', &
+                             a%res%spec%residual(1) >= 0.0_wp .and. &
+                             a%res%spec%residual(1) <= 1.0e-12_wp .and. &
+                             all(a%res%spec%residual(2:) < 0.0_wp) .and. &
+                             all(b%res%spec%residual >= 0.0_wp))
+            end associate
+        end do
+    end subroutine lowest_only_matches_full_path
 end program test_eigen_goal
