@@ -105,7 +105,7 @@ contains
         real(wp), intent(in) :: values(3), roundoffs(3), roundoff, tolerance
         settled_floor = .false.
         if (any(roundoffs(2:3) < 0.0_wp) .or. roundoff < tolerance) return
-        if (values(3) == 0.0_wp .or. values(2) == 0.0_wp) return
+        if (.not. (abs(values(3)) > 0.0_wp .and. abs(values(2)) > 0.0_wp)) return
         settled_floor = abs(values(3) - values(2)) <= roundoffs(3)*abs(values(3)) .and. &
                         abs(values(2) - values(1)) <= roundoffs(2)*abs(values(2))
     end function settled_floor
