@@ -268,10 +268,10 @@ fi
 # A side settled to round-off stops refining (error_bar: settled_floor): the slanted body
 # (nu = 0.1) at 1e-8, whose thresholds sit at corners where the round-off bound passes the
 # tolerance while the values still change by less than it. The loop must end at the first
-# level where every side is met or has its last two changes (relative, from the progress
-# lines' 12 digits) within those levels' round-off bounds, at least 1e-8 (11: lambda- met at
-# level 7, lambda+ settled at 11); before the rule it went on to level 14, each value
-# further off.
+# level where every side has been met, is at the floor or has its last two changes (relative,
+# from the progress lines' 12 digits) within those levels' round-off bounds, at least 1e-8
+# (11: lambda- met at level 7, lambda+ settled at 11); before the rule the check one degree
+# higher reopened lambda- and the loop went on to level 14, each value further off.
 if command -v gmsh >/dev/null 2>&1; then
     gmsh "$root/tests/data/bodies/slanted.geo" -2 -order 1 -clmax 0.125 -format msh41 \
         -o "$work/slanted.msh" >/dev/null
@@ -286,7 +286,8 @@ if command -v gmsh >/dev/null 2>&1; then
 &output directory = '$work/slanted', vtk = .false., plot = .false., progress = .true. /
 NML
     "$nceig" "$work/slanted.nml" >"$work/stdout" 2>&1; rc=$?
-    # the first level at which each side is met (bar <= 1e-8) or has settled (0: never)
+    # the first level at which each side has been met (bar <= 1e-8), is at the floor (its
+    # round-off at least half its bar) or has settled (0: never)
     settled=$(grep -E '^  \.\. hp level [0-9]+: [0-9]+ dofs' "$work/stdout" | awk '
         function side_value(s, re,    t) {
             if (!match(s, re)) return ""
@@ -308,7 +309,8 @@ NML
               c = (n[side] > 0) ? (v - last[side]) / v : 1; if (c < 0) c = -c
               within[side] = (c <= r) ? within[side] + 1 : 0
               last[side] = v + 0; n[side]++
-              if (!(b <= 1e-8 || (within[side] >= 2 && r >= 1e-8))) done = 0
+              if (b <= 1e-8) met[side] = 1
+              if (!(met[side] || 2 * r >= b || (within[side] >= 2 && r >= 1e-8))) done = 0
           }
           if (done && !first) first = level }
         END { print first + 0 }')
