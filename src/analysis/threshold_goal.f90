@@ -62,12 +62,12 @@ module threshold_goal
     use eigen_solve, only: eigen_result_t, eigen_with_factor, choose_solver
     use error_estimate, only: error_estimate_t, estimate_lowest_error
     use error_bar, only: theta_warnings, floor_reached, floor_outcome, stall_outcome, &
-                         checked_bar
+                         checked_bar, settled_floor
     use roundoff, only: threshold_roundoff, collision_roundoffs
     use memory_budget, only: check_contact_memory, contact_peak_blocks, contact_blocks_bytes
     use accuracy, only: WARNING_LEN
     use adapt_driver, only: adapt_goal_t, refiner_t, adapt_level_t, adapt_levels, judge_target, &
-                            check_target, TARGET_MET, TARGET_FLOOR, TARGET_STOPPED
+                            check_target, adapt_target_t, TARGET_MET, TARGET_FLOOR, TARGET_STOPPED
     use h_refiner, only: h_refiner_t, doerfler_marking
     use hp_levels, only: hp_refiner_t, HP_ESTIMATE
     use pencil_tracking, only: N_PROFILE_BINS, level_values_t
@@ -667,6 +667,7 @@ contains
         character(len=:), allocatable :: why, head
         integer :: side, onset(2), m
         logical :: has_check(2), tracked
+        real(wp) :: both
 
         if (size(this%levels) == 0) return
         begin = wall_time()
@@ -768,14 +769,33 @@ contains
                 call timings%note('hp check of level '//to_string(last%number)//': '//why// &
                                   ', '//seconds_text(wall_time() - begin)//' s')
                 if (len(refiner%cap_words(last)) > 0) why = why//'; '//refiner%cap_words(last)
-                call check_target(this%targets(side), tolerance, before(side), after(side), &
-                                  max(roundoff(side), 0.0_wp) + check_roundoff(side), &
-                                  reopen .and. row%level == last%number, &
-                                  trim(SIDE_LABELS(side))//': '//why)
+                both = max(roundoff(side), 0.0_wp) + check_roundoff(side)
+                if (settled_check_fails(this%targets(side), tolerance, after(side), both) .and. &
+                    settled(this%levels, side, both, tolerance)) then
+                    ! more levels cannot take it within the tolerance: at the floor, not reopened
+                    call this%targets(side)%finish(TARGET_FLOOR, trim(SIDE_LABELS(side))// &
+                        ': '//floor_outcome(tolerance, both, after(side), &
+                                            to_string(row%n_dofs)))
+                else
+                    call check_target(this%targets(side), tolerance, before(side), &
+                                      after(side), both, reopen .and. row%level == last%number, &
+                                      trim(SIDE_LABELS(side))//': '//why)
+                end if
                 if (this%targets(side)%active()) this%met_row(side) = 0
             end do
         end associate
     end subroutine threshold_goal_check
+
+    !> Whether the check (bar `bar`, round-off part `roundoff`) takes target `t`, met or at
+    !> the floor, off what it was (adapt_driver: check_target's test).
+    logical function settled_check_fails(t, tolerance, bar, roundoff) result(fails)
+        type(adapt_target_t), intent(in) :: t
+        real(wp), intent(in) :: tolerance, bar, roundoff
+        fails = .false.
+        if (bar < 0.0_wp) return
+        if (t%converged()) fails = bar > tolerance
+        if (t%floor_reached()) fails = .not. floor_reached(bar, roundoff)
+    end function settled_check_fails
 
     !> The largest bar of the sides' goals (goal_bars); negative when one of them has none,
     !> or when there is neither.
@@ -847,7 +867,8 @@ contains
                         short_real_text(tolerance)//' met at level '//to_string(last%level)// &
                         ': error bar '//this%bar_text(side))
                     if (.not. last%collision(side)) this%met_row(side) = k
-                else if (floor_reached(bar(side), roundoff(side))) then
+                else if (floor_reached(bar(side), roundoff(side)) .or. &
+                         settled(this%levels, side, roundoff(side), tolerance)) then
                     call t%finish(TARGET_FLOOR, trim(SIDE_LABELS(side))//': '// &
                         floor_outcome(tolerance, roundoff(side), bar(side), &
                                       to_string(last%n_dofs)))
@@ -1254,6 +1275,8 @@ contains
             if (row%estimated(side)) line = line//' (estimate '// &
                 short_real_text(row%error_estimate(side))//', bar '// &
                 short_real_text(row%error_bar(side))//')'
+            if (row%roundoff(side) >= 0.0_wp) line = line//' [roundoff '// &
+                short_real_text(row%roundoff(side))//']'
         end do
         do side = SIDE_PLUS, SIDE_MINUS
             if (.not. row%collision(side)) cycle
@@ -1290,6 +1313,37 @@ contains
             if (bar(side) < 0.0_wp) bar(side) = -1.0_wp
         end do
     end subroutine goal_bars
+
+    !> hp: the goal of `side` (its collision onset where it has one, else its threshold) has
+    !> settled to round-off at the last of `levels` (error_bar: settled_floor), with
+    !> `roundoff` the round-off part of the bar judged: the same kind of goal at the last
+    !> three levels, its last two changes each within that level's round-off bound.
+    pure logical function settled(levels, side, roundoff, tolerance)
+        type(threshold_level_t), intent(in) :: levels(:)
+        integer, intent(in) :: side
+        real(wp), intent(in) :: roundoff, tolerance
+        real(wp) :: values(3), roundoffs(3)
+        integer :: k, j
+        logical :: collision
+        settled = .false.
+        k = size(levels)
+        if (k < 3) return
+        collision = levels(k)%collision(side)
+        do j = 1, 3
+            associate (row => levels(k - 3 + j))
+                if (collision .neqv. row%collision(side)) return
+                if (collision) then
+                    values(j) = row%collision_lambda(side)
+                    roundoffs(j) = row%collision_roundoff(side)
+                else
+                    if (.not. row%found(side)) return
+                    values(j) = row%lambda(side)
+                    roundoffs(j) = row%roundoff(side)
+                end if
+            end associate
+        end do
+        settled = settled_floor(values, roundoffs, roundoff, tolerance)
+    end function settled
 
     !> The union of the Doerfler sets of the sides still above the tolerance.
     function threshold_goal_mark(this, theta) result(marked)

@@ -264,4 +264,60 @@ if command -v gmsh >/dev/null 2>&1; then
 else
     echo 'SKIP: gmsh is not installed: the collision onset checks did not run'
 fi
+
+# A side settled to round-off stops refining (error_bar: settled_floor): the slanted body
+# (nu = 0.1) at 1e-8, whose thresholds sit at corners where the round-off bound passes the
+# tolerance while the values still change by less than it. The loop must end at the first
+# level where every side has been met, is at the floor or has its last two changes (relative,
+# from the progress lines' 12 digits) within those levels' round-off bounds, at least 1e-8
+# (11: lambda- met at level 7, lambda+ settled at 11); before the rule the check one degree
+# higher reopened lambda- and the loop went on to level 14, each value further off.
+if command -v gmsh >/dev/null 2>&1; then
+    gmsh "$root/tests/data/bodies/slanted.geo" -2 -order 1 -clmax 0.125 -format msh41 \
+        -o "$work/slanted.msh" >/dev/null
+    cat >"$work/slanted.nml" <<NML
+&mesh source = 'gmsh', file = '$work/slanted.msh', dirichlet = 'top', neumann = 'left right',
+      contact = 'contact' /
+&material poisson = 0.1 /
+&analysis kind = 'threshold', lambda = 5.0 /
+&sweep lambda_min = -20.0, lambda_max = 20.0, n_lambda = 401 /
+&adapt strategy = 'hp', tolerance = 1e-8 /
+&eigen estimate = 'off' /
+&output directory = '$work/slanted', vtk = .false., plot = .false., progress = .true. /
+NML
+    "$nceig" "$work/slanted.nml" >"$work/stdout" 2>&1; rc=$?
+    # the first level at which each side has been met (bar <= 1e-8), is at the floor (its
+    # round-off at least half its bar) or has settled (0: never)
+    settled=$(grep -E '^  \.\. hp level [0-9]+: [0-9]+ dofs' "$work/stdout" | awk '
+        function side_value(s, re,    t) {
+            if (!match(s, re)) return ""
+            t = substr(s, RSTART, RLENGTH); sub(/.*= /, "", t)
+            rest = substr(s, RSTART + RLENGTH)
+            return t
+        }
+        { sub(/^  \.\. hp level /, ""); level = $1 + 0; done = 1
+          for (side = 1; side <= 2; side++) {
+              v = side_value($0, side == 1 ? "lambda[+] = [-0-9.E+]+" : "lambda- = [-0-9.E+]+")
+              if (v == "") { done = 0; n[side] = 0; continue }
+              r = -1
+              if (index(rest, ", lambda")) rest = substr(rest, 1, index(rest, ", lambda"))
+              if (match(rest, /\[roundoff [0-9.E+-]+\]/)) {
+                  t = substr(rest, RSTART, RLENGTH); sub(/.*\[roundoff /, "", t); r = t + 0 }
+              b = 1
+              if (match(rest, /bar [0-9.E+-]+\)/)) {
+                  t = substr(rest, RSTART + 4, RLENGTH - 5); b = t + 0 }
+              c = (n[side] > 0) ? (v - last[side]) / v : 1; if (c < 0) c = -c
+              within[side] = (c <= r) ? within[side] + 1 : 0
+              last[side] = v + 0; n[side]++
+              if (b <= 1e-8) met[side] = 1
+              if (!(met[side] || 2 * r >= b || (within[side] >= 2 && r >= 1e-8))) done = 0
+          }
+          if (done && !first) first = level }
+        END { print first + 0 }')
+    check 'settled: the floor, exit 8, at the first level where both sides settled' \
+        '[[ $rc -eq 8 && $(json "$work/slanted/summary.json" adapt_floor_reached) == true &&
+            $settled -gt 0 && $(json "$work/slanted/summary.json" adapt_levels) -eq $settled ]]'
+else
+    echo 'SKIP: gmsh is not installed: the settled-side check did not run'
+fi
 cli_end

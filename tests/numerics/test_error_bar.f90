@@ -8,7 +8,7 @@ program test_error_bar
     use kinds, only: wp
     use error_bar, only: single_bar, level_bar, hp_level_bar, hp_run_bar, three_mesh_bar, &
                          level_bar_factor, BAR_FACTOR, LEVEL_FACTOR, BAR_WINDOW, HP_FASTEST, &
-                         checked_bar, CHECK_FACTOR
+                         checked_bar, CHECK_FACTOR, settled_floor
     use testing, only: test_suite_t
     implicit none
     type(test_suite_t) :: t
@@ -29,9 +29,29 @@ program test_error_bar
     call check_three_mesh_orders()
     call check_three_mesh_limits()
     call check_checked_bar()
+    call check_settled_floor()
     call t%report()
 
 contains
+
+    !> The floor of a settled value, on the slanted scene's lambda+ at levels 9 to 11 (1e-8):
+    !> changes 4.4e-9 and 2.1e-8 within round-off bounds 4.9e-8 and 1.5e-7, which alone
+    !> exceed the tolerance. Not settled: one change above its level's bound (levels 8 to
+    !> 10: 7.3e-8 > 1.7e-8), a round-off part below the tolerance (more levels may still
+    !> meet it), or a bound unknown (negative).
+    subroutine check_settled_floor()
+        real(wp), parameter :: V(4) = [4.352952465738_wp, 4.352952782296_wp, &
+                                       4.352952763034_wp, 4.352952671534_wp]
+        real(wp), parameter :: R(4) = [5.02e-9_wp, 1.69e-8_wp, 4.94e-8_wp, 1.48e-7_wp]
+        call t%check('settled: changes within round-off above the tolerance', &
+                     settled_floor(V(2:4), R(2:4), R(4), 1.0e-8_wp))
+        call t%check('settled: not with a change above its bound', &
+                     .not. settled_floor(V(1:3), R(1:3), R(3), 1.0e-8_wp))
+        call t%check('settled: not while the round-off part is below the tolerance', &
+                     .not. settled_floor(V(2:4), R(2:4), R(4), 1.0e-6_wp))
+        call t%check('settled: not with a bound unknown', &
+                     .not. settled_floor(V(2:4), [R(2), -1.0_wp, R(4)], R(4), 1.0e-8_wp))
+    end subroutine check_settled_floor
 
     !> The check one degree higher: a level whose changes vanish (series bar 1e-12) while it
     !> is 2e-3 from the check gets CHECK_FACTOR times that plus both round-off parts; a
