@@ -14,7 +14,8 @@ module moving_side
     use problem, only: problem_t
     use pencil_tracking, only: N_PROFILE_BINS, pencil_value_t, level_values_t, &
                                track_verdict_t, track_chain, classify_chain, &
-                               pencil_profile_bins, TRACK_CONVERGING, TRACK_MOVING
+                               pencil_profile_bins, match_value, TRACK_CONVERGING, &
+                               TRACK_MOVING, TRACK_SHORT
     use wedge_exponents, only: wedge_roots, contact_free_crossing, contact_clamped_crossing, &
                                WEDGE_CONTACT, WEDGE_FREE, WEDGE_CLAMPED
     implicit none
@@ -67,6 +68,13 @@ module moving_side
         logical :: has_crossing = .false.
         real(wp) :: crossing = 0.0_wp
         logical :: past_crossing = .false.
+        !> the last value has no match at the level before but one two levels before: the
+        !> side's value trades places with one of another shape (`other`, the level
+        !> before's) from level to level, followed every other level over
+        !> `alternate_levels` levels (track_side)
+        logical :: alternates = .false.
+        real(wp) :: other = 0.0_wp
+        integer :: alternate_levels = 0
     end type moving_side_t
 
 contains
@@ -175,6 +183,7 @@ contains
         end do
         side%known = .true.
         side%verdict = classify_chain(values, profiles, roundoff)
+        if (side%verdict%kind == TRACK_SHORT .and. size(chain) == 1) call alternation(side)
         side%length = ends%s_max - ends%s_min
         side%s = max(side%verdict%where, 0.0_wp)*side%length
         side%point = ends%point(:, 1) + (ends%point(:, 2) - ends%point(:, 1))* &
@@ -210,6 +219,23 @@ contains
 
     contains
 
+        !> Where the level before has values but none of the last one's shape, whether the
+        !> level two before has one: then the side's value alternates between two shapes,
+        !> and its chain over every other level (m, m - 2, ...) says for how long.
+        subroutine alternation(side)
+            type(moving_side_t), intent(inout) :: side
+            integer, allocatable :: skipping(:)
+            if (m < 3) return
+            if (.not. (allocated(levels(m - 1)%values) .and. &
+                       allocated(levels(m - 2)%values))) return
+            if (size(levels(m - 1)%values) == 0) return
+            if (match_value(levels(m)%values(1), levels(m - 2)%values) == 0) return
+            skipping = track_chain(levels(modulo(m - 1, 2) + 1:m:2), 1)
+            side%alternates = .true.
+            side%other = levels(m - 1)%values(1)%lambda
+            side%alternate_levels = size(skipping)
+        end subroutine alternation
+
         !> The exponents with a negative real part (in the box searched) CROSSING_STEP before
         !> (`towards` -1) or after (+1) the crossing, going away from lambda = 0.
         integer function negative_exponents(towards) result(n)
@@ -242,9 +268,16 @@ contains
                         ' levels'
                 end if
             case default
-                text = text//' has no value of its shape at the level before (followed '// &
-                    'over '//to_string(v%length)//' level'//trim(merge('s', ' ', &
-                    v%length > 1))//')'
+                if (side%alternates) then
+                    text = text//' alternates with a value of another shape ('// &
+                        short_real_text(side%other, 6)//' at the level before): it has one of '// &
+                        'its own shape at every other level over '// &
+                        to_string(side%alternate_levels)//' of them, not converged'
+                else
+                    text = text//' has no value of its shape at the level before (followed '// &
+                        'over '//to_string(v%length)//' level'//trim(merge('s', ' ', &
+                        v%length > 1))//')'
+                end if
             end select
             if (v%rate >= 0.0_wp) then
                 text = text//' (factor '//short_real_text(v%rate)//' per level'
