@@ -31,6 +31,9 @@ module moving_side
     !> the other side's condition at an end, by WEDGE_FREE, WEDGE_CLAMPED (0: unknown)
     !> the side of a crossing is read from the exponent this far (in lambda) beyond it
     real(wp), parameter :: CROSSING_STEP = 0.1_wp
+    !> an earlier value this much nearer the last one than the level before's is the last
+    !> one back (track_side: alternation)
+    real(wp), parameter :: RETURN_FACTOR = 10.0_wp
     character(len=*), parameter :: FAR_NAMES(0:2) = [character(len=7) :: 'unknown', 'free', &
                                                       'clamped']
 
@@ -68,13 +71,15 @@ module moving_side
         logical :: has_crossing = .false.
         real(wp) :: crossing = 0.0_wp
         logical :: past_crossing = .false.
-        !> the last value has no match at the level before but one two levels before: the
-        !> side's value trades places with one of another shape (`other`, the level
-        !> before's) from level to level, followed every other level over
-        !> `alternate_levels` levels (track_side)
+        !> the last value has no match at the level before, which has a value, but is back
+        !> from an earlier level (track_side: alternation): the side's value trades places
+        !> with another (`other`, the level before's) from level to level; `back`: how many
+        !> levels back it was last, `shape_levels`: at how many of the `n_levels` levels it is
         logical :: alternates = .false.
         real(wp) :: other = 0.0_wp
-        integer :: alternate_levels = 0
+        integer :: back = 0
+        integer :: shape_levels = 0
+        integer :: n_levels = 0
     end type moving_side_t
 
 contains
@@ -219,21 +224,34 @@ contains
 
     contains
 
-        !> Where the level before has values but none of the last one's shape, whether the
-        !> level two before has one: then the side's value alternates between two shapes,
-        !> and its chain over every other level (m, m - 2, ...) says for how long.
+        !> Where the level before has values but none of the last one's shape, whether an
+        !> earlier level has it back: a value of its shape, or one nearer it than
+        !> 1/RETURN_FACTOR of its distance to the level before's (the profiles of one value
+        !> change as the levels grade an end: chamfered block, nu 0.3, hp from size 1: levels
+        !> 5 and 8 agree to 6e-8, their profiles to |cos| 0.34). Then the side's value trades
+        !> places with another, and the levels with it back say how often it is there.
         subroutine alternation(side)
             type(moving_side_t), intent(inout) :: side
-            integer, allocatable :: skipping(:)
+            integer :: j
+            real(wp) :: v, before
             if (m < 3) return
-            if (.not. (allocated(levels(m - 1)%values) .and. &
-                       allocated(levels(m - 2)%values))) return
+            if (.not. allocated(levels(m - 1)%values)) return
             if (size(levels(m - 1)%values) == 0) return
-            if (match_value(levels(m)%values(1), levels(m - 2)%values) == 0) return
-            skipping = track_chain(levels(modulo(m - 1, 2) + 1:m:2), 1)
-            side%alternates = .true.
+            v = levels(m)%values(1)%lambda
+            before = minval(abs(levels(m - 1)%values%lambda - v))
+            side%shape_levels = 1
+            do j = m - 2, 1, -1
+                if (.not. allocated(levels(j)%values)) cycle
+                if (size(levels(j)%values) == 0) cycle
+                if (match_value(levels(m)%values(1), levels(j)%values) == 0 .and. &
+                    minval(abs(levels(j)%values%lambda - v)) > before/RETURN_FACTOR) cycle
+                side%shape_levels = side%shape_levels + 1
+                if (side%back == 0) side%back = m - j
+            end do
+            side%alternates = side%back > 0
             side%other = levels(m - 1)%values(1)%lambda
-            side%alternate_levels = size(skipping)
+            side%n_levels = m
+            if (.not. side%alternates) side%shape_levels = 0
         end subroutine alternation
 
         !> The exponents with a negative real part (in the box searched) CROSSING_STEP before
@@ -269,10 +287,11 @@ contains
                 end if
             case default
                 if (side%alternates) then
-                    text = text//' alternates with a value of another shape ('// &
-                        short_real_text(side%other, 6)//' at the level before): it has one of '// &
-                        'its own shape at every other level over '// &
-                        to_string(side%alternate_levels)//' of them, not converged'
+                    text = text//' trades places with another value ('// &
+                        short_real_text(side%other, 6)//' at the level before, of another '// &
+                        'shape): it was there '//to_string(side%back)//' levels back and is '// &
+                        'at '//to_string(side%shape_levels)//' of the '// &
+                        to_string(side%n_levels)//' levels, not converged'
                 else
                     text = text//' has no value of its shape at the level before (followed '// &
                         'over '//to_string(v%length)//' level'//trim(merge('s', ' ', &
