@@ -1,13 +1,12 @@
 ! SPDX-License-Identifier: MIT
 !> The goal of the adaptive loop (adapt_driver) for analysis 'threshold': the critical
 !> lambdas, lambda+ and lambda-, the real eigenvalues of the pencil Kt_nn x = lambda Kt_nt x
-!> nearest zero, one target per side (SIDE_PLUS, SIDE_MINUS). The two sides are still judged
-!> together (the loop stops when both meet the tolerance, or for the worse of the two), as
-!> they were before the loop was shared; each keeps its own values and bars level by level.
+!> nearest zero, one target per side (SIDE_PLUS, SIDE_MINUS), each judged on its own by one
+!> rule on h and hp levels (judge_sides): one side never stops, fails or hides the other.
 !>
 !> h levels (h_refiner): each side has its own error estimate (threshold_estimate). Each
-!> level marks, for every side whose estimate is still above the tolerance, the Doerfler set
-!> of that side's indicators, and refines the union. The two sides need different refinement
+!> level marks, for every side still active, the Doerfler set of that side's indicators,
+!> and refines the union. The two sides need different refinement
 !> (on the reference scene each threshold's mode is singular at the other corner of Gamma_C),
 !> so the mesh is finer than either side alone needs; in exchange one mesh carries both
 !> answers and everything else a threshold run reports on it (the spectrum at &analysis
