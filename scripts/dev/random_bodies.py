@@ -4,7 +4,9 @@
 
 random_bodies.py SEED COUNT OUTDIR writes, for body k = 0 .. COUNT-1, OUTDIR/bodyK/body.geo
 (a simple polygon of 4 to 8 vertices, convex or star-shaped, one whole side in contact, each
-other side clamped or free, at least one clamped) and OUTDIR/bodyK/body.txt with the
+other side clamped or free, at least one clamped, and a free neighbour for a contact side too
+short to have a free node between two clamped ones: every body is one nceig accepts) and
+OUTDIR/bodyK/body.txt with the
 scene's values (nu in [0, 0.49], lambda in [-20, 20], the sizes of its meshes). The same
 SEED gives the same bodies on any machine (Python's random.Random is specified).
 """
@@ -16,6 +18,14 @@ import sys
 MIN_ANGLE = math.radians(25.0)    # no sharper interior angle: the meshes stay reasonable
 MAX_ANGLE = math.radians(330.0)
 MIN_EDGE_RATIO = 0.2              # shortest side at least this times the longest
+# The coarsest mesh random_bodies.sh makes (hp_start.msh: P1, size L/2, L the body's size).
+# nceig refuses a contact side without a free node (exit 2): its ends are free where a free
+# side meets it, its inner nodes always, so a contact side between two clamped sides needs
+# an inner node in that mesh. Gmsh (4.8.4, measured on a rectangle's side) splits a side 1.05
+# times the mesh size in two and leaves one 1.0 times it whole: a shorter contact side
+# between two clamped ones gets a free neighbour.
+COARSEST_SIZE = 0.5
+INNER_NODE_MARGIN = 1.05
 
 
 def polygon(rng):
@@ -82,6 +92,12 @@ def write_body(k, rng, outdir):
     nu = round(rng.uniform(0.0, 0.49), 4)
     lam = round(rng.uniform(-20.0, 20.0), 4)
     size = max(max(p[0] for p in pts), max(p[1] for p in pts))
+    # only bodies nceig accepts (COARSEST_SIZE); without a draw, so every other body, and
+    # this one's shape, nu and lambda, are those the seed gave before this rule
+    before, after = (contact - 1) % n, (contact + 1) % n
+    if parts[before] == 'clamped' and parts[after] == 'clamped' and \
+            math.dist(pts[contact], pts[after]) <= INNER_NODE_MARGIN * COARSEST_SIZE * size:
+        parts[after] = 'free'
     body = os.path.join(outdir, 'body%02d' % k)
     os.makedirs(body, exist_ok=True)
     with open(os.path.join(body, 'body.geo'), 'w') as geo:

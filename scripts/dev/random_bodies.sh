@@ -122,10 +122,10 @@ for ((k = 0; k < count; k++)); do
     # shellcheck disable=SC1091
     source "$dir/body.txt"
     L=$size
-    neumann_line=""
-    [[ -n $neumann ]] && neumann_line=", neumann = '$neumann'"
+    # every side clamped but the contact one: neumann = '' (left out, it would be the
+    # default 'left right', which the body's mesh does not have: exit 2)
     cat >"$dir/body.nml" <<NML
-&mesh source = 'gmsh', file = 'start.msh', dirichlet = 'clamped'$neumann_line, contact = 'contact' /
+&mesh source = 'gmsh', file = 'start.msh', dirichlet = 'clamped', neumann = '$neumann', contact = 'contact' /
 &material poisson = $nu /
 &analysis kind = 'threshold', lambda = $lambda /
 &eigen estimate = 'off' /

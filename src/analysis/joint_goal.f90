@@ -83,7 +83,7 @@ contains
         end if
         begin = wall_time()
         allocate (hp_refiner_t :: refiner)
-        call threshold_goal_setup(goal%sides, refiner, options, adapt, scan)
+        call threshold_goal_setup(goal%sides, options, adapt, scan)
         call goal%points%setup(lambdas, options, adapt, .false.)
         ! allocated, then filled: an array constructor of targets (allocatable outcomes)
         ! leaks under gfortran 12 (docs/testing.md)

@@ -1,13 +1,12 @@
 ! SPDX-License-Identifier: MIT
 !> The goal of the adaptive loop (adapt_driver) for analysis 'threshold': the critical
 !> lambdas, lambda+ and lambda-, the real eigenvalues of the pencil Kt_nn x = lambda Kt_nt x
-!> nearest zero, one target per side (SIDE_PLUS, SIDE_MINUS). The two sides are still judged
-!> together (the loop stops when both meet the tolerance, or for the worse of the two), as
-!> they were before the loop was shared; each keeps its own values and bars level by level.
+!> nearest zero, one target per side (SIDE_PLUS, SIDE_MINUS), each judged on its own by one
+!> rule on h and hp levels (judge_sides): one side never stops, fails or hides the other.
 !>
 !> h levels (h_refiner): each side has its own error estimate (threshold_estimate). Each
-!> level marks, for every side whose estimate is still above the tolerance, the Doerfler set
-!> of that side's indicators, and refines the union. The two sides need different refinement
+!> level marks, for every side still active, the Doerfler set of that side's indicators,
+!> and refines the union. The two sides need different refinement
 !> (on the reference scene each threshold's mode is singular at the other corner of Gamma_C),
 !> so the mesh is finer than either side alone needs; in exchange one mesh carries both
 !> answers and everything else a threshold run reports on it (the spectrum at &analysis
@@ -66,8 +65,9 @@ module threshold_goal
     use roundoff, only: threshold_roundoff, collision_roundoffs
     use memory_budget, only: check_contact_memory, contact_peak_blocks, contact_blocks_bytes
     use accuracy, only: WARNING_LEN
-    use adapt_driver, only: adapt_goal_t, refiner_t, adapt_level_t, adapt_levels, judge_target, &
-                            check_target, adapt_target_t, TARGET_MET, TARGET_FLOOR, TARGET_STOPPED
+    use adapt_driver, only: adapt_goal_t, refiner_t, adapt_level_t, adapt_levels, &
+                            check_target, adapt_target_t, TARGET_ACTIVE, TARGET_MET, &
+                            TARGET_FLOOR, TARGET_STOPPED
     use h_refiner, only: h_refiner_t, doerfler_marking
     use hp_levels, only: hp_refiner_t, HP_ESTIMATE
     use pencil_tracking, only: N_PROFILE_BINS, level_values_t
@@ -173,8 +173,6 @@ module threshold_goal
         integer :: pencil_dofs = 0
         !> what the next level and the final report carry the boundary of the positive set from
         type(coarse_scan_t) :: scan_state
-        !> the round-off part of the floor test (h): that of the side with the largest bar
-        real(wp) :: roundoff = -1.0_wp
         !> the last level solved: its problem and space; hp keeps its factor, contact blocks
         !> and boundary for the final report (`factored`)
         type(problem_t) :: prob
@@ -191,8 +189,6 @@ module threshold_goal
         !> machine has; absent: the memory available)
         logical :: memory_given = .false.
         integer(i8) :: memory = -1_i8
-        !> hp: each side its own target (judge_hp); h: judged together, the first's state
-        logical :: per_side = .false.
         !> hp: per side, the row of `levels` where its threshold met the tolerance with a bar
         !> (0: not met, or met as 'none', or its goal is a collision onset); the report quotes
         !> that level's value and bar (report_last_level)
@@ -237,17 +233,16 @@ contains
         else
             allocate (h_refiner_t :: refiner)
         end if
-        call threshold_goal_setup(goal, refiner, options, adapt, scan, available)
+        call threshold_goal_setup(goal, options, adapt, scan, available)
         call adapt_levels(scn, adapt, start, refiner, goal, timings, stat)
         call threshold_goal_finish(scn, goal, refiner, lambda, options, adapt, scan, out, res, &
                                    timings, stat)
     end subroutine solve_adapted_thresholds
 
-    !> The goal of both thresholds, every target active, for a loop of `refiner` as `adapt`
-    !> asks (solve_adapted_thresholds: the other arguments).
-    subroutine threshold_goal_setup(goal, refiner, options, adapt, scan, available)
+    !> The goal of both thresholds, every target active, as `adapt` asks
+    !> (solve_adapted_thresholds: the other arguments).
+    subroutine threshold_goal_setup(goal, options, adapt, scan, available)
         type(threshold_goal_t), intent(inout) :: goal
-        class(refiner_t), intent(in) :: refiner
         type(eigen_options_t), intent(in) :: options
         type(adapt_options_t), intent(in) :: adapt
         real(wp), intent(in) :: scan(:)
@@ -262,7 +257,6 @@ contains
             goal%memory_given = .true.
             goal%memory = available
         end if
-        goal%per_side = .not. refiner%estimated()
     end subroutine threshold_goal_setup
 
     !> After the loop of `goal` (`stat` its status, kept or replaced by the report's): its
@@ -281,6 +275,7 @@ contains
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(inout) :: stat
         character(len=WARNING_LEN), allocatable :: moving_warnings(:)
+        type(onset_bars_t) :: onsets
         allocate (moving_warnings(0))
         call loop_outcome(goal, out)
         call move_alloc(goal%levels, out%levels)
@@ -289,11 +284,12 @@ contains
         if (refiner%estimated()) then
             if (stat%ok()) then
                 out%estimate = goal%est
+                call h_verdicts(goal, out, out%estimate, onsets)
                 call goal%scan_state%coarse_set(scan, out%prob%contact%p(), out%coarse, stat)
             end if
             if (stat%ok()) call solve_thresholds(scn, out%prob, lambda, options, scan, res, &
-                timings, stat, estimate=out%estimate, onsets=last_onset_bars(out), &
-                coarse=out%coarse)
+                timings, stat, estimate=out%estimate, onsets=onsets, coarse=out%coarse)
+            if (stat%ok()) call track_moving(goal, out, res%estimate, moving_warnings)
         else
             if (stat%ok() .and. goal%factored) call report_last_level(scn, goal, out, lambda, &
                                                                       res, timings, stat)
@@ -315,17 +311,13 @@ contains
             :: res%eigen%warnings, theta_warnings(adapt%theta)]
     end subroutine threshold_goal_finish
 
-    !> The loop's verdict: converged only when every side met the tolerance (h: both sides
-    !> are one target); the outcome, one clause per side on hp levels, each naming its side,
-    !> those not met first.
+    !> The loop's verdict: converged only when every side met the tolerance; the outcome,
+    !> one clause per side, each naming its side, those not met first.
     subroutine loop_outcome(goal, out)
         type(threshold_goal_t), intent(in) :: goal
         type(adaptive_thresholds_t), intent(inout) :: out
         integer :: side
         out%converged = all([(goal%targets(side)%converged(), side=1, 2)])
-        out%floor_reached = goal%targets(1)%floor_reached()
-        out%outcome = goal%targets(1)%outcome
-        if (.not. goal%per_side) return
         out%floor_reached = .not. out%converged .and. all([(goal%targets(side)%converged() &
             .or. goal%targets(side)%floor_reached(), side=1, 2)])
         out%outcome = ''
@@ -351,6 +343,26 @@ contains
         if (index(text, trim(SIDE_LABELS(side))//':') /= 1) line = trim(SIDE_LABELS(side))// &
             ': '//text
     end function labelled
+
+    !> h: the report of each side that did not meet the tolerance at the last level: no bar
+    !> for its threshold (`est`) or its collision onset (`onsets`, the last level's), and
+    !> its own reason, as report_last_level gives them on hp levels.
+    subroutine h_verdicts(goal, out, est, onsets)
+        type(threshold_goal_t), intent(in) :: goal
+        type(adaptive_thresholds_t), intent(in) :: out
+        type(threshold_estimate_t), intent(inout) :: est
+        type(onset_bars_t), intent(out) :: onsets
+        integer :: side
+        onsets = last_onset_bars(out)
+        do side = SIDE_PLUS, SIDE_MINUS
+            if (goal%targets(side)%converged()) cycle
+            onsets%bar(side) = -1.0_wp
+            est%computed(side) = .false.
+            est%bar(side) = -1.0_wp
+            if (goal%thr%found(side)) est%skipped(side) = 'none: '// &
+                labelled(side, goal%targets(side)%outcome)
+        end do
+    end subroutine h_verdicts
 
     !> Both thresholds on `level`, with their error estimates (h) or their bars from the
     !> changes between levels (hp), and each side's collision onset where it has one.
@@ -387,7 +399,7 @@ contains
         type(critical_set_t) :: set
         type(eigen_result_t) :: beside(2)
         real(wp), allocatable :: u(:, :)
-        real(wp) :: start, bar(2), roundoff(2)
+        real(wp) :: start
         real(wp), allocatable :: nearest(:)
         integer :: onset(2)
 
@@ -432,10 +444,6 @@ contains
             where (this%levels(size(this%levels))%found .and. &
                    this%levels(size(this%levels))%estimated) &
                 this%est%bar = this%levels(size(this%levels))%error_bar
-            ! the floor test's round-off part: that of the side with the largest bar
-            call goal_bars(this%levels(size(this%levels)), this%thr%roundoff, bar, roundoff)
-            this%roundoff = -1.0_wp
-            if (maxval(bar) >= 0.0_wp) this%roundoff = roundoff(maxloc(bar, 1))
             this%prob = prob
         end associate
         call timings%note(level_line(this%levels(size(this%levels)), 'adapt level'))
@@ -564,40 +572,38 @@ contains
         row%time_s = wall_time() - loop_start
     end function level_row
 
-    !> After `level`: both sides judged together. h: the larger of their bars (judge_target;
-    !> none where either is missing); hp: every side's goal within the tolerance, or each side
-    !> that is not stalled or at the floor.
+    !> After `level`: each side its own target (judge_sides); hp first notes the profiles
+    !> of the level's vectors, which the report follows over the levels (track_moving).
     subroutine threshold_goal_judge(this, refiner, level, tolerance)
         class(threshold_goal_t), intent(inout) :: this
         class(refiner_t), intent(in) :: refiner
         integer, intent(in) :: level
         real(wp), intent(in) :: tolerance
-        if (refiner%estimated()) then
-            associate (last => this%levels(size(this%levels)))
-                call judge_target(this%targets(1), refiner, level, tolerance, last%n_dofs, &
-                                  .true., '', largest_bar(this), this%roundoff, .false., '', &
-                                  missing(this))
-            end associate
-            this%targets(2) = this%targets(1)
-        else
-            call note_profiles(this)
-            call judge_hp(this, tolerance)
-        end if
+        call note_profiles(this)
+        call judge_sides(this, refiner%estimated(), level, tolerance)
     end subroutine threshold_goal_judge
 
-    !> hp: the profiles of the last level's vectors (its problem, space and thresholds are
-    !> still in `this`), which the report follows over the levels (track_moving).
+    !> The profiles of the last level's vectors (its problem, space and thresholds are still
+    !> in `this`), which the report follows over the levels (track_moving), from the vertex
+    !> functions' forces (hp: those below the space's vertex count; h: the contact nodes at
+    !> an end of a contact edge).
     subroutine note_profiles(this)
         class(threshold_goal_t), intent(inout) :: this
         type(contact_ends_t) :: ends
-        integer :: side
+        logical, allocatable :: vertex(:)
+        integer :: side, a
         if (size(this%levels) == 0 .or. .not. allocated(this%thr%vectors)) return
         ends = contact_ends(this%prob)
         associate (row => this%levels(size(this%levels)), prob => this%prob)
+            if (this%space%n_vertices > 0) then
+                vertex = prob%contact%nodes <= this%space%n_vertices
+            else
+                vertex = [(any(prob%mesh%edges(1:2, :) == prob%contact%nodes(a)), &
+                           a=1, size(prob%contact%nodes))]
+            end if
             do side = SIDE_PLUS, SIDE_MINUS
                 if (.not. this%thr%found(side)) cycle
-                associate (value => level_profile(prob, ends, prob%contact%nodes <= &
-                           this%space%n_vertices, this%thr%lambda(side), &
+                associate (value => level_profile(prob, ends, vertex, this%thr%lambda(side), &
                            this%thr%vectors(:, side)))
                     row%profile(:, side) = value%profile
                     row%resolution = value%resolution
@@ -606,7 +612,7 @@ contains
         end associate
     end subroutine note_profiles
 
-    !> hp: what is known about each side of the last level that did not converge (its
+    !> What is known about each side of the last level that did not converge (its
     !> values followed over the levels by their profiles, where its vector sits, the wedge
     !> there), in `estimate`, and one warning per such side.
     subroutine track_moving(goal, out, estimate, warnings)
@@ -797,103 +803,162 @@ contains
         if (t%floor_reached()) fails = .not. floor_reached(bar, roundoff)
     end function settled_check_fails
 
-    !> The largest bar of the sides' goals (goal_bars); negative when one of them has none,
-    !> or when there is neither.
-    real(wp) function largest_bar(this)
-        type(threshold_goal_t), intent(in) :: this
-        real(wp) :: bar(2), roundoff(2)
-        largest_bar = -1.0_wp
-        associate (row => this%levels(size(this%levels)))
-            if (.not. any(row%found .or. row%collision)) return
-            call goal_bars(row, this%thr%roundoff, bar, roundoff)
-            if (any(bar < 0.0_wp)) return
-            largest_bar = maxval(bar)
-        end associate
-    end function largest_bar
-
-    !> hp: each side is its own target, judged on its own goal (its collision onset where it
-    !> has one, else its threshold): met within the tolerance once the goal has a value at
-    !> the last NONE_LEVELS levels, stopped where its goal stalls, at the floor where
-    !> round-off dominates its bar; a side without a value at the last NONE_LEVELS levels is
-    !> met as 'none'. A side whose value appears or vanishes between levels has no bar
-    !> (series_bar needs it on consecutive levels) and stays active, so it ends at a limit,
-    !> named, never as met; a side met, with a value or as 'none', whose value then vanishes
-    !> or appears at a later level is stopped as not converging (exit 8). One side never
-    !> stops or fails the other.
-    subroutine judge_hp(this, tolerance)
+    !> Each side is its own target, judged on its own goal (its collision onset where it
+    !> has one, else its threshold), the same rule on h and hp levels (`estimated`: h, whose
+    !> levels carry their own estimate): met within the tolerance once the goal has a value
+    !> at each of the last levels (h: two, the level before confirms the bar; hp: three, its
+    !> bar rests on the changes between them), stopped where its goal stalls (hp) or has no
+    !> estimate (h), at the floor where round-off dominates its bar (hp: or where its last
+    !> changes are within their round-off bounds, `settled`); a side without a value at the
+    !> last NONE_LEVELS levels (h: over which the dofs at least doubled, as an h level adds
+    !> a fraction of them) is met as 'none'. A side whose value appears or vanishes
+    !> between levels has no bar (series_bar needs it on consecutive levels) and stays
+    !> active, so it ends at a limit, named, never as met; on h levels, whose limit is the
+    !> memory, one whose value has vanished for as long as 'none' needs is stopped then. A
+    !> side met, with a value or as 'none', whose value then vanishes or appears at a later
+    !> level is stopped as not converging (exit 8). On h levels a side met with a value is
+    !> judged again at every later level (each re-estimates it on a finer mesh, and the
+    !> report quotes the last): above the tolerance there it is active again. One side never
+    !> stops or fails the other; where neither side has a value at an h level, there is
+    !> nothing to mark and both stop, each saying so.
+    subroutine judge_sides(this, estimated, level, tolerance)
         type(threshold_goal_t), intent(inout) :: this
+        logical, intent(in) :: estimated
+        integer, intent(in) :: level   !! the last level's number
         real(wp), intent(in) :: tolerance
         integer, parameter :: NONE_LEVELS = 3
         real(wp) :: bar(2), roundoff(2)
-        integer :: side, k, i
+        integer :: side, k, i, present_levels, before
         logical :: absent, present_all, has
         k = size(this%levels)
+        present_levels = merge(2, 3, estimated)
         call goal_bars(this%levels(k), this%thr%roundoff, bar, roundoff)
         do side = SIDE_PLUS, SIDE_MINUS
             associate (last => this%levels(k), t => this%targets(side))
                 has = last%found(side) .or. last%collision(side)
+                if (estimated .and. .not. any(last%found .or. last%collision)) then
+                    if (t%active() .or. t%converged()) call t%finish(TARGET_STOPPED, &
+                        trim(SIDE_LABELS(side))//': tolerance not met: no error estimate at '// &
+                        'level '//to_string(level)//' (no real eigenvalue of the pencil '// &
+                        'Kt_nn x = lambda Kt_nt x and no collision onset: nothing to adapt to)')
+                    cycle
+                end if
                 if (t%converged()) then
                     ! met at an earlier level: it must keep (or keep lacking) its value
-                    if (has .eqv. (index(t%outcome, ': none') == 0)) cycle
-                    call t%finish(TARGET_STOPPED, trim(SIDE_LABELS(side))//': '// &
-                        merge('a value ', 'no value', has)//' at level '// &
-                        to_string(last%level)//' after '//t%outcome(len_trim(SIDE_LABELS(side)) &
-                        + 3:)//': it '//trim(merge('appears ', 'vanishes', has))// &
-                        ' with the mesh, not converged')
-                    this%met_row(side) = 0
-                    cycle
+                    if (has .eqv. (index(t%outcome, ': none') == 0)) then
+                        if (.not. (estimated .and. has)) cycle
+                        ! h: its estimate on this finer mesh is the one reported
+                        if (bar(side) >= 0.0_wp .and. bar(side) <= tolerance) then
+                            call met(side)
+                            cycle
+                        end if
+                        call t%finish(TARGET_ACTIVE, '')
+                    else
+                        call t%finish(TARGET_STOPPED, trim(SIDE_LABELS(side))//': '// &
+                            trim(merge('a value ', 'no value', has))//' at level '// &
+                            to_string(level)//' after '// &
+                            t%outcome(len_trim(SIDE_LABELS(side)) + 3:)//': it '// &
+                            trim(merge('appears ', 'vanishes', has))// &
+                            ' with the mesh, not converged')
+                        this%met_row(side) = 0
+                        cycle
+                    end if
                 end if
                 if (.not. t%active()) cycle
                 absent = k >= NONE_LEVELS
-                present_all = k >= NONE_LEVELS
                 do i = max(1, k - NONE_LEVELS + 1), k
                     absent = absent .and. .not. (this%levels(i)%found(side) .or. &
                                                  this%levels(i)%collision(side))
+                end do
+                ! h: levels that add a fraction of the dofs each; the run without a value
+                ! must also double them
+                if (estimated .and. absent) absent = this%levels(k)%n_dofs >= 2* &
+                    this%levels(max(1, none_run(side)))%n_dofs
+                present_all = k >= present_levels
+                do i = max(1, k - present_levels + 1), k
                     present_all = present_all .and. (this%levels(i)%found(side) .or. &
                                                      this%levels(i)%collision(side))
                 end do
                 if (.not. has) then
-                    if (absent) call t%finish(TARGET_MET, SIDE_LABELS(side)//': none at hp '// &
-                        'levels '//to_string(k - NONE_LEVELS + 1)//' to '//to_string(k))
+                    if (.not. absent) cycle
+                    ! h: a value at an earlier level that has vanished is no 'none'
+                    before = 0
+                    if (estimated) before = findloc([(this%levels(i)%found(side) .or. &
+                        this%levels(i)%collision(side), i=1, k)], .true., 1, back=.true.)
+                    if (before == 0) then
+                        call t%finish(TARGET_MET, SIDE_LABELS(side)//': none at '// &
+                            trim(merge('h levels ', 'hp levels', estimated))//' '// &
+                            to_string(this%levels(merge(none_run(side), k - NONE_LEVELS + 1, &
+                                                        estimated))%level)//' to '// &
+                            to_string(level))
+                    else
+                        call t%finish(TARGET_STOPPED, trim(SIDE_LABELS(side))//': no value at '// &
+                            'h levels '//to_string(this%levels(before + 1)%level)//' to '// &
+                            to_string(level)//' after '//short_real_text(merge( &
+                            this%levels(before)%collision_lambda(side), &
+                            this%levels(before)%lambda(side), &
+                            this%levels(before)%collision(side)), 6)//' at level '// &
+                            to_string(this%levels(before)%level)//': it vanishes with the '// &
+                            'mesh, not converged')
+                    end if
                     cycle
                 end if
-                if (last%stalled(side)) then
+                if (estimated .and. bar(side) < 0.0_wp) then
+                    call t%finish(TARGET_STOPPED, trim(SIDE_LABELS(side))//': tolerance not '// &
+                        'met: no error estimate at level '//to_string(level)//' ('// &
+                        missing(this, side)//')')
+                else if (last%stalled(side)) then
                     call t%finish(TARGET_STOPPED, trim(SIDE_LABELS(side))//': '// &
                         stall_outcome(tolerance, 'the '//trim(SIDE_NAMES(side))//' side'))
                 else if (bar(side) < -0.5_wp .or. .not. present_all) then
                     cycle   ! no bar yet, or the value has appeared too recently
                 else if (bar(side) <= tolerance) then
-                    call t%finish(TARGET_MET, trim(SIDE_LABELS(side))//': tolerance '// &
-                        short_real_text(tolerance)//' met at level '//to_string(last%level)// &
-                        ': error bar '//this%bar_text(side))
-                    if (.not. last%collision(side)) this%met_row(side) = k
-                else if (floor_reached(bar(side), roundoff(side)) .or. &
-                         settled(this%levels, side, roundoff(side), tolerance)) then
+                    call met(side)
+                else if (floor_reached(bar(side), roundoff(side)) .or. (.not. estimated .and. &
+                         settled(this%levels, side, roundoff(side), tolerance))) then
                     call t%finish(TARGET_FLOOR, trim(SIDE_LABELS(side))//': '// &
                         floor_outcome(tolerance, roundoff(side), bar(side), &
                                       to_string(last%n_dofs)))
                 end if
             end associate
         end do
-    end subroutine judge_hp
 
-    !> The bar of both sides at the last level, as outcomes quote it: the larger of the
-    !> sides' goal bars ('none' where one has none) at its dofs.
+    contains
+
+        !> The first of the trailing levels without a value of side `s` (k + 1: none).
+        integer function none_run(s) result(first)
+            integer, intent(in) :: s
+            first = k + 1
+            do while (first > 1)
+                if (this%levels(first - 1)%found(s) .or. this%levels(first - 1)%collision(s)) &
+                    exit
+                first = first - 1
+            end do
+        end function none_run
+
+        !> Side `s` met at the last level; hp quotes that level's value (met_row).
+        subroutine met(s)
+            integer, intent(in) :: s
+            call this%targets(s)%finish(TARGET_MET, trim(SIDE_LABELS(s))//': tolerance '// &
+                short_real_text(tolerance)//' met at level '// &
+                to_string(level)//': error bar '//this%bar_text(s))
+            if (.not. estimated .and. .not. this%levels(k)%collision(s)) this%met_row(s) = k
+        end subroutine met
+    end subroutine judge_sides
+
+    !> The bar of side `i`'s goal at the last level, as outcomes quote it ('none' where it
+    !> has no value or no bar) at its dofs.
     function threshold_goal_bar_text(this, i) result(text)
         class(threshold_goal_t), intent(in) :: this
-        integer, intent(in) :: i   !! the side (hp); h: both sides are judged together
+        integer, intent(in) :: i
         character(len=:), allocatable :: text
         real(wp) :: bar(2), roundoff(2)
         text = 'none'
         if (size(this%levels) == 0 .or. i < 1) return
         associate (last => this%levels(size(this%levels)))
             call goal_bars(last, this%thr%roundoff, bar, roundoff)
-            if (this%per_side) then   ! hp: the side's own, none where it has no value
-                if (bar(i) >= -0.5_wp .and. (last%found(i) .or. last%collision(i))) &
-                    text = short_real_text(bar(i))
-            else if (all(bar >= -0.5_wp)) then
-                text = short_real_text(maxval(bar))
-            end if
+            if (bar(i) >= -0.5_wp .and. (last%found(i) .or. last%collision(i))) &
+                text = short_real_text(bar(i))
             text = text//' at '//to_string(last%n_dofs)//' dofs'
         end associate
     end function threshold_goal_bar_text
@@ -1345,7 +1410,10 @@ contains
         settled = settled_floor(values, roundoffs, roundoff, tolerance)
     end function settled
 
-    !> The union of the Doerfler sets of the sides still above the tolerance.
+    !> The union of the Doerfler sets of the sides still active (a side met, none, or
+    !> stopped marks nothing). Where no active side has indicators at this level (its value
+    !> has vanished, the other side is met) the sides that have them mark, and where none
+    !> has, every cell is: the next level must differ, or it would repeat this one.
     function threshold_goal_mark(this, theta) result(marked)
         class(threshold_goal_t), intent(in) :: this
         real(wp), intent(in) :: theta
@@ -1354,41 +1422,42 @@ contains
         integer :: side, i
 
         allocate (chosen(size(this%collision_indicators, 1)), source=.false.)
-        associate (row => this%levels(size(this%levels)))
+        do side = SIDE_PLUS, SIDE_MINUS
+            if (this%targets(side)%active()) call add_side(side)
+        end do
+        if (.not. any(chosen)) then
             do side = SIDE_PLUS, SIDE_MINUS
-                if (row%collision(side)) then
-                    if (row%collision_bar(side) <= this%tolerance) cycle
-                    chosen(doerfler_marking(this%collision_indicators(:, side), theta)) = .true.
-                    cycle
-                end if
-                if (.not. this%thr%found(side)) cycle
-                if (this%est%bar(side) <= this%tolerance) cycle
-                chosen(doerfler_marking(this%est%indicators(:, side), theta)) = .true.
+                call add_side(side)
             end do
-        end associate
+        end if
+        if (.not. any(chosen)) chosen = .true.
         marked = pack([(i, i=1, size(chosen))], chosen)
+
+    contains
+
+        !> The Doerfler set of side `s`'s indicators, where it has them.
+        subroutine add_side(s)
+            integer, intent(in) :: s
+            if (this%levels(size(this%levels))%collision(s)) then
+                if (this%collision_estimate(s) >= 0.0_wp) &
+                    chosen(doerfler_marking(this%collision_indicators(:, s), theta)) = .true.
+            else if (this%thr%found(s) .and. this%est%computed(s)) then
+                chosen(doerfler_marking(this%est%indicators(:, s), theta)) = .true.
+            end if
+        end subroutine add_side
     end function threshold_goal_mark
 
-    !> Why a side's estimate is missing at the last h level (the first such side).
-    function missing(this) result(reason)
+    !> Why side `side`'s estimate is missing at the last h level.
+    function missing(this, side) result(reason)
         type(threshold_goal_t), intent(in) :: this
+        integer, intent(in) :: side
         character(len=:), allocatable :: reason
-        integer :: side
-        reason = 'no real eigenvalue of the pencil Kt_nn x = lambda Kt_nt x: no threshold '// &
-                 'to adapt to'
-        do side = SIDE_PLUS, SIDE_MINUS
-            if (len_trim(this%collision_skipped(side)) > 0) then
-                reason = SIDE_LABELS(side)//': '//trim(this%collision_skipped(side))
-                return
-            end if
-            if (this%levels(size(this%levels))%collision(side)) cycle
-            if (this%thr%found(side) .and. .not. this%est%computed(side)) then
-                reason = SIDE_LABELS(side)//': '//trim(this%est%skipped(side))
-                if (len_trim(this%est%skipped(side)) == 0) reason = reason// &
-                    'no enrichment for these cells'
-                return
-            end if
-        end do
+        if (len_trim(this%collision_skipped(side)) > 0) then
+            reason = trim(this%collision_skipped(side))
+        else
+            reason = trim(this%est%skipped(side))
+            if (len(reason) == 0) reason = 'no enrichment for these cells'
+        end if
     end function missing
 
     !> The bars of the final level's collision onsets into the boundary points of `set`

@@ -14,7 +14,8 @@ module moving_side
     use problem, only: problem_t
     use pencil_tracking, only: N_PROFILE_BINS, pencil_value_t, level_values_t, &
                                track_verdict_t, track_chain, classify_chain, &
-                               pencil_profile_bins, TRACK_CONVERGING, TRACK_MOVING
+                               pencil_profile_bins, match_value, TRACK_CONVERGING, &
+                               TRACK_MOVING, TRACK_SHORT
     use wedge_exponents, only: wedge_roots, contact_free_crossing, contact_clamped_crossing, &
                                WEDGE_CONTACT, WEDGE_FREE, WEDGE_CLAMPED
     implicit none
@@ -30,6 +31,9 @@ module moving_side
     !> the other side's condition at an end, by WEDGE_FREE, WEDGE_CLAMPED (0: unknown)
     !> the side of a crossing is read from the exponent this far (in lambda) beyond it
     real(wp), parameter :: CROSSING_STEP = 0.1_wp
+    !> an earlier value this much nearer the last one than the level before's is the last
+    !> one back (track_side: alternation)
+    real(wp), parameter :: RETURN_FACTOR = 10.0_wp
     character(len=*), parameter :: FAR_NAMES(0:2) = [character(len=7) :: 'unknown', 'free', &
                                                       'clamped']
 
@@ -67,6 +71,15 @@ module moving_side
         logical :: has_crossing = .false.
         real(wp) :: crossing = 0.0_wp
         logical :: past_crossing = .false.
+        !> the last value has no match at the level before, which has a value, but is back
+        !> from an earlier level (track_side: alternation): the side's value trades places
+        !> with another (`other`, the level before's) from level to level; `back`: how many
+        !> levels back it was last, `shape_levels`: at how many of the `n_levels` levels it is
+        logical :: alternates = .false.
+        real(wp) :: other = 0.0_wp
+        integer :: back = 0
+        integer :: shape_levels = 0
+        integer :: n_levels = 0
     end type moving_side_t
 
 contains
@@ -175,6 +188,7 @@ contains
         end do
         side%known = .true.
         side%verdict = classify_chain(values, profiles, roundoff)
+        if (side%verdict%kind == TRACK_SHORT .and. size(chain) == 1) call alternation(side)
         side%length = ends%s_max - ends%s_min
         side%s = max(side%verdict%where, 0.0_wp)*side%length
         side%point = ends%point(:, 1) + (ends%point(:, 2) - ends%point(:, 1))* &
@@ -210,6 +224,36 @@ contains
 
     contains
 
+        !> Where the level before has values but none of the last one's shape, whether an
+        !> earlier level has it back: a value of its shape, or one nearer it than
+        !> 1/RETURN_FACTOR of its distance to the level before's (the profiles of one value
+        !> change as the levels grade an end: chamfered block, nu 0.3, hp from size 1: levels
+        !> 5 and 8 agree to 6e-8, their profiles to |cos| 0.34). Then the side's value trades
+        !> places with another, and the levels with it back say how often it is there.
+        subroutine alternation(side)
+            type(moving_side_t), intent(inout) :: side
+            integer :: j
+            real(wp) :: v, before
+            if (m < 3) return
+            if (.not. allocated(levels(m - 1)%values)) return
+            if (size(levels(m - 1)%values) == 0) return
+            v = levels(m)%values(1)%lambda
+            before = minval(abs(levels(m - 1)%values%lambda - v))
+            side%shape_levels = 1
+            do j = m - 2, 1, -1
+                if (.not. allocated(levels(j)%values)) cycle
+                if (size(levels(j)%values) == 0) cycle
+                if (match_value(levels(m)%values(1), levels(j)%values) == 0 .and. &
+                    minval(abs(levels(j)%values%lambda - v)) > before/RETURN_FACTOR) cycle
+                side%shape_levels = side%shape_levels + 1
+                if (side%back == 0) side%back = m - j
+            end do
+            side%alternates = side%back > 0
+            side%other = levels(m - 1)%values(1)%lambda
+            side%n_levels = m
+            if (.not. side%alternates) side%shape_levels = 0
+        end subroutine alternation
+
         !> The exponents with a negative real part (in the box searched) CROSSING_STEP before
         !> (`towards` -1) or after (+1) the crossing, going away from lambda = 0.
         integer function negative_exponents(towards) result(n)
@@ -242,9 +286,17 @@ contains
                         ' levels'
                 end if
             case default
-                text = text//' has no value of its shape at the level before (followed '// &
-                    'over '//to_string(v%length)//' level'//trim(merge('s', ' ', &
-                    v%length > 1))//')'
+                if (side%alternates) then
+                    text = text//' trades places with another value ('// &
+                        short_real_text(side%other, 6)//' at the level before, of another '// &
+                        'shape): it was there '//to_string(side%back)//' levels back and is '// &
+                        'at '//to_string(side%shape_levels)//' of the '// &
+                        to_string(side%n_levels)//' levels, not converged'
+                else
+                    text = text//' has no value of its shape at the level before (followed '// &
+                        'over '//to_string(v%length)//' level'//trim(merge('s', ' ', &
+                        v%length > 1))//')'
+                end if
             end select
             if (v%rate >= 0.0_wp) then
                 text = text//' (factor '//short_real_text(v%rate)//' per level'

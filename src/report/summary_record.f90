@@ -458,7 +458,12 @@ contains
             return
         end if
         associate (v => side%verdict)
-            call object%add_string('verdict', trim(TRACK_NAMES(v%kind)))
+            if (side%alternates) then
+                call object%add_string('verdict', 'alternating')
+            else
+                call object%add_string('verdict', trim(TRACK_NAMES(v%kind)))
+            end if
+            call object%add_real_or_null('alternate_value', side%other, side%alternates)
             call object%add_integer('levels', v%length)
             call object%add_real('value', v%value)
             call object%add_real_or_null('rate', v%rate, v%rate >= 0.0_wp)

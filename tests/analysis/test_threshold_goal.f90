@@ -6,7 +6,8 @@
 !> max_levels does. With the left side clamped too, the two sides are independent targets:
 !> lambda+ is met at an early level and reported with that level's value and bar, which
 !> the later, finer levels confirm; lambda- appears and vanishes and is not met, with no bar,
-!> and where it has a value at the last level a warning says where its vector sits.
+!> and where it has a value at the last level a warning says where its vector sits. The same
+!> on h levels: the side met reported with its bar, the other with none and its own reason.
 program test_threshold_goal
     use kinds, only: wp, i8
     use run_inputs, only: run_inputs_t, translate_input
@@ -32,6 +33,7 @@ program test_threshold_goal
     call memory_stops_the_loop(t)
     call max_levels_stops_the_loop(t)
     call sides_are_independent(t)
+    call h_sides_are_independent(t)
     call t%report()
 
 contains
@@ -198,4 +200,46 @@ contains
             'warning says where lambda- sits', any(index(res%eigen%warnings, 'lambda- = ') == 1 &
             .and. index(res%eigen%warnings, 'its vector sits') > 0))
     end subroutine sides_are_independent
+
+    !> The same clamped square on h levels (P2 from 2 x 2 squares, 2e-2, at most 12 levels):
+    !> lambda+ (1.99163, the hp run above) has a value and a bar at every level, below 2e-2
+    !> from level 4 on; lambda- comes and goes (values near -5.8 and -5.0 at some levels,
+    !> none at others) and never has a bar at two consecutive levels below 2e-2 (its bars
+    !> are 0.45 and more). Each side is its own target: lambda+ is met and reported with the
+    !> bar of the last level, which covers its value to within the digits known; lambda- is
+    !> not met, reported with no bar, named first in the outcome and so in the warnings. The
+    !> sides judged together (largest bar) met neither and quoted lambda-'s bar.
+    subroutine h_sides_are_independent(t)
+        type(test_suite_t), intent(inout) :: t
+        !> lambda+ of this scene to the digits the hp run gives it (its bar 3.7e-7)
+        real(wp), parameter :: PLUS = 1.99163_wp, PLUS_DIGITS = 1.0e-5_wp
+        type(adaptive_thresholds_t) :: out
+        type(threshold_result_t) :: res
+        type(status_t) :: stat
+        type(config_t) :: config
+        integer :: k
+        config = reference_config(2.0e-2_wp)
+        config%mesh%element = 'p2'
+        config%mesh%dirichlet = 'top left'
+        config%mesh%neumann = 'right'
+        config%adapt%strategy = 'h'
+        config%adapt%max_levels = 12
+        call run(config, out, res, stat)
+        call t%check('h, independent sides: runs', stat%ok() .and. size(out%levels) > 0)
+        if (.not. stat%ok() .or. size(out%levels) == 0) return
+        k = size(out%levels)
+        call t%check('h, independent sides: lambda+ met, its bar the last level''s', &
+                     res%estimate%computed(SIDE_PLUS) .and. &
+                     res%estimate%bar(SIDE_PLUS) <= 2.0e-2_wp .and. &
+                     abs(res%estimate%bar(SIDE_PLUS) - out%levels(k)%error_bar(SIDE_PLUS)) <= &
+                     0.0_wp .and. index(out%outcome, 'lambda+: tolerance 2.00E-02 met') > 0)
+        call t%check('h, independent sides: lambda+ within its bar of the hp value', &
+                     abs(res%thresholds%lambda(SIDE_PLUS) - PLUS) <= res%estimate%bar(SIDE_PLUS)* &
+                     abs(res%thresholds%lambda(SIDE_PLUS)) + PLUS_DIGITS)
+        call t%check('h, independent sides: lambda- not met, no bar, its reason first', &
+                     .not. out%converged .and. .not. res%estimate%computed(SIDE_MINUS) .and. &
+                     res%estimate%bar(SIDE_MINUS) < 0.0_wp .and. &
+                     index(out%outcome, 'lambda-: tolerance 2.00E-02 not met') == 1 .and. &
+                     any(index(res%eigen%warnings, 'lambda-: tolerance') == 1))
+    end subroutine h_sides_are_independent
 end program test_threshold_goal

@@ -121,17 +121,22 @@ check 'floor: the round-off part is at least half the bar' \
         "BEGIN { exit !(r > 0 && 2 * r >= b) }"'
 check 'not the floor when the tolerance is met' '[[ $(json "$s" adapt_floor_reached) == false ]]'
 
-# The threshold loop stops at the same floor: its goal's round-off part is that of the side
-# with the largest bar (lambda+- of the pencil, or a collision onset).
+# The threshold loop stops at the same floor, each side at its own (lambda+- of the pencil,
+# or a collision onset: its round-off part against its bar); a side stopped there did not
+# meet the tolerance, so summary.json gives it no bar, and the last level's bar is in
+# adapt.csv (error_bar_plus, column 10).
 "$nceig" "$work/adapt.nml" --set analysis%kind=threshold --set material%poisson=0.499999999 \
     --set output%directory="$work/tfloor" >"$work/stdout" 2>"$work/err"; rc=$?
 f=$work/tfloor/summary.json
-check 'threshold floor: exit 8, one stderr line, the set written' '[[ $rc -eq 8 && $(wc -l <"$work/err") -eq 1 &&
+check 'threshold floor: exit 8, one stderr line naming both sides, the set written' \
+    '[[ $rc -eq 8 && $(wc -l <"$work/err") -eq 1 &&
     -s "$work/tfloor/adapt.csv" && $(json "$f" adapt_floor_reached) == true ]] &&
-    grep -q "the floating-point floor is reached" "$work/err"'
-check 'threshold floor: the round-off part is at least half the bar' \
-    'awk -v b="$(json "$f" lambda_critical_plus_error_bar)" -v r="$(json "$f" lambda_critical_plus_roundoff)" \
-        "BEGIN { exit !(r > 0 && 2 * r >= b) }"'
+    grep -q "lambda+: tolerance 1.00E-05 not met: the floating-point floor is reached" "$work/err" &&
+    grep -q "lambda-: tolerance 1.00E-05 not met: the floating-point floor is reached" "$work/err"'
+check 'threshold floor: the round-off part is at least half the last level'\''s bar, no bar quoted' \
+    'awk -v b="$(tail -n 1 "$work/tfloor/adapt.csv" | cut -d, -f10)" \
+        -v r="$(json "$f" lambda_critical_plus_roundoff)" "BEGIN { exit !(r > 0 && 2 * r >= b) }" &&
+     [[ $(json "$f" lambda_critical_plus_error_bar) == null ]]'
 
 # No positive mu (lambda = 1, below the threshold 1.94): nothing to adapt to, said so; the
 # set holds exactly its listed files (no picture, no leftover of one).
@@ -243,12 +248,36 @@ check 'threshold: mesh.msh reads back to the same lambda+ (1e-12) and estimate (
     >/dev/null 2>"$work/err"; rc=$?
 check 'threshold, max_levels reached: exit 8, one stderr line, the set written' \
     '[[ $rc -eq 8 && $(wc -l <"$work/err") -eq 1 && -s $work/th_limit/summary.json ]] &&
-     grep -q "&adapt: tolerance 1.00E-06 not met: max_levels = 1 reached" "$work/err"'
+     grep -q "&adapt: lambda+: tolerance 1.00E-06 not met: max_levels = 1 reached" "$work/err" &&
+     grep -q "lambda-: tolerance 1.00E-06 not met: max_levels = 1 reached" "$work/err"'
 "$nceig" "$work/sweep.nml" --set adapt%max_levels=1 --set adapt%tolerance=1e-9 \
     --set output%directory="$work/sw_limit" >/dev/null 2>"$work/err"; rc=$?
 check 'sweep, max_levels reached: exit 8, the points counted, the set written' \
     '[[ $rc -eq 8 && $(wc -l <"$work/err") -eq 1 && $(json "$work/sw_limit/summary.json" sweep_n_not_met) == 3 ]] &&
      grep -q "3 of the sweep.s points with a positive mu did not meet the tolerance" "$work/err"'
+
+# Each side its own target on h levels: the square with its top and left sides clamped
+# (P2 from 2 x 2 squares, 2e-2, at most 12 levels; tests/analysis/test_threshold_goal.f90,
+# h_sides_are_independent): lambda+ meets 2e-2 and is quoted with its bar, lambda- comes and
+# goes with no bar below 0.45: exit 8 for lambda- alone, its bar null, the warning naming it.
+cat >"$work/sides.nml" <<NML
+&mesh nx = 2, ny = 2, element = 'p2', dirichlet = 'top left', neumann = 'right' /
+&analysis kind = 'threshold', lambda = 5.0 /
+&sweep lambda_min = -3.0, lambda_max = 3.0, n_lambda = 7 /
+&adapt tolerance = 2e-2, max_levels = 12 /
+&output directory = '$work/sides', vtk = .false., plot = .false. /
+NML
+"$nceig" "$work/sides.nml" >"$work/stdout" 2>"$work/err"; rc=$?
+s=$work/sides/summary.json
+check 'h sides: exit 8, one stderr line naming lambda- as not met first' \
+    '[[ $rc -eq 8 && $(wc -l <"$work/err") -eq 1 ]] &&
+     grep -q "&adapt: lambda-: tolerance 2.00E-02 not met: max_levels = 12 reached" "$work/err"'
+check 'h sides: lambda+ met with its bar, lambda- with none' \
+    'awk -v b="$(json "$s" lambda_critical_plus_error_bar)" "BEGIN { exit !(b > 0 && b <= 2e-2) }" &&
+     [[ $(json "$s" lambda_critical_minus_error_bar) == null ]] &&
+     grep -q "lambda+: tolerance 2.00E-02 met at level" "$work/err"'
+check 'h sides: the warning in summary.json names lambda-' \
+    'grep -A1 "\"warnings\"" "$s" | grep -q "lambda-: tolerance 2.00E-02 not met"'
 
 # bad NAME WORD... -- SETTINGS: one stderr line with every WORD, exit 2, no output.
 bad() {

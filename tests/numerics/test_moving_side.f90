@@ -8,7 +8,8 @@
 !> points to and its mirror image at the other (docs/thresholds.md): past the contact-free
 !> crossing -pi/2 of a 90-degree corner the exponent is negative (at -4 and nu = 0.3 below
 !> -1, outside the exponents searched, and still past the crossing); a clamped corner's
-!> crossing is positive; a 180-degree end has none.
+!> crossing is positive; a 180-degree end has none. Two values of different shapes that
+!> trade places from level to level are said to, not called too short.
 program test_moving_side
     use kinds, only: wp
     use status, only: status_t
@@ -16,7 +17,7 @@ program test_moving_side
     use fixtures, only: square_scene, problem_of
     use run_config, only: config_t
     use problem, only: problem_t
-    use pencil_tracking, only: N_PROFILE_BINS, level_values_t, TRACK_MOVING
+    use pencil_tracking, only: N_PROFILE_BINS, level_values_t, TRACK_MOVING, TRACK_SHORT
     use wedge_exponents, only: WEDGE_FREE, WEDGE_CLAMPED, contact_free_crossing, &
                                contact_clamped_crossing
     use moving_side, only: contact_ends_t, contact_ends, moving_side_t, track_side, &
@@ -29,6 +30,7 @@ program test_moving_side
     call check_square_ends()
     call check_geometric_at_an_end()
     call check_wedge_sides()
+    call check_alternating()
     call t%report()
 
 contains
@@ -164,4 +166,54 @@ contains
         call t%check('lambda = +3 at end 1: the wedge sees -3, exponent < 0', side%end == 1 &
                      .and. side%wedge_lambda < 0.0_wp .and. side%past_crossing)
     end subroutine check_wedge_sides
+
+    !> Six levels whose one value alternates between two modes: at odd levels -3 - 0.01/k
+    !> with the profile of geometric_levels (its force at end 2), at even levels -3.4 - 0.01/k
+    !> with forces +1/2 in the first bin and -1/2 in the middle one (running sums 1/2 over
+    !> the first half, 0 after: |cos| with the other's about 0.2, far below SAME_SHAPE). The
+    !> values lie within MATCH_WINDOW of each other, so only the shapes tell them apart: the
+    !> last (even) value has no match at level 5 but one at level 4, two levels back, and
+    !> its shape is at levels 2, 4 and 6. With the even levels' profiles of a third shape
+    !> (force +1 in the middle bin) the values still tell: those of levels 2 and 4 are
+    !> within 2.5e-4 (relative) of the last, level 5's 0.12 away. With them moved out of
+    !> the window too the last value is back nowhere: the plain 'too short'.
+    subroutine check_alternating()
+        type(level_values_t), allocatable :: levels(:)
+        type(moving_side_t) :: side
+        character(len=:), allocatable :: words
+        integer :: k
+        call geometric_levels(6, -3.0_wp, 0.7_wp, 2, levels)
+        do k = 2, 6, 2
+            levels(k)%values(1)%lambda = -3.4_wp - 0.01_wp/real(k, wp)
+            levels(k)%values(1)%profile = 0.0_wp
+            levels(k)%values(1)%profile(1) = 0.5_wp
+            levels(k)%values(1)%profile(N_PROFILE_BINS/2) = -0.5_wp
+        end do
+        do k = 1, 5, 2
+            levels(k)%values(1)%lambda = -3.0_wp - 0.01_wp/real(k, wp)
+        end do
+        side = track_side(levels, square_ends(), 0.3_wp, 0.0_wp)
+        call t%check('trading places: no match at level 5, its shape 2 levels back, at 3 of 6', &
+                     side%verdict%kind == TRACK_SHORT .and. side%verdict%length == 1 .and. &
+                     side%alternates .and. side%back == 2 .and. side%shape_levels == 3 .and. &
+                     side%n_levels == 6 .and. &
+                     abs(side%other - levels(5)%values(1)%lambda) <= 0.0_wp)
+        words = moving_words('lambda-', side)
+        call t%check('trading places: the words say so', &
+                     index(words, 'trades places with another value') > 0)
+        do k = 2, 4, 2
+            levels(k)%values(1)%profile = 0.0_wp
+            levels(k)%values(1)%profile(N_PROFILE_BINS/2) = 1.0_wp
+        end do
+        side = track_side(levels, square_ends(), 0.3_wp, 0.0_wp)
+        call t%check('trading places by value: another shape at levels 2 and 4', &
+                     side%alternates .and. side%back == 2 .and. side%shape_levels == 3)
+        levels(2)%values(1)%lambda = -5.0_wp
+        levels(4)%values(1)%lambda = -5.0_wp
+        side = track_side(levels, square_ends(), 0.3_wp, 0.0_wp)
+        words = moving_words('lambda-', side)
+        call t%check('back at no earlier level: too short, not trading places', &
+                     side%verdict%kind == TRACK_SHORT .and. .not. side%alternates .and. &
+                     index(words, 'has no value of its shape') > 0)
+    end subroutine check_alternating
 end program test_moving_side
