@@ -195,7 +195,7 @@ contains
 
         p = contact%p()
         lu = contact%mass_dense()
-        g = x
+        allocate (g, source=x)   ! not g = x: UBSan read the unset extent of g (Asan build)
         allocate (pivot(p))
         call dgetrf(p, p, lu, p, pivot, info)
         if (info == 0) call dgetrs('N', p, size(g, 2), lu, p, pivot, g, p, info)
