@@ -312,6 +312,7 @@ contains
         real(wp), intent(in), optional :: near
         real(wp) :: widths(3), width, a, b, lambda_c
         integer :: try, count_a, count_b
+        type(spectrum_memo_t) :: memo   !! the bracket's ends, for pair_point
 
         point%mechanism = MECHANISM_PENCIL
         lambda_c = coarse_point%lambda
@@ -330,17 +331,17 @@ contains
                 a = max(lambda_c - width, a)
                 b = min(lambda_c + width, b)
             end if
-            call positive_count(blocks, a, count_a, set, stat)
-            if (stat%ok()) call positive_count(blocks, b, count_b, set, stat)
+            call positive_count(blocks, a, count_a, set, stat, memo)
+            if (stat%ok()) call positive_count(blocks, b, count_b, set, stat, memo)
             if (.not. stat%ok()) return
             if ((count_a > 0) .neqv. (count_b > 0)) exit
         end do
         if ((count_a > 0) .eqv. (count_b > 0)) return
         if (try == 1) then
             call pair_point(blocks, a, b, count_a, count_b, point, set, stat, &
-                            NEAR_BISECTION_WIDTH)
+                            NEAR_BISECTION_WIDTH, solved=memo)
         else
-            call pair_point(blocks, a, b, count_a, count_b, point, set, stat)
+            call pair_point(blocks, a, b, count_a, count_b, point, set, stat, solved=memo)
         end if
         if (stat%ok()) point%bracket = coarse_point%bracket
     end subroutine locate_pair
@@ -661,12 +662,14 @@ contains
         pencil_left = pencil_left(1:n)
     end subroutine scan_points
 
-    subroutine positive_count(blocks, lambda, n_positive, set, stat)
+    subroutine positive_count(blocks, lambda, n_positive, set, stat, memo)
         type(reduced_blocks_t), intent(in) :: blocks
         real(wp), intent(in) :: lambda
         integer, intent(out) :: n_positive
         type(critical_set_t), intent(inout) :: set
         type(status_t), intent(out) :: stat
+        !> spectra solved on `blocks` before: read where it has `lambda`, else given this one
+        type(spectrum_memo_t), intent(inout), optional :: memo
         real(wp), allocatable :: wr(:), wi(:)
         integer :: k
         n_positive = 0
@@ -677,9 +680,16 @@ contains
                 return
             end do
         end if
+        if (present(memo)) then
+            if (memo%find(lambda, wr, wi)) then
+                n_positive = count_positive(wr, wi)
+                return
+            end if
+        end if
         call reduced_eigenvalues(blocks, lambda, wr, wi, stat)
         if (stat%ok()) n_positive = count_positive(wr, wi)
         set%n_evaluations = set%n_evaluations + 1
+        if (stat%ok() .and. present(memo)) call memo%keep(lambda, wr, wi)
     end subroutine positive_count
 
     !> A pencil eigenvalue bracketed by [below, above]: the point itself is the QZ value; the
@@ -705,7 +715,8 @@ contains
     !> A boundary point inside [a, b] with no pencil eigenvalue: a pair meeting the real axis.
     !> Bisection on the count to BISECTION_WIDTH, then the Illinois variant of regula falsi on
     !> the discriminant of the meeting pair down to adjacent floating-point numbers.
-    subroutine pair_point(blocks, a_in, b_in, count_a_in, count_b_in, point, set, stat, width)
+    subroutine pair_point(blocks, a_in, b_in, count_a_in, count_b_in, point, set, stat, width, &
+                          solved)
         type(reduced_blocks_t), intent(in) :: blocks
         real(wp), intent(in) :: a_in, b_in
         integer, intent(in) :: count_a_in, count_b_in
@@ -713,6 +724,8 @@ contains
         type(critical_set_t), intent(inout) :: set
         type(status_t), intent(out) :: stat
         real(wp), intent(in), optional :: width   !! of the bisection; BISECTION_WIDTH
+        !> spectra the caller solved on `blocks` (the bracket's ends): not solved again
+        type(spectrum_memo_t), intent(in), optional :: solved
         real(wp), allocatable :: wr(:), wi(:)
         real(wp) :: a, b, m, fa, fb, fm, theta0, theta_m, stop_width, below, above
         integer :: count_a, count_b, count_m, last_kept, step
@@ -722,6 +735,7 @@ contains
         type(spectrum_memo_t) :: memo
 
         point%mechanism = MECHANISM_COMPLEX_PAIR
+        if (present(solved)) memo = solved
         a = a_in
         b = b_in
         count_a = count_a_in
@@ -730,7 +744,7 @@ contains
         if (present(width)) stop_width = width
         do while (b - a > stop_width*max(1.0_wp, abs(a), abs(b)))
             m = a + 0.5_wp*(b - a)
-            call positive_count(blocks, m, count_m, set, stat)
+            call positive_count(blocks, m, count_m, set, stat, memo)
             if (.not. stat%ok()) return
             if ((count_m > 0) .eqv. (count_a > 0)) then
                 a = m
@@ -785,9 +799,9 @@ contains
         below = point%lambda - side_offset(point%lambda)
         above = point%lambda + side_offset(point%lambda)
         call discriminant_at(below, theta0, point%discriminant_below, theta_m)
-        if (stat%ok()) call count_at(below, point%n_below)
+        if (stat%ok()) call positive_count(blocks, below, point%n_below, set, stat, memo)
         if (stat%ok()) call discriminant_at(above, theta0, point%discriminant_above, theta_m)
-        if (stat%ok()) call count_at(above, point%n_above)
+        if (stat%ok()) call positive_count(blocks, above, point%n_above, set, stat, memo)
         if (.not. stat%ok()) return
         point%appears = point%n_above > 0
         ! real pair (discriminant > 0) on the side with positive theta, complex on the other
@@ -808,22 +822,6 @@ contains
             if (stat%ok()) call pair_discriminant(wr*lambda_unit(lambda), wi*lambda_unit(lambda), &
                                                   theta_guess, d, theta_mean)
         end subroutine discriminant_at
-
-        !> The count of positive theta at `lambda`: a known count, else the solve there.
-        subroutine count_at(lambda, n_positive)
-            real(wp), intent(in) :: lambda
-            integer, intent(out) :: n_positive
-            integer :: k
-            if (allocated(set%known_lambda)) then
-                do k = 1, size(set%known_lambda)
-                    if (abs(set%known_lambda(k) - lambda) > 0.0_wp) cycle
-                    n_positive = set%known_count(k)
-                    return
-                end do
-            end if
-            call spectrum_at(lambda, wr, wi)
-            n_positive = count_positive(wr, wi)
-        end subroutine count_at
 
         !> The spectrum at `lambda`: from the memo where it was solved here, else solved
         !> (one evaluation) and kept.
