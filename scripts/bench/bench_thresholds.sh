@@ -16,6 +16,12 @@
 # their ratio much less.
 # Usage: scripts/bench/bench_thresholds.sh [REPEATS] [TOLERANCE]   (defaults: 3, 1e-8)
 # Environment: NCEIG (executable, default build/nceig). Needs gmsh, jq and GNU time.
+# NCEIG_BEFORE (another executable, e.g. main's): each repeat runs it and NCEIG on the same
+# input, in turn (each first every other repeat), so that both see the same load, and a
+# second table gives, per scene, the levels, the p x p solves of the threshold run (the
+# sum over its progress lines), the CPU medians of both, the ratios to c_n, and whether
+# summary.json says the same but for times and solve counts ("same") or not ("differ",
+# the differences on stderr).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 nceig=${NCEIG:-$root/build/nceig}
@@ -42,31 +48,73 @@ scene() {
     esac
 }
 
-# timed SCENE KIND: "median wall seconds (exit, levels)" of REPEATS runs, exit and levels
-# of the last one; the median CPU seconds in $cpu
+# input SCENE KIND OUT: the input of one run writing to OUT (progress lines on stdout)
+input() {
+    scene "$1"
+    echo "&analysis kind = '$2', lambda = 5.0 /"
+    echo "&sweep lambda_min = -20.0, lambda_max = 20.0, n_lambda = 401 /"
+    echo "&adapt strategy = 'hp', tolerance = $tolerance /"
+    echo "&eigen estimate = 'off' /"
+    echo "&output directory = '$3', vtk = .false., plot = .false., progress = .true. /"
+}
+
+# run EXE OUT: one timed run of $work/in_OUT.nml; appends wall and CPU seconds to
+# $work/OUT.times, its exit status to $work/OUT.rc, its stdout to $work/OUT.log
+run() {
+    local wall user system rc
+    rm -rf "${work:?}/$2"
+    set +e
+    /usr/bin/time -f '%e %U %S' -o "$work/time" "$1" "$work/in_$2.nml" >"$work/$2.log" 2>&1
+    rc=$?
+    set -e
+    read -r wall user system < <(tail -n 1 "$work/time")
+    echo "$wall $(awk -v u="$user" -v s="$system" 'BEGIN { print u + s }')" >>"$work/$2.times"
+    echo "$rc" >"$work/$2.rc"
+}
+
+# timed SCENE KIND: REPEATS runs of NCEIG (and NCEIG_BEFORE before each, where given) into
+# $work/after (and $work/before); "median wall seconds (exit, levels)" of NCEIG's, exit and
+# levels of the last run; the median CPU seconds in $cpu (NCEIG_BEFORE's in $cpu_before)
 timed() {
-    local times=() cpus=() i
-    {
-        scene "$1"
-        echo "&analysis kind = '$2', lambda = 5.0 /"
-        echo "&sweep lambda_min = -20.0, lambda_max = 20.0, n_lambda = 401 /"
-        echo "&adapt strategy = 'hp', tolerance = $tolerance /"
-        echo "&eigen estimate = 'off' /"
-        echo "&output directory = '$work/out', vtk = .false., plot = .false., progress = .false. /"
-    } >"$work/in.nml"
-    for ((i = 0; i < repeats; i++)); do
-        rm -rf "$work/out"
-        set +e
-        /usr/bin/time -f '%e %U %S' -o "$work/time" "$nceig" "$work/in.nml" >/dev/null 2>&1
-        rc=$?
-        set -e
-        read -r wall user system < <(tail -n 1 "$work/time")
-        times+=("$wall")
-        cpus+=("$(awk -v u="$user" -v s="$system" 'BEGIN { print u + s }')")
+    local i who
+    for who in before after; do
+        input "$1" "$2" "$work/$who" >"$work/in_$who.nml"
+        rm -f "$work/$who.times"
     done
-    levels=$(jq -r '.adapt_levels // empty' "$work/out/summary.json" 2>/dev/null || true)
-    cpu=$(echo "${cpus[*]}" | median)
-    echo "$(echo "${times[*]}" | median) ($rc, ${levels:-?})"
+    for ((i = 0; i < repeats; i++)); do
+        if [[ -z ${NCEIG_BEFORE:-} ]]; then
+            run "$nceig" after
+        elif ((i % 2 == 0)); then   # in turn, each first every other repeat
+            run "$NCEIG_BEFORE" before
+            run "$nceig" after
+        else
+            run "$nceig" after
+            run "$NCEIG_BEFORE" before
+        fi
+    done
+    cpu=$(awk '{ print $2 }' "$work/after.times" | median)
+    [[ -z ${NCEIG_BEFORE:-} ]] || cpu_before=$(awk '{ print $2 }' "$work/before.times" | median)
+    levels=$(jq -r '.adapt_levels // empty' "$work/after/summary.json" 2>/dev/null || true)
+    echo "$(awk '{ print $1 }' "$work/after.times" | median) ($(cat "$work/after.rc"), ${levels:-?})"
+}
+
+# solves WHO: the p x p solves of the last run's progress lines
+solves() {
+    grep -o '([0-9]* p x p solves' "$work/$1.log" | awk '{ n += substr($1, 2) } END { print n + 0 }'
+}
+
+# same_values: summary.json of before and after alike but for times, solve counts and
+# the input's name
+same_values() {
+    local filter='walk(if type == "object" then with_entries(select((.key | startswith("time_")
+        or . == "input" or . == "boundary_n_evaluations") | not)) else . end)'
+    if diff <(jq -S "$filter" "$work/before/summary.json") \
+        <(jq -S "$filter" "$work/after/summary.json") >"$work/diff"; then
+        echo same
+    else
+        echo differ
+        cat "$work/diff" >&2
+    fi
 }
 
 echo "hp threshold run against hp c_n run, tolerance $tolerance, median of $repeats (s)"
@@ -75,11 +123,30 @@ echo '| scene | c_n: wall s (exit, levels) | thresholds: wall s (exit, levels) |
     'c_n: CPU s | thresholds: CPU s | CPU ratio |'
 echo '|---|---|---|---|---|---|---|'
 ratio() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.2f", a / b }'; }
+rows=()
 for s in half_contact reference slanted; do
     timed "$s" eigen >"$work/row"
-    cn=$(cat "$work/row") cn_cpu=$cpu
+    cn=$(cat "$work/row") cn_cpu=$cpu cn_before=${cpu_before:-}
+    [[ -z ${NCEIG_BEFORE:-} ]] || cn_same=$(same_values)
     timed "$s" threshold >"$work/row"
     thr=$(cat "$work/row") thr_cpu=$cpu
     echo "| $s | $cn | $thr | $(ratio "${thr%% *}" "${cn%% *}") | $cn_cpu | $thr_cpu |" \
         "$(ratio "$thr_cpu" "$cn_cpu") |"
+    if [[ -n ${NCEIG_BEFORE:-} ]]; then
+        row="| $s | $(jq -r .adapt_levels "$work/before/summary.json"), $levels |"
+        row+=" $(solves before), $(solves after) | $cn_before, $cn_cpu |"
+        row+=" $cpu_before, $thr_cpu | $(ratio "$cpu_before" "$cn_before"),"
+        row+=" $(ratio "$thr_cpu" "$cn_cpu") | $cn_same, $(same_values) |"
+        rows+=("$row")
+    fi
 done
+if [[ -n ${NCEIG_BEFORE:-} ]]; then
+    echo
+    echo "NCEIG_BEFORE = $NCEIG_BEFORE against NCEIG = $nceig, run in turn (CPU s, medians)"
+    echo
+    echo '| scene | threshold levels: before, after | p x p solves: before, after |' \
+        'c_n CPU: before, after | thresholds CPU: before, after | ratio: before, after |' \
+        'summary.json c_n, thresholds |'
+    echo '|---|---|---|---|---|---|---|'
+    printf '%s\n' "${rows[@]}"
+fi

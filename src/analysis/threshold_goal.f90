@@ -997,11 +997,11 @@ contains
             else
                 ! the onsets the last level followed are located on these very blocks
                 call goal%scan_state%coarse_set(goal%scan, size(goal%restricted%kt_nn, 1), &
-                                                coarse, stat, goal%set)
+                                                coarse, stat, goal%set, here=.true.)
                 ! a last level that followed nothing: its onsets first, from the coarse ones
                 if (stat%ok() .and. goal%set%contact == 0 .and. coarse%scan_contact > 0) then
                     call track_onsets(goal%restricted, coarse, thr, followed, tracked, stat)
-                    if (stat%ok() .and. tracked) call merge_onsets(coarse, followed)
+                    if (stat%ok() .and. tracked) call merge_onsets(coarse, followed, here=.true.)
                     coarse%n_evaluations = coarse%n_evaluations + followed%n_evaluations
                 end if
                 if (stat%ok()) call confirm_and_bound(scn, prob, lambda, goal%scan, goal%chol, &
@@ -1507,7 +1507,7 @@ contains
     !> The set for a last level of `p_last` contact functions to carry: the searched one, else
     !> the scan of the noted blocks where they have at most half as many contact functions
     !> (its solves in set%n_evaluations), else none (scan_contact 0: the last level scans).
-    subroutine coarse_scan_coarse_set(this, scan, p_last, set, stat, tracked)
+    subroutine coarse_scan_coarse_set(this, scan, p_last, set, stat, tracked, here)
         class(coarse_scan_t), intent(in) :: this
         real(wp), intent(in) :: scan(:)   !! the lambdas of the search
         integer, intent(in) :: p_last
@@ -1515,6 +1515,7 @@ contains
         type(status_t), intent(out) :: stat
         !> the onsets a later level followed (track_onsets), merged in (merge_onsets)
         type(critical_set_t), intent(in), optional :: tracked
+        logical, intent(in), optional :: here   !! merge_onsets'
         integer :: i
         if (this%searched%scan_contact > 0) then
             set = this%searched
@@ -1528,16 +1529,20 @@ contains
                 end associate
             end do
         end if
-        if (present(tracked)) call merge_onsets(set, tracked)
+        if (present(tracked)) call merge_onsets(set, tracked, here)
     end subroutine coarse_scan_coarse_set
 
     !> Each side's onset in `set` (searched or scanned) becomes the collision `tracked`
     !> followed (track_onsets) on that side, or a pencil point where it followed none
     !> (carry_pairs takes the pencil points afresh), so that a carry brackets each where it
-    !> was followed. Nothing where `set` has no search or `tracked` followed nothing.
-    pure subroutine merge_onsets(set, tracked)
+    !> was followed. Nothing where `set` has no search or `tracked` followed nothing. With
+    !> `here` true, `tracked` was followed on the blocks the carry is for: its points are
+    !> taken as they are (boundary_point_t: located_here), not located again.
+    pure subroutine merge_onsets(set, tracked, here)
         type(critical_set_t), intent(inout) :: set
         type(critical_set_t), intent(in) :: tracked
+        logical, intent(in), optional :: here
+        type(boundary_point_t) :: point
         integer :: side, i, j
         if (set%scan_contact == 0) return
         if (tracked%scan_contact > 0 .or. tracked%contact == 0) return
@@ -1545,12 +1550,14 @@ contains
             i = onset_point(set, side)
             j = onset_point(tracked, side)
             if (j > 0) then
+                point = tracked%points(j)
+                if (present(here)) point%located_here = here
                 if (i > 0) then
-                    set%points(i) = tracked%points(j)
+                    set%points(i) = point
                 else if (side == SIDE_PLUS) then
-                    set%points = [set%points, tracked%points(j)]
+                    set%points = [set%points, point]
                 else
-                    set%points = [tracked%points(j), set%points]
+                    set%points = [point, set%points]
                 end if
             else if (i > 0) then
                 set%points(i)%mechanism = MECHANISM_PENCIL

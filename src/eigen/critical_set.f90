@@ -72,7 +72,22 @@ module critical_set
         !> complex_pair: the round-off part of that bar (roundoff: collision_roundoff);
         !> negative: unknown
         real(wp) :: roundoff = -1.0_wp
+        !> complex_pair: located on the very blocks a carry takes it to (the last hp level's
+        !> own follow), so carry_pairs keeps it as it is instead of locating it again
+        logical :: located_here = .false.
     end type boundary_point_t
+
+    !> The last few spectra of reduced_eigenvalues on one set of blocks, by their exact
+    !> lambda: a bracket end, the located point and the counts beside it are solved once.
+    integer, parameter :: MEMO_SIZE = 8
+    type :: spectrum_memo_t
+        integer :: n = 0, next = 1
+        real(wp) :: lambda(MEMO_SIZE) = 0.0_wp
+        real(wp), allocatable :: wr(:, :), wi(:, :)
+    contains
+        procedure :: find => memo_find
+        procedure :: keep => memo_keep
+    end type spectrum_memo_t
 
     type, public :: critical_set_t
         real(wp) :: lambda_min = 0.0_wp, lambda_max = 0.0_wp   !! the range searched
@@ -92,6 +107,37 @@ module critical_set
     end type critical_set_t
 
 contains
+
+    !> The spectrum kept for exactly `lambda` (true), in wr, wi.
+    logical function memo_find(this, lambda, wr, wi) result(found)
+        class(spectrum_memo_t), intent(in) :: this
+        real(wp), intent(in) :: lambda
+        real(wp), allocatable, intent(inout) :: wr(:), wi(:)
+        integer :: k
+        found = .false.
+        do k = 1, this%n
+            if (abs(this%lambda(k) - lambda) > 0.0_wp) cycle
+            if (allocated(wr)) deallocate (wr)
+            if (allocated(wi)) deallocate (wi)
+            allocate (wr, source=this%wr(:, k))
+            allocate (wi, source=this%wi(:, k))
+            found = .true.
+            return
+        end do
+    end function memo_find
+
+    !> Keep the spectrum wr, wi at `lambda`, over the oldest kept once the memo is full.
+    subroutine memo_keep(this, lambda, wr, wi)
+        class(spectrum_memo_t), intent(inout) :: this
+        real(wp), intent(in) :: lambda, wr(:), wi(:)
+        if (.not. allocated(this%wr)) allocate (this%wr(size(wr), MEMO_SIZE), &
+                                                 this%wi(size(wi), MEMO_SIZE))
+        this%lambda(this%next) = lambda
+        this%wr(:, this%next) = wr
+        this%wi(:, this%next) = wi
+        this%n = max(this%n, this%next)
+        this%next = mod(this%next, MEMO_SIZE) + 1
+    end subroutine memo_keep
 
     !> A positive mu exists at `lambda` (in the range searched) as far as the search saw:
     !> each boundary point below `lambda` switches the answer at lambda_min.
@@ -266,6 +312,7 @@ contains
         real(wp), intent(in), optional :: near
         real(wp) :: widths(3), width, a, b, lambda_c
         integer :: try, count_a, count_b
+        type(spectrum_memo_t) :: memo   !! the bracket's ends, for pair_point
 
         point%mechanism = MECHANISM_PENCIL
         lambda_c = coarse_point%lambda
@@ -284,17 +331,17 @@ contains
                 a = max(lambda_c - width, a)
                 b = min(lambda_c + width, b)
             end if
-            call positive_count(blocks, a, count_a, set, stat)
-            if (stat%ok()) call positive_count(blocks, b, count_b, set, stat)
+            call positive_count(blocks, a, count_a, set, stat, memo)
+            if (stat%ok()) call positive_count(blocks, b, count_b, set, stat, memo)
             if (.not. stat%ok()) return
             if ((count_a > 0) .neqv. (count_b > 0)) exit
         end do
         if ((count_a > 0) .eqv. (count_b > 0)) return
         if (try == 1) then
             call pair_point(blocks, a, b, count_a, count_b, point, set, stat, &
-                            NEAR_BISECTION_WIDTH)
+                            NEAR_BISECTION_WIDTH, solved=memo)
         else
-            call pair_point(blocks, a, b, count_a, count_b, point, set, stat)
+            call pair_point(blocks, a, b, count_a, count_b, point, set, stat, solved=memo)
         end if
         if (stat%ok()) point%bracket = coarse_point%bracket
     end subroutine locate_pair
@@ -348,7 +395,12 @@ contains
         if (set%positive_at_min .neqv. coarse%positive_at_min) return
         do i = 1, size(coarse%points)
             if (coarse%points(i)%mechanism /= MECHANISM_COMPLEX_PAIR) cycle
-            call locate_pair(blocks, coarse%points(i), set, point, stat, near)
+            if (coarse%points(i)%located_here) then
+                point = coarse%points(i)
+                point%located_here = .false.
+            else
+                call locate_pair(blocks, coarse%points(i), set, point, stat, near)
+            end if
             if (.not. stat%ok() .or. point%mechanism /= MECHANISM_COMPLEX_PAIR) return
             if (point%appears .neqv. coarse%points(i)%appears) return
             if (coarse%points(i)%confirmed .and. .not. point%confirmed) return
@@ -429,13 +481,18 @@ contains
     !> (locate_pair); where that fails, or the onset was a pencil value, the side's pencil
     !> value of `thr` is the onset if no positive mu exists just inside it, else the pair
     !> that landed inside is located from halfway to just inside (as a scan brackets it);
-    !> no onset where the side had none and the pencil has none on that side. On each side
-    !> one count halfway from 0 to the onset (or to the range's end) must find no positive
-    !> mu. `set` holds the complex_pair onsets (scan_contact 0: not a search of the range).
-    !> `tracked` is false (search instead) where anything else is seen: a side gained or
-    !> lost its pencil value, a pair turned or is no longer confirmed. On hp levels this is
-    !> what the bars need of every level but the last, at a fraction of the solves of a
-    !> carry of the whole range.
+    !> no onset where the side had none and the pencil has none on that side. A side that
+    !> gained a pencil value in the range is followed from it the same way; one that lost
+    !> the pencil value that was its onset has none if no positive mu is just outside where
+    !> it was (graded hp levels make spurious pencil values appear and vanish far from the
+    !> onsets: each such level carried the whole range, 54 solves at p = 81 on the
+    !> half-contact scene where following takes 20). On each side one count halfway from 0
+    !> to the onset (or to the range's end) must find no positive mu. `set` holds the
+    !> complex_pair onsets (scan_contact 0: not a search of the range). `tracked` is false
+    !> (search instead) where anything else is seen: a pair turned, is no longer confirmed
+    !> or cannot be found with no pencil value beside it, a lost pencil onset with a
+    !> positive mu still outside it. On hp levels this is what the bars need of every level
+    !> but the last, at a fraction of the solves of a carry of the whole range.
     subroutine track_onsets(blocks, previous, thr, set, tracked, stat, near)
         type(reduced_blocks_t), intent(in) :: blocks
         type(critical_set_t), intent(in) :: previous
@@ -447,7 +504,7 @@ contains
         type(boundary_point_t) :: point
         real(wp) :: probe
         integer :: side, i, count_m, count_0
-        logical :: located
+        logical :: located, gained
 
         tracked = .false.
         set%lambda_min = previous%lambda_min
@@ -458,22 +515,31 @@ contains
         allocate (set%points(0))
         ! no search before, or a range without both sides
         if (.not. (previous%lambda_min < 0.0_wp .and. previous%lambda_max > 0.0_wp)) return
-        ! what the pencil alone refuses, before any solve: a side that gained or lost its
-        ! pencil value
-        do side = SIDE_PLUS, SIDE_MINUS
-            i = onset_point(previous, side)
-            if (i == 0) then
-                if (thr%found(side)) return
-            else if (previous%points(i)%mechanism == MECHANISM_PENCIL) then
-                if (.not. thr%found(side)) return
-            end if
-        end do
         do side = SIDE_MINUS, SIDE_PLUS, SIDE_PLUS - SIDE_MINUS
             i = onset_point(previous, side)
             probe = merge(previous%lambda_max, previous%lambda_min, side == SIDE_PLUS)
             located = .false.
-            if (i > 0) then
-                if (previous%points(i)%mechanism == MECHANISM_COMPLEX_PAIR) then
+            if (i > 0 .and. .not. thr%found(side)) then
+                if (previous%points(i)%mechanism == MECHANISM_PENCIL) then
+                    ! the side lost the pencil value that was its onset: none now, unless
+                    ! a positive mu is still just outside where it was
+                    probe = previous%points(i)%lambda
+                    call positive_count(blocks, probe + sign(side_offset(probe), probe), &
+                                        count_m, set, stat)
+                    if (.not. stat%ok() .or. count_m > 0) return
+                    probe = merge(previous%lambda_max, previous%lambda_min, side == SIDE_PLUS)
+                    i = 0
+                end if
+            end if
+            ! a side that gained a pencil value in the range (with no onset before, or a
+            ! pencil onset, which a followed level does not keep) is followed from it as below
+            gained = .false.
+            if (i == 0 .and. thr%found(side)) gained = thr%lambda(side) > set%lambda_min .and. &
+                                                        thr%lambda(side) < set%lambda_max
+            if (i > 0 .or. gained) then
+                if (i == 0) then
+                    continue
+                else if (previous%points(i)%mechanism == MECHANISM_COMPLEX_PAIR) then
                     call locate_pair(blocks, previous%points(i), set, point, stat, near)
                     if (.not. stat%ok()) return
                     located = point%mechanism == MECHANISM_COMPLEX_PAIR .and. &
@@ -596,12 +662,14 @@ contains
         pencil_left = pencil_left(1:n)
     end subroutine scan_points
 
-    subroutine positive_count(blocks, lambda, n_positive, set, stat)
+    subroutine positive_count(blocks, lambda, n_positive, set, stat, memo)
         type(reduced_blocks_t), intent(in) :: blocks
         real(wp), intent(in) :: lambda
         integer, intent(out) :: n_positive
         type(critical_set_t), intent(inout) :: set
         type(status_t), intent(out) :: stat
+        !> spectra solved on `blocks` before: read where it has `lambda`, else given this one
+        type(spectrum_memo_t), intent(inout), optional :: memo
         real(wp), allocatable :: wr(:), wi(:)
         integer :: k
         n_positive = 0
@@ -612,9 +680,16 @@ contains
                 return
             end do
         end if
+        if (present(memo)) then
+            if (memo%find(lambda, wr, wi)) then
+                n_positive = count_positive(wr, wi)
+                return
+            end if
+        end if
         call reduced_eigenvalues(blocks, lambda, wr, wi, stat)
         if (stat%ok()) n_positive = count_positive(wr, wi)
         set%n_evaluations = set%n_evaluations + 1
+        if (stat%ok() .and. present(memo)) call memo%keep(lambda, wr, wi)
     end subroutine positive_count
 
     !> A pencil eigenvalue bracketed by [below, above]: the point itself is the QZ value; the
@@ -640,7 +715,8 @@ contains
     !> A boundary point inside [a, b] with no pencil eigenvalue: a pair meeting the real axis.
     !> Bisection on the count to BISECTION_WIDTH, then the Illinois variant of regula falsi on
     !> the discriminant of the meeting pair down to adjacent floating-point numbers.
-    subroutine pair_point(blocks, a_in, b_in, count_a_in, count_b_in, point, set, stat, width)
+    subroutine pair_point(blocks, a_in, b_in, count_a_in, count_b_in, point, set, stat, width, &
+                          solved)
         type(reduced_blocks_t), intent(in) :: blocks
         real(wp), intent(in) :: a_in, b_in
         integer, intent(in) :: count_a_in, count_b_in
@@ -648,11 +724,18 @@ contains
         type(critical_set_t), intent(inout) :: set
         type(status_t), intent(out) :: stat
         real(wp), intent(in), optional :: width   !! of the bisection; BISECTION_WIDTH
+        !> spectra the caller solved on `blocks` (the bracket's ends): not solved again
+        type(spectrum_memo_t), intent(in), optional :: solved
         real(wp), allocatable :: wr(:), wi(:)
-        real(wp) :: a, b, m, fa, fb, fm, theta0, theta_m, stop_width
+        real(wp) :: a, b, m, fa, fb, fm, theta0, theta_m, stop_width, below, above
         integer :: count_a, count_b, count_m, last_kept, step
+        !> the spectra solved here, by lambda: the discriminant at a bracket end, the point
+        !> and the counts beside it are read from a solve already made at the same lambda
+        !> (the same blocks, so the same numbers)
+        type(spectrum_memo_t) :: memo
 
         point%mechanism = MECHANISM_COMPLEX_PAIR
+        if (present(solved)) memo = solved
         a = a_in
         b = b_in
         count_a = count_a_in
@@ -661,7 +744,7 @@ contains
         if (present(width)) stop_width = width
         do while (b - a > stop_width*max(1.0_wp, abs(a), abs(b)))
             m = a + 0.5_wp*(b - a)
-            call positive_count(blocks, m, count_m, set, stat)
+            call positive_count(blocks, m, count_m, set, stat, memo)
             if (.not. stat%ok()) return
             if ((count_m > 0) .eqv. (count_a > 0)) then
                 a = m
@@ -674,9 +757,8 @@ contains
         ! the pair: on the side without a positive theta, the complex pair nearest the
         ! positive real axis; its real part is where it meets the axis, to about the bracket
         m = merge(a, b, count_a == 0)
-        call reduced_eigenvalues(blocks, m, wr, wi, stat)
+        call spectrum_at(m, wr, wi)
         if (.not. stat%ok()) return
-        set%n_evaluations = set%n_evaluations + 1
         theta0 = meeting_estimate(wr*lambda_unit(m), wi*lambda_unit(m))
         point%lambda = a + 0.5_wp*(b - a)
         if (.not. theta0 > 0.0_wp) return   ! no such pair: not confirmed
@@ -714,14 +796,12 @@ contains
         call discriminant_at(point%lambda, theta0, point%discriminant, theta_m)
         if (.not. stat%ok()) return
         point%mu_meet = 1.0_wp/theta_m   ! theta_m is unscaled: see discriminant_at
-        call discriminant_at(point%lambda - side_offset(point%lambda), theta0, &
-                             point%discriminant_below, theta_m)
-        if (stat%ok()) call discriminant_at(point%lambda + side_offset(point%lambda), theta0, &
-                                            point%discriminant_above, theta_m)
-        if (stat%ok()) call positive_count(blocks, point%lambda - side_offset(point%lambda), &
-                                           point%n_below, set, stat)
-        if (stat%ok()) call positive_count(blocks, point%lambda + side_offset(point%lambda), &
-                                           point%n_above, set, stat)
+        below = point%lambda - side_offset(point%lambda)
+        above = point%lambda + side_offset(point%lambda)
+        call discriminant_at(below, theta0, point%discriminant_below, theta_m)
+        if (stat%ok()) call positive_count(blocks, below, point%n_below, set, stat, memo)
+        if (stat%ok()) call discriminant_at(above, theta0, point%discriminant_above, theta_m)
+        if (stat%ok()) call positive_count(blocks, above, point%n_above, set, stat, memo)
         if (.not. stat%ok()) return
         point%appears = point%n_above > 0
         ! real pair (discriminant > 0) on the side with positive theta, complex on the other
@@ -738,11 +818,22 @@ contains
         subroutine discriminant_at(lambda, theta_guess, d, theta_mean)
             real(wp), intent(in) :: lambda, theta_guess
             real(wp), intent(out) :: d, theta_mean
-            call reduced_eigenvalues(blocks, lambda, wr, wi, stat)
-            set%n_evaluations = set%n_evaluations + 1
+            call spectrum_at(lambda, wr, wi)
             if (stat%ok()) call pair_discriminant(wr*lambda_unit(lambda), wi*lambda_unit(lambda), &
                                                   theta_guess, d, theta_mean)
         end subroutine discriminant_at
+
+        !> The spectrum at `lambda`: from the memo where it was solved here, else solved
+        !> (one evaluation) and kept.
+        subroutine spectrum_at(lambda, wr_at, wi_at)
+            real(wp), intent(in) :: lambda
+            real(wp), allocatable, intent(inout) :: wr_at(:), wi_at(:)
+            if (memo%find(lambda, wr_at, wi_at)) return
+            call reduced_eigenvalues(blocks, lambda, wr_at, wi_at, stat)
+            if (.not. stat%ok()) return
+            set%n_evaluations = set%n_evaluations + 1
+            call memo%keep(lambda, wr_at, wi_at)
+        end subroutine spectrum_at
     end subroutine pair_point
 
     !> The real part of the conjugate pair with positive real part nearest to the real axis
