@@ -103,6 +103,10 @@ module adapt_driver
     !> What the loop adapts to: a set of targets, each with its own state.
     type, abstract, public :: adapt_goal_t
         type(adapt_target_t), allocatable :: targets(:)
+        !> a level after the first solved that failed (its solve, its making or the check
+        !> of the last level): that failure, its message naming the level; the goal keeps
+        !> the last complete level, which the run writes before it exits with its code
+        type(status_t) :: failure
     contains
         !> solve `level` for the targets still active; `refused` (not '' ) says why the level
         !> cannot be solved at all (the memory of its contact blocks), before any change
@@ -267,7 +271,10 @@ contains
         checked = -1
         do
             call refiner%next(scn, start, goal, solved, level, too_big, timings, stat)
-            if (.not. stat%ok()) return
+            if (.not. stat%ok()) then
+                if (solved > 0) call level_failed(last%number + 1, stat)
+                return
+            end if
             if (too_big) then
                 call stop_active(goal, 'tolerance '//given_real_text(adapt%tolerance)// &
                     ' not met: '//refiner%too_big_words()//'; reached error bar ')
@@ -275,7 +282,10 @@ contains
                 exit
             end if
             call goal%solve(scn, refiner, level, loop_start, timings, refused, stat)
-            if (.not. stat%ok()) return
+            if (.not. stat%ok()) then
+                if (solved > 0) call level_failed(level%number, stat)
+                return
+            end if
             if (len(refused) > 0) then
                 if (solved == 0) then
                     call stat%fail(STATUS_NOT_MET, scn%name//': &adapt: '// &
@@ -318,7 +328,35 @@ contains
             if (.not. refiner%checked() .or. solved == 0 .or. checked == last%number) return
             checked = last%number
             call goal%check(scn, start, refiner, last, adapt%tolerance, reopen, timings, stat)
+            if (.not. stat%ok()) call level_failed(last%number, stat, checking=.true.)
         end subroutine check_last
+
+        !> Level `number` (after the first solved) failed with `stat`: kept in goal%failure,
+        !> its message naming the level, `stat` cleared; every target still active, and one
+        !> the failed check of that level was to confirm, stopped saying so, with the bar of
+        !> the last complete level.
+        subroutine level_failed(number, stat, checking)
+            integer, intent(in) :: number
+            type(status_t), intent(inout) :: stat
+            logical, intent(in), optional :: checking
+            character(len=:), allocatable :: words
+            integer :: i
+            words = 'level '//to_string(number)
+            if (present(checking)) words = 'the check of '//words
+            do i = 1, size(goal%targets)
+                associate (t => goal%targets(i))
+                    if (present(checking) .and. (t%converged() .or. t%floor_reached())) &
+                        call t%finish(TARGET_ACTIVE, '')
+                end associate
+            end do
+            call stop_active(goal, 'tolerance '//given_real_text(adapt%tolerance)// &
+                             ' not met: '//words//' failed ('//stat%message// &
+                             '); reached error bar ')
+            goal%failure = stat
+            goal%failure%message = stat%message//' ('//words//' failed: the results of '// &
+                                   'the last complete level are written)'
+            stat = status_t()
+        end subroutine level_failed
     end subroutine adapt_levels
 
     !> Why the next level is too big (refiner_next's too_big): stop_reason, else its dofs
