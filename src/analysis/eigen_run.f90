@@ -67,7 +67,7 @@ contains
             ! a level that failed after the first: the last complete level is written
             if (.not. out%failure%ok()) then
                 call this%verdict%fail(out%failure%code, naming_file(out%failure%message, &
-                                                                     inputs%scene%name))
+                    inputs%scene%name)//': the results of the last complete level are written')
                 return
             end if
             if (out%converged) return

@@ -132,7 +132,7 @@ contains
         character(len=*), intent(in) :: name
         type(status_t), intent(inout) :: verdict
         if (.not. failure%ok()) call verdict%fail(failure%code, naming_file(failure%message, &
-                                                                            name))
+            name)//': the results of the last complete level are written')
     end subroutine failure_verdict
 
     !> `verdict` STATUS_NOT_MET where the adapted thresholds missed the tolerance.

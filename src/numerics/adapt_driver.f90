@@ -24,7 +24,7 @@
 !> ends a loop that has not met its tolerance, never a level count.
 module adapt_driver
     use kinds, only: wp
-    use status, only: status_t, STATUS_NOT_MET
+    use status, only: status_t, STATUS_NOT_MET, STATUS_SOLVER
     use strings, only: to_string, short_real_text, given_real_text
     use timer, only: wall_time, timings_t
     use scene, only: scene_t
@@ -35,7 +35,7 @@ module adapt_driver
     use error_bar, only: floor_reached, floor_outcome, stall_outcome
     implicit none
     private
-    public :: adapt_levels, judge_target, check_target
+    public :: adapt_levels, judge_target, check_target, test_failing_level, injected_failure
 
     integer, parameter, public :: TARGET_ACTIVE = 0    !! the loop still refines for it
     integer, parameter, public :: TARGET_MET = 1       !! its bar met the tolerance
@@ -261,10 +261,11 @@ contains
         type(adapt_level_t) :: last
         character(len=:), allocatable :: refused
         real(wp) :: loop_start
-        integer :: solved, checked
+        integer :: solved, checked, failing_level
         logical :: too_big
 
         loop_start = wall_time()
+        failing_level = test_failing_level()
         call refiner%begin(scn, adapt, start, stat)
         if (.not. stat%ok()) return
         solved = 0
@@ -281,7 +282,11 @@ contains
                 call check_last(.false., stat)
                 exit
             end if
-            call goal%solve(scn, refiner, level, loop_start, timings, refused, stat)
+            ! h: before the level (hp: its factor, inside the goal's solve: hp_levels)
+            if (refiner%estimated() .and. level%number == failing_level) &
+                call stat%fail(STATUS_SOLVER, injected_failure(level%number))
+            if (stat%ok()) call goal%solve(scn, refiner, level, loop_start, timings, refused, &
+                                           stat)
             if (.not. stat%ok()) then
                 if (solved > 0) call level_failed(level%number, stat)
                 return
@@ -353,11 +358,31 @@ contains
                              ' not met: '//words//' failed ('//stat%message// &
                              '); reached error bar ')
             goal%failure = stat
-            goal%failure%message = stat%message//' ('//words//' failed: the results of '// &
-                                   'the last complete level are written)'
+            goal%failure%message = stat%message//' ('//words//' failed)'
             stat = status_t()
         end subroutine level_failed
     end subroutine adapt_levels
+
+    !> The message of the failure test_failing_level asks for at level `number`.
+    function injected_failure(number) result(message)
+        integer, intent(in) :: number
+        character(len=:), allocatable :: message
+        message = 'level '//to_string(number)//': the failure NCEIG_TEST_FAIL_LEVEL asks for'
+    end function injected_failure
+
+    !> The level whose solve fails as a numerical library's failure would, for the tests of
+    !> what a run writes then (tests/cli/cli_level_failure.sh): NCEIG_TEST_FAIL_LEVEL, a
+    !> level number; -1 (none) when unset or not a number. h levels fail before their solve,
+    !> hp levels at their factor, once the goal has begun to take the level in.
+    integer function test_failing_level() result(number)
+        character(len=20) :: text
+        integer :: length, ios
+        number = -1
+        call get_environment_variable('NCEIG_TEST_FAIL_LEVEL', text, length)
+        if (length < 1 .or. length > len(text)) return
+        read (text, *, iostat=ios) number
+        if (ios /= 0) number = -1
+    end function test_failing_level
 
     !> Why the next level is too big (refiner_next's too_big): stop_reason, else its dofs
     !> over the limit.
