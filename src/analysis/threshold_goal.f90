@@ -924,8 +924,8 @@ contains
     !> last NONE_LEVELS levels (h: over which the dofs at least doubled, as an h level adds
     !> a fraction of them) is met as 'none'. A side whose value appears or vanishes
     !> between levels has no bar (series_bar needs it on consecutive levels) and stays
-    !> active, so it ends at a limit, named, never as met; on h levels, whose limit is the
-    !> memory, one whose value has vanished for as long as 'none' needs is stopped then. A
+    !> active, so it ends at a limit, named, never as met; one whose value has vanished for
+    !> as long as 'none' needs is stopped then (h: whose limit is the memory; hp too). A
     !> side met, with a value or as 'none', whose value then vanishes or appears at a later
     !> level is stopped as not converging (exit 8). On h levels a side met with a value is
     !> judged again at every later level (each re-estimates it on a finer mesh, and the
@@ -992,9 +992,8 @@ contains
                 end do
                 if (.not. has) then
                     if (.not. absent) cycle
-                    ! h: a value at an earlier level that has vanished is no 'none'
-                    before = 0
-                    if (estimated) before = findloc([(this%levels(i)%found(side) .or. &
+                    ! a value at an earlier level that has vanished is no 'none'
+                    before = findloc([(this%levels(i)%found(side) .or. &
                         this%levels(i)%collision(side), i=1, k)], .true., 1, back=.true.)
                     if (before == 0) then
                         call t%finish(TARGET_MET, SIDE_LABELS(side)//': none at '// &
@@ -1004,7 +1003,8 @@ contains
                             to_string(level))
                     else
                         call t%finish(TARGET_STOPPED, trim(SIDE_LABELS(side))//': no value at '// &
-                            'h levels '//to_string(this%levels(before + 1)%level)//' to '// &
+                            trim(merge('h levels ', 'hp levels', estimated))//' '// &
+                            to_string(this%levels(before + 1)%level)//' to '// &
                             to_string(level)//' after '//short_real_text(merge( &
                             this%levels(before)%collision_lambda(side), &
                             this%levels(before)%lambda(side), &
