@@ -67,7 +67,7 @@ module threshold_goal
     use accuracy, only: WARNING_LEN
     use adapt_driver, only: adapt_goal_t, refiner_t, adapt_level_t, adapt_levels, &
                             check_target, adapt_target_t, TARGET_ACTIVE, TARGET_MET, &
-                            TARGET_FLOOR, TARGET_STOPPED
+                            TARGET_FLOOR, TARGET_STOPPED, no_estimate_outcome
     use h_refiner, only: h_refiner_t, doerfler_marking
     use hp_levels, only: hp_refiner_t, HP_ESTIMATE
     use pencil_tracking, only: N_PROFILE_BINS, level_values_t
@@ -949,9 +949,9 @@ contains
                 has = last%found(side) .or. last%collision(side)
                 if (estimated .and. .not. any(last%found .or. last%collision)) then
                     if (t%active() .or. t%converged()) call t%finish(TARGET_STOPPED, &
-                        trim(SIDE_LABELS(side))//': tolerance not met: no error estimate at '// &
-                        'level '//to_string(level)//' (no real eigenvalue of the pencil '// &
-                        'Kt_nn x = lambda Kt_nt x and no collision onset: nothing to adapt to)')
+                        trim(SIDE_LABELS(side))//': '//no_estimate_outcome(level, 'no real '// &
+                        'eigenvalue of the pencil Kt_nn x = lambda Kt_nt x and no collision '// &
+                        'onset: nothing to adapt to'))
                     cycle
                 end if
                 if (t%converged()) then
@@ -1015,9 +1015,8 @@ contains
                     cycle
                 end if
                 if (estimated .and. bar(side) < 0.0_wp) then
-                    call t%finish(TARGET_STOPPED, trim(SIDE_LABELS(side))//': tolerance not '// &
-                        'met: no error estimate at level '//to_string(level)//' ('// &
-                        missing(this, side)//')')
+                    call t%finish(TARGET_STOPPED, trim(SIDE_LABELS(side))//': '// &
+                        no_estimate_outcome(level, missing(this, side)))
                 else if (last%stalled(side)) then
                     call t%finish(TARGET_STOPPED, trim(SIDE_LABELS(side))//': '// &
                         stall_outcome(tolerance, 'the '//trim(SIDE_NAMES(side))//' side'))

@@ -35,7 +35,8 @@ module adapt_driver
     use error_bar, only: floor_reached, floor_outcome, stall_outcome
     implicit none
     private
-    public :: adapt_levels, judge_target, check_target, test_failing_level, injected_failure
+    public :: adapt_levels, judge_target, check_target, no_estimate_outcome
+    public :: test_failing_level, injected_failure
 
     integer, parameter, public :: TARGET_ACTIVE = 0    !! the loop still refines for it
     integer, parameter, public :: TARGET_MET = 1       !! its bar met the tolerance
@@ -457,8 +458,7 @@ contains
 
         if (refiner%estimated()) then
             if (bar < 0.0_wp) then
-                call t%finish(TARGET_STOPPED, 'tolerance not met: no error estimate at level '// &
-                              to_string(level)//' ('//missing//')')
+                call t%finish(TARGET_STOPPED, no_estimate_outcome(level, missing))
             else if (bar <= tolerance .and. level >= 1) then
                 call t%finish(TARGET_MET, 'tolerance '//given_real_text(tolerance)// &
                     ' met at level '//to_string(level)//': error bar '// &
@@ -481,6 +481,16 @@ contains
             call t%finish(TARGET_FLOOR, floor_outcome(tolerance, roundoff, bar, to_string(dofs)))
         end if
     end subroutine judge_target
+
+    !> The outcome of a target stopped at h level `level` for want of an error estimate,
+    !> `why` saying why it has none.
+    pure function no_estimate_outcome(level, why) result(outcome)
+        integer, intent(in) :: level
+        character(len=*), intent(in) :: why
+        character(len=:), allocatable :: outcome
+        outcome = 'tolerance not met: no error estimate at level '//to_string(level)//' ('// &
+                  why//')'
+    end function no_estimate_outcome
 
     pure logical function target_is_active(this)
         class(adapt_target_t), intent(in) :: this
