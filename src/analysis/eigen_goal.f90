@@ -85,6 +85,9 @@ module eigen_goal
         logical :: mu_vanished = .false.
         !> one line: the tolerance met, or why not and what was reached
         character(len=:), allocatable :: outcome
+        !> a level after the first that failed (adapt_goal_t: failure): `res` and `levels`
+        !> are the last complete level's; ok: none
+        type(status_t) :: failure
     end type adapted_eigen_t
 
     !> The lowest positive mu at each of `points`' lambdas.
@@ -181,6 +184,7 @@ contains
         do i = 1, size(outs)
             associate (o => outs(i), t => this%targets(i))
                 o%outcome = t%outcome
+                o%failure = this%failure
                 if (.not. stat%ok() .and. t%active()) cycle
                 o%converged = t%converged()
                 o%floor_reached = t%floor_reached()
@@ -283,8 +287,11 @@ contains
             type(adapted_eigen_t), intent(inout) :: p
             type(status_t), intent(out) :: stat
             type(eigen_level_t) :: row
-            call solve_eigen(scn, level%prob, p%lambda, this%options, p%res, timings, stat)
+            type(eigen_result_t) :: res
+            ! into `res`: a level that fails leaves p%res the last complete level's
+            call solve_eigen(scn, level%prob, p%lambda, this%options, res, timings, stat)
             if (.not. stat%ok()) return
+            p%res = res
             ! an adaptive run judges resolution by the change of mu between its levels
             call estimate_eigen(scn, level%prob, this%options, .false., p%res, timings)
             call fill_row(row, p%res)

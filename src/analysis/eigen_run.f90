@@ -12,6 +12,7 @@ module eigen_run
     use eigen_solve, only: eigen_result_t, solve_eigen, estimate_eigen
     use eigen_goal, only: adapt_eigen, adapted_eigen_t
     use analysis_base, only: analysis_t
+    use process_exit, only: naming_file
     implicit none
     private
 
@@ -63,6 +64,12 @@ contains
         ! refinement had values, none converged: a tolerance not met.
         if (.not. stat%ok()) return
         associate (out => this%out(1))
+            ! a level that failed after the first: the last complete level is written
+            if (.not. out%failure%ok()) then
+                call this%verdict%fail(out%failure%code, naming_file(out%failure%message, &
+                    inputs%scene%name)//': the results of the last complete level are written')
+                return
+            end if
             if (out%converged) return
             if (out%res%spec%lowest_positive() > 0 .or. out%mu_vanished) &
                 call this%verdict%fail(STATUS_NOT_MET, inputs%scene%name//': &adapt: '// &

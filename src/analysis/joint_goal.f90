@@ -92,7 +92,8 @@ contains
         goal%start => start
         goal%adapt = adapt
         call adapt_levels(scn, adapt, start, refiner, goal, timings, loop)
-        call goal%join(.false.)
+        call goal%join(.true.)   ! the targets a failed level stopped
+        goal%sides%failure = goal%failure
         call goal%points%finish(refiner, adapt, loop, outs)
         stat = loop
         call threshold_goal_finish(scn, goal%sides, refiner, lambda, options, adapt, scan, out, &

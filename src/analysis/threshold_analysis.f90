@@ -481,6 +481,11 @@ contains
         if (adapt%refine == REFINE_HP) then
             call adapt_eigen(scn, curve%lambda, options, adapt, prob, outs, quiet, stat, &
                              keep_problem=.false.)
+            ! a level that failed after the first: each point as its last complete level
+            ! had it, the failure the curve's (record_hp_sweep)
+            if (stat%ok() .and. size(outs) > 0) then
+                if (.not. outs(1)%failure%ok()) stat = outs(1)%failure
+            end if
             call record_hp_sweep(outs, curve, timings, stat)
             return
         end if
@@ -489,6 +494,10 @@ contains
             call timings%tick('sweep, lambda', i, size(curve%lambda))
             call adapt_eigen(scn, [curve%lambda(i)], options, adapt, current, outs, quiet, stat, &
                              keep_problem=.true.)
+            ! a point whose level after the first failed ends the sweep as a point's failure
+            if (stat%ok()) then
+                if (.not. outs(1)%failure%ok()) stat = outs(1)%failure
+            end if
             if (.not. stat%ok()) then
                 ! the points before are complete: a partial set, the failure its verdict
                 curve%failure = stat

@@ -67,7 +67,7 @@ module threshold_goal
     use accuracy, only: WARNING_LEN
     use adapt_driver, only: adapt_goal_t, refiner_t, adapt_level_t, adapt_levels, &
                             check_target, adapt_target_t, TARGET_ACTIVE, TARGET_MET, &
-                            TARGET_FLOOR, TARGET_STOPPED
+                            TARGET_FLOOR, TARGET_STOPPED, no_estimate_outcome
     use h_refiner, only: h_refiner_t, doerfler_marking
     use hp_levels, only: hp_refiner_t, HP_ESTIMATE
     use pencil_tracking, only: N_PROFILE_BINS, level_values_t
@@ -131,6 +131,9 @@ module threshold_goal
         character(len=:), allocatable :: outcome
         !> the boundary the final report carries (coarse_scan_t); scan_contact 0: none
         type(critical_set_t) :: coarse
+        !> a level after the first that failed (adapt_goal_t: failure): the run writes the
+        !> last complete level's results, then exits with this status; ok: none
+        type(status_t) :: failure
     end type adaptive_thresholds_t
 
     !> A level's restricted contact blocks and real pencil values, for a scan at the end.
@@ -156,6 +159,17 @@ module threshold_goal
         procedure :: note => coarse_scan_note
         procedure :: coarse_set => coarse_scan_coarse_set
     end type coarse_scan_t
+
+    !> What a level overwrites in its goal before it is complete (keep_level).
+    type :: kept_level_t
+        type(thresholds_t) :: thr
+        type(threshold_estimate_t) :: est
+        type(coarse_scan_t) :: scan_state
+        integer :: pencil_dofs = 0
+        type(critical_set_t) :: set
+        type(problem_t) :: prob
+        type(hp_space_t) :: space
+    end type kept_level_t
 
     type, extends(adapt_goal_t), public :: threshold_goal_t
         type(threshold_level_t), allocatable :: levels(:)
@@ -277,6 +291,10 @@ contains
         character(len=WARNING_LEN), allocatable :: moving_warnings(:)
         type(onset_bars_t) :: onsets
         allocate (moving_warnings(0))
+        ! a failed level whose level before could not be made again: nothing to report
+        if (stat%ok() .and. .not. goal%failure%ok() .and. .not. refiner%estimated() .and. &
+            .not. goal%factored) stat = goal%failure
+        out%failure = goal%failure
         call loop_outcome(goal, out)
         call move_alloc(goal%levels, out%levels)
         out%prob = goal%prob
@@ -402,7 +420,9 @@ contains
         real(wp) :: start
         real(wp), allocatable :: nearest(:)
         integer :: onset(2)
+        type(kept_level_t) :: kept
 
+        call keep_level(this, .false., kept)
         associate (prob => level%prob)
             call factor_with_contact_blocks(scn, prob, chol, blocks%kt_nn, blocks%kt_nt, &
                                             timings, stat)
@@ -426,12 +446,14 @@ contains
             if (stat%ok() .and. any(onset > 0)) call collision_spectra(scn, prob, &
                 this%options, chol, blocks, set, onset, nearest, beside, stat)
             call chol%free()
-            if (.not. stat%ok()) return
+            if (stat%ok()) call estimate_threshold_errors(prob, this%thr, u, &
+                ENRICHED_CONTACT_MAX, this%est, stat)
+            if (.not. stat%ok()) then   ! the last complete level's, for its report
+                call restore_level(this, kept)
+                return
+            end if
             call blocks%free()
-            call estimate_threshold_errors(prob, this%thr, u, ENRICHED_CONTACT_MAX, this%est, &
-                                           stat)
-            if (stat%ok()) call estimate_collisions(this, prob, set, onset, nearest, beside)
-            if (.not. stat%ok()) return
+            call estimate_collisions(this, prob, set, onset, nearest, beside)
             call timings%add(PHASE_REDUCTION, wall_time() - start, ': thresholds and their '// &
                              'error estimates, level '//to_string(level%number))
             this%levels = [this%levels, level_row(level, this%thr, set, onset, loop_start)]
@@ -465,6 +487,7 @@ contains
         real(wp) :: start, phase(3)
         integer :: onset(2), p
         type(critical_set_t) :: previous
+        type(kept_level_t) :: kept
 
         p = level%prob%contact%p()
         if (this%memory_given) then
@@ -480,17 +503,24 @@ contains
                 ' GB, more than the memory available'
             return
         end if
+        if (size(this%levels) > 0) call keep_level(this, .true., kept)
         if (this%factored) call this%chol%free()
         this%factored = .false.
         this%prob = level%prob
         this%space = level%space
         call refiner%factor(level, this%chol, timings, stat)
-        if (.not. stat%ok()) return
+        if (.not. stat%ok()) then
+            call give_up()
+            return
+        end if
         this%factored = .true.
         associate (prob => this%prob, blocks => this%blocks, set => this%set)
             start = wall_time()
             call contact_flexibility(this%chol, prob%contact, blocks%kt_nn, blocks%kt_nt, stat)
-            if (.not. stat%ok()) return
+            if (.not. stat%ok()) then
+                call give_up()
+                return
+            end if
             phase(1) = wall_time()
             blocks%mass = prob%contact%mass
             ! the thresholds, the positive set and its boundary with the forces of half the
@@ -499,7 +529,10 @@ contains
                                        this%thr, this%restricted, this%lift, stat)
             if (stat%ok()) call threshold_roundoff(prob%k, this%chol, prob%contact, &
                 blocks%kt_nn, blocks%kt_nt, this%thr, stat)
-            if (.not. stat%ok()) return
+            if (.not. stat%ok()) then
+                call give_up()
+                return
+            end if
             phase(2) = wall_time()
             if (size(this%levels) == 0) then   ! the first level scans where it searches
                 call onset_search(this%scan, this%restricted, this%thr, prob%dofs%n_free, &
@@ -510,12 +543,18 @@ contains
                                   this%pencil_dofs, set, stat, previous, &
                                   carry_width(this%levels), this%scan_state)
             end if
-            if (.not. stat%ok()) return
+            if (.not. stat%ok()) then
+                call give_up()
+                return
+            end if
             call this%scan_state%note(this%restricted, this%thr%real_lambdas, set)
             call collision_onsets(set, onset)
             if (any(onset > 0)) call collision_roundoffs(prob%k, this%chol, prob%contact, &
                                                          this%restricted, set, stat, this%lift)
-            if (.not. stat%ok()) return
+            if (.not. stat%ok()) then
+                call give_up()
+                return
+            end if
             phase(3) = wall_time()
             call timings%add(PHASE_REDUCTION, phase(3) - start, ': contact blocks '// &
                              seconds_text(phase(1) - start)//' s, thresholds '// &
@@ -534,7 +573,79 @@ contains
         call set_bars(this%levels, refiner, this%thr%roundoff)
         this%levels(size(this%levels))%time_s = wall_time() - loop_start
         call timings%note(level_line(this%levels(size(this%levels)), 'hp level'))
+
+    contains
+
+        !> A failed level: the last complete one back, whose report the run writes.
+        subroutine give_up()
+            if (size(this%levels) > 0) call restore_hp_level(this, refiner, kept, timings)
+        end subroutine give_up
+
     end subroutine solve_hp_level
+
+    !> What a level overwrites in the goal before it is complete: the last complete level's,
+    !> kept to restore it when the next level fails (hp: its problem and space too, its
+    !> factor and blocks are made again from them).
+    subroutine keep_level(this, hp, kept)
+        class(threshold_goal_t), intent(in) :: this
+        logical, intent(in) :: hp
+        type(kept_level_t), intent(out) :: kept
+        kept%thr = this%thr
+        kept%est = this%est
+        kept%scan_state = this%scan_state
+        kept%pencil_dofs = this%pencil_dofs
+        kept%set = this%set
+        if (.not. hp) return
+        kept%prob = this%prob
+        kept%space = this%space
+    end subroutine keep_level
+
+    !> The goal as `kept` had it (keep_level), before a level that failed.
+    subroutine restore_level(this, kept)
+        class(threshold_goal_t), intent(inout) :: this
+        type(kept_level_t), intent(in) :: kept
+        this%thr = kept%thr
+        this%est = kept%est
+        this%scan_state = kept%scan_state
+        this%pencil_dofs = kept%pencil_dofs
+        this%set = kept%set
+    end subroutine restore_level
+
+    !> hp: the last complete level back after the next one failed: its problem, space and
+    !> thresholds as `kept` had them, its factor and contact blocks made again (the same
+    !> solves, so the same numbers). Where that fails too, the goal has no level to report
+    !> (`factored` false).
+    subroutine restore_hp_level(this, refiner, kept, timings)
+        class(threshold_goal_t), intent(inout) :: this
+        class(refiner_t), intent(in) :: refiner
+        type(kept_level_t), intent(in) :: kept
+        type(timings_t), intent(inout) :: timings
+        type(adapt_level_t) :: level
+        type(thresholds_t) :: thr
+        type(status_t) :: stat
+        call restore_level(this, kept)
+        if (this%factored) call this%chol%free()
+        this%factored = .false.
+        call this%blocks%free()
+        call this%restricted%free()
+        if (allocated(this%lift)) deallocate (this%lift)
+        this%prob = kept%prob
+        this%space = kept%space
+        level%number = this%levels(size(this%levels))%layers
+        level%prob = kept%prob
+        level%space = kept%space
+        call refiner%factor(level, this%chol, timings, stat)
+        if (.not. stat%ok()) return
+        this%factored = .true.
+        call contact_flexibility(this%chol, this%prob%contact, this%blocks%kt_nn, &
+                                 this%blocks%kt_nt, stat)
+        this%blocks%mass = this%prob%contact%mass
+        if (stat%ok()) call restricted_thresholds(this%blocks, half_degree_forces(this%space, &
+            this%prob%contact), thr, this%restricted, this%lift, stat)
+        if (stat%ok()) return
+        call this%chol%free()
+        this%factored = .false.
+    end subroutine restore_hp_level
 
     !> How a level found its boundary points, for its progress line.
     function search_words(set) result(words)
@@ -813,8 +924,8 @@ contains
     !> last NONE_LEVELS levels (h: over which the dofs at least doubled, as an h level adds
     !> a fraction of them) is met as 'none'. A side whose value appears or vanishes
     !> between levels has no bar (series_bar needs it on consecutive levels) and stays
-    !> active, so it ends at a limit, named, never as met; on h levels, whose limit is the
-    !> memory, one whose value has vanished for as long as 'none' needs is stopped then. A
+    !> active, so it ends at a limit, named, never as met; one whose value has vanished for
+    !> as long as 'none' needs is stopped then (h: whose limit is the memory; hp too). A
     !> side met, with a value or as 'none', whose value then vanishes or appears at a later
     !> level is stopped as not converging (exit 8). On h levels a side met with a value is
     !> judged again at every later level (each re-estimates it on a finer mesh, and the
@@ -838,9 +949,9 @@ contains
                 has = last%found(side) .or. last%collision(side)
                 if (estimated .and. .not. any(last%found .or. last%collision)) then
                     if (t%active() .or. t%converged()) call t%finish(TARGET_STOPPED, &
-                        trim(SIDE_LABELS(side))//': tolerance not met: no error estimate at '// &
-                        'level '//to_string(level)//' (no real eigenvalue of the pencil '// &
-                        'Kt_nn x = lambda Kt_nt x and no collision onset: nothing to adapt to)')
+                        trim(SIDE_LABELS(side))//': '//no_estimate_outcome(level, 'no real '// &
+                        'eigenvalue of the pencil Kt_nn x = lambda Kt_nt x and no collision '// &
+                        'onset: nothing to adapt to'))
                     cycle
                 end if
                 if (t%converged()) then
@@ -881,9 +992,8 @@ contains
                 end do
                 if (.not. has) then
                     if (.not. absent) cycle
-                    ! h: a value at an earlier level that has vanished is no 'none'
-                    before = 0
-                    if (estimated) before = findloc([(this%levels(i)%found(side) .or. &
+                    ! a value at an earlier level that has vanished is no 'none'
+                    before = findloc([(this%levels(i)%found(side) .or. &
                         this%levels(i)%collision(side), i=1, k)], .true., 1, back=.true.)
                     if (before == 0) then
                         call t%finish(TARGET_MET, SIDE_LABELS(side)//': none at '// &
@@ -893,7 +1003,8 @@ contains
                             to_string(level))
                     else
                         call t%finish(TARGET_STOPPED, trim(SIDE_LABELS(side))//': no value at '// &
-                            'h levels '//to_string(this%levels(before + 1)%level)//' to '// &
+                            trim(merge('h levels ', 'hp levels', estimated))//' '// &
+                            to_string(this%levels(before + 1)%level)//' to '// &
                             to_string(level)//' after '//short_real_text(merge( &
                             this%levels(before)%collision_lambda(side), &
                             this%levels(before)%lambda(side), &
@@ -904,9 +1015,8 @@ contains
                     cycle
                 end if
                 if (estimated .and. bar(side) < 0.0_wp) then
-                    call t%finish(TARGET_STOPPED, trim(SIDE_LABELS(side))//': tolerance not '// &
-                        'met: no error estimate at level '//to_string(level)//' ('// &
-                        missing(this, side)//')')
+                    call t%finish(TARGET_STOPPED, trim(SIDE_LABELS(side))//': '// &
+                        no_estimate_outcome(level, missing(this, side)))
                 else if (last%stalled(side)) then
                     call t%finish(TARGET_STOPPED, trim(SIDE_LABELS(side))//': '// &
                         stall_outcome(tolerance, 'the '//trim(SIDE_NAMES(side))//' side'))

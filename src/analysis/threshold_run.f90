@@ -102,6 +102,8 @@ contains
             inputs%adapt, inputs%scan, prob, this%adapted, this%res, timings, stat)
         if (stat%ok()) call sides_verdict(this%adapted, inputs%scene%name, this%verdict)
         if (stat%ok()) call no_digit_verdict(this%res, inputs%scene%name, this%verdict)
+        if (stat%ok()) call failure_verdict(this%adapted%failure, inputs%scene%name, &
+                                            this%verdict)
     end subroutine adapt_threshold_run_solve
 
     !> The verdict is the thresholds' (as an adaptive threshold run's), else the points'
@@ -120,7 +122,18 @@ contains
         call sides_verdict(this%adapted, inputs%scene%name, this%verdict)
         if (this%verdict%ok()) call points_verdict(this%res, inputs%scene%name, this%verdict)
         if (this%verdict%ok()) call no_digit_verdict(this%res, inputs%scene%name, this%verdict)
+        call failure_verdict(this%adapted%failure, inputs%scene%name, this%verdict)
     end subroutine joint_sweep_run_solve
+
+    !> A level that failed after the first (`failure`, ok: none) is the run's verdict, over
+    !> any other: its outputs are the last complete level's.
+    subroutine failure_verdict(failure, name, verdict)
+        type(status_t), intent(in) :: failure
+        character(len=*), intent(in) :: name
+        type(status_t), intent(inout) :: verdict
+        if (.not. failure%ok()) call verdict%fail(failure%code, naming_file(failure%message, &
+            name)//': the results of the last complete level are written')
+    end subroutine failure_verdict
 
     !> `verdict` STATUS_NOT_MET where the adapted thresholds missed the tolerance.
     subroutine sides_verdict(adapted, name, verdict)

@@ -7,7 +7,7 @@ module lapack_interfaces
     use strings, only: to_string
     implicit none
     private
-    public :: dgeevx, dggev, dgemm, dgemv, dsyrk, lapack_info_message
+    public :: dgeevx, dggev, dgemm, dgemv, dsyrk, dgesvd, lapack_info_message
     public :: dgeev, dtrsv, dtrsm, dgetrf, dgetrs, dpotri, dpotrf, dlacn2, lapack_eigenvector
 
     interface
@@ -30,6 +30,15 @@ module lapack_interfaces
             real(wp), intent(out) :: wr(*), wi(*), vl(ldvl, *), vr(ldvr, *), work(*)
             integer, intent(out) :: info
         end subroutine dgeev
+
+        subroutine dgesvd(jobu, jobvt, m, n, a, lda, s, u, ldu, vt, ldvt, work, lwork, info)
+            import :: wp
+            character(len=1), intent(in) :: jobu, jobvt
+            integer, intent(in) :: m, n, lda, ldu, ldvt, lwork
+            real(wp), intent(inout) :: a(lda, *)
+            real(wp), intent(out) :: s(*), u(ldu, *), vt(ldvt, *), work(*)
+            integer, intent(out) :: info
+        end subroutine dgesvd
 
         subroutine dggev(jobvl, jobvr, n, a, lda, b, ldb, alphar, alphai, beta, vl, ldvl, &
                          vr, ldvr, work, lwork, info)

@@ -24,7 +24,7 @@
 !> ends a loop that has not met its tolerance, never a level count.
 module adapt_driver
     use kinds, only: wp
-    use status, only: status_t, STATUS_NOT_MET
+    use status, only: status_t, STATUS_NOT_MET, STATUS_SOLVER
     use strings, only: to_string, short_real_text, given_real_text
     use timer, only: wall_time, timings_t
     use scene, only: scene_t
@@ -35,7 +35,8 @@ module adapt_driver
     use error_bar, only: floor_reached, floor_outcome, stall_outcome
     implicit none
     private
-    public :: adapt_levels, judge_target, check_target
+    public :: adapt_levels, judge_target, check_target, no_estimate_outcome
+    public :: test_failing_level, injected_failure
 
     integer, parameter, public :: TARGET_ACTIVE = 0    !! the loop still refines for it
     integer, parameter, public :: TARGET_MET = 1       !! its bar met the tolerance
@@ -103,6 +104,10 @@ module adapt_driver
     !> What the loop adapts to: a set of targets, each with its own state.
     type, abstract, public :: adapt_goal_t
         type(adapt_target_t), allocatable :: targets(:)
+        !> a level after the first solved that failed (its solve, its making or the check
+        !> of the last level): that failure, its message naming the level; the goal keeps
+        !> the last complete level, which the run writes before it exits with its code
+        type(status_t) :: failure
     contains
         !> solve `level` for the targets still active; `refused` (not '' ) says why the level
         !> cannot be solved at all (the memory of its contact blocks), before any change
@@ -257,25 +262,36 @@ contains
         type(adapt_level_t) :: last
         character(len=:), allocatable :: refused
         real(wp) :: loop_start
-        integer :: solved, checked
+        integer :: solved, checked, failing_level
         logical :: too_big
 
         loop_start = wall_time()
+        failing_level = test_failing_level()
         call refiner%begin(scn, adapt, start, stat)
         if (.not. stat%ok()) return
         solved = 0
         checked = -1
         do
             call refiner%next(scn, start, goal, solved, level, too_big, timings, stat)
-            if (.not. stat%ok()) return
+            if (.not. stat%ok()) then
+                if (solved > 0) call level_failed(last%number + 1, stat)
+                return
+            end if
             if (too_big) then
                 call stop_active(goal, 'tolerance '//given_real_text(adapt%tolerance)// &
                     ' not met: '//refiner%too_big_words()//'; reached error bar ')
                 call check_last(.false., stat)
                 exit
             end if
-            call goal%solve(scn, refiner, level, loop_start, timings, refused, stat)
-            if (.not. stat%ok()) return
+            ! h: before the level (hp: its factor, inside the goal's solve: hp_levels)
+            if (refiner%estimated() .and. level%number == failing_level) &
+                call stat%fail(STATUS_SOLVER, injected_failure(level%number))
+            if (stat%ok()) call goal%solve(scn, refiner, level, loop_start, timings, refused, &
+                                           stat)
+            if (.not. stat%ok()) then
+                if (solved > 0) call level_failed(level%number, stat)
+                return
+            end if
             if (len(refused) > 0) then
                 if (solved == 0) then
                     call stat%fail(STATUS_NOT_MET, scn%name//': &adapt: '// &
@@ -318,8 +334,56 @@ contains
             if (.not. refiner%checked() .or. solved == 0 .or. checked == last%number) return
             checked = last%number
             call goal%check(scn, start, refiner, last, adapt%tolerance, reopen, timings, stat)
+            if (.not. stat%ok()) call level_failed(last%number, stat, checking=.true.)
         end subroutine check_last
+
+        !> Level `number` (after the first solved) failed with `stat`: kept in goal%failure,
+        !> its message naming the level, `stat` cleared; every target still active, and one
+        !> the failed check of that level was to confirm, stopped saying so, with the bar of
+        !> the last complete level.
+        subroutine level_failed(number, stat, checking)
+            integer, intent(in) :: number
+            type(status_t), intent(inout) :: stat
+            logical, intent(in), optional :: checking
+            character(len=:), allocatable :: words
+            integer :: i
+            words = 'level '//to_string(number)
+            if (present(checking)) words = 'the check of '//words
+            do i = 1, size(goal%targets)
+                associate (t => goal%targets(i))
+                    if (present(checking) .and. (t%converged() .or. t%floor_reached())) &
+                        call t%finish(TARGET_ACTIVE, '')
+                end associate
+            end do
+            call stop_active(goal, 'tolerance '//given_real_text(adapt%tolerance)// &
+                             ' not met: '//words//' failed ('//stat%message// &
+                             '); reached error bar ')
+            goal%failure = stat
+            goal%failure%message = stat%message//' ('//words//' failed)'
+            stat = status_t()
+        end subroutine level_failed
     end subroutine adapt_levels
+
+    !> The message of the failure test_failing_level asks for at level `number`.
+    function injected_failure(number) result(message)
+        integer, intent(in) :: number
+        character(len=:), allocatable :: message
+        message = 'level '//to_string(number)//': the failure NCEIG_TEST_FAIL_LEVEL asks for'
+    end function injected_failure
+
+    !> The level whose solve fails as a numerical library's failure would, for the tests of
+    !> what a run writes then (tests/cli/cli_level_failure.sh): NCEIG_TEST_FAIL_LEVEL, a
+    !> level number; -1 (none) when unset or not a number. h levels fail before their solve,
+    !> hp levels at their factor, once the goal has begun to take the level in.
+    integer function test_failing_level() result(number)
+        character(len=20) :: text
+        integer :: length, ios
+        number = -1
+        call get_environment_variable('NCEIG_TEST_FAIL_LEVEL', text, length)
+        if (length < 1 .or. length > len(text)) return
+        read (text, *, iostat=ios) number
+        if (ios /= 0) number = -1
+    end function test_failing_level
 
     !> Why the next level is too big (refiner_next's too_big): stop_reason, else its dofs
     !> over the limit.
@@ -394,8 +458,7 @@ contains
 
         if (refiner%estimated()) then
             if (bar < 0.0_wp) then
-                call t%finish(TARGET_STOPPED, 'tolerance not met: no error estimate at level '// &
-                              to_string(level)//' ('//missing//')')
+                call t%finish(TARGET_STOPPED, no_estimate_outcome(level, missing))
             else if (bar <= tolerance .and. level >= 1) then
                 call t%finish(TARGET_MET, 'tolerance '//given_real_text(tolerance)// &
                     ' met at level '//to_string(level)//': error bar '// &
@@ -418,6 +481,16 @@ contains
             call t%finish(TARGET_FLOOR, floor_outcome(tolerance, roundoff, bar, to_string(dofs)))
         end if
     end subroutine judge_target
+
+    !> The outcome of a target stopped at h level `level` for want of an error estimate,
+    !> `why` saying why it has none.
+    pure function no_estimate_outcome(level, why) result(outcome)
+        integer, intent(in) :: level
+        character(len=*), intent(in) :: why
+        character(len=:), allocatable :: outcome
+        outcome = 'tolerance not met: no error estimate at level '//to_string(level)//' ('// &
+                  why//')'
+    end function no_estimate_outcome
 
     pure logical function target_is_active(this)
         class(adapt_target_t), intent(in) :: this

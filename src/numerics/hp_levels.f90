@@ -13,7 +13,7 @@
 !> it, and cap_words says why climbing on would not help.
 module hp_levels
     use kinds, only: wp
-    use status, only: status_t, STATUS_BAD_INPUT
+    use status, only: status_t, STATUS_BAD_INPUT, STATUS_SOLVER
     use strings, only: to_string, short_real_text
     use real_format, only: real_to_text
     use timer, only: timings_t
@@ -30,7 +30,8 @@ module hp_levels
     use hp_eigen, only: hp_assembled_problem, factor_hp_stiffness
     use sparse_cholesky, only: cholesky_t
     use error_bar, only: hp_run_bar
-    use adapt_driver, only: refiner_t, adapt_goal_t, adapt_level_t
+    use adapt_driver, only: refiner_t, adapt_goal_t, adapt_level_t, test_failing_level, &
+                            injected_failure
     use h_refiner, only: level_dof_limit
     implicit none
     private
@@ -235,6 +236,10 @@ contains
         type(cholesky_t), intent(inout) :: chol
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
+        if (level%number == test_failing_level()) then
+            call stat%fail(STATUS_SOLVER, injected_failure(level%number))
+            return
+        end if
         call factor_hp_stiffness(level%prob%k, level%prob%mesh, level%space, &
                                  level%prob%contact, chol, timings, stat)
         if (.not. stat%ok()) call prefix(this%name, level%number, stat)

@@ -8,6 +8,7 @@
 !> the later, finer levels confirm; lambda- appears and vanishes and is not met, with no bar,
 !> and where it has a value at the last level a warning says where its vector sits. The same
 !> on h levels: the side met reported with its bar, the other with none and its own reason.
+!> On hp levels as on h levels, a side whose value vanished is not met as 'none'.
 program test_threshold_goal
     use kinds, only: wp, i8
     use run_inputs, only: run_inputs_t, translate_input
@@ -19,7 +20,9 @@ program test_threshold_goal
     use timer, only: timings_t
     use problem, only: problem_t, build_problem
     use threshold_analysis, only: threshold_result_t
-    use threshold_goal, only: adaptive_thresholds_t, solve_adapted_thresholds
+    use threshold_goal, only: adaptive_thresholds_t, solve_adapted_thresholds, &
+                              threshold_goal_t, threshold_level_t
+    use hp_levels, only: hp_refiner_t
     use critical_lambda, only: SIDE_PLUS, SIDE_MINUS
     implicit none
 
@@ -34,6 +37,7 @@ program test_threshold_goal
     call max_levels_stops_the_loop(t)
     call sides_are_independent(t)
     call h_sides_are_independent(t)
+    call hp_vanished_side_not_met(t)
     call t%report()
 
 contains
@@ -242,4 +246,39 @@ contains
                      index(out%outcome, 'lambda-: tolerance 2.00E-02 not met') == 1 .and. &
                      any(index(res%eigen%warnings, 'lambda-: tolerance') == 1))
     end subroutine h_sides_are_independent
+    !> The rule of the sides on hp levels, as on h levels (judge_sides): a side with no value
+    !> at the last three levels is met as 'none' only where it never had one; lambda- had a
+    !> value at levels 1 and 2 and none at levels 3 to 5: it vanishes with the mesh, not
+    !> converged (before, hp met it as 'none at hp levels 3 to 5'). lambda+, never found, is
+    !> met as none at level 3. The levels are the goal's rows alone (no mesh is solved).
+    subroutine hp_vanished_side_not_met(t)
+        type(test_suite_t), intent(inout) :: t
+        type(threshold_goal_t) :: goal
+        type(hp_refiner_t) :: refiner
+        type(threshold_level_t) :: row
+        integer :: level
+        allocate (goal%levels(0), goal%targets(2))
+        goal%targets(1)%outcome = ''
+        goal%targets(2)%outcome = ''
+        do level = 1, 5
+            row = threshold_level_t()
+            row%level = level
+            row%layers = level
+            row%n_dofs = 100*2**level
+            row%found(SIDE_MINUS) = level <= 2
+            row%lambda(SIDE_MINUS) = -3.0_wp - 0.1_wp*level
+            if (level == 2) row%error_bar(SIDE_MINUS) = 0.03_wp
+            goal%levels = [goal%levels, row]
+            call goal%judge(refiner, level, 1.0e-6_wp)
+        end do
+        call t%check('hp, a vanished side: lambda- stopped as vanishing, not met as none', &
+                     .not. goal%targets(SIDE_MINUS)%converged() .and. &
+                     .not. goal%targets(SIDE_MINUS)%active() .and. &
+                     index(goal%targets(SIDE_MINUS)%outcome, 'lambda-: no value at hp levels '// &
+                           '3 to 5 after') == 1 .and. &
+                     index(goal%targets(SIDE_MINUS)%outcome, 'it vanishes with the mesh, '// &
+                           'not converged') > 0 .and. &
+                     index(goal%targets(SIDE_PLUS)%outcome, 'none at hp levels 1 to 3') > 0 .and. &
+                     goal%targets(SIDE_PLUS)%converged())
+    end subroutine hp_vanished_side_not_met
 end program test_threshold_goal

@@ -34,6 +34,7 @@ program test_critical_lambda
     call thresholds_are_confirmed(t)
     call sweep_lambda_lists(t)
     call every_force_kept_is_the_full_pencil(t)
+    call defective_infinity_is_no_threshold(t)
     call t%report()
 
 contains
@@ -329,4 +330,49 @@ contains
                                full%lambda(side), 1.0e-10_wp)
         end do
     end subroutine every_force_kept_is_the_full_pencil
+    !> A pencil Kt_nn x = lambda Kt_nt x with Kt_nn = W'W and Kt_nt = W'(J ++ D)W, W dense
+    !> and well conditioned, J the 3 x 3 Jordan block at 0 and D = diag(0.5, 0.4, 0.25, 0.2,
+    !> 0.1): exactly five finite eigenvalues, 1/d = 2, 2.5, 4, 5 and 10, and a triple infinite
+    !> one with a single eigenvector (a defective one, as Kt_nt of a finely graded h level
+    !> had: singular to 3.6e-16 of its norm). Round-off splits the triple one into values of
+    !> size about eps^(-1/3), at least one of them real (the roots of a real cubic), whose
+    !> beta passes QZ's p eps test of infinity; it is told from a finite value by its chordal
+    !> error bound (pencil_value_finite). Expected: five real values, 2 to 10, each to 1e-10
+    !> (W's condition is about 10, so theirs is about 100: 1e-14 expected, 1e-10 leaves any
+    !> BLAS its margin), lambda+ = 2, no lambda- (before: a spurious real value counted, and a
+    !> lambda- near -1e5 where it fell on that side).
+    subroutine defective_infinity_is_no_threshold(t)
+        type(test_suite_t), intent(inout) :: t
+        integer, parameter :: P = 8
+        real(wp), parameter :: FINITE(5) = [2.0_wp, 2.5_wp, 4.0_wp, 5.0_wp, 10.0_wp]
+        real(wp) :: w(P, P), core(P, P), kt_nn(P, P), kt_nt(P, P)
+        type(thresholds_t) :: thr
+        type(status_t) :: stat
+        integer :: i, j
+        ! W = I + 0.3 cos(i j + 1/2): dense, well conditioned, its entries not representable,
+        ! so that the products carry round-off of size eps that splits J
+        do j = 1, P
+            do i = 1, P
+                w(i, j) = 0.3_wp*cos(real(i*j, wp) + 0.5_wp)
+            end do
+            w(j, j) = w(j, j) + 1.0_wp
+        end do
+        core = 0.0_wp
+        core(1, 2) = 1.0_wp
+        core(2, 3) = 1.0_wp
+        do i = 1, 5
+            core(3 + i, 3 + i) = 1.0_wp/FINITE(i)
+        end do
+        kt_nn = matmul(transpose(w), w)
+        kt_nt = matmul(transpose(w), matmul(core, w))
+        call pencil_thresholds(kt_nn, kt_nt, thr, stat)
+        call t%check('defective infinity: five real values, none from the infinite one', &
+                     stat%ok() .and. thr%n_real == 5 .and. size(thr%real_lambdas) == 5 .and. &
+                     thr%n_real + thr%n_complex + thr%n_infinite == P)
+        if (.not. stat%ok() .or. size(thr%real_lambdas) /= 5) return
+        call t%check('defective infinity: the values 1/d, lambda+ = 2, no lambda-', &
+                     all(abs(thr%real_lambdas - FINITE) <= 1.0e-10_wp*FINITE) .and. &
+                     thr%found(1) .and. abs(thr%lambda(1) - 2.0_wp) <= 1.0e-10_wp*2.0_wp .and. &
+                     .not. thr%found(2))
+    end subroutine defective_infinity_is_no_threshold
 end program test_critical_lambda
