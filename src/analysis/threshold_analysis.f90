@@ -64,8 +64,8 @@ module threshold_analysis
         real(wp), allocatable :: error_bar(:)    !! &adapt: the bar of mu(i); negative: none
         integer, allocatable :: n_dofs(:)
         integer :: n_reused = 0                  !! &adapt: points met with no refinement
-        !> &adapt: points with a positive mu whose tolerance was not met, and the first
-        !> such point's outcome
+        !> &adapt: points whose tolerance was not met (record_point), and the first such
+        !> point's outcome
         integer :: n_not_met = 0
         character(len=:), allocatable :: not_met
         integer :: n_arpack = 0                  !! points certified by ARPACK
