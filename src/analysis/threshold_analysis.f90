@@ -460,8 +460,8 @@ contains
     !> bar meets the tolerance. With strategy 'h' it starts from the last mesh that met it
     !> at a lambda before (the mesh of a neighbouring lambda is usually fine already: the
     !> point then costs one solve and one estimate), and a point whose loop stops short
-    !> keeps its last mu and estimate, its mesh not passed on (nor that of a point without
-    !> a positive mu, refined uniformly to confirm it). With 'hp' every point climbs
+    !> keeps its last mu and estimate, its mesh not passed on; after a point without a
+    !> positive mu (confirmed on uniform refinements) the next starts from the input mesh. With 'hp' every point climbs
     !> the hp levels of the input mesh, which do not depend on lambda: one climb (one goal
     !> with a target per lambda, eigen_goal) builds and factors each level once for all
     !> points not yet stopped.
@@ -501,9 +501,12 @@ contains
             associate (o => outs(1))
                 call record_point(curve, i, o%res, o%prob%dofs%n_free, o%converged, &
                                   size(o%levels) == 1, o%outcome)
-                ! not the uniformly refined mesh of a 'none, confirmed': the next point's
-                ! would grow from it, and so on along a run of lambdas without a mu
+                ! after a 'none, confirmed' the input mesh, not its uniformly refined one
+                ! nor the last mu's: the next point without a mu confirms it from the
+                ! input mesh as its own run would (three small levels), where refining
+                ! a mesh adapted to another lambda's mode twice cost seconds per point
                 if (o%converged .and. curve%found(i)) current = o%prob
+                if (o%converged .and. .not. curve%found(i)) current = prob
             end associate
         end do
     end subroutine adaptive_sweep
