@@ -636,9 +636,9 @@ contains
         logical, intent(in) :: hp
         character(len=:), allocatable :: words
         associate (first => p%levels(1), last => p%levels(size(p%levels)))
-            words = 'no positive mu at '//trim(merge('hp levels', 'h levels ', hp))//' '//to_string(first%level)//' to '// &
-                to_string(last%level)//' ('//to_string(first%n_dofs)//' to '// &
-                to_string(last%n_dofs)//' dofs)'
+            words = 'no positive mu at '//trim(merge('hp levels', 'h levels ', hp))//' '// &
+                to_string(first%level)//' to '//to_string(last%level)//' ('// &
+                to_string(first%n_dofs)//' to '//to_string(last%n_dofs)//' dofs)'
         end associate
     end function no_mu_levels
 
@@ -650,7 +650,8 @@ contains
         character(len=:), allocatable :: text
         text = 'none'
         if (size(this%points(i)%levels) == 0) return
-        associate (p => this%points(i), last => this%points(i)%levels(size(this%points(i)%levels)))
+        associate (p => this%points(i), &
+                   last => this%points(i)%levels(size(this%points(i)%levels)))
             if (last%error_bar >= 0.0_wp) text = short_real_text(last%error_bar)
             text = text//' at '//to_string(last%n_dofs)//' dofs'
             if (.not. any(p%levels%has_mu)) then

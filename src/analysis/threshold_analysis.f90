@@ -461,10 +461,10 @@ contains
     !> at a lambda before (the mesh of a neighbouring lambda is usually fine already: the
     !> point then costs one solve and one estimate), and a point whose loop stops short
     !> keeps its last mu and estimate, its mesh not passed on; after a point without a
-    !> positive mu (confirmed on uniform refinements) the next starts from the input mesh. With 'hp' every point climbs
-    !> the hp levels of the input mesh, which do not depend on lambda: one climb (one goal
-    !> with a target per lambda, eigen_goal) builds and factors each level once for all
-    !> points not yet stopped.
+    !> positive mu (confirmed on uniform refinements) the next starts from the input mesh.
+    !> With 'hp' every point climbs the hp levels of the input mesh, which do not depend on
+    !> lambda: one climb (one goal with a target per lambda, eigen_goal) builds and factors
+    !> each level once for all points not yet stopped.
     subroutine adaptive_sweep(scn, prob, options, adapt, curve, timings, stat)
         type(scene_t), intent(in) :: scn
         type(problem_t), intent(in) :: prob
