@@ -31,7 +31,7 @@ module eigen_goal
     use error_bar, only: theta_warnings, checked_bar
     use hp_rayleigh, only: refine_lowest_mu
     use adapt_driver, only: adapt_goal_t, refiner_t, adapt_level_t, adapt_levels, judge_target, &
-                            check_target
+                            check_target, absence_confirmed, NONE_LEVELS, TARGET_MET
     use h_refiner, only: h_refiner_t, doerfler_marking
     use hp_levels, only: hp_refiner_t, HP_ESTIMATE
     implicit none
@@ -101,6 +101,7 @@ module eigen_goal
         !> shared contact blocks and lifts that one mu (its mode, backward error and
         !> round-off bound), not every eigenvalue found (eigen_with_factor: lowest_only)
         logical :: lowest_only = .false.
+        logical :: hp = .false.   !! hp levels (else h)
         type(adapted_eigen_t), allocatable :: points(:)
     contains
         procedure :: solve => eigen_goal_solve
@@ -160,6 +161,7 @@ contains
         this%tolerance = adapt%tolerance
         this%keep_problem = keep_problem
         this%lowest_only = .not. keep_problem
+        this%hp = adapt%refine == REFINE_HP
         if (allocated(this%targets)) deallocate (this%targets)
         if (allocated(this%points)) deallocate (this%points)
         allocate (this%targets(size(lambdas)), this%points(size(lambdas)))
@@ -569,8 +571,13 @@ contains
         end associate
     end subroutine set_bar
 
-    !> Each active lambda after `level`: judge_target on its last row. An h level without a
-    !> bar stops it (the estimate is missing: why); an hp level without a positive mu does.
+    !> Each active lambda after `level`. One without a positive mu at every level so far has
+    !> missed no value yet: it stays active (h: every cell refined, eigen_goal_mark) until
+    !> its absence is confirmed as a threshold side's 'none' is (absence_confirmed), which
+    !> meets it as 'none, confirmed', or a limit stops it short (not met). Else judge_target
+    !> on its last row: a mu that appears after levels without one is judged as usual (h:
+    !> met from the level after it), one that vanishes stops it (not converged), and an h
+    !> level with a mu but no bar stops it (the estimate is missing: why).
     subroutine eigen_goal_judge(this, refiner, level, tolerance)
         class(eigen_goal_t), intent(inout) :: this
         class(refiner_t), intent(in) :: refiner
@@ -578,12 +585,22 @@ contains
         real(wp), intent(in) :: tolerance
         character(len=:), allocatable :: no_value
         real(wp) :: bar, roundoff
-        integer :: i
+        integer :: i, n, j
+        logical :: confirmed
 
         do i = 1, size(this%points)
             if (.not. this%targets(i)%active()) cycle
-            associate (p => this%points(i), &
-                       last => this%points(i)%levels(size(this%points(i)%levels)))
+            n = size(this%points(i)%levels)
+            associate (p => this%points(i), last => this%points(i)%levels(n))
+                if (.not. any(p%levels%has_mu)) then
+                    if (absence_confirmed([(p%levels(j)%has_mu, j=1, n)], &
+                                          [(p%levels(j)%n_dofs, j=1, n)], refiner%estimated())) &
+                        call this%targets(i)%finish(TARGET_MET, 'none, confirmed: '// &
+                                                    no_mu_levels(p, this%hp))
+                    cycle
+                end if
+                confirmed = .false.
+                if (n >= 2) confirmed = p%levels(n - 1)%has_mu
                 no_value = 'tolerance not met: no positive mu at level '//to_string(level)
                 if (any(p%levels%has_mu)) no_value = no_value//': '//MU_VANISHED
                 if (refiner%estimated()) then
@@ -598,7 +615,7 @@ contains
                 end if
                 call judge_target(this%targets(i), refiner, level, tolerance, last%n_dofs, &
                                   last%has_mu, no_value, bar, roundoff, last%stalled, 'mu', &
-                                  missing(p))
+                                  missing(p), confirmed)
             end associate
         end do
     end subroutine eigen_goal_judge
@@ -619,24 +636,55 @@ contains
         end if
     end function missing
 
+    !> The words of the levels of `p`, none with a positive mu: 'no positive mu at h levels
+    !> 0 to 2 (81 to 331 dofs)'.
+    function no_mu_levels(p, hp) result(words)
+        type(adapted_eigen_t), intent(in) :: p
+        logical, intent(in) :: hp
+        character(len=:), allocatable :: words
+        associate (first => p%levels(1), last => p%levels(size(p%levels)))
+            words = 'no positive mu at '//trim(merge('hp levels', 'h levels ', hp))//' '// &
+                to_string(first%level)//' to '//to_string(last%level)//' ('// &
+                to_string(first%n_dofs)//' to '//to_string(last%n_dofs)//' dofs)'
+        end associate
+    end function no_mu_levels
+
+    !> Lambda i's bar at its last level, as a limit's outcome quotes it: 'B at N dofs', 'none
+    !> at N dofs'; where no level has a positive mu, that its absence is not confirmed.
     function eigen_goal_bar_text(this, i) result(text)
         class(eigen_goal_t), intent(in) :: this
         integer, intent(in) :: i
         character(len=:), allocatable :: text
         text = 'none'
         if (size(this%points(i)%levels) == 0) return
-        associate (last => this%points(i)%levels(size(this%points(i)%levels)))
+        associate (p => this%points(i), &
+                   last => this%points(i)%levels(size(this%points(i)%levels)))
             if (last%error_bar >= 0.0_wp) text = short_real_text(last%error_bar)
             text = text//' at '//to_string(last%n_dofs)//' dofs'
+            if (.not. any(p%levels%has_mu)) then
+                text = text//'; '//no_mu_levels(p, this%hp)//', its absence not confirmed '// &
+                    '(that needs '//to_string(NONE_LEVELS)//' levels without it'
+                if (.not. this%hp) text = text//', over which the dofs double'
+                text = text//')'
+            end if
         end associate
     end function eigen_goal_bar_text
 
-    !> Doerfler's set of the (one) lambda's indicators.
+    !> Doerfler's set of the (one) lambda's indicators; every cell where its last level has
+    !> no positive mu (no indicators: refined uniformly until its absence is confirmed, as
+    !> the threshold goal refines where no side has them).
     function eigen_goal_mark(this, theta) result(marked)
         class(eigen_goal_t), intent(in) :: this
         real(wp), intent(in) :: theta
         integer, allocatable :: marked(:)
-        marked = doerfler_marking(this%points(1)%res%error%indicators, theta)
+        integer :: i
+        associate (p => this%points(1))
+            if (p%levels(size(p%levels))%has_mu) then
+                marked = doerfler_marking(p%res%error%indicators, theta)
+            else
+                marked = [(i, i=1, p%levels(size(p%levels))%n_cells)]
+            end if
+        end associate
     end function eigen_goal_mark
 
     !> The progress line of an h level (mu in the input's units: `units` are the level's).

@@ -64,8 +64,8 @@ module threshold_analysis
         real(wp), allocatable :: error_bar(:)    !! &adapt: the bar of mu(i); negative: none
         integer, allocatable :: n_dofs(:)
         integer :: n_reused = 0                  !! &adapt: points met with no refinement
-        !> &adapt: points with a positive mu whose tolerance was not met, and the first
-        !> such point's outcome
+        !> &adapt: points whose tolerance was not met (record_point), and the first such
+        !> point's outcome
         integer :: n_not_met = 0
         character(len=:), allocatable :: not_met
         integer :: n_arpack = 0                  !! points certified by ARPACK
@@ -460,10 +460,11 @@ contains
     !> bar meets the tolerance. With strategy 'h' it starts from the last mesh that met it
     !> at a lambda before (the mesh of a neighbouring lambda is usually fine already: the
     !> point then costs one solve and one estimate), and a point whose loop stops short
-    !> keeps its last mu and estimate, its mesh not passed on. With 'hp' every point climbs
-    !> the hp levels of the input mesh, which do not depend on lambda: one climb (one goal
-    !> with a target per lambda, eigen_goal) builds and factors each level once for all
-    !> points not yet stopped.
+    !> keeps its last mu and estimate, its mesh not passed on; after a point without a
+    !> positive mu (confirmed on uniform refinements) the next starts from the input mesh.
+    !> With 'hp' every point climbs the hp levels of the input mesh, which do not depend on
+    !> lambda: one climb (one goal with a target per lambda, eigen_goal) builds and factors
+    !> each level once for all points not yet stopped.
     subroutine adaptive_sweep(scn, prob, options, adapt, curve, timings, stat)
         type(scene_t), intent(in) :: scn
         type(problem_t), intent(in) :: prob
@@ -508,8 +509,13 @@ contains
             end if
             associate (o => outs(1))
                 call record_point(curve, i, o%res, o%prob%dofs%n_free, o%converged, &
-                                  size(o%levels) == 1, o%mu_vanished, o%outcome)
-                if (o%converged) current = o%prob
+                                  size(o%levels) == 1, o%outcome)
+                ! after a 'none, confirmed' the input mesh, not its uniformly refined one
+                ! nor the last mu's: the next point without a mu confirms it from the
+                ! input mesh as its own run would (three small levels), where refining
+                ! a mesh adapted to another lambda's mode twice cost seconds per point
+                if (o%converged .and. curve%found(i)) current = o%prob
+                if (o%converged .and. .not. curve%found(i)) current = prob
             end associate
         end do
     end subroutine adaptive_sweep
@@ -541,7 +547,7 @@ contains
             if (.not. curve%complete(i)) cycle
             associate (o => outs(i))
                 call record_point(curve, i, o%res, last_dofs(o), o%converged, .false., &
-                                  o%mu_vanished, o%outcome)
+                                  o%outcome)
             end associate
         end do
         call clear_incomplete(curve)
@@ -569,13 +575,15 @@ contains
     end subroutine clear_incomplete
 
     !> Point i of `curve` from the result `res` of its loop on `n_free` dofs. A point misses
-    !> the tolerance when it has a mu not converged, or had one at a coarser level (vanished).
-    subroutine record_point(curve, i, res, n_free, converged, reused, vanished, outcome)
+    !> the tolerance when its loop did not meet it: a mu not converged, one it had at a
+    !> coarser level (vanished: adapted_eigen_t%mu_vanished), or no positive mu on levels
+    !> too few to confirm there is none (eigen_goal_judge: 'none, confirmed' is met).
+    subroutine record_point(curve, i, res, n_free, converged, reused, outcome)
         type(sweep_curve_t), intent(inout) :: curve
         integer, intent(in) :: i
         type(eigen_result_t), intent(in) :: res
         integer, intent(in) :: n_free
-        logical, intent(in) :: converged, reused, vanished
+        logical, intent(in) :: converged, reused
         character(len=*), intent(in) :: outcome
         integer :: lowest
         lowest = res%spec%lowest_positive()
@@ -587,7 +595,7 @@ contains
         if (res%error%computed) curve%error_bar(i) = res%error%bar
         curve%n_dofs(i) = n_free
         if (converged .and. reused) curve%n_reused = curve%n_reused + 1
-        if ((curve%found(i) .or. vanished) .and. .not. converged) then
+        if (.not. converged) then
             curve%n_not_met = curve%n_not_met + 1
             if (.not. allocated(curve%not_met)) curve%not_met = 'lambda = '// &
                 real_to_text(curve%lambda(i))//': '//outcome

@@ -67,7 +67,8 @@ module threshold_goal
     use accuracy, only: WARNING_LEN
     use adapt_driver, only: adapt_goal_t, refiner_t, adapt_level_t, adapt_levels, &
                             check_target, adapt_target_t, TARGET_ACTIVE, TARGET_MET, &
-                            TARGET_FLOOR, TARGET_STOPPED, no_estimate_outcome
+                            TARGET_FLOOR, TARGET_STOPPED, no_estimate_outcome, NONE_LEVELS, &
+                            absent_since, absence_confirmed
     use h_refiner, only: h_refiner_t, doerfler_marking
     use hp_levels, only: hp_refiner_t, HP_ESTIMATE
     use pencil_tracking, only: N_PROFILE_BINS, level_values_t
@@ -922,7 +923,8 @@ contains
     !> estimate (h), at the floor where round-off dominates its bar (hp: or where its last
     !> changes are within their round-off bounds, `settled`); a side without a value at the
     !> last NONE_LEVELS levels (h: over which the dofs at least doubled, as an h level adds
-    !> a fraction of them) is met as 'none'. A side whose value appears or vanishes
+    !> a fraction of them: adapt_driver's absence_confirmed, an eigen lambda's rule for 'no
+    !> positive mu' too) is met as 'none'. A side whose value appears or vanishes
     !> between levels has no bar (series_bar needs it on consecutive levels) and stays
     !> active, so it ends at a limit, named, never as met; one whose value has vanished for
     !> as long as 'none' needs is stopped then (h: whose limit is the memory; hp too). A
@@ -937,7 +939,6 @@ contains
         logical, intent(in) :: estimated
         integer, intent(in) :: level   !! the last level's number
         real(wp), intent(in) :: tolerance
-        integer, parameter :: NONE_LEVELS = 3
         real(wp) :: bar(2), roundoff(2)
         integer :: side, k, i, present_levels, before
         logical :: absent, present_all, has
@@ -976,15 +977,8 @@ contains
                     end if
                 end if
                 if (.not. t%active()) cycle
-                absent = k >= NONE_LEVELS
-                do i = max(1, k - NONE_LEVELS + 1), k
-                    absent = absent .and. .not. (this%levels(i)%found(side) .or. &
-                                                 this%levels(i)%collision(side))
-                end do
-                ! h: levels that add a fraction of the dofs each; the run without a value
-                ! must also double them
-                if (estimated .and. absent) absent = this%levels(k)%n_dofs >= 2* &
-                    this%levels(max(1, none_run(side)))%n_dofs
+                absent = absence_confirmed(side_has(side), [(this%levels(i)%n_dofs, i=1, k)], &
+                                           estimated)
                 present_all = k >= present_levels
                 do i = max(1, k - present_levels + 1), k
                     present_all = present_all .and. (this%levels(i)%found(side) .or. &
@@ -992,14 +986,13 @@ contains
                 end do
                 if (.not. has) then
                     if (.not. absent) cycle
-                    ! a value at an earlier level that has vanished is no 'none'
-                    before = findloc([(this%levels(i)%found(side) .or. &
-                        this%levels(i)%collision(side), i=1, k)], .true., 1, back=.true.)
+                    ! a value at an earlier level that has vanished is no 'none' (h and hp)
+                    before = findloc(side_has(side), .true., 1, back=.true.)
                     if (before == 0) then
                         call t%finish(TARGET_MET, SIDE_LABELS(side)//': none at '// &
                             trim(merge('h levels ', 'hp levels', estimated))//' '// &
-                            to_string(this%levels(merge(none_run(side), k - NONE_LEVELS + 1, &
-                                                        estimated))%level)//' to '// &
+                            to_string(this%levels(merge(absent_since(side_has(side)), &
+                                k - NONE_LEVELS + 1, estimated))%level)//' to '// &
                             to_string(level))
                     else
                         call t%finish(TARGET_STOPPED, trim(SIDE_LABELS(side))//': no value at '// &
@@ -1035,16 +1028,13 @@ contains
 
     contains
 
-        !> The first of the trailing levels without a value of side `s` (k + 1: none).
-        integer function none_run(s) result(first)
+        !> Per level: whether side `s` has a value (a pencil value or a collision onset).
+        function side_has(s) result(has_value)
             integer, intent(in) :: s
-            first = k + 1
-            do while (first > 1)
-                if (this%levels(first - 1)%found(s) .or. this%levels(first - 1)%collision(s)) &
-                    exit
-                first = first - 1
-            end do
-        end function none_run
+            logical :: has_value(k)
+            integer :: j
+            has_value = [(this%levels(j)%found(s) .or. this%levels(j)%collision(s), j=1, k)]
+        end function side_has
 
         !> Side `s` met at the last level; hp quotes that level's value (met_row).
         subroutine met(s)

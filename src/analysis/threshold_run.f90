@@ -150,8 +150,8 @@ contains
         character(len=*), intent(in) :: name
         type(status_t), intent(inout) :: verdict
         if (res%sweep%n_not_met > 0) call verdict%fail(STATUS_NOT_MET, name//': &adapt: '// &
-            to_string(res%sweep%n_not_met)//' of the sweep''s points with a positive mu '// &
-            'did not meet the tolerance, the first at '//res%sweep%not_met// &
+            to_string(res%sweep%n_not_met)//' of the sweep''s points did not meet the '// &
+            'tolerance, the first at '//res%sweep%not_met// &
             ' (the set is written)')
     end subroutine points_verdict
 

@@ -20,6 +20,10 @@
 !> the check takes above its tolerance climbs again where more levels can lower its error,
 !> and otherwise stops, the refiner saying why more levels would not help (&adapt p_max).
 !>
+!> A value a level does not have (no positive mu, no real pencil value on a side) is not
+!> taken as absent on one level: the loop refines on until absence_confirmed holds (a
+!> threshold side's 'none', an eigen lambda's 'no positive mu'), or a limit stops it short.
+!>
 !> With the default limits (max_levels = 0, max_dofs = 0) only the memory the machine has
 !> ends a loop that has not met its tolerance, never a level count.
 module adapt_driver
@@ -36,7 +40,11 @@ module adapt_driver
     implicit none
     private
     public :: adapt_levels, judge_target, check_target, no_estimate_outcome
-    public :: test_failing_level, injected_failure
+    public :: test_failing_level, injected_failure, absent_since, absence_confirmed
+
+    !> A value absent from this many levels in a row (h: over which the dofs at least
+    !> doubled) is confirmed absent (absence_confirmed)
+    integer, parameter, public :: NONE_LEVELS = 3
 
     integer, parameter, public :: TARGET_ACTIVE = 0    !! the loop still refines for it
     integer, parameter, public :: TARGET_MET = 1       !! its bar met the tolerance
@@ -447,19 +455,25 @@ contains
     !> first level has none, and a target stops without a value (`no_value`: why) or when it
     !> has stopped converging (`stalled`; `stall_what` names it). Both stop at the
     !> floating-point floor (the round-off part `roundoff` at least the rest of the bar).
+    !> `confirmed` (h): whether the level before had the value, to confirm the bar (default:
+    !> level >= 1; a value that appears after levels without it waits one level).
     subroutine judge_target(t, refiner, level, tolerance, dofs, has_value, no_value, bar, &
-                            roundoff, stalled, stall_what, missing)
+                            roundoff, stalled, stall_what, missing, confirmed)
         type(adapt_target_t), intent(inout) :: t
         class(refiner_t), intent(in) :: refiner
         integer, intent(in) :: level, dofs
         real(wp), intent(in) :: tolerance, bar, roundoff
         logical, intent(in) :: has_value, stalled
         character(len=*), intent(in) :: no_value, stall_what, missing
+        logical, intent(in), optional :: confirmed
+        logical :: confirmable
 
+        confirmable = level >= 1
+        if (present(confirmed)) confirmable = confirmed
         if (refiner%estimated()) then
             if (bar < 0.0_wp) then
                 call t%finish(TARGET_STOPPED, no_estimate_outcome(level, missing))
-            else if (bar <= tolerance .and. level >= 1) then
+            else if (bar <= tolerance .and. confirmable) then
                 call t%finish(TARGET_MET, 'tolerance '//given_real_text(tolerance)// &
                     ' met at level '//to_string(level)//': error bar '// &
                     short_real_text(bar)//', '//to_string(dofs)//' dofs')
@@ -491,6 +505,32 @@ contains
         outcome = 'tolerance not met: no error estimate at level '//to_string(level)//' ('// &
                   why//')'
     end function no_estimate_outcome
+
+    !> The first of the trailing levels without the value (`have` false; size(have) + 1
+    !> where the last level has it).
+    pure integer function absent_since(have) result(first)
+        logical, intent(in) :: have(:)
+        first = size(have) + 1
+        do while (first > 1)
+            if (have(first - 1)) exit
+            first = first - 1
+        end do
+    end function absent_since
+
+    !> Whether a value absent from the last levels (`have` per level, `dofs` their free
+    !> dofs) is confirmed absent: none at the last NONE_LEVELS levels and, with levels that
+    !> carry their own estimate (`estimated`: h, where a level may add a fraction of the
+    !> dofs), the dofs at least doubled over the run without it. One level's absence is no
+    !> answer: a coarse mesh can miss a value a finer one finds.
+    pure logical function absence_confirmed(have, dofs, estimated) result(confirmed)
+        logical, intent(in) :: have(:)
+        integer, intent(in) :: dofs(:)
+        logical, intent(in) :: estimated
+        integer :: first
+        first = absent_since(have)
+        confirmed = size(have) - first + 1 >= NONE_LEVELS
+        if (estimated .and. confirmed) confirmed = dofs(size(dofs)) >= 2*dofs(first)
+    end function absence_confirmed
 
     pure logical function target_is_active(this)
         class(adapt_target_t), intent(in) :: this

@@ -19,6 +19,8 @@ program test_eigen_goal
     use mesh, only: mesh_t
     use eigen_goal, only: adapt_eigen, adapted_eigen_t, HP_ESTIMATE
     use real_format, only: real_to_text
+    use strings, only: to_string
+    use adapt_driver, only: NONE_LEVELS
     implicit none
 
     !> The critical c_n of the reference scene (lambda = 5), from an adaptive P3 run to the
@@ -30,6 +32,7 @@ program test_eigen_goal
     call loop_reaches_tolerance(t)
     call meshes_keep_domain_and_contact(t)
     call limits_warn(t)
+    call absent_mu_is_confirmed(t)
     call refused_inputs(t)
     call hp_loop(hp)
     if (allocated(hp%levels)) then
@@ -157,6 +160,41 @@ contains
         call t%check('max_dofs below the start: bad input naming it', &
                      stat%code == STATUS_BAD_INPUT .and. index(stat%message, 'max_dofs') > 0)
     end subroutine limits_warn
+
+    !> lambda = 1 lies between the thresholds (-1.94, 1.94) of the reference square: no
+    !> positive mu, and no indicators to mark. The h loop refines every cell (bisection:
+    !> twice the cells per level) until NONE_LEVELS levels without a mu, over which the dofs
+    !> at least doubled, confirm the absence ('none, confirmed', met); with max_levels = 1
+    !> the two levels confirm nothing: not met, said why.
+    subroutine absent_mu_is_confirmed(t)
+        type(test_suite_t), intent(inout) :: t
+        type(adapted_eigen_t) :: out
+        type(status_t) :: stat
+        type(config_t) :: config
+        logical :: doubled
+        integer :: k
+        config = reference_config(2, 'p2', 1.0e-5_wp)
+        config%analysis%lambda = 1.0_wp
+        call run(config, out, stat)
+        call t%check('no positive mu: runs', stat%ok())
+        if (.not. stat%ok()) return
+        doubled = .true.
+        do k = 2, size(out%levels)
+            doubled = doubled .and. out%levels(k)%n_cells == 2*out%levels(k - 1)%n_cells
+        end do
+        call t%check('no positive mu: every cell refined, NONE_LEVELS levels, none with a mu', &
+                     size(out%levels) == NONE_LEVELS .and. doubled .and. &
+                     .not. any(out%levels%has_mu))
+        call t%check('no positive mu: met as none, confirmed, naming the levels', &
+                     out%converged .and. index(out%outcome, 'none, confirmed: no positive '// &
+                     'mu at h levels 0 to '//to_string(NONE_LEVELS - 1)//' (') == 1)
+        config%adapt%max_levels = 1
+        call run(config, out, stat)
+        call t%check('no positive mu, max_levels = 1: not met, the absence not confirmed', &
+                     stat%ok() .and. .not. out%converged .and. size(out%levels) == 2 .and. &
+                     index(out%outcome, 'max_levels = 1') > 0 .and. &
+                     index(out%outcome, 'its absence not confirmed') > 0)
+    end subroutine absent_mu_is_confirmed
 
     !> Quadrilaterals have no bisection, P4 no enriched space: refused, naming the cells.
     subroutine refused_inputs(t)
@@ -295,7 +333,9 @@ contains
     !> each alone: the levels do not depend on lambda, so each target ends where its own
     !> loop ends, with the same levels and mu (1e-12: the same factor, solved at another
     !> moment); lambda = 1 lies between the thresholds (-1.94, 1.94), where no positive mu
-    !> exists, so its target stops at the first level while the others climb on; the square is
+    !> exists: its target climbs the NONE_LEVELS levels that confirm the absence (as a
+    !> threshold side's 'none'), met as 'none, confirmed', while the others climb on (the
+    !> shared climb confirms it by the rule of its own loop); the square is
     !> its own mirror image (x -> 1 - x turns lambda into -lambda), so c_n at -5 and 5 agree
     !> within the sum of their bars (the graded meshes are not mirrored).
     subroutine one_climb_serves_many_lambdas(t)
@@ -334,9 +374,12 @@ contains
                 levels(i) = n
             end associate
         end do
-        call t%check('lambda = 1: no positive mu, stopped at the first level, the others on', &
-                     levels(2) == 1 .and. .not. both(2)%levels(1)%has_mu .and. levels(3) > 1 &
-                     .and. index(both(2)%outcome, 'no positive mu at level 1') > 0)
+        call t%check('lambda = 1: no positive mu, confirmed over NONE_LEVELS levels, the '// &
+                     'others on', levels(2) == NONE_LEVELS .and. &
+                     .not. any(both(2)%levels%has_mu) .and. both(2)%converged .and. &
+                     levels(3) > NONE_LEVELS .and. &
+                     index(both(2)%outcome, 'none, confirmed: no positive mu at hp levels 1 to '// &
+                           to_string(NONE_LEVELS)) == 1)
         call t%check('mirror image: c_n(-5) = c_n(5) within their bars', &
                      abs(mu(1) - mu(3)) <= (bar(1) + bar(3))*max(mu(1), mu(3)))
     end subroutine one_climb_serves_many_lambdas

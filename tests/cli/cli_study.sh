@@ -213,5 +213,34 @@ sed 's/tolerance = 1e-6/tolerance = 1e-10, max_levels = 1/' f.nml | sed "s/, 'br
 rc=$?
 check 'a tolerance not met: exit 8, rows with exit status 8, not converged, the reason given' \
     '[[ $rc -eq 8 && $(jq "[.rows[] | select(.exit_status == 8 and (.converged | not) and (.reason | test(\"tolerance\")))] | length" missed/study.json) -eq 2 ]]'
+# A lambda without a positive mu (1, between the thresholds -1.94 and 1.94): its row is
+# converged where the run confirmed the absence (three hp levels without a mu, and no point
+# of the run missed its tolerance), not where a limit came first (max_levels = 2: two
+# levels confirm nothing; the run exits 8 and the row says why).
+cat >n.nml <<'EOF'
+&study
+    geometry = 'rectangle'
+    poisson = 0.3
+    lambda = 1.0, 5.0
+    quantities = 'c_n'
+/
+&mesh
+    nx = 2, ny = 2, element = 'p1'
+/
+&adapt
+    tolerance = 1e-4
+/
+EOF
+"${study[@]}" -j 2 -o none n.nml >none.out 2>none.err
+rc=$?
+check 'no positive mu at lambda = 1, confirmed: exit 0, its row converged' \
+    '[[ $rc -eq 0 && $(jq -r ".rows[] | select(.lambda == 1) | \"\(.value) \(.converged) \(.reason)\"" none/study.json) == "null true no positive mu at this lambda" ]]'
+sed 's/tolerance = 1e-4/tolerance = 1e-4, max_levels = 2/' n.nml >n2.nml
+"${study[@]}" -j 2 -o none2 n2.nml >none2.out 2>none2.err
+rc=$?
+check '... max_levels = 2, the absence not confirmed: exit 8, the row not converged, said why' \
+    '[[ $rc -eq 8 && $(jq -r ".rows[] | select(.lambda == 1) | .converged" none2/study.json) == false ]] &&
+     jq -r ".rows[] | select(.lambda == 1) | .reason" none2/study.json |
+         grep -q "not known to be confirmed.*its absence not confirmed"'
 check '--help says how to use it' '"${study[@]}" --help | grep -q "^usage: nceig-study"'
 cli_end

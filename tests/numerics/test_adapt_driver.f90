@@ -246,7 +246,8 @@ program test_adapt_driver
     use sparse_cholesky, only: cholesky_t
     use error_bar, only: floor_outcome, stall_outcome
     use adapt_driver, only: refiner_t, adapt_goal_t, adapt_level_t, adapt_target_t, &
-                            adapt_levels, judge_target, TARGET_ACTIVE, TARGET_STOPPED
+                            adapt_levels, judge_target, TARGET_ACTIVE, TARGET_STOPPED, &
+                            absent_since, absence_confirmed, NONE_LEVELS
     implicit none
 
     real(wp), parameter :: TOLERANCE = 1.0e-3_wp
@@ -258,6 +259,7 @@ program test_adapt_driver
     call max_dofs_stops_before_the_level(t)
     call refused_levels_stop_the_loop(t)
     call judge_target_rules(t)
+    call absence_rules(t)
     call a_failed_check_climbs_on(t)
     call a_capped_check_stops(t)
     call t%report()
@@ -426,6 +428,42 @@ contains
                      'at 64 dofs')
 
     end subroutine judge_target_rules
+
+    !> What confirms a value absent (a threshold side's 'none', an eigen lambda's 'no
+    !> positive mu'), case by case: NONE_LEVELS levels without it in a row, on h levels over
+    !> which the dofs at least doubled (a level may add a fraction of them), on hp levels
+    !> whatever the dofs; a value at the last level, or fewer levels, confirm nothing. And a
+    !> value that has just appeared on h levels meets no tolerance before a level confirms it.
+    subroutine absence_rules(t)
+        type(test_suite_t), intent(inout) :: t
+        type(counting_refiner_t) :: h
+        type(adapt_target_t) :: x
+        logical, parameter :: F = .false., T_ = .true.
+        call t%check('NONE_LEVELS is three, as a threshold side''s none needs', NONE_LEVELS == 3)
+        call t%check('absent_since: the first of the trailing levels without the value', &
+                     absent_since([T_, F, F]) == 2 .and. absent_since([F, F, F]) == 1 .and. &
+                     absent_since([F, T_]) == 3 .and. absent_since([logical ::]) == 1)
+        call t%check('h: three levels without, the dofs doubled: confirmed', &
+                     absence_confirmed([F, F, F], [40, 72, 144], .true.))
+        call t%check('h: three levels without, the dofs not doubled: not yet', &
+                     .not. absence_confirmed([F, F, F], [40, 50, 79], .true.))
+        call t%check('h: the run without counts from its first level', &
+                     absence_confirmed([T_, F, F, F], [10, 40, 60, 80], .true.) .and. &
+                     .not. absence_confirmed([T_, F, F, F], [10, 41, 60, 81], .true.))
+        call t%check('two levels without: not yet, whatever the dofs', &
+                     .not. absence_confirmed([F, F], [40, 1000], .true.) .and. &
+                     .not. absence_confirmed([F, F], [40, 1000], .false.))
+        call t%check('hp: three levels without: confirmed, whatever the dofs', &
+                     absence_confirmed([F, F, F], [40, 50, 60], .false.))
+        call t%check('a value at the last level: no absence', &
+                     .not. absence_confirmed([F, F, F, T_], [1, 2, 4, 8], .true.))
+        h%with_estimates = .true.
+        x%outcome = ''
+        call judge_target(x, h, 3, TOLERANCE, 64, .true., 'none here', 0.5e-3_wp, -1.0_wp, &
+                          .false., 'it', 'why', confirmed=.false.)
+        call t%check('h: a value new at level 3, within the tolerance: still active', &
+                     x%state == TARGET_ACTIVE)
+    end subroutine absence_rules
 
     !> `x` judged at `level` with `bar` and the rest as given (64 dofs, the stall named
     !> 'it', the missing estimate 'why', no value 'none here').
