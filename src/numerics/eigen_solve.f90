@@ -18,7 +18,7 @@ module eigen_solve
     use sparse_cholesky, only: cholesky_t
     use contact_reduction, only: factor_stiffness, scaled_reduced_matrix, lift_share_t
     use memory_budget, only: check_contact_memory, contact_peak_blocks
-    use contact_boundary, only: assemble_b
+    use contact_boundary, only: assemble_b, fill_b
     use spectrum, only: spectrum_t
     use dense_eigen, only: dense_spectrum
     use accuracy, only: accuracy_warnings, roundoff_warnings, WARNING_LEN, FORWARD_ERROR_BOUND
@@ -455,7 +455,10 @@ contains
         allocate (res%spec%lambda_sensitivity(res%spec%n()), source=-1.0_wp)
         if (res%spec%lowest_positive() /= 1 .or. .not. allocated(res%spec%left)) return
         if (.not. abs(res%lambda) > 0.0_wp .or. size(res%spec%vectors, 2) < 1) return
-        call assemble_b(prob%contact, prob%dofs%n_free, 2.0_wp*res%lambda, b_double, stat)
+        ! B(2 lambda) on res%b's sparsity: the values of assemble_b to the last bit (fill_b),
+        ! without building the pattern again at every point of a sweep
+        b_double = res%b
+        call fill_b(prob%contact, 2.0_wp*res%lambda, b_double, stat)
         if (.not. stat%ok()) return
         phi = real(res%spec%vectors(:, 1), wp)
         allocate (b_phi(size(phi)), b_double_phi(size(phi)))
