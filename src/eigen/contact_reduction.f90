@@ -70,8 +70,9 @@ module contact_reduction
 contains
 
     !> A = (lambda Kt_nt - Kt_nn) M, the reduced p x p matrix whose eigenvalues are theta =
-    !> 1/mu (docs/model.md, section 6): the one place it is formed. M is sparse (a band along
-    !> Gamma_C), so the product costs O(p^2) per lambda, not O(p^3).
+    !> 1/mu (docs/model.md, section 6): the one place it is formed (scaled_reduced_matrix
+    !> forms its scaled copy by the same operations). M is sparse (a band along Gamma_C), so
+    !> the product costs O(p^2) per lambda, not O(p^3).
     pure function reduced_matrix(kt_nn, kt_nt, mass, lambda) result(a)
         real(wp), intent(in) :: kt_nn(:, :), kt_nt(:, :)   !! (p, p)
         type(csr_matrix_t), intent(in) :: mass
@@ -98,7 +99,21 @@ contains
         type(csr_matrix_t), intent(in) :: mass
         real(wp), intent(in) :: lambda
         real(wp) :: a(size(kt_nn, 1), size(kt_nn, 2))
-        a = reduced_matrix(kt_nn/lambda_unit(lambda), kt_nt, mass, lambda/lambda_unit(lambda))
+        real(wp) :: scaled, inverse
+        integer :: j, k, c
+        ! reduced_matrix(Kt_nn / unit, Kt_nt, M, lambda / unit) to the last bit (the same
+        ! products and sums in the same order; / unit and * (1 / unit) are the same exact
+        ! scaling by a power of two), without its two p x p temporaries: an hp sweep forms
+        ! this matrix at every point
+        scaled = lambda/lambda_unit(lambda)
+        inverse = 1.0_wp/lambda_unit(lambda)
+        do j = 1, size(a, 2)
+            a(:, j) = 0.0_wp
+            do k = mass%row_start(j), mass%row_start(j + 1) - 1
+                c = mass%col(k)
+                a(:, j) = a(:, j) + mass%val(k)*(scaled*kt_nt(:, c) - kt_nn(:, c)*inverse)
+            end do
+        end do
     end function scaled_reduced_matrix
 
     elemental real(wp) function mu_of_theta_real(theta, unit) result(mu)
