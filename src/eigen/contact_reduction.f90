@@ -397,113 +397,101 @@ contains
         type(lift_share_t), intent(in), optional :: share
         type(lift_share_t) :: own
         if (present(share)) then
-            call lift_on_tail(k, b, chol, contact, lambda, mu, y, n_keep, share, residual, &
-                              vectors, stat)
+            call lift(share)
         else
             call lift_share(k, chol, contact, own, stat)
-            if (.not. stat%ok()) return
-            call lift_on_tail(k, b, chol, contact, lambda, mu, y, n_keep, own, residual, &
-                              vectors, stat)
+            if (stat%ok()) call lift(own)
         end if
-    end subroutine lift_eigenvectors
 
-    !> lift_eigenvectors with its shared data `share`.
-    subroutine lift_on_tail(k, b, chol, contact, lambda, mu, y, n_keep, share, residual, &
-                            vectors, stat)
-        type(csr_matrix_t), intent(in) :: k, b
-        type(cholesky_t), intent(in) :: chol
-        type(contact_t), intent(in) :: contact
-        real(wp), intent(in) :: lambda
-        complex(wp), intent(in) :: mu(:)         !! (n_ev)
-        complex(wp), intent(in) :: y(:, :)       !! (p, n_ev)
-        integer, intent(in) :: n_keep
-        type(lift_share_t), intent(in) :: share
-        real(wp), allocatable, intent(out) :: residual(:)
-        complex(wp), allocatable, intent(out) :: vectors(:, :)
-        type(status_t), intent(out) :: stat
-        real(wp), allocatable :: w(:, :), g(:, :), my(:), w_tail(:, :)
-        complex(wp), allocatable :: phi(:)
-        integer, allocatable :: columns(:), first_column(:)
-        real(wp) :: direction(2), k_norm, b_norm
-        integer :: n_ev, n_free, block_columns, first, last, i, c, n_cols, m, a
+    contains
 
-        n_ev = size(mu)
-        n_free = k%n()
-        ! lambda t - n up to a factor, which only scales phi: divided by lambda_unit, so that
-        ! phi and B phi (~ lambda^2) cannot overflow in the backward error (they gave
-        ! Infinity from |lambda| ~ 1e155)
-        direction = contact%slip_direction(lambda, lambda_unit(lambda))
-        k_norm = share%k_norm
-        b_norm = b%norm_inf()
-        allocate (residual(n_ev), vectors(n_free, min(n_keep, n_ev)))
-        m = size(share%l_tail, 1)
-        allocate (columns(n_ev), first_column(n_ev), my(contact%p()), phi(n_free))
-        do i = 1, n_ev
-            columns(i) = merge(2, 1, any(abs(aimag(y(:, i))) > 0.0_wp))
-        end do
-        do i = 2, n_ev
-            if (columns(i) /= 2 .or. columns(i - 1) /= 2) cycle
-            ! exact conjugates, as LAPACK and ARPACK return the members of a pair
-            if (abs(mu(i) - conjg(mu(i - 1))) <= 0.0_wp .and. &
-                maxval(abs(y(:, i) - conjg(y(:, i - 1)))) <= 0.0_wp) columns(i) = 0
-        end do
-        block_columns = lift_block_columns(n_free)
-        first = 1
-        do while (first <= n_ev)
-            ! A partner (0 columns) always fits, so it joins its first member's block.
-            n_cols = 0
-            last = first - 1
-            do while (last < n_ev)
-                if (n_cols + columns(last + 1) > block_columns .and. n_cols > 0) exit
-                last = last + 1
-                n_cols = n_cols + columns(last)
+        !> The lift on the shared data `s`.
+        subroutine lift(s)
+            type(lift_share_t), intent(in) :: s
+            real(wp), allocatable :: w(:, :), g(:, :), my(:), w_tail(:, :)
+            complex(wp), allocatable :: phi(:)
+            integer, allocatable :: columns(:), first_column(:)
+            real(wp) :: direction(2), k_norm, b_norm
+            integer :: n_ev, n_free, block_columns, first, last, i, c, n_cols, m, a
+
+            n_ev = size(mu)
+            n_free = k%n()
+            ! lambda t - n up to a factor, which only scales phi: divided by lambda_unit, so that
+            ! phi and B phi (~ lambda^2) cannot overflow in the backward error (they gave
+            ! Infinity from |lambda| ~ 1e155)
+            direction = contact%slip_direction(lambda, lambda_unit(lambda))
+            k_norm = s%k_norm
+            b_norm = b%norm_inf()
+            allocate (residual(n_ev), vectors(n_free, min(n_keep, n_ev)))
+            m = size(s%l_tail, 1)
+            allocate (columns(n_ev), first_column(n_ev), my(contact%p()), phi(n_free))
+            do i = 1, n_ev
+                columns(i) = merge(2, 1, any(abs(aimag(y(:, i))) > 0.0_wp))
             end do
-            ! right-hand sides (lambda T' - N') M y in the trailing pivot order, then L_c^-1
-            allocate (w_tail(m, n_cols), source=0.0_wp)
-            c = 0
-            do i = first, last
-                first_column(i) = c + 1
-                if (columns(i) == 0) cycle
-                call contact%mass%matvec(real(y(:, i), wp), my)
-                do a = 1, size(my)
-                    w_tail(share%slot(:, a), c + 1) = direction*my(a)
+            do i = 2, n_ev
+                if (columns(i) /= 2 .or. columns(i - 1) /= 2) cycle
+                ! exact conjugates, as LAPACK and ARPACK return the members of a pair
+                if (abs(mu(i) - conjg(mu(i - 1))) <= 0.0_wp .and. &
+                    maxval(abs(y(:, i) - conjg(y(:, i - 1)))) <= 0.0_wp) columns(i) = 0
+            end do
+            block_columns = lift_block_columns(n_free)
+            first = 1
+            do while (first <= n_ev)
+                ! A partner (0 columns) always fits, so it joins its first member's block.
+                n_cols = 0
+                last = first - 1
+                do while (last < n_ev)
+                    if (n_cols + columns(last + 1) > block_columns .and. n_cols > 0) exit
+                    last = last + 1
+                    n_cols = n_cols + columns(last)
                 end do
-                if (columns(i) == 2) then
-                    call contact%mass%matvec(aimag(y(:, i)), my)
+                ! right-hand sides (lambda T' - N') M y in the trailing pivot order, then L_c^-1
+                allocate (w_tail(m, n_cols), source=0.0_wp)
+                c = 0
+                do i = first, last
+                    first_column(i) = c + 1
+                    if (columns(i) == 0) cycle
+                    call contact%mass%matvec(real(y(:, i), wp), my)
                     do a = 1, size(my)
-                        w_tail(share%slot(:, a), c + 2) = direction*my(a)
+                        w_tail(s%slot(:, a), c + 1) = direction*my(a)
                     end do
-                end if
-                c = c + columns(i)
+                    if (columns(i) == 2) then
+                        call contact%mass%matvec(aimag(y(:, i)), my)
+                        do a = 1, size(my)
+                            w_tail(s%slot(:, a), c + 2) = direction*my(a)
+                        end do
+                    end if
+                    c = c + columns(i)
+                end do
+                call dtrsm('L', 'L', 'N', 'N', m, n_cols, 1.0_wp, s%l_tail, m, w_tail, m)
+                allocate (w(n_free, n_cols), source=0.0_wp)
+                w(n_free - m + 1:, :) = w_tail
+                deallocate (w_tail)
+                allocate (g(n_free, n_cols))
+                call chol%backward(w, g, stat)
+                if (.not. stat%ok()) return
+                deallocate (w)
+                do i = first, last
+                    c = first_column(i)
+                    select case (columns(i))
+                    case (0)
+                        phi = conjg(phi)   ! the partner of the pair just recorded
+                    case (1)
+                        phi = cmplx(g(:, c), 0.0_wp, wp)
+                    case default
+                        phi = cmplx(g(:, c), g(:, c + 1), wp)
+                    end select
+                    residual(i) = backward_error(k, b, mu(i), phi, k_norm, b_norm)
+                    if (i <= size(vectors, 2)) then
+                        vectors(:, i) = phi
+                        call normalise_mode(vectors(:, i))
+                    end if
+                end do
+                deallocate (g)
+                first = last + 1
             end do
-            call dtrsm('L', 'L', 'N', 'N', m, n_cols, 1.0_wp, share%l_tail, m, w_tail, m)
-            allocate (w(n_free, n_cols), source=0.0_wp)
-            w(n_free - m + 1:, :) = w_tail
-            deallocate (w_tail)
-            allocate (g(n_free, n_cols))
-            call chol%backward(w, g, stat)
-            if (.not. stat%ok()) return
-            deallocate (w)
-            do i = first, last
-                c = first_column(i)
-                select case (columns(i))
-                case (0)
-                    phi = conjg(phi)   ! the partner of the pair just recorded
-                case (1)
-                    phi = cmplx(g(:, c), 0.0_wp, wp)
-                case default
-                    phi = cmplx(g(:, c), g(:, c + 1), wp)
-                end select
-                residual(i) = backward_error(k, b, mu(i), phi, k_norm, b_norm)
-                if (i <= size(vectors, 2)) then
-                    vectors(:, i) = phi
-                    call normalise_mode(vectors(:, i))
-                end if
-            end do
-            deallocate (g)
-            first = last + 1
-        end do
-    end subroutine lift_on_tail
+        end subroutine lift
+    end subroutine lift_eigenvectors
 
     !> Every array of the blocks deallocated, as soon as their user is done with them (and
     !> explicitly where the blocks are a component of a goal inside another goal, which
