@@ -14,6 +14,9 @@
 #                 changed, the sweep's lambdas as the boundary search), CPU summed
 #   wall -j1, -j2 the study's wall time on one and on two jobs (fresh folders each)
 # NCEIG (default build/nceig) is the program; GNU time is needed (/usr/bin/time).
+# NCEIG_BEFORE, another nceig (say the program before a change, with its nceig-study-plan
+# beside it): its study is run too, right before NCEIG's in every repeat, and its column
+# printed beside (the per-point runs are NCEIG's alone).
 set -uo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 export NCEIG=${NCEIG:-$root/build/nceig}
@@ -43,17 +46,34 @@ cpu_of() { awk '!/^Command/ { printf "%.2f", $2 + $3 }' "$1"; }
 wall_of() { awk '!/^Command/ { printf "%.2f", $1 }' "$1"; }
 median() { sort -g | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
 
-declare -a study_cpu tasks_cpu point_cpu wall1 wall2
+declare -a study_cpu tasks_cpu point_cpu wall1 wall2 before_study before_tasks before_wall1 \
+    before_wall2
+# study_runs NCEIG: the study on one job then two (fresh folders), its CPU and wall times
+study_runs() {
+    rm -rf "$work/j1" "$work/j2"
+    NCEIG=$1 /usr/bin/time -f '%e %U %S' -o "$work/t1" bash "$study" -j 1 -o "$work/j1" \
+        "$work/bench.nml" >/dev/null 2>"$work/j1.err"
+    NCEIG=$1 /usr/bin/time -f '%e %U %S' -o "$work/t2" bash "$study" -j 2 -o "$work/j2" \
+        "$work/bench.nml" >/dev/null 2>"$work/j2.err"
+    run_cpu=$(cpu_of "$work/t1")
+    run_wall1=$(wall_of "$work/t1")
+    run_wall2=$(wall_of "$work/t2")
+    run_tasks=$(cat "$work"/j1/tasks/*/result | sed -n 's/^[a-z]*_cpu=//p' | awk '{ s += $1 } END { printf "%.2f", s }')
+}
 for ((r = 1; r <= repeats; r++)); do
-    rm -rf "$work/j1" "$work/j2" "$work/points"
-    /usr/bin/time -f '%e %U %S' -o "$work/t1" bash "$study" -j 1 -o "$work/j1" "$work/bench.nml" \
-        >/dev/null 2>"$work/j1.err"
-    study_cpu+=("$(cpu_of "$work/t1")")
-    wall1+=("$(wall_of "$work/t1")")
-    tasks_cpu+=("$(cat "$work"/j1/tasks/*/result | sed -n 's/^[a-z]*_cpu=//p' | awk '{ s += $1 } END { printf "%.2f", s }')")
-    /usr/bin/time -f '%e %U %S' -o "$work/t2" bash "$study" -j 2 -o "$work/j2" "$work/bench.nml" \
-        >/dev/null 2>"$work/j2.err"
-    wall2+=("$(wall_of "$work/t2")")
+    if [[ -n ${NCEIG_BEFORE:-} ]]; then
+        study_runs "$NCEIG_BEFORE"
+        before_study+=("$run_cpu")
+        before_tasks+=("$run_tasks")
+        before_wall1+=("$run_wall1")
+        before_wall2+=("$run_wall2")
+    fi
+    rm -rf "$work/points"
+    study_runs "$NCEIG"
+    study_cpu+=("$run_cpu")
+    tasks_cpu+=("$run_tasks")
+    wall1+=("$run_wall1")
+    wall2+=("$run_wall2")
     # One nceig run per point, on one BLAS thread, from the study's own task inputs.
     : >"$work/points.cpu"
     for task in "$work"/j1/tasks/*/; do
@@ -77,13 +97,32 @@ pc=$(printf '%s\n' "${point_cpu[@]}" | median)
 w1=$(printf '%s\n' "${wall1[@]}" | median)
 w2=$(printf '%s\n' "${wall2[@]}" | median)
 echo "study: 3 geometries x $(wc -w <<<"$nu_list") nu x $n_lambda lambdas ($n_tasks tasks, $n_points c_n points), hp to $tol; medians of $repeats; load $(cut -d' ' -f1-3 /proc/loadavg)"
-printf '| %-34s | %10s |\n' quantity value
-printf '|%s|%s|\n' "------------------------------------" "------------"
-printf '| %-34s | %8s s |\n' "study CPU (-j 1, all processes)" "$sc"
-printf '| %-34s | %8s s |\n' "sum of its nceig runs' CPU" "$tc"
-printf '| %-34s | %10s |\n' "study / its runs" "$(awk -v a="$sc" -v b="$tc" 'BEGIN { printf "%.2f", a / b }')"
-printf '| %-34s | %8s s |\n' "one nceig run per point, CPU" "$pc"
-printf '| %-34s | %10s |\n' "per point / study" "$(awk -v a="$pc" -v b="$sc" 'BEGIN { printf "%.1f", a / b }')"
-printf '| %-34s | %8s s |\n' "wall -j 1" "$w1"
-printf '| %-34s | %8s s |\n' "wall -j 2" "$w2"
-printf '| %-34s | %10s |\n' "speed-up -j 2 / -j 1" "$(awk -v a="$w1" -v b="$w2" 'BEGIN { printf "%.2f", a / b }')"
+ratio() { awk -v a="$1" -v b="$2" -v f="$3" 'BEGIN { printf f, a / b }'; }
+# row NAME VALUE [BEFORE]: a line of the table, the before column when NCEIG_BEFORE is set
+row() {
+    if [[ -n ${NCEIG_BEFORE:-} ]]; then
+        printf '| %-34s | %12s | %12s |\n' "$1" "$3" "$2"
+    else
+        printf '| %-34s | %12s |\n' "$1" "$2"
+    fi
+}
+if [[ -n ${NCEIG_BEFORE:-} ]]; then
+    bsc=$(printf '%s\n' "${before_study[@]}" | median)
+    btc=$(printf '%s\n' "${before_tasks[@]}" | median)
+    bw1=$(printf '%s\n' "${before_wall1[@]}" | median)
+    bw2=$(printf '%s\n' "${before_wall2[@]}" | median)
+    printf '| %-34s | %12s | %12s |\n' quantity "NCEIG_BEFORE" NCEIG
+    printf '|%s|%s|%s|\n' "------------------------------------" "--------------" "--------------"
+else
+    bsc=1 btc=1 bw1=1 bw2=1
+    printf '| %-34s | %12s |\n' quantity value
+    printf '|%s|%s|\n' "------------------------------------" "--------------"
+fi
+row "study CPU (-j 1, all processes)" "$sc s" "$bsc s"
+row "sum of its nceig runs' CPU" "$tc s" "$btc s"
+row "study / its runs" "$(ratio "$sc" "$tc" %.2f)" "$(ratio "$bsc" "$btc" %.2f)"
+row "one nceig run per point, CPU" "$pc s" "$pc s"
+row "per point / study" "$(ratio "$pc" "$sc" %.1f)" "$(ratio "$pc" "$bsc" %.1f)"
+row "wall -j 1" "$w1 s" "$bw1 s"
+row "wall -j 2" "$w2 s" "$bw2 s"
+row "speed-up -j 2 / -j 1" "$(ratio "$w1" "$w2" %.2f)" "$(ratio "$bw1" "$bw2" %.2f)"

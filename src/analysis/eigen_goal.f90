@@ -24,7 +24,7 @@ module eigen_goal
     use sparse_cholesky, only: cholesky_t
     use csr_matrix, only: csr_matrix_t
     use contact_boundary, only: b_pattern, fill_b
-    use contact_reduction, only: contact_flexibility
+    use contact_reduction, only: contact_flexibility, lift_share, lift_share_t
     use eigen_solve, only: eigen_result_t, solve_eigen, estimate_eigen, eigen_with_factor, &
                            choose_solver
     use accuracy, only: WARNING_LEN, MU_VANISHED
@@ -247,6 +247,7 @@ contains
         type(cholesky_t), pointer :: chol
         real(wp), allocatable :: kt_nn(:, :), kt_nt(:, :)
         type(csr_matrix_t) :: b_level   !! B's sparsity on the hp level, for every lambda
+        type(lift_share_t) :: share     !! the lifts' data on the level's factor
         integer :: i
 
         chol => own
@@ -257,11 +258,14 @@ contains
                     kt_nn = kt_nn_given
                     kt_nt = kt_nt_given
                 end if
+                if (this%any_active() .and. wants_share(this, level%prob%contact%p())) &
+                    call lift_share(level%prob%k, given, level%prob%contact, share, stat)
+                if (.not. stat%ok()) return
             else
                 call refiner%factor(level, own, timings, stat)
                 if (.not. stat%ok()) return
                 if (this%any_active()) call level_blocks(this, level%prob, own, kt_nn, kt_nt, &
-                                                         timings, stat)
+                                                         share, timings, stat)
                 if (.not. stat%ok()) then
                     call own%free()
                     return
@@ -322,13 +326,8 @@ contains
             call fill_b(level%prob%contact, res%lambda, res%b, stat)
             if (.not. stat%ok()) return
             res%solver = choose_solver(this%options, level%prob%contact%p())
-            if (allocated(kt_nn)) then
-                call eigen_with_factor(scn, level%prob, this%options, chol, res, timings, stat, &
-                                       kt_nn, kt_nt, lowest_only=this%lowest_only)
-            else
-                call eigen_with_factor(scn, level%prob, this%options, chol, res, timings, stat, &
-                                       lowest_only=this%lowest_only)
-            end if
+            call solve_point(scn, level%prob, this%options, chol, kt_nn, kt_nt, share, &
+                             this%lowest_only, res, timings, stat)
             if (.not. stat%ok()) return
             k = res%spec%lowest_positive()
             if (k > 0) then
@@ -432,6 +431,7 @@ contains
         type(eigen_result_t) :: res
         real(wp), allocatable :: kt_nn(:, :), kt_nt(:, :)
         type(csr_matrix_t) :: b_check   !! B's sparsity on the check's level
+        type(lift_share_t) :: share     !! the lifts' data on the check's factor
         real(wp) :: series, bar, begin
         character(len=:), allocatable :: why
         integer :: i, k
@@ -454,7 +454,8 @@ contains
                     if (stat%ok()) call refiner%factor(check, chol, timings, stat)
                     if (.not. stat%ok()) return
                     built = .true.
-                    call level_blocks(this, check%prob, chol, kt_nn, kt_nt, timings, stat)
+                    call level_blocks(this, check%prob, chol, kt_nn, kt_nt, share, timings, &
+                                      stat)
                     if (.not. stat%ok()) exit
                     call b_pattern(check%prob%contact, check%prob%dofs%n_free, b_check)
                 end if
@@ -463,13 +464,8 @@ contains
                 call fill_b(check%prob%contact, res%lambda, res%b, stat)
                 if (.not. stat%ok()) exit
                 res%solver = choose_solver(this%options, check%prob%contact%p())
-                if (allocated(kt_nn)) then
-                    call eigen_with_factor(scn, check%prob, this%options, chol, res, timings, &
-                                           stat, kt_nn, kt_nt, lowest_only=this%lowest_only)
-                else
-                    call eigen_with_factor(scn, check%prob, this%options, chol, res, timings, &
-                                           stat, lowest_only=this%lowest_only)
-                end if
+                call solve_point(scn, check%prob, this%options, chol, kt_nn, kt_nt, share, &
+                                 this%lowest_only, res, timings, stat)
                 if (.not. stat%ok()) exit
                 k = res%spec%lowest_positive()
                 if (k > 0) call refine_level_mu(check, tolerance, res, k, stat)
@@ -511,25 +507,71 @@ contains
                           seconds_text(wall_time() - begin)//' s')
     end subroutine eigen_goal_check
 
+    !> The eigen solve of `res` (res%lambda, res%b and res%solver set) on `prob` factored in
+    !> `chol`, with the level's blocks and the lifts' shared data where it has them.
+    subroutine solve_point(scn, prob, options, chol, kt_nn, kt_nt, share, lowest_only, res, &
+                           timings, stat)
+        type(scene_t), intent(in) :: scn
+        type(problem_t), intent(in) :: prob
+        type(eigen_options_t), intent(in) :: options
+        type(cholesky_t), intent(in) :: chol
+        real(wp), allocatable, intent(in) :: kt_nn(:, :), kt_nt(:, :)
+        type(lift_share_t), intent(in) :: share
+        logical, intent(in) :: lowest_only
+        type(eigen_result_t), intent(inout) :: res
+        type(timings_t), intent(inout) :: timings
+        type(status_t), intent(out) :: stat
+        if (allocated(kt_nn) .and. allocated(share%l_tail)) then
+            call eigen_with_factor(scn, prob, options, chol, res, timings, stat, kt_nn, kt_nt, &
+                                   lowest_only=lowest_only, share=share)
+        else if (allocated(kt_nn)) then
+            call eigen_with_factor(scn, prob, options, chol, res, timings, stat, kt_nn, kt_nt, &
+                                   lowest_only=lowest_only)
+        else if (allocated(share%l_tail)) then
+            call eigen_with_factor(scn, prob, options, chol, res, timings, stat, &
+                                   lowest_only=lowest_only, share=share)
+        else
+            call eigen_with_factor(scn, prob, options, chol, res, timings, stat, &
+                                   lowest_only=lowest_only)
+        end if
+    end subroutine solve_point
+
     !> Kt_nn and Kt_nt of an hp level factored in `chol` (contact dofs last), where the goal
     !> solves with them (wants_blocks): they do not depend on lambda, so a level forms them
     !> once for all its lambdas instead of once per lambda (the dense solver's largest cost
     !> after dgeevx). Left unallocated otherwise: ARPACK applies them through the factor.
-    subroutine level_blocks(goal, prob, chol, kt_nn, kt_nt, timings, stat)
+    !> `share`, the lifts' data on `chol` (wants_share), is made from the same trailing block.
+    subroutine level_blocks(goal, prob, chol, kt_nn, kt_nt, share, timings, stat)
         class(eigen_goal_t), intent(in) :: goal
         type(problem_t), intent(in) :: prob
         type(cholesky_t), intent(in) :: chol
         real(wp), allocatable, intent(out) :: kt_nn(:, :), kt_nt(:, :)
+        type(lift_share_t), intent(out) :: share
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
         real(wp) :: start
-        if (.not. wants_blocks(goal, prob%contact%p())) return
+        if (.not. wants_blocks(goal, prob%contact%p())) then
+            if (wants_share(goal, prob%contact%p())) &
+                call lift_share(prob%k, chol, prob%contact, share, stat)
+            return
+        end if
         start = wall_time()
-        call contact_flexibility(chol, prob%contact, kt_nn, kt_nt, stat)
+        call contact_flexibility(chol, prob%contact, kt_nn, kt_nt, stat, prob%k, share)
         if (stat%ok()) call timings%add(PHASE_REDUCTION, wall_time() - start, &
             ': contact blocks of K^-1, '//to_string(prob%contact%p())//' x '// &
             to_string(prob%contact%p())//', once for the level''s lambdas')
     end subroutine level_blocks
+
+    !> Whether the goal's solves on a level of p contact functions lift their eigenvectors
+    !> through the factor's trailing block (the dense solver and the reduced operator; the
+    !> full operator's vectors need no lift and it keeps nothing of order p^2): the block and
+    !> ||K|| are then made once for the level's lambdas (lift_share_t), not once per lambda.
+    logical function wants_share(goal, p)
+        class(eigen_goal_t), intent(in) :: goal
+        integer, intent(in) :: p
+        wants_share = choose_solver(goal%options, p) == SOLVER_DENSE .or. &
+                      goal%options%operator == OPERATOR_REDUCED
+    end function wants_share
 
     !> Whether the goal's solves on a level of p contact functions use its contact blocks:
     !> the dense solver's, and with lowest_only ARPACK's without shift on the reduced

@@ -32,7 +32,7 @@ module arpack_eigen
     use sorting, only: sort_index
     use spectrum, only: spectrum_t, order_eigenvalues, backward_error, normalise_mode
     use lapack_interfaces, only: dgeev, lapack_info_message, lapack_eigenvector
-    use contact_reduction, only: lift_eigenvectors
+    use contact_reduction, only: lift_eigenvectors, lift_share_t
     use arpack_interfaces, only: dnaupd, dneupd, arpack_info_message
     use roundoff, only: left_from_reduced, lowest_roundoff
     use timer, only: wall_time
@@ -252,8 +252,9 @@ contains
     !> backward error and round-off bound; the other eigenvalues keep their values, their
     !> backward errors unknown (-1), for a caller that reports that one mu alone (an hp
     !> sweep's points): the lift and the backward errors of all the others were most of it.
+    !> `share`: the lifts' data on `chol` made once for many lambdas (lift_share_t).
     subroutine arpack_finish(k, b, chol, contact, lambda, options, n_keep, search, spec, &
-                             warning, stat, lowest_only)
+                             warning, stat, lowest_only, share)
         type(csr_matrix_t), intent(in) :: k, b
         type(cholesky_t), intent(in) :: chol
         type(contact_t), intent(in) :: contact
@@ -265,6 +266,7 @@ contains
         character(len=:), allocatable, intent(out) :: warning
         type(status_t), intent(out) :: stat
         logical, intent(in), optional :: lowest_only
+        type(lift_share_t), intent(in), optional :: share
         type(reduced_operator_t) :: decision
         real(wp) :: radius
         integer :: cap
@@ -315,7 +317,7 @@ contains
         end if
         if (lifted) then
             call fill_spectrum(k, b, chol, contact, lambda, search%mu, search%run, n_keep, &
-                               spec, stat, lowest_only)
+                               spec, stat, lowest_only, share)
         else
             call fill_full_spectrum(k, b, search%mu, search%run, n_keep, spec)
         end if
@@ -668,7 +670,7 @@ contains
     !> the lowest positive pair alone (first in output order; none when there is none): its
     !> mode and backward error, the others' backward errors -1 (not computed).
     subroutine fill_spectrum(k, b, chol, contact, lambda, mu, run, n_keep, spec, stat, &
-                             lowest_only)
+                             lowest_only, share)
         type(csr_matrix_t), intent(in) :: k, b
         type(cholesky_t), intent(in) :: chol
         type(contact_t), intent(in) :: contact
@@ -679,6 +681,7 @@ contains
         type(spectrum_t), intent(out) :: spec
         type(status_t), intent(out) :: stat
         logical, intent(in), optional :: lowest_only
+        type(lift_share_t), intent(in), optional :: share
         integer, allocatable :: order(:)
         real(wp), allocatable :: residual(:)
         integer :: lift
@@ -689,7 +692,8 @@ contains
             if (lowest_only) lift = min(1, spec%lowest_positive())
         end if
         call lift_eigenvectors(k, b, chol, contact, lambda, spec%mu(1:lift), &
-                               run%y(:, order(1:lift)), n_keep, residual, spec%vectors, stat)
+                               run%y(:, order(1:lift)), n_keep, residual, spec%vectors, stat, &
+                               share)
         if (.not. stat%ok()) return
         allocate (spec%residual(size(mu)), source=-1.0_wp)
         spec%residual(1:lift) = residual

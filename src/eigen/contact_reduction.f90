@@ -27,7 +27,7 @@ module contact_reduction
     public :: factor_stiffness, factor_permuted, factor_contact_blocks, contact_tail, &
               flexibility_blocks, contact_flexibility, &
               lift_eigenvectors, lift_block_columns, reduced_matrix, scaled_reduced_matrix, &
-              lambda_unit, mu_of_theta
+              lambda_unit, mu_of_theta, lift_share
 
     !> mu = 1 / theta of an eigenvalue theta / unit of A / unit (unit: lambda_unit, or 1):
     !> the one place the reciprocal is taken. unit is a power of two, so (1 / theta) / unit
@@ -45,6 +45,17 @@ module contact_reduction
     integer, parameter :: RHS_BLOCK_MIN = 8
     integer(i8), parameter :: BLOCK_BYTES = 256_i8*1024_i8**2
 
+    !> What every lift (lift_eigenvectors) on one factor of K shares, whatever lambda: the
+    !> trailing block L_c of the factor with the slots of the contact dofs in it
+    !> (contact_tail), and ||K||_inf for the backward errors. An hp level solves its points at
+    !> many lambdas on one factor: made once for them, it spares each point a copy of L_c
+    !> (2p x 2p) out of CHOLMOD and a pass over K.
+    type, public :: lift_share_t
+        real(wp), allocatable :: l_tail(:, :)   !! (2p, 2p) lower triangle
+        integer, allocatable :: slot(:, :)      !! (2, p), see contact_tail
+        real(wp) :: k_norm = 0.0_wp              !! ||K||_inf
+    end type lift_share_t
+
     !> The contact blocks of K^-1 with the contact mass: all the reduced problem needs at any
     !> lambda, so an analysis that visits many lambdas forms them once.
     type, public :: reduced_blocks_t
@@ -59,8 +70,9 @@ module contact_reduction
 contains
 
     !> A = (lambda Kt_nt - Kt_nn) M, the reduced p x p matrix whose eigenvalues are theta =
-    !> 1/mu (docs/model.md, section 6): the one place it is formed. M is sparse (a band along
-    !> Gamma_C), so the product costs O(p^2) per lambda, not O(p^3).
+    !> 1/mu (docs/model.md, section 6): the one place it is formed (scaled_reduced_matrix
+    !> forms its scaled copy by the same operations). M is sparse (a band along Gamma_C), so
+    !> the product costs O(p^2) per lambda, not O(p^3).
     pure function reduced_matrix(kt_nn, kt_nt, mass, lambda) result(a)
         real(wp), intent(in) :: kt_nn(:, :), kt_nt(:, :)   !! (p, p)
         type(csr_matrix_t), intent(in) :: mass
@@ -87,7 +99,21 @@ contains
         type(csr_matrix_t), intent(in) :: mass
         real(wp), intent(in) :: lambda
         real(wp) :: a(size(kt_nn, 1), size(kt_nn, 2))
-        a = reduced_matrix(kt_nn/lambda_unit(lambda), kt_nt, mass, lambda/lambda_unit(lambda))
+        real(wp) :: scaled, inverse
+        integer :: j, k, c
+        ! reduced_matrix(Kt_nn / unit, Kt_nt, M, lambda / unit) to the last bit (the same
+        ! products and sums in the same order; / unit and * (1 / unit) are the same exact
+        ! scaling by a power of two), without its two p x p temporaries: an hp sweep forms
+        ! this matrix at every point
+        scaled = lambda/lambda_unit(lambda)
+        inverse = 1.0_wp/lambda_unit(lambda)
+        do j = 1, size(a, 2)
+            a(:, j) = 0.0_wp
+            do k = mass%row_start(j), mass%row_start(j + 1) - 1
+                c = mass%col(k)
+                a(:, j) = a(:, j) + mass%val(k)*(scaled*kt_nt(:, c) - kt_nn(:, c)*inverse)
+            end do
+        end do
     end function scaled_reduced_matrix
 
     elemental real(wp) function mu_of_theta_real(theta, unit) result(mu)
@@ -306,19 +332,37 @@ contains
         end subroutine out_of_memory
     end subroutine flexibility_blocks
 
-    !> Kt_nn and Kt_nt (p x p) from a factor made by factor_stiffness.
-    subroutine contact_flexibility(chol, contact, kt_nn, kt_nt, stat)
+    !> Kt_nn and Kt_nt (p x p) from a factor made by factor_stiffness; `share`, the lifts'
+    !> data on that factor of K (`k`), made from the same trailing block on request.
+    subroutine contact_flexibility(chol, contact, kt_nn, kt_nt, stat, k, share)
         type(cholesky_t), intent(in) :: chol
         type(contact_t), intent(in) :: contact
         real(wp), allocatable, intent(out) :: kt_nn(:, :), kt_nt(:, :)
         type(status_t), intent(out) :: stat
+        type(csr_matrix_t), intent(in), optional :: k
+        type(lift_share_t), intent(out), optional :: share
         real(wp), allocatable :: l_tail(:, :)
         integer, allocatable :: slot(:, :)
         call contact_tail(chol, contact, l_tail, slot, stat)
         if (.not. stat%ok()) return
         call flexibility_blocks(l_tail, slot, contact%normal, contact%tangent, kt_nn, kt_nt, &
                                 stat)
+        if (.not. (stat%ok() .and. present(share) .and. present(k))) return
+        share%k_norm = k%norm_inf()
+        call move_alloc(l_tail, share%l_tail)
+        call move_alloc(slot, share%slot)
     end subroutine contact_flexibility
+
+    !> The lifts' shared data (lift_share_t) on the factor `chol` of `k` (factor_stiffness).
+    subroutine lift_share(k, chol, contact, share, stat)
+        type(csr_matrix_t), intent(in) :: k
+        type(cholesky_t), intent(in) :: chol
+        type(contact_t), intent(in) :: contact
+        type(lift_share_t), intent(out) :: share
+        type(status_t), intent(out) :: stat
+        call contact_tail(chol, contact, share%l_tail, share%slot, stat)
+        share%k_norm = k%norm_inf()
+    end subroutine lift_share
 
     !> Columns per block of lift_eigenvectors for n free dofs (see RHS_BLOCK_MAX).
     pure integer function lift_block_columns(n_free)
@@ -337,8 +381,9 @@ contains
     !> backward error). `chol` is the factor from factor_stiffness: the right-hand sides live
     !> on the contact dofs, pivoted last, so the forward half of each solve is L_c^-1 on the
     !> trailing rows (dense, O(p^2) per column) and only the backward half passes over L.
+    !> `share`: L_c, its slots and ||K||_inf made once for this factor (lift_share).
     subroutine lift_eigenvectors(k, b, chol, contact, lambda, mu, y, n_keep, residual, vectors, &
-                                 stat)
+                                 stat, share)
         type(csr_matrix_t), intent(in) :: k, b
         type(cholesky_t), intent(in) :: chol
         type(contact_t), intent(in) :: contact
@@ -349,90 +394,103 @@ contains
         real(wp), allocatable, intent(out) :: residual(:)
         complex(wp), allocatable, intent(out) :: vectors(:, :)
         type(status_t), intent(out) :: stat
-        real(wp), allocatable :: w(:, :), g(:, :), my(:), l_tail(:, :), w_tail(:, :)
-        complex(wp), allocatable :: phi(:)
-        integer, allocatable :: columns(:), first_column(:), slot(:, :)
-        real(wp) :: direction(2), k_norm, b_norm
-        integer :: n_ev, n_free, block_columns, first, last, i, c, n_cols, m, a
+        type(lift_share_t), intent(in), optional :: share
+        type(lift_share_t) :: own
+        if (present(share)) then
+            call lift(share)
+        else
+            call lift_share(k, chol, contact, own, stat)
+            if (stat%ok()) call lift(own)
+        end if
 
-        n_ev = size(mu)
-        n_free = k%n()
-        ! lambda t - n up to a factor, which only scales phi: divided by lambda_unit, so that
-        ! phi and B phi (~ lambda^2) cannot overflow in the backward error (they gave
-        ! Infinity from |lambda| ~ 1e155)
-        direction = contact%slip_direction(lambda, lambda_unit(lambda))
-        k_norm = k%norm_inf()
-        b_norm = b%norm_inf()
-        allocate (residual(n_ev), vectors(n_free, min(n_keep, n_ev)))
-        call contact_tail(chol, contact, l_tail, slot, stat)
-        if (.not. stat%ok()) return
-        m = size(l_tail, 1)
-        allocate (columns(n_ev), first_column(n_ev), my(contact%p()), phi(n_free))
-        do i = 1, n_ev
-            columns(i) = merge(2, 1, any(abs(aimag(y(:, i))) > 0.0_wp))
-        end do
-        do i = 2, n_ev
-            if (columns(i) /= 2 .or. columns(i - 1) /= 2) cycle
-            ! exact conjugates, as LAPACK and ARPACK return the members of a pair
-            if (abs(mu(i) - conjg(mu(i - 1))) <= 0.0_wp .and. &
-                maxval(abs(y(:, i) - conjg(y(:, i - 1)))) <= 0.0_wp) columns(i) = 0
-        end do
-        block_columns = lift_block_columns(n_free)
-        first = 1
-        do while (first <= n_ev)
-            ! A partner (0 columns) always fits, so it joins its first member's block.
-            n_cols = 0
-            last = first - 1
-            do while (last < n_ev)
-                if (n_cols + columns(last + 1) > block_columns .and. n_cols > 0) exit
-                last = last + 1
-                n_cols = n_cols + columns(last)
+    contains
+
+        !> The lift on the shared data `s`.
+        subroutine lift(s)
+            type(lift_share_t), intent(in) :: s
+            real(wp), allocatable :: w(:, :), g(:, :), my(:), w_tail(:, :)
+            complex(wp), allocatable :: phi(:)
+            integer, allocatable :: columns(:), first_column(:)
+            real(wp) :: direction(2), k_norm, b_norm
+            integer :: n_ev, n_free, block_columns, first, last, i, c, n_cols, m, a
+
+            n_ev = size(mu)
+            n_free = k%n()
+            ! lambda t - n up to a factor, which only scales phi: divided by lambda_unit, so that
+            ! phi and B phi (~ lambda^2) cannot overflow in the backward error (they gave
+            ! Infinity from |lambda| ~ 1e155)
+            direction = contact%slip_direction(lambda, lambda_unit(lambda))
+            k_norm = s%k_norm
+            b_norm = b%norm_inf()
+            allocate (residual(n_ev), vectors(n_free, min(n_keep, n_ev)))
+            m = size(s%l_tail, 1)
+            allocate (columns(n_ev), first_column(n_ev), my(contact%p()), phi(n_free))
+            do i = 1, n_ev
+                columns(i) = merge(2, 1, any(abs(aimag(y(:, i))) > 0.0_wp))
             end do
-            ! right-hand sides (lambda T' - N') M y in the trailing pivot order, then L_c^-1
-            allocate (w_tail(m, n_cols), source=0.0_wp)
-            c = 0
-            do i = first, last
-                first_column(i) = c + 1
-                if (columns(i) == 0) cycle
-                call contact%mass%matvec(real(y(:, i), wp), my)
-                do a = 1, size(my)
-                    w_tail(slot(:, a), c + 1) = direction*my(a)
+            do i = 2, n_ev
+                if (columns(i) /= 2 .or. columns(i - 1) /= 2) cycle
+                ! exact conjugates, as LAPACK and ARPACK return the members of a pair
+                if (abs(mu(i) - conjg(mu(i - 1))) <= 0.0_wp .and. &
+                    maxval(abs(y(:, i) - conjg(y(:, i - 1)))) <= 0.0_wp) columns(i) = 0
+            end do
+            block_columns = lift_block_columns(n_free)
+            first = 1
+            do while (first <= n_ev)
+                ! A partner (0 columns) always fits, so it joins its first member's block.
+                n_cols = 0
+                last = first - 1
+                do while (last < n_ev)
+                    if (n_cols + columns(last + 1) > block_columns .and. n_cols > 0) exit
+                    last = last + 1
+                    n_cols = n_cols + columns(last)
                 end do
-                if (columns(i) == 2) then
-                    call contact%mass%matvec(aimag(y(:, i)), my)
+                ! right-hand sides (lambda T' - N') M y in the trailing pivot order, then L_c^-1
+                allocate (w_tail(m, n_cols), source=0.0_wp)
+                c = 0
+                do i = first, last
+                    first_column(i) = c + 1
+                    if (columns(i) == 0) cycle
+                    call contact%mass%matvec(real(y(:, i), wp), my)
                     do a = 1, size(my)
-                        w_tail(slot(:, a), c + 2) = direction*my(a)
+                        w_tail(s%slot(:, a), c + 1) = direction*my(a)
                     end do
-                end if
-                c = c + columns(i)
+                    if (columns(i) == 2) then
+                        call contact%mass%matvec(aimag(y(:, i)), my)
+                        do a = 1, size(my)
+                            w_tail(s%slot(:, a), c + 2) = direction*my(a)
+                        end do
+                    end if
+                    c = c + columns(i)
+                end do
+                call dtrsm('L', 'L', 'N', 'N', m, n_cols, 1.0_wp, s%l_tail, m, w_tail, m)
+                allocate (w(n_free, n_cols), source=0.0_wp)
+                w(n_free - m + 1:, :) = w_tail
+                deallocate (w_tail)
+                allocate (g(n_free, n_cols))
+                call chol%backward(w, g, stat)
+                if (.not. stat%ok()) return
+                deallocate (w)
+                do i = first, last
+                    c = first_column(i)
+                    select case (columns(i))
+                    case (0)
+                        phi = conjg(phi)   ! the partner of the pair just recorded
+                    case (1)
+                        phi = cmplx(g(:, c), 0.0_wp, wp)
+                    case default
+                        phi = cmplx(g(:, c), g(:, c + 1), wp)
+                    end select
+                    residual(i) = backward_error(k, b, mu(i), phi, k_norm, b_norm)
+                    if (i <= size(vectors, 2)) then
+                        vectors(:, i) = phi
+                        call normalise_mode(vectors(:, i))
+                    end if
+                end do
+                deallocate (g)
+                first = last + 1
             end do
-            call dtrsm('L', 'L', 'N', 'N', m, n_cols, 1.0_wp, l_tail, m, w_tail, m)
-            allocate (w(n_free, n_cols), source=0.0_wp)
-            w(n_free - m + 1:, :) = w_tail
-            deallocate (w_tail)
-            allocate (g(n_free, n_cols))
-            call chol%backward(w, g, stat)
-            if (.not. stat%ok()) return
-            deallocate (w)
-            do i = first, last
-                c = first_column(i)
-                select case (columns(i))
-                case (0)
-                    phi = conjg(phi)   ! the partner of the pair just recorded
-                case (1)
-                    phi = cmplx(g(:, c), 0.0_wp, wp)
-                case default
-                    phi = cmplx(g(:, c), g(:, c + 1), wp)
-                end select
-                residual(i) = backward_error(k, b, mu(i), phi, k_norm, b_norm)
-                if (i <= size(vectors, 2)) then
-                    vectors(:, i) = phi
-                    call normalise_mode(vectors(:, i))
-                end if
-            end do
-            deallocate (g)
-            first = last + 1
-        end do
+        end subroutine lift
     end subroutine lift_eigenvectors
 
     !> Every array of the blocks deallocated, as soon as their user is done with them (and

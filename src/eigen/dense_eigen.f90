@@ -14,7 +14,7 @@ module dense_eigen
     use sparse_cholesky, only: cholesky_t
     use contact_boundary, only: contact_t
     use contact_reduction, only: contact_flexibility, lift_eigenvectors, &
-                                 scaled_reduced_matrix, lambda_unit, mu_of_theta
+                                 scaled_reduced_matrix, lambda_unit, mu_of_theta, lift_share_t
     use spectrum, only: spectrum_t, order_eigenvalues, KIND_POSITIVE, KIND_COMPLEX
     use lapack_interfaces, only: dgeevx, lapack_info_message, lapack_eigenvector
     use roundoff, only: left_from_reduced, lowest_roundoff
@@ -28,8 +28,12 @@ contains
     !> its backward error on (K, B); the full eigenvectors of the first `n_keep` are kept.
     !> `chol` is the factor of K from factor_stiffness (contact dofs last). A caller that
     !> already has Kt_nn and Kt_nt (from contact_flexibility) passes them to skip forming them.
+    !> `lowest_only`: only the lowest positive mu is lifted, with its backward error and
+    !> round-off bound; the others keep their values, their backward errors unknown (-1), as
+    !> arpack_finish does for the same caller (an hp sweep's points). `share`: the lifts'
+    !> data on `chol` made once for many lambdas (lift_share_t).
     subroutine dense_spectrum(k, b, chol, contact, lambda, n_keep, spec, stat, reduction_seconds, &
-                              kt_nn_given, kt_nt_given)
+                              kt_nn_given, kt_nt_given, lowest_only, share)
         type(csr_matrix_t), intent(in) :: k, b
         type(cholesky_t), intent(in) :: chol
         type(contact_t), intent(in) :: contact
@@ -39,13 +43,15 @@ contains
         type(status_t), intent(out) :: stat
         real(wp), intent(out), optional :: reduction_seconds   !! time to form the p x p matrix
         real(wp), intent(in), optional :: kt_nn_given(:, :), kt_nt_given(:, :)   !! (p, p) both
+        logical, intent(in), optional :: lowest_only
+        type(lift_share_t), intent(in), optional :: share
         real(wp), allocatable :: kt_nn(:, :), kt_nt(:, :), a(:, :), wr(:), wi(:), vl(:, :), &
                                  vr(:, :), scale(:), rconde(:), rcondv(:), work(:), condition(:)
         integer, allocatable :: iwork(:), order(:), kinds(:), keep(:)
         complex(wp), allocatable :: theta(:), mu(:), y(:, :)
-        real(wp), allocatable :: left_lowest(:), left_full(:)
+        real(wp), allocatable :: left_lowest(:), left_full(:), residual(:)
         real(wp) :: abnrm, query(1), start, lambda_scale, roundoff_start
-        integer :: p, ilo, ihi, info, j, i, n_ev, ierr
+        integer :: p, ilo, ihi, info, j, i, n_ev, ierr, lift
         type(status_t) :: left_stat
 
         p = contact%p()
@@ -136,14 +142,20 @@ contains
         ! The reduced eigenvectors in output order (see lapack_eigenvector); lifting
         ! them to phi = K^-1 (lambda T' - N') M y (= phi / mu of model.md sections 4-7: same mode)
         ! in column blocks keeps memory at O(n x block + p^2).
-        allocate (y(p, n_ev))
-        do i = 1, n_ev
+        lift = n_ev
+        if (present(lowest_only)) then
+            if (lowest_only) lift = min(1, n_ev, count(kinds(1:min(1, n_ev)) == KIND_POSITIVE))
+        end if
+        allocate (y(p, lift))
+        do i = 1, lift
             y(:, i) = lapack_eigenvector(vr, wi, keep(order(i)))
         end do
         deallocate (vr)
-        call lift_eigenvectors(k, b, chol, contact, lambda, spec%mu, y, n_keep, spec%residual, &
-                               spec%vectors, stat)
+        call lift_eigenvectors(k, b, chol, contact, lambda, spec%mu(1:lift), y, n_keep, &
+                               residual, spec%vectors, stat, share)
         if (.not. stat%ok()) return
+        allocate (spec%residual(n_ev), source=-1.0_wp)
+        spec%residual(1:lift) = residual
         ! the round-off bound of the lowest positive mu on the pencil (module roundoff), as
         ! every solver computes it; a failed solve there only leaves it unknown
         allocate (spec%roundoff(n_ev), source=-1.0_wp)

@@ -16,9 +16,9 @@ module eigen_solve
     use element_types, only: element_name
     use csr_matrix, only: csr_matrix_t
     use sparse_cholesky, only: cholesky_t
-    use contact_reduction, only: factor_stiffness, scaled_reduced_matrix
+    use contact_reduction, only: factor_stiffness, scaled_reduced_matrix, lift_share_t
     use memory_budget, only: check_contact_memory, contact_peak_blocks
-    use contact_boundary, only: assemble_b
+    use contact_boundary, only: assemble_b, fill_b
     use spectrum, only: spectrum_t
     use dense_eigen, only: dense_spectrum
     use accuracy, only: accuracy_warnings, roundoff_warnings, WARNING_LEN, FORWARD_ERROR_BOUND
@@ -328,13 +328,15 @@ contains
     !> by factor_stiffness, which stays allocated for the caller (the threshold analysis reads
     !> the contact blocks off the same factor; the full operator may use one without the
     !> contact dofs last). A caller that already has Kt_nn and Kt_nt
-    !> passes them to spare the dense solver forming them again. `lowest_only` (ARPACK), for a
+    !> passes them to spare the dense solver forming them again. `lowest_only`, for a
     !> caller that reports the lowest positive mu alone (an hp sweep's points): the search
     !> without shift on the reduced operator runs on the p x p matrix formed from the blocks
     !> when given (arpack_search), and only that mu gets its mode, backward error and
-    !> round-off bound (arpack_finish). Every other caller's path is unchanged.
+    !> round-off bound (arpack_finish), and so on the dense path (dense_spectrum). `share`, for
+    !> a caller that solves many lambdas on `chol`: the lifts' data on it (lift_share_t),
+    !> made once. Every other caller's path is unchanged.
     subroutine eigen_with_factor(scn, prob, options, chol, res, timings, stat, kt_nn, kt_nt, &
-                                 contact_last, lowest_only)
+                                 contact_last, lowest_only, share)
         type(scene_t), intent(in) :: scn
         type(problem_t), intent(in) :: prob
         type(eigen_options_t), intent(in) :: options
@@ -347,6 +349,7 @@ contains
         !> and the dense decision, if its search needs one, gets a contact-last factor here
         logical, intent(in), optional :: contact_last
         logical, intent(in), optional :: lowest_only
+        type(lift_share_t), intent(in), optional :: share
         type(arpack_options_t) :: arpack
         logical :: explicit
         type(arpack_search_t) :: search
@@ -395,7 +398,8 @@ contains
                         res%lambda, arpack, n_keep, search, res%spec, certificate, stat)
                 else
                     call arpack_finish(prob%k, res%b, chol, prob%contact, res%lambda, arpack, &
-                                       n_keep, search, res%spec, certificate, stat, lowest_only)
+                                       n_keep, search, res%spec, certificate, stat, lowest_only, &
+                                       share)
                 end if
             end if
             if (stat%code == STATUS_BAD_INPUT) stat%message = scn%name//': '//stat%message
@@ -408,7 +412,8 @@ contains
             reduction_seconds = 0.0_wp
             if (present(kt_nn) .and. present(kt_nt)) then
                 call dense_spectrum(prob%k, res%b, chol, prob%contact, res%lambda, n_keep, &
-                                    res%spec, stat, kt_nn_given=kt_nn, kt_nt_given=kt_nt)
+                                    res%spec, stat, kt_nn_given=kt_nn, kt_nt_given=kt_nt, &
+                                    lowest_only=lowest_only, share=share)
             else
                 call dense_spectrum(prob%k, res%b, chol, prob%contact, res%lambda, n_keep, &
                                     res%spec, stat, reduction_seconds)
@@ -450,7 +455,10 @@ contains
         allocate (res%spec%lambda_sensitivity(res%spec%n()), source=-1.0_wp)
         if (res%spec%lowest_positive() /= 1 .or. .not. allocated(res%spec%left)) return
         if (.not. abs(res%lambda) > 0.0_wp .or. size(res%spec%vectors, 2) < 1) return
-        call assemble_b(prob%contact, prob%dofs%n_free, 2.0_wp*res%lambda, b_double, stat)
+        ! B(2 lambda) on res%b's sparsity: the values of assemble_b to the last bit (fill_b),
+        ! without building the pattern again at every point of a sweep
+        b_double = res%b
+        call fill_b(prob%contact, 2.0_wp*res%lambda, b_double, stat)
         if (.not. stat%ok()) return
         phi = real(res%spec%vectors(:, 1), wp)
         allocate (b_phi(size(phi)), b_double_phi(size(phi)))
