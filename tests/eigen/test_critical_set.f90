@@ -421,6 +421,7 @@ contains
         call t%check('carry: the range and its start', &
                      abs(carried_set%lambda_min - set%lambda_min) <= 0.0_wp .and. &
                      (carried_set%positive_at_min .eqv. set%positive_at_min))
+        ! 73 to 98 of 496 to 517 over the kernels and threads of the follow's count below
         call t%check('carry: fewer than half the solves of the scan', &
                      2*carried_set%n_evaluations < set%n_evaluations)
     end subroutine carried_points_are_the_scan_points
@@ -547,9 +548,11 @@ contains
                      (onset_point(set, SIDE_PLUS) == 0 .or. &
                       set%points(max(onset_point(set, SIDE_PLUS), 1))%mechanism == &
                       MECHANISM_PENCIL))
-        ! the counts depend on the BLAS kernel's last digits (bisection steps near the
-        ! onsets): 39 of 515 solves on two OpenBLAS threads, 53 of 528 on one; a fifth
-        ! leaves room for that and still fails a follow that scans
+        ! the counts move with the BLAS kernel's last digits through the discriminant's
+        ! regula falsi (1 to 18 steps per point; the count bisection's halvings are fixed
+        ! by the bracket): 34 to 52 of 496 to 517 solves over eleven OpenBLAS kernels
+        ! (OPENBLAS_CORETYPE) on one and on two threads; a fifth leaves twice that and still
+        ! fails a follow that scans (the scan alone is N_SCAN solves)
         call t%check('follow: under a fifth of the scan''s solves', &
                      5*followed%n_evaluations < set%n_evaluations)
         call partial_contact_scene(8, coarse_blocks, coarse_thr, coarse)
