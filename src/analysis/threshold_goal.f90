@@ -505,29 +505,8 @@ contains
             return
         end if
         if (size(this%levels) > 0) call keep_level(this, .true., kept)
-        if (this%factored) call this%chol%free()
-        this%factored = .false.
-        this%prob = level%prob
-        this%space = level%space
-        call refiner%factor(level, this%chol, timings, stat)
-        if (.not. stat%ok()) then
-            call give_up()
-            return
-        end if
-        this%factored = .true.
+        call make_hp_level(this, refiner, level, timings, stat, start, phase(1))
         associate (prob => this%prob, blocks => this%blocks, set => this%set)
-            start = wall_time()
-            call contact_flexibility(this%chol, prob%contact, blocks%kt_nn, blocks%kt_nt, stat)
-            if (.not. stat%ok()) then
-                call give_up()
-                return
-            end if
-            phase(1) = wall_time()
-            blocks%mass = prob%contact%mass
-            ! the thresholds, the positive set and its boundary with the forces of half the
-            ! degree (docs/thresholds.md); `blocks` stay whole for the spectrum at lambda
-            call restricted_thresholds(blocks, half_degree_forces(this%space, prob%contact), &
-                                       this%thr, this%restricted, this%lift, stat)
             if (stat%ok()) call threshold_roundoff(prob%k, this%chol, prob%contact, &
                 blocks%kt_nn, blocks%kt_nt, this%thr, stat)
             if (.not. stat%ok()) then
@@ -612,6 +591,36 @@ contains
         this%set = kept%set
     end subroutine restore_level
 
+    !> hp: `level` made the goal's last: its problem and space, its factor (`factored`), its
+    !> contact blocks and the pencil's values with the forces of half the degree (`thr`:
+    !> restricted_thresholds, docs/thresholds.md; `blocks` stay whole for the spectrum at
+    !> lambda). `begun` and `blocks_made`: the wall times around the contact blocks.
+    subroutine make_hp_level(this, refiner, level, timings, stat, begun, blocks_made)
+        class(threshold_goal_t), intent(inout) :: this
+        class(refiner_t), intent(in) :: refiner
+        type(adapt_level_t), intent(in) :: level
+        type(timings_t), intent(inout) :: timings
+        type(status_t), intent(out) :: stat
+        real(wp), intent(out) :: begun, blocks_made
+        begun = wall_time()
+        blocks_made = begun
+        if (this%factored) call this%chol%free()
+        this%factored = .false.
+        this%prob = level%prob
+        this%space = level%space
+        call refiner%factor(level, this%chol, timings, stat)
+        if (.not. stat%ok()) return
+        this%factored = .true.
+        begun = wall_time()
+        call contact_flexibility(this%chol, this%prob%contact, this%blocks%kt_nn, &
+                                 this%blocks%kt_nt, stat)
+        blocks_made = wall_time()
+        if (.not. stat%ok()) return
+        this%blocks%mass = this%prob%contact%mass
+        call restricted_thresholds(this%blocks, half_degree_forces(this%space, &
+            this%prob%contact), this%thr, this%restricted, this%lift, stat)
+    end subroutine make_hp_level
+
     !> hp: the last complete level back after the next one failed: its problem, space and
     !> thresholds as `kept` had them, its factor and contact blocks made again (the same
     !> solves, so the same numbers). Where that fails too, the goal has no level to report
@@ -622,28 +631,19 @@ contains
         type(kept_level_t), intent(in) :: kept
         type(timings_t), intent(inout) :: timings
         type(adapt_level_t) :: level
-        type(thresholds_t) :: thr
         type(status_t) :: stat
-        call restore_level(this, kept)
-        if (this%factored) call this%chol%free()
-        this%factored = .false.
+        real(wp) :: begun, blocks_made
+        ! the failed level's blocks go before the last level's are made again (peak memory)
         call this%blocks%free()
         call this%restricted%free()
         if (allocated(this%lift)) deallocate (this%lift)
-        this%prob = kept%prob
-        this%space = kept%space
         level%number = this%levels(size(this%levels))%layers
         level%prob = kept%prob
         level%space = kept%space
-        call refiner%factor(level, this%chol, timings, stat)
-        if (.not. stat%ok()) return
-        this%factored = .true.
-        call contact_flexibility(this%chol, this%prob%contact, this%blocks%kt_nn, &
-                                 this%blocks%kt_nt, stat)
-        this%blocks%mass = this%prob%contact%mass
-        if (stat%ok()) call restricted_thresholds(this%blocks, half_degree_forces(this%space, &
-            this%prob%contact), thr, this%restricted, this%lift, stat)
-        if (stat%ok()) return
+        call make_hp_level(this, refiner, level, timings, stat, begun, blocks_made)
+        ! the kept thresholds carry their round-off bounds, which the remake does not redo
+        call restore_level(this, kept)
+        if (stat%ok() .or. .not. this%factored) return
         call this%chol%free()
         this%factored = .false.
     end subroutine restore_hp_level
