@@ -22,6 +22,11 @@
 # sum over its progress lines), the CPU medians of both, the ratios to c_n, and whether
 # summary.json says the same but for times and solve counts ("same") or not ("differ",
 # the differences on stderr).
+# PHASES=1: per scene, the phase seconds of NCEIG's last c_n and threshold run step by step
+# (each level, the check one degree higher, the report; scripts/bench/phase_table.awk). With
+# an executable configured with -DNCEIG_CPU_TIMERS=ON these are CPU seconds, e.g.
+#   cmake -S . -B build-cputime -DNCEIG_CPU_TIMERS=ON && cmake --build build-cputime -t nceig
+#   NCEIG=build-cputime/nceig PHASES=1 bash scripts/bench/bench_thresholds.sh 3 1e-8
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 nceig=${NCEIG:-$root/build/nceig}
@@ -127,9 +132,11 @@ rows=()
 for s in half_contact reference slanted; do
     timed "$s" eigen >"$work/row"
     cn=$(cat "$work/row") cn_cpu=$cpu cn_before=${cpu_before:-}
+    cp "$work/after.log" "$work/phases_${s}_eigen.log"
     [[ -z ${NCEIG_BEFORE:-} ]] || cn_same=$(same_values)
     timed "$s" threshold >"$work/row"
     thr=$(cat "$work/row") thr_cpu=$cpu
+    cp "$work/after.log" "$work/phases_${s}_threshold.log"
     echo "| $s | $cn | $thr | $(ratio "${thr%% *}" "${cn%% *}") | $cn_cpu | $thr_cpu |" \
         "$(ratio "$thr_cpu" "$cn_cpu") |"
     if [[ -n ${NCEIG_BEFORE:-} ]]; then
@@ -149,4 +156,18 @@ if [[ -n ${NCEIG_BEFORE:-} ]]; then
         'summary.json c_n, thresholds |'
     echo '|---|---|---|---|---|---|---|'
     printf '%s\n' "${rows[@]}"
+fi
+if [[ -n ${PHASES:-} ]]; then
+    for s in half_contact reference slanted; do
+        for kind in eigen threshold; do
+            echo
+            echo "$s, kind = '$kind': seconds per step of the last run of $nceig"
+            echo
+            echo '| step | dofs | assembly | ordering + factor | contact blocks |' \
+                'thresholds, round-off | p x p solves: n at p, s | eigen | rest | step |' \
+                'so far |'
+            echo '|---|---|---|---|---|---|---|---|---|---|---|'
+            awk -f "$root/scripts/bench/phase_table.awk" "$work/phases_${s}_$kind.log"
+        done
+    done
 fi
