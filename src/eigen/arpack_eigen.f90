@@ -107,6 +107,10 @@ module arpack_eigen
         logical :: confirmed = .false.
         logical :: found_before = .false.
         integer :: n_operator = 0
+        !> left eigenvector (p, or n for the full operator) of the lowest positive mu from
+        !> the search's first run, on the transposed operator, and that run's mu for it
+        real(wp), allocatable :: left(:)
+        real(wp) :: left_mu = 0.0_wp
     contains
         procedure :: needs_dense_decision => search_needs_dense_decision
     end type arpack_search_t
@@ -230,8 +234,17 @@ contains
             call op%setup(reduced, lambda)
         end select
         if (.not. stat%ok()) return
-        call certified_search(search%op, chol, options, search%run, search%mu, &
-                              search%confirmed, search%found_before, search%n_operator, stat)
+        ! the first run on the transposed operator gives the left vector as it certifies,
+        ! where an undecided search always ends in the dense decision (which overwrites it)
+        if (p <= DENSE_FALLBACK_MAX) then
+            call certified_search(search%op, chol, options, search%run, search%mu, &
+                                  search%confirmed, search%found_before, search%n_operator, &
+                                  stat, search%left, search%left_mu)
+        else
+            call certified_search(search%op, chol, options, search%run, search%mu, &
+                                  search%confirmed, search%found_before, search%n_operator, &
+                                  stat)
+        end if
     end subroutine arpack_search
 
     !> Whether arpack_finish decides densely: the search is unconfirmed and p is small enough.
@@ -343,10 +356,16 @@ contains
                 if (allocated(search%run%left)) call left_from_reduced(chol, contact, k%n(), &
                     search%run%left, y, left_stat)
             else if (lifted) then
-                call left_eigenvector(search%op, chol, options, min(nev, cap), &
-                                      real(spec%mu(1), wp), w, left_stat)
+                if (search_left_agrees()) then
+                    w = search%left
+                else
+                    call left_eigenvector(search%op, chol, options, min(nev, cap), &
+                                          real(spec%mu(1), wp), w, left_stat)
+                end if
                 if (left_stat%ok() .and. allocated(w)) call left_from_reduced(chol, contact, &
                     k%n(), w, y, left_stat)
+            else if (search_left_agrees()) then
+                y = search%left
             else
                 call left_eigenvector(search%op, chol, options, min(nev, cap), &
                                       real(spec%mu(1), wp), y, left_stat)
@@ -356,6 +375,16 @@ contains
             if (spec%roundoff(1) >= 0.0_wp) call move_alloc(y, spec%left)
             spec%roundoff_seconds = wall_time() - start
         end subroutine add_roundoff
+
+        !> Whether the search's transposed run certified the mu reported as lowest (to the
+        !> agreement of two runs): its vector is then that mu's left eigenvector.
+        logical function search_left_agrees()
+            real(wp) :: mu
+            search_left_agrees = .false.
+            if (.not. allocated(search%left) .or. .not. search%confirmed) return
+            mu = real(spec%mu(1), wp)
+            search_left_agrees = abs(search%left_mu - mu) <= AGREE_TOL*abs(mu)
+        end function search_left_agrees
     end subroutine arpack_finish
 
     !> The eigenvector of the transposed operator for the real eigenvalue
@@ -394,8 +423,13 @@ contains
     !> while undecided; stops undecided past nev > p/4 or NEV_SEARCH_MAX. `run` and `mu` are
     !> the last run's Ritz values and mu = target + 1/nu; `found_before`: the last run
     !> certified a value that the one before did not confirm.
+    !> With `left`: the first run is on the transposed operator, which has the same
+    !> eigenvalues, so its certified lowest positive mu counts as the first of the two
+    !> agreeing runs; its vector, the left eigenvector of that mu, is returned in `left`
+    !> (its mu in left_mu; unallocated when that run certified nothing). One run fewer than
+    !> two runs and a third on the transposed operator for the left vector.
     subroutine certified_search(op, factor, options, run, mu, confirmed, found_before, &
-                                n_operator, stat)
+                                n_operator, stat, left, left_mu)
         class(contact_operator_t), intent(inout) :: op
         type(cholesky_t), intent(in) :: factor   !! of K, for the operator's apply
         type(arpack_options_t), intent(in) :: options
@@ -404,8 +438,11 @@ contains
         logical, intent(out) :: confirmed, found_before
         integer, intent(out) :: n_operator
         type(status_t), intent(out) :: stat
+        real(wp), allocatable, intent(out), optional :: left(:)
+        real(wp), intent(out), optional :: left_mu
         real(wp), allocatable :: values_now(:), values_before(:)
         integer :: p, nev, cap, attempt, outcome, lowest
+        logical :: transposed
 
         p = op%p
         cap = p - 2
@@ -413,8 +450,10 @@ contains
         n_operator = 0
         found_before = .false.
         confirmed = .false.
+        if (present(left_mu)) left_mu = 0.0_wp
         do attempt = 1, MAX_ATTEMPTS
-            call run_arpack(op, factor, nev, options, attempt, run, stat)
+            transposed = present(left) .and. attempt == 1
+            call run_arpack(op, factor, nev, options, attempt, run, stat, transposed)
             if (.not. stat%ok()) return
             n_operator = n_operator + run%n_operator
             mu = op%mu_of(run%nu)
@@ -434,6 +473,10 @@ contains
                 end if
                 found_before = .true.
                 values_before = values_now
+                if (transposed) then
+                    left = real(run%y(:, lowest), wp)
+                    if (present(left_mu)) left_mu = real(mu(lowest), wp)
+                end if
             else
                 found_before = .false.
                 nev = min(2*nev, cap)

@@ -99,19 +99,24 @@ contains
         type(csr_matrix_t), intent(in) :: mass
         real(wp), intent(in) :: lambda
         real(wp) :: a(size(kt_nn, 1), size(kt_nn, 2))
+        real(wp), allocatable :: flex(:, :)
         real(wp) :: scaled, inverse
-        integer :: j, k, c
+        integer :: j, k
         ! reduced_matrix(Kt_nn / unit, Kt_nt, M, lambda / unit) to the last bit (the same
         ! products and sums in the same order; / unit and * (1 / unit) are the same exact
-        ! scaling by a power of two), without its two p x p temporaries: an hp sweep forms
-        ! this matrix at every point
+        ! scaling by a power of two): an hp sweep forms this matrix at every point. The
+        ! flexibility column is formed once, not once per entry of M's column (up to about
+        ! 25 on the top hp levels): each entry is the same rounded value either way.
         scaled = lambda/lambda_unit(lambda)
         inverse = 1.0_wp/lambda_unit(lambda)
+        allocate (flex(size(kt_nn, 1), size(kt_nn, 2)))
+        do j = 1, size(a, 2)
+            flex(:, j) = scaled*kt_nt(:, j) - kt_nn(:, j)*inverse
+        end do
         do j = 1, size(a, 2)
             a(:, j) = 0.0_wp
             do k = mass%row_start(j), mass%row_start(j + 1) - 1
-                c = mass%col(k)
-                a(:, j) = a(:, j) + mass%val(k)*(scaled*kt_nt(:, c) - kt_nn(:, c)*inverse)
+                a(:, j) = a(:, j) + mass%val(k)*flex(:, mass%col(k))
             end do
         end do
     end function scaled_reduced_matrix
