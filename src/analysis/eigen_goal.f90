@@ -34,11 +34,11 @@ module eigen_goal
                             check_target, absence_confirmed, NONE_LEVELS, TARGET_MET, &
                             TARGET_STOPPED
     use h_refiner, only: h_refiner_t, doerfler_marking
-    use moving_side, only: contact_ends_t, contact_ends, past_crossing_end, end_words
+    use moving_side, only: contact_ends_t, contact_ends, past_crossing_end, unconfirmed_words
     use hp_levels, only: hp_refiner_t, HP_ESTIMATE
     implicit none
     private
-    public :: adapt_eigen, past_words
+    public :: adapt_eigen
 
     public :: HP_ESTIMATE   ! the hp refiner's, for the report
 
@@ -663,9 +663,9 @@ contains
                     else
                         call this%targets(i)%finish(TARGET_STOPPED, 'tolerance '// &
                             given_real_text(tolerance)//' not met: '// &
-                            no_mu_levels(p, this%hp)//', graded toward '// &
-                            end_words(this%ends, end)//', its absence not confirmed: '// &
-                            past_words(p%lambda, crossing(end)))
+                            no_mu_levels(p, this%hp)//', '//unconfirmed_words(this%ends, &
+                            end, 'lambda = '//short_real_text(p%lambda)//' is past that '// &
+                            'end''s crossing '//short_real_text(crossing(end))))
                     end if
                     cycle
                 end if
@@ -702,16 +702,6 @@ contains
         if (this%hp .or. .not. this%ends_known) return
         call past_crossing_end(this%ends, this%poisson, lambda, past, crossing)
     end subroutine past_end
-
-    !> Why levels without a value do not confirm its absence at `lambda`, past the crossing
-    !> `crossing` of an end of Gamma_C (the threshold goal's words too).
-    function past_words(lambda, crossing) result(words)
-        real(wp), intent(in) :: lambda, crossing
-        character(len=:), allocatable :: words
-        words = 'lambda = '//short_real_text(lambda)//' is past that end''s crossing '// &
-            short_real_text(crossing)//', where a mode can concentrate below the mesh''s '// &
-            'scale (hp levels, graded toward the ends, can see it)'
-    end function past_words
 
     !> Why the estimate of a lambda's last level is missing: no positive mu (none at all, or
     !> none left of the earlier levels': MU_VANISHED), its size (skipped), or its failure.

@@ -22,7 +22,7 @@ module moving_side
     private
     public :: moving_side_t, contact_ends_t, contact_ends, level_profile, track_side, &
               moving_words, FAR_NAMES, END_SHARE_AT, end_crossing, past_crossing_end, &
-              end_words
+              end_words, unconfirmed_words
 
     real(wp), parameter :: PI = acos(-1.0_wp)
     !> a vector with at least this share of its forces within 2^-6 of an end sits at that end
@@ -327,6 +327,19 @@ contains
             to_string(nint(ends%angle(end)*180.0_wp/PI))//'-degree corner beside a '// &
             trim(FAR_NAMES(ends%far(end)))//' side'
     end function end_words
+
+    !> Why h levels without a value, graded toward end `end` of `ends`, do not confirm its
+    !> absence: `past` says what lies past that end's crossing ('lambda = 9.78E+00 is past
+    !> that end''s crossing 5.80E+00').
+    function unconfirmed_words(ends, end, past) result(text)
+        type(contact_ends_t), intent(in) :: ends
+        integer, intent(in) :: end
+        character(len=*), intent(in) :: past
+        character(len=:), allocatable :: text
+        text = 'graded toward '//end_words(ends, end)//', its absence not confirmed: '// &
+            past//', where a mode can concentrate below the mesh''s scale (hp levels, '// &
+            'graded toward the ends, can see it)'
+    end function unconfirmed_words
 
     !> One sentence on side `label` (lambda+, lambda-) for the warnings and stdout: how its
     !> value moved, where its vector sits, and what the wedge there says.
