@@ -35,9 +35,9 @@ module h_refiner
     !> peak.
     real(wp), parameter :: BYTES_PER_DOF = 8192.0_wp
     !> The extra bisections per level of the cells at a point the goal grades toward
-    !> (adapt_goal_t: grade_points): two halve their size, so 4 take the cells there from h
-    !> to h/8 where the rest go to h/sqrt(2) (an eigen mode past a corner's crossing lives
-    !> below the scale of uniform levels: docs/adaptive.md)
+    !> (adapt_goal_t: grade): two halve their size, so with the level's own bisection the
+    !> cells there go from h to h/2^2.5 where the rest go to h/sqrt(2) (a mode past a corner's
+    !> crossing lives below the scale of uniform levels: docs/adaptive.md)
     integer, parameter, public :: GRADE_PASSES = 4
 
     type, extends(refiner_t), public :: h_refiner_t
