@@ -13,7 +13,7 @@
 module eigen_goal
     use kinds, only: wp
     use status, only: status_t
-    use strings, only: to_string, short_real_text, seconds_text
+    use strings, only: to_string, short_real_text, seconds_text, given_real_text
     use timer, only: wall_time, timings_t, PHASE_REDUCTION
     use scene, only: scene_t
     use method_options, only: eigen_options_t, adapt_options_t, ESTIMATE_ON, REFINE_HP, &
@@ -31,8 +31,10 @@ module eigen_goal
     use error_bar, only: theta_warnings, checked_bar
     use hp_rayleigh, only: refine_lowest_mu
     use adapt_driver, only: adapt_goal_t, refiner_t, adapt_level_t, adapt_levels, judge_target, &
-                            check_target, absence_confirmed, NONE_LEVELS, TARGET_MET
+                            check_target, absence_confirmed, NONE_LEVELS, TARGET_MET, &
+                            TARGET_STOPPED
     use h_refiner, only: h_refiner_t, doerfler_marking
+    use moving_side, only: contact_ends_t, contact_ends, past_crossing_end, unconfirmed_words
     use hp_levels, only: hp_refiner_t, HP_ESTIMATE
     implicit none
     private
@@ -103,6 +105,11 @@ module eigen_goal
         logical :: lowest_only = .false.
         logical :: hp = .false.   !! hp levels (else h)
         type(adapted_eigen_t), allocatable :: points(:)
+        !> h: the ends of Gamma_C (of the first level; refinement keeps them) and Poisson's
+        !> ratio, for the crossings a lambda without a positive mu may lie past (past_end)
+        logical :: ends_known = .false.
+        type(contact_ends_t) :: ends
+        real(wp) :: poisson = 0.0_wp
     contains
         procedure :: solve => eigen_goal_solve
         procedure :: judge => eigen_goal_judge
@@ -274,6 +281,11 @@ contains
         end if
         if (.not. refiner%estimated()) call b_pattern(level%prob%contact, &
                                                       level%prob%dofs%n_free, b_level)
+        if (refiner%estimated() .and. .not. this%ends_known) then
+            this%ends = contact_ends(level%prob)
+            this%poisson = level%prob%poisson
+            this%ends_known = .true.
+        end if
         do i = 1, size(this%points)
             if (.not. this%targets(i)%active()) cycle
             if (refiner%estimated()) then
@@ -626,19 +638,35 @@ contains
         integer, intent(in) :: level
         real(wp), intent(in) :: tolerance
         character(len=:), allocatable :: no_value
-        real(wp) :: bar, roundoff
-        integer :: i, n, j
-        logical :: confirmed
+        real(wp) :: bar, roundoff, crossing(2)
+        integer :: i, n, j, end
+        logical :: confirmed, past(2)
 
+        if (allocated(this%grade)) deallocate (this%grade)
+        allocate (this%grade(2, 0))
         do i = 1, size(this%points)
             if (.not. this%targets(i)%active()) cycle
             n = size(this%points(i)%levels)
             associate (p => this%points(i), last => this%points(i)%levels(n))
                 if (.not. any(p%levels%has_mu)) then
-                    if (absence_confirmed([(p%levels(j)%has_mu, j=1, n)], &
-                                          [(p%levels(j)%n_dofs, j=1, n)], refiner%estimated())) &
+                    ! h: uniform levels cannot see a mode that concentrates at an end past
+                    ! its crossing, below their scale: the next level is graded toward it
+                    call past_end(this, p%lambda, past, crossing)
+                    this%grade = this%ends%point(:, pack([1, 2], past))
+                    if (.not. absence_confirmed([(p%levels(j)%has_mu, j=1, n)], &
+                                                [(p%levels(j)%n_dofs, j=1, n)], &
+                                                refiner%estimated())) cycle
+                    end = findloc(past, .true., 1)
+                    if (end == 0) then
                         call this%targets(i)%finish(TARGET_MET, 'none, confirmed: '// &
                                                     no_mu_levels(p, this%hp))
+                    else
+                        call this%targets(i)%finish(TARGET_STOPPED, 'tolerance '// &
+                            given_real_text(tolerance)//' not met: '// &
+                            no_mu_levels(p, this%hp)//', '//unconfirmed_words(this%ends, &
+                            end, 'lambda = '//short_real_text(p%lambda)//' is past that '// &
+                            'end''s crossing '//short_real_text(crossing(end))))
+                    end if
                     cycle
                 end if
                 confirmed = .false.
@@ -661,6 +689,19 @@ contains
             end associate
         end do
     end subroutine eigen_goal_judge
+
+    !> h: per end of Gamma_C, whether `lambda` lies past its crossing (none on hp levels,
+    !> graded toward every corner) and that crossing (moving_side: past_crossing_end).
+    subroutine past_end(this, lambda, past, crossing)
+        class(eigen_goal_t), intent(in) :: this
+        real(wp), intent(in) :: lambda
+        logical, intent(out) :: past(2)
+        real(wp), intent(out) :: crossing(2)
+        past = .false.
+        crossing = 0.0_wp
+        if (this%hp .or. .not. this%ends_known) return
+        call past_crossing_end(this%ends, this%poisson, lambda, past, crossing)
+    end subroutine past_end
 
     !> Why the estimate of a lambda's last level is missing: no positive mu (none at all, or
     !> none left of the earlier levels': MU_VANISHED), its size (skipped), or its failure.

@@ -73,7 +73,7 @@ module threshold_goal
     use hp_levels, only: hp_refiner_t, HP_ESTIMATE
     use pencil_tracking, only: N_PROFILE_BINS, level_values_t
     use moving_side, only: contact_ends_t, contact_ends, level_profile, track_side, &
-                           moving_words
+                           moving_words, past_crossing_end, unconfirmed_words
     implicit none
     private
     public :: solve_adapted_thresholds, threshold_goal_setup, threshold_goal_finish
@@ -208,6 +208,13 @@ module threshold_goal
         !> (0: not met, or met as 'none', or its goal is a collision onset); the report quotes
         !> that level's value and bar (report_last_level)
         integer :: met_row(2) = 0
+        !> h: the ends of Gamma_C (of the first level; refinement keeps them) and, per end
+        !> and side, whether that side's lambdas past the end's crossing lie there
+        !> (moving_side: past_crossing_end) and that crossing, for the sides without a value
+        logical :: ends_known = .false.
+        type(contact_ends_t) :: ends
+        logical :: past(2, 2) = .false.
+        real(wp) :: crossing(2, 2) = 0.0_wp
     contains
         procedure :: solve => threshold_goal_solve
         procedure :: judge => threshold_goal_judge
@@ -940,21 +947,30 @@ contains
         integer, intent(in) :: level   !! the last level's number
         real(wp), intent(in) :: tolerance
         real(wp) :: bar(2), roundoff(2)
-        integer :: side, k, i, present_levels, before
+        integer :: side, k, i, present_levels, before, past_end
         logical :: absent, present_all, has
         k = size(this%levels)
         present_levels = merge(2, 3, estimated)
         call goal_bars(this%levels(k), this%thr%roundoff, bar, roundoff)
+        if (estimated .and. .not. this%ends_known) then
+            this%ends = contact_ends(this%prob)
+            do side = SIDE_PLUS, SIDE_MINUS
+                call past_crossing_end(this%ends, this%prob%poisson, 0.0_wp, &
+                                       this%past(:, side), this%crossing(:, side), &
+                                       merge(1, -1, side == SIDE_PLUS))
+            end do
+            this%ends_known = .true.
+        end if
+        if (allocated(this%grade)) deallocate (this%grade)
+        allocate (this%grade(2, 0))
         do side = SIDE_PLUS, SIDE_MINUS
             associate (last => this%levels(k), t => this%targets(side))
                 has = last%found(side) .or. last%collision(side)
-                if (estimated .and. .not. any(last%found .or. last%collision)) then
-                    if (t%active() .or. t%converged()) call t%finish(TARGET_STOPPED, &
-                        trim(SIDE_LABELS(side))//': '//no_estimate_outcome(level, 'no real '// &
-                        'eigenvalue of the pencil Kt_nn x = lambda Kt_nt x and no collision '// &
-                        'onset: nothing to adapt to'))
-                    cycle
-                end if
+                ! h: a side without a value grades the next level toward the ends past whose
+                ! crossing its lambdas lie (uniform levels cannot see what concentrates there)
+                if (estimated .and. .not. has .and. t%active()) this%grade = &
+                    reshape([this%grade, this%ends%point(:, pack([1, 2], this%past(:, side)))], &
+                            [2, size(this%grade, 2) + count(this%past(:, side))])
                 if (t%converged()) then
                     ! met at an earlier level: it must keep (or keep lacking) its value
                     if (has .eqv. (index(t%outcome, ': none') == 0)) then
@@ -988,7 +1004,16 @@ contains
                     if (.not. absent) cycle
                     ! a value at an earlier level that has vanished is no 'none' (h and hp)
                     before = findloc(side_has(side), .true., 1, back=.true.)
-                    if (before == 0) then
+                    past_end = findloc(this%past(:, side), .true., 1)
+                    if (before == 0 .and. estimated .and. past_end > 0) then
+                        ! uniform levels cannot see a value that concentrates at that end
+                        call t%finish(TARGET_STOPPED, trim(SIDE_LABELS(side))//': no value '// &
+                            'at h levels '//to_string(this%levels(absent_since( &
+                            side_has(side)))%level)//' to '//to_string(level)//', '// &
+                            unconfirmed_words(this%ends, past_end, 'its lambdas beyond '// &
+                            short_real_text(this%crossing(past_end, side))//' lie past '// &
+                            'that end''s crossing'))
+                    else if (before == 0) then
                         call t%finish(TARGET_MET, SIDE_LABELS(side)//': none at '// &
                             trim(merge('h levels ', 'hp levels', estimated))//' '// &
                             to_string(this%levels(merge(absent_since(side_has(side)), &

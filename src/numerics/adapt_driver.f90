@@ -116,6 +116,10 @@ module adapt_driver
         !> of the last level): that failure, its message naming the level; the goal keeps
         !> the last complete level, which the run writes before it exits with its code
         type(status_t) :: failure
+        !> points (x y, point) toward which the next h level is graded beyond what `mark`
+        !> asks, set by judge (h_refiner: the cells at each refined GRADE_PASSES times more);
+        !> unallocated or none: no grading
+        real(wp), allocatable :: grade(:, :)
     contains
         !> solve `level` for the targets still active; `refused` (not '' ) says why the level
         !> cannot be solved at all (the memory of its contact blocks), before any change

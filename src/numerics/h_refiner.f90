@@ -34,6 +34,11 @@ module h_refiner
     !> at 34 200 and 254 388 dofs (168 MB, 1.2 GB); with a margin for the next level's
     !> peak.
     real(wp), parameter :: BYTES_PER_DOF = 8192.0_wp
+    !> The extra bisections per level of the cells at a point the goal grades toward
+    !> (adapt_goal_t: grade): two halve their size, so with the level's own bisection the
+    !> cells there go from h to h/2^2.5 where the rest go to h/sqrt(2) (a mode past a corner's
+    !> crossing lives below the scale of uniform levels: docs/adaptive.md)
+    integer, parameter, public :: GRADE_PASSES = 4
 
     type, extends(refiner_t), public :: h_refiner_t
         type(scene_t) :: scene                !! for the levels' problems and messages
@@ -108,6 +113,7 @@ contains
         allocate (marked(0))   ! (gfortran 12 warns of an unallocated one at -O3)
         marked = goal%mark(this%adapt%theta)
         call this%tree%refine(marked, stat)
+        if (stat%ok() .and. allocated(goal%grade)) call grade_toward(this%tree, goal%grade, stat)
         if (stat%ok()) call this%tree%to_mesh(this%element, refined, stat)
         if (stat%ok()) call build_problem(scn, next, stat, given_mesh=refined)
         if (.not. stat%ok()) return
@@ -120,6 +126,30 @@ contains
         level%prob = next
         level%number = level%number + 1
     end subroutine h_next
+
+    !> The cells of `tree` at each of `points` (a vertex there) bisected GRADE_PASSES times.
+    subroutine grade_toward(tree, points, stat)
+        type(refinable_mesh_t), intent(inout) :: tree
+        real(wp), intent(in) :: points(:, :)
+        type(status_t), intent(out) :: stat
+        logical, allocatable :: at(:)
+        real(wp) :: near
+        integer :: pass, i, c
+        if (size(points, 2) == 0) return
+        ! the points are vertices of the starting mesh: equal to round-off of its extent
+        near = 1.0e-9_wp*maxval(abs(tree%coords))
+        do pass = 1, GRADE_PASSES
+            allocate (at(tree%n_vertices()), source=.false.)
+            do i = 1, size(points, 2)
+                at = at .or. (abs(tree%coords(1, :) - points(1, i)) <= near .and. &
+                              abs(tree%coords(2, :) - points(2, i)) <= near)
+            end do
+            call tree%refine(pack([(c, c=1, tree%n_cells())], &
+                                  [(any(at(tree%cells(:, c))), c=1, tree%n_cells())]), stat)
+            deallocate (at)
+            if (.not. stat%ok()) return
+        end do
+    end subroutine grade_toward
 
     !> K of `level` factored with the contact dofs last; a singular K explained by the scene.
     subroutine h_factor(this, level, chol, timings, stat)

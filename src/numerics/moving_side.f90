@@ -21,7 +21,8 @@ module moving_side
     implicit none
     private
     public :: moving_side_t, contact_ends_t, contact_ends, level_profile, track_side, &
-              moving_words, FAR_NAMES, END_SHARE_AT
+              moving_words, FAR_NAMES, END_SHARE_AT, end_crossing, past_crossing_end, &
+              end_words, unconfirmed_words
 
     real(wp), parameter :: PI = acos(-1.0_wp)
     !> a vector with at least this share of its forces within 2^-6 of an end sits at that end
@@ -208,19 +209,8 @@ contains
         side%has_exponent = size(roots) > 0
         if (side%has_exponent) side%exponent = real(roots(minloc(abs(real(roots, wp)), &
                                                                  dim=1)), wp)
-        if (side%far == WEDGE_FREE) then
-            side%crossing = contact_free_crossing(ends%angle(end))
-        else
-            side%crossing = contact_clamped_crossing(ends%angle(end), poisson)
-        end if
-        side%has_crossing = abs(side%crossing) < 0.5_wp*huge(1.0_wp)
-        if (.not. side%has_crossing) return
-        ! past it: beyond the crossing, away from lambda = 0, where an exponent has passed
-        ! Re alpha = 0 (just before and just after the crossing the exponents with a negative
-        ! real part differ in number; one that only touched 0 and turned back would not count)
-        if (side%crossing*side%wedge_lambda <= 0.0_wp .or. &
-            abs(side%wedge_lambda) <= abs(side%crossing)) return
-        side%past_crossing = negative_exponents(-1.0_wp) /= negative_exponents(1.0_wp)
+        call end_crossing(ends, end, poisson, side%wedge_lambda, side%has_crossing, &
+                          side%crossing, side%past_crossing)
 
     contains
 
@@ -254,16 +244,102 @@ contains
             if (.not. side%alternates) side%shape_levels = 0
         end subroutine alternation
 
+    end function track_side
+
+    !> The crossing of end `end` of `ends` (known far side), for Poisson's ratio `poisson`:
+    !> the wedge's lambda where a real exponent crosses Re alpha = 0 (`has`: the corner has
+    !> one), and whether the wedge's lambda `wedge_lambda` lies past it, away from 0, where an
+    !> exponent has passed Re alpha = 0 (just before and just after the crossing the
+    !> exponents with a negative real part differ in number; one that only touched 0 and
+    !> turned back would not count).
+    subroutine end_crossing(ends, end, poisson, wedge_lambda, has, crossing, past)
+        type(contact_ends_t), intent(in) :: ends
+        integer, intent(in) :: end
+        real(wp), intent(in) :: poisson, wedge_lambda
+        logical, intent(out) :: has, past
+        real(wp), intent(out) :: crossing
+        complex(wp), allocatable :: roots(:)
+        logical :: complete
+        past = .false.
+        if (ends%far(end) == WEDGE_FREE) then
+            crossing = contact_free_crossing(ends%angle(end))
+        else
+            crossing = contact_clamped_crossing(ends%angle(end), poisson)
+        end if
+        has = abs(crossing) < 0.5_wp*huge(1.0_wp)
+        ! (no crossing: +-huge, whose product traps)
+        if (.not. has) return
+        if (crossing*wedge_lambda <= 0.0_wp .or. abs(wedge_lambda) <= abs(crossing)) return
+        past = negative_exponents(-1.0_wp) /= negative_exponents(1.0_wp)
+
+    contains
+
         !> The exponents with a negative real part (in the box searched) CROSSING_STEP before
         !> (`towards` -1) or after (+1) the crossing, going away from lambda = 0.
         integer function negative_exponents(towards) result(n)
             real(wp), intent(in) :: towards
-            call wedge_roots(WEDGE_CONTACT, side%far, ends%angle(end), poisson, &
-                             side%crossing + towards*sign(CROSSING_STEP, side%crossing), &
-                             RE_MIN, RE_MAX, IM_BOX, roots, complete)
+            call wedge_roots(WEDGE_CONTACT, ends%far(end), ends%angle(end), poisson, &
+                             crossing + towards*sign(CROSSING_STEP, crossing), RE_MIN, &
+                             RE_MAX, IM_BOX, roots, complete)
             n = count(real(roots, wp) < 0.0_wp)
         end function negative_exponents
-    end function track_side
+    end subroutine end_crossing
+
+    !> Per end of Gamma_C (`ends`): whether the body's `lambda` lies past its crossing
+    !> (end_crossing: the end the tangent points to sees lambda, the other -lambda), for
+    !> Poisson's ratio `poisson`, and that crossing as the body's lambda (0 where none). With
+    !> `side` (+1: lambda > 0, -1: lambda < 0) instead: whether the lambdas past its crossing
+    !> lie on that side, whatever `lambda`. An end whose far side is unknown is past nothing.
+    subroutine past_crossing_end(ends, poisson, lambda, past, crossing, side)
+        type(contact_ends_t), intent(in) :: ends
+        real(wp), intent(in) :: poisson, lambda
+        logical, intent(out) :: past(2)
+        real(wp), intent(out) :: crossing(2)
+        integer, intent(in), optional :: side
+        real(wp) :: wedge_lambda, c
+        logical :: has
+        integer :: e
+        past = .false.
+        crossing = 0.0_wp
+        do e = 1, 2
+            if (ends%far(e) == 0) cycle
+            wedge_lambda = merge(lambda, -lambda, e == 2)
+            if (present(side)) then
+                call end_crossing(ends, e, poisson, 0.0_wp, has, c, past(e))
+                if (.not. has) cycle
+                ! the lambdas past it: beyond c on c's side (twice c is one of them)
+                if (merge(c, -c, e == 2)*side <= 0.0_wp) cycle
+                wedge_lambda = 2.0_wp*c
+            end if
+            call end_crossing(ends, e, poisson, wedge_lambda, has, c, past(e))
+            if (past(e)) crossing(e) = merge(c, -c, e == 2)
+        end do
+    end subroutine past_crossing_end
+
+    !> The words of end `end` of `ends`: 'the end (x, y) of Gamma_C, a D-degree corner
+    !> beside a free side'.
+    function end_words(ends, end) result(text)
+        type(contact_ends_t), intent(in) :: ends
+        integer, intent(in) :: end
+        character(len=:), allocatable :: text
+        text = 'the end ('//real_to_text(ends%point(1, end))//', '// &
+            real_to_text(ends%point(2, end))//') of Gamma_C, a '// &
+            to_string(nint(ends%angle(end)*180.0_wp/PI))//'-degree corner beside a '// &
+            trim(FAR_NAMES(ends%far(end)))//' side'
+    end function end_words
+
+    !> Why h levels without a value, graded toward end `end` of `ends`, do not confirm its
+    !> absence: `past` says what lies past that end's crossing ('lambda = 9.78E+00 is past
+    !> that end''s crossing 5.80E+00').
+    function unconfirmed_words(ends, end, past) result(text)
+        type(contact_ends_t), intent(in) :: ends
+        integer, intent(in) :: end
+        character(len=*), intent(in) :: past
+        character(len=:), allocatable :: text
+        text = 'graded toward '//end_words(ends, end)//', its absence not confirmed: '// &
+            past//', where a mode can concentrate below the mesh''s scale (hp levels, '// &
+            'graded toward the ends, can see it)'
+    end function unconfirmed_words
 
     !> One sentence on side `label` (lambda+, lambda-) for the warnings and stdout: how its
     !> value moved, where its vector sits, and what the wedge there says.

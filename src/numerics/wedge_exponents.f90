@@ -142,7 +142,8 @@ contains
                     (1.0_wp, 1.0_wp), (-1.0_wp, 1.0_wp), (-1.0_wp, -1.0_wp)]))
             end do
             complete = sum(multiplicity) == n_total
-            if (complete) exit
+            ! the last grid's roots are kept, complete or not
+            if (complete .or. refinements == 4) exit
             step = 0.5_wp*step
             deallocate (found, multiplicity)
         end do
@@ -196,7 +197,8 @@ contains
                 if (abs(d_alpha) <= tiny(1.0_wp)) return
                 dz = d/d_alpha
                 z = z - dz
-                if (abs(z) > 1.0e3_wp) return
+                ! far outside the box (sin 2 alpha omega would overflow beyond 700 / omega)
+                if (abs(z) > 1.0e3_wp .or. abs(aimag(z))*omega > 300.0_wp) return
                 if (abs(dz) <= 1.0e-14_wp*(1.0_wp + abs(z))) then
                     failed = 0
                     exit

@@ -21,7 +21,7 @@ program test_moving_side
     use wedge_exponents, only: WEDGE_FREE, WEDGE_CLAMPED, contact_free_crossing, &
                                contact_clamped_crossing
     use moving_side, only: contact_ends_t, contact_ends, moving_side_t, track_side, &
-                           moving_words
+                           moving_words, past_crossing_end, end_words
     implicit none
     real(wp), parameter :: PI = acos(-1.0_wp)
     type(test_suite_t) :: t
@@ -31,6 +31,7 @@ program test_moving_side
     call check_geometric_at_an_end()
     call check_wedge_sides()
     call check_alternating()
+    call check_past_crossing_end()
     call t%report()
 
 contains
@@ -167,6 +168,46 @@ contains
         call t%check('lambda = +3 at end 1: the wedge sees -3, exponent < 0', side%end == 1 &
                      .and. side%wedge_lambda < 0.0_wp .and. side%past_crossing)
     end subroutine check_wedge_sides
+
+    !> A body's lambda past the crossing of an end (what an h-adaptive run's 'none' rests on):
+    !> the square's 90-degree contact-free corners cross at -pi/2 (end 2 sees lambda, end 1
+    !> -lambda), so lambda = -1.7 is past end 2's, +1.7 past end 1's (as the body's lambda
+    !> +pi/2), +-1.5 past neither; with `side`, the lambdas past end 1's lie on the side
+    !> lambda > 0 and end 2's on lambda < 0. A clamped end 1 crosses at +2.83 (nu = 0.3) in
+    !> its wedge's lambda: past it the body's lambda < -2.83.
+    subroutine check_past_crossing_end()
+        type(contact_ends_t) :: ends
+        logical :: past(2)
+        real(wp) :: crossing(2)
+        ends = square_ends()
+        call past_crossing_end(ends, 0.3_wp, -1.7_wp, past, crossing)
+        call t%check('lambda = -1.7: past end 2''s crossing -pi/2 only', &
+                     (.not. past(1)) .and. past(2) .and. &
+                     abs(crossing(2) + 0.5_wp*PI) <= 1.0e-14_wp)
+        call past_crossing_end(ends, 0.3_wp, 1.7_wp, past, crossing)
+        call t%check('lambda = +1.7: past end 1''s crossing, +pi/2 in the body''s lambda', &
+                     past(1) .and. .not. past(2) .and. abs(crossing(1) - 0.5_wp*PI) <= 1.0e-14_wp)
+        call past_crossing_end(ends, 0.3_wp, 1.5_wp, past, crossing)
+        call t%check('lambda = +1.5: past neither', .not. any(past))
+        call past_crossing_end(ends, 0.3_wp, -1.5_wp, past, crossing)
+        call t%check('lambda = -1.5: past neither', .not. any(past))
+        call past_crossing_end(ends, 0.3_wp, 0.0_wp, past, crossing, side=1)
+        call t%check('side lambda > 0: end 1''s lambdas past its crossing', &
+                     past(1) .and. .not. past(2))
+        call past_crossing_end(ends, 0.3_wp, 0.0_wp, past, crossing, side=-1)
+        call t%check('side lambda < 0: end 2''s', past(2) .and. .not. past(1))
+        ends%far(1) = WEDGE_CLAMPED
+        call past_crossing_end(ends, 0.3_wp, -3.0_wp, past, crossing)
+        call t%check('clamped end 1, nu = 0.3: lambda = -3 past its crossing (body -2.83)', &
+                     past(1) .and. abs(crossing(1) + contact_clamped_crossing(0.5_wp*PI, &
+                     0.3_wp)) <= 1.0e-14_wp)
+        call t%check('the words of end 1: its point, angle and far side', &
+                     index(end_words(ends, 1), '(1.0, 0.0) of Gamma_C, a 90-degree corner '// &
+                           'beside a clamped side') > 0)
+        ends%far(1) = 0
+        call past_crossing_end(ends, 0.3_wp, 1.7_wp, past, crossing)
+        call t%check('an end beside an unknown side is past nothing', .not. past(1))
+    end subroutine check_past_crossing_end
 
     !> Six levels whose one value alternates between two modes: at odd levels -3 - 0.01/k
     !> with the profile of geometric_levels (its force at end 2), at even levels -3.4 - 0.01/k

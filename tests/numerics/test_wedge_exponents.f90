@@ -25,6 +25,7 @@ program test_wedge_exponents
     call check_contact_free_crossing()
     call check_contact_clamped_crossing()
     call check_quarter_plane_table()
+    call check_reflex_contact_corner()
     call t%report()
 
 contains
@@ -301,4 +302,29 @@ contains
                 WEDGE_CONTACT, WEDGE_FREE, r, 0.5_wp*PI, 0.3_wp, lambdas(k))) <= 1.0e-10_wp))
         end do
     end subroutine check_quarter_plane_table
+
+    !> A 225-degree contact-free end (a random body's, nu = 0.1225) just beyond its crossing,
+    !> in the box moving_side searches: no grid of starting points accounts for every root
+    !> the argument principle counts there, and Newton's iterates from some of them run far
+    !> up the imaginary axis (sin(2 alpha omega) overflowed under Debug's traps). The search
+    !> still returns, incomplete, with roots that are roots (|d| at round-off of the terms,
+    !> which are O(1) in the box) and inside the box.
+    subroutine check_reflex_contact_corner()
+        complex(wp), allocatable :: roots(:)
+        logical :: complete
+        real(wp) :: omega, lambda
+        integer :: towards
+        omega = 225.374_wp*PI/180.0_wp
+        do towards = -1, 1, 2
+            lambda = contact_free_crossing(omega) - towards*0.1_wp
+            call wedge_roots(WEDGE_CONTACT, WEDGE_FREE, omega, 0.1225_wp, lambda, -0.999_wp, &
+                             1.5_wp, 0.5_wp, roots, complete)
+            call t%check('225 degrees, lambda = crossing '//trim(merge('+ 0.1', '- 0.1', &
+                         towards < 0))//': the roots returned are roots inside the box', &
+                         all(abs(wedge_determinant(WEDGE_CONTACT, WEDGE_FREE, roots, omega, &
+                                 0.1225_wp, lambda)) <= 1.0e-8_wp) .and. &
+                         all(real(roots) > -0.999_wp .and. real(roots) < 1.5_wp .and. &
+                             abs(aimag(roots)) < 0.5_wp))
+        end do
+    end subroutine check_reflex_contact_corner
 end program test_wedge_exponents

@@ -1,0 +1,71 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# h-adaptive runs and the crossings of the ends of Gamma_C (docs/adaptive.md, "A lambda
+# without a positive mu"; docs/thresholds.md): past an end's crossing a mode can concentrate
+# at that end below the scale of uniform levels, so levels without a value there confirm no
+# absence. The levels are graded toward that end, and a value still missing ends the run
+# with exit 8 saying why, not 'none'. A threshold level with no value on either side
+# refines on (every cell) instead of stopping, and each side's absence is judged by the same
+# rule. The crossings are closed forms (wedge_exponents): -pi/2 for a 90-degree corner beside
+# a free side, 3 pi/2 (kappa pi/2, nu = 0) beside a clamped one.
+# Usage: cli_adapt_crossing.sh NCEIG SOURCE_DIR
+set -u
+nceig=$1
+source "$(dirname "$0")/lib/cli_common.sh"
+cli_begin cli_adapt_crossing
+
+# The reference square (top clamped, left and right free, contact at the bottom; end 1 at
+# (1, 0), end 2 at (0, 0): the wedge at end 1 sees -lambda). lambda = 1.8 lies below the
+# threshold 1.94 (no positive mu) and past end 1's crossing pi/2; lambda = 1 before it.
+cat >"$work/square.nml" <<NML
+&mesh nx = 2, ny = 2, element = 'p2' /
+&analysis kind = 'eigen', lambda = 1.8 /
+&output directory = '$work/square', vtk = .false., plot = .false. /
+&adapt tolerance = 1e-5 /
+NML
+"$nceig" "$work/square.nml" >"$work/stdout" 2>"$work/err"; rc=$?
+a=$work/square/adapt.csv
+check 'eigen, past the crossing: exit 8, its absence not confirmed, saying where and why' \
+    '[[ $rc -eq 8 && $(wc -l <"$work/err") -eq 1 ]] &&
+    grep -q "no positive mu at h levels 0 to 2 (.*), graded toward the end (1.0, 0.0) of Gamma_C, a 90-degree corner beside a free side, its absence not confirmed: lambda = 1.80E+00 is past that end.s crossing 1.57E+00" "$work/err" &&
+    ! grep -q "none, confirmed" "$work/stdout"'
+# a bisection of every cell doubles the cells; the grading adds those at the end
+check 'eigen, past the crossing: level 1 is graded (more than twice the cells of level 0)' \
+    '[[ $(sed -n 3p "$a" | cut -d, -f4) -gt $((2 * $(sed -n 2p "$a" | cut -d, -f4))) ]]'
+"$nceig" "$work/square.nml" --set analysis%lambda=1.0 >"$work/stdout" 2>"$work/err"; rc=$?
+check 'eigen, before the crossings: none, confirmed over uniform levels, exit 0' \
+    '[[ $rc -eq 0 && ! -s "$work/err" ]] &&
+    grep -q "none, confirmed: no positive mu at h levels 0 to 2 (40 to 144 dofs)" "$work/stdout"'
+
+# Threshold, P1 on one square cell, top and right clamped, left free, nu = 0: the first level
+# (2 dofs) has no pencil value and no collision on either side. The loop refines on: lambda-
+# appears at level 1, and lambda+, whose side holds no lambdas past a crossing (end 2's free
+# one is at lambda < -pi/2, end 1's clamped one at lambda < -3 pi/2), is none.
+cat >"$work/cell.nml" <<NML
+&mesh nx = 1, ny = 1, element = 'p1', dirichlet = 'top right', neumann = 'left' /
+&material poisson = 0.0 /
+&analysis kind = 'threshold', lambda = 1.0 /
+&output directory = '$work/cell', vtk = .false., plot = .false. /
+&adapt tolerance = 1e-2, max_levels = 12 /
+NML
+"$nceig" "$work/cell.nml" >"$work/stdout" 2>"$work/err"; rc=$?
+a=$work/cell/adapt.csv
+check 'threshold, nothing at level 0: the loop goes on, lambda- appears at a later level' \
+    '[[ $rc -eq 8 && $(wc -l <"$a") -ge 4 && $(sed -n 2p "$a" | cut -d, -f5,7,12,15) == ",,," ]] &&
+    [[ -n $(tail -n +3 "$a" | cut -d, -f7 | tr -d "\n") ]] &&
+    ! grep -q "nothing to adapt" "$work/stdout" "$work/err"'
+check 'threshold: lambda+ none, confirmed over three levels' \
+    'grep -q "lambda+: none at h levels 0 to 2" "$work/stdout"'
+
+# Left and right clamped, top free, P1 3 x 3, nu = 0: no value on either side at any level,
+# and each side holds the lambdas past a clamped end's crossing 3 pi/2 (end 2, lambda > 0;
+# end 1, lambda < 0): neither side is none, each says why, exit 8.
+"$nceig" "$work/cell.nml" --set mesh%nx=3 --set mesh%ny=3 --set mesh%dirichlet='left right' \
+    --set mesh%neumann=top >"$work/stdout" 2>"$work/err"; rc=$?
+check 'threshold, both sides past a crossing: exit 8, neither confirmed none' \
+    '[[ $rc -eq 8 ]] &&
+    grep -q "lambda+: no value at h levels 0 to 2, graded toward the end (0.0, 0.0) of Gamma_C, a 90-degree corner beside a clamped side, its absence not confirmed: its lambdas beyond 4.71E+00 lie past that end.s crossing" "$work/err" &&
+    grep -q "lambda-: no value at h levels 0 to 2, graded toward the end (1.0, 0.0) of Gamma_C, .* its lambdas beyond -4.71E+00" "$work/err" &&
+    ! grep -q "none at h levels" "$work/stdout"'
+
+cli_end
