@@ -383,6 +383,7 @@ contains
         do side = SIDE_PLUS, SIDE_MINUS
             if (goal%targets(side)%converged()) cycle
             onsets%bar(side) = -1.0_wp
+            onsets%withheld(side) = .true.
             est%computed(side) = .false.
             est%bar(side) = -1.0_wp
             if (goal%thr%found(side)) est%skipped(side) = 'none: '// &

@@ -39,6 +39,9 @@ module boundary_estimate
         logical :: collision(2) = .false.     !! the side's onset is a collision
         real(wp) :: lambda(2) = 0.0_wp        !! where
         real(wp) :: bar(2) = -1.0_wp          !! its bar; < 0: none
+        !> the side did not meet its tolerance in the loop: its onset gets no bar, wherever
+        !> the report's search puts it (a one-mesh bar would quote what the loop refused)
+        logical :: withheld(2) = .false.
     contains
         procedure :: apply => onset_bars_apply
     end type onset_bars_t
@@ -219,16 +222,22 @@ contains
     end subroutine pair_points_near
 
     !> The bars of `this` into the onset points of `set` that are these collisions (the same
-    !> search on the same problem: the same points, to round-off); known(i) where set.
+    !> search on the same problem: the same points, to round-off), and no bar into the onset
+    !> point of a withheld side, whatever it is; known(i) where set.
     subroutine onset_bars_apply(this, set, known)
         class(onset_bars_t), intent(in) :: this
         type(critical_set_t), intent(inout) :: set
         logical, intent(inout) :: known(:)
         integer :: side, i
         do side = SIDE_PLUS, SIDE_MINUS
-            if (.not. this%collision(side)) cycle
             i = onset_point(set, side)
             if (i == 0) cycle
+            if (this%withheld(side)) then
+                set%points(i)%error_bar = -1.0_wp
+                known(i) = .true.
+                cycle
+            end if
+            if (.not. this%collision(side)) cycle
             if (set%points(i)%mechanism /= MECHANISM_COMPLEX_PAIR .or. &
                 abs(set%points(i)%lambda - this%lambda(side)) > &
                 1.0e-12_wp*abs(this%lambda(side))) cycle

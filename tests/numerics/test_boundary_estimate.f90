@@ -7,7 +7,8 @@
 !> (half-contact-threshold, lambda_onset_minus = -1.4802511332824284 +- 2e-12); the same
 !> point of the problem one degree higher (enriched_pair_lambdas) lies within the window
 !> searched (5 % of |lambda|) and closer to the truth than the point itself. The bars of
-!> collision onsets known already (onset_bars_t) replace those of the same points only.
+!> collision onsets known already (onset_bars_t) replace those of the same points only; a
+!> side the adaptive loop withheld gets no bar at its onset, wherever the report puts it.
 program test_boundary_estimate
     use kinds, only: wp
     use status, only: status_t
@@ -31,6 +32,7 @@ program test_boundary_estimate
     t%name = 'test_boundary_estimate'
     call half_contact_bars(t)
     call known_onsets_replace_their_points(t)
+    call withheld_side_gets_no_bar(t)
     call t%report()
 
 contains
@@ -117,4 +119,31 @@ contains
         call t%check('an onset 1e-9 away: not the same point', &
                      set%points(1)%error_bar < 0.0_wp .and. .not. known(1))
     end subroutine known_onsets_replace_their_points
+
+    !> The minus side withheld (not met in the loop) with its last level's onset at -2.0000004
+    !> (4e-10 relative from the report's point at -2, as on a random body where the report
+    !> then quoted a one-mesh bar of 10 % for a value the loop had no estimate for): the onset
+    !> point -2 is known, without a bar; the plus side's pencil point is left to its estimate.
+    subroutine withheld_side_gets_no_bar(t)
+        type(test_suite_t), intent(inout) :: t
+        type(critical_set_t) :: set
+        type(onset_bars_t) :: onsets
+        logical :: known(3)
+        allocate (set%points(3))
+        set%points(:)%lambda = [-2.0_wp, 1.0_wp, 3.0_wp]
+        set%points(:)%mechanism = [MECHANISM_COMPLEX_PAIR, MECHANISM_PENCIL, &
+                                   MECHANISM_COMPLEX_PAIR]
+        set%points(:)%appears = [.false., .true., .false.]
+        set%points(:)%error_bar = 0.5_wp   ! (a bar an earlier step put there)
+        onsets%collision = [.false., .true.]
+        onsets%lambda = [0.0_wp, -2.0_wp*(1.0_wp + 2.0e-10_wp)]
+        onsets%bar = -1.0_wp
+        onsets%withheld = [.false., .true.]
+        known = .false.
+        call onsets%apply(set, known)
+        call t%check('withheld side: its onset known, without a bar', &
+                     known(1) .and. set%points(1)%error_bar < 0.0_wp)
+        call t%check('withheld side: the other points untouched', &
+                     .not. any(known(2:)) .and. all(set%points(2:)%error_bar > 0.0_wp))
+    end subroutine withheld_side_gets_no_bar
 end program test_boundary_estimate
