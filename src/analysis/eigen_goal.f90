@@ -637,9 +637,9 @@ contains
         class(refiner_t), intent(in) :: refiner
         integer, intent(in) :: level
         real(wp), intent(in) :: tolerance
-        character(len=:), allocatable :: no_value
+        character(len=:), allocatable :: no_value, why
         real(wp) :: bar, roundoff, crossing(2)
-        integer :: i, n, j, end
+        integer :: i, n, j
         logical :: confirmed, past(2)
 
         if (allocated(this%grade)) deallocate (this%grade)
@@ -656,16 +656,14 @@ contains
                     if (.not. absence_confirmed([(p%levels(j)%has_mu, j=1, n)], &
                                                 [(p%levels(j)%n_dofs, j=1, n)], &
                                                 refiner%estimated())) cycle
-                    end = findloc(past, .true., 1)
-                    if (end == 0) then
+                    why = unconfirmed_text(this, p%lambda)
+                    if (len(why) == 0) then
                         call this%targets(i)%finish(TARGET_MET, 'none, confirmed: '// &
                                                     no_mu_levels(p, this%hp))
                     else
                         call this%targets(i)%finish(TARGET_STOPPED, 'tolerance '// &
                             given_real_text(tolerance)//' not met: '// &
-                            no_mu_levels(p, this%hp)//', '//unconfirmed_words(this%ends, &
-                            end, 'lambda = '//short_real_text(p%lambda)//' is past that '// &
-                            'end''s crossing '//short_real_text(crossing(end))))
+                            no_mu_levels(p, this%hp)//', '//why)
                     end if
                     cycle
                 end if
@@ -703,6 +701,23 @@ contains
         call past_crossing_end(this%ends, this%poisson, lambda, past, crossing)
     end subroutine past_end
 
+    !> h: why levels without a positive mu at `lambda` cannot confirm its absence, from the
+    !> first end of Gamma_C past whose crossing it lies ('' where none: uniform levels can).
+    function unconfirmed_text(this, lambda) result(text)
+        class(eigen_goal_t), intent(in) :: this
+        real(wp), intent(in) :: lambda
+        character(len=:), allocatable :: text
+        real(wp) :: crossing(2)
+        logical :: past(2)
+        integer :: end
+        text = ''
+        call past_end(this, lambda, past, crossing)
+        end = findloc(past, .true., 1)
+        if (end == 0) return
+        text = unconfirmed_words(this%ends, end, 'lambda = '//short_real_text(lambda)// &
+                                 ' is past that end''s crossing '//short_real_text(crossing(end)))
+    end function unconfirmed_text
+
     !> Why the estimate of a lambda's last level is missing: no positive mu (none at all, or
     !> none left of the earlier levels': MU_VANISHED), its size (skipped), or its failure.
     function missing(p) result(reason)
@@ -737,7 +752,7 @@ contains
     function eigen_goal_bar_text(this, i) result(text)
         class(eigen_goal_t), intent(in) :: this
         integer, intent(in) :: i
-        character(len=:), allocatable :: text
+        character(len=:), allocatable :: text, why
         text = 'none'
         if (size(this%points(i)%levels) == 0) return
         associate (p => this%points(i), &
@@ -745,6 +760,12 @@ contains
             if (last%error_bar >= 0.0_wp) text = short_real_text(last%error_bar)
             text = text//' at '//to_string(last%n_dofs)//' dofs'
             if (.not. any(p%levels%has_mu)) then
+                ! past an end's crossing no number of levels confirms it (eigen_goal_judge)
+                why = unconfirmed_text(this, p%lambda)
+                if (len(why) > 0) then
+                    text = text//'; '//no_mu_levels(p, this%hp)//', '//why
+                    return
+                end if
                 text = text//'; '//no_mu_levels(p, this%hp)//', its absence not confirmed '// &
                     '(that needs '//to_string(NONE_LEVELS)//' levels without it'
                 if (.not. this%hp) text = text//', over which the dofs double'

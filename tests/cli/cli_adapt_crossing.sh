@@ -32,6 +32,11 @@ check 'eigen, past the crossing: exit 8, its absence not confirmed, saying where
 # a bisection of every cell doubles the cells; the grading adds those at the end
 check 'eigen, past the crossing: level 1 is graded (more than twice the cells of level 0)' \
     '[[ $(sed -n 3p "$a" | cut -d, -f4) -gt $((2 * $(sed -n 2p "$a" | cut -d, -f4))) ]]'
+# a limit before the third level says the same, not that more levels would confirm it
+"$nceig" "$work/square.nml" --set adapt%max_levels=1 >"$work/stdout" 2>"$work/err"; rc=$?
+check 'eigen, past the crossing, max_levels first: the same reason, no count of levels' \
+    '[[ $rc -eq 8 ]] && grep -q "max_levels = 1 reached .*no positive mu at h levels 0 to 1 (.*), graded toward the end (1.0, 0.0) of Gamma_C, .* its absence not confirmed: lambda = 1.80E+00 is past" "$work/err" &&
+    ! grep -q "that needs" "$work/err"'
 "$nceig" "$work/square.nml" --set analysis%lambda=1.0 >"$work/stdout" 2>"$work/err"; rc=$?
 check 'eigen, before the crossings: none, confirmed over uniform levels, exit 0' \
     '[[ $rc -eq 0 && ! -s "$work/err" ]] &&
