@@ -96,11 +96,7 @@ contains
         type(critical_set_t) :: set
         type(onset_bars_t) :: onsets
         logical :: known(3)
-        allocate (set%points(3))
-        set%points(:)%lambda = [-2.0_wp, 1.0_wp, 3.0_wp]
-        set%points(:)%mechanism = [MECHANISM_COMPLEX_PAIR, MECHANISM_PENCIL, &
-                                   MECHANISM_COMPLEX_PAIR]
-        set%points(:)%appears = [.false., .true., .false.]
+        call three_points(set)
         set%points(:)%error_bar = -1.0_wp
         onsets%collision = [.false., .true.]
         onsets%lambda = [0.0_wp, -2.0_wp]
@@ -129,11 +125,7 @@ contains
         type(critical_set_t) :: set
         type(onset_bars_t) :: onsets
         logical :: known(3)
-        allocate (set%points(3))
-        set%points(:)%lambda = [-2.0_wp, 1.0_wp, 3.0_wp]
-        set%points(:)%mechanism = [MECHANISM_COMPLEX_PAIR, MECHANISM_PENCIL, &
-                                   MECHANISM_COMPLEX_PAIR]
-        set%points(:)%appears = [.false., .true., .false.]
+        call three_points(set)
         set%points(:)%error_bar = 0.5_wp   ! (a bar an earlier step put there)
         onsets%collision = [.false., .true.]
         onsets%lambda = [0.0_wp, -2.0_wp*(1.0_wp + 2.0e-10_wp)]
@@ -146,4 +138,15 @@ contains
         call t%check('withheld side: the other points untouched', &
                      .not. any(known(2:)) .and. all(set%points(2:)%error_bar > 0.0_wp))
     end subroutine withheld_side_gets_no_bar
+
+    !> The boundary of the checks above: the minus side's onset a collision at -2, a pencil
+    !> point at 1 and a collision at 3.
+    subroutine three_points(set)
+        type(critical_set_t), intent(out) :: set
+        allocate (set%points(3))
+        set%points(:)%lambda = [-2.0_wp, 1.0_wp, 3.0_wp]
+        set%points(:)%mechanism = [MECHANISM_COMPLEX_PAIR, MECHANISM_PENCIL, &
+                                   MECHANISM_COMPLEX_PAIR]
+        set%points(:)%appears = [.false., .true., .false.]
+    end subroutine three_points
 end program test_boundary_estimate
