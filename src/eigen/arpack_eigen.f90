@@ -342,8 +342,9 @@ contains
 
         !> spec%roundoff of the lowest positive mu (module roundoff)
         !> from its left eigenvector: of the dense decision's reduced matrix when it decided,
-        !> else from one ARPACK run on the transposed operator (the last run's nev). A failure
-        !> only leaves them unknown.
+        !> else the search's first run's (on the transposed operator) where that run certified
+        !> the same mu, else from one ARPACK run on the transposed operator (the last run's
+        !> nev). A failure only leaves them unknown.
         subroutine add_roundoff(nev)
             integer, intent(in) :: nev
             real(wp), allocatable :: w(:), y(:)
@@ -355,20 +356,19 @@ contains
             if (spec%dense_decision) then
                 if (allocated(search%run%left)) call left_from_reduced(chol, contact, k%n(), &
                     search%run%left, y, left_stat)
-            else if (lifted) then
+            else
+                ! the operator's left vector (reduced, or of the full operator)
                 if (search_left_agrees()) then
                     w = search%left
                 else
                     call left_eigenvector(search%op, chol, options, min(nev, cap), &
                                           real(spec%mu(1), wp), w, left_stat)
                 end if
-                if (left_stat%ok() .and. allocated(w)) call left_from_reduced(chol, contact, &
-                    k%n(), w, y, left_stat)
-            else if (search_left_agrees()) then
-                y = search%left
-            else
-                call left_eigenvector(search%op, chol, options, min(nev, cap), &
-                                      real(spec%mu(1), wp), y, left_stat)
+                if (.not. lifted) then
+                    call move_alloc(w, y)
+                else if (left_stat%ok() .and. allocated(w)) then
+                    call left_from_reduced(chol, contact, k%n(), w, y, left_stat)
+                end if
             end if
             if (left_stat%ok()) call lowest_roundoff(k, b, contact, lambda, real(spec%mu(1), wp), &
                 real(spec%vectors(:, 1), wp), y, spec%roundoff(1))
