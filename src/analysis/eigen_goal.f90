@@ -32,7 +32,7 @@ module eigen_goal
     use hp_rayleigh, only: refine_lowest_mu
     use adapt_driver, only: adapt_goal_t, refiner_t, adapt_level_t, adapt_levels, judge_target, &
                             check_target, absence_confirmed, NONE_LEVELS, TARGET_MET, &
-                            TARGET_STOPPED
+                            TARGET_STOPPED, adapt_target_t
     use h_refiner, only: h_refiner_t, doerfler_marking
     use moving_side, only: contact_ends_t, contact_ends, past_crossing_end, unconfirmed_words
     use hp_levels, only: hp_refiner_t, HP_ESTIMATE
@@ -447,7 +447,7 @@ contains
         real(wp) :: series, bar, begin
         character(len=:), allocatable :: why
         integer :: i, k
-        logical :: built
+        logical :: built, none
 
         begin = wall_time()
         built = .false.
@@ -455,7 +455,10 @@ contains
             if (size(this%points(i)%levels) == 0) cycle
             associate (p => this%points(i), &
                        row => this%points(i)%levels(size(this%points(i)%levels)))
-                if (row%error_bar < 0.0_wp) cycle
+                ! a lambda met as 'none' is checked too: its levels' changes bound nothing
+                none = this%targets(i)%converged() .and. &
+                    index(this%targets(i)%outcome, 'none, confirmed: ') == 1
+                if (row%error_bar < 0.0_wp .and. .not. none) cycle
                 if (.not. built) then
                     select type (refiner)
                     class is (hp_refiner_t)
@@ -480,6 +483,11 @@ contains
                                  this%lowest_only, res, timings, stat)
                 if (.not. stat%ok()) exit
                 k = res%spec%lowest_positive()
+                if (none) then
+                    call check_none(this%targets(i), p%lambda, res, k, &
+                                    check%prob%dofs%n_free, last%number, timings)
+                    cycle
+                end if
                 if (k > 0) call refine_level_mu(check, tolerance, res, k, stat)
                 if (.not. stat%ok()) exit
                 row%check_dofs = check%prob%dofs%n_free
@@ -518,6 +526,32 @@ contains
         call timings%note('hp check of level '//to_string(last%number)//': '// &
                           seconds_text(wall_time() - begin)//' s')
     end subroutine eigen_goal_check
+
+    !> hp: lambda `lambda`, met as 'none' (no positive mu at its last NONE_LEVELS levels), is
+    !> confirmed only where the check of the last level `level` (`res`, its spectrum on `dofs`
+    !> free dofs with every degree raised by one; `k` its lowest positive mu, 0: none) has no
+    !> positive mu either. A mu the check finds appears with the degree: target `t` stops as
+    !> not converged (exit 8), its outcome naming that mu.
+    subroutine check_none(t, lambda, res, k, dofs, level, timings)
+        type(adapt_target_t), intent(inout) :: t
+        real(wp), intent(in) :: lambda
+        type(eigen_result_t), intent(in) :: res
+        integer, intent(in) :: k, dofs, level
+        type(timings_t), intent(inout) :: timings
+        character(len=:), allocatable :: head, words
+        head = 'the check of hp level '//to_string(level)// &
+            ' with every degree raised by one ('//to_string(dofs)//' dofs)'
+        if (k == 0) then
+            call timings%note(head//' at lambda = '//short_real_text(lambda)// &
+                              ' has no positive mu either')
+            return
+        end if
+        words = 'tolerance not met: '//t%outcome(len('none, confirmed: ') + 1:)//', but '// &
+            head//' finds mu = '//short_real_text(real(res%spec%mu(k), wp), 6)// &
+            ': it appears with the degree, not converged'
+        call timings%note(words)
+        call t%finish(TARGET_STOPPED, words)
+    end subroutine check_none
 
     !> The eigen solve of `res` (res%lambda, res%b and res%solver set) on `prob` factored in
     !> `chol`, with the level's blocks and the lifts' shared data where it has them.

@@ -792,14 +792,16 @@ contains
                     check_value(2)
         character(len=:), allocatable :: why, head
         integer :: side, onset(2), m
-        logical :: has_check(2), tracked
+        logical :: has_check(2), tracked, none_met(2)
         real(wp) :: both
 
         if (size(this%levels) == 0) return
         begin = wall_time()
+        none_met = [(met_as_none(this%targets(side)), side=SIDE_PLUS, SIDE_MINUS)]
         associate (row => this%levels(size(this%levels)))
             call goal_bars(row, this%thr%roundoff, before, roundoff)
-            if (all(before <= 0.0_wp)) return   ! no bar to check (none yet, or nothing to meet)
+            ! nothing to check: no bar (none yet, or nothing to meet) and no side met as 'none'
+            if (all(before <= 0.0_wp) .and. .not. any(none_met)) return
             select type (refiner)
             class is (hp_refiner_t)
                 call refiner%check_level(start, last, check, timings, stat)
@@ -909,8 +911,47 @@ contains
                 end if
                 if (this%targets(side)%active()) this%met_row(side) = 0
             end do
+            call check_none_sides(this%targets, none_met, thr, check%prob%dofs%n_free, &
+                                  last%number, timings)
         end associate
     end subroutine threshold_goal_check
+
+    !> Whether target `t` is a side met as 'none' (judge_sides: no value at its last
+    !> NONE_LEVELS hp levels).
+    logical function met_as_none(t) result(none)
+        type(adapt_target_t), intent(in) :: t
+        none = .false.
+        if (t%converged()) none = index(t%outcome, ': none at ') > 0
+    end function met_as_none
+
+    !> hp: each side met as 'none' (`none_met`) is confirmed only where the check of the last
+    !> level `level` (`thr`: its pencil on `dofs` free dofs, every degree raised by one) has
+    !> no real pencil value on that side either. The levels' changes cannot bound a value
+    !> they never had: one the check finds appears with the degree, so the side stops as not
+    !> converged (exit 8), its outcome naming the value.
+    subroutine check_none_sides(targets, none_met, thr, dofs, level, timings)
+        type(adapt_target_t), intent(inout) :: targets(:)
+        logical, intent(in) :: none_met(2)
+        type(thresholds_t), intent(in) :: thr
+        integer, intent(in) :: dofs, level
+        type(timings_t), intent(inout) :: timings
+        character(len=:), allocatable :: head, words
+        integer :: side
+        head = 'the check of hp level '//to_string(level)// &
+            ' with every degree raised by one ('//to_string(dofs)//' dofs)'
+        do side = SIDE_PLUS, SIDE_MINUS
+            if (.not. none_met(side)) cycle
+            if (.not. thr%found(side)) then
+                call timings%note(head//' finds no '//trim(SIDE_LABELS(side))//' either')
+                cycle
+            end if
+            words = targets(side)%outcome//', but '//head//' finds '// &
+                trim(SIDE_LABELS(side))//' = '//short_real_text(thr%lambda(side), 6)// &
+                ': it appears with the degree, not converged'
+            call timings%note(words)
+            call targets(side)%finish(TARGET_STOPPED, words)
+        end do
+    end subroutine check_none_sides
 
     !> Whether the check (bar `bar`, round-off part `roundoff`) takes target `t`, met or at
     !> the floor, off what it was (adapt_driver: check_target's test).
