@@ -749,7 +749,8 @@ contains
         end = findloc(past, .true., 1)
         if (end == 0) return
         text = unconfirmed_words(this%ends, end, 'lambda = '//short_real_text(lambda)// &
-                                 ' is past that end''s crossing '//short_real_text(crossing(end)))
+                                 ' is past that end''s crossing '// &
+                                 short_real_text(crossing(end)), .true.)
     end function unconfirmed_text
 
     !> Why the estimate of a lambda's last level is missing: no positive mu (none at all, or

@@ -328,17 +328,22 @@ contains
             trim(FAR_NAMES(ends%far(end)))//' side'
     end function end_words
 
-    !> Why h levels without a value, graded toward end `end` of `ends`, do not confirm its
+    !> Why levels without a value, graded toward end `end` of `ends`, do not confirm its
     !> absence: `past` says what lies past that end's crossing ('lambda = 9.78E+00 is past
-    !> that end''s crossing 5.80E+00').
-    function unconfirmed_words(ends, end, past) result(text)
+    !> that end''s crossing 5.80E+00'); `h` for h levels (hp ones can see further there).
+    function unconfirmed_words(ends, end, past, h) result(text)
         type(contact_ends_t), intent(in) :: ends
         integer, intent(in) :: end
         character(len=*), intent(in) :: past
+        logical, intent(in) :: h
         character(len=:), allocatable :: text
         text = 'graded toward '//end_words(ends, end)//', its absence not confirmed: '// &
-            past//', where a mode can concentrate below the mesh''s scale (hp levels, '// &
-            'graded toward the ends, can see it)'
+            past//', where a mode can concentrate below the '
+        if (h) then
+            text = text//'mesh''s scale (hp levels, graded toward the ends, can see it)'
+        else
+            text = text//'finest cells'' scale'
+        end if
     end function unconfirmed_words
 
     !> One sentence on side `label` (lambda+, lambda-) for the warnings and stdout: how its

@@ -6,8 +6,9 @@
 # absence. The levels are graded toward that end, and a value still missing ends the run
 # with exit 8 saying why, not 'none'. A threshold level with no value on either side
 # refines on (every cell) instead of stopping, and each side's absence is judged by the same
-# rule. The crossings are closed forms (wedge_exponents): -pi/2 for a 90-degree corner beside
-# a free side, 3 pi/2 (kappa pi/2, nu = 0) beside a clamped one.
+# rule; hp levels likewise say no 'none' for a side past a crossing. The crossings are
+# closed forms (wedge_exponents): -pi/2 for a 90-degree corner beside a free side, 3 pi/2
+# (kappa pi/2, nu = 0) beside a clamped one.
 # Usage: cli_adapt_crossing.sh NCEIG SOURCE_DIR
 set -u
 nceig=$1
@@ -72,5 +73,20 @@ check 'threshold, both sides past a crossing: exit 8, neither confirmed none' \
     grep -q "lambda+: no value at h levels 0 to 2, graded toward the end (0.0, 0.0) of Gamma_C, a 90-degree corner beside a clamped side, its absence not confirmed: its lambdas beyond 4.71E+00 lie past that end.s crossing" "$work/err" &&
     grep -q "lambda-: no value at h levels 0 to 2, graded toward the end (1.0, 0.0) of Gamma_C, .* its lambdas beyond -4.71E+00" "$work/err" &&
     ! grep -q "none at h levels" "$work/stdout"'
+
+# hp levels grade every corner, but three of them without a value bound nothing below their
+# finest cells either: the same body under hp, lambda- (end 1's clamped crossing -3 pi/2) not
+# none; the one square cell's lambda+ (no lambdas past a crossing on its side) still none.
+"$nceig" "$work/cell.nml" --set mesh%nx=3 --set mesh%ny=3 --set mesh%dirichlet='left right' \
+    --set mesh%neumann=top --set adapt%strategy=hp --set adapt%max_levels=4 \
+    >"$work/stdout" 2>"$work/err"; rc=$?
+check 'hp threshold, a side past a crossing: exit 8, not none, saying why' \
+    '[[ $rc -eq 8 ]] &&
+    grep -q "lambda-: no value at hp levels 1 to 3, graded toward the end (1.0, 0.0) of Gamma_C, a 90-degree corner beside a clamped side, its absence not confirmed: its lambdas beyond -4.71E+00 lie past that end.s crossing" "$work/err" &&
+    ! grep -q "none at hp levels" "$work/stdout"'
+"$nceig" "$work/cell.nml" --set mesh%nx=2 --set mesh%ny=2 --set adapt%strategy=hp \
+    --set adapt%max_levels=4 >"$work/stdout" 2>"$work/err"; rc=$?
+check 'hp threshold, a side with no lambdas past a crossing: none over three levels' \
+    'grep -q "lambda+: none at hp levels 1 to 3" "$work/stdout"'
 
 cli_end
