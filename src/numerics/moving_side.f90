@@ -94,6 +94,7 @@ contains
         ends%s_min = huge(1.0_wp)
         ends%s_max = -huge(1.0_wp)
         node = 0
+        if (.not. allocated(prob%mesh%edge_part)) return   ! no mesh (a goal's rows alone)
         do e = 1, size(prob%mesh%edge_part)
             if (prob%mesh%edge_part(e) /= prob%contact_part) cycle
             do k = 1, 2
