@@ -92,6 +92,22 @@ module eigen_goal
         type(status_t) :: failure
     end type adapted_eigen_t
 
+    integer, parameter :: COST_LEN = 160   !! a line of cost_lines
+
+    !> What the point solves of one hp level (or check) cost: their count, seconds (of the
+    !> timer: wall, or CPU in a build with NCEIG_CPU_TIMERS), the round-off bounds' part and
+    !> the operator applications (ARPACK's products with A).
+    type :: point_cost_t
+        integer :: points = 0
+        integer :: products = 0
+        real(wp) :: begin = 0.0_wp
+        real(wp) :: roundoff = 0.0_wp
+    contains
+        procedure :: start => point_cost_start
+        procedure :: add => point_cost_add
+        procedure :: words => point_cost_words
+    end type point_cost_t
+
     !> The lowest positive mu at each of `points`' lambdas.
     type, extends(adapt_goal_t), public :: eigen_goal_t
         !> the run's, with the estimate on (h): the loop is driven by it, whatever the size
@@ -110,6 +126,9 @@ module eigen_goal
         logical :: ends_known = .false.
         type(contact_ends_t) :: ends
         real(wp) :: poisson = 0.0_wp
+        !> hp: what each level's (and check's) point solves cost, one line each since the
+        !> caller last took them (joint_goal: its progress lines; the points' own are silenced)
+        character(len=COST_LEN), allocatable :: cost_lines(:)
     contains
         procedure :: solve => eigen_goal_solve
         procedure :: judge => eigen_goal_judge
@@ -255,6 +274,7 @@ contains
         real(wp), allocatable :: kt_nn(:, :), kt_nt(:, :)
         type(csr_matrix_t) :: b_level   !! B's sparsity on the hp level, for every lambda
         type(lift_share_t) :: share     !! the lifts' data on the level's factor
+        type(point_cost_t) :: cost
         integer :: i
 
         chol => own
@@ -281,6 +301,7 @@ contains
         end if
         if (.not. refiner%estimated()) call b_pattern(level%prob%contact, &
                                                       level%prob%dofs%n_free, b_level)
+        call cost%start()
         if (refiner%estimated() .and. .not. this%ends_known) then
             this%ends = contact_ends(level%prob)
             this%poisson = level%prob%poisson
@@ -295,6 +316,8 @@ contains
             end if
             if (.not. stat%ok()) exit
         end do
+        if (cost%points > 0) call add_cost_line(this, 'the points of hp level '// &
+            to_string(level%number)//', '//cost%words(level%prob%contact%p()))
         if (.not. refiner%estimated() .and. .not. present(given)) call own%free()
 
     contains
@@ -346,6 +369,7 @@ contains
                 call refine_level_mu(level, this%tolerance, res, k, stat)
                 if (.not. stat%ok()) return
             end if
+            call cost%add(res)
             call fill_row(row, res)
             row%layers = level%number
             row%p_min = minval(level%degree)
@@ -386,6 +410,37 @@ contains
             row%roundoff = res%roundoff
         end subroutine fill_row
     end subroutine solve_level
+
+    !> `line` appended to this%cost_lines.
+    subroutine add_cost_line(this, line)
+        class(eigen_goal_t), intent(inout) :: this
+        character(len=*), intent(in) :: line
+        if (.not. allocated(this%cost_lines)) allocate (this%cost_lines(0))
+        this%cost_lines = [character(len=COST_LEN) :: this%cost_lines, line]
+    end subroutine add_cost_line
+
+    subroutine point_cost_start(this)
+        class(point_cost_t), intent(out) :: this
+        this%begin = wall_time()
+    end subroutine point_cost_start
+
+    subroutine point_cost_add(this, res)
+        class(point_cost_t), intent(inout) :: this
+        type(eigen_result_t), intent(in) :: res
+        this%points = this%points + 1
+        this%products = this%products + res%spec%n_operator
+        this%roundoff = this%roundoff + res%spec%roundoff_seconds
+    end subroutine point_cost_add
+
+    !> 'N lambdas at p = P: S s (round-off bounds R s), K products with A'
+    function point_cost_words(this, p) result(words)
+        class(point_cost_t), intent(in) :: this
+        integer, intent(in) :: p
+        character(len=:), allocatable :: words
+        words = to_string(this%points)//' lambdas at p = '//to_string(p)//': '// &
+            seconds_text(wall_time() - this%begin)//' s (round-off bounds '// &
+            seconds_text(this%roundoff)//' s), '//to_string(this%products)//' products with A'
+    end function point_cost_words
 
     !> res%spec%mu(i), the lowest positive mu on the hp level `level`, and res%roundoff
     !> replaced by the Rayleigh quotient of its vectors that never stores K (hp_rayleigh) when
@@ -444,6 +499,7 @@ contains
         real(wp), allocatable :: kt_nn(:, :), kt_nt(:, :)
         type(csr_matrix_t) :: b_check   !! B's sparsity on the check's level
         type(lift_share_t) :: share     !! the lifts' data on the check's factor
+        type(point_cost_t) :: cost
         real(wp) :: series, bar, begin
         character(len=:), allocatable :: why
         integer :: i, k
@@ -473,6 +529,7 @@ contains
                                       stat)
                     if (.not. stat%ok()) exit
                     call b_pattern(check%prob%contact, check%prob%dofs%n_free, b_check)
+                    call cost%start()
                 end if
                 res%lambda = p%lambda
                 res%b = b_check
@@ -490,6 +547,7 @@ contains
                 end if
                 if (k > 0) call refine_level_mu(check, tolerance, res, k, stat)
                 if (.not. stat%ok()) exit
+                call cost%add(res)
                 row%check_dofs = check%prob%dofs%n_free
                 series = row%error_bar
                 if (k > 0) then
@@ -521,6 +579,8 @@ contains
             end associate
         end do
         if (.not. built) return
+        call add_cost_line(this, 'the points'' check of hp level '//to_string(last%number)// &
+                           ', '//cost%words(check%prob%contact%p()))
         call chol%free()
         if (.not. stat%ok()) return
         call timings%note('hp check of level '//to_string(last%number)//': '// &

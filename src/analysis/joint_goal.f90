@@ -148,8 +148,22 @@ contains
         else if (this%points%any_active()) then
             call this%points%solve(scn, refiner, level, loop_start, this%quiet, refused, stat)
         end if
+        call note_points(timings, this%points%cost_lines)
         call this%join(.false.)
     end subroutine joint_goal_solve
+
+    !> The progress lines of the points' solves since the last call, one per level or check
+    !> (eigen_goal_t%cost_lines: their own lines are silenced), taken out of `lines`.
+    subroutine note_points(timings, lines)
+        type(timings_t), intent(inout) :: timings
+        character(len=*), allocatable, intent(inout) :: lines(:)
+        integer :: i
+        if (.not. allocated(lines)) return
+        do i = 1, size(lines)
+            call timings%note(trim(lines(i)))
+        end do
+        deallocate (lines)
+    end subroutine note_points
 
     !> Each part judges its active targets as it does alone. A part whose targets all end
     !> here while the other climbs on is checked at once, as its own loop would be when it
@@ -201,6 +215,7 @@ contains
                                                        reopen, timings, stat)
         if (stat%ok() .and. .not. this%early(1)) call this%points%check(scn, start, refiner, &
             last, tolerance, reopen, this%quiet, stat)
+        call note_points(timings, this%points%cost_lines)
         call this%join(.false.)
     end subroutine joint_goal_check
 

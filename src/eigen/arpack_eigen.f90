@@ -355,7 +355,7 @@ contains
             start = wall_time()
             if (spec%dense_decision) then
                 if (allocated(search%run%left)) call left_from_reduced(chol, contact, k%n(), &
-                    search%run%left, y, left_stat)
+                    search%run%left, y, left_stat, share)
             else
                 ! the operator's left vector (reduced, or of the full operator)
                 if (search_left_agrees()) then
@@ -367,7 +367,7 @@ contains
                 if (.not. lifted) then
                     call move_alloc(w, y)
                 else if (left_stat%ok() .and. allocated(w)) then
-                    call left_from_reduced(chol, contact, k%n(), w, y, left_stat)
+                    call left_from_reduced(chol, contact, k%n(), w, y, left_stat, share)
                 end if
             end if
             if (left_stat%ok()) call lowest_roundoff(k, b, contact, lambda, real(spec%mu(1), wp), &

@@ -27,7 +27,7 @@ module contact_reduction
     public :: factor_stiffness, factor_permuted, factor_contact_blocks, contact_tail, &
               flexibility_blocks, contact_flexibility, &
               lift_eigenvectors, lift_block_columns, reduced_matrix, scaled_reduced_matrix, &
-              lambda_unit, mu_of_theta, lift_share
+              lambda_unit, mu_of_theta, lift_share, lift_left
 
     !> mu = 1 / theta of an eigenvalue theta / unit of A / unit (unit: lambda_unit, or 1):
     !> the one place the reciprocal is taken. unit is a power of two, so (1 / theta) / unit
@@ -497,6 +497,35 @@ contains
             end do
         end subroutine lift
     end subroutine lift_eigenvectors
+
+    !> The pencil's left vector y = K^-1 N' w from w, a left eigenvector of the reduced
+    !> matrix (roundoff: left_from_reduced), on the lifts' shared data `share` of the factor
+    !> `chol` (contact dofs last): N' w lives on the contact dofs, pivoted last, so the
+    !> forward half of the solve is L_c^-1 on the trailing rows and only the backward half
+    !> passes over L, as lift_eigenvectors does for the right vector.
+    subroutine lift_left(share, chol, contact, n_free, w, y, stat)
+        type(lift_share_t), intent(in) :: share
+        type(cholesky_t), intent(in) :: chol
+        type(contact_t), intent(in) :: contact
+        integer, intent(in) :: n_free
+        real(wp), intent(in) :: w(:)   !! (p)
+        real(wp), allocatable, intent(out) :: y(:)
+        type(status_t), intent(out) :: stat
+        real(wp), allocatable :: w_tail(:, :), pivoted(:, :), solution(:, :)
+        integer :: m, a
+        m = size(share%l_tail, 1)
+        allocate (w_tail(m, 1), source=0.0_wp)
+        do a = 1, size(w)
+            w_tail(share%slot(:, a), 1) = contact%normal*w(a)
+        end do
+        call dtrsm('L', 'L', 'N', 'N', m, 1, 1.0_wp, share%l_tail, m, w_tail, m)
+        allocate (pivoted(n_free, 1), source=0.0_wp)
+        pivoted(n_free - m + 1:, :) = w_tail
+        allocate (solution(n_free, 1))
+        call chol%backward(pivoted, solution, stat)
+        if (.not. stat%ok()) return
+        y = solution(:, 1)
+    end subroutine lift_left
 
     !> Every array of the blocks deallocated, as soon as their user is done with them (and
     !> explicitly where the blocks are a component of a goal inside another goal, which

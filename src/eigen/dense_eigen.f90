@@ -161,7 +161,7 @@ contains
         allocate (spec%roundoff(n_ev), source=-1.0_wp)
         if (.not. allocated(left_lowest) .or. size(spec%vectors, 2) < 1) return
         roundoff_start = wall_time()
-        call left_from_reduced(chol, contact, k%n(), left_lowest, left_full, left_stat)
+        call left_from_reduced(chol, contact, k%n(), left_lowest, left_full, left_stat, share)
         if (left_stat%ok()) call lowest_roundoff(k, b, contact, lambda, real(spec%mu(1), wp), &
             real(spec%vectors(:, 1), wp), left_full, spec%roundoff(1))
         if (spec%roundoff(1) >= 0.0_wp) call move_alloc(left_full, spec%left)

@@ -24,7 +24,7 @@ module roundoff
     use sparse_cholesky, only: cholesky_t
     use contact_boundary, only: contact_t
     use critical_lambda, only: thresholds_t, SIDE_PLUS, SIDE_MINUS
-    use contact_reduction, only: reduced_blocks_t, lambda_unit
+    use contact_reduction, only: reduced_blocks_t, lambda_unit, lift_share_t, lift_left
     use critical_set, only: critical_set_t, boundary_point_t, MECHANISM_COMPLEX_PAIR
     use lapack_interfaces, only: dgeev, lapack_info_message
     implicit none
@@ -69,15 +69,24 @@ contains
 
     !> The left eigenvector y = K^-1 N' w of the pencil from w, a left eigenvector of the
     !> reduced matrix A = (lambda Kt_nt - Kt_nn) M (A' w = theta w; module dual_eigen: y is
-    !> mu K^-1 N' w, the factor mu only scales it). One solve with any factor of K.
-    subroutine left_from_reduced(chol, contact, n_free, w, y, stat)
+    !> mu K^-1 N' w, the factor mu only scales it). One solve with any factor of K; with
+    !> `share`, the lifts' data on `chol` (contact dofs last), its backward half alone
+    !> (lift_left: half the passes over the factor, for an hp sweep's many points).
+    subroutine left_from_reduced(chol, contact, n_free, w, y, stat, share)
         type(cholesky_t), intent(in) :: chol
         type(contact_t), intent(in) :: contact
         integer, intent(in) :: n_free
         real(wp), intent(in) :: w(:)
         real(wp), allocatable, intent(out) :: y(:)
         type(status_t), intent(out) :: stat
+        type(lift_share_t), intent(in), optional :: share
         real(wp), allocatable :: rhs(:, :), solution(:, :)
+        if (present(share)) then
+            if (allocated(share%l_tail)) then
+                call lift_left(share, chol, contact, n_free, w, y, stat)
+                return
+            end if
+        end if
         allocate (rhs(n_free, 1), source=0.0_wp)
         allocate (solution(n_free, 1))
         call contact%scatter(contact%normal, w, rhs(:, 1))
