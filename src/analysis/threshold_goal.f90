@@ -73,7 +73,7 @@ module threshold_goal
     use hp_levels, only: hp_refiner_t, HP_ESTIMATE
     use pencil_tracking, only: N_PROFILE_BINS, level_values_t
     use moving_side, only: contact_ends_t, contact_ends, level_profile, track_side, &
-                           moving_words, past_crossing_end, unconfirmed_words
+                           moving_words, past_crossing_end, unconfirmed_words, end_words
     implicit none
     private
     public :: solve_adapted_thresholds, threshold_goal_setup, threshold_goal_finish
@@ -805,6 +805,9 @@ contains
             select type (refiner)
             class is (hp_refiner_t)
                 call refiner%check_level(start, last, check, timings, stat)
+            class is (h_refiner_t)
+                call check_graded(this, scn, refiner, last, tolerance, reopen, timings, stat)
+                return
             class default
                 return
             end select
@@ -952,6 +955,99 @@ contains
             call targets(side)%finish(TARGET_STOPPED, words)
         end do
     end subroutine check_none_sides
+
+    !> h, once the loop ends: each side met or at the floor whose value lies past the crossing
+    !> of an end of Gamma_C (moving_side: past_crossing_end), solved again on the last mesh
+    !> graded toward those ends (h_refiner: graded_level, the cells there bisected
+    !> GRADE_PASSES times more; one factor for both sides), the change folded into its bar
+    !> (error_bar: checked_bar) and the side judged again (check_target; `reopen`: it climbs
+    !> on, the next level graded toward those ends). Past a crossing the mode can gather
+    !> below the cells' scale at that end, where the estimate one degree higher on the same
+    !> cells does not look (docs/thresholds.md, "Past a crossing"); elsewhere nothing is
+    !> solved.
+    subroutine check_graded(this, scn, refiner, last, tolerance, reopen, timings, stat)
+        class(threshold_goal_t), intent(inout) :: this
+        type(scene_t), intent(in) :: scn
+        class(h_refiner_t), intent(in) :: refiner
+        type(adapt_level_t), intent(in) :: last
+        real(wp), intent(in) :: tolerance
+        logical, intent(in) :: reopen
+        type(timings_t), intent(inout) :: timings
+        type(status_t), intent(out) :: stat
+        type(adapt_level_t) :: check
+        type(cholesky_t) :: chol
+        type(thresholds_t) :: thr
+        real(wp), allocatable :: kt_nn(:, :), kt_nt(:, :)
+        real(wp) :: before(2), after(2), roundoff(2), crossing(2, 2), begin, moved, both
+        logical :: past(2, 2)
+        character(len=:), allocatable :: why, ends
+        integer :: side, e
+
+        begin = wall_time()
+        past = .false.
+        crossing = 0.0_wp
+        associate (row => this%levels(size(this%levels)))
+            call goal_bars(row, this%thr%roundoff, before, roundoff)
+            do side = SIDE_PLUS, SIDE_MINUS
+                if (.not. (this%targets(side)%converged() .or. &
+                           this%targets(side)%floor_reached())) cycle
+                if (.not. row%found(side) .or. row%collision(side) .or. before(side) < 0.0_wp) &
+                    cycle
+                call past_crossing_end(this%ends, this%prob%poisson, row%lambda(side), &
+                                       past(:, side), crossing(:, side))
+            end do
+            if (.not. any(past)) return
+            call refiner%graded_level(last, this%ends%point(:, pack([1, 2], any(past, 2))), &
+                                      check, timings, stat)
+            if (stat%ok()) call factor_with_contact_blocks(scn, check%prob, chol, kt_nn, &
+                                                           kt_nt, timings, stat)
+            if (stat%ok()) call pencil_thresholds(kt_nn, kt_nt, thr, stat)
+            if (stat%ok()) call threshold_roundoff(check%prob%k, chol, check%prob%contact, &
+                                                   kt_nn, kt_nt, thr, stat)
+            call chol%free()
+            if (.not. stat%ok()) return
+            do side = SIDE_PLUS, SIDE_MINUS
+                if (.not. any(past(:, side))) cycle
+                after(side) = checked_bar(before(side), row%lambda(side), thr%found(side), &
+                                          thr%lambda(side), roundoff(side), &
+                                          max(thr%roundoff(side), 0.0_wp))
+                row%error_bar(side) = after(side)
+                this%est%bar(side) = after(side)
+                ends = ''
+                do e = 1, 2
+                    if (.not. past(e, side)) cycle
+                    if (len(ends) > 0) ends = ends//' and '
+                    ends = ends//end_words(this%ends, e)//', past its crossing '// &
+                        short_real_text(crossing(e, side))
+                end do
+                why = trim(SIDE_LABELS(side))//': the check on the last mesh graded toward '// &
+                    ends//' ('//to_string(check%prob%dofs%n_free)//' dofs)'
+                if (thr%found(side)) then
+                    moved = abs(thr%lambda(side) - row%lambda(side))/abs(row%lambda(side))
+                    why = why//' moves lambda by '//short_real_text(moved)// &
+                        ' (relative): error bar '//short_real_text(after(side))//' at '// &
+                        to_string(row%n_dofs)//' dofs'
+                else
+                    why = why//' has no value on that side: no error bar'
+                end if
+                call timings%note('h check of level '//to_string(last%number)//': '//why// &
+                                  ', '//seconds_text(wall_time() - begin)//' s')
+                both = max(roundoff(side), 0.0_wp) + max(thr%roundoff(side), 0.0_wp)
+                call check_target(this%targets(side), tolerance, before(side), after(side), &
+                                  both, reopen, why)
+                ! still met: its outcome quotes the bar the check made
+                if (this%targets(side)%converged() .and. after(side) > before(side)) &
+                    call this%targets(side)%finish(TARGET_MET, trim(SIDE_LABELS(side))// &
+                        ': tolerance '//short_real_text(tolerance)//' met at level '// &
+                        to_string(row%level)//': error bar '//this%bar_text(side)// &
+                        ', with the check graded toward its end')
+                ! climbing on: the next level grades those ends too (h_refiner: grade_toward)
+                if (this%targets(side)%active()) this%grade = reshape([this%grade, &
+                    this%ends%point(:, pack([1, 2], past(:, side)))], &
+                    [2, size(this%grade, 2) + count(past(:, side))])
+            end do
+        end associate
+    end subroutine check_graded
 
     !> Whether the check (bar `bar`, round-off part `roundoff`) takes target `t`, met or at
     !> the floor, off what it was (adapt_driver: check_target's test).

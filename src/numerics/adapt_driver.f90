@@ -19,6 +19,8 @@
 !> folded into each target's bar by error_bar's checked_bar; check_target): a target that
 !> the check takes above its tolerance climbs again where more levels can lower its error,
 !> and otherwise stops, the refiner saying why more levels would not help (&adapt p_max).
+!> h levels are offered the same check; the threshold goal uses it for a side met past the
+!> crossing of an end of Gamma_C (one solve on the last mesh graded toward that end).
 !>
 !> A value a level does not have (no positive mu, no real pencil value on a side) is not
 !> taken as absent on one level: the loop refines on until absence_confirmed holds (a
@@ -103,7 +105,7 @@ module adapt_driver
         procedure(refiner_words), deferred :: strategy_words
         procedure :: too_big_words => refiner_too_big_words
         !> whether the last level gets an independent check (hp: its bars come from the
-        !> changes between levels alone); h: no
+        !> changes between levels alone; h: the goal checks only what its estimate cannot see)
         procedure(refiner_estimated), deferred :: checked
         !> why more levels cannot lower an error the check found at level `last` ('': they can)
         procedure(refiner_cap_words), deferred :: cap_words

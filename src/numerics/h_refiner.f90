@@ -53,6 +53,7 @@ module h_refiner
         procedure :: strategy_words => h_strategy_words
         procedure :: checked => h_checked
         procedure :: cap_words => h_cap_words
+        procedure :: graded_level => h_graded_level
     end type h_refiner_t
 
 contains
@@ -179,11 +180,43 @@ contains
         stalled = .false.
     end subroutine h_series_bar
 
-    !> No check of the last level: each h level carries its own estimate.
+    !> The last level is offered to the goal's check: each h level carries its own estimate,
+    !> but an estimate one degree higher on the same cells cannot see a mode that lives below
+    !> the cells' scale at an end past its crossing; the goal checks those values on the
+    !> last mesh graded toward that end (graded_level) and checks nothing else.
     pure logical function h_checked(this)
         class(h_refiner_t), intent(in) :: this
-        h_checked = .false.
+        h_checked = .true.
     end function h_checked
+
+    !> The check of the solved level `last` toward `points` (vertices of the starting mesh):
+    !> its mesh with the cells at each point bisected GRADE_PASSES times more (grade_toward,
+    !> as a graded level is), as a problem at the same degree.
+    subroutine h_graded_level(this, last, points, check, timings, stat)
+        class(h_refiner_t), intent(in) :: this
+        type(adapt_level_t), intent(in) :: last
+        real(wp), intent(in) :: points(:, :)
+        type(adapt_level_t), intent(out) :: check
+        type(timings_t), intent(inout) :: timings
+        type(status_t), intent(out) :: stat
+        type(refinable_mesh_t) :: tree
+        type(mesh_t) :: graded
+        real(wp) :: begin
+        begin = wall_time()
+        check%number = last%number
+        call build_refinable_mesh(last%prob%mesh, tree, stat)
+        if (stat%ok()) call grade_toward(tree, points, stat)
+        if (stat%ok()) call tree%to_mesh(this%element, graded, stat)
+        if (stat%ok()) call build_problem(this%scene, check%prob, stat, given_mesh=graded)
+        if (.not. stat%ok()) then
+            stat%message = this%name//': the graded check of h level '// &
+                to_string(last%number)//': '//stat%message
+            return
+        end if
+        call timings%add(PHASE_ASSEMBLY, wall_time() - begin, ': graded check of level '// &
+            to_string(last%number)//', '//to_string(graded%n_cells())//' cells, '// &
+            to_string(check%prob%dofs%n_free)//' dofs')
+    end subroutine h_graded_level
 
     pure function h_cap_words(this, last) result(words)
         class(h_refiner_t), intent(in) :: this

@@ -89,4 +89,42 @@ check 'hp threshold, a side past a crossing: exit 8, not none, saying why' \
 check 'hp threshold, a side with no lambdas past a crossing: none over three levels' \
     'grep -q "lambda+: none at hp levels 1 to 3" "$work/stdout"'
 
+# An h threshold past the crossing of an end is checked once at the end on the last mesh
+# graded toward that end (docs/adaptive.md, "Past the crossing of an end"): the square, P2
+# 4 x 4, nu = 0.3, both sides at +-1.9447114427 (graded P4, tests/data/truths.csv), past the
+# crossings +-pi/2 of its 90-degree ends beside free sides (end 1 (1, 0) holds lambda+, end 2
+# (0, 0) lambda-). Level 7 meets 1e-3 on its estimates (lambda+ 3.9e-4 from the truth); the
+# check on the mesh graded there moves each side by 5.8e-4, and 3 times that is above 1e-3:
+# with more levels allowed the sides climb on, graded toward their ends, and meet the
+# tolerance with bars that cover the truth; at max_levels = 7 they stop, exit 8, naming the
+# end and its crossing, with no bar in summary.json and the check's bar (1.7e-3, covering the
+# truth) in the reason.
+cat >"$work/sq.nml" <<NML
+&mesh nx = 4, ny = 4, element = 'p2' /
+&analysis kind = 'threshold', lambda = 1.0 /
+&output directory = '$work/sq', vtk = .false., plot = .false. /
+&adapt tolerance = 1e-3 /
+NML
+"$nceig" "$work/sq.nml" >"$work/stdout" 2>"$work/err"; rc=$?
+s=$work/sq/summary.json
+# covers REL_BAR VALUE: the bar (relative to the value) covers the truth, whose own
+# uncertainty (5.7e-10) is far below any bar of a 1e-3 run
+covers() { awk -v b="$1" -v v="$2" 'BEGIN { t = 1.9447114426738574; d = (v < 0 ? -v : v) - t
+    if (d < 0) d = -d; exit !(b > 0 && d <= b * (v < 0 ? -v : v)) }'; }
+check 'h threshold past a crossing: each side checked on the mesh graded toward its end' \
+    'grep -q "h check of level 7: lambda+: the check on the last mesh graded toward the end (1.0, 0.0) of Gamma_C, a 90-degree corner beside a free side, past its crossing 1.57E+00" "$work/stdout" &&
+    grep -q "h check of level 7: lambda-: the check on the last mesh graded toward the end (0.0, 0.0) of Gamma_C, .* past its crossing -1.57E+00" "$work/stdout"'
+check 'h threshold past a crossing: the sides climb on, met with bars that cover the truth' \
+    '[[ $rc -eq 0 && ! -s $work/err ]] && grep -q "h check of level 8: lambda+" "$work/stdout" &&
+    covers "$(jq -r .lambda_critical_plus_error_bar "$s")" "$(jq -r .lambda_critical_plus "$s")" &&
+    covers "$(jq -r .lambda_critical_minus_error_bar "$s")" "$(jq -r .lambda_critical_minus "$s")"'
+"$nceig" "$work/sq.nml" --set adapt%max_levels=7 >"$work/stdout" 2>"$work/err"; rc=$?
+check 'h threshold past a crossing, max_levels = 7: not met, exit 8, the end and its crossing named' \
+    '[[ $rc -eq 8 ]] &&
+    grep -q "lambda+: tolerance 1.00E-03 not met: lambda+: the check on the last mesh graded toward the end (1.0, 0.0) of Gamma_C, a 90-degree corner beside a free side, past its crossing 1.57E+00 (.* dofs) moves lambda by .* (relative): error bar" "$work/err" &&
+    grep -q "lambda-: tolerance 1.00E-03 not met: lambda-: the check .* toward the end (0.0, 0.0) " "$work/err" &&
+    [[ $(jq -r .lambda_critical_plus_error_bar "$s") == null ]] &&
+    covers "$(grep -o "lambda+: the check [^;]*" "$work/err" | sed "s/.*error bar \([^ ]*\) at.*/\1/")" \
+        "$(jq -r .lambda_critical_plus "$s")"'
+
 cli_end
