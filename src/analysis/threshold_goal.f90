@@ -1042,12 +1042,19 @@ contains
                         to_string(row%level)//': error bar '//this%bar_text(side)// &
                         ', with the check graded toward its end')
                 ! climbing on: the next level grades those ends too (h_refiner: grade_toward)
-                if (this%targets(side)%active()) this%grade = reshape([this%grade, &
-                    this%ends%point(:, pack([1, 2], past(:, side)))], &
-                    [2, size(this%grade, 2) + count(past(:, side))])
+                if (this%targets(side)%active()) call grade_ends(this, past(:, side))
             end do
         end associate
     end subroutine check_graded
+
+    !> The ends of Gamma_C marked in `ends` added to the points the next h level grades
+    !> toward (h_refiner: grade_toward).
+    subroutine grade_ends(this, ends)
+        class(threshold_goal_t), intent(inout) :: this
+        logical, intent(in) :: ends(2)
+        this%grade = reshape([this%grade, this%ends%point(:, pack([1, 2], ends))], &
+                             [2, size(this%grade, 2) + count(ends)])
+    end subroutine grade_ends
 
     !> Whether the check (bar `bar`, round-off part `roundoff`) takes target `t`, met or at
     !> the floor, off what it was (adapt_driver: check_target's test).
@@ -1106,9 +1113,8 @@ contains
                 has = last%found(side) .or. last%collision(side)
                 ! h: a side without a value grades the next level toward the ends past whose
                 ! crossing its lambdas lie (uniform levels cannot see what concentrates there)
-                if (estimated .and. .not. has .and. t%active()) this%grade = &
-                    reshape([this%grade, this%ends%point(:, pack([1, 2], this%past(:, side)))], &
-                            [2, size(this%grade, 2) + count(this%past(:, side))])
+                if (estimated .and. .not. has .and. t%active()) &
+                    call grade_ends(this, this%past(:, side))
                 if (t%converged()) then
                     ! met at an earlier level: it must keep (or keep lacking) its value
                     if (has .eqv. (index(t%outcome, ': none') == 0)) then
