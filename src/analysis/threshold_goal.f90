@@ -709,11 +709,10 @@ contains
     !> an end of a contact edge).
     subroutine note_profiles(this)
         class(threshold_goal_t), intent(inout) :: this
-        type(contact_ends_t) :: ends
         logical, allocatable :: vertex(:)
         integer :: side, a
         if (size(this%levels) == 0 .or. .not. allocated(this%thr%vectors)) return
-        ends = contact_ends(this%prob)
+        call know_ends(this)
         associate (row => this%levels(size(this%levels)), prob => this%prob)
             if (this%space%n_vertices > 0) then
                 vertex = prob%contact%nodes <= this%space%n_vertices
@@ -723,7 +722,7 @@ contains
             end if
             do side = SIDE_PLUS, SIDE_MINUS
                 if (.not. this%thr%found(side)) cycle
-                associate (value => level_profile(prob, ends, vertex, this%thr%lambda(side), &
+                associate (value => level_profile(prob, this%ends, vertex, this%thr%lambda(side), &
                            this%thr%vectors(:, side)))
                     row%profile(:, side) = value%profile
                     row%resolution = value%resolution
@@ -731,6 +730,22 @@ contains
             end do
         end associate
     end subroutine note_profiles
+
+    !> The ends of Gamma_C, made once from the first level's problem (refinement, h or hp,
+    !> keeps their points, angles and conditions), and per side whether its lambdas past an
+    !> end's crossing lie there, and that crossing.
+    subroutine know_ends(this)
+        type(threshold_goal_t), intent(inout) :: this
+        integer :: side
+        if (this%ends_known) return
+        this%ends = contact_ends(this%prob)
+        do side = SIDE_PLUS, SIDE_MINUS
+            call past_crossing_end(this%ends, this%prob%poisson, 0.0_wp, &
+                                   this%past(:, side), this%crossing(:, side), &
+                                   merge(1, -1, side == SIDE_PLUS))
+        end do
+        this%ends_known = .true.
+    end subroutine know_ends
 
     !> What is known about each side of the last level that did not converge (its
     !> values followed over the levels by their profiles, where its vector sits, the wedge
@@ -745,7 +760,8 @@ contains
         integer :: side, i, k
         k = size(out%levels)
         if (k == 0) return
-        ends = contact_ends(goal%prob)
+        ends = goal%ends   ! know_ends, at every judged level
+        if (.not. goal%ends_known) ends = contact_ends(goal%prob)
         allocate (levels(k))
         do side = SIDE_PLUS, SIDE_MINUS
             if (goal%targets(side)%converged() .or. .not. out%levels(k)%found(side)) cycle
@@ -1097,15 +1113,7 @@ contains
         k = size(this%levels)
         present_levels = merge(2, 3, estimated)
         call goal_bars(this%levels(k), this%thr%roundoff, bar, roundoff)
-        if (.not. this%ends_known) then
-            this%ends = contact_ends(this%prob)
-            do side = SIDE_PLUS, SIDE_MINUS
-                call past_crossing_end(this%ends, this%prob%poisson, 0.0_wp, &
-                                       this%past(:, side), this%crossing(:, side), &
-                                       merge(1, -1, side == SIDE_PLUS))
-            end do
-            this%ends_known = .true.
-        end if
+        call know_ends(this)
         if (allocated(this%grade)) deallocate (this%grade)
         allocate (this%grade(2, 0))
         do side = SIDE_PLUS, SIDE_MINUS
