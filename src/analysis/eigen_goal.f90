@@ -512,8 +512,7 @@ contains
             associate (p => this%points(i), &
                        row => this%points(i)%levels(size(this%points(i)%levels)))
                 ! a lambda met as 'none' is checked too: its levels' changes bound nothing
-                none = this%targets(i)%converged() .and. &
-                    index(this%targets(i)%outcome, 'none, confirmed: ') == 1
+                none = this%targets(i)%met_absent()
                 if (row%error_bar < 0.0_wp .and. .not. none) cycle
                 if (.not. built) then
                     select type (refiner)
@@ -541,8 +540,8 @@ contains
                 if (.not. stat%ok()) exit
                 k = res%spec%lowest_positive()
                 if (none) then
-                    call check_none(this%targets(i), p%lambda, res, k, &
-                                    check%prob%dofs%n_free, last%number, timings)
+                    call check_none(this%targets(i), p%lambda, no_mu_levels(p, this%hp), &
+                                    res, k, check%prob%dofs%n_free, last%number, timings)
                     cycle
                 end if
                 if (k > 0) call refine_level_mu(check, tolerance, res, k, stat)
@@ -592,9 +591,10 @@ contains
     !> free dofs with every degree raised by one; `k` its lowest positive mu, 0: none) has no
     !> positive mu either. A mu the check finds appears with the degree: target `t` stops as
     !> not converged (exit 8), its outcome naming that mu.
-    subroutine check_none(t, lambda, res, k, dofs, level, timings)
+    subroutine check_none(t, lambda, levels, res, k, dofs, level, timings)
         type(adapt_target_t), intent(inout) :: t
         real(wp), intent(in) :: lambda
+        character(len=*), intent(in) :: levels   !! the levels without a mu (no_mu_levels)
         type(eigen_result_t), intent(in) :: res
         integer, intent(in) :: k, dofs, level
         type(timings_t), intent(inout) :: timings
@@ -606,7 +606,7 @@ contains
                               ' has no positive mu either')
             return
         end if
-        words = 'tolerance not met: '//t%outcome(len('none, confirmed: ') + 1:)//', but '// &
+        words = 'tolerance not met: '//levels//', but '// &
             head//' finds mu = '//short_real_text(real(res%spec%mu(k), wp), 6)// &
             ': it appears with the degree, not converged'
         call timings%note(words)
@@ -753,7 +753,7 @@ contains
                     why = unconfirmed_text(this, p%lambda)
                     if (len(why) == 0) then
                         call this%targets(i)%finish(TARGET_MET, 'none, confirmed: '// &
-                                                    no_mu_levels(p, this%hp))
+                                                    no_mu_levels(p, this%hp), absent=.true.)
                     else
                         call this%targets(i)%finish(TARGET_STOPPED, 'tolerance '// &
                             given_real_text(tolerance)//' not met: '// &

@@ -813,7 +813,7 @@ contains
 
         if (size(this%levels) == 0) return
         begin = wall_time()
-        none_met = [(met_as_none(this%targets(side)), side=SIDE_PLUS, SIDE_MINUS)]
+        none_met = [(this%targets(side)%met_absent(), side=SIDE_PLUS, SIDE_MINUS)]
         associate (row => this%levels(size(this%levels)))
             call goal_bars(row, this%thr%roundoff, before, roundoff)
             ! nothing to check: no bar (none yet, or nothing to meet) and no side met as 'none'
@@ -934,14 +934,6 @@ contains
                                   last%number, timings)
         end associate
     end subroutine threshold_goal_check
-
-    !> Whether target `t` is a side met as 'none' (judge_sides: no value at its last
-    !> NONE_LEVELS hp levels).
-    logical function met_as_none(t) result(none)
-        type(adapt_target_t), intent(in) :: t
-        none = .false.
-        if (t%converged()) none = index(t%outcome, ': none at ') > 0
-    end function met_as_none
 
     !> hp: each side met as 'none' (`none_met`) is confirmed only where the check of the last
     !> level `level` (`thr`: its pencil on `dofs` free dofs, every degree raised by one) has
@@ -1125,7 +1117,7 @@ contains
                     call grade_ends(this, this%past(:, side))
                 if (t%converged()) then
                     ! met at an earlier level: it must keep (or keep lacking) its value
-                    if (has .eqv. (index(t%outcome, ': none') == 0)) then
+                    if (has .neqv. t%met_absent()) then
                         if (.not. (estimated .and. has)) cycle
                         ! h: its estimate on this finer mesh is the one reported
                         if (bar(side) >= 0.0_wp .and. bar(side) <= tolerance) then
@@ -1175,7 +1167,7 @@ contains
                             trim(merge('h levels ', 'hp levels', estimated))//' '// &
                             to_string(this%levels(merge(absent_since(side_has(side)), &
                                 k - NONE_LEVELS + 1, estimated))%level)//' to '// &
-                            to_string(level))
+                            to_string(level), absent=.true.)
                     else
                         call t%finish(TARGET_STOPPED, trim(SIDE_LABELS(side))//': no value at '// &
                             trim(merge('h levels ', 'hp levels', estimated))//' '// &

@@ -58,9 +58,13 @@ module adapt_driver
         integer :: state = TARGET_ACTIVE
         !> one line: the tolerance met, or why not and what was reached ('' while active)
         character(len=:), allocatable :: outcome
+        !> met as no value: its absence confirmed ('none'), which a later level or the check
+        !> must not contradict
+        logical :: absent = .false.
     contains
         procedure :: active => target_is_active
         procedure :: converged => target_converged
+        procedure :: met_absent => target_met_absent
         procedure :: floor_reached => target_floor_reached
         procedure :: finish => target_finish
     end type adapt_target_t
@@ -548,18 +552,27 @@ contains
         target_converged = this%state == TARGET_MET
     end function target_converged
 
+    pure logical function target_met_absent(this)
+        class(adapt_target_t), intent(in) :: this
+        target_met_absent = this%state == TARGET_MET .and. this%absent
+    end function target_met_absent
+
     pure logical function target_floor_reached(this)
         class(adapt_target_t), intent(in) :: this
         target_floor_reached = this%state == TARGET_FLOOR
     end function target_floor_reached
 
-    !> The target ends in `state` (TARGET_MET, _FLOOR or _STOPPED) with `outcome`.
-    pure subroutine target_finish(this, state, outcome)
+    !> The target ends in `state` (TARGET_MET, _FLOOR or _STOPPED) with `outcome`;
+    !> `absent`: met as no value (default: with one).
+    pure subroutine target_finish(this, state, outcome, absent)
         class(adapt_target_t), intent(inout) :: this
         integer, intent(in) :: state
         character(len=*), intent(in) :: outcome
+        logical, intent(in), optional :: absent
         this%state = state
         this%outcome = outcome
+        this%absent = .false.
+        if (present(absent)) this%absent = absent .and. state == TARGET_MET
     end subroutine target_finish
 
     pure logical function goal_any_active(this)
