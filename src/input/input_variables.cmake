@@ -173,7 +173,7 @@ input_variable(theta     real    0.25_wp
 # 'h': Doerfler marking; 'hp': geometric meshes toward the singular points with degrees
 # rising away from them
 input_variable(strategy  name    'h'
-               "@: refine cells, or graded meshes with rising degrees (eigen)"
+               "@: refine cells, or graded meshes with rising degrees"
                CHOICES ADAPT_STRATEGIES)
 # cells shrink by sigma per layer; the range is what the geometric meshes can be built with
 input_variable(sigma     real    0.15_wp
