@@ -32,9 +32,11 @@
 #              converge and the other method does not meet its tolerance);
 #   failed     the run failed, or ran out of its time (125: not run yet).
 #   scripts/dev/random_bodies.sh [-s SEED] [-n COUNT] [-o OUTDIR] [-b NCEIG] [-t SECONDS] [-c]
-#                                [-k 'K1 K2 ...']
+#                                [-k 'K1 K2 ...'] [-x 'VAR=VALUE ...']
 # -c classifies the runs already in OUTDIR without running anything; -k runs and classifies
-# only the bodies numbered K1, K2, ... of the COUNT drawn (the others keep what they have).
+# only the bodies numbered K1, K2, ... of the COUNT drawn (the others keep what they have);
+# -x gives the hp runs these settings too (e.g. 'adapt%sigma=0.3 adapt%p_max=2': a bar must
+# hold at every setting; in a copy of OUTDIR without its hp_*.rc the references are reused).
 # Defaults: seed 34, 40 bodies, output/random_bodies, build/nceig, 300 s per run. Writes
 # OUTDIR/values.csv (one row per body, method and value) and prints the counts per method
 # and class, and the classes of failure. Runs one nceig at a time under nice (a shared
@@ -42,12 +44,13 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 seed=34 count=40 out=output/random_bodies nceig=$root/build/nceig limit=300 classify_only=0
-only=''
-while getopts 's:n:o:b:t:ck:' opt; do
+only='' hp_extra=()
+while getopts 's:n:o:b:t:ck:x:' opt; do
     case $opt in
         s) seed=$OPTARG ;; n) count=$OPTARG ;; o) out=$OPTARG ;; b) nceig=$OPTARG ;;
         t) limit=$OPTARG ;; c) classify_only=1 ;; k) only=" $OPTARG " ;;
-        *) echo 'usage: random_bodies.sh [-s SEED] [-n COUNT] [-o OUTDIR] [-b NCEIG] [-t SECONDS] [-c] [-k LIST]' >&2
+        x) for setting in $OPTARG; do hp_extra+=(--set "$setting"); done ;;
+        *) echo 'usage: random_bodies.sh [-s SEED] [-n COUNT] [-o OUTDIR] [-b NCEIG] [-t SECONDS] [-c] [-k LIST] [-x SETTINGS]' >&2
            exit 2 ;;
     esac
 done
@@ -188,9 +191,10 @@ NML
     mesh "$dir" "$(awk -v l="$L" 'BEGIN { printf "%.6g", l / 4 }')" 3 p3_start.msh
     mesh "$dir" "$(awk -v l="$L" 'BEGIN { printf "%.6g", l / 4 }')" 2 p2_start.msh
     run "$dir" hp_eigen body.nml --set mesh%file=hp_start.msh --set analysis%kind=eigen \
-        --set adapt%strategy=hp --set adapt%tolerance=1e-8 --set adapt%max_levels=14
+        --set adapt%strategy=hp --set adapt%tolerance=1e-8 --set adapt%max_levels=14 \
+        ${hp_extra[@]+"${hp_extra[@]}"}
     run "$dir" hp_threshold body.nml --set mesh%file=hp_start.msh --set adapt%strategy=hp \
-        --set adapt%tolerance=1e-6 --set adapt%max_levels=10
+        --set adapt%tolerance=1e-6 --set adapt%max_levels=10 ${hp_extra[@]+"${hp_extra[@]}"}
     run "$dir" h_eigen body.nml --set mesh%file=p3_start.msh --set analysis%kind=eigen \
         --set adapt%tolerance=1e-7 --set adapt%max_levels=60 --set eigen%estimate=auto
     run "$dir" h_threshold body.nml --set mesh%file=p2_start.msh --set adapt%tolerance=1e-5 \
