@@ -208,7 +208,7 @@ module threshold_goal
         !> (0: not met, or met as 'none', or its goal is a collision onset); the report quotes
         !> that level's value and bar (report_last_level)
         integer :: met_row(2) = 0
-        !> h: the ends of Gamma_C (of the first level; refinement keeps them) and, per end
+        !> the ends of Gamma_C (know_ends: of the first level; refinement keeps them) and, per end
         !> and side, whether that side's lambdas past the end's crossing lie there
         !> (moving_side: past_crossing_end) and that crossing, for the sides without a value
         logical :: ends_known = .false.
