@@ -35,7 +35,7 @@ module eigen_goal
                             TARGET_STOPPED, adapt_target_t
     use h_refiner, only: h_refiner_t, doerfler_marking
     use moving_side, only: contact_ends_t, contact_ends, past_crossing_end, unconfirmed_words
-    use hp_levels, only: hp_refiner_t, HP_ESTIMATE
+    use hp_levels, only: hp_refiner_t, HP_ESTIMATE, check_words
     implicit none
     private
     public :: adapt_eigen
@@ -553,15 +553,13 @@ contains
                     row%check_change = abs(row%mu - real(res%spec%mu(k), wp))/abs(row%mu)
                     bar = checked_bar(series, row%mu, .true., real(res%spec%mu(k), wp), &
                                       row%roundoff, res%roundoff)
-                    why = 'the check with every degree raised by one ('// &
-                        to_string(row%check_dofs)//' dofs) moves mu by '// &
+                    why = check_words(row%check_dofs)//' moves mu by '// &
                         short_real_text(row%check_change)//' (relative): error bar '// &
                         short_real_text(bar)//' at '//to_string(row%n_dofs)//' dofs'
                     p%res%error%check = row%check_change
                 else
                     bar = -1.0_wp
-                    why = 'the check with every degree raised by one ('// &
-                        to_string(row%check_dofs)//' dofs) has no positive mu, so mu has '// &
+                    why = check_words(row%check_dofs)//' has no positive mu, so mu has '// &
                         'no error bar'
                     p%res%error%computed = .false.
                     p%res%error%skipped = 'none: the check one degree higher has no positive mu'
@@ -599,8 +597,7 @@ contains
         integer, intent(in) :: k, dofs, level
         type(timings_t), intent(inout) :: timings
         character(len=:), allocatable :: head, words
-        head = 'the check of hp level '//to_string(level)// &
-            ' with every degree raised by one ('//to_string(dofs)//' dofs)'
+        head = check_words(dofs, level)
         if (k == 0) then
             call timings%note(head//' at lambda = '//short_real_text(lambda)// &
                               ' has no positive mu either')

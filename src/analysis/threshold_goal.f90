@@ -70,7 +70,7 @@ module threshold_goal
                             TARGET_FLOOR, TARGET_STOPPED, no_estimate_outcome, NONE_LEVELS, &
                             absent_since, absence_confirmed
     use h_refiner, only: h_refiner_t, doerfler_marking
-    use hp_levels, only: hp_refiner_t, HP_ESTIMATE
+    use hp_levels, only: hp_refiner_t, HP_ESTIMATE, check_words
     use pencil_tracking, only: N_PROFILE_BINS, level_values_t
     use moving_side, only: contact_ends_t, contact_ends, level_profile, track_side, &
                            moving_words, past_crossing_end, unconfirmed_words, end_words
@@ -902,8 +902,7 @@ contains
                         after(side) = met%error_bar(side)
                     end associate
                 end if
-                head = 'the check with every degree raised by one ('// &
-                    to_string(check%prob%dofs%n_free)//' dofs)'
+                head = check_words(check%prob%dofs%n_free)
                 if (moved(side) >= 0.0_wp) then
                     why = head//' moves the '//trim(SIDE_NAMES(side))//' side by '// &
                         short_real_text(moved(side))//' (relative): error bar '// &
@@ -948,8 +947,7 @@ contains
         type(timings_t), intent(inout) :: timings
         character(len=:), allocatable :: head, words
         integer :: side
-        head = 'the check of hp level '//to_string(level)// &
-            ' with every degree raised by one ('//to_string(dofs)//' dofs)'
+        head = check_words(dofs, level)
         do side = SIDE_PLUS, SIDE_MINUS
             if (.not. none_met(side)) cycle
             if (.not. thr%found(side)) then

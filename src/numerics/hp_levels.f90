@@ -35,7 +35,7 @@ module hp_levels
     use h_refiner, only: level_dof_limit
     implicit none
     private
-    public :: hp_level_degrees
+    public :: hp_level_degrees, check_words
 
     !> How an hp value's estimate is named in every report: its change to the previous level
     character(len=*), parameter, public :: HP_ESTIMATE = 'change to the previous hp level'
@@ -213,6 +213,18 @@ contains
         call level_problem(this%name, start, last%prob%mesh, 'hp check of level ', check, &
                            timings, stat)
     end subroutine hp_check_level
+
+    !> How a message names the check of a level (hp_check_level) of `dofs` free dofs: 'the
+    !> check with every degree raised by one (D dofs)', with `level`: 'the check of hp level
+    !> N with every degree ...'.
+    pure function check_words(dofs, level) result(words)
+        integer, intent(in) :: dofs
+        integer, intent(in), optional :: level
+        character(len=:), allocatable :: words
+        words = 'the check'
+        if (present(level)) words = words//' of hp level '//to_string(level)
+        words = words//' with every degree raised by one ('//to_string(dofs)//' dofs)'
+    end function check_words
 
     !> Why more levels cannot lower an error the check found at `last`: &adapt p_max holds
     !> the degrees of its inner cells (level k would give them k + 1), so further levels only
