@@ -114,9 +114,9 @@ contains
         allocate (marked(0))   ! (gfortran 12 warns of an unallocated one at -O3)
         marked = goal%mark(this%adapt%theta)
         call this%tree%refine(marked, stat)
-        if (stat%ok() .and. allocated(goal%grade)) call grade_toward(this%tree, goal%grade, stat)
-        if (stat%ok()) call this%tree%to_mesh(this%element, refined, stat)
-        if (stat%ok()) call build_problem(scn, next, stat, given_mesh=refined)
+        ! goal%grade unallocated: not present, nothing graded
+        if (stat%ok()) call graded_problem(scn, this%element, this%tree, refined, next, stat, &
+                                           goal%grade)
         if (.not. stat%ok()) return
         call timings%add(PHASE_ASSEMBLY, wall_time() - level_start, ': level '// &
             to_string(level%number + 1)//', '//to_string(size(marked))//' cells marked, '// &
@@ -127,6 +127,22 @@ contains
         level%prob = next
         level%number = level%number + 1
     end subroutine h_next
+
+    !> A level's problem from `tree`: its cells at `points` (where present) bisected
+    !> GRADE_PASSES times more, then its mesh of `element` cells (`mesh`) and the problem on
+    !> it. Every h level (h_next) and the graded check (h_graded_level) are made this way.
+    subroutine graded_problem(scn, element, tree, mesh, prob, stat, points)
+        type(scene_t), intent(in) :: scn
+        integer, intent(in) :: element
+        type(refinable_mesh_t), intent(inout) :: tree
+        type(mesh_t), intent(out) :: mesh
+        type(problem_t), intent(out) :: prob
+        type(status_t), intent(out) :: stat
+        real(wp), intent(in), optional :: points(:, :)
+        if (present(points)) call grade_toward(tree, points, stat)
+        if (stat%ok()) call tree%to_mesh(element, mesh, stat)
+        if (stat%ok()) call build_problem(scn, prob, stat, given_mesh=mesh)
+    end subroutine graded_problem
 
     !> The cells of `tree` at each of `points` (a vertex there) bisected GRADE_PASSES times.
     subroutine grade_toward(tree, points, stat)
@@ -190,8 +206,8 @@ contains
     end function h_checked
 
     !> The check of the solved level `last` toward `points` (vertices of the starting mesh):
-    !> its mesh with the cells at each point bisected GRADE_PASSES times more (grade_toward,
-    !> as a graded level is), as a problem at the same degree.
+    !> its mesh with the cells at each point bisected GRADE_PASSES times more, as a problem at
+    !> the same degree, made as a level is (graded_problem).
     subroutine h_graded_level(this, last, points, check, timings, stat)
         class(h_refiner_t), intent(in) :: this
         type(adapt_level_t), intent(in) :: last
@@ -205,9 +221,8 @@ contains
         begin = wall_time()
         check%number = last%number
         call build_refinable_mesh(last%prob%mesh, tree, stat)
-        if (stat%ok()) call grade_toward(tree, points, stat)
-        if (stat%ok()) call tree%to_mesh(this%element, graded, stat)
-        if (stat%ok()) call build_problem(this%scene, check%prob, stat, given_mesh=graded)
+        if (stat%ok()) call graded_problem(this%scene, this%element, tree, graded, check%prob, &
+                                           stat, points)
         if (.not. stat%ok()) then
             stat%message = this%name//': the graded check of h level '// &
                 to_string(last%number)//': '//stat%message
