@@ -36,6 +36,7 @@ random_delay() { printf '%d.%03d' $((RANDOM % $1 / 1000)) $((RANDOM % $1 % 1000)
 # ordering_ms INPUT K: the time of the K-th ordering of a run of INPUT (from its progress
 # line; the run is stopped there).
 ordering_ms() {
+    : >"$work/full.out"   # there before the loop reads it (the run's redirection may lag)
     "$nceig" "$1" --set output%directory="$work/full" >"$work/full.out" 2>&1 &
     local pid=$! ms
     while kill -0 "$pid" 2>/dev/null && (($(grep -c '\.\. ordering' "$work/full.out") < $2)); do
@@ -71,9 +72,11 @@ signal_rounds() {
             n_bad_status=$((n_bad_status + 1))
             echo "      round $i: exit $rc: $(head -c 300 "$work/run.err")"
         fi
-        [[ $(wc -l <"$work/run.err") -eq 1 ]] &&
-            grep -q "^nceig: $input: stopped by SIGTERM$" "$work/run.err" ||
+        if ! { [[ $(wc -l <"$work/run.err") -eq 1 ]] &&
+               grep -q "^nceig: $input: stopped by SIGTERM$" "$work/run.err"; }; then
             n_bad_line=$((n_bad_line + 1))
+            echo "      round $i: stderr $(wc -l <"$work/run.err") lines: $(head -c 300 "$work/run.err")"
+        fi
         intact || { n_bad_set=$((n_bad_set + 1)); rm -rf "$out"; cp -a "$work/kept" "$out"; }
     done
     echo "      $n_in_metis of $rounds signals came before ordering $k ended"
