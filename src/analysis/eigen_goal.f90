@@ -35,7 +35,7 @@ module eigen_goal
                             TARGET_STOPPED, adapt_target_t
     use h_refiner, only: h_refiner_t, doerfler_marking
     use moving_side, only: contact_ends_t, contact_ends, past_crossing_end, unconfirmed_words
-    use hp_levels, only: hp_refiner_t, HP_ESTIMATE, check_words
+    use hp_levels, only: hp_refiner_t, HP_ESTIMATE, check_words, built_check_t
     implicit none
     private
     public :: adapt_eigen
@@ -135,6 +135,7 @@ module eigen_goal
         procedure :: bar_text => eigen_goal_bar_text
         procedure :: mark => eigen_goal_mark
         procedure :: check => eigen_goal_check
+        procedure :: check_given => eigen_goal_check_given
         procedure :: setup => eigen_goal_setup
         procedure :: finish => eigen_goal_finish
         procedure :: solve_factored => eigen_goal_solve_factored
@@ -493,8 +494,43 @@ contains
         logical, intent(in) :: reopen
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
-        type(adapt_level_t) :: check
-        type(cholesky_t) :: chol
+        call check_points(this, scn, start, refiner, last, tolerance, reopen, timings, stat)
+    end subroutine eigen_goal_check
+
+    !> eigen_goal_check on the check level `given` already built, factored and reduced by
+    !> another goal (joint_goal: the thresholds'; given%built false: built here as alone).
+    subroutine eigen_goal_check_given(this, scn, start, refiner, last, tolerance, reopen, &
+                                      timings, given, stat)
+        class(eigen_goal_t), intent(inout) :: this
+        type(scene_t), intent(in) :: scn
+        type(problem_t), intent(in) :: start
+        class(refiner_t), intent(in) :: refiner
+        type(adapt_level_t), intent(in) :: last
+        real(wp), intent(in) :: tolerance
+        logical, intent(in) :: reopen
+        type(timings_t), intent(inout) :: timings
+        type(built_check_t), intent(in), target :: given
+        type(status_t), intent(out) :: stat
+        call check_points(this, scn, start, refiner, last, tolerance, reopen, timings, stat, &
+                          given)
+    end subroutine eigen_goal_check_given
+
+    subroutine check_points(this, scn, start, refiner, last, tolerance, reopen, timings, stat, &
+                            given)
+        class(eigen_goal_t), intent(inout) :: this
+        type(scene_t), intent(in) :: scn
+        type(problem_t), intent(in) :: start
+        class(refiner_t), intent(in) :: refiner
+        type(adapt_level_t), intent(in) :: last
+        real(wp), intent(in) :: tolerance
+        logical, intent(in) :: reopen
+        type(timings_t), intent(inout) :: timings
+        type(status_t), intent(out) :: stat
+        type(built_check_t), intent(in), target, optional :: given
+        type(adapt_level_t), target :: own_check
+        type(adapt_level_t), pointer :: check
+        type(cholesky_t), target :: own_chol
+        type(cholesky_t), pointer :: chol
         type(eigen_result_t) :: res
         real(wp), allocatable :: kt_nn(:, :), kt_nt(:, :)
         type(csr_matrix_t) :: b_check   !! B's sparsity on the check's level
@@ -503,10 +539,18 @@ contains
         real(wp) :: series, bar, begin
         character(len=:), allocatable :: why
         integer :: i, k
-        logical :: built, none
+        logical :: built, none, given_built
 
         begin = wall_time()
         built = .false.
+        given_built = .false.
+        if (present(given)) given_built = given%built
+        check => own_check
+        chol => own_chol
+        if (given_built) then
+            check => given%level
+            chol => given%chol
+        end if
         do i = 1, size(this%points)
             if (size(this%points(i)%levels) == 0) cycle
             associate (p => this%points(i), &
@@ -517,16 +561,25 @@ contains
                 if (.not. built) then
                     select type (refiner)
                     class is (hp_refiner_t)
-                        call refiner%check_level(start, last, check, timings, stat)
+                        if (.not. given_built) &
+                            call refiner%check_level(start, last, check, timings, stat)
                     class default
                         return   ! h levels carry their own estimate: no check
                     end select
-                    if (stat%ok()) call refiner%factor(check, chol, timings, stat)
-                    if (.not. stat%ok()) return
                     built = .true.
-                    call level_blocks(this, check%prob, chol, kt_nn, kt_nt, share, timings, &
-                                      stat)
-                    if (.not. stat%ok()) exit
+                    if (given_built) then
+                        if (wants_blocks(this, check%prob%contact%p())) then
+                            kt_nn = given%kt_nn
+                            kt_nt = given%kt_nt
+                        end if
+                        if (wants_share(this, check%prob%contact%p())) share = given%share
+                    else
+                        if (stat%ok()) call refiner%factor(check, chol, timings, stat)
+                        if (.not. stat%ok()) return
+                        call level_blocks(this, check%prob, chol, kt_nn, kt_nt, share, &
+                                          timings, stat)
+                        if (.not. stat%ok()) exit
+                    end if
                     call b_pattern(check%prob%contact, check%prob%dofs%n_free, b_check)
                     call cost%start()
                 end if
@@ -578,11 +631,11 @@ contains
         if (.not. built) return
         call add_cost_line(this, 'the points'' check of hp level '//to_string(last%number)// &
                            ', '//cost%words(check%prob%contact%p()))
-        call chol%free()
+        if (.not. given_built) call chol%free()
         if (.not. stat%ok()) return
         call timings%note('hp check of level '//to_string(last%number)//': '// &
                           seconds_text(wall_time() - begin)//' s')
-    end subroutine eigen_goal_check
+    end subroutine check_points
 
     !> hp: lambda `lambda`, met as 'none' (no positive mu at its last NONE_LEVELS levels), is
     !> confirmed only where the check of the last level `level` (`res`, its spectrum on `dofs`

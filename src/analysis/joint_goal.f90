@@ -17,7 +17,7 @@ module joint_goal
     use method_options, only: eigen_options_t, adapt_options_t, REFINE_HP
     use problem, only: problem_t
     use adapt_driver, only: adapt_goal_t, refiner_t, adapt_level_t, adapt_levels
-    use hp_levels, only: hp_refiner_t
+    use hp_levels, only: hp_refiner_t, built_check_t
     use eigen_goal, only: eigen_goal_t, adapted_eigen_t
     use threshold_goal, only: threshold_goal_t, adaptive_thresholds_t, threshold_goal_setup, &
                               threshold_goal_finish
@@ -198,7 +198,9 @@ contains
     end subroutine joint_goal_judge
 
     !> Each part's check of the last level, but a part checked when its targets ended
-    !> (judge) and not reopened: the loop then ends as each part's own loop would have.
+    !> (judge) and not reopened: the loop then ends as each part's own loop would have. The
+    !> check level, its factor and contact blocks that the thresholds' check makes serve the
+    !> points' check too (same cells, same degrees: the same matrices).
     subroutine joint_goal_check(this, scn, start, refiner, last, tolerance, reopen, timings, &
                                 stat)
         class(joint_goal_t), intent(inout) :: this
@@ -210,11 +212,12 @@ contains
         logical, intent(in) :: reopen
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
+        type(built_check_t) :: built   !! the check level of both parts, made once
         call this%join(.true.)
-        if (.not. this%early(2)) call this%sides%check(scn, start, refiner, last, tolerance, &
-                                                       reopen, timings, stat)
-        if (stat%ok() .and. .not. this%early(1)) call this%points%check(scn, start, refiner, &
-            last, tolerance, reopen, this%quiet, stat)
+        if (.not. this%early(2)) call this%sides%check_keep(scn, start, refiner, last, &
+            tolerance, reopen, timings, built, stat)
+        if (stat%ok() .and. .not. this%early(1)) call this%points%check_given(scn, start, &
+            refiner, last, tolerance, reopen, this%quiet, built, stat)
         call note_points(timings, this%points%cost_lines)
         call this%join(.false.)
     end subroutine joint_goal_check
