@@ -639,7 +639,7 @@ fi
 echo "sweep_mesh: ${#runs[@]} runs of $template in $outdir, $jobs at a time ($engine), with $nceig"
 export NCEIG=$nceig
 # Runs beside each other share the cores: one BLAS thread each (alone, nceig's default).
-((jobs > 1)) && export OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1
+((jobs > 1)) && export OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1 OMP_THREAD_LIMIT=1
 mkdir -p -- "$outdir/log"
 log=$(mktemp "$outdir/log/sweep_$(date +%Y%m%d_%H%M%S)_XXXX.log") || exit 1
 if [[ $engine == parallel ]]; then

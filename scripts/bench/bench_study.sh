@@ -11,7 +11,8 @@
 #   tasks CPU     the sum of its nceig runs' CPU (the hp climbs and their dense solves)
 #   per point     one nceig run per point instead: kind 'eigen' per (geometry, nu, lambda),
 #                 plus one 'threshold' run per (geometry, nu) (the task's input, its kind
-#                 changed, the sweep's lambdas as the boundary search), CPU summed
+#                 changed, the sweep's lambdas as the boundary search), CPU summed; each
+#                 on one thread in the environment of a study's task
 #   wall -j1, -j2 the study's wall time on one and on two jobs (fresh folders each)
 # NCEIG (default build/nceig) is the program; GNU time is needed (/usr/bin/time).
 # NCEIG_BEFORE, another nceig (say the program before a change, with its nceig-study-plan
@@ -74,18 +75,20 @@ for ((r = 1; r <= repeats; r++)); do
     tasks_cpu+=("$run_tasks")
     wall1+=("$run_wall1")
     wall2+=("$run_wall2")
-    # One nceig run per point, on one BLAS thread, from the study's own task inputs.
+    # One nceig run per point, from the study's own task inputs, on one thread as a task's
+    # runs are (the same environment: like with like).
+    one_thread=(env OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1 OMP_THREAD_LIMIT=1)
     : >"$work/points.cpu"
     for task in "$work"/j1/tasks/*/; do
         while read -r lambda; do
-            (cd "$task" && OPENBLAS_NUM_THREADS=1 /usr/bin/time -f '%e %U %S' -a -o "$work/points.cpu" \
-                "$NCEIG" cn.nml --set analysis%kind=eigen --set "analysis%lambda=$lambda" \
-                --set sweep%adapt_thresholds=.false. \
+            (cd "$task" && "${one_thread[@]}" /usr/bin/time -f '%e %U %S' -a \
+                -o "$work/points.cpu" "$NCEIG" cn.nml --set analysis%kind=eigen \
+                --set "analysis%lambda=$lambda" --set sweep%adapt_thresholds=.false. \
                 --set output%directory=point --set output%vtk=.false. >/dev/null 2>&1)
         done <"$work/j1/plan/lambdas"
-        (cd "$task" && OPENBLAS_NUM_THREADS=1 /usr/bin/time -f '%e %U %S' -a -o "$work/points.cpu" \
-            "$NCEIG" cn.nml --set analysis%kind=threshold --set sweep%adapt_thresholds=.false. \
-            --set output%directory=point_thr >/dev/null 2>&1)
+        (cd "$task" && "${one_thread[@]}" /usr/bin/time -f '%e %U %S' -a \
+            -o "$work/points.cpu" "$NCEIG" cn.nml --set analysis%kind=threshold \
+            --set sweep%adapt_thresholds=.false. --set output%directory=point_thr >/dev/null 2>&1)
     done
     point_cpu+=("$(grep -v '^Command' "$work/points.cpu" | awk '{ s += $2 + $3 } END { printf "%.2f", s }')")
 done

@@ -85,7 +85,8 @@ fi
 command=()  # (read -d '', not mapfile -d '': bash 4.2 of older clusters has no mapfile -d)
 while IFS= read -r -d '' word; do command+=("\$word"); done <"\$2" || exit 2
 ((\${#command[@]} > 0)) || { echo "slurm_$name.sh: no command in \$2" >&2; exit 2; }
-export OPENBLAS_NUM_THREADS=\${SLURM_CPUS_PER_TASK:-1} OMP_NUM_THREADS=\${SLURM_CPUS_PER_TASK:-1}
+export OPENBLAS_NUM_THREADS=\${SLURM_CPUS_PER_TASK:-1} OMP_NUM_THREADS=\${SLURM_CPUS_PER_TASK:-1} \\
+    OMP_THREAD_LIMIT=\${SLURM_CPUS_PER_TASK:-1}
 first=\$(((SLURM_ARRAY_TASK_ID - 1) * \$3 + 1))
 last=\$((first + \$3 - 1))
 status=0 line_number=0
