@@ -32,10 +32,10 @@ module eigen_goal
     use hp_rayleigh, only: refine_lowest_mu
     use adapt_driver, only: adapt_goal_t, refiner_t, adapt_level_t, adapt_levels, judge_target, &
                             check_target, absence_confirmed, NONE_LEVELS, TARGET_MET, &
-                            TARGET_STOPPED, adapt_target_t
+                            TARGET_STOPPED, adapt_target_t, built_check_t
     use h_refiner, only: h_refiner_t, doerfler_marking
     use moving_side, only: contact_ends_t, contact_ends, past_crossing_end, unconfirmed_words
-    use hp_levels, only: hp_refiner_t, HP_ESTIMATE, check_words, built_check_t
+    use hp_levels, only: hp_refiner_t, HP_ESTIMATE, check_words
     implicit none
     private
     public :: adapt_eigen
@@ -135,7 +135,6 @@ module eigen_goal
         procedure :: bar_text => eigen_goal_bar_text
         procedure :: mark => eigen_goal_mark
         procedure :: check => eigen_goal_check
-        procedure :: check_given => eigen_goal_check_given
         procedure :: setup => eigen_goal_setup
         procedure :: finish => eigen_goal_finish
         procedure :: solve_factored => eigen_goal_solve_factored
@@ -484,7 +483,7 @@ contains
     !> folded into that row's bar and the result's (error_bar: checked_bar), and the target
     !> judged again (check_target: one met at `last` climbs on with `reopen`).
     subroutine eigen_goal_check(this, scn, start, refiner, last, tolerance, reopen, timings, &
-                                stat)
+                                stat, built)
         class(eigen_goal_t), intent(inout) :: this
         type(scene_t), intent(in) :: scn
         type(problem_t), intent(in) :: start
@@ -494,39 +493,8 @@ contains
         logical, intent(in) :: reopen
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
-        call check_points(this, scn, start, refiner, last, tolerance, reopen, timings, stat)
-    end subroutine eigen_goal_check
-
-    !> eigen_goal_check on the check level `given` already built, factored and reduced by
-    !> another goal (joint_goal: the thresholds'; given%built false: built here as alone).
-    subroutine eigen_goal_check_given(this, scn, start, refiner, last, tolerance, reopen, &
-                                      timings, given, stat)
-        class(eigen_goal_t), intent(inout) :: this
-        type(scene_t), intent(in) :: scn
-        type(problem_t), intent(in) :: start
-        class(refiner_t), intent(in) :: refiner
-        type(adapt_level_t), intent(in) :: last
-        real(wp), intent(in) :: tolerance
-        logical, intent(in) :: reopen
-        type(timings_t), intent(inout) :: timings
-        type(built_check_t), intent(in), target :: given
-        type(status_t), intent(out) :: stat
-        call check_points(this, scn, start, refiner, last, tolerance, reopen, timings, stat, &
-                          given)
-    end subroutine eigen_goal_check_given
-
-    subroutine check_points(this, scn, start, refiner, last, tolerance, reopen, timings, stat, &
-                            given)
-        class(eigen_goal_t), intent(inout) :: this
-        type(scene_t), intent(in) :: scn
-        type(problem_t), intent(in) :: start
-        class(refiner_t), intent(in) :: refiner
-        type(adapt_level_t), intent(in) :: last
-        real(wp), intent(in) :: tolerance
-        logical, intent(in) :: reopen
-        type(timings_t), intent(inout) :: timings
-        type(status_t), intent(out) :: stat
-        type(built_check_t), intent(in), target, optional :: given
+        !> where built%built, the check level (with its factor and contact blocks) to solve on
+        type(built_check_t), intent(inout), target, optional :: built
         type(adapt_level_t), target :: own_check
         type(adapt_level_t), pointer :: check
         type(cholesky_t), target :: own_chol
@@ -539,17 +507,17 @@ contains
         real(wp) :: series, bar, begin
         character(len=:), allocatable :: why
         integer :: i, k
-        logical :: built, none, given_built
+        logical :: made, none, given_built
 
         begin = wall_time()
-        built = .false.
+        made = .false.
         given_built = .false.
-        if (present(given)) given_built = given%built
+        if (present(built)) given_built = built%built
         check => own_check
         chol => own_chol
         if (given_built) then
-            check => given%level
-            chol => given%chol
+            check => built%level
+            chol => built%chol
         end if
         do i = 1, size(this%points)
             if (size(this%points(i)%levels) == 0) cycle
@@ -558,7 +526,7 @@ contains
                 ! a lambda met as 'none' is checked too: its levels' changes bound nothing
                 none = this%targets(i)%met_absent()
                 if (row%error_bar < 0.0_wp .and. .not. none) cycle
-                if (.not. built) then
+                if (.not. made) then
                     select type (refiner)
                     class is (hp_refiner_t)
                         if (.not. given_built) &
@@ -566,13 +534,13 @@ contains
                     class default
                         return   ! h levels carry their own estimate: no check
                     end select
-                    built = .true.
+                    made = .true.
                     if (given_built) then
                         if (wants_blocks(this, check%prob%contact%p())) then
-                            kt_nn = given%kt_nn
-                            kt_nt = given%kt_nt
+                            kt_nn = built%kt_nn
+                            kt_nt = built%kt_nt
                         end if
-                        if (wants_share(this, check%prob%contact%p())) share = given%share
+                        if (wants_share(this, check%prob%contact%p())) share = built%share
                     else
                         if (stat%ok()) call refiner%factor(check, chol, timings, stat)
                         if (.not. stat%ok()) return
@@ -628,14 +596,14 @@ contains
                                   reopen .and. row%level == last%number, why)
             end associate
         end do
-        if (.not. built) return
+        if (.not. made) return
         call add_cost_line(this, 'the points'' check of hp level '//to_string(last%number)// &
                            ', '//cost%words(check%prob%contact%p()))
         if (.not. given_built) call chol%free()
         if (.not. stat%ok()) return
         call timings%note('hp check of level '//to_string(last%number)//': '// &
                           seconds_text(wall_time() - begin)//' s')
-    end subroutine check_points
+    end subroutine eigen_goal_check
 
     !> hp: lambda `lambda`, met as 'none' (no positive mu at its last NONE_LEVELS levels), is
     !> confirmed only where the check of the last level `level` (`res`, its spectrum on `dofs`

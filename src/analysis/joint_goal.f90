@@ -16,8 +16,8 @@ module joint_goal
     use scene, only: scene_t
     use method_options, only: eigen_options_t, adapt_options_t, REFINE_HP
     use problem, only: problem_t
-    use adapt_driver, only: adapt_goal_t, refiner_t, adapt_level_t, adapt_levels
-    use hp_levels, only: hp_refiner_t, built_check_t
+    use adapt_driver, only: adapt_goal_t, refiner_t, adapt_level_t, adapt_levels, built_check_t
+    use hp_levels, only: hp_refiner_t
     use eigen_goal, only: eigen_goal_t, adapted_eigen_t
     use threshold_goal, only: threshold_goal_t, adaptive_thresholds_t, threshold_goal_setup, &
                               threshold_goal_finish
@@ -202,7 +202,7 @@ contains
     !> check level, its factor and contact blocks that the thresholds' check makes serve the
     !> points' check too (same cells, same degrees: the same matrices).
     subroutine joint_goal_check(this, scn, start, refiner, last, tolerance, reopen, timings, &
-                                stat)
+                                stat, built)
         class(joint_goal_t), intent(inout) :: this
         type(scene_t), intent(in) :: scn
         type(problem_t), intent(in) :: start
@@ -212,12 +212,16 @@ contains
         logical, intent(in) :: reopen
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
-        type(built_check_t) :: built   !! the check level of both parts, made once
+        type(built_check_t), intent(inout), target, optional :: built
+        type(built_check_t), target :: own
+        type(built_check_t), pointer :: both   !! the check level of both parts, made once
+        both => own
+        if (present(built)) both => built
         call this%join(.true.)
-        if (.not. this%early(2)) call this%sides%check_keep(scn, start, refiner, last, &
-            tolerance, reopen, timings, built, stat)
-        if (stat%ok() .and. .not. this%early(1)) call this%points%check_given(scn, start, &
-            refiner, last, tolerance, reopen, this%quiet, built, stat)
+        if (.not. this%early(2)) call this%sides%check(scn, start, refiner, last, tolerance, &
+                                                       reopen, timings, stat, both)
+        if (stat%ok() .and. .not. this%early(1)) call this%points%check(scn, start, refiner, &
+            last, tolerance, reopen, this%quiet, stat, both)
         call note_points(timings, this%points%cost_lines)
         call this%join(.false.)
     end subroutine joint_goal_check

@@ -68,9 +68,9 @@ module threshold_goal
     use adapt_driver, only: adapt_goal_t, refiner_t, adapt_level_t, adapt_levels, &
                             check_target, adapt_target_t, TARGET_ACTIVE, TARGET_MET, &
                             TARGET_FLOOR, TARGET_STOPPED, no_estimate_outcome, NONE_LEVELS, &
-                            absent_since, absence_confirmed
+                            absent_since, absence_confirmed, built_check_t
     use h_refiner, only: h_refiner_t, doerfler_marking
-    use hp_levels, only: hp_refiner_t, HP_ESTIMATE, check_words, built_check_t
+    use hp_levels, only: hp_refiner_t, HP_ESTIMATE, check_words
     use pencil_tracking, only: N_PROFILE_BINS, level_values_t
     use moving_side, only: contact_ends_t, contact_ends, level_profile, track_side, &
                            moving_words, past_crossing_end, unconfirmed_words, end_words
@@ -221,7 +221,6 @@ module threshold_goal
         procedure :: bar_text => threshold_goal_bar_text
         procedure :: mark => threshold_goal_mark
         procedure :: check => threshold_goal_check
-        procedure :: check_keep => threshold_goal_check_keep
     end type threshold_goal_t
 
 contains
@@ -789,7 +788,7 @@ contains
     !> at an earlier level, into that level's bar; each side is then judged again on its own
     !> (check_target; `reopen`: climb on). The check uses the levels' half-degree forces.
     subroutine threshold_goal_check(this, scn, start, refiner, last, tolerance, reopen, &
-                                    timings, stat)
+                                    timings, stat, built)
         class(threshold_goal_t), intent(inout) :: this
         type(scene_t), intent(in) :: scn
         type(problem_t), intent(in) :: start
@@ -799,39 +798,8 @@ contains
         logical, intent(in) :: reopen
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
-        call check_sides(this, scn, start, refiner, last, tolerance, reopen, timings, stat)
-    end subroutine threshold_goal_check
-
-    !> threshold_goal_check, its hp check level, factor and contact blocks kept in `keep`
-    !> (keep%built: made) for another goal's check of the same level (joint_goal).
-    subroutine threshold_goal_check_keep(this, scn, start, refiner, last, tolerance, reopen, &
-                                         timings, keep, stat)
-        class(threshold_goal_t), intent(inout) :: this
-        type(scene_t), intent(in) :: scn
-        type(problem_t), intent(in) :: start
-        class(refiner_t), intent(in) :: refiner
-        type(adapt_level_t), intent(in) :: last
-        real(wp), intent(in) :: tolerance
-        logical, intent(in) :: reopen
-        type(timings_t), intent(inout) :: timings
-        type(built_check_t), intent(inout), target :: keep
-        type(status_t), intent(out) :: stat
-        call check_sides(this, scn, start, refiner, last, tolerance, reopen, timings, stat, &
-                         keep)
-    end subroutine threshold_goal_check_keep
-
-    subroutine check_sides(this, scn, start, refiner, last, tolerance, reopen, timings, stat, &
-                           keep)
-        class(threshold_goal_t), intent(inout) :: this
-        type(scene_t), intent(in) :: scn
-        type(problem_t), intent(in) :: start
-        class(refiner_t), intent(in) :: refiner
-        type(adapt_level_t), intent(in) :: last
-        real(wp), intent(in) :: tolerance
-        logical, intent(in) :: reopen
-        type(timings_t), intent(inout) :: timings
-        type(status_t), intent(out) :: stat
-        type(built_check_t), intent(inout), target, optional :: keep
+        !> where present, the hp check level, its factor and contact blocks are kept in it
+        type(built_check_t), intent(inout), target, optional :: built
         type(adapt_level_t), target :: own_check
         type(adapt_level_t), pointer :: check
         type(cholesky_t), target :: own_chol
@@ -856,9 +824,9 @@ contains
             if (all(before <= 0.0_wp) .and. .not. any(none_met)) return
             check => own_check
             chol => own_chol
-            if (present(keep)) then
-                check => keep%level
-                chol => keep%chol
+            if (present(built)) then
+                check => built%level
+                chol => built%chol
             end if
             select type (refiner)
             class is (hp_refiner_t)
@@ -871,13 +839,13 @@ contains
             end select
             if (stat%ok()) call refiner%factor(check, chol, timings, stat)
             if (.not. stat%ok()) return
-            if (present(keep)) then
+            if (present(built)) then
                 call contact_flexibility(chol, check%prob%contact, blocks%kt_nn, blocks%kt_nt, &
-                                         stat, check%prob%k, keep%share)
+                                         stat, check%prob%k, built%share)
                 if (stat%ok()) then
-                    keep%kt_nn = blocks%kt_nn
-                    keep%kt_nt = blocks%kt_nt
-                    keep%built = .true.
+                    built%kt_nn = blocks%kt_nn
+                    built%kt_nt = blocks%kt_nt
+                    built%built = .true.
                 end if
             else
                 call contact_flexibility(chol, check%prob%contact, blocks%kt_nn, blocks%kt_nt, &
@@ -908,9 +876,9 @@ contains
                 if (stat%ok() .and. any(onset > 0)) call collision_roundoffs(check%prob%k, &
                     chol, check%prob%contact, restricted, set, stat, lift)
             end if
-            if (.not. (present(keep) .and. stat%ok())) call chol%free()
+            if (.not. (present(built) .and. stat%ok())) call chol%free()
             if (.not. stat%ok()) then
-                if (present(keep)) keep%built = .false.
+                if (present(built)) built%built = .false.
                 stat%message = scn%name//': the check of hp level '//to_string(last%number)// &
                     ': '//stat%message
                 return
@@ -986,7 +954,7 @@ contains
             call check_none_sides(this%targets, none_met, thr, check%prob%dofs%n_free, &
                                   last%number, timings)
         end associate
-    end subroutine check_sides
+    end subroutine threshold_goal_check
 
     !> hp: each side met as 'none' (`none_met`) is confirmed only where the check of the last
     !> level `level` (`thr`: its pencil on `dofs` free dofs, every degree raised by one) has

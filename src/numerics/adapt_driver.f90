@@ -38,6 +38,7 @@ module adapt_driver
     use problem, only: problem_t
     use hp_space, only: hp_space_t
     use sparse_cholesky, only: cholesky_t
+    use contact_reduction, only: lift_share_t
     use error_bar, only: floor_reached, floor_outcome, stall_outcome
     implicit none
     private
@@ -80,6 +81,17 @@ module adapt_driver
         type(hp_space_t) :: space            !! hp: the level's space (cell degrees)
         integer, allocatable :: degree(:)    !! hp: per cell of prob%mesh; h: unallocated
     end type adapt_level_t
+
+    !> A check level built, factored and reduced by one goal's check for another goal's check
+    !> of the same level (joint_goal: the thresholds', then the points'), so that its
+    !> assembly, factor and contact blocks are made once; `built` says it was.
+    type, public :: built_check_t
+        logical :: built = .false.
+        type(adapt_level_t) :: level
+        type(cholesky_t) :: chol
+        real(wp), allocatable :: kt_nn(:, :), kt_nt(:, :)
+        type(lift_share_t) :: share   !! the lifts' data on chol (contact_flexibility)
+    end type built_check_t
 
     !> What makes the levels.
     type, abstract, public :: refiner_t
@@ -235,9 +247,10 @@ module adapt_driver
             character(len=:), allocatable :: text
         end function goal_bar_text
 
-        subroutine goal_check(this, scn, start, refiner, last, tolerance, reopen, timings, stat)
+        subroutine goal_check(this, scn, start, refiner, last, tolerance, reopen, timings, stat, &
+                              built)
             import :: adapt_goal_t, scene_t, problem_t, refiner_t, adapt_level_t, timings_t, &
-                      status_t, wp
+                      status_t, wp, built_check_t
             class(adapt_goal_t), intent(inout) :: this
             type(scene_t), intent(in) :: scn
             type(problem_t), intent(in) :: start
@@ -249,6 +262,10 @@ module adapt_driver
             logical, intent(in) :: reopen
             type(timings_t), intent(inout) :: timings
             type(status_t), intent(out) :: stat
+            !> a check level shared with another goal's check of the same level (joint_goal):
+            !> the threshold goal keeps the one it makes there, the eigen goal solves on it
+            !> where built%built; the other goals ignore it
+            type(built_check_t), intent(inout), target, optional :: built
         end subroutine goal_check
 
         function goal_mark(this, theta) result(marked)

@@ -29,7 +29,6 @@ module hp_levels
     use hp_basis, only: MAX_HP_DEGREE
     use hp_eigen, only: hp_assembled_problem, factor_hp_stiffness
     use sparse_cholesky, only: cholesky_t
-    use contact_reduction, only: lift_share_t
     use error_bar, only: hp_run_bar
     use adapt_driver, only: refiner_t, adapt_goal_t, adapt_level_t, test_failing_level, &
                             injected_failure
@@ -59,17 +58,6 @@ module hp_levels
         procedure :: check_level => hp_check_level
         procedure :: cap_words => hp_cap_words
     end type hp_refiner_t
-
-    !> A check level built, factored and reduced by one goal for another that checks the same
-    !> level (joint_goal: the thresholds' check, then the points'), so the check's assembly,
-    !> factor and contact blocks are made once. Only the factor holds a C handle: owned here.
-    type, public :: built_check_t
-        logical :: built = .false.
-        type(adapt_level_t) :: level
-        type(cholesky_t) :: chol
-        real(wp), allocatable :: kt_nn(:, :), kt_nt(:, :)
-        type(lift_share_t) :: share   !! the lifts' data on chol (contact_flexibility)
-    end type built_check_t
 
 contains
 

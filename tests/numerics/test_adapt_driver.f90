@@ -9,7 +9,8 @@ module adapt_driver_doubles
     use method_options, only: adapt_options_t
     use problem, only: problem_t
     use sparse_cholesky, only: cholesky_t
-    use adapt_driver, only: refiner_t, adapt_goal_t, adapt_level_t, judge_target, check_target
+    use adapt_driver, only: refiner_t, adapt_goal_t, adapt_level_t, judge_target, check_target, &
+                            built_check_t
     implicit none
     private
     public :: counting_refiner_t, geometric_goal_t
@@ -139,7 +140,7 @@ contains
     !> The check of level `last`: each target's bar becomes the larger of its own and
     !> check_factor times it ('the check says so'; '; capped' where the refiner says so).
     subroutine geometric_check(this, scn, start, refiner, last, tolerance, reopen, timings, &
-                               stat)
+                               stat, built)
         class(geometric_goal_t), intent(inout) :: this
         type(scene_t), intent(in) :: scn
         type(problem_t), intent(in) :: start
@@ -149,6 +150,7 @@ contains
         logical, intent(in) :: reopen
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
+        type(built_check_t), intent(inout), target, optional :: built
         real(wp) :: series
         character(len=:), allocatable :: why
         integer :: i

@@ -7,7 +7,7 @@ module goal_doubles
     use timer, only: timings_t
     use scene, only: scene_t
     use problem, only: problem_t
-    use adapt_driver, only: adapt_goal_t, adapt_level_t, refiner_t
+    use adapt_driver, only: adapt_goal_t, adapt_level_t, refiner_t, built_check_t
     implicit none
     private
     public :: every_cell_t
@@ -54,7 +54,8 @@ contains
     end function every_bar_text
 
     !> Nothing to check (it solves nothing).
-    subroutine every_check(this, scn, start, refiner, last, tolerance, reopen, timings, stat)
+    subroutine every_check(this, scn, start, refiner, last, tolerance, reopen, timings, stat, &
+                           built)
         class(every_cell_t), intent(inout) :: this
         type(scene_t), intent(in) :: scn
         type(problem_t), intent(in) :: start
@@ -64,6 +65,7 @@ contains
         logical, intent(in) :: reopen
         type(timings_t), intent(inout) :: timings
         type(status_t), intent(out) :: stat
+        type(built_check_t), intent(inout), target, optional :: built
     end subroutine every_check
 
     function every_mark(this, theta) result(marked)
