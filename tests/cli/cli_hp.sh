@@ -314,9 +314,14 @@ NML
           }
           if (done && !first) first = level }
         END { print first + 0 }')
-    check 'settled: the floor, exit 8, at the first level where both sides settled' \
+    # At that level the check one degree higher may still reopen a side met earlier whose
+    # round-off bound is just below the tolerance (lambda- here: 8.2e-9 with the Prescott
+    # kernels, which moved it above 1e-8): one level more, then both are at the floor. Which
+    # of the two happens turns on digits at the round-off level, so either is right.
+    levels=$(json "$work/slanted/summary.json" adapt_levels)
+    check 'settled: the floor, exit 8, at the first level where both sides settled (or one more)' \
         '[[ $rc -eq 8 && $(json "$work/slanted/summary.json" adapt_floor_reached) == true &&
-            $settled -gt 0 && $(json "$work/slanted/summary.json" adapt_levels) -eq $settled ]]'
+            $settled -gt 0 && $levels -ge $settled && $levels -le $((settled + 1)) ]]'
 else
     echo 'SKIP: gmsh is not installed: the settled-side check did not run'
 fi
