@@ -26,44 +26,78 @@ cp -a "$out" "$work/kept"
 intact() { diff -r "$out" "$work/kept" >/dev/null && ! compgen -G "$work/.out.nceig-staging-*" >/dev/null; }
 check 'the previous set is written' '[[ -s $out/summary.json ]]'
 
-# until_line FILE TEXT PID: wait until FILE holds a line with TEXT (or the run ended).
-until_line() {
-    while kill -0 "$3" 2>/dev/null && ! grep -q "$2" "$1" 2>/dev/null; do sleep 0.002; done
+# Waits without starting a process (a sleep or a grep costs some ms, more under load, and
+# the window of an ordering is tens of ms): `read -t` on a FIFO nobody writes to.
+mkfifo "$work/idle"
+exec 9<>"$work/idle"
+# pause MS: wait MS milliseconds.
+pause() {
+    local seconds
+    printf -v seconds '%d.%03d' $(($1 / 1000)) $(($1 % 1000))
+    read -r -t "$seconds" -u 9 _ || :
 }
-# random_delay MAX_MS: a random time in [0, MAX_MS) ms, as sleep takes it.
-random_delay() { printf '%d.%03d' $((RANDOM % $1 / 1000)) $((RANDOM % $1 % 1000)); }
+# until_line FILE TEXT PID: wait until FILE holds a line with TEXT (or the run ended),
+# reading its new lines as they come.
+until_line() {
+    local line
+    : >>"$1"
+    exec 8<"$1"
+    while kill -0 "$3" 2>/dev/null; do
+        while IFS= read -r line <&8; do
+            [[ $line == *"$2"* ]] && { exec 8<&-; return; }
+        done
+        pause 1
+    done
+    exec 8<&-
+}
 
-# ordering_ms INPUT K: the time of the K-th ordering of a run of INPUT (from its progress
-# line; the run is stopped there).
-ordering_ms() {
+# ordering_window INPUT AFTER K: "MS GAP", the time of the K-th ordering of a run of INPUT
+# (from its progress line) and the time from the line with AFTER to that ordering's line as
+# a poll every 2 ms sees it, both in ms (the run is stopped there). Where AFTER is not the
+# line right before the ordering (a refinement and an assembly come between), the ordering
+# is the last MS of the GAP, and a load on the machine stretches both.
+ordering_window() {
     : >"$work/full.out"   # there before the loop reads it (the run's redirection may lag)
     "$nceig" "$1" --set output%directory="$work/full" >"$work/full.out" 2>&1 &
-    local pid=$! ms
-    while kill -0 "$pid" 2>/dev/null && (($(grep -c '\.\. ordering' "$work/full.out") < $2)); do
-        sleep 0.01
+    local pid=$! ms t0 t1
+    until_line "$work/full.out" "$2" "$pid"
+    t0=${EPOCHREALTIME//[!0-9]/}
+    while kill -0 "$pid" 2>/dev/null &&
+          (($(grep -c '\.\. ordering' "$work/full.out") < $3)); do
+        sleep 0.002
     done
+    t1=${EPOCHREALTIME//[!0-9]/}
     kill -TERM "$pid" 2>/dev/null
     wait "$pid"
-    ms=$(awk -v n="$2" '/\.\. ordering/ && ++k == n {printf "%d", $3 * 1000}' "$work/full.out")
-    echo $((ms > 1 ? ms : 1))
+    ms=$(awk -v n="$3" '/\.\. ordering/ && ++k == n {printf "%d", $3 * 1000}' "$work/full.out")
+    echo "$((ms > 1 ? ms : 1)) $(((10#$t1 - 10#$t0) / 1000))"
 }
 
 # signal_rounds INPUT AFTER K: `rounds` runs of INPUT into $out, each sent SIGTERM at a
-# random moment of its K-th METIS ordering: after the progress line AFTER that precedes it,
-# within the ordering's time measured first (ordering_ms). Counts the signals that came
-# before the ordering ended (n_in_metis), the runs that did not end by the signal
-# (n_bad_status), without their one line (n_bad_line) or without the previous set intact
-# (n_bad_set; it is put back).
+# random moment of its K-th METIS ordering as ordering_window places it: after the progress
+# line AFTER, at GAP - MS plus a random part of the first half of MS (seeing the line and
+# starting sleep take some ms of their own, more under load). Where none of them came
+# before the ordering ended (a loaded machine moves the window), up to four times as many
+# more rounds, until one does. Counts the signals that came before the ordering ended
+# (n_in_metis), the runs that did not end by the signal (n_bad_status), without their one
+# line (n_bad_line) or without the previous set intact (n_bad_set; it is put back).
 signal_rounds() {
-    local input=$1 after=$2 k=$3 ms i rc pid
-    ms=$(ordering_ms "$input" "$k")
-    echo "      ordering $k of $(basename "$input") takes $ms ms"
+    local input=$1 after=$2 k=$3 ms gap lead i rc pid
+    read -r ms gap < <(ordering_window "$input" "$after" "$k")
+    lead=$((gap > ms ? gap - ms : 0))
+    echo "      ordering $k of $(basename "$input") takes $ms ms, ending $gap ms after '$after'"
     n_in_metis=0 n_bad_status=0 n_bad_line=0 n_bad_set=0
-    for ((i = 1; i <= rounds; i++)); do
+    for ((i = 1; i <= rounds || (n_in_metis == 0 && i <= 5 * rounds); i++)); do
+        # Emptied here, not only by the run's redirection: that happens in the child, after
+        # the fork, and a wait that read the last round's file before it would find its line
+        # at once and signal the child before nceig runs (exit 143 from the shell or the
+        # loader, with no line).
+        : >"$work/run.out"
+        : >"$work/run.err"
         "$nceig" "$input" >"$work/run.out" 2>"$work/run.err" &
         pid=$!
         until_line "$work/run.out" "$after" "$pid"
-        sleep "$(random_delay "$ms")"
+        pause $((lead + RANDOM % ((ms + 1) / 2)))
         kill -TERM "$pid" 2>/dev/null
         wait "$pid"
         rc=$?
@@ -79,7 +113,7 @@ signal_rounds() {
         fi
         intact || { n_bad_set=$((n_bad_set + 1)); rm -rf "$out"; cp -a "$work/kept" "$out"; }
     done
-    echo "      $n_in_metis of $rounds signals came before ordering $k ended"
+    echo "      $n_in_metis of $((i - 1)) signals came before ordering $k ended"
 }
 RANDOM=2718
 
