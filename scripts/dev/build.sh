@@ -3,7 +3,7 @@
 # Configure and build one configuration:
 #     scripts/dev/build.sh [Release|Debug|Asan] [--target TARGET] [cmake args]
 # The build folder is build/ for Release, build-debug/ for Debug and build-asan/ for Asan
-# (Debug flags plus -fsanitize=address,undefined: NCEIG_SANITIZE=ON). --target builds one
+# (Debug flags at -O1 plus -fsanitize=address,undefined: NCEIG_SANITIZE=ON). --target builds one
 # target (nceig: the program alone, without the test programs); default: everything.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
